@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: Apache-2.0
+// raster: an owning, contiguous, row-major 2-D array of cells (no georeferencing, no metadata).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Owning rows x cols raster of T, stored row-major and contiguous (row_stride() == cols()).
+/// Converts implicitly to raster_view<T> / raster_view<const T>; copying a raster copies its cells.
+template <class T>
+class raster {
+public:
+    using value_type = T;
+
+    raster() = default;
+
+    /// rows x cols cells, each set to `fill`. @throws invalid_input if rows or cols < 0.
+    raster(std::ptrdiff_t rows, std::ptrdiff_t cols, T fill = T{})
+        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")),
+          cells_(static_cast<std::size_t>(rows * cols), fill) {}
+
+    /// Deep copy of any raster-like input.
+    template <raster_input V>
+        requires std::convertible_to<typename V::value_type, T>
+    explicit raster(const V& source) : raster(source.rows(), source.cols())
+    {
+        for (std::ptrdiff_t r = 0; r < rows_; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols_; ++c) (*this)(r, c) = static_cast<T>(source(r, c));
+        }
+    }
+
+    std::ptrdiff_t rows() const noexcept { return rows_; }
+    std::ptrdiff_t cols() const noexcept { return cols_; }
+    std::ptrdiff_t row_stride() const noexcept { return cols_; }
+    std::ptrdiff_t size() const noexcept { return rows_ * cols_; }
+    bool empty() const noexcept { return size() == 0; }
+
+    T& operator()(std::ptrdiff_t r, std::ptrdiff_t c) noexcept
+    {
+        LIDARFX_ASSERT(r >= 0 && r < rows_ && c >= 0 && c < cols_);
+        return cells_[static_cast<std::size_t>(r * cols_ + c)];
+    }
+    const T& operator()(std::ptrdiff_t r, std::ptrdiff_t c) const noexcept
+    {
+        LIDARFX_ASSERT(r >= 0 && r < rows_ && c >= 0 && c < cols_);
+        return cells_[static_cast<std::size_t>(r * cols_ + c)];
+    }
+
+    T* data() noexcept { return cells_.data(); }
+    const T* data() const noexcept { return cells_.data(); }
+    T* row(std::ptrdiff_t r) noexcept { return data() + r * cols_; }
+    const T* row(std::ptrdiff_t r) const noexcept { return data() + r * cols_; }
+    auto begin() noexcept { return cells_.begin(); }
+    auto end() noexcept { return cells_.end(); }
+    auto begin() const noexcept { return cells_.begin(); }
+    auto end() const noexcept { return cells_.end(); }
+
+    void fill(const T& value) { std::fill(cells_.begin(), cells_.end(), value); }
+
+    raster_view<T> view() noexcept { return {data(), rows_, cols_, cols_}; }
+    raster_view<const T> view() const noexcept { return {data(), rows_, cols_, cols_}; }
+    operator raster_view<T>() noexcept { return view(); }
+    operator raster_view<const T>() const noexcept { return view(); }
+
+    friend bool operator==(const raster& a, const raster& b)
+    {
+        return a.rows_ == b.rows_ && a.cols_ == b.cols_ && a.cells_ == b.cells_;
+    }
+
+private:
+    static std::ptrdiff_t checked(std::ptrdiff_t n, const char* name)
+    {
+        detail::require(n >= 0, "raster", name, ">= 0", n);
+        return n;
+    }
+
+    std::ptrdiff_t rows_ = 0, cols_ = 0;
+    std::vector<T> cells_;
+};
+
+namespace detail {
+
+/// Read access to any raster_input through a raster_view: strided rasters are viewed in place, other
+/// types are copied once into an owned raster. Lets kernels run on plain pointers whatever the caller's type.
+template <raster_input In>
+class readable {
+public:
+    using T = typename In::value_type;
+    explicit readable(const In& in)
+    {
+        if constexpr (strided_raster<In>) {
+            view_ = view_of(in);
+        } else {
+            copy_ = raster<T>(in);
+            view_ = copy_.view();
+        }
+    }
+    raster_view<const T> view() const noexcept { return view_; }
+
+private:
+    raster<T> copy_;
+    raster_view<const T> view_;
+};
+
+/// Calls `compute(raster_view<T>)` on `out` directly when it is a strided raster of T, otherwise on a
+/// scratch raster that is then copied into `out` cell by cell.
+template <class T, class Out, class Compute>
+void write_through(Out&& out, Compute&& compute)
+{
+    using O = std::remove_cvref_t<Out>;
+    if constexpr (std::is_same_v<O, raster_view<T>>) {
+        compute(out);
+    } else if constexpr (std::is_same_v<O, raster<T>>) {
+        compute(out.view());
+    } else {
+        raster<T> scratch(out.rows(), out.cols());
+        compute(scratch.view());
+        for (std::ptrdiff_t r = 0; r < scratch.rows(); ++r) {
+            for (std::ptrdiff_t c = 0; c < scratch.cols(); ++c) out(r, c) = static_cast<typename O::value_type>(scratch(r, c));
+        }
+    }
+}
+
+}  // namespace detail
+}  // namespace lidarfx

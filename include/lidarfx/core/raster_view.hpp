@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: Apache-2.0
+// raster_view: a non-owning, row-strided 2-D view of cells in caller memory, and the raster concepts.
+#pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <type_traits>
+
+#include "lidarfx/core/error.hpp"
+
+namespace lidarfx {
+
+/// Anything with rows(), cols() and (r, c) indexing yielding its value_type: algorithms accept it.
+template <class V>
+concept raster_input = requires(const V& v, std::ptrdiff_t i) {
+    typename V::value_type;
+    { v.rows() } -> std::convertible_to<std::ptrdiff_t>;
+    { v.cols() } -> std::convertible_to<std::ptrdiff_t>;
+    { v(i, i) } -> std::convertible_to<typename V::value_type>;
+};
+
+/// A raster_input whose cells can be assigned a T through an lvalue: algorithms write results into it.
+/// (raster_view<T> and raster<T>& both qualify; pass outputs as `Out&&`.)
+template <class V, class T>
+concept raster_output_of = raster_input<std::remove_cvref_t<V>> && requires(V& v, T x) { v(0, 0) = x; };
+
+/// A raster whose cells sit in memory as rows of contiguous cells `row_stride()` apart: it can be viewed
+/// without copying (raster, raster_view, or a host type such as a wrapped cv::Mat or GDAL buffer).
+template <class V>
+concept strided_raster = raster_input<V> && requires(const V& v) {
+    { v.data() } -> std::convertible_to<const typename V::value_type*>;
+    { v.row_stride() } -> std::convertible_to<std::ptrdiff_t>;
+};
+
+/// Non-owning view of `rows` x `cols` cells; cell (r, c) is at data[r * row_stride + c] (row 0 = north).
+/// Cheap to copy; constness lives in T (raster_view<const float> reads, raster_view<float> writes).
+template <class T>
+class raster_view {
+public:
+    using value_type = std::remove_cv_t<T>;
+    using element_type = T;
+
+    constexpr raster_view() noexcept = default;
+
+    /// View of contiguous rows (row_stride = cols).
+    constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols)
+        : raster_view(data, rows, cols, cols) {}
+
+    /// View with an explicit row stride in elements; requires rows, cols >= 0 and row_stride >= cols.
+    constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t row_stride)
+        : data_(data), rows_(rows), cols_(cols), stride_(row_stride)
+    {
+        detail::require(rows >= 0 && cols >= 0, "raster_view", "rows and cols must be >= 0");
+        detail::require(row_stride >= cols, "raster_view", "row_stride", ">= cols", row_stride);
+        detail::require(data != nullptr || rows * cols == 0, "raster_view", "data must not be null for a non-empty view");
+    }
+
+    /// Converts a mutable view to a read-only one.
+    template <class U>
+        requires(std::is_const_v<T> && std::is_same_v<std::remove_cv_t<T>, U>)
+    constexpr raster_view(const raster_view<U>& other) noexcept
+        : data_(other.data()), rows_(other.rows()), cols_(other.cols()), stride_(other.row_stride()) {}
+
+    constexpr T& operator()(std::ptrdiff_t r, std::ptrdiff_t c) const noexcept
+    {
+        LIDARFX_ASSERT(r >= 0 && r < rows_ && c >= 0 && c < cols_);
+        return data_[r * stride_ + c];
+    }
+
+    constexpr T* data() const noexcept { return data_; }
+    constexpr std::ptrdiff_t rows() const noexcept { return rows_; }
+    constexpr std::ptrdiff_t cols() const noexcept { return cols_; }
+    constexpr std::ptrdiff_t row_stride() const noexcept { return stride_; }
+    constexpr std::ptrdiff_t size() const noexcept { return rows_ * cols_; }
+    constexpr bool empty() const noexcept { return rows_ == 0 || cols_ == 0; }
+    constexpr bool is_contiguous() const noexcept { return stride_ == cols_ || rows_ <= 1; }
+
+    /// Pointer to the first of cols() contiguous cells of row r.
+    constexpr T* row(std::ptrdiff_t r) const noexcept
+    {
+        LIDARFX_ASSERT(r >= 0 && r < rows_);
+        return data_ + r * stride_;
+    }
+
+    /// Sub-view of nr x nc cells starting at (r0, c0), sharing this view's stride.
+    /// @throws invalid_input if the window does not lie inside the view.
+    constexpr raster_view window(std::ptrdiff_t r0, std::ptrdiff_t c0, std::ptrdiff_t nr, std::ptrdiff_t nc) const
+    {
+        if (r0 < 0 || c0 < 0 || nr < 0 || nc < 0 || r0 + nr > rows_ || c0 + nc > cols_) {
+            throw invalid_input(detail::concat("raster_view::window: window (", r0, ", ", c0, ") of ", nr, "x",
+                                               nc, " does not fit in a ", rows_, "x", cols_, " view"));
+        }
+        return raster_view(nr * nc == 0 ? data_ : data_ + r0 * stride_ + c0, nr, nc, stride_);
+    }
+
+    /// Read-only copy of this handle.
+    constexpr raster_view<const T> as_const() const noexcept { return *this; }
+
+private:
+    T* data_ = nullptr;
+    std::ptrdiff_t rows_ = 0, cols_ = 0, stride_ = 0;
+};
+
+template <class T>
+raster_view(T*, std::ptrdiff_t, std::ptrdiff_t) -> raster_view<T>;
+template <class T>
+raster_view(T*, std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t) -> raster_view<T>;
+
+/// Non-owning read-only view of any strided raster (no copy).
+template <strided_raster V>
+constexpr auto view_of(const V& v)
+{
+    using T = typename V::value_type;
+    return raster_view<const T>(static_cast<const T*>(v.data()), v.rows(), v.cols(), v.row_stride());
+}
+
+}  // namespace lidarfx

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the Debian packages lidarfx needs (only those missing). Usage: install-deps.sh [--peers] [--gdal]
+set -euo pipefail
+packages=(cmake ninja-build g++ libeigen3-dev libboost-dev doctest-dev libbenchmark-dev libpng-dev)
+for arg in "$@"; do
+    case "$arg" in
+        --peers) packages+=(python3-numpy python3-scipy python3-opencv) ;;
+        --gdal) packages+=(libgdal-dev) ;;
+        --clang) packages+=(clang lld) ;;
+    esac
+done
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+    echo "installing: ${missing[*]}"
+    if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
