@@ -1,0 +1,412 @@
+// SPDX-License-Identifier: Apache-2.0
+// Binary morphology on masks: dilate, erode, open and close with a rectangle, on bit-packed rows.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <initializer_list>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+#if defined(__SSE2__) || defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+namespace lidarfx {
+
+/// Structuring element and execution of the binary morphology functions.
+struct morph_options {
+    int size = 5;     ///< width of the rectangle in cells (columns); odd, >= 1. Default 5.
+    int height = 0;   ///< height of the rectangle in cells (rows); odd, >= 1, or 0 for a square (= size)
+    int threads = 1;  ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+};
+
+namespace detail {
+
+using mask_word = std::uint64_t;
+inline constexpr std::ptrdiff_t mask_word_bits = 64;
+
+/// Number of 64-bit words holding `cols` bits.
+constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept { return (cols + 63) / 64; }
+
+/// Packs a row of `cols` cells into bits (bit j of word w = cell 64w + j is nonzero); bits past `cols`
+/// in the last word are 0.
+template <class T>
+void pack_mask_row(const T* src, std::ptrdiff_t cols, mask_word* dst) noexcept
+{
+    std::ptrdiff_t c = 0, w = 0;
+    if constexpr (sizeof(T) == 1 && std::is_integral_v<T>) {
+        for (; c + 64 <= cols; c += 64, ++w) {
+#if defined(__AVX2__)
+            const __m256i zero = _mm256_setzero_si256();
+            const auto lo = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(
+                _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c)), zero)));
+            const auto hi = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(
+                _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c + 32)), zero)));
+            dst[w] = ~(mask_word{lo} | (mask_word{hi} << 32));
+#elif defined(__SSE2__)
+            const __m128i zero = _mm_setzero_si128();
+            mask_word zeros = 0;
+            for (int q = 0; q < 4; ++q) {
+                const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + c + 16 * q));
+                zeros |= mask_word{static_cast<std::uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)))}
+                         << (16 * q);
+            }
+            dst[w] = ~zeros;
+#else
+            // Portable: 8 cells at a time; flag nonzero bytes in their low bit, then gather the 8 flags
+            // into the top byte with one multiplication (no two partial products share a bit).
+            mask_word bits = 0;
+            for (int q = 0; q < 8; ++q) {
+                std::uint64_t v;
+                std::memcpy(&v, src + c + 8 * q, 8);
+                const std::uint64_t low7 = 0x7f7f7f7f7f7f7f7fULL;
+                const std::uint64_t flags = ((((v & low7) + low7) | v) >> 7) & 0x0101010101010101ULL;
+                bits |= ((flags * 0x0102040810204080ULL) >> 56) << (8 * q);
+            }
+            dst[w] = bits;
+#endif
+        }
+    }
+    for (; c < cols; c += 64, ++w) {
+        mask_word bits = 0;
+        const std::ptrdiff_t n = std::min<std::ptrdiff_t>(64, cols - c);
+        for (std::ptrdiff_t j = 0; j < n; ++j) bits |= mask_word{src[c + j] != T{}} << j;
+        dst[w] = bits;
+    }
+}
+
+/// Writes the first `cols` bits of `src` as 0/1 bytes.
+inline void unpack_mask_row(const mask_word* src, std::ptrdiff_t cols, std::uint8_t* dst) noexcept
+{
+    std::ptrdiff_t c = 0;
+#if defined(__AVX2__)
+    // 32 bits -> 32 bytes: byte i takes source byte i/8, keeps bit i%8, and becomes 0 or 1.
+    const __m256i spread = _mm256_setr_epi8(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1,  //
+                                            2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3);
+    const __m256i select = _mm256_set1_epi64x(static_cast<long long>(0x8040201008040201ULL));
+    const __m256i one = _mm256_set1_epi8(1);
+    for (; c + 32 <= cols; c += 32) {
+        const auto bits = static_cast<int>(static_cast<std::uint32_t>(src[c / 64] >> (c % 64)));
+        __m256i v = _mm256_shuffle_epi8(_mm256_set1_epi32(bits), spread);
+        v = _mm256_and_si256(_mm256_cmpeq_epi8(_mm256_and_si256(v, select), select), one);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + c), v);
+    }
+#endif
+    // Portable: replicate 8 bits into 8 bytes, keep bit i in byte i, and turn each nonzero byte into 1.
+    for (; c + 8 <= cols; c += 8) {
+        const std::uint64_t byte = (src[c / 64] >> (c % 64)) & 0xffU;
+        const std::uint64_t kept = (byte * 0x0101010101010101ULL) & 0x8040201008040201ULL;
+        const std::uint64_t v = ((kept + 0x7f7f7f7f7f7f7f7fULL) >> 7) & 0x0101010101010101ULL;
+        std::memcpy(dst + c, &v, 8);
+    }
+    for (; c < cols; ++c) dst[c] = static_cast<std::uint8_t>((src[c / 64] >> (c % 64)) & 1U);
+}
+
+/// Dilation combines with OR (neutral 0, the value of cells outside the raster), erosion with AND
+/// (neutral 1): padding with the neutral element is exactly "cells outside are ignored".
+struct morph_or {
+    static constexpr mask_word neutral = 0;
+    static constexpr mask_word apply(mask_word a, mask_word b) noexcept { return a | b; }
+};
+struct morph_and {
+    static constexpr mask_word neutral = ~mask_word{0};
+    static constexpr mask_word apply(mask_word a, mask_word b) noexcept { return a & b; }
+};
+
+/// 64 bits of `buf` (n words, neutral beyond both ends) starting at bit position `pos` >= 0.
+template <class Op>
+mask_word bits_at(const mask_word* buf, std::ptrdiff_t n, std::ptrdiff_t pos) noexcept
+{
+    const std::ptrdiff_t q = pos / 64;
+    const int s = static_cast<int>(pos % 64);
+    const mask_word lo = q < n ? buf[q] : Op::neutral;
+    if (s == 0) return lo;
+    const mask_word hi = q + 1 < n ? buf[q + 1] : Op::neutral;
+    return (lo >> s) | (hi << (64 - s));
+}
+
+/// One row of the horizontal pass: out bit c = Op over in bits [c - k, c + k] clipped to [0, cols).
+/// Van Herk-like doubling: a_L(x) = Op over [x, x + L) is built in place for L = 1, 2, 4, ... up to the
+/// largest power of two L <= 2k + 1, then out(c) = a_L(c - k) Op a_L(c + k + 1 - L): O(words * log k).
+/// `buf` is scratch reused across rows.
+template <class Op>
+void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::ptrdiff_t k,
+               std::vector<mask_word>& buf)
+{
+    const std::ptrdiff_t words = mask_words(cols);
+    if (k == 0) {
+        std::copy(in, in + words, out);
+        return;
+    }
+    const std::ptrdiff_t pad = k / 64 + 1;  // enough neutral words left of the data for position -k
+    const std::ptrdiff_t n = words + 2 * pad;
+    buf.assign(static_cast<std::size_t>(n), Op::neutral);
+    mask_word* a = buf.data();
+    std::copy(in, in + words, a + pad);
+    if (cols % 64 != 0) {
+        const mask_word tail = ~mask_word{0} << (cols % 64);  // bits past the last column
+        a[pad + words - 1] = (a[pad + words - 1] & ~tail) | (Op::neutral & tail);
+    }
+    const std::ptrdiff_t span = 2 * k + 1;
+    const std::ptrdiff_t top = std::bit_floor(static_cast<std::size_t>(span));
+    for (std::ptrdiff_t len = 1; len < top; len *= 2) {
+        // In increasing order: word j reads words j + len/64 and the next, not yet overwritten.
+        if (len < 64) {
+            const int s = static_cast<int>(len);
+            for (std::ptrdiff_t j = 0; j + 1 < n; ++j) a[j] = Op::apply(a[j], (a[j] >> s) | (a[j + 1] << (64 - s)));
+            a[n - 1] = Op::apply(a[n - 1], (a[n - 1] >> s) | (Op::neutral << (64 - s)));
+        } else {
+            const std::ptrdiff_t q = len / 64;
+            for (std::ptrdiff_t j = 0; j < n; ++j) a[j] = Op::apply(a[j], j + q < n ? a[j + q] : Op::neutral);
+        }
+    }
+    const std::ptrdiff_t left = pad * 64 - k, right = pad * 64 + k + 1 - top;
+    for (std::ptrdiff_t i = 0; i < words; ++i) {
+        out[i] = Op::apply(bits_at<Op>(a, n, left + 64 * i), bits_at<Op>(a, n, right + 64 * i));
+    }
+}
+
+/// Bit rows of a mask: `rows` rows of `words` words each, contiguous.
+struct bit_rows {
+    std::ptrdiff_t rows = 0, words = 0;
+    std::vector<mask_word> bits;
+    bit_rows(std::ptrdiff_t r, std::ptrdiff_t w) : rows(r), words(w), bits(static_cast<std::size_t>(r * w)) {}
+    mask_word* row(std::ptrdiff_t r) noexcept { return bits.data() + r * words; }
+    const mask_word* row(std::ptrdiff_t r) const noexcept { return bits.data() + r * words; }
+};
+
+/// Vertical pass, step 1 (van Herk / Gil-Werman): over padded rows p (= row p - k, neutral outside the
+/// raster) cut into blocks of 2k + 1, `prefix` = Op from the block start to p and `suffix` = Op from p
+/// to the block end. Then rows [r - k, r + k] combine as suffix(r) Op prefix(r + 2k): 3 ops per word.
+template <class Op>
+void van_herk_scan(const bit_rows& in, std::ptrdiff_t k, bit_rows& prefix, bit_rows& suffix, int threads,
+                   const char* function)
+{
+    const std::ptrdiff_t span = 2 * k + 1, padded = in.rows + 2 * k, words = in.words;
+    const std::ptrdiff_t blocks_per_task = std::max<std::ptrdiff_t>(1, 64 / span);
+    const auto source = [&](std::ptrdiff_t p) -> const mask_word* {
+        const std::ptrdiff_t r = p - k;
+        return r >= 0 && r < in.rows ? in.row(r) : nullptr;  // nullptr: a padding row, all neutral
+    };
+    const auto load = [&](const mask_word* s, std::ptrdiff_t i) { return s ? s[i] : Op::neutral; };
+    parallel_for_rows(padded, span * blocks_per_task, threads, [&](std::ptrdiff_t p0, std::ptrdiff_t p1) {
+        for (std::ptrdiff_t b0 = p0; b0 < p1; b0 += span) {
+            const std::ptrdiff_t b1 = std::min(b0 + span, p1);
+            const mask_word* s0 = source(b0);
+            for (std::ptrdiff_t i = 0; i < words; ++i) prefix.row(b0)[i] = load(s0, i);
+            for (std::ptrdiff_t p = b0 + 1; p < b1; ++p) {
+                const mask_word* s = source(p);
+                mask_word* d = prefix.row(p);
+                const mask_word* prev = prefix.row(p - 1);
+                for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(prev[i], load(s, i));
+            }
+            const mask_word* sl = source(b1 - 1);
+            for (std::ptrdiff_t i = 0; i < words; ++i) suffix.row(b1 - 1)[i] = load(sl, i);
+            for (std::ptrdiff_t p = b1 - 2; p >= b0; --p) {
+                const mask_word* s = source(p);
+                mask_word* d = suffix.row(p);
+                const mask_word* next = suffix.row(p + 1);
+                for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(next[i], load(s, i));
+            }
+        }
+    }, {}, function);
+}
+
+enum class morph_step { dilate, erode };
+
+/// Runs `steps` (each a dilation or erosion by the same rectangle) on mask `in` and writes 0/1 to `out`.
+/// The mask is packed to bits once; each step is a horizontal doubling pass per row and a vertical van
+/// Herk pass; the result is unpacked once. `in` is fully read before `out` is written, so they may alias.
+template <class T>
+void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const morph_options& opt,
+               std::initializer_list<morph_step> steps, const char* function)
+{
+    const std::ptrdiff_t rows = in.rows(), cols = in.cols();
+    if (rows == 0 || cols == 0) {
+        resolve_threads(opt.threads, function);
+        return;
+    }
+    const std::ptrdiff_t words = mask_words(cols);
+    const int height = opt.height == 0 ? opt.size : opt.height;
+    // Windows reaching past the whole raster clip to it: cap the radii (keeps scratch small).
+    const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.size / 2, cols - 1);
+    const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(height / 2, rows - 1);
+    constexpr std::ptrdiff_t block = 64;
+
+    const auto horizontal = [&](morph_step step, const mask_word* src, mask_word* dst, std::vector<mask_word>& buf) {
+        if (step == morph_step::erode) morph_row<morph_and>(src, dst, cols, kx, buf);
+        else morph_row<morph_or>(src, dst, cols, kx, buf);
+    };
+
+    bit_rows h(rows, words), next(rows, words);
+    parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        std::vector<mask_word> packed(static_cast<std::size_t>(words)), buf;
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            pack_mask_row(in.row(r), cols, packed.data());
+            horizontal(*steps.begin(), packed.data(), h.row(r), buf);
+        }
+    }, {}, function);
+
+    bit_rows prefix(ky > 0 ? rows + 2 * ky : 0, words), suffix(ky > 0 ? rows + 2 * ky : 0, words);
+    for (auto it = steps.begin(); it != steps.end(); ++it) {
+        const bool erode = *it == morph_step::erode;
+        if (ky > 0) {
+            if (erode) van_herk_scan<morph_and>(h, ky, prefix, suffix, opt.threads, function);
+            else van_herk_scan<morph_or>(h, ky, prefix, suffix, opt.threads, function);
+        }
+        const bool last = it + 1 == steps.end();
+        parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            std::vector<mask_word> v(static_cast<std::size_t>(words)), buf;
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                const mask_word* col = h.row(r);
+                if (ky > 0) {
+                    const mask_word* s = suffix.row(r);
+                    const mask_word* p = prefix.row(r + 2 * ky);
+                    for (std::ptrdiff_t i = 0; i < words; ++i) v[i] = erode ? (s[i] & p[i]) : (s[i] | p[i]);
+                    col = v.data();
+                }
+                if (last) unpack_mask_row(col, cols, out.row(r));
+                else horizontal(*(it + 1), col, next.row(r), buf);
+            }
+        }, {}, function);
+        if (!last) std::swap(h, next);
+    }
+}
+
+/// Validates the arguments shared by the four morphology functions.
+template <class A, class B>
+void morph_check(const A& in, const B& out, const morph_options& opt, const char* function)
+{
+    require(opt.size >= 1 && opt.size % 2 == 1, function, "size", "odd and >= 1", opt.size);
+    require(opt.height == 0 || (opt.height >= 1 && opt.height % 2 == 1), function, "height",
+            "0 (square) or odd and >= 1", opt.height);
+    require_same_shape(in, out, function, "m", "out");
+    resolve_threads(opt.threads, function);
+}
+
+/// Into form shared by the four functions: validation, then the bit-packed pipeline.
+template <raster_input In, class Out>
+void morph_into(const In& m, Out&& out, const morph_options& opt, std::initializer_list<morph_step> steps,
+                const char* function)
+{
+    static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = 1)");
+    morph_check(m, out, opt, function);
+    const readable<In> in(m);
+    write_through<std::uint8_t>(std::forward<Out>(out), [&](raster_view<std::uint8_t> o) {
+        morph_run(in.view(), o, opt, steps, function);
+    });
+}
+
+}  // namespace detail
+
+/// Binary dilation: out(r, c) = 1 if any mask cell in the size x height rectangle centred on (r, c) is
+/// nonzero, else 0. The rectangle is clipped at the raster border (cells outside are ignored), so an
+/// all-zero mask stays all zero. Bit-packed 64-cell words: O(rows * cols / 64 * log(size)) plus one
+/// pass to pack and one to unpack; `out` may be `m` itself.
+/// @throws invalid_input if size or height is even or < 1 (height 0 = square), threads < 0, or the
+/// shapes of m and out differ.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, std::uint8_t>
+void morph_dilate(const In& m, Out&& out, const morph_options& opt = {})
+{
+    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate}, "morph_dilate");
+}
+
+/// Binary erosion: out(r, c) = 1 if every mask cell of the size x height rectangle centred on (r, c)
+/// that lies inside the raster is nonzero, else 0. Clipped at the border (an all-one mask stays all
+/// one). Cost as morph_dilate; `out` may be `m`.
+/// @throws invalid_input as morph_dilate.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, std::uint8_t>
+void morph_erode(const In& m, Out&& out, const morph_options& opt = {})
+{
+    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode}, "morph_erode");
+}
+
+/// Binary opening: dilate(erode(m)) with the same clipped rectangle. Removes features that the
+/// rectangle does not fit in (isolated dropout cells, thin lines); anti-extensive and idempotent.
+/// Cost as two dilations, with one pack and one unpack; `out` may be `m`.
+/// @throws invalid_input as morph_dilate.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, std::uint8_t>
+void morph_open(const In& m, Out&& out, const morph_options& opt = {})
+{
+    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode, detail::morph_step::dilate},
+                       "morph_open");
+}
+
+/// Binary closing: erode(dilate(m)) with the same clipped rectangle. Fills gaps and holes narrower than
+/// the rectangle; extensive and idempotent. Cost as morph_open; `out` may be `m`.
+/// @throws invalid_input as morph_dilate.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, std::uint8_t>
+void morph_close(const In& m, Out&& out, const morph_options& opt = {})
+{
+    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate, detail::morph_step::erode},
+                       "morph_close");
+}
+
+/// Returning forms: a new 0/1 raster of m's shape. The `int size` overloads use a size x size square.
+template <raster_input In>
+raster<std::uint8_t> morph_dilate(const In& m, const morph_options& opt)
+{
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    morph_dilate(m, out, opt);
+    return out;
+}
+template <raster_input In>
+raster<std::uint8_t> morph_dilate(const In& m, int size)
+{
+    return morph_dilate(m, morph_options{.size = size});
+}
+
+template <raster_input In>
+raster<std::uint8_t> morph_erode(const In& m, const morph_options& opt)
+{
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    morph_erode(m, out, opt);
+    return out;
+}
+template <raster_input In>
+raster<std::uint8_t> morph_erode(const In& m, int size)
+{
+    return morph_erode(m, morph_options{.size = size});
+}
+
+template <raster_input In>
+raster<std::uint8_t> morph_open(const In& m, const morph_options& opt)
+{
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    morph_open(m, out, opt);
+    return out;
+}
+template <raster_input In>
+raster<std::uint8_t> morph_open(const In& m, int size)
+{
+    return morph_open(m, morph_options{.size = size});
+}
+
+template <raster_input In>
+raster<std::uint8_t> morph_close(const In& m, const morph_options& opt)
+{
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    morph_close(m, out, opt);
+    return out;
+}
+template <raster_input In>
+raster<std::uint8_t> morph_close(const In& m, int size)
+{
+    return morph_close(m, morph_options{.size = size});
+}
+
+}  // namespace lidarfx
