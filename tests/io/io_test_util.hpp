@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// Helpers shared by the I/O tests: scratch folders, whole-file bytes, and catching error messages.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace io_test {
+
+/// A fresh folder under the system temp dir, removed with everything in it when the object dies.
+class temp_dir {
+public:
+    temp_dir()
+    {
+        std::random_device rd;
+        path_ = std::filesystem::temp_directory_path() /
+                ("lidarfx_io_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
+        std::filesystem::create_directories(path_);
+    }
+    temp_dir(const temp_dir&) = delete;
+    temp_dir& operator=(const temp_dir&) = delete;
+    ~temp_dir()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+private:
+    std::filesystem::path path_;
+};
+
+inline std::vector<std::uint8_t> read_bytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot open");
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+inline void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes)
+{
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw std::runtime_error(path + ": cannot write");
+}
+
+/// The message of the std::runtime_error `f` throws, or "<no error>" when it returns normally.
+/// Other exception types propagate (and fail the test).
+template <class F>
+std::string runtime_error_of(F&& f)
+{
+    try {
+        f();
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
+
+inline bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace io_test
