@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: Apache-2.0
+// idw_fill: fills the NaN cells of an elevation raster by inverse distance weighting of the nearest data cells.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Settings of idw_fill.
+struct idw_options {
+    int k = 8;              ///< data cells averaged per hole, >= 1
+    double radius_m = 0;    ///< search radius, metres between cell centres (inclusive, 1e-9 cell slack); 0 = unlimited
+    double power = 1.0;     ///< weight exponent: w = 1 / d^power (1 = dissertation eq. 3); finite, > 0
+    double cell_m = 1.0;    ///< cell size, metres; finite, > 0
+    int threads = 1;        ///< worker threads; 0 = all cores; >= 0. Never changes the result.
+};
+
+/// What idw_fill did to the holes (NaN cells) of its input.
+struct idw_counts {
+    std::size_t filled_cells = 0;    ///< NaN cells given a value
+    std::size_t unfilled_cells = 0;  ///< NaN cells with no data cell within radius_m (left NaN)
+};
+
+/// Result of the returning form of idw_fill.
+struct idw_result {
+    raster<float> filled;            ///< input with its holes filled; same shape
+    std::size_t filled_cells = 0;    ///< NaN cells given a value
+    std::size_t unfilled_cells = 0;  ///< NaN cells with no data cell within radius_m (left NaN)
+};
+
+namespace detail {
+
+/// A data cell offered to a hole: squared distance in cells, position, value.
+struct idw_neighbour {
+    std::int64_t d2;
+    std::ptrdiff_t r, c;
+    double z;
+};
+
+/// The neighbour order: nearer first, ties by row, then column (what a sorted brute-force search takes).
+constexpr bool idw_before(const idw_neighbour& a, const idw_neighbour& b) noexcept
+{
+    if (a.d2 != b.d2) return a.d2 < b.d2;
+    return a.r != b.r ? a.r < b.r : a.c < b.c;
+}
+
+/// floor(sqrt(v)) for v >= 0, exact.
+inline std::int64_t isqrt(std::int64_t v) noexcept
+{
+    auto s = static_cast<std::int64_t>(std::sqrt(static_cast<double>(v)));
+    while (s > 0 && s * s > v) --s;
+    while ((s + 1) * (s + 1) <= v) ++s;
+    return s;
+}
+
+/// Largest squared distance in cells d2 within the radius: sqrt(d2) <= radius_m / cell_m + 1e-9 (the
+/// tolerance keeps a radius of exactly n cells inclusive despite rounding, e.g. 0.3 m at 0.1 m cells), or a
+/// value beyond any distance in the raster when the radius is unlimited (0).
+inline std::int64_t idw_reach_d2(double radius_m, double cell_m, std::ptrdiff_t rows, std::ptrdiff_t cols)
+{
+    const auto span = static_cast<double>(std::max(rows, cols));
+    const auto unlimited = static_cast<std::int64_t>(2.0 * span * span) + 2;
+    const double reach = radius_m / cell_m + 1e-9;
+    if (radius_m == 0 || !(reach * reach < static_cast<double>(unlimited))) return unlimited;
+    const auto within = [&](std::int64_t d2) { return std::sqrt(static_cast<double>(d2)) <= reach; };
+    auto d2 = static_cast<std::int64_t>(reach * reach);
+    while (d2 > 0 && !within(d2)) --d2;
+    while (within(d2 + 1)) ++d2;
+    return d2;
+}
+
+/// Keeps the k first neighbours in idw_before order, sorted.
+class idw_best {
+public:
+    explicit idw_best(std::size_t k) : k_(k) { items_.reserve(k + 1); }
+    void clear() noexcept { items_.clear(); }
+    bool full() const noexcept { return items_.size() == k_; }
+    bool empty() const noexcept { return items_.empty(); }
+    std::int64_t worst_d2() const noexcept { return items_.back().d2; }
+    const std::vector<idw_neighbour>& items() const noexcept { return items_; }
+
+    void offer(const idw_neighbour& n)
+    {
+        if (full()) {
+            if (!idw_before(n, items_.back())) return;
+            items_.pop_back();
+        }
+        auto at = items_.end();
+        while (at != items_.begin() && idw_before(n, *(at - 1))) --at;
+        items_.insert(at, n);
+    }
+
+private:
+    std::size_t k_;
+    std::vector<idw_neighbour> items_;
+};
+
+/// Sum of w*z over sum of w, w = 1 / (cell_m * sqrt(d2))^power, accumulated in neighbour order.
+inline float idw_mean(const std::vector<idw_neighbour>& nb, double cell_m, double power)
+{
+    double sw = 0, swz = 0;
+    for (const idw_neighbour& n : nb) {
+        const double d = cell_m * std::sqrt(static_cast<double>(n.d2));
+        const double w = power == 1.0 ? 1.0 / d : 1.0 / std::pow(d, power);
+        sw += w;
+        swz += w * n.z;
+    }
+    return static_cast<float>(swz / sw);
+}
+
+/// Ring search for the hole at (r, c): Chebyshev rings rho = 1, 2, ... around it; ring rho holds no
+/// cell nearer than rho, so the search stops once rho^2 passes the k-th best squared distance (or the
+/// reach). Within a ring only offsets t with rho^2 + t^2 <= the current bound are visited.
+template <class T>
+void idw_search(raster_view<const T> z, std::ptrdiff_t r, std::ptrdiff_t c, std::int64_t reach_d2, idw_best& best)
+{
+    best.clear();
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    const std::ptrdiff_t last_ring = std::max({r, rows - 1 - r, c, cols - 1 - c});
+    const auto offer_row = [&](std::ptrdiff_t rr, std::ptrdiff_t c0, std::ptrdiff_t c1, std::int64_t dr2) {
+        const T* row = z.row(rr);
+        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(c0, 0); cc <= std::min(c1, cols - 1); ++cc) {
+            if (std::isfinite(row[cc])) {
+                const std::int64_t dc = cc - c;
+                best.offer({dr2 + dc * dc, rr, cc, static_cast<double>(row[cc])});
+            }
+        }
+    };
+    const auto offer_col = [&](std::ptrdiff_t cc, std::ptrdiff_t r0, std::ptrdiff_t r1, std::int64_t dc2) {
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(r0, 0); rr <= std::min(r1, rows - 1); ++rr) {
+            const T v = z(rr, cc);
+            if (std::isfinite(v)) {
+                const std::int64_t dr = rr - r;
+                best.offer({dc2 + dr * dr, rr, cc, static_cast<double>(v)});
+            }
+        }
+    };
+    for (std::ptrdiff_t rho = 1; rho <= last_ring; ++rho) {
+        const std::int64_t rho2 = static_cast<std::int64_t>(rho) * rho;
+        if (rho2 > reach_d2) break;
+        const std::int64_t bound = best.full() ? std::min(reach_d2, best.worst_d2()) : reach_d2;
+        if (rho2 > bound) break;
+        const std::ptrdiff_t t = bound - rho2 >= rho2 ? rho : static_cast<std::ptrdiff_t>(isqrt(bound - rho2));
+        if (r - rho >= 0) offer_row(r - rho, c - t, c + t, rho2);
+        if (r + rho < rows) offer_row(r + rho, c - t, c + t, rho2);
+        const std::ptrdiff_t side = std::min(t, rho - 1);
+        if (c - rho >= 0) offer_col(c - rho, r - side, r + side, rho2);
+        if (c + rho < cols) offer_col(c + rho, r - side, r + side, rho2);
+    }
+}
+
+template <class T>
+idw_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, const idw_options& opt)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    const std::int64_t reach_d2 = idw_reach_d2(opt.radius_m, opt.cell_m, rows, cols);
+    constexpr std::ptrdiff_t block = 8;
+    std::vector<idw_counts> per_block(static_cast<std::size_t>((rows + block - 1) / block));
+    parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        idw_best best(static_cast<std::size_t>(opt.k));
+        idw_counts& counts = per_block[static_cast<std::size_t>(r0 / block)];
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const T* in = z.row(r);
+            float* o = out.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                if (!std::isnan(in[c])) {
+                    o[c] = static_cast<float>(in[c]);
+                    continue;
+                }
+                idw_search(z, r, c, reach_d2, best);
+                if (best.empty()) {
+                    o[c] = std::numeric_limits<float>::quiet_NaN();
+                    ++counts.unfilled_cells;
+                } else {
+                    o[c] = idw_mean(best.items(), opt.cell_m, opt.power);
+                    ++counts.filled_cells;
+                }
+            }
+        }
+    }, {}, "idw_fill");
+    idw_counts total;
+    for (const idw_counts& b : per_block) {
+        total.filled_cells += b.filled_cells;
+        total.unfilled_cells += b.unfilled_cells;
+    }
+    return total;
+}
+
+template <class T>
+bool has_finite_cell(raster_view<const T> z) noexcept
+{
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
+        const T* row = z.row(r);
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
+            if (std::isfinite(row[c])) return true;
+        }
+    }
+    return false;
+}
+
+inline void validate_idw(const idw_options& opt)
+{
+    require(opt.k >= 1, "idw_fill", "k", ">= 1", opt.k);
+    require(opt.radius_m >= 0 && opt.radius_m <= 1.0e300, "idw_fill", "radius_m", "finite and >= 0 (0 = unlimited)",
+            opt.radius_m);
+    require_positive(opt.power, "idw_fill", "power");
+    require_positive(opt.cell_m, "idw_fill", "cell_m");
+    resolve_threads(opt.threads, "idw_fill");
+}
+
+}  // namespace detail
+
+/// Fills the NaN cells (holes) of an elevation raster by inverse distance weighting of the k nearest data
+/// cells (dissertation eq. 3): z = sum(w_i z_i) / sum(w_i), w_i = 1 / d_i^power, d_i = cell_m times the
+/// distance between cell centres in cells. Data cells are the finite ones; they are copied unchanged
+/// (infinite cells are copied but never used). Neighbours are exactly those of a brute-force search:
+/// all data cells within radius_m sorted by (distance, row, col), first k taken. Holes with no data cell
+/// within radius_m stay NaN (counted as unfilled). `out` may not overlap `z`. Any thread count gives the
+/// same bits. Cost per hole ~ (distance to its k-th neighbour in cells)^2 (ring search).
+/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, threads < 0, or z has no
+/// finite cell ("idw_fill: z has no finite cell to interpolate from").
+template <raster_input In, class Out>
+    requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type>
+idw_counts idw_fill(const In& z, Out&& out, const idw_options& opt = {})
+{
+    detail::validate_idw(opt);
+    detail::require_same_shape(z, out, "idw_fill", "z", "out");
+    const detail::readable<In> in(z);
+    detail::require(detail::has_finite_cell(in.view()), "idw_fill", "z has no finite cell to interpolate from");
+    idw_counts counts;
+    detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
+        counts = detail::idw_fill_view(in.view(), o, opt);
+    });
+    return counts;
+}
+
+/// Returning form of idw_fill: a new raster<float> with the holes of `z` filled, and the counts.
+template <raster_input In>
+    requires std::is_floating_point_v<typename In::value_type>
+idw_result idw_fill(const In& z, const idw_options& opt = {})
+{
+    idw_result result{raster<float>(z.rows(), z.cols()), 0, 0};
+    const idw_counts counts = idw_fill(z, result.filled, opt);
+    result.filled_cells = counts.filled_cells;
+    result.unfilled_cells = counts.unfilled_cells;
+    return result;
+}
+
+}  // namespace lidarfx

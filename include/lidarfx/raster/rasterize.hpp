@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: Apache-2.0
+// rasterize: per-cell min/max elevation, mean intensity, point count and return statistics of a point cloud.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/point_cloud.hpp"
+#include "lidarfx/core/raster.hpp"
+
+namespace lidarfx {
+
+/// Settings of rasterize.
+struct rasterize_options {
+    int threads = 1;                      ///< worker threads; 0 = all cores; >= 0. Never changes the result.
+    std::size_t chunk_points = 1 << 20;   ///< points per work unit (progress step and parallel split); >= 1
+    progress_callback progress = {};      ///< optional progress / cancellation, called from the caller's thread
+};
+
+/// The per-cell rasters of a point cloud, all on the grid `g`, plus what happened to the points.
+struct point_rasters {
+    grid g;                                 ///< georeferencing shared by every raster below
+    raster<float> min_z, max_z;             ///< lowest / highest z in the cell, metres; NaN where no point
+    raster<float> mean_intensity;           ///< mean intensity of the cell's points; 0 where no point (dropout)
+    raster<std::uint32_t> count;            ///< points in the cell
+    raster<std::uint8_t> dropout;           ///< 1 = no return in the cell
+    raster<std::uint8_t> multiple_returns;  ///< 1 = some point of the cell has number_of_returns > 1
+    std::size_t points_used = 0;            ///< points written into a cell
+    std::size_t points_outside = 0;         ///< finite points outside the grid (ignored)
+    std::size_t points_nan = 0;             ///< points with a NaN or infinite x, y or z (ignored)
+};
+
+namespace detail {
+
+/// Running statistics of one cell (24 bytes; one cache line holds most cells whole).
+struct cell_stats {
+    float min_z = std::numeric_limits<float>::infinity();
+    float max_z = -std::numeric_limits<float>::infinity();
+    std::uint32_t count = 0;
+    std::uint32_t multiple = 0;       // 1 once a point with number_of_returns > 1 was seen
+    std::uint64_t intensity_sum = 0;  // sum of intensities in units of 2^-16, two's complement, modulo 2^64
+};
+
+/// Intensities are summed as integers of 2^-16 so that every chunking and order gives the same sum.
+inline constexpr double intensity_units_per_1 = 65536.0;
+inline constexpr double intensity_limit = 16777216.0;  // |intensity| clamps to 2^24
+
+/// `v` rounded (half away from zero) to a multiple of 2^-16, clamped to +-2^24, NaN as 0; in 2^-16 units.
+inline std::uint64_t intensity_fixed(double v) noexcept
+{
+    if (!(std::abs(v) <= intensity_limit)) v = std::isnan(v) ? 0.0 : std::copysign(intensity_limit, v);
+    const double scaled = v * intensity_units_per_1;
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(scaled + (scaled >= 0 ? 0.5 : -0.5)));
+}
+
+struct accumulator_access;
+
+}  // namespace detail
+
+/// Streaming per-cell statistics on a fixed grid. Add points in chunks (any split, any order), merge
+/// partial accumulators built elsewhere (other threads, other files of a tile), then finish(): every
+/// sequence of add/merge over the same points gives bit-identical rasters, because min/max are
+/// order-free and intensities are summed as exact integers (see rasterize for the conventions).
+/// Memory: 24 bytes per grid cell.
+class raster_accumulator {
+public:
+    /// Empty statistics on `g`. @throws invalid_input if g is invalid (see grid::validate).
+    explicit raster_accumulator(const grid& g) : g_(g)
+    {
+        g.validate("raster_accumulator");
+        cells_.resize(static_cast<std::size_t>(g.size()));
+    }
+
+    /// Adds every point of `cloud`.
+    template <point_cloud C>
+    void add(const C& cloud)
+    {
+        add(cloud, 0, static_cast<std::size_t>(cloud.size()));
+    }
+
+    /// Adds points [first, last) of `cloud`. O(last - first).
+    /// @throws invalid_input unless first <= last <= cloud.size().
+    template <point_cloud C>
+    void add(const C& cloud, std::size_t first, std::size_t last)
+    {
+        const auto n = static_cast<std::size_t>(cloud.size());
+        detail::require(first <= last && last <= n, "raster_accumulator::add",
+                        detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))"));
+        const grid g = g_;
+        detail::cell_stats* cells = cells_.data();
+        std::size_t used = 0, outside = 0, nan = 0;
+        for (std::size_t i = first; i < last; ++i) {
+            const double x = cloud.x(i), y = cloud.y(i), z = cloud.z(i);
+            if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+                ++nan;
+                continue;
+            }
+            const auto at = g.cell_of(x, y);
+            if (!at) {
+                ++outside;
+                continue;
+            }
+            // float(min(z)) == min(float(z)): rounding is monotonic, so storing floats loses no order.
+            const auto zf = static_cast<float>(z);
+            detail::cell_stats& s = cells[at->row * g.cols + at->col];
+            s.min_z = std::min(s.min_z, zf);
+            s.max_z = std::max(s.max_z, zf);
+            ++s.count;
+            s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, i));
+            s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, i) > 1);
+            ++used;
+        }
+        points_used_ += used;
+        points_outside_ += outside;
+        points_nan_ += nan;
+    }
+
+    /// Adds the statistics of `other` (same grid), as if its points had been added here.
+    /// O(cells). @throws invalid_input if other.grid differs from this grid.
+    void merge(const raster_accumulator& other)
+    {
+        require_same_grid(other, "raster_accumulator::merge");
+        merge_rows(other, 0, g_.rows);
+        merge_counters(other);
+    }
+
+    /// The rasters of every point added so far (the accumulator is unchanged). O(cells).
+    point_rasters finish() const
+    {
+        const auto rows = g_.rows, cols = g_.cols;
+        constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+        point_rasters out{g_,
+                          raster<float>(rows, cols, nan),
+                          raster<float>(rows, cols, nan),
+                          raster<float>(rows, cols, 0.0f),
+                          raster<std::uint32_t>(rows, cols, 0u),
+                          raster<std::uint8_t>(rows, cols, 1),
+                          raster<std::uint8_t>(rows, cols, 0),
+                          points_used_,
+                          points_outside_,
+                          points_nan_};
+        for (std::size_t i = 0; i < cells_.size(); ++i) {
+            const detail::cell_stats& s = cells_[i];
+            if (s.count == 0) continue;
+            const double sum = static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
+            out.min_z.data()[i] = s.min_z;
+            out.max_z.data()[i] = s.max_z;
+            out.mean_intensity.data()[i] = static_cast<float>(sum / static_cast<double>(s.count));
+            out.count.data()[i] = s.count;
+            out.dropout.data()[i] = 0;
+            out.multiple_returns.data()[i] = static_cast<std::uint8_t>(s.multiple);
+        }
+        return out;
+    }
+
+    const grid& target_grid() const noexcept { return g_; }   ///< the grid the points are binned on
+    std::size_t points_used() const noexcept { return points_used_; }
+    std::size_t points_outside() const noexcept { return points_outside_; }
+    std::size_t points_nan() const noexcept { return points_nan_; }
+
+private:
+    friend struct detail::accumulator_access;
+
+    void require_same_grid(const raster_accumulator& other, const char* function) const
+    {
+        detail::require(other.g_ == g_, function, "other accumulator must be on the same grid");
+    }
+
+    void merge_counters(const raster_accumulator& other) noexcept
+    {
+        points_used_ += other.points_used_;
+        points_outside_ += other.points_outside_;
+        points_nan_ += other.points_nan_;
+    }
+
+    /// Folds the cell statistics of rows [r0, r1) of `other` into this one (point counters untouched).
+    void merge_rows(const raster_accumulator& other, std::ptrdiff_t r0, std::ptrdiff_t r1)
+    {
+        const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
+        for (std::size_t i = begin; i < end; ++i) {
+            detail::cell_stats& s = cells_[i];
+            const detail::cell_stats& o = other.cells_[i];
+            s.min_z = std::min(s.min_z, o.min_z);
+            s.max_z = std::max(s.max_z, o.max_z);
+            s.count += o.count;
+            s.multiple |= o.multiple;
+            s.intensity_sum += o.intensity_sum;
+        }
+    }
+
+    grid g_;
+    std::vector<detail::cell_stats> cells_;
+    std::size_t points_used_ = 0, points_outside_ = 0, points_nan_ = 0;
+};
+
+namespace detail {
+
+/// rasterize merges per-thread accumulators by row bands in parallel, then adds their point counters.
+struct accumulator_access {
+    static void merge_rows(raster_accumulator& into, const raster_accumulator& from, std::ptrdiff_t r0,
+                           std::ptrdiff_t r1)
+    {
+        into.merge_rows(from, r0, r1);
+    }
+    static void merge_counters(raster_accumulator& into, const raster_accumulator& from)
+    {
+        into.merge_counters(from);
+    }
+};
+
+}  // namespace detail
+
+/// Bins a point cloud on `g` (dissertation 2.3.1): per cell the minimum and maximum z, the mean
+/// intensity, the point count, the dropout mask (no return) and whether any point had number_of_returns > 1.
+/// Points go to grid::cell_of (a point on the far east/south edge belongs to the last column/row); points
+/// outside the grid and points with a NaN/infinite coordinate are counted and ignored. z is stored as float.
+/// Intensities (intensity_of, 0 when the cloud has none) are rounded to multiples of 2^-16, clamped to
+/// +-2^24 (NaN as 0) and summed as 64-bit integers: exact for LAS integer intensities, and the same sum
+/// for any chunking, order or thread count. Bit-identical results for any `opt.threads` / `chunk_points`.
+/// O(points + cells); memory 24 bytes per cell per worker thread (each worker fills its own accumulator).
+/// @throws invalid_input on an invalid grid, chunk_points == 0 or threads < 0; cancelled if progress says so.
+template <point_cloud C>
+point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& opt = {})
+{
+    constexpr const char* function = "rasterize";
+    g.validate(function);
+    detail::require(opt.chunk_points >= 1, function, "chunk_points", ">= 1", opt.chunk_points);
+    const int threads = detail::resolve_threads(opt.threads, function);
+    const auto n = static_cast<std::size_t>(cloud.size());
+    const std::size_t chunks = std::max<std::size_t>(1, (n + opt.chunk_points - 1) / opt.chunk_points);
+    const auto chunk_range = [&](std::size_t k) {
+        return std::pair{std::min(n, k * opt.chunk_points), std::min(n, (k + 1) * opt.chunk_points)};
+    };
+    const auto workers = static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(threads), chunks));
+
+    raster_accumulator total(g);
+    if (workers == 1) {
+        for (std::size_t k = 0; k < chunks; ++k) {
+            const auto [first, last] = chunk_range(k);
+            total.add(cloud, first, last);
+            detail::report(opt.progress, static_cast<double>(k + 1) / static_cast<double>(chunks), function);
+        }
+        return total.finish();
+    }
+
+    // Worker w adds the contiguous chunks [w*chunks/workers, (w+1)*chunks/workers) into its own
+    // accumulator; the caller's thread reports progress (and may cancel) between its chunks.
+    std::vector<raster_accumulator> parts(workers - 1, raster_accumulator(g));
+    std::atomic<std::size_t> done{0};
+    std::atomic<bool> stop{false};
+    const auto caller = std::this_thread::get_id();
+    parallel_for_rows(static_cast<std::ptrdiff_t>(workers), 1, threads, [&](std::ptrdiff_t w0, std::ptrdiff_t) {
+        const auto w = static_cast<std::size_t>(w0);
+        raster_accumulator& acc = w == 0 ? total : parts[w - 1];
+        for (std::size_t k = w * chunks / workers; k < (w + 1) * chunks / workers; ++k) {
+            if (stop.load(std::memory_order_relaxed)) return;
+            const auto [first, last] = chunk_range(k);
+            acc.add(cloud, first, last);
+            const auto finished = done.fetch_add(1) + 1;
+            if (std::this_thread::get_id() == caller) {
+                try {
+                    detail::report(opt.progress, static_cast<double>(finished) / static_cast<double>(chunks + 1),
+                                   function);
+                } catch (...) {
+                    stop = true;
+                    throw;
+                }
+            }
+        }
+    }, {}, function);
+
+    // Merge cell rows in parallel: each row band folds every part in worker order.
+    const std::ptrdiff_t band = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
+    parallel_for_rows(g.rows, band, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        for (const auto& part : parts) detail::accumulator_access::merge_rows(total, part, r0, r1);
+    }, {}, function);
+    for (const auto& part : parts) detail::accumulator_access::merge_counters(total, part);
+    detail::report(opt.progress, 1.0, function);
+    return total.finish();
+}
+
+/// Bounding box of the points of `cloud` whose x, y and z are all finite (others are ignored); pass it to
+/// snapped_grid(bounds, cell) for the usual survey grid. O(points).
+/// @throws invalid_input if no point has finite x, y and z (an empty cloud included).
+template <point_cloud C>
+bounds bounds_of(const C& cloud)
+{
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    bounds b{inf, inf, -inf, -inf};
+    const auto n = static_cast<std::size_t>(cloud.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = cloud.x(i), y = cloud.y(i), z = cloud.z(i);
+        if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) continue;
+        b.xmin = std::min(b.xmin, x);
+        b.xmax = std::max(b.xmax, x);
+        b.ymin = std::min(b.ymin, y);
+        b.ymax = std::max(b.ymax, y);
+    }
+    detail::require(b.xmin <= b.xmax, "bounds_of", "cloud has no point with finite x, y and z");
+    return b;
+}
+
+}  // namespace lidarfx
