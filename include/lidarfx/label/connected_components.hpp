@@ -1,0 +1,423 @@
+// SPDX-License-Identifier: Apache-2.0
+// Connected components of a mask (run-based union-find), and helpers: rank by size, drop small
+// components, fill small holes, bounding boxes.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/filter/morphology.hpp"  // detail::pack_mask_row
+
+namespace lidarfx {
+
+/// Which neighbours join cells into one component: the 4 edge neighbours, or those plus the 4 diagonals.
+enum class connectivity { four, eight };
+
+/// Labelled components of a mask. labels(r, c) = 0 for background, else 1..count(); labels are numbered
+/// in raster-scan order of each component's first cell (its top row, leftmost cell there).
+/// sizes[label] = number of cells with that label; sizes[0] = number of background cells.
+struct components {
+    raster<std::int32_t> labels;
+    std::vector<std::size_t> sizes;
+
+    /// Number of components (labels 1..count()).
+    std::size_t count() const noexcept { return sizes.empty() ? 0 : sizes.size() - 1; }
+};
+
+/// Settings of connected_components.
+struct components_options {
+    connectivity conn = connectivity::eight;  ///< neighbourhood of foreground cells; default eight
+    int threads = 1;                          ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+};
+
+/// Inclusive bounding box of one label, in cells: rows row_min..row_max, columns col_min..col_max.
+/// A label without cells has the empty box {0, 0, -1, -1}.
+struct component_box {
+    std::ptrdiff_t row_min = 0, col_min = 0, row_max = -1, col_max = -1;
+    bool empty() const noexcept { return row_max < row_min; }
+    friend bool operator==(const component_box&, const component_box&) = default;
+};
+
+namespace detail {
+
+/// A horizontal run of foreground cells [begin, end) of one row, and its union-find node.
+struct label_run {
+    std::int32_t begin, end, node;
+};
+
+/// Union-find forest: parent < node for non-roots, so the root of a set is its first node.
+struct label_forest {
+    std::vector<std::int32_t> parent;
+    std::vector<std::size_t> cells;  // cells of the runs attached to each node when it was created
+};
+
+/// A band of rows labelled on its own: the rows packed to bits, and the band's forest.
+struct label_band_state {
+    std::vector<mask_word> bits;
+    label_forest forest;
+};
+
+/// Root of `node`, halving the path on the way.
+inline std::int32_t find_root(std::int32_t* parent, std::int32_t node) noexcept
+{
+    while (parent[node] != node) {
+        parent[node] = parent[parent[node]];
+        node = parent[node];
+    }
+    return node;
+}
+
+/// Merges the sets of a and b; the smaller root id becomes the root, so a set's root is its first node
+/// in creation (raster-scan) order. Returns the root.
+inline std::int32_t unite(std::int32_t* parent, std::int32_t a, std::int32_t b) noexcept
+{
+    a = find_root(parent, a);
+    b = find_root(parent, b);
+    if (a == b) return a;
+    if (a > b) std::swap(a, b);
+    parent[b] = a;
+    return a;
+}
+
+/// Replaces `runs` by the runs of a packed row (bits past the last column are 0), with node -1.
+inline void extract_runs(const mask_word* bits, std::ptrdiff_t words, std::vector<label_run>& runs)
+{
+    // A set bit of x ^ (x << 1 | carry) marks a change between a cell and its left neighbour: the
+    // changes alternate run begin, run end.
+    runs.clear();
+    mask_word carry = 0;
+    std::int32_t begin = 0;
+    bool inside = false;
+    for (std::ptrdiff_t w = 0; w < words; ++w) {
+        const mask_word x = bits[w];
+        mask_word edges = x ^ ((x << 1) | carry);
+        carry = x >> 63;
+        while (edges != 0) {
+            const auto at = static_cast<std::int32_t>(w * 64 + std::countr_zero(edges));
+            edges &= edges - 1;
+            if (inside) runs.push_back({begin, at, -1});
+            else begin = at;
+            inside = !inside;
+        }
+    }
+    if (inside) runs.push_back({begin, static_cast<std::int32_t>(words * 64), -1});
+}
+
+/// Number of runs in a packed row: half its edges, rounded up (a run may end at the last column).
+inline std::size_t count_runs(const mask_word* bits, std::ptrdiff_t words) noexcept
+{
+    std::size_t edges = 0;
+    mask_word carry = 0;
+    for (std::ptrdiff_t w = 0; w < words; ++w) {
+        edges += static_cast<std::size_t>(std::popcount(bits[w] ^ ((bits[w] << 1) | carry)));
+        carry = bits[w] >> 63;
+    }
+    return (edges + 1) / 2;
+}
+
+/// Links the runs of the current row to those of the previous row: runs that touch (overlap, or meet
+/// diagonally when reach = 1) share a set. With `make_nodes`, a current run that touches none gets a
+/// new node, and each run's cells count towards its node; otherwise runs keep their nodes.
+inline void link_rows(const std::vector<label_run>& prev, std::vector<label_run>& cur, std::int32_t reach,
+                      label_forest& forest, bool make_nodes)
+{
+    const label_run* p = prev.data();
+    const label_run* const prev_end = p + prev.size();
+    for (label_run& run : cur) {
+        while (p != prev_end && p->end + reach <= run.begin) ++p;  // ends left of the run's reach
+        std::int32_t node = make_nodes ? -1 : run.node;
+        const label_run* q = p;
+        for (; q != prev_end && q->begin < run.end + reach; ++q) {
+            node = node < 0 ? find_root(forest.parent.data(), q->node) : unite(forest.parent.data(), node, q->node);
+        }
+        if (q != p) p = q - 1;  // the last touching run may touch the next run too
+        if (make_nodes) {
+            if (node < 0) {
+                node = static_cast<std::int32_t>(forest.parent.size());
+                forest.parent.push_back(node);
+                forest.cells.push_back(0);
+            }
+            run.node = node;
+            forest.cells[static_cast<std::size_t>(node)] += static_cast<std::size_t>(run.end - run.begin);
+        }
+    }
+}
+
+/// Writes one row of labels (value(run) on each run, 0 elsewhere) through a scratch row of at least
+/// cols + 8 cells: blocks of 8 equal values are stored unconditionally (each block's overshoot is
+/// rewritten by the next), avoiding a data-dependent branch per cell on fragmented masks.
+template <class Value>
+void write_label_row(const std::vector<label_run>& runs, Value value, std::int32_t cols, std::int32_t* scratch,
+                     std::int32_t* out)
+{
+    const auto fill8 = [](std::int32_t* p, std::int32_t v) {
+        for (int j = 0; j < 8; ++j) p[j] = v;
+    };
+    std::int32_t c = 0;
+    for (const label_run& run : runs) {
+        for (; c < run.begin; c += 8) fill8(scratch + c, 0);
+        const std::int32_t v = value(run);
+        for (c = run.begin; c < run.end; c += 8) fill8(scratch + c, v);
+        c = run.end;
+    }
+    for (; c < cols; c += 8) fill8(scratch + c, 0);
+    std::copy(scratch, scratch + cols, out);
+}
+
+/// The runs of row r of a band, with their band-local nodes read back from the first cell of each run.
+inline void band_row_runs(const label_band_state& band, std::ptrdiff_t r0, std::ptrdiff_t r, std::ptrdiff_t words,
+                          raster_view<std::int32_t> labels, std::vector<label_run>& runs)
+{
+    extract_runs(band.bits.data() + (r - r0) * words, words, runs);
+    for (label_run& run : runs) run.node = labels(r, run.begin);
+}
+
+/// First pass over the band of rows [r0, r1): packs the rows, builds the band's forest, and writes
+/// each run's band-local node into labels (the first cell of a run is read back later).
+template <class T>
+void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, std::int32_t reach,
+                label_band_state& band, raster_view<std::int32_t> labels)
+{
+    const std::ptrdiff_t cols = m.cols(), words = mask_words(cols);
+    band.bits.resize(static_cast<std::size_t>((r1 - r0) * words));
+    std::size_t runs = 0;
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        mask_word* row = band.bits.data() + (r - r0) * words;
+        pack_mask_row(m.row(r), cols, row);
+        runs += count_runs(row, words);
+    }
+    band.forest.parent.reserve(runs);  // nodes <= runs: no reallocation
+    band.forest.cells.reserve(runs);
+    std::vector<label_run> prev, cur;
+    prev.reserve(static_cast<std::size_t>(cols / 2 + 1));
+    cur.reserve(static_cast<std::size_t>(cols / 2 + 1));
+    std::vector<std::int32_t> scratch(static_cast<std::size_t>(cols) + 8);
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        extract_runs(band.bits.data() + (r - r0) * words, words, cur);
+        link_rows(prev, cur, reach, band.forest, true);
+        write_label_row(cur, [](const label_run& run) { return run.node; }, static_cast<std::int32_t>(cols),
+                        scratch.data(), labels.row(r));
+        std::swap(prev, cur);
+    }
+}
+
+/// Labels `m` into `labels` (same shape) and returns sizes (see components).
+template <class T>
+std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<std::int32_t> labels,
+                                          const components_options& opt, const char* function)
+{
+    const std::ptrdiff_t rows = m.rows(), cols = m.cols(), words = mask_words(cols);
+    std::vector<std::size_t> sizes(1, static_cast<std::size_t>(rows * cols));
+    if (rows == 0 || cols == 0) return sizes;
+    const std::int32_t reach = opt.conn == connectivity::eight ? 1 : 0;
+
+    // Bands of rows are labelled independently (in parallel), then joined along their shared edges.
+    // Bands are fixed by the raster alone, so node ids, and thus labels, never depend on the threads.
+    constexpr std::ptrdiff_t band_rows = 256;
+    const std::ptrdiff_t band_count = (rows + band_rows - 1) / band_rows;
+    std::vector<label_band_state> bands(static_cast<std::size_t>(band_count));
+    parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        label_band(m, r0, r1, reach, bands[static_cast<std::size_t>(r0 / band_rows)], labels);
+    }, {}, function);
+
+    // One global forest: band b's node ids are offset by the nodes of the bands above it.
+    std::vector<std::size_t> offset(bands.size() + 1, 0);
+    for (std::size_t b = 0; b < bands.size(); ++b) offset[b + 1] = offset[b] + bands[b].forest.parent.size();
+    require(offset.back() < static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()), function,
+            "m has more runs than int32 labels can number");
+    label_forest all;
+    all.parent.resize(offset.back());
+    all.cells.resize(offset.back());
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+        auto& forest = bands[b].forest;
+        const auto shift = static_cast<std::int32_t>(offset[b]);
+        std::transform(forest.parent.begin(), forest.parent.end(), all.parent.begin() + static_cast<std::ptrdiff_t>(offset[b]),
+                       [shift](std::int32_t p) { return p + shift; });
+        std::copy(forest.cells.begin(), forest.cells.end(), all.cells.begin() + static_cast<std::ptrdiff_t>(offset[b]));
+        forest = {};
+    }
+    std::vector<label_run> above, below;
+    for (std::size_t b = 1; b < bands.size(); ++b) {
+        const std::ptrdiff_t r = static_cast<std::ptrdiff_t>(b) * band_rows;
+        band_row_runs(bands[b - 1], r - band_rows, r - 1, words, labels, above);
+        band_row_runs(bands[b], r, r, words, labels, below);
+        for (auto& run : above) run.node += static_cast<std::int32_t>(offset[b - 1]);
+        for (auto& run : below) run.node += static_cast<std::int32_t>(offset[b]);
+        link_rows(above, below, reach, all, false);
+    }
+
+    // Roots precede their members, so one increasing sweep numbers the sets in raster-scan order of
+    // their first run (= of the component's first cell).
+    std::vector<std::int32_t>& final_label = all.parent;
+    std::int32_t count = 0;
+    for (std::size_t i = 0; i < final_label.size(); ++i) {
+        const auto p = static_cast<std::size_t>(final_label[i]);
+        final_label[i] = p == i ? ++count : final_label[p];
+    }
+    sizes.resize(static_cast<std::size_t>(count) + 1, 0);
+    for (std::size_t i = 0; i < final_label.size(); ++i) {
+        sizes[static_cast<std::size_t>(final_label[i])] += all.cells[i];
+        sizes[0] -= all.cells[i];
+    }
+
+    parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
+        const std::int32_t* final_of_band = final_label.data() + offset[b];
+        std::vector<label_run> runs;
+        runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
+        std::vector<std::int32_t> scratch(static_cast<std::size_t>(cols) + 8);
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            band_row_runs(bands[b], r0, r, words, labels, runs);
+            write_label_row(runs, [&](const label_run& run) { return final_of_band[run.node]; },
+                            static_cast<std::int32_t>(cols), scratch.data(), labels.row(r));
+        }
+    }, {}, function);
+    return sizes;
+}
+
+}  // namespace detail
+
+/// Connected components of a mask (nonzero = foreground) under 4- or 8-connectivity.
+/// Method: run-based two-pass union-find (runs of each row are linked to touching runs of the row
+/// above; bands of rows run in parallel and are joined along their edges), then labels numbered in
+/// raster-scan order of each component's first cell. Labels are identical for any thread count.
+/// O(rows * cols) time; O(number of runs) extra memory.
+/// @throws invalid_input if threads < 0 or the mask has more runs than int32 labels can number.
+template <raster_input In>
+components connected_components(const In& m, const components_options& opt)
+{
+    static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = foreground)");
+    constexpr const char* function = "connected_components";
+    detail::resolve_threads(opt.threads, function);
+    detail::require(m.cols() < std::numeric_limits<std::int32_t>::max(), function, "m", "narrower than 2^31 - 1 columns",
+                    m.cols());
+    const detail::readable<In> in(m);
+    components result{raster<std::int32_t>(m.rows(), m.cols()), {}};
+    result.sizes = detail::label_components(in.view(), result.labels.view(), opt, function);
+    return result;
+}
+
+/// connected_components with the given connectivity on one thread.
+template <raster_input In>
+components connected_components(const In& m, connectivity c = connectivity::eight)
+{
+    return connected_components(m, components_options{.conn = c});
+}
+
+/// Renumbers the components by decreasing size: label 1 becomes the largest; equal sizes keep their
+/// raster-scan order (the earlier first cell first). Updates labels and sizes (sizes[0] stays the
+/// background). O(rows * cols + n log n) for n components.
+inline void rank_by_size(components& comps)
+{
+    const std::size_t n = comps.count();
+    std::vector<std::int32_t> order(n);
+    std::iota(order.begin(), order.end(), 1);
+    std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+        return comps.sizes[static_cast<std::size_t>(a)] > comps.sizes[static_cast<std::size_t>(b)];
+    });
+    std::vector<std::int32_t> new_label(n + 1, 0);
+    std::vector<std::size_t> new_sizes(n + 1, comps.sizes.empty() ? 0 : comps.sizes[0]);
+    for (std::size_t rank = 0; rank < n; ++rank) {
+        const auto old = static_cast<std::size_t>(order[rank]);
+        new_label[old] = static_cast<std::int32_t>(rank + 1);
+        new_sizes[rank + 1] = comps.sizes[old];
+    }
+    for (auto& v : comps.labels) v = new_label[static_cast<std::size_t>(v)];
+    comps.sizes = std::move(new_sizes);
+}
+
+/// Bounding box of every label: result[label] for label 0 (background) .. count(); a label without
+/// cells gets the empty box {0, 0, -1, -1}. O(rows * cols).
+inline std::vector<component_box> component_bounds(const components& comps)
+{
+    std::vector<component_box> boxes(comps.sizes.size());
+    std::vector<bool> seen(comps.sizes.size(), false);
+    const auto& labels = comps.labels;
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
+        const std::int32_t* row = labels.row(r);
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+            const auto l = static_cast<std::size_t>(row[c]);
+            component_box& b = boxes[l];
+            if (!seen[l]) {
+                seen[l] = true;
+                b = {r, c, r, c};
+                continue;
+            }
+            b.row_max = r;  // rows are visited in increasing order
+            b.col_min = std::min(b.col_min, c);
+            b.col_max = std::max(b.col_max, c);
+        }
+    }
+    return boxes;
+}
+
+/// The mask (as 0/1) without its components of fewer than `min_cells` cells, under connectivity `c`.
+/// min_cells 0 or 1 keeps every component. O(rows * cols).
+template <raster_input In>
+raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells,
+                                             connectivity c = connectivity::eight)
+{
+    const components comps = connected_components(m, c);
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    std::vector<std::uint8_t> keep(comps.sizes.size(), 0);
+    for (std::size_t l = 1; l < keep.size(); ++l) keep[l] = comps.sizes[l] >= min_cells ? 1 : 0;
+    for (std::ptrdiff_t i = 0; i < out.size(); ++i) {
+        out.data()[i] = keep[static_cast<std::size_t>(comps.labels.data()[i])];
+    }
+    return out;
+}
+
+/// The mask (as 0/1) with its small holes filled. A hole is a connected component of background cells
+/// that touches no raster edge; background is connected with the complement of `c` (four when the
+/// foreground uses eight, and the reverse), so that holes and objects never cross each other. Holes of
+/// fewer than `max_hole_cells` cells become 1; larger holes and background reaching the border stay 0.
+/// O(rows * cols).
+template <raster_input In>
+raster<std::uint8_t> fill_holes(const In& m, std::size_t max_hole_cells, connectivity c = connectivity::eight)
+{
+    const detail::readable<In> in(m);
+    const auto v = in.view();
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    if (out.empty()) return out;
+    raster<std::uint8_t> background(m.rows(), m.cols());
+    for (std::ptrdiff_t r = 0; r < v.rows(); ++r) {
+        for (std::ptrdiff_t col = 0; col < v.cols(); ++col) {
+            const bool fg = v(r, col) != typename In::value_type{};
+            out(r, col) = fg ? 1 : 0;
+            background(r, col) = fg ? 0 : 1;
+        }
+    }
+    const components holes =
+        connected_components(background, c == connectivity::eight ? connectivity::four : connectivity::eight);
+    std::vector<std::uint8_t> fill(holes.sizes.size(), 0);
+    for (std::size_t l = 1; l < fill.size(); ++l) fill[l] = holes.sizes[l] < max_hole_cells ? 1 : 0;
+    const auto unfill_edge = [&](std::ptrdiff_t r, std::ptrdiff_t col) {
+        fill[static_cast<std::size_t>(holes.labels(r, col))] = 0;
+    };
+    for (std::ptrdiff_t col = 0; col < v.cols(); ++col) {
+        unfill_edge(0, col);
+        unfill_edge(v.rows() - 1, col);
+    }
+    for (std::ptrdiff_t r = 0; r < v.rows(); ++r) {
+        unfill_edge(r, 0);
+        unfill_edge(r, v.cols() - 1);
+    }
+    fill[0] = 0;
+    for (std::ptrdiff_t i = 0; i < out.size(); ++i) {
+        out.data()[i] = static_cast<std::uint8_t>(out.data()[i] | fill[static_cast<std::size_t>(holes.labels.data()[i])]);
+    }
+    return out;
+}
+
+}  // namespace lidarfx
