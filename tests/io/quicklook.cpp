@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include "io/quicklook.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <set>
+
+using namespace lidarfx;
+using namespace lidarfx::io;
+
+namespace {
+
+using rgb = std::array<std::uint8_t, 3>;
+
+rgb pixel(const rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)
+{
+    const auto* p = img.rgb.data() + (r * img.width + c) * 3;
+    return {p[0], p[1], p[2]};
+}
+
+double luma(const rgb& c) { return 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]; }
+
+/// Shade of a plane z = a*x + b*y (x east, y north) lit from azimuth/altitude: 255 * max(0, n . l).
+int plane_shade(double a, double b, double azimuth_deg, double altitude_deg)
+{
+    const double d = std::numbers::pi / 180.0;
+    const double l[3] = {std::sin(azimuth_deg * d) * std::cos(altitude_deg * d),
+                         std::cos(azimuth_deg * d) * std::cos(altitude_deg * d), std::sin(altitude_deg * d)};
+    const double dot = (-a * l[0] - b * l[1] + l[2]) / std::sqrt(a * a + b * b + 1);
+    return static_cast<int>(std::lround(255 * std::max(0.0, dot)));
+}
+
+/// Textbook Horn gradient at an interior cell (a..i = the 3x3 window, row 0 north), then the same shading.
+int horn_shade(raster_view<const float> z, std::ptrdiff_t r, std::ptrdiff_t c, double cell)
+{
+    const auto v = [&](int dr, int dc) { return static_cast<double>(z(r + dr, c + dc)); };
+    const double dzdx = ((v(-1, 1) + 2 * v(0, 1) + v(1, 1)) - (v(-1, -1) + 2 * v(0, -1) + v(1, -1))) / (8 * cell);
+    const double dzdn = ((v(-1, -1) + 2 * v(-1, 0) + v(-1, 1)) - (v(1, -1) + 2 * v(1, 0) + v(1, 1))) / (8 * cell);
+    return plane_shade(dzdx, dzdn, 315, 45);
+}
+
+}  // namespace
+
+TEST_CASE("io/ramp_color: viridis ends, NaN black, luminance rising with t")
+{
+    CHECK(ramp_color(0.0) == rgb{68, 1, 84});
+    CHECK(ramp_color(1.0) == rgb{253, 231, 37});
+    CHECK(ramp_color(0.5) == rgb{33, 144, 140});
+    CHECK(ramp_color(-3.0) == ramp_color(0.0));
+    CHECK(ramp_color(7.0) == ramp_color(1.0));
+    CHECK(ramp_color(NAN) == rgb{0, 0, 0});
+    double previous = -1;
+    for (int i = 0; i <= 1000; ++i) {
+        const double y = luma(ramp_color(i / 1000.0));
+        CHECK(y >= previous - 0.6);   // rounding each channel to an integer moves luma by < 0.6
+        previous = y;
+    }
+    CHECK(luma(ramp_color(1.0)) > luma(ramp_color(0.0)) + 150);
+}
+
+TEST_CASE("io/colorize: maps [min, max] onto the ramp, clamps outside, NaN black, strided views")
+{
+    raster<float> big(5, 9, 0.0f);
+    auto v = big.view().window(1, 2, 3, 4);   // row_stride 9 > cols 4
+    const float cells[3][4] = {{10, 15, 20, NAN}, {5, 25, 12.5f, 17.5f}, {10, 10, 20, 20}};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) v(r, c) = cells[r][c];
+    const auto img = colorize(v, 10, 20);
+    CHECK(img.width == 4);
+    CHECK(img.height == 3);
+    REQUIRE(img.rgb.size() == 36);
+    CHECK(pixel(img, 0, 0) == ramp_color(0));
+    CHECK(pixel(img, 0, 1) == ramp_color(0.5));
+    CHECK(pixel(img, 0, 2) == ramp_color(1));
+    CHECK(pixel(img, 0, 3) == rgb{0, 0, 0});
+    CHECK(pixel(img, 1, 0) == ramp_color(0));   // below min
+    CHECK(pixel(img, 1, 1) == ramp_color(1));   // above max
+    CHECK(pixel(img, 1, 2) == ramp_color(0.25));
+    CHECK(pixel(img, 1, 3) == ramp_color(0.75));
+    CHECK(colorize(raster<float>(v)).rgb == colorize(v).rgb);   // contiguous copy, same picture
+    CHECK(colorize(v).rgb == colorize(v, 5, 25).rgb);           // automatic range = finite min and max
+
+    const raster<float> flat(2, 2, 3.0f);
+    CHECK(pixel(colorize(flat), 1, 1) == ramp_color(0.5));
+    const raster<float> none(2, 3, NAN);
+    const auto black = colorize(none);
+    CHECK(std::all_of(black.rgb.begin(), black.rgb.end(), [](auto b) { return b == 0; }));
+    CHECK_THROWS_WITH_AS(colorize(v, 2, 1), "colorize: min and max must be finite with min <= max", invalid_input);
+    CHECK_THROWS_WITH_AS(colorize(raster<float>(0, 3)), "colorize: raster must not be empty", invalid_input);
+}
+
+TEST_CASE("io/hillshade: planes shade exactly everywhere (borders and NaN holes included)")
+{
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> slope(-1.5, 1.5);
+    for (int trial = 0; trial < 40; ++trial) {
+        const double a = slope(rng), b = slope(rng), cell = 0.5 + trial % 3;
+        const std::ptrdiff_t rows = 1 + trial % 7, cols = 1 + (trial * 5) % 13;
+        raster<float> z(rows, cols);
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)   // y decreases with the row: row 0 is north
+                z(r, c) = static_cast<float>(100 + a * static_cast<double>(c) * cell - b * static_cast<double>(r) * cell);
+        if (trial % 2 && rows * cols > 4) z(rows / 2, cols / 2) = NAN;
+        const auto hs = hillshade(z, cell);
+        const int expected = rows * cols == 1 ? 180 : plane_shade(a, b, 315, 45);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                if (std::isnan(z(r, c))) {
+                    CHECK(hs(r, c) == 0);
+                    continue;
+                }
+                // A single row or column has no gradient across it: only that axis is known.
+                const int want = rows == 1 || cols == 1 ? plane_shade(cols == 1 ? 0 : a, rows == 1 ? 0 : b, 315, 45)
+                                                        : expected;
+                CHECK(std::abs(hs(r, c) - want) <= 1);   // float elevations move the shade by < 1 level
+            }
+        }
+    }
+    const raster<float> flat(4, 4, 7.0f);
+    CHECK(hillshade(flat, 1.0)(2, 2) == 180);   // round(255 sin 45°)
+    CHECK(hillshade(flat, 1.0, 0, 90)(0, 0) == 255);
+    // Facing the light at 45° -> full light; facing away -> dark.
+    raster<float> nw(3, 3), se(3, 3);
+    for (std::ptrdiff_t r = 0; r < 3; ++r)
+        for (std::ptrdiff_t c = 0; c < 3; ++c) {
+            // Down-slope towards the north-west: z rises to the east and south, |grad| = 1.
+            nw(r, c) = static_cast<float>(static_cast<double>(c + r) / std::numbers::sqrt2);
+            se(r, c) = -nw(r, c);
+        }
+    CHECK(hillshade(nw, 1.0)(1, 1) == 255);
+    CHECK(hillshade(se, 1.0)(1, 1) == 0);
+}
+
+TEST_CASE("io/hillshade: interior cells follow Horn's formula on random terrain; options are checked")
+{
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 10.0f);
+    raster<float> big(20, 31);
+    for (auto& v : big) v = u(rng);
+    const auto z = big.view().window(2, 3, 15, 25);
+    const auto hs = hillshade(z, 2.0);
+    CHECK(hs == hillshade(raster<float>(z), 2.0));
+    for (std::ptrdiff_t r = 1; r + 1 < z.rows(); ++r)
+        for (std::ptrdiff_t c = 1; c + 1 < z.cols(); ++c) CHECK(std::abs(hs(r, c) - horn_shade(z, r, c, 2.0)) <= 1);
+    CHECK_THROWS_WITH_AS(hillshade(z, 0.0), "hillshade: cell_m must be finite and > 0 (got 0)", invalid_input);
+    CHECK_THROWS_WITH_AS(hillshade(z, 1.0, 315, 91), "hillshade: altitude_deg must be in [0, 90] (got 91)",
+                         invalid_input);
+}
+
+TEST_CASE("io/label_color: background black, distinct stable colours for labels")
+{
+    CHECK(label_color(0) == rgb{0, 0, 0});
+    std::set<rgb> seen;
+    for (std::int32_t label = 1; label <= 256; ++label) {
+        const rgb c = label_color(label);
+        CHECK(c != rgb{0, 0, 0});
+        CHECK(luma(c) > 40);   // visible against the black background
+        seen.insert(c);
+        CHECK(label_color(label) == c);
+    }
+    CHECK(seen.size() == 256);
+    // Consecutive labels (often adjacent regions) differ clearly.
+    for (std::int32_t label = 1; label < 256; ++label) {
+        const rgb a = label_color(label), b = label_color(label + 1);
+        const int d = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+        CHECK(d > 60);
+    }
+    raster<std::int32_t> labels(2, 3, 0);
+    labels(0, 1) = 4;
+    labels(1, 2) = 9;
+    const auto img = colorize_labels(labels);
+    CHECK(pixel(img, 0, 0) == rgb{0, 0, 0});
+    CHECK(pixel(img, 0, 1) == label_color(4));
+    CHECK(pixel(img, 1, 2) == label_color(9));
+}
+
+TEST_CASE("io/overlay_mask: tints masked cells over the grey picture")
+{
+    raster<std::uint8_t> grey(2, 2, 100), mask(2, 2, 0);
+    mask(1, 0) = 1;
+    const auto img = overlay_mask(grey, mask, {0, 120, 255}, 0.5);
+    CHECK(pixel(img, 0, 0) == rgb{100, 100, 100});
+    CHECK(pixel(img, 1, 0) == rgb{50, 110, 178});   // round(0.5 * 100 + 0.5 * colour)
+    CHECK(pixel(overlay_mask(grey, mask, {9, 8, 7}, 1.0), 1, 0) == rgb{9, 8, 7});
+    CHECK(overlay_mask(grey, mask, {9, 8, 7}, 0.0).rgb == std::vector<std::uint8_t>(12, 100));
+    CHECK_THROWS_WITH_AS(overlay_mask(grey, raster<std::uint8_t>(2, 3)),
+                         "overlay_mask: grey and mask must have the same shape (got 2x2 and 2x3)", invalid_input);
+    CHECK_THROWS_WITH_AS(overlay_mask(grey, mask, {0, 0, 0}, 1.5), "overlay_mask: opacity must be in [0, 1] (got 1.5)",
+                         invalid_input);
+}
