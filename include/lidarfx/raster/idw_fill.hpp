@@ -88,6 +88,8 @@ public:
     bool full() const noexcept { return items_.size() == k_; }
     bool empty() const noexcept { return items_.empty(); }
     std::int64_t worst_d2() const noexcept { return items_.back().d2; }
+    /// False when a neighbour at squared distance d2 cannot enter (cheap test before reading its value).
+    bool may_take(std::int64_t d2) const noexcept { return !full() || d2 <= items_.back().d2; }
     const std::vector<idw_neighbour>& items() const noexcept { return items_; }
 
     void offer(const idw_neighbour& n)
@@ -119,36 +121,107 @@ inline float idw_mean(const std::vector<idw_neighbour>& nb, double cell_m, doubl
     return static_cast<float>(swz / sw);
 }
 
+/// Search aids built once per raster, so that ring searches skip what holds no data: next_in_row(r, c)
+/// is the first column >= c of row r holding data (finite), cols if none; next_in_col(r, c) the first
+/// row >= r of column c, rows if none; first_ring(r, c) the Chebyshev distance to the nearest data cell
+/// (rings closer than that are empty). 12 bytes per cell.
+struct idw_index {
+    raster<std::int32_t> next_in_row, next_in_col, first_ring;
+
+    template <class T>
+    idw_index(raster_view<const T> z, int threads)
+        : next_in_row(z.rows(), z.cols()), next_in_col(z.rows(), z.cols()), first_ring(z.rows(), z.cols())
+    {
+        const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+        parallel_for_rows(rows, 64, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                const T* in = z.row(r);
+                std::int32_t* next = next_in_row.row(r);
+                auto at = static_cast<std::int32_t>(cols);
+                for (std::ptrdiff_t c = cols - 1; c >= 0; --c) {
+                    if (std::isfinite(in[c])) at = static_cast<std::int32_t>(c);
+                    next[c] = at;
+                }
+            }
+        }, {}, "idw_fill");
+        for (std::ptrdiff_t r = rows - 1; r >= 0; --r) {
+            const T* in = z.row(r);
+            std::int32_t* next = next_in_col.row(r);
+            const std::int32_t* below = r + 1 < rows ? next_in_col.row(r + 1) : nullptr;
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                next[c] = std::isfinite(in[c]) ? static_cast<std::int32_t>(r)
+                                               : (below ? below[c] : static_cast<std::int32_t>(rows));
+            }
+        }
+        chessboard_distance(z);
+    }
+
+private:
+    /// Two-pass 3x3 chamfer with unit weights: exact for the Chebyshev (chessboard) metric.
+    template <class T>
+    void chessboard_distance(raster_view<const T> z)
+    {
+        const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+        constexpr std::int32_t far = std::numeric_limits<std::int32_t>::max() / 2;
+        raster<std::int32_t>& d = first_ring;
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                std::int32_t v = std::isfinite(z(r, c)) ? 0 : far;
+                if (v != 0) {
+                    if (c > 0) v = std::min(v, d(r, c - 1) + 1);
+                    if (r > 0) {
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                            v = std::min(v, d(r - 1, cc) + 1);
+                    }
+                }
+                d(r, c) = v;
+            }
+        }
+        for (std::ptrdiff_t r = rows - 1; r >= 0; --r) {
+            for (std::ptrdiff_t c = cols - 1; c >= 0; --c) {
+                std::int32_t v = d(r, c);
+                if (v == 0) continue;
+                if (c + 1 < cols) v = std::min(v, d(r, c + 1) + 1);
+                if (r + 1 < rows) {
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                        v = std::min(v, d(r + 1, cc) + 1);
+                }
+                d(r, c) = v;
+            }
+        }
+    }
+};
+
 /// Ring search for the hole at (r, c): Chebyshev rings rho = 1, 2, ... around it; ring rho holds no
 /// cell nearer than rho, so the search stops once rho^2 passes the k-th best squared distance (or the
-/// reach). Within a ring only offsets t with rho^2 + t^2 <= the current bound are visited.
+/// reach). Rings nearer than the nearest data cell are skipped; within a ring only offsets t with
+/// rho^2 + t^2 <= the current bound are visited, and runs of holes are jumped over, so a ring costs
+/// O(1 + data cells offered).
 template <class T>
-void idw_search(raster_view<const T> z, std::ptrdiff_t r, std::ptrdiff_t c, std::int64_t reach_d2, idw_best& best)
+void idw_search(raster_view<const T> z, const idw_index& index, std::ptrdiff_t r, std::ptrdiff_t c,
+                std::int64_t reach_d2, idw_best& best)
 {
     best.clear();
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const std::ptrdiff_t last_ring = std::max({r, rows - 1 - r, c, cols - 1 - c});
     const auto offer_row = [&](std::ptrdiff_t rr, std::ptrdiff_t c0, std::ptrdiff_t c1, std::int64_t dr2) {
-        const T* row = z.row(rr);
-        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(c0, 0); cc <= std::min(c1, cols - 1); ++cc) {
-            if (std::isfinite(row[cc])) {
-                const std::int64_t dc = cc - c;
-                best.offer({dr2 + dc * dc, rr, cc, static_cast<double>(row[cc])});
-            }
+        const std::int32_t* next = index.next_in_row.row(rr);
+        c1 = std::min(c1, cols - 1);
+        for (std::ptrdiff_t cc = next[std::max<std::ptrdiff_t>(c0, 0)]; cc <= c1; cc = cc + 1 < cols ? next[cc + 1] : cols) {
+            const std::int64_t dc = cc - c, d2 = dr2 + dc * dc;
+            if (best.may_take(d2)) best.offer({d2, rr, cc, static_cast<double>(z(rr, cc))});
         }
     };
     const auto offer_col = [&](std::ptrdiff_t cc, std::ptrdiff_t r0, std::ptrdiff_t r1, std::int64_t dc2) {
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(r0, 0); rr <= std::min(r1, rows - 1); ++rr) {
-            const T v = z(rr, cc);
-            if (std::isfinite(v)) {
-                const std::int64_t dr = rr - r;
-                best.offer({dc2 + dr * dr, rr, cc, static_cast<double>(v)});
-            }
+        r1 = std::min(r1, rows - 1);
+        for (std::ptrdiff_t rr = index.next_in_col(std::max<std::ptrdiff_t>(r0, 0), cc); rr <= r1;
+             rr = rr + 1 < rows ? index.next_in_col(rr + 1, cc) : rows) {
+            const std::int64_t dr = rr - r, d2 = dc2 + dr * dr;
+            if (best.may_take(d2)) best.offer({d2, rr, cc, static_cast<double>(z(rr, cc))});
         }
     };
-    for (std::ptrdiff_t rho = 1; rho <= last_ring; ++rho) {
+    for (std::ptrdiff_t rho = index.first_ring(r, c); rho <= last_ring; ++rho) {
         const std::int64_t rho2 = static_cast<std::int64_t>(rho) * rho;
-        if (rho2 > reach_d2) break;
         const std::int64_t bound = best.full() ? std::min(reach_d2, best.worst_d2()) : reach_d2;
         if (rho2 > bound) break;
         const std::ptrdiff_t t = bound - rho2 >= rho2 ? rho : static_cast<std::ptrdiff_t>(isqrt(bound - rho2));
@@ -165,6 +238,7 @@ idw_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, const i
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const std::int64_t reach_d2 = idw_reach_d2(opt.radius_m, opt.cell_m, rows, cols);
+    const idw_index index(z, opt.threads);
     constexpr std::ptrdiff_t block = 8;
     std::vector<idw_counts> per_block(static_cast<std::size_t>((rows + block - 1) / block));
     parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
@@ -178,7 +252,7 @@ idw_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, const i
                     o[c] = static_cast<float>(in[c]);
                     continue;
                 }
-                idw_search(z, r, c, reach_d2, best);
+                idw_search(z, index, r, c, reach_d2, best);
                 if (best.empty()) {
                     o[c] = std::numeric_limits<float>::quiet_NaN();
                     ++counts.unfilled_cells;
@@ -219,6 +293,14 @@ inline void validate_idw(const idw_options& opt)
     resolve_threads(opt.threads, "idw_fill");
 }
 
+template <class In>
+void validate_idw_extent(const In& z)
+{
+    constexpr auto most = static_cast<std::ptrdiff_t>(std::numeric_limits<std::int32_t>::max());
+    require(z.rows() < most && z.cols() < most, "idw_fill",
+            concat("z must have fewer than 2^31 - 1 rows and columns (got ", z.rows(), "x", z.cols(), ")"));
+}
+
 }  // namespace detail
 
 /// Fills the NaN cells (holes) of an elevation raster by inverse distance weighting of the k nearest data
@@ -236,6 +318,7 @@ idw_counts idw_fill(const In& z, Out&& out, const idw_options& opt = {})
 {
     detail::validate_idw(opt);
     detail::require_same_shape(z, out, "idw_fill", "z", "out");
+    detail::validate_idw_extent(z);
     const detail::readable<In> in(z);
     detail::require(detail::has_finite_cell(in.view()), "idw_fill", "z has no finite cell to interpolate from");
     idw_counts counts;

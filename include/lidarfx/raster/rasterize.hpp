@@ -65,6 +65,14 @@ inline std::uint64_t intensity_fixed(double v) noexcept
 
 struct accumulator_access;
 
+/// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
+inline void prefetch([[maybe_unused]] const void* p) noexcept
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 1);
+#endif
+}
+
 }  // namespace detail
 
 /// Streaming per-cell statistics on a fixed grid. Add points in chunks (any split, any order), merge
@@ -96,29 +104,42 @@ public:
         const auto n = static_cast<std::size_t>(cloud.size());
         detail::require(first <= last && last <= n, "raster_accumulator::add",
                         detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))"));
+        // Two passes per block of points: locate the cells (and prefetch them), then update them, so that
+        // the cache misses of randomly ordered points overlap instead of stalling one by one.
+        constexpr std::size_t block = 256;
+        constexpr std::ptrdiff_t outside_cell = -1, nan_point = -2;
+        std::ptrdiff_t at[block];
+        float zs[block];
         const grid g = g_;
         detail::cell_stats* cells = cells_.data();
         std::size_t used = 0, outside = 0, nan = 0;
-        for (std::size_t i = first; i < last; ++i) {
-            const double x = cloud.x(i), y = cloud.y(i), z = cloud.z(i);
-            if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
-                ++nan;
-                continue;
+        for (std::size_t base = first; base < last; base += block) {
+            const std::size_t m = std::min(block, last - base);
+            for (std::size_t j = 0; j < m; ++j) {
+                const double x = cloud.x(base + j), y = cloud.y(base + j), z = cloud.z(base + j);
+                // float(min(z)) == min(float(z)): rounding is monotonic, so storing floats loses no order.
+                zs[j] = static_cast<float>(z);
+                if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+                    at[j] = nan_point;
+                    continue;
+                }
+                const auto cell = g.cell_of(x, y);
+                at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
+                if (cell) detail::prefetch(cells + at[j]);
             }
-            const auto at = g.cell_of(x, y);
-            if (!at) {
-                ++outside;
-                continue;
+            for (std::size_t j = 0; j < m; ++j) {
+                if (at[j] < 0) {
+                    ++(at[j] == nan_point ? nan : outside);
+                    continue;
+                }
+                detail::cell_stats& s = cells[at[j]];
+                s.min_z = std::min(s.min_z, zs[j]);
+                s.max_z = std::max(s.max_z, zs[j]);
+                ++s.count;
+                s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, base + j));
+                s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, base + j) > 1);
+                ++used;
             }
-            // float(min(z)) == min(float(z)): rounding is monotonic, so storing floats loses no order.
-            const auto zf = static_cast<float>(z);
-            detail::cell_stats& s = cells[at->row * g.cols + at->col];
-            s.min_z = std::min(s.min_z, zf);
-            s.max_z = std::max(s.max_z, zf);
-            ++s.count;
-            s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, i));
-            s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, i) > 1);
-            ++used;
         }
         points_used_ += used;
         points_outside_ += outside;
