@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "io/geotiff.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <lidarfx/core/error.hpp>
+
+#ifdef LIDARFX_HAVE_GDAL
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <cctype>
+#include <memory>
+#include <mutex>
+#endif
+
+namespace lidarfx::io {
+
+#ifdef LIDARFX_HAVE_GDAL
+
+namespace {
+
+void register_drivers()
+{
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// Silences GDAL's default stderr reporting while alive; errors are turned into exceptions instead.
+struct quiet_gdal {
+    quiet_gdal()
+    {
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        CPLErrorReset();
+    }
+    ~quiet_gdal() { CPLPopErrorHandler(); }
+    quiet_gdal(const quiet_gdal&) = delete;
+    quiet_gdal& operator=(const quiet_gdal&) = delete;
+};
+
+std::string gdal_message()
+{
+    const char* m = CPLGetLastErrorMsg();
+    return m != nullptr && *m != '\0' ? std::string(" (") + m + ")" : std::string();
+}
+
+struct dataset_closer {
+    void operator()(void* ds) const { GDALClose(static_cast<GDALDatasetH>(ds)); }
+};
+using dataset = std::unique_ptr<void, dataset_closer>;
+
+/// WKT of a CRS given as "EPSG:n", "n", WKT or PROJ text; empty input gives empty WKT.
+std::string crs_to_wkt(const std::string& crs)
+{
+    if (crs.empty()) return {};
+    std::string input = crs;
+    if (std::all_of(crs.begin(), crs.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; })) {
+        input = "EPSG:" + crs;
+    }
+    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+    char* wkt = nullptr;
+    const bool ok = OSRSetFromUserInput(srs, input.c_str()) == OGRERR_NONE && OSRExportToWkt(srs, &wkt) == OGRERR_NONE;
+    std::string out = ok && wkt != nullptr ? wkt : "";
+    CPLFree(wkt);
+    OSRDestroySpatialReference(srs);
+    if (out.empty()) {
+        throw invalid_input(detail::concat("write_geotiff: crs_wkt_or_epsg must name a coordinate system GDAL "
+                                           "understands (got '", crs, "')"));
+    }
+    return out;
+}
+
+}  // namespace
+
+bool geotiff_available() noexcept { return true; }
+
+void write_geotiff(const std::string& path, raster_view<const float> values, const grid& g,
+                   const std::string& crs_wkt_or_epsg)
+{
+    constexpr const char* fn = "write_geotiff";
+    g.validate(fn);
+    detail::require(values.rows() == g.rows && values.cols() == g.cols, fn,
+                    "values and grid must have the same shape");
+    detail::require(!values.empty(), fn, "values must not be empty");
+    register_drivers();
+    const quiet_gdal quiet;
+    const std::string wkt = crs_to_wkt(crs_wkt_or_epsg);
+    GDALDriverH driver = GDALGetDriverByName("GTiff");
+    if (driver == nullptr) throw std::runtime_error(path + ": GDAL has no GTiff driver");
+    const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", "TILED=YES", "BIGTIFF=IF_SAFER", nullptr};
+    dataset ds(GDALCreate(driver, path.c_str(), static_cast<int>(g.cols), static_cast<int>(g.rows), 1, GDT_Float32,
+                          const_cast<char**>(options)));
+    if (!ds) throw std::runtime_error(path + ": cannot create GeoTIFF" + gdal_message());
+    auto transform = to_gdal(g);
+    bool ok = GDALSetGeoTransform(ds.get(), transform.data()) == CE_None;
+    if (!wkt.empty()) ok = ok && GDALSetProjection(ds.get(), wkt.c_str()) == CE_None;
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    ok = ok && GDALSetRasterNoDataValue(band, geotiff_nodata) == CE_None;
+    std::vector<float> row(static_cast<std::size_t>(g.cols));
+    for (std::ptrdiff_t r = 0; ok && r < g.rows; ++r) {
+        const float* src = values.row(r);
+        for (std::size_t c = 0; c < row.size(); ++c) row[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
+        ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r), static_cast<int>(g.cols), 1, row.data(),
+                          static_cast<int>(g.cols), 1, GDT_Float32, 0, 0) == CE_None;
+    }
+    if (!ok) throw std::runtime_error(path + ": writing the GeoTIFF failed" + gdal_message());
+    ds.reset();   // flushes and closes
+    if (CPLGetLastErrorType() >= CE_Failure) throw std::runtime_error(path + ": closing the GeoTIFF failed" + gdal_message());
+}
+
+geotiff_raster read_geotiff(const std::string& path)
+{
+    register_drivers();
+    const quiet_gdal quiet;
+    dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
+    if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
+    const int cols = GDALGetRasterXSize(ds.get()), rows = GDALGetRasterYSize(ds.get());
+    if (GDALGetRasterCount(ds.get()) < 1) throw std::runtime_error(path + ": the file has no raster band");
+    std::array<double, 6> gt{};
+    if (GDALGetGeoTransform(ds.get(), gt.data()) != CE_None) throw std::runtime_error(path + ": the file has no geotransform");
+    geotiff_raster out;
+    try {
+        out.g = from_gdal(gt, rows, cols);
+    } catch (const invalid_input& e) {
+        throw std::runtime_error(path + ": unsupported georeferencing: " + e.what());
+    }
+    const char* wkt = GDALGetProjectionRef(ds.get());
+    out.crs_wkt = wkt != nullptr ? wkt : "";
+    out.values = raster<float>(rows, cols);
+    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    if (GDALRasterIO(band, GF_Read, 0, 0, cols, rows, out.values.data(), cols, rows, GDT_Float32, 0, 0) != CE_None) {
+        throw std::runtime_error(path + ": reading band 1 failed" + gdal_message());
+    }
+    int has_nodata = 0;
+    const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+    if (has_nodata) {
+        const auto as_float = static_cast<float>(nodata);
+        for (float& v : out.values) {
+            if (v == as_float || (std::isnan(nodata) && std::isnan(v))) v = NAN;
+        }
+    }
+    return out;
+}
+
+#else
+
+namespace {
+
+[[noreturn]] void no_gdal(const std::string& path)
+{
+    throw std::runtime_error(path + ": GeoTIFF support needs GDAL, and lidarfx_io was built without it "
+                                    "(install libgdal-dev and reconfigure, or write PNG / ESRI ASCII instead)");
+}
+
+}  // namespace
+
+bool geotiff_available() noexcept { return false; }
+
+void write_geotiff(const std::string& path, raster_view<const float>, const grid&, const std::string&)
+{
+    no_gdal(path);
+}
+
+geotiff_raster read_geotiff(const std::string& path) { no_gdal(path); }
+
+#endif
+
+}  // namespace lidarfx::io
