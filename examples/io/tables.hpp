@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: Apache-2.0
+// CSV tables and GeoJSON polygon collections for the example program's outputs.
+#pragma once
+
+#include <array>
+#include <concepts>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace lidarfx::io {
+
+/// One cell of a table or one GeoJSON property: empty (null), bool, integer, real number or text.
+/// Numbers are written in the shortest form that reads back to the same value; a NaN or infinite real
+/// is written as an empty CSV field and as JSON null.
+class table_value {
+public:
+    table_value() = default;                                        ///< null
+    table_value(std::nullptr_t) {}                                  ///< null
+    table_value(bool v) : v_(v) {}
+    template <std::signed_integral T>
+    table_value(T v) : v_(static_cast<std::int64_t>(v)) {}
+    template <std::unsigned_integral T>
+        requires(!std::same_as<T, bool>)
+    table_value(T v) : v_(static_cast<std::uint64_t>(v)) {}
+    template <std::floating_point T>
+    table_value(T v) : v_(static_cast<double>(v)) {}
+    table_value(std::string v) : v_(std::move(v)) {}
+    table_value(const char* v) : v_(std::string(v)) {}
+    table_value(std::string_view v) : v_(std::string(v)) {}
+
+    bool is_null() const noexcept { return std::holds_alternative<std::monostate>(v_); }
+    bool is_text() const noexcept { return std::holds_alternative<std::string>(v_); }
+    /// The value as written in CSV (unquoted) or, for non-text values, in JSON.
+    std::string format() const;
+    /// The value as a JSON value: text quoted and escaped, non-finite reals and null as null.
+    std::string json() const;
+
+private:
+    std::variant<std::monostate, bool, std::int64_t, std::uint64_t, double, std::string> v_;
+};
+
+/// A CSV field: quoted (with inner quotes doubled) when it holds a comma, a quote, CR, LF or leading or
+/// trailing white space, as RFC 4180 describes; otherwise as is.
+std::string csv_field(std::string_view text);
+
+/// CSV text: the header line, then one line per row, fields separated by commas, lines ended by "\n".
+/// @throws invalid_input if a row has not as many fields as the header (or the header is empty).
+std::string to_csv(const std::vector<std::string>& header, const std::vector<std::vector<table_value>>& rows);
+
+/// Writes to_csv(header, rows) to `path`. @throws as to_csv; std::runtime_error naming the file on I/O errors.
+void write_csv(const std::string& path, const std::vector<std::string>& header,
+               const std::vector<std::vector<table_value>>& rows);
+
+/// A JSON string literal of `text` (quotes, backslash and control characters escaped; UTF-8 kept).
+std::string json_string(std::string_view text);
+
+/// A linear ring of world coordinates (x, y), in the units of the collection's CRS.
+using geo_ring = std::vector<std::array<double, 2>>;
+
+/// A polygon feature: `rings[0]` is the outer boundary, the others are holes; plus named properties.
+struct geojson_feature {
+    std::vector<geo_ring> rings;
+    std::vector<std::pair<std::string, table_value>> properties;
+};
+
+/// A GeoJSON FeatureCollection of polygons, one feature per line. Rings are closed (the first position
+/// repeated at the end when it is not already) and oriented by the right-hand rule of RFC 7946 (outer
+/// ring counter-clockwise, holes clockwise, by the sign of the shoelace area). With `epsg` > 0 the
+/// collection names its CRS in a "crs" member ("urn:ogc:def:crs:EPSG::<code>", GeoJSON 2008 style, which
+/// GDAL/QGIS honour for projected coordinates). O(total positions).
+/// @throws invalid_input when a feature has no ring, a ring has fewer than 3 distinct positions, a
+/// coordinate is not finite, a property name repeats, or epsg < 0.
+std::string to_geojson(const std::vector<geojson_feature>& features, int epsg = 0);
+
+/// Writes to_geojson(features, epsg) to `path`. @throws as to_geojson; std::runtime_error on I/O errors.
+void write_geojson(const std::string& path, const std::vector<geojson_feature>& features, int epsg = 0);
+
+}  // namespace lidarfx::io
