@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include "io/ascii_grid.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "io_test_util.hpp"
+
+using namespace lidarfx;
+using namespace lidarfx::io;
+using io_test::runtime_error_of;
+
+namespace {
+
+bool same_bits_or_nan(raster_view<const float> a, raster_view<const float> b)
+{
+    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+    for (std::ptrdiff_t r = 0; r < a.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < a.cols(); ++c) {
+            const float x = a(r, c), y = b(r, c);
+            if (std::isnan(x) != std::isnan(y)) return false;
+            if (!std::isnan(x) && std::bit_cast<std::uint32_t>(x) != std::bit_cast<std::uint32_t>(y)) return false;
+        }
+    return true;
+}
+
+void write_text(const std::string& path, const std::string& text)
+{
+    io_test::write_bytes(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+}
+
+}  // namespace
+
+TEST_CASE("io/ascii_grid: write/read round trip is bit-exact, NaN -> -9999 -> NaN, strided input")
+{
+    io_test::temp_dir dir;
+    std::mt19937 rng(77);
+    for (auto [rows, cols] : {std::pair{1, 1}, {1, 9}, {9, 1}, {7, 13}, {57, 31}}) {
+        raster<float> big(rows + 3, cols + 4);
+        for (auto& v : big) {
+            // Any finite float bit pattern (denormals, -0, extremes) or NaN.
+            float f;
+            do {
+                f = std::bit_cast<float>(static_cast<std::uint32_t>(rng()));
+            } while (std::isinf(f));
+            v = rng() % 10 == 0 ? NAN : rng() % 2 ? f : static_cast<float>(rng() % 20000) / 8.0f - 1000.0f;
+        }
+        const auto values = big.view().window(2, 1, rows, cols);
+        const grid g{2230738.84, 252410.1, 0.25, rows, cols};
+        const std::string path = dir.file("g.asc");
+        write_ascii_grid(path, values, g);
+        grid back_grid;
+        const auto back = read_ascii_grid(path, back_grid);
+        CHECK(same_bits_or_nan(back, values));
+        CHECK(back_grid.cols == g.cols);
+        CHECK(back_grid.rows == g.rows);
+        CHECK(back_grid.cell == g.cell);
+        CHECK(back_grid.x0 == g.x0);
+        // y0 goes through the lower-left corner: y1 = y0 - rows * cell and back, exact up to rounding.
+        CHECK(back_grid.y0 == doctest::Approx(g.y0).epsilon(1e-15));
+    }
+}
+
+TEST_CASE("io/read_ascii_grid: corner and centre registration, key case and order, missing NODATA_value")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("h.asc");
+    grid g;
+    write_text(path, "ncols 3\nnrows 2\nxllcorner 100\nyllcorner 200\ncellsize 2\nNODATA_value -1\n1 2 -1\n4 5 6\n");
+    auto v = read_ascii_grid(path, g);
+    CHECK(g == grid{100, 204, 2, 2, 3});
+    CHECK(v(0, 0) == 1);
+    CHECK(std::isnan(v(0, 2)));
+    CHECK(v(1, 2) == 6);
+
+    // Centre registration (the centre of the lower-left cell), upper-case keys in another order.
+    write_text(path, "NROWS 2\r\nNCOLS 3\r\nCELLSIZE 2\r\nXLLCENTER 101\r\nYLLCENTER 201\r\n1 2 3 4 5 6\r\n");
+    v = read_ascii_grid(path, g);
+    CHECK(g == grid{100, 204, 2, 2, 3});
+    CHECK(v(1, 0) == 4);
+    // Without NODATA_value nothing is NoData, not even -9999.
+    write_text(path, "ncols 2\nnrows 1\nxllcorner 0\nyllcenter 0.5\ncellsize 1\n-9999 +7.5\n");
+    v = read_ascii_grid(path, g);
+    CHECK(g == grid{0, 1, 1, 1, 2});
+    CHECK(v(0, 0) == -9999.0f);
+    CHECK(v(0, 1) == 7.5f);
+    // A complete header may be followed by data starting with nan.
+    write_text(path, "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\nnan 3\n");
+    CHECK(std::isnan(read_ascii_grid(path, g)(0, 0)));
+}
+
+TEST_CASE("io/read_ascii_grid: malformed files are rejected with the file name and the reason")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("bad.asc");
+    grid g;
+    const auto error = [&](const std::string& text) {
+        write_text(path, text);
+        return runtime_error_of([&] { (void)read_ascii_grid(path, g); });
+    };
+    const std::string head = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+    CHECK(error(head + "1 2 3\n") == path + ": truncated data: expected 4 values, found 3");
+    CHECK(error(head + "1 2 3 4 5\n") == path + ": more values than nrows x ncols = 4");
+    CHECK(error(head + "1 2 x 4\n") == path + ": bad value 'x' at row 1, column 0");
+    CHECK(error("ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n1 2 3 4\n") == path + ": header has no cellsize");
+    CHECK(error("ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncolour 3\n") == path + ": unexpected header key 'colour'");
+    CHECK(error("ncols 2\nncols 2\n") == path + ": header key ncols appears twice");
+    CHECK(error("ncols two\n") == path + ": header key ncols has a bad value 'two'");
+    CHECK(error("ncols 2\nnrows 2\nyllcorner 0\ncellsize 1\n1 2 3 4\n") ==
+          path + ": header needs exactly one of xllcorner and xllcenter");
+    CHECK(error("ncols 2\nnrows 0\nxllcorner 0\nyllcorner 0\ncellsize 1\n") ==
+          path + ": ncols and nrows must be positive integers");
+    CHECK(error("ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize -1\n1 2\n") ==
+          path + ": cellsize must be finite and > 0");
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid(dir.file("none.asc"), g); }) == dir.file("none.asc") + ": cannot open");
+}
+
+TEST_CASE("io/write_ascii_grid: checks the shape and the grid")
+{
+    io_test::temp_dir dir;
+    const raster<float> v(2, 3, 1.0f);
+    CHECK_THROWS_WITH_AS(write_ascii_grid(dir.file("a.asc"), v, {0, 0, 1, 3, 2}),
+                         "write_ascii_grid: raster shape must equal the grid's", invalid_input);
+    CHECK_THROWS_WITH_AS(write_ascii_grid(dir.file("a.asc"), v, {0, 0, -1, 2, 3}),
+                         "write_ascii_grid: grid.cell must be finite and > 0 (got -1)", invalid_input);
+    CHECK_THROWS_WITH_AS(write_ascii_grid(dir.file("a.asc"), raster<float>(0, 0), {0, 0, 1, 0, 0}),
+                         "write_ascii_grid: raster must not be empty", invalid_input);
+    CHECK(runtime_error_of([&] { write_ascii_grid(dir.file("no/a.asc"), v, {0, 0, 1, 2, 3}); }) ==
+          dir.file("no/a.asc") + ": cannot open for writing");
+}
