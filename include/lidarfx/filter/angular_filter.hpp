@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: Apache-2.0
+// angular_filter: per cell, the steepest angle to any neighbour within a square window (edge strength, degrees).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <numbers>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Settings of angular_filter.
+struct angular_filter_options {
+    int radius = 2;   ///< window half-size in cells: the window is (2*radius+1)^2 cells; >= 1 (2 = "two tiers")
+    int threads = 1;  ///< worker threads; 0 = all cores; >= 0. Results do not depend on it
+};
+
+namespace detail {
+
+/// atan(x) in degrees for x >= 0 in float arithmetic (+inf gives 90, NaN gives NaN), branch-free so that loops
+/// calling it vectorize 16 lanes wide. t = min(x, 1/x) in [0, 1], atan(t) = t P(t^2) with P a degree-8
+/// minimax fit (relative error 1.4e-7 evaluated in float), and atan(x) = pi/2 - atan(1/x) for x > 1.
+inline float atan_deg(float x) noexcept
+{
+    const bool above = x > 1.0f;
+    const float t = above ? 1.0f / x : x;
+    const float s = t * t;
+    float p = 0.0029035008046776056f;
+    p = p * s - 0.01628280244767666f;
+    p = p * s + 0.04303903877735138f;
+    p = p * s - 0.07533648610115051f;
+    p = p * s + 0.10654664784669876f;
+    p = p * s - 0.14207130670547485f;
+    p = p * s + 0.19993053376674652f;
+    p = p * s - 0.3333309292793274f;
+    p = p * s + 1.0f;
+    const float a = t * p * static_cast<float>(180 / std::numbers::pi);
+    return above ? 90.0f - a : a;
+}
+
+/// True if the cells of two strided views share any byte of memory (an into form must not write its input).
+template <class A, class B>
+bool overlaps(raster_view<A> a, raster_view<B> b) noexcept
+{
+    if (a.empty() || b.empty()) return false;
+    const auto bytes = [](auto v) {
+        const auto* first = reinterpret_cast<const unsigned char*>(v.data());
+        const auto* last = reinterpret_cast<const unsigned char*>(&v(v.rows() - 1, v.cols() - 1) + 1);
+        return std::pair{reinterpret_cast<std::uintptr_t>(first), reinterpret_cast<std::uintptr_t>(last)};
+    };
+    const auto [a0, a1] = bytes(a);
+    const auto [b0, b1] = bytes(b);
+    return a0 < b1 && b0 < a1;
+}
+
+/// Read access to any raster_input as cells of T: strided rasters of T are viewed in place, anything else
+/// (other value types, non-strided hosts) is converted once into an owned raster<T>.
+template <class T, raster_input In>
+class readable_as {
+public:
+    explicit readable_as(const In& in)
+    {
+        if constexpr (std::is_same_v<typename In::value_type, T> && strided_raster<In>) {
+            view_ = view_of(in);
+        } else {
+            copy_ = raster<T>(in);
+            view_ = copy_.view();
+        }
+    }
+    raster_view<const T> view() const noexcept { return view_; }
+
+private:
+    raster<T> copy_;
+    raster_view<const T> view_;
+};
+
+/// Factors 1 / (cell_m * sqrt(a^2 + b^2)) for 0 <= a, b <= radius, row-major by a (0 at a = b = 0). An offset
+/// (dr, dc) uses entry (|dr|, |dc|); every path of the kernel reads the same float factors, so all agree exactly.
+inline std::vector<float> inverse_distances(double cell_m, int radius)
+{
+    const std::ptrdiff_t n = radius + 1;
+    std::vector<float> inv(static_cast<std::size_t>(n * n), 0.0f);
+    for (std::ptrdiff_t a = 0; a < n; ++a) {
+        for (std::ptrdiff_t b = 0; b < n; ++b) {
+            if (a + b > 0) inv[a * n + b] = static_cast<float>(1.0 / (cell_m * std::sqrt(static_cast<double>(a * a + b * b))));
+        }
+    }
+    return inv;
+}
+
+/// best[c] = max(best[c], |z(r+dr, c+dc) - z(r, c)| * inv_d) for the columns c in [c0, c1) whose neighbour
+/// lies inside the row: one pass over the columns per window offset (a loop compilers vectorize). A NaN ratio
+/// compares false and so never wins, which skips NaN neighbours without a branch.
+inline void angular_offset_pass(const float* centre, const float* other, float* best, std::ptrdiff_t cols,
+                                std::ptrdiff_t dc, float inv_d, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
+{
+    c0 = std::max(c0, -dc);
+    c1 = std::min(c1, cols - dc);
+    for (std::ptrdiff_t c = c0; c < c1; ++c) {
+        const float ratio = std::fabs(other[c + dc] - centre[c]) * inv_d;
+        best[c] = ratio > best[c] ? ratio : best[c];
+    }
+}
+
+/// best[c] for the cells [c0, c1) of a row whose whole (2R+1)^2 window lies inside the raster, R known at
+/// compile time: the window is unrolled and every value stays in registers. The offsets (+-a, +-b) and
+/// (+-b, +-a) share one distance, so their largest |dz| is taken first and multiplied once: rounding is
+/// monotone, so max(|dz|) * f equals max(|dz| * f) bit for bit, and NaN differences never win.
+template <int R>
+void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0,
+                      std::ptrdiff_t c1, const float* inv_d) noexcept
+{
+    for (std::ptrdiff_t c = c0; c < c1; ++c) {
+        const float p = centre[c];
+        float largest[R + 1][R + 1] = {};  // by (min(|dr|, |dc|), max(|dr|, |dc|))
+#pragma GCC unroll 8
+        for (int dr = -R; dr <= R; ++dr) {
+#pragma GCC unroll 8
+            for (int dc = -R; dc <= R; ++dc) {
+                const int a = std::min(std::abs(dr), std::abs(dc)), b = std::max(std::abs(dr), std::abs(dc));
+                const float d = std::fabs(centre[dr * row_stride + c + dc] - p);
+                largest[a][b] = d > largest[a][b] ? d : largest[a][b];
+            }
+        }
+        float steepest = 0.0f;
+#pragma GCC unroll 8
+        for (int a = 0; a <= R; ++a) {
+#pragma GCC unroll 8
+            for (int b = a; b <= R; ++b) {
+                const float ratio = largest[a][b] * inv_d[a * (R + 1) + b];
+                steepest = ratio > steepest ? ratio : steepest;
+            }
+        }
+        best[c] = steepest;
+    }
+}
+
+/// Rows [r0, r1) of the angular filter: the largest ratio |dz| / d per cell, then one atan per cell.
+/// Radii 1-3 run the unrolled kernel on cells whose window lies inside the raster and clipped per-offset
+/// passes on the others (rows and columns within `radius` of the border); larger radii run the passes only.
+inline void angular_filter_rows(raster_view<const float> z, raster_view<float> out, double cell_m, int radius,
+                                std::ptrdiff_t r0, std::ptrdiff_t r1)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols(), rad = radius;
+    const std::vector<float> inv_d = inverse_distances(cell_m, radius);
+    std::vector<float> best_row(static_cast<std::size_t>(cols));
+    float* best = best_row.data();
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        const float* centre = z.row(r);
+        std::fill(best_row.begin(), best_row.end(), 0.0f);
+        const bool unrolled = radius <= 3 && r >= rad && r + rad < rows && cols > 2 * rad;
+        if (unrolled) {
+            const auto stride = z.row_stride();
+            if (radius == 1) angular_interior<1>(centre, stride, best, rad, cols - rad, inv_d.data());
+            if (radius == 2) angular_interior<2>(centre, stride, best, rad, cols - rad, inv_d.data());
+            if (radius == 3) angular_interior<3>(centre, stride, best, rad, cols - rad, inv_d.data());
+        }
+        for (std::ptrdiff_t dr = std::max(-rad, -r); dr <= std::min(rad, rows - 1 - r); ++dr) {
+            for (std::ptrdiff_t dc = -rad; dc <= rad; ++dc) {
+                if (dr == 0 && dc == 0) continue;
+                const float inv = inv_d[std::abs(dr) * (rad + 1) + std::abs(dc)];
+                if (unrolled) {  // only the `rad` columns at each end are left
+                    angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, 0, rad);
+                    angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, cols - rad, cols);
+                } else {
+                    angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, 0, cols);
+                }
+            }
+        }
+        // A NaN centre gives NaN through atan. (Kept out of the atan loop: a select there between the atan and a
+        // constant makes compilers branch around the atan, and the loop no longer vectorizes.)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            best[c] = centre[c] == centre[c] ? best[c] : std::numeric_limits<float>::quiet_NaN();
+        }
+        float* o = out.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) o[c] = atan_deg(best[c]);
+    }
+}
+
+inline void check_angular_filter(double cell_m, const angular_filter_options& opt)
+{
+    require_positive(cell_m, "angular_filter", "cell_m");
+    require(opt.radius >= 1, "angular_filter", "radius", ">= 1", opt.radius);
+    require(opt.threads >= 0, "angular_filter", "threads", ">= 0", opt.threads);
+}
+
+}  // namespace detail
+
+/// Angular filter (into form): out(p) = max over neighbours q of atan(|z(q) - z(p)| / (cell_m * |p - q|)),
+/// q ranging over the (2*radius+1)^2 window around p clipped at the raster border (Acharjee et al. 2015,
+/// the dissertation's "two tiers" for radius 2). Degrees in [0, 90]: 0 on flat ground, near 90 at walls.
+/// NaN neighbours are skipped, a NaN centre gives NaN, a cell with no valid neighbour gives 0. z in metres.
+/// O(rows * cols * radius^2), one atan per cell. @throws invalid_input if the shapes differ, cell_m is not
+/// finite and > 0, radius < 1, threads < 0, or out overlaps z.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, float>
+void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_options& opt = {})
+{
+    detail::check_angular_filter(cell_m, opt);
+    detail::require_same_shape(z, out, "angular_filter", "z", "out");
+    const detail::readable_as<float, In> in(z);
+    detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
+        detail::require(!detail::overlaps(in.view(), o), "angular_filter", "out must not overlap z");
+        parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            detail::angular_filter_rows(in.view(), o, cell_m, opt.radius, r0, r1);
+        }, {}, "angular_filter");
+    });
+}
+
+/// Angular filter (returning form) with options; see the into form for the definition.
+template <raster_input In>
+raster<float> angular_filter(const In& z, double cell_m, const angular_filter_options& opt)
+{
+    raster<float> out(z.rows(), z.cols());
+    angular_filter(z, out, cell_m, opt);
+    return out;
+}
+
+/// Angular filter (returning form) over a (2*radius+1)^2 window, on the caller's thread.
+/// Degrees in [0, 90]; NaN centre gives NaN. @throws invalid_input for cell_m <= 0 or radius < 1.
+template <raster_input In>
+raster<float> angular_filter(const In& z, double cell_m, int radius = 2)
+{
+    return angular_filter(z, cell_m, angular_filter_options{.radius = radius});
+}
+
+}  // namespace lidarfx

@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: Apache-2.0
+// slope_aspect: terrain slope and aspect (down-slope azimuth) from Horn's 3x3 gradient, in degrees.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/filter/angular_filter.hpp"  // detail::atan_deg, detail::overlaps, detail::readable_as
+
+namespace lidarfx {
+
+/// Settings of slope_aspect.
+struct slope_aspect_options {
+    double flat_slope_deg = 0.0;  ///< cells with slope <= this (degrees, [0, 90)) are flat: aspect NaN, flat = 1
+    int threads = 1;              ///< worker threads; 0 = all cores; >= 0. Results do not depend on it
+};
+
+/// Slope, aspect and flat mask of a surface, each with the input's shape.
+struct slope_aspect_result {
+    raster<float> slope_deg;          ///< slope, degrees in [0, 90]; NaN where the gradient is unknown
+    raster<float> aspect_deg;         ///< down-slope azimuth, degrees clockwise from north in [0, 360); NaN if flat
+    raster<std::uint8_t> flat;        ///< 1 where slope <= flat_slope_deg, else 0 (0 where slope is NaN)
+};
+
+namespace detail {
+
+/// Horn's gradient along one axis from three lines across it (weights 1, 2, 1), each line given by the cells
+/// behind, at and ahead of the centre line (NaN = missing or outside). A line contributes its centred difference
+/// when both ends exist, a one-sided difference against its middle cell when one end exists, and nothing
+/// otherwise; the contributions are averaged with their weights. Cells are never invented, so a plane gives its
+/// exact gradient whatever is missing. Returns dz per cell step, NaN when no line contributes.
+inline double horn_axis(const double (&behind)[3], const double (&middle)[3], const double (&ahead)[3]) noexcept
+{
+    double sum = 0.0, weight = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const bool has_behind = !std::isnan(behind[k]), has_middle = !std::isnan(middle[k]),
+                   has_ahead = !std::isnan(ahead[k]);
+        double step;
+        if (has_behind && has_ahead) {
+            step = (ahead[k] - behind[k]) / 2;
+        } else if (has_ahead && has_middle) {
+            step = ahead[k] - middle[k];
+        } else if (has_behind && has_middle) {
+            step = middle[k] - behind[k];
+        } else {
+            continue;
+        }
+        const double w = k == 1 ? 2.0 : 1.0;
+        sum += w * step;
+        weight += w;
+    }
+    return weight > 0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// sqrt(1 + u) for u in [0, 1] (relative error 2.9e-9): a degree-8 minimax polynomial. std::sqrt would do, but
+/// it may set errno, so compilers keep a branch around it and do not vectorize the loop that calls it.
+inline double sqrt_one_plus(double u) noexcept
+{
+    double p = -0.0008042263089434315;
+    p = p * u + 0.00459414209851032;
+    p = p * u - 0.01260423201756121;
+    p = p * u + 0.023689821194072577;
+    p = p * u - 0.03799556422631248;
+    p = p * u + 0.06231838140092247;
+    p = p * u - 0.12498423749403109;
+    p = p * u + 0.49999947070359657;
+    return p * u + 1.0000000029092297;
+}
+
+/// Slope, aspect and flat flag of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
+/// north, both in m/m). With hi = max(|east|, |north|) and t = min/max in [0, 1]: |grad| = hi * sqrt(1 + t^2)
+/// and the aspect is atan(t) reflected into its quadrant, so nothing here stops a loop from vectorizing (no
+/// atan2, no std::sqrt, no select that picks a constant over a computed value). Aspect = azimuth of the
+/// down-slope direction (-east, -north), clockwise from north.
+inline void slope_aspect_cell(double east, double north, double flat_slope_deg, float& slope, float& aspect,
+                              std::uint8_t& flat) noexcept
+{
+    const double ax = std::fabs(east), ay = std::fabs(north);
+    const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+    const double t = lo / (hi > std::numeric_limits<double>::min() ? hi : std::numeric_limits<double>::min());
+    const float s = atan_deg(static_cast<float>(hi * sqrt_one_plus(t * t)));
+    float a = atan_deg(static_cast<float>(t));  // degrees from the nearer of the two axes, [0, 45]
+    a = ax > ay ? 90.0f - a : a;                // from north, down-slope direction in the NE quadrant
+    a = north > 0 ? 180.0f - a : a;             // down-slope points south
+    a = east > 0 ? 360.0f - a : a;              // down-slope points west
+    a = a >= 360.0f ? 0.0f : a;                 // 360 - tiny rounds to 360
+    const bool is_flat = static_cast<double>(s) <= flat_slope_deg;
+    // NaN aspect for flat cells and NaN slopes, by adding NaN or 0 (s - s) rather than selecting: a select
+    // against a constant makes compilers branch around the atan, and the loop no longer vectorizes.
+    const float nan_if_flat = is_flat ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
+    slope = s;
+    aspect = a + nan_if_flat + (s - s);
+    flat = static_cast<std::uint8_t>(is_flat);
+}
+
+/// General path for one cell: a 3x3 window read with NaN for cells beyond the border, Horn's weighted mean of
+/// whatever differences exist (horn_axis) along each axis.
+inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, std::ptrdiff_t c, double cell_m,
+                                 double flat_slope_deg, float& slope, float& aspect, std::uint8_t& flat) noexcept
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double w[3][3];  // w[1 + dr][1 + dc]
+    for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+            const std::ptrdiff_t rr = r + dr, cc = c + dc;
+            w[dr + 1][dc + 1] = rr < 0 || rr >= z.rows() || cc < 0 || cc >= z.cols() ? nan : static_cast<double>(z(rr, cc));
+        }
+    }
+    if (std::isnan(w[1][1])) {
+        slope = aspect = std::numeric_limits<float>::quiet_NaN();
+        flat = 0;
+        return;
+    }
+    // East: lines are the rows, behind = west column. North: lines are the columns, behind = south row.
+    const double west[3] = {w[0][0], w[1][0], w[2][0]}, mid_col[3] = {w[0][1], w[1][1], w[2][1]},
+                 east_col[3] = {w[0][2], w[1][2], w[2][2]};
+    const double east = horn_axis(west, mid_col, east_col) / cell_m;
+    const double north = horn_axis(w[2], w[1], w[0]) / cell_m;
+    slope_aspect_cell(east, north, flat_slope_deg, slope, aspect, flat);
+}
+
+/// Rows [r0, r1). Interior cells take Horn's formula directly, in two loops compilers vectorize (gradients,
+/// then slope and aspect; one loop mixing float loads with double arithmetic does not vectorize). A NaN anywhere
+/// in the window makes that result NaN, and such cells, the border rows and the border columns are redone by
+/// the general path. Differences of floats are exact in double, so each gradient carries one rounding.
+inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slope, raster_view<float> aspect,
+                              raster_view<std::uint8_t> flat, double cell_m, double flat_slope_deg, std::ptrdiff_t r0,
+                              std::ptrdiff_t r1)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    const double scale = 1.0 / (8.0 * cell_m);
+    std::vector<double> east_row(static_cast<std::size_t>(cols)), north_row(static_cast<std::size_t>(cols));
+    double* east = east_row.data();
+    double* north = north_row.data();
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        float* s = slope.row(r);
+        float* a = aspect.row(r);
+        std::uint8_t* f = flat.row(r);
+        const float* m = z.row(r);
+        const bool interior = r > 0 && r + 1 < rows;
+        if (interior) {
+            const float* n = z.row(r - 1);
+            const float* so = z.row(r + 1);
+            for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
+                // (m[c] - m[c]) is 0, or NaN for a NaN centre, which sends the cell to the general path.
+                east[c] = ((static_cast<double>(n[c + 1]) - n[c - 1]) + 2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
+                           (static_cast<double>(so[c + 1]) - so[c - 1])) * scale +
+                          (static_cast<double>(m[c]) - m[c]);
+                north[c] = ((static_cast<double>(n[c - 1]) - so[c - 1]) + 2.0 * (static_cast<double>(n[c]) - so[c]) +
+                            (static_cast<double>(n[c + 1]) - so[c + 1])) * scale;
+            }
+            for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
+                slope_aspect_cell(east[c], north[c], flat_slope_deg, s[c], a[c], f[c]);
+            }
+        }
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const bool edge = !interior || c == 0 || c + 1 == cols;
+            if (edge || (s[c] != s[c] && m[c] == m[c])) {
+                slope_aspect_general(z, r, c, cell_m, flat_slope_deg, s[c], a[c], f[c]);
+            }
+        }
+    }
+}
+
+}  // namespace detail
+
+/// Slope and aspect (into form) by Horn's (1981) 3x3 weighted differences: dz/dx = ((c + 2f + i) - (a + 2d + g))
+/// / (8 cell_m), dz/dy likewise across rows (row 0 is north). Slope = atan(|grad z|) in degrees [0, 90];
+/// aspect = azimuth of the down-slope direction, degrees clockwise from north (0 N, 90 E, 180 S, 270 W) in
+/// [0, 360), NaN on flat cells (slope <= flat_slope_deg, flat = 1). At borders and next to NaN cells no cell is
+/// invented: each row (column) pair of the window uses its centred difference, else a one-sided one, else drops
+/// out of the 1-2-1 mean, so planes come out exact everywhere. A NaN centre, or an axis with no difference at all
+/// (a 1-row raster), gives NaN slope and aspect and flat = 0. O(rows * cols).
+/// @throws invalid_input if shapes differ, cell_m is not finite and > 0, flat_slope_deg is outside [0, 90),
+/// threads < 0, or an output overlaps z or another output.
+template <raster_input In, class SlopeOut, class AspectOut, class FlatOut>
+    requires raster_output_of<SlopeOut, float> && raster_output_of<AspectOut, float> &&
+             raster_output_of<FlatOut, std::uint8_t>
+void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, FlatOut&& flat, double cell_m,
+                  const slope_aspect_options& opt = {})
+{
+    constexpr const char* fn = "slope_aspect";
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::require(opt.flat_slope_deg >= 0.0 && opt.flat_slope_deg < 90.0, fn, "flat_slope_deg", "in [0, 90)",
+                    opt.flat_slope_deg);
+    detail::require(opt.threads >= 0, fn, "threads", ">= 0", opt.threads);
+    detail::require_same_shape(z, slope_deg, fn, "z", "slope_deg");
+    detail::require_same_shape(z, aspect_deg, fn, "z", "aspect_deg");
+    detail::require_same_shape(z, flat, fn, "z", "flat");
+    const detail::readable_as<float, In> in(z);
+    const raster_view<const float> zv = in.view();
+    detail::write_through<float>(std::forward<SlopeOut>(slope_deg), [&](raster_view<float> s) {
+        detail::write_through<float>(std::forward<AspectOut>(aspect_deg), [&](raster_view<float> a) {
+            detail::write_through<std::uint8_t>(std::forward<FlatOut>(flat), [&](raster_view<std::uint8_t> f) {
+                detail::require(!detail::overlaps(zv, s) && !detail::overlaps(zv, a) && !detail::overlaps(zv, f) &&
+                                    !detail::overlaps(s, a) && !detail::overlaps(s, f) && !detail::overlaps(a, f),
+                                fn, "outputs must not overlap z or each other");
+                parallel_for_rows(zv.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                    detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
+                }, {}, fn);
+            });
+        });
+    });
+}
+
+/// Slope and aspect (returning form); see the into form for the definition. z in metres, cell_m in metres.
+template <raster_input In>
+slope_aspect_result slope_aspect(const In& z, double cell_m, const slope_aspect_options& opt = {})
+{
+    slope_aspect_result result{raster<float>(z.rows(), z.cols()), raster<float>(z.rows(), z.cols()),
+                               raster<std::uint8_t>(z.rows(), z.cols())};
+    slope_aspect(z, result.slope_deg, result.aspect_deg, result.flat, cell_m, opt);
+    return result;
+}
+
+}  // namespace lidarfx
