@@ -1,0 +1,300 @@
+// SPDX-License-Identifier: Apache-2.0
+// ks_one_sided: one-sided two-sample Kolmogorov-Smirnov test, on ranges of numbers or on integer histograms.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <ranges>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+
+namespace lidarfx {
+
+/// Which coefficient c(alpha) sets the critical value c(alpha) * sqrt((n + m) / (n m)).
+enum class ks_critical {
+    /// The documents' table (alpha 0.10, 0.05, 0.025, 0.01, 0.005, 0.001 -> 1.22, 1.36, 1.48, 1.63, 1.73, 1.95),
+    /// which is the two-sided sqrt(-ln(alpha / 2) / 2) rounded; that formula for any other alpha. Conservative
+    /// for a one-sided test; reproduces the documents.
+    documents_table,
+    /// The asymptotic one-sided coefficient sqrt(-ln(alpha) / 2) (Smirnov), consistent with p_value.
+    one_sided,
+};
+
+/// Settings of ks_one_sided.
+struct ks_options {
+    double alpha = 0.05;                                   ///< significance level, in (0, 1)
+    ks_critical critical = ks_critical::documents_table;  ///< how c(alpha) is chosen
+};
+
+/// Outcome of ks_one_sided.
+struct ks_result {
+    double d = 0;         ///< statistic sup_x (F_previous(x) - F_current(x)), in [0, 1]
+    double critical = 0;  ///< c(alpha) * sqrt((n + m) / (n m))
+    bool reject = false;  ///< d > critical: current is significantly larger (shifted up) than previous
+    double p_value = 1;   ///< asymptotic one-sided p-value exp(-2 d^2 n m / (n + m)), in (0, 1]
+};
+
+/// A sample of numbers for ks_one_sided: any input range of arithmetic values other than bool
+/// (std::vector<float>, std::span<const std::uint16_t>, a C array, std::list<double>, a views pipeline, ...).
+template <class R>
+concept ks_sample = std::ranges::input_range<R> && std::is_arithmetic_v<std::ranges::range_value_t<R>> &&
+                    !std::same_as<std::ranges::range_value_t<R>, bool>;
+
+/// Counts of integer values 0..max_value: a KS sample that grows by adding values or other histograms, for
+/// callers that test a growing region step after step (O(1) per added value, O(bins) per test).
+class ks_histogram {
+public:
+    static constexpr std::uint32_t largest_max_value = (1u << 24) - 1;  ///< caps memory at 128 MiB
+
+    /// Empty histogram of max_value + 1 bins. @throws invalid_input if max_value > largest_max_value.
+    explicit ks_histogram(std::uint32_t max_value = 65535) : counts_(checked_bins(max_value)) {}
+
+    /// Adds one value. @throws invalid_input if value is outside [0, max_value()].
+    template <std::integral V>
+        requires(!std::same_as<V, bool>)
+    void add(V value)
+    {
+        if (std::cmp_less(value, 0) || std::cmp_greater(value, max_value())) {
+            throw invalid_input(detail::concat("ks_histogram::add: value must be in [0, ", max_value(), "] (got ",
+                                               +value, ")"));
+        }
+        ++counts_[static_cast<std::size_t>(value)];
+        ++size_;
+    }
+
+    /// Adds every value of a range of integers. @throws invalid_input on a value outside [0, max_value()]
+    /// (the values before it stay added).
+    template <ks_sample R>
+        requires std::integral<std::ranges::range_value_t<R>>
+    void add(const R& values)
+    {
+        for (const auto& v : values) add(v);
+    }
+
+    /// Adds all counts of `other`. @throws invalid_input if other.max_value() differs.
+    void add(const ks_histogram& other)
+    {
+        if (other.max_value() != max_value()) {
+            throw invalid_input(detail::concat("ks_histogram::add: other must have the same max_value (got ",
+                                               other.max_value(), " and ", max_value(), ")"));
+        }
+        for (std::size_t b = 0; b < counts_.size(); ++b) counts_[b] += other.counts_[b];
+        size_ += other.size_;
+    }
+
+    std::uint64_t size() const noexcept { return size_; }  ///< number of values added
+    bool empty() const noexcept { return size_ == 0; }
+    std::uint32_t max_value() const noexcept { return static_cast<std::uint32_t>(counts_.size() - 1); }
+    std::span<const std::uint64_t> counts() const noexcept { return counts_; }  ///< counts()[v] = count of v
+    void clear() noexcept
+    {
+        std::fill(counts_.begin(), counts_.end(), 0);
+        size_ = 0;
+    }
+
+private:
+    static std::size_t checked_bins(std::uint32_t max_value)
+    {
+        detail::require(max_value <= largest_max_value, "ks_histogram", "max_value", "<= 16777215", max_value);
+        return static_cast<std::size_t>(max_value) + 1;
+    }
+
+    std::vector<std::uint64_t> counts_;
+    std::uint64_t size_ = 0;
+};
+
+namespace detail {
+
+inline void check_ks_options(const ks_options& opt)
+{
+    require(opt.alpha > 0 && opt.alpha < 1, "ks_one_sided", "alpha", "in (0, 1)", opt.alpha);
+}
+
+/// c(alpha) for the chosen critical-value convention.
+inline double ks_coefficient(const ks_options& opt) noexcept
+{
+    if (opt.critical == ks_critical::one_sided) return std::sqrt(-std::log(opt.alpha) / 2);
+    constexpr std::pair<double, double> table[] = {{0.10, 1.22}, {0.05, 1.36}, {0.025, 1.48},
+                                                   {0.01, 1.63}, {0.005, 1.73}, {0.001, 1.95}};
+    for (const auto& [alpha, c] : table) {
+        if (opt.alpha == alpha) return c;
+    }
+    return std::sqrt(-std::log(opt.alpha / 2) / 2);
+}
+
+inline ks_result ks_finish(double d, std::uint64_t n, std::uint64_t m, const ks_options& opt) noexcept
+{
+    const auto nn = static_cast<double>(n), mm = static_cast<double>(m);
+    const double critical = ks_coefficient(opt) * std::sqrt((nn + mm) / (nn * mm));
+    return {d, critical, d > critical, std::exp(-2 * d * d * nn * mm / (nn + mm))};
+}
+
+inline void require_sample(std::uint64_t size, const char* name, const char* what = "non-NaN value")
+{
+    require(size > 0, "ks_one_sided", concat(name, " must hold at least one ", what, " (got none)"));
+}
+
+/// D = max over value steps of i/n - j/m, i and j the cumulative counts of both histograms at the step.
+/// Each term is computed as scipy.stats.ks_2samp computes it (two divisions, one subtraction), so D agrees
+/// with it bit for bit.
+template <class Count>
+double ks_statistic_from_counts(std::span<const Count> previous, std::span<const Count> current, std::uint64_t n,
+                                std::uint64_t m) noexcept
+{
+    const auto nn = static_cast<double>(n), mm = static_cast<double>(m);
+    std::uint64_t i = 0, j = 0;
+    double d = 0;
+    for (std::size_t b = 0; b < previous.size() && i < n; ++b) {
+        if (previous[b] == 0 && current[b] == 0) continue;
+        i += previous[b];
+        j += current[b];
+        const double diff = static_cast<double>(i) / nn - static_cast<double>(j) / mm;
+        d = diff > d ? diff : d;
+    }
+    return d;
+}
+
+/// D by a merge of two sorted samples; ties are consumed on both sides before each comparison.
+template <class T>
+double ks_statistic_sorted(const std::vector<T>& previous, const std::vector<T>& current) noexcept
+{
+    const std::size_t n = previous.size(), m = current.size();
+    const auto nn = static_cast<double>(n), mm = static_cast<double>(m);
+    std::size_t i = 0, j = 0;
+    double d = 0;
+    while (i < n) {  // once previous is used up, F_previous = 1 and the difference only falls
+        const T v = j == m || previous[i] <= current[j] ? previous[i] : current[j];
+        while (i < n && previous[i] == v) ++i;
+        while (j < m && current[j] == v) ++j;
+        const double diff = static_cast<double>(i) / nn - static_cast<double>(j) / mm;
+        d = diff > d ? diff : d;
+    }
+    return d;
+}
+
+/// Copies the non-NaN values of a range as T.
+template <class T, class R>
+std::vector<T> ks_values(const R& values)
+{
+    std::vector<T> out;
+    if constexpr (std::ranges::sized_range<R>) out.reserve(static_cast<std::size_t>(std::ranges::size(values)));
+    for (const auto& v : values) {
+        if constexpr (std::is_floating_point_v<std::remove_cvref_t<decltype(v)>>) {
+            if (v != v) continue;
+        }
+        out.push_back(static_cast<T>(v));
+    }
+    return out;
+}
+
+template <class A, class B>
+ks_result ks_sorted_path(const A& previous, const B& current, const ks_options& opt)
+{
+    using VA = std::ranges::range_value_t<A>;
+    using VB = std::ranges::range_value_t<B>;
+    // Mixed value types compare as long double, which holds every float, double and 64-bit integer exactly
+    // on x86-64 and AArch64 Linux.
+    using T = std::conditional_t<std::is_same_v<VA, VB>, VA, long double>;
+    auto p = ks_values<T>(previous);
+    auto c = ks_values<T>(current);
+    require_sample(p.size(), "previous");
+    require_sample(c.size(), "current");
+    std::sort(p.begin(), p.end());
+    std::sort(c.begin(), c.end());
+    return ks_finish(ks_statistic_sorted(p, c), p.size(), c.size(), opt);
+}
+
+/// Integer types of at most 16 bits: histograms of every representable value, O(n + m + 2^bits).
+template <class A, class B>
+ks_result ks_histogram_path(const A& previous, const B& current, const ks_options& opt)
+{
+    using VA = std::ranges::range_value_t<A>;
+    using VB = std::ranges::range_value_t<B>;
+    constexpr long lowest = std::min<long>(std::numeric_limits<VA>::min(), std::numeric_limits<VB>::min());
+    constexpr long highest = std::max<long>(std::numeric_limits<VA>::max(), std::numeric_limits<VB>::max());
+    std::vector<std::uint64_t> hp(static_cast<std::size_t>(highest - lowest + 1)), hc(hp.size());
+    std::uint64_t n = 0, m = 0;
+    for (const auto& v : previous) {
+        ++hp[static_cast<std::size_t>(static_cast<long>(v) - lowest)];
+        ++n;
+    }
+    for (const auto& v : current) {
+        ++hc[static_cast<std::size_t>(static_cast<long>(v) - lowest)];
+        ++m;
+    }
+    require_sample(n, "previous");
+    require_sample(m, "current");
+    return ks_finish(ks_statistic_from_counts<std::uint64_t>(hp, hc, n, m), n, m, opt);
+}
+
+template <class V>
+inline constexpr bool ks_small_integer = std::is_integral_v<V> && sizeof(V) <= 2;
+
+}  // namespace detail
+
+/// One-sided two-sample Kolmogorov-Smirnov test of whether `current` is stochastically larger than `previous`
+/// (its CDF lies below): D = sup_x (F_previous(x) - F_current(x)) >= 0 over the empirical CDFs, equal to
+/// scipy.stats.ks_2samp(previous, current, alternative='greater').statistic; reject when D > c(alpha)
+/// sqrt((n + m) / (n m)) (Massey 1951; c(alpha) per opt.critical); p_value = exp(-2 D^2 n m / (n + m)).
+/// NaN values are ignored. Integer values of at most 16 bits go through histograms, O(n + m + 2^16); other
+/// types sort copies, O((n + m) log(n + m)).
+/// @throws invalid_input if alpha is outside (0, 1) or a sample has no non-NaN value.
+template <ks_sample Previous, ks_sample Current>
+ks_result ks_one_sided(const Previous& previous, const Current& current, const ks_options& opt)
+{
+    detail::check_ks_options(opt);
+    using VA = std::ranges::range_value_t<Previous>;
+    using VB = std::ranges::range_value_t<Current>;
+    if constexpr (detail::ks_small_integer<VA> && detail::ks_small_integer<VB>) {
+        // Small samples sort faster than they clear 2^16 bins; both paths give the same D.
+        if constexpr (std::ranges::sized_range<Previous> && std::ranges::sized_range<Current>) {
+            const auto total = static_cast<std::size_t>(std::ranges::size(previous) + std::ranges::size(current));
+            if (sizeof(VA) == 2 && sizeof(VB) == 2 && total < 4096) {
+                return detail::ks_sorted_path(previous, current, opt);
+            }
+        }
+        return detail::ks_histogram_path(previous, current, opt);
+    } else {
+        return detail::ks_sorted_path(previous, current, opt);
+    }
+}
+
+/// ks_one_sided with only the significance level set (documents' table for c(alpha)).
+template <ks_sample Previous, ks_sample Current>
+ks_result ks_one_sided(const Previous& previous, const Current& current, double alpha = 0.05)
+{
+    return ks_one_sided(previous, current, ks_options{.alpha = alpha});
+}
+
+/// ks_one_sided on two histograms of the same max_value, O(bins): the test a region-growing caller runs after
+/// each step without re-reading its samples. @throws invalid_input if max_values differ, a histogram is
+/// empty, or alpha is outside (0, 1).
+inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, const ks_options& opt)
+{
+    detail::check_ks_options(opt);
+    detail::require(previous.max_value() == current.max_value(), "ks_one_sided",
+                    detail::concat("previous and current must have the same max_value (got ", previous.max_value(),
+                                   " and ", current.max_value(), ")"));
+    detail::require_sample(previous.size(), "previous", "value");
+    detail::require_sample(current.size(), "current", "value");
+    const double d = detail::ks_statistic_from_counts(previous.counts(), current.counts(), previous.size(),
+                                                      current.size());
+    return detail::ks_finish(d, previous.size(), current.size(), opt);
+}
+
+/// ks_one_sided on two histograms with only the significance level set.
+inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, double alpha = 0.05)
+{
+    return ks_one_sided(previous, current, ks_options{.alpha = alpha});
+}
+
+}  // namespace lidarfx
