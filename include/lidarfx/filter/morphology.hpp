@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <initializer_list>
 #include <type_traits>
 #include <utility>
@@ -123,22 +124,16 @@ struct morph_and {
     static constexpr mask_word apply(mask_word a, mask_word b) noexcept { return a & b; }
 };
 
-/// 64 bits of `buf` (n words, neutral beyond both ends) starting at bit position `pos` >= 0.
-template <class Op>
-mask_word bits_at(const mask_word* buf, std::ptrdiff_t n, std::ptrdiff_t pos) noexcept
+/// 64 bits of `a` starting at bit 64 * q + s (0 <= s < 64); reads a[q] and a[q + 1].
+inline mask_word bits_from(const mask_word* a, std::ptrdiff_t q, int s) noexcept
 {
-    const std::ptrdiff_t q = pos / 64;
-    const int s = static_cast<int>(pos % 64);
-    const mask_word lo = q < n ? buf[q] : Op::neutral;
-    if (s == 0) return lo;
-    const mask_word hi = q + 1 < n ? buf[q + 1] : Op::neutral;
-    return (lo >> s) | (hi << (64 - s));
+    return (a[q] >> s) | ((a[q + 1] << 1) << (63 - s));  // the split shift is 0 for s = 0, never UB
 }
 
-/// One row of the horizontal pass: out bit c = Op over in bits [c - k, c + k] clipped to [0, cols).
-/// Van Herk-like doubling: a_L(x) = Op over [x, x + L) is built in place for L = 1, 2, 4, ... up to the
-/// largest power of two L <= 2k + 1, then out(c) = a_L(c - k) Op a_L(c + k + 1 - L): O(words * log k).
-/// `buf` is scratch reused across rows.
+/// Horizontal pass on one row: out bit c = Op over in bits [c - k, c + k] clipped to [0, cols).
+/// Doubling: a_L(x) = Op over [x, x + L) is built in place for L = 1, 2, 4, ... up to the largest power
+/// of two L <= 2k + 1, then out(c) = a_L(c - k) Op a_L(c + k + 1 - L): O(words * log k). The row is
+/// padded with neutral words (`buf` is scratch reused across rows).
 template <class Op>
 void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::ptrdiff_t k,
                std::vector<mask_word>& buf)
@@ -148,139 +143,151 @@ void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::pt
         std::copy(in, in + words, out);
         return;
     }
-    const std::ptrdiff_t pad = k / 64 + 1;  // enough neutral words left of the data for position -k
-    const std::ptrdiff_t n = words + 2 * pad;
-    buf.assign(static_cast<std::size_t>(n), Op::neutral);
+    const std::ptrdiff_t pad = k / 64 + 1;          // neutral words left of the data: position -k exists
+    const std::ptrdiff_t n = words + 2 * pad + 1;   // and right of it, plus one for bits_from's a[q + 1]
+    buf.resize(static_cast<std::size_t>(n));
     mask_word* a = buf.data();
+    std::fill(a, a + pad, Op::neutral);
     std::copy(in, in + words, a + pad);
+    std::fill(a + pad + words, a + n, Op::neutral);
     if (cols % 64 != 0) {
         const mask_word tail = ~mask_word{0} << (cols % 64);  // bits past the last column
         a[pad + words - 1] = (a[pad + words - 1] & ~tail) | (Op::neutral & tail);
     }
-    const std::ptrdiff_t span = 2 * k + 1;
-    const std::ptrdiff_t top = std::bit_floor(static_cast<std::size_t>(span));
+    const std::ptrdiff_t top = static_cast<std::ptrdiff_t>(std::bit_floor(static_cast<std::size_t>(2 * k + 1)));
     for (std::ptrdiff_t len = 1; len < top; len *= 2) {
-        // In increasing order: word j reads words j + len/64 and the next, not yet overwritten.
-        if (len < 64) {
-            const int s = static_cast<int>(len);
-            for (std::ptrdiff_t j = 0; j + 1 < n; ++j) a[j] = Op::apply(a[j], (a[j] >> s) | (a[j + 1] << (64 - s)));
-            a[n - 1] = Op::apply(a[n - 1], (a[n - 1] >> s) | (Op::neutral << (64 - s)));
-        } else {
-            const std::ptrdiff_t q = len / 64;
-            for (std::ptrdiff_t j = 0; j < n; ++j) a[j] = Op::apply(a[j], j + q < n ? a[j + q] : Op::neutral);
-        }
+        // In increasing order, word j reads words j + len / 64 and the next, not yet overwritten; words
+        // past the end are neutral, so the last ones keep their value.
+        const std::ptrdiff_t q = len / 64;
+        const int s = static_cast<int>(len % 64);
+        for (std::ptrdiff_t j = 0; j + q + 1 < n; ++j) a[j] = Op::apply(a[j], bits_from(a, j + q, s));
     }
-    const std::ptrdiff_t left = pad * 64 - k, right = pad * 64 + k + 1 - top;
-    for (std::ptrdiff_t i = 0; i < words; ++i) {
-        out[i] = Op::apply(bits_at<Op>(a, n, left + 64 * i), bits_at<Op>(a, n, right + 64 * i));
-    }
+    const std::ptrdiff_t left = pad * 64 - k, right = pad * 64 + k + 1 - top;  // both in [0, 64 * pad]
+    const int sl = static_cast<int>(left % 64), sr = static_cast<int>(right % 64);
+    const mask_word* al = a + left / 64;
+    const mask_word* ar = a + right / 64;
+    for (std::ptrdiff_t i = 0; i < words; ++i) out[i] = Op::apply(bits_from(al, i, sl), bits_from(ar, i, sr));
 }
 
 /// Bit rows of a mask: `rows` rows of `words` words each, contiguous.
 struct bit_rows {
     std::ptrdiff_t rows = 0, words = 0;
     std::vector<mask_word> bits;
-    bit_rows(std::ptrdiff_t r, std::ptrdiff_t w) : rows(r), words(w), bits(static_cast<std::size_t>(r * w)) {}
+    void resize(std::ptrdiff_t r, std::ptrdiff_t w)
+    {
+        rows = r;
+        words = w;
+        bits.resize(static_cast<std::size_t>(r * w));
+    }
     mask_word* row(std::ptrdiff_t r) noexcept { return bits.data() + r * words; }
     const mask_word* row(std::ptrdiff_t r) const noexcept { return bits.data() + r * words; }
 };
 
-/// Vertical pass, step 1 (van Herk / Gil-Werman): over padded rows p (= row p - k, neutral outside the
-/// raster) cut into blocks of 2k + 1, `prefix` = Op from the block start to p and `suffix` = Op from p
-/// to the block end. Then rows [r - k, r + k] combine as suffix(r) Op prefix(r + 2k): 3 ops per word.
+/// Vertical pass (van Herk / Gil-Werman) over the rows of `in`, rows outside it being neutral: padded
+/// rows p (= row p - k of `in`) are cut into blocks of 2k + 1; `prefix` = Op from the block start to p,
+/// `suffix` = Op from p to the block end. Rows [i - k, i + k] of `in` then combine as
+/// suffix(i) Op prefix(i + 2k): 3 ops per word whatever k.
 template <class Op>
-void van_herk_scan(const bit_rows& in, std::ptrdiff_t k, bit_rows& prefix, bit_rows& suffix, int threads,
-                   const char* function)
+void van_herk_scan(const bit_rows& in, std::ptrdiff_t k, bit_rows& prefix, bit_rows& suffix,
+                   const std::vector<mask_word>& neutral_row)
 {
     const std::ptrdiff_t span = 2 * k + 1, padded = in.rows + 2 * k, words = in.words;
-    const std::ptrdiff_t blocks_per_task = std::max<std::ptrdiff_t>(1, 64 / span);
-    const auto source = [&](std::ptrdiff_t p) -> const mask_word* {
+    prefix.resize(padded, words);
+    suffix.resize(padded, words);
+    const auto source = [&](std::ptrdiff_t p) {
         const std::ptrdiff_t r = p - k;
-        return r >= 0 && r < in.rows ? in.row(r) : nullptr;  // nullptr: a padding row, all neutral
+        return r >= 0 && r < in.rows ? in.row(r) : neutral_row.data();
     };
-    const auto load = [&](const mask_word* s, std::ptrdiff_t i) { return s ? s[i] : Op::neutral; };
-    parallel_for_rows(padded, span * blocks_per_task, threads, [&](std::ptrdiff_t p0, std::ptrdiff_t p1) {
-        for (std::ptrdiff_t b0 = p0; b0 < p1; b0 += span) {
-            const std::ptrdiff_t b1 = std::min(b0 + span, p1);
-            const mask_word* s0 = source(b0);
-            for (std::ptrdiff_t i = 0; i < words; ++i) prefix.row(b0)[i] = load(s0, i);
-            for (std::ptrdiff_t p = b0 + 1; p < b1; ++p) {
-                const mask_word* s = source(p);
-                mask_word* d = prefix.row(p);
-                const mask_word* prev = prefix.row(p - 1);
-                for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(prev[i], load(s, i));
-            }
-            const mask_word* sl = source(b1 - 1);
-            for (std::ptrdiff_t i = 0; i < words; ++i) suffix.row(b1 - 1)[i] = load(sl, i);
-            for (std::ptrdiff_t p = b1 - 2; p >= b0; --p) {
-                const mask_word* s = source(p);
-                mask_word* d = suffix.row(p);
-                const mask_word* next = suffix.row(p + 1);
-                for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(next[i], load(s, i));
-            }
+    for (std::ptrdiff_t b0 = 0; b0 < padded; b0 += span) {
+        const std::ptrdiff_t b1 = std::min(b0 + span, padded);
+        std::copy(source(b0), source(b0) + words, prefix.row(b0));
+        for (std::ptrdiff_t p = b0 + 1; p < b1; ++p) {
+            const mask_word* s = source(p);
+            const mask_word* prev = prefix.row(p - 1);
+            mask_word* d = prefix.row(p);
+            for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(prev[i], s[i]);
         }
-    }, {}, function);
+        std::copy(source(b1 - 1), source(b1 - 1) + words, suffix.row(b1 - 1));
+        for (std::ptrdiff_t p = b1 - 2; p >= b0; --p) {
+            const mask_word* s = source(p);
+            const mask_word* next = suffix.row(p + 1);
+            mask_word* d = suffix.row(p);
+            for (std::ptrdiff_t i = 0; i < words; ++i) d[i] = Op::apply(next[i], s[i]);
+        }
+    }
 }
 
 enum class morph_step { dilate, erode };
 
 /// Runs `steps` (each a dilation or erosion by the same rectangle) on mask `in` and writes 0/1 to `out`.
-/// The mask is packed to bits once; each step is a horizontal doubling pass per row and a vertical van
-/// Herk pass; the result is unpacked once. `in` is fully read before `out` is written, so they may alias.
+/// Strips of output rows are independent tasks: each packs the input rows it needs (its rows plus
+/// `ky` per step above and below, clipped to the raster), runs every step on bits (horizontal doubling
+/// per row, vertical van Herk) and unpacks its own rows; scratch stays small and cache-resident. Every
+/// output bit is a function of the input alone, so results never depend on strips or threads.
+/// `out` may alias `in` only when the whole raster is one strip (see morph_into).
 template <class T>
 void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const morph_options& opt,
-               std::initializer_list<morph_step> steps, const char* function)
+               std::initializer_list<morph_step> steps, std::ptrdiff_t strip_rows, const char* function)
 {
-    const std::ptrdiff_t rows = in.rows(), cols = in.cols();
-    if (rows == 0 || cols == 0) {
-        resolve_threads(opt.threads, function);
-        return;
-    }
-    const std::ptrdiff_t words = mask_words(cols);
+    const std::ptrdiff_t rows = in.rows(), cols = in.cols(), words = mask_words(cols);
     const int height = opt.height == 0 ? opt.size : opt.height;
     // Windows reaching past the whole raster clip to it: cap the radii (keeps scratch small).
-    const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.size / 2, cols - 1);
-    const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(height / 2, rows - 1);
-    constexpr std::ptrdiff_t block = 64;
+    const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.size / 2, std::max<std::ptrdiff_t>(cols - 1, 0));
+    const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(height / 2, std::max<std::ptrdiff_t>(rows - 1, 0));
+    const auto depth = static_cast<std::ptrdiff_t>(steps.size());
 
-    const auto horizontal = [&](morph_step step, const mask_word* src, mask_word* dst, std::vector<mask_word>& buf) {
-        if (step == morph_step::erode) morph_row<morph_and>(src, dst, cols, kx, buf);
-        else morph_row<morph_or>(src, dst, cols, kx, buf);
-    };
+    parallel_for_rows(rows, strip_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const auto first_row = [&](std::ptrdiff_t j) { return std::max<std::ptrdiff_t>(0, r0 - (depth - j) * ky); };
+        const auto end_row = [&](std::ptrdiff_t j) { return std::min(rows, r1 + (depth - j) * ky); };
+        const auto horizontal = [&](morph_step step, const mask_word* src, mask_word* dst,
+                                    std::vector<mask_word>& buf) {
+            if (step == morph_step::erode) morph_row<morph_and>(src, dst, cols, kx, buf);
+            else morph_row<morph_or>(src, dst, cols, kx, buf);
+        };
+        std::vector<mask_word> buf, packed(static_cast<std::size_t>(words)), v(static_cast<std::size_t>(words));
+        std::vector<mask_word> neutral(static_cast<std::size_t>(words));
+        bit_rows h, next, prefix, suffix;
 
-    bit_rows h(rows, words), next(rows, words);
-    parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        std::vector<mask_word> packed(static_cast<std::size_t>(words)), buf;
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        // h holds rows [first_row(j), end_row(j)) after j steps' horizontal parts.
+        h.resize(end_row(0) - first_row(0), words);
+        for (std::ptrdiff_t r = first_row(0); r < end_row(0); ++r) {
             pack_mask_row(in.row(r), cols, packed.data());
-            horizontal(*steps.begin(), packed.data(), h.row(r), buf);
+            horizontal(*steps.begin(), packed.data(), h.row(r - first_row(0)), buf);
         }
-    }, {}, function);
-
-    bit_rows prefix(ky > 0 ? rows + 2 * ky : 0, words), suffix(ky > 0 ? rows + 2 * ky : 0, words);
-    for (auto it = steps.begin(); it != steps.end(); ++it) {
-        const bool erode = *it == morph_step::erode;
-        if (ky > 0) {
-            if (erode) van_herk_scan<morph_and>(h, ky, prefix, suffix, opt.threads, function);
-            else van_herk_scan<morph_or>(h, ky, prefix, suffix, opt.threads, function);
-        }
-        const bool last = it + 1 == steps.end();
-        parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            std::vector<mask_word> v(static_cast<std::size_t>(words)), buf;
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                const mask_word* col = h.row(r);
+        for (std::ptrdiff_t j = 1; j <= depth; ++j) {
+            const morph_step step = *(steps.begin() + (j - 1));
+            const bool erode = step == morph_step::erode;
+            if (ky > 0) {
+                std::fill(neutral.begin(), neutral.end(), erode ? morph_and::neutral : morph_or::neutral);
+                if (erode) van_herk_scan<morph_and>(h, ky, prefix, suffix, neutral);
+                else van_herk_scan<morph_or>(h, ky, prefix, suffix, neutral);
+            }
+            if (j < depth) next.resize(end_row(j) - first_row(j), words);
+            for (std::ptrdiff_t r = first_row(j); r < end_row(j); ++r) {
+                const std::ptrdiff_t i = r - first_row(j - 1);  // r as a row of h
+                const mask_word* col = h.row(i);
                 if (ky > 0) {
-                    const mask_word* s = suffix.row(r);
-                    const mask_word* p = prefix.row(r + 2 * ky);
-                    for (std::ptrdiff_t i = 0; i < words; ++i) v[i] = erode ? (s[i] & p[i]) : (s[i] | p[i]);
+                    const mask_word* s = suffix.row(i);
+                    const mask_word* p = prefix.row(i + 2 * ky);
+                    if (erode) for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] & p[w];
+                    else for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] | p[w];
                     col = v.data();
                 }
-                if (last) unpack_mask_row(col, cols, out.row(r));
-                else horizontal(*(it + 1), col, next.row(r), buf);
+                if (j < depth) horizontal(*(steps.begin() + j), col, next.row(r - first_row(j)), buf);
+                else unpack_mask_row(col, cols, out.row(r));
             }
-        }, {}, function);
-        if (!last) std::swap(h, next);
-    }
+            if (j < depth) std::swap(h, next);
+        }
+    }, {}, function);
+}
+
+/// Rows per strip: small enough for cache-resident scratch and for load balance, large enough that
+/// the rows recomputed around each strip (`ky` per step on each side) stay a small share.
+inline std::ptrdiff_t morph_strip_rows(std::ptrdiff_t rows, const morph_options& opt, std::size_t steps)
+{
+    const int height = opt.height == 0 ? opt.size : opt.height;
+    const std::ptrdiff_t halo = static_cast<std::ptrdiff_t>(steps) * (height / 2);
+    return std::min(std::max<std::ptrdiff_t>(rows, 1), std::max<std::ptrdiff_t>(256, 8 * halo));
 }
 
 /// Validates the arguments shared by the four morphology functions.
@@ -301,9 +308,18 @@ void morph_into(const In& m, Out&& out, const morph_options& opt, std::initializ
 {
     static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = 1)");
     morph_check(m, out, opt, function);
+    if (m.rows() == 0 || m.cols() == 0) return;
     const readable<In> in(m);
+    std::ptrdiff_t strip = morph_strip_rows(m.rows(), opt, steps.size());
     write_through<std::uint8_t>(std::forward<Out>(out), [&](raster_view<std::uint8_t> o) {
-        morph_run(in.view(), o, opt, steps, function);
+        // A strip reads input rows beyond its own: if `out` shares memory with `m`, one strip (all rows)
+        // reads everything before writing anything.
+        const auto* in_begin = reinterpret_cast<const unsigned char*>(in.view().data());
+        const auto* in_end = reinterpret_cast<const unsigned char*>(in.view().row(in.view().rows() - 1) + in.view().cols());
+        const auto* out_begin = reinterpret_cast<const unsigned char*>(o.data());
+        const auto* out_end = reinterpret_cast<const unsigned char*>(o.row(o.rows() - 1) + o.cols());
+        if (std::less<>{}(out_begin, in_end) && std::less<>{}(in_begin, out_end)) strip = m.rows();
+        morph_run(in.view(), o, opt, steps, strip, function);
     });
 }
 

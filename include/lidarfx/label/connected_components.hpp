@@ -78,18 +78,6 @@ inline std::int32_t find_root(std::int32_t* parent, std::int32_t node) noexcept
     return node;
 }
 
-/// Merges the sets of a and b; the smaller root id becomes the root, so a set's root is its first node
-/// in creation (raster-scan) order. Returns the root.
-inline std::int32_t unite(std::int32_t* parent, std::int32_t a, std::int32_t b) noexcept
-{
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a == b) return a;
-    if (a > b) std::swap(a, b);
-    parent[b] = a;
-    return a;
-}
-
 /// Replaces `runs` by the runs of a packed row (bits past the last column are 0), with node -1.
 inline void extract_runs(const mask_word* bits, std::ptrdiff_t words, std::vector<label_run>& runs)
 {
@@ -132,59 +120,71 @@ inline std::size_t count_runs(const mask_word* bits, std::ptrdiff_t words) noexc
 inline void link_rows(const std::vector<label_run>& prev, std::vector<label_run>& cur, std::int32_t reach,
                       label_forest& forest, bool make_nodes)
 {
+    std::int32_t* parent = forest.parent.data();
     const label_run* p = prev.data();
     const label_run* const prev_end = p + prev.size();
     for (label_run& run : cur) {
         while (p != prev_end && p->end + reach <= run.begin) ++p;  // ends left of the run's reach
-        std::int32_t node = make_nodes ? -1 : run.node;
+        // `root` stays the root of the run's set; touching runs that carry the node just merged
+        // (frequent: runs of one component often share their node) cost no lookup.
+        std::int32_t root = make_nodes ? -1 : find_root(parent, run.node), last = -1;
         const label_run* q = p;
         for (; q != prev_end && q->begin < run.end + reach; ++q) {
-            node = node < 0 ? find_root(forest.parent.data(), q->node) : unite(forest.parent.data(), node, q->node);
+            if (q->node == last) continue;
+            last = q->node;
+            const std::int32_t other = find_root(parent, last);
+            if (root < 0) {
+                root = other;
+            } else if (other != root) {  // the smaller id stays the root
+                parent[std::max(root, other)] = std::min(root, other);
+                root = std::min(root, other);
+            }
         }
         if (q != p) p = q - 1;  // the last touching run may touch the next run too
         if (make_nodes) {
-            if (node < 0) {
-                node = static_cast<std::int32_t>(forest.parent.size());
-                forest.parent.push_back(node);
+            if (root < 0) {
+                root = static_cast<std::int32_t>(forest.parent.size());
+                forest.parent.push_back(root);  // capacity reserved: `parent` stays valid
                 forest.cells.push_back(0);
             }
-            run.node = node;
-            forest.cells[static_cast<std::size_t>(node)] += static_cast<std::size_t>(run.end - run.begin);
+            run.node = root;
+            forest.cells[static_cast<std::size_t>(root)] += static_cast<std::size_t>(run.end - run.begin);
         }
     }
 }
 
-/// Writes one row of labels (value(run) on each run, 0 elsewhere) through a scratch row of at least
-/// cols + 8 cells: blocks of 8 equal values are stored unconditionally (each block's overshoot is
-/// rewritten by the next), avoiding a data-dependent branch per cell on fragmented masks.
+/// Writes a row of labels: value(run) on each run, 0 elsewhere. Blocks of 8 equal values are stored
+/// unconditionally (each block's overshoot is rewritten by the next), avoiding a data-dependent branch
+/// per cell on fragmented masks; the last 8 cells of the row are written one by one.
 template <class Value>
-void write_label_row(const std::vector<label_run>& runs, Value value, std::int32_t cols, std::int32_t* scratch,
-                     std::int32_t* out)
+void write_label_row(const std::vector<label_run>& runs, Value value, std::int32_t cols, std::int32_t* out) noexcept
 {
-    const auto fill8 = [](std::int32_t* p, std::int32_t v) {
-        for (int j = 0; j < 8; ++j) p[j] = v;
+    const auto fill = [out, safe = cols - 8](std::int32_t from, std::int32_t to, std::int32_t v) {
+        for (; from < to && from <= safe; from += 8) {
+            for (int j = 0; j < 8; ++j) out[from + j] = v;
+        }
+        for (; from < to; ++from) out[from] = v;
     };
     std::int32_t c = 0;
     for (const label_run& run : runs) {
-        for (; c < run.begin; c += 8) fill8(scratch + c, 0);
-        const std::int32_t v = value(run);
-        for (c = run.begin; c < run.end; c += 8) fill8(scratch + c, v);
+        fill(c, run.begin, 0);
+        fill(run.begin, run.end, value(run));
         c = run.end;
     }
-    for (; c < cols; c += 8) fill8(scratch + c, 0);
-    std::copy(scratch, scratch + cols, out);
+    fill(c, cols, 0);
 }
 
-/// The runs of row r of a band, with their band-local nodes read back from the first cell of each run.
+/// The runs of row r of a band, with their band-local nodes read back from the provisional labels.
 inline void band_row_runs(const label_band_state& band, std::ptrdiff_t r0, std::ptrdiff_t r, std::ptrdiff_t words,
                           raster_view<std::int32_t> labels, std::vector<label_run>& runs)
 {
     extract_runs(band.bits.data() + (r - r0) * words, words, runs);
-    for (label_run& run : runs) run.node = labels(r, run.begin);
+    for (label_run& run : runs) run.node = labels(r, run.begin) - 1;
 }
 
-/// First pass over the band of rows [r0, r1): packs the rows, builds the band's forest, and writes
-/// each run's band-local node into labels (the first cell of a run is read back later).
+/// First pass over the band of rows [r0, r1): packs the rows, builds the band's forest, and stores each
+/// run's provisional label (band-local node + 1) in its first cell; the second pass reads those and
+/// then writes whole rows, so other cells may hold anything meanwhile.
 template <class T>
 void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, std::int32_t reach,
                 label_band_state& band, raster_view<std::int32_t> labels)
@@ -202,12 +202,11 @@ void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, st
     std::vector<label_run> prev, cur;
     prev.reserve(static_cast<std::size_t>(cols / 2 + 1));
     cur.reserve(static_cast<std::size_t>(cols / 2 + 1));
-    std::vector<std::int32_t> scratch(static_cast<std::size_t>(cols) + 8);
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
         extract_runs(band.bits.data() + (r - r0) * words, words, cur);
         link_rows(prev, cur, reach, band.forest, true);
-        write_label_row(cur, [](const label_run& run) { return run.node; }, static_cast<std::int32_t>(cols),
-                        scratch.data(), labels.row(r));
+        std::int32_t* row = labels.row(r);
+        for (const label_run& run : cur) row[run.begin] = run.node + 1;
         std::swap(prev, cur);
     }
 }
@@ -258,29 +257,33 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     }
 
     // Roots precede their members, so one increasing sweep numbers the sets in raster-scan order of
-    // their first run (= of the component's first cell).
-    std::vector<std::int32_t>& final_label = all.parent;
+    // their first run (= of the component's first cell). final_label[1 + node] = label of node.
+    std::vector<std::int32_t> final_label(all.parent.size() + 1, 0);
     std::int32_t count = 0;
-    for (std::size_t i = 0; i < final_label.size(); ++i) {
-        const auto p = static_cast<std::size_t>(final_label[i]);
-        final_label[i] = p == i ? ++count : final_label[p];
+    for (std::size_t i = 0; i < all.parent.size(); ++i) {
+        const auto p = static_cast<std::size_t>(all.parent[i]);
+        final_label[i + 1] = p == i ? ++count : final_label[p + 1];
     }
     sizes.resize(static_cast<std::size_t>(count) + 1, 0);
-    for (std::size_t i = 0; i < final_label.size(); ++i) {
-        sizes[static_cast<std::size_t>(final_label[i])] += all.cells[i];
+    for (std::size_t i = 0; i < all.parent.size(); ++i) {
+        sizes[static_cast<std::size_t>(final_label[i + 1])] += all.cells[i];
         sizes[0] -= all.cells[i];
     }
+    all = {};
 
+    // Second pass: each run's provisional label (band-local node + 1, read at its first cell) becomes
+    // final_label[offset[b] + provisional]. One table read per run, not per cell.
     parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
-        const std::int32_t* final_of_band = final_label.data() + offset[b];
+        const std::int32_t* table = final_label.data() + offset[b];
         std::vector<label_run> runs;
         runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
-        std::vector<std::int32_t> scratch(static_cast<std::size_t>(cols) + 8);
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            band_row_runs(bands[b], r0, r, words, labels, runs);
-            write_label_row(runs, [&](const label_run& run) { return final_of_band[run.node]; },
-                            static_cast<std::int32_t>(cols), scratch.data(), labels.row(r));
+            extract_runs(bands[b].bits.data() + (r - r0) * words, words, runs);
+            std::int32_t* row = labels.row(r);
+            for (label_run& run : runs) run.node = table[row[run.begin]];  // read all before writing
+            write_label_row(runs, [](const label_run& run) { return run.node; }, static_cast<std::int32_t>(cols),
+                            row);
         }
     }, {}, function);
     return sizes;
@@ -288,23 +291,39 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
 
 }  // namespace detail
 
-/// Connected components of a mask (nonzero = foreground) under 4- or 8-connectivity.
-/// Method: run-based two-pass union-find (runs of each row are linked to touching runs of the row
-/// above; bands of rows run in parallel and are joined along their edges), then labels numbered in
-/// raster-scan order of each component's first cell. Labels are identical for any thread count.
+/// Connected components of a mask (nonzero = foreground) under 4- or 8-connectivity, into `labels`
+/// (same shape; 0 = background, 1..n in raster-scan order of each component's first cell); returns
+/// sizes (sizes[label] = cells, sizes[0] = background cells).
+/// Method: run-based two-pass union-find: runs of each row are linked to touching runs of the row
+/// above (bands of rows in parallel, then joined along their edges), provisional labels are written,
+/// and a second pass maps them to final labels. Identical for any thread count.
 /// O(rows * cols) time; O(number of runs) extra memory.
-/// @throws invalid_input if threads < 0 or the mask has more runs than int32 labels can number.
-template <raster_input In>
-components connected_components(const In& m, const components_options& opt)
+/// @throws invalid_input if the shapes differ, threads < 0, or the mask has more runs than int32
+/// labels can number.
+template <raster_input In, class Out>
+    requires raster_output_of<Out, std::int32_t>
+std::vector<std::size_t> connected_components(const In& m, Out&& labels, const components_options& opt = {})
 {
     static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = foreground)");
     constexpr const char* function = "connected_components";
     detail::resolve_threads(opt.threads, function);
-    detail::require(m.cols() < std::numeric_limits<std::int32_t>::max(), function, "m", "narrower than 2^31 - 1 columns",
-                    m.cols());
+    detail::require_same_shape(m, labels, function, "m", "labels");
+    detail::require(m.cols() < std::numeric_limits<std::int32_t>::max(), function, "m",
+                    "narrower than 2^31 - 1 columns", m.cols());
     const detail::readable<In> in(m);
+    std::vector<std::size_t> sizes;
+    detail::write_through<std::int32_t>(std::forward<Out>(labels), [&](raster_view<std::int32_t> out) {
+        sizes = detail::label_components(in.view(), out, opt, function);
+    });
+    return sizes;
+}
+
+/// Returning form: labels and sizes of the components of m (see the into form above).
+template <raster_input In>
+components connected_components(const In& m, const components_options& opt)
+{
     components result{raster<std::int32_t>(m.rows(), m.cols()), {}};
-    result.sizes = detail::label_components(in.view(), result.labels.view(), opt, function);
+    result.sizes = connected_components(m, result.labels, opt);
     return result;
 }
 
