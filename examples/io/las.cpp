@@ -161,6 +161,14 @@ las_reader::las_reader(std::span<const std::uint8_t> bytes, std::string name)
     parse();
 }
 
+las_reader::las_reader(std::vector<std::uint8_t>&& bytes, std::string name)
+    : path_(std::move(name)), owned_(std::move(bytes))
+{
+    memory_ = owned_;   // the heap block stays put when the reader is moved
+    file_size_ = owned_.size();
+    parse();
+}
+
 las_reader::las_reader(las_reader&&) noexcept = default;
 las_reader& las_reader::operator=(las_reader&&) noexcept = default;
 las_reader::~las_reader() = default;

@@ -118,6 +118,9 @@ public:
     /// @throws std::runtime_error as for a file.
     explicit las_reader(std::span<const std::uint8_t> bytes, std::string name = "<memory>");
 
+    /// Reads LAS bytes it takes ownership of (so a temporary buffer cannot dangle).
+    explicit las_reader(std::vector<std::uint8_t>&& bytes, std::string name = "<memory>");
+
     las_reader(las_reader&&) noexcept;
     las_reader& operator=(las_reader&&) noexcept;
     ~las_reader();
@@ -144,6 +147,7 @@ private:
     std::string path_;
     std::ifstream file_;                       // used when reading a file
     std::span<const std::uint8_t> memory_;     // used when reading a buffer
+    std::vector<std::uint8_t> owned_;          // the buffer, when the reader owns it
     std::uint64_t file_size_ = 0;
     std::vector<std::uint8_t> buffer_;
     las_header header_;

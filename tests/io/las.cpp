@@ -346,6 +346,10 @@ TEST_CASE("io/las: the writer picks an offset from the data when none is given")
         CHECK(std::abs(q.y[i] - p.y[i]) <= 0.0005 + 1e-9);
         CHECK(std::abs(q.z[i] - p.z[i]) <= 0.00005 + 1e-9);
     }
+    // The reader owns a temporary buffer, also after a move.
+    las_reader moved = std::move(r);
+    moved.seek(0);
+    CHECK(moved.read_all().x == q.x);
     las_reader empty(encode_las(las_points{}));
     CHECK(empty.point_count() == 0);
     CHECK(empty.read_all().empty());
