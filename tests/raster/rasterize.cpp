@@ -266,6 +266,16 @@ TEST_CASE("raster/rasterize: non-integer intensities are summed in steps of 2^-1
     CHECK(rasterize(host, g).mean_intensity(0, 0) == static_cast<float>((4.0 + 16777216.0) / 3.0));
 }
 
+TEST_CASE("raster/rasterize: z beyond the float range saturates")
+{
+    const grid g{0.0, 1.0, 1.0, 1, 1};
+    const std::vector<double> x{0.5, 0.5, 0.5}, y{0.5, 0.5, 0.5}, z{1e300, -1e300, 3.0};
+    const auto out = rasterize(soa_cloud<>(x, y, z), g);
+    CHECK(out.max_z(0, 0) == std::numeric_limits<float>::max());
+    CHECK(out.min_z(0, 0) == -std::numeric_limits<float>::max());
+    CHECK(out.points_used == 3);
+}
+
 TEST_CASE("raster/rasterize: progress is reported and can cancel")
 {
     std::mt19937 rng(9);

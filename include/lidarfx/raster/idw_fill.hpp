@@ -304,14 +304,14 @@ void validate_idw_extent(const In& z)
 }  // namespace detail
 
 /// Fills the NaN cells (holes) of an elevation raster by inverse distance weighting of the k nearest data
-/// cells (dissertation eq. 3): z = sum(w_i z_i) / sum(w_i), w_i = 1 / d_i^power, d_i = cell_m times the
-/// distance between cell centres in cells. Data cells are the finite ones; they are copied unchanged
-/// (infinite cells are copied but never used). Neighbours are exactly those of a brute-force search:
-/// all data cells within radius_m sorted by (distance, row, col), first k taken. Holes with no data cell
-/// within radius_m stay NaN (counted as unfilled). `out` may not overlap `z`. Any thread count gives the
-/// same bits. Cost per hole ~ (distance to its k-th neighbour in cells)^2 (ring search).
-/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, threads < 0, or z has no
-/// finite cell ("idw_fill: z has no finite cell to interpolate from").
+/// (finite) cells, dissertation eq. 3: z = sum(w_i z_i) / sum(w_i), w_i = 1 / d_i^power, d_i the distance
+/// between cell centres in metres (cells x cell_m). The neighbours are a brute force's: data cells within
+/// radius_m sorted by (distance, row, col), first k. Data cells are copied; infinite cells are copied but
+/// never used; holes with nothing in reach stay NaN (unfilled). Same bits for any thread count; `out` must
+/// not overlap `z`. Ring search skipping empty rings and runs of holes: per hole O(rings searched + cells
+/// offered), plus a 12-byte-per-cell index. Details in docs/rasters.md.
+/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, threads < 0, or z has
+/// no finite cell ("idw_fill: z has no finite cell to interpolate from").
 template <raster_input In, class Out>
     requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type>
 idw_counts idw_fill(const In& z, Out&& out, const idw_options& opt = {})

@@ -108,6 +108,7 @@ public:
         // the cache misses of randomly ordered points overlap instead of stalling one by one.
         constexpr std::size_t block = 256;
         constexpr std::ptrdiff_t outside_cell = -1, nan_point = -2;
+        constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
         std::ptrdiff_t at[block];
         float zs[block];
         const grid g = g_;
@@ -117,12 +118,13 @@ public:
             const std::size_t m = std::min(block, last - base);
             for (std::size_t j = 0; j < m; ++j) {
                 const double x = cloud.x(base + j), y = cloud.y(base + j), z = cloud.z(base + j);
-                // float(min(z)) == min(float(z)): rounding is monotonic, so storing floats loses no order.
-                zs[j] = static_cast<float>(z);
                 if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
                     at[j] = nan_point;
                     continue;
                 }
+                // float(min(z)) == min(float(z)): saturating and rounding are monotonic, so storing floats
+                // loses no order.
+                zs[j] = static_cast<float>(std::clamp(z, -float_max, float_max));
                 const auto cell = g.cell_of(x, y);
                 at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
                 if (cell) detail::prefetch(cells + at[j]);
@@ -241,14 +243,12 @@ struct accumulator_access {
 
 }  // namespace detail
 
-/// Bins a point cloud on `g` (dissertation 2.3.1): per cell the minimum and maximum z, the mean
-/// intensity, the point count, the dropout mask (no return) and whether any point had number_of_returns > 1.
-/// Points go to grid::cell_of (a point on the far east/south edge belongs to the last column/row); points
-/// outside the grid and points with a NaN/infinite coordinate are counted and ignored. z is stored as float.
-/// Intensities (intensity_of, 0 when the cloud has none) are rounded to multiples of 2^-16, clamped to
-/// +-2^24 (NaN as 0) and summed as 64-bit integers: exact for LAS integer intensities, and the same sum
-/// for any chunking, order or thread count. Bit-identical results for any `opt.threads` / `chunk_points`.
-/// O(points + cells); memory 24 bytes per cell per worker thread (each worker fills its own accumulator).
+/// Bins a point cloud on `g` (dissertation 2.3.1): per cell min and max z (float, saturating), mean
+/// intensity, count, dropout (no return) and multiple returns (a point with number_of_returns > 1). Points
+/// go to grid::cell_of (far east/south edge -> last column/row); outside and NaN/infinite points are
+/// counted, never written. Intensities are rounded to multiples of 2^-16 (clamped to +-2^24, NaN as 0) and
+/// summed as 64-bit integers, exact for LAS intensities: any chunking, order or thread count gives the
+/// same bits. O(points + cells); 24 bytes per cell per worker thread. Details in docs/rasters.md.
 /// @throws invalid_input on an invalid grid, chunk_points == 0 or threads < 0; cancelled if progress says so.
 template <point_cloud C>
 point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& opt = {})
