@@ -117,7 +117,7 @@ void bm_las_write(benchmark::State& state)
 
 }  // namespace
 
-BENCHMARK(bm_las_read)->ArgsProduct({{0, 1, 6}, {5'000'000}})->Unit(benchmark::kMillisecond);
-BENCHMARK(bm_las_read_naive)->ArgsProduct({{0}, {5'000'000}})->Unit(benchmark::kMillisecond);
-BENCHMARK(bm_las_write)->ArgsProduct({{0, 6}, {2'000'000}})->Unit(benchmark::kMillisecond);
+BENCHMARK(bm_las_read)->ArgsProduct({{0, 1, 6}, {5'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(bm_las_read_naive)->ArgsProduct({{0}, {5'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(bm_las_write)->ArgsProduct({{0, 6}, {2'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();
