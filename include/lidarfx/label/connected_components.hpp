@@ -114,42 +114,98 @@ inline std::size_t count_runs(const mask_word* bits, std::ptrdiff_t words) noexc
     return (edges + 1) / 2;
 }
 
-/// Links the runs of the current row to those of the previous row: runs that touch (overlap, or meet
-/// diagonally when reach = 1) share a set. With `make_nodes`, a current run that touches none gets a
-/// new node, and each run's cells count towards its node; otherwise runs keep their nodes.
-inline void link_rows(const std::vector<label_run>& prev, std::vector<label_run>& cur, std::int32_t reach,
-                      label_forest& forest, bool make_nodes)
+/// Joins the sets of the previous-row runs [q, q_end) (all touching one current run) into `root`
+/// (-1: none yet) and returns the root of the result; the smaller id stays the root.
+inline std::int32_t join_touching(const label_run* q, const label_run* q_end, std::int32_t* parent,
+                                  std::int32_t root) noexcept
 {
-    std::int32_t* parent = forest.parent.data();
+    for (; q != q_end; ++q) {
+        const std::int32_t other = find_root(parent, q->node);
+        if (root < 0) root = other;
+        const std::int32_t low = std::min(root, other);
+        parent[std::max(root, other)] = low;  // a no-op when they already share the root
+        root = low;
+    }
+    return root;
+}
+
+/// Gives a current run its set: the joined set of the previous-row runs it touches, or a new node.
+inline void settle_run(label_run& run, std::int32_t root, label_forest& forest)
+{
+    if (root < 0) {
+        root = static_cast<std::int32_t>(forest.parent.size());
+        forest.parent.push_back(root);  // capacity reserved: pointers into `parent` stay valid
+        forest.cells.push_back(0);
+    }
+    run.node = root;
+    forest.cells[static_cast<std::size_t>(root)] += static_cast<std::size_t>(run.end - run.begin);
+}
+
+/// Links runs of two rows that already have nodes (rows on each side of a band edge): runs that touch
+/// (overlap, or meet diagonally when reach = 1) share a set. A two-pointer merge.
+inline void link_rows(const std::vector<label_run>& prev, const std::vector<label_run>& cur, std::int32_t reach,
+                      label_forest& forest)
+{
     const label_run* p = prev.data();
     const label_run* const prev_end = p + prev.size();
-    for (label_run& run : cur) {
+    for (const label_run& run : cur) {
         while (p != prev_end && p->end + reach <= run.begin) ++p;  // ends left of the run's reach
-        // `root` stays the root of the run's set; touching runs that carry the node just merged
-        // (frequent: runs of one component often share their node) cost no lookup.
-        std::int32_t root = make_nodes ? -1 : find_root(parent, run.node), last = -1;
         const label_run* q = p;
-        for (; q != prev_end && q->begin < run.end + reach; ++q) {
-            if (q->node == last) continue;
-            last = q->node;
-            const std::int32_t other = find_root(parent, last);
-            if (root < 0) {
-                root = other;
-            } else if (other != root) {  // the smaller id stays the root
-                parent[std::max(root, other)] = std::min(root, other);
-                root = std::min(root, other);
-            }
-        }
+        while (q != prev_end && q->begin < run.end + reach) ++q;
+        join_touching(p, q, forest.parent.data(), find_root(forest.parent.data(), run.node));
         if (q != p) p = q - 1;  // the last touching run may touch the next run too
-        if (make_nodes) {
-            if (root < 0) {
-                root = static_cast<std::int32_t>(forest.parent.size());
-                forest.parent.push_back(root);  // capacity reserved: `parent` stays valid
-                forest.cells.push_back(0);
-            }
-            run.node = root;
-            forest.cells[static_cast<std::size_t>(root)] += static_cast<std::size_t>(run.end - run.begin);
+    }
+}
+
+/// Ranks of the first and last cells of the runs of a packed row: first_before(x) = number of runs
+/// starting before column x, last_before(x) = number of runs ending (last cell) before x, in O(1)
+/// without branches. With them, the previous-row runs that touch a current run [b, e) are exactly
+/// those of index last_before(b - reach) .. first_before(e + reach) - 1.
+class run_ranks {
+public:
+    void build(const mask_word* bits, std::ptrdiff_t words)
+    {
+        first_.assign(static_cast<std::size_t>(words) + 1, 0);
+        last_.assign(static_cast<std::size_t>(words) + 1, 0);
+        first_cum_.assign(static_cast<std::size_t>(words) + 1, 0);
+        last_cum_.assign(static_cast<std::size_t>(words) + 1, 0);
+        for (std::ptrdiff_t w = 0; w < words; ++w) {
+            const mask_word x = bits[w];
+            const mask_word left = w > 0 ? bits[w - 1] >> 63 : 0, right = w + 1 < words ? bits[w + 1] << 63 : 0;
+            const auto i = static_cast<std::size_t>(w);
+            first_[i] = x & ~((x << 1) | left);
+            last_[i] = x & ~((x >> 1) | right);
+            first_cum_[i + 1] = first_cum_[i] + static_cast<std::int32_t>(std::popcount(first_[i]));
+            last_cum_[i + 1] = last_cum_[i] + static_cast<std::int32_t>(std::popcount(last_[i]));
         }
+    }
+    std::int32_t first_before(std::int32_t x) const noexcept { return rank(first_, first_cum_, x); }
+    std::int32_t last_before(std::int32_t x) const noexcept { return rank(last_, last_cum_, std::max(x, 0)); }
+
+private:
+    // x in [0, 64 * words + 1]: reads at most word `words`, which holds no bits.
+    static std::int32_t rank(const std::vector<mask_word>& bits, const std::vector<std::int32_t>& cum,
+                             std::int32_t x) noexcept
+    {
+        const auto w = static_cast<std::size_t>(x >> 6);
+        const mask_word below = (mask_word{1} << (x & 63)) - 1;
+        return cum[w] + static_cast<std::int32_t>(std::popcount(bits[w] & below));
+    }
+    std::vector<mask_word> first_, last_;
+    std::vector<std::int32_t> first_cum_, last_cum_;
+};
+
+/// Links the runs of the current row (new, without nodes) to those of the previous row, whose ranks
+/// are `prev_ranks`: each current run joins the sets of the runs it touches, or gets a new node; its
+/// cells count towards its node.
+inline void link_new_row(const std::vector<label_run>& prev, const run_ranks& prev_ranks, std::vector<label_run>& cur,
+                         std::int32_t reach, label_forest& forest)
+{
+    const label_run* p = prev.data();
+    for (label_run& run : cur) {
+        const std::int32_t lo = prev_ranks.last_before(run.begin - reach);
+        const std::int32_t hi = prev_ranks.first_before(run.end + reach);
+        settle_run(run, join_touching(p + lo, p + std::max(lo, hi), forest.parent.data(), -1), forest);
     }
 }
 
@@ -174,17 +230,19 @@ void write_label_row(const std::vector<label_run>& runs, Value value, std::int32
     fill(c, cols, 0);
 }
 
-/// The runs of row r of a band, with their band-local nodes read back from the provisional labels.
+/// The runs of row r of a band, with their band-local nodes. Between the two passes, the nodes of a
+/// row's runs are stored in order at the start of its own row of labels (a row of n cells has at most
+/// (n + 1) / 2 runs): memory the output needs anyway, written and read sequentially.
 inline void band_row_runs(const label_band_state& band, std::ptrdiff_t r0, std::ptrdiff_t r, std::ptrdiff_t words,
                           raster_view<std::int32_t> labels, std::vector<label_run>& runs)
 {
     extract_runs(band.bits.data() + (r - r0) * words, words, runs);
-    for (label_run& run : runs) run.node = labels(r, run.begin) - 1;
+    const std::int32_t* node = labels.row(r);
+    for (std::size_t i = 0; i < runs.size(); ++i) runs[i].node = node[i];
 }
 
-/// First pass over the band of rows [r0, r1): packs the rows, builds the band's forest, and stores each
-/// run's provisional label (band-local node + 1) in its first cell; the second pass reads those and
-/// then writes whole rows, so other cells may hold anything meanwhile.
+/// First pass over the band of rows [r0, r1): packs the rows, builds the band's forest and stores the
+/// band-local node of each run (see band_row_runs).
 template <class T>
 void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, std::int32_t reach,
                 label_band_state& band, raster_view<std::int32_t> labels)
@@ -202,12 +260,17 @@ void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, st
     std::vector<label_run> prev, cur;
     prev.reserve(static_cast<std::size_t>(cols / 2 + 1));
     cur.reserve(static_cast<std::size_t>(cols / 2 + 1));
+    run_ranks prev_ranks, cur_ranks;
+    prev_ranks.build(std::vector<mask_word>(static_cast<std::size_t>(words), 0).data(), words);  // no row above
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
-        extract_runs(band.bits.data() + (r - r0) * words, words, cur);
-        link_rows(prev, cur, reach, band.forest, true);
-        std::int32_t* row = labels.row(r);
-        for (const label_run& run : cur) row[run.begin] = run.node + 1;
+        const mask_word* bits = band.bits.data() + (r - r0) * words;
+        extract_runs(bits, words, cur);
+        link_new_row(prev, prev_ranks, cur, reach, band.forest);
+        std::int32_t* node = labels.row(r);
+        for (std::size_t i = 0; i < cur.size(); ++i) node[i] = cur[i].node;
+        if (r + 1 < r1) cur_ranks.build(bits, words);
         std::swap(prev, cur);
+        std::swap(prev_ranks, cur_ranks);
     }
 }
 
@@ -253,7 +316,7 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
         band_row_runs(bands[b], r, r, words, labels, below);
         for (auto& run : above) run.node += static_cast<std::int32_t>(offset[b - 1]);
         for (auto& run : below) run.node += static_cast<std::int32_t>(offset[b]);
-        link_rows(above, below, reach, all, false);
+        link_rows(above, below, reach, all);
     }
 
     // Roots precede their members, so one increasing sweep numbers the sets in raster-scan order of
@@ -271,19 +334,16 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     }
     all = {};
 
-    // Second pass: each run's provisional label (band-local node + 1, read at its first cell) becomes
-    // final_label[offset[b] + provisional]. One table read per run, not per cell.
+    // Second pass: each run's band-local node becomes the final label final_label[offset[b] + node + 1].
     parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
-        const std::int32_t* table = final_label.data() + offset[b];
+        const std::int32_t* table = final_label.data() + offset[b] + 1;
         std::vector<label_run> runs;
         runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            extract_runs(bands[b].bits.data() + (r - r0) * words, words, runs);
-            std::int32_t* row = labels.row(r);
-            for (label_run& run : runs) run.node = table[row[run.begin]];  // read all before writing
-            write_label_row(runs, [](const label_run& run) { return run.node; }, static_cast<std::int32_t>(cols),
-                            row);
+            band_row_runs(bands[b], r0, r, words, labels, runs);
+            write_label_row(runs, [table](const label_run& run) { return table[run.node]; },
+                            static_cast<std::int32_t>(cols), labels.row(r));
         }
     }, {}, function);
     return sizes;
