@@ -17,18 +17,6 @@ using io_test::runtime_error_of;
 
 namespace {
 
-bool same_bits_or_nan(raster_view<const float> a, raster_view<const float> b)
-{
-    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-    for (std::ptrdiff_t r = 0; r < a.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < a.cols(); ++c) {
-            const float x = a(r, c), y = b(r, c);
-            if (std::isnan(x) != std::isnan(y)) return false;
-            if (!std::isnan(x) && std::bit_cast<std::uint32_t>(x) != std::bit_cast<std::uint32_t>(y)) return false;
-        }
-    return true;
-}
-
 void write_text(const std::string& path, const std::string& text)
 {
     io_test::write_bytes(path, std::vector<std::uint8_t>(text.begin(), text.end()));
@@ -56,7 +44,7 @@ TEST_CASE("io/ascii_grid: write/read round trip is bit-exact, NaN -> -9999 -> Na
         write_ascii_grid(path, values, g);
         grid back_grid;
         const auto back = read_ascii_grid(path, back_grid);
-        CHECK(same_bits_or_nan(back, values));
+        CHECK(io_test::same_cells(back, values));
         CHECK(back_grid.cols == g.cols);
         CHECK(back_grid.rows == g.rows);
         CHECK(back_grid.cell == g.cell);

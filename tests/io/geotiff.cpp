@@ -13,21 +13,6 @@ using namespace lidarfx::io;
 using io_test::contains;
 using io_test::starts_with;
 
-namespace {
-
-bool same_cells(raster_view<const float> a, raster_view<const float> b)
-{
-    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-    for (std::ptrdiff_t r = 0; r < a.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < a.cols(); ++c) {
-            const float x = a(r, c), y = b(r, c);
-            if (!(x == y || (std::isnan(x) && std::isnan(y)))) return false;
-        }
-    return true;
-}
-
-}  // namespace
-
 TEST_CASE("io/write_geotiff: float32 round trip with NoData, geotransform and CRS (when GDAL is built in)")
 {
     io_test::temp_dir dir;
@@ -47,7 +32,7 @@ TEST_CASE("io/write_geotiff: float32 round trip with NoData, geotransform and CR
     write_geotiff(path, values, g, "EPSG:3645");
     const auto back = read_geotiff(path);
     CHECK(back.g == g);
-    CHECK(same_cells(back.values, values));
+    CHECK(io_test::same_cells(back.values, values));
     CHECK(contains(back.crs_wkt, "3645"));
     CHECK(contains(back.crs_wkt, "Oregon North"));
 

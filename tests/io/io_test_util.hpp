@@ -2,6 +2,8 @@
 // Helpers shared by the I/O tests: scratch folders, whole-file bytes, and catching error messages.
 #pragma once
 
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,8 @@
 #include <vector>
 
 #include <unistd.h>
+
+#include <lidarfx/core/raster_view.hpp>
 
 namespace io_test {
 
@@ -62,6 +66,20 @@ std::string runtime_error_of(F&& f)
         return e.what();
     }
     return "<no error>";
+}
+
+/// True when a and b have the same shape and cells: NaN where the other is NaN, identical bits elsewhere.
+inline bool same_cells(lidarfx::raster_view<const float> a, lidarfx::raster_view<const float> b)
+{
+    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+    for (std::ptrdiff_t r = 0; r < a.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < a.cols(); ++c) {
+            const float x = a(r, c), y = b(r, c);
+            if (std::isnan(x) != std::isnan(y)) return false;
+            if (!std::isnan(x) && std::bit_cast<std::uint32_t>(x) != std::bit_cast<std::uint32_t>(y)) return false;
+        }
+    }
+    return true;
 }
 
 inline bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
