@@ -121,7 +121,8 @@ TEST_CASE("filter/angular_filter: matches the per-neighbour reference on random 
     const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {
         {1, 1}, {1, 17}, {19, 1}, {2, 2}, {7, 13}, {13, 7}, {40, 33}, {257, 131}};
     int trial = 0;
-    for (const auto& [rows, cols] : shapes) {
+    for (const auto& shape : shapes) {
+        const std::ptrdiff_t rows = shape.first, cols = shape.second;
         for (int radius : {1, 2, 3}) {
             if (rows * cols > 10000 && radius != 2) continue;  // keeps the brute force quick
             ++trial;

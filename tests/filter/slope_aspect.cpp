@@ -171,7 +171,8 @@ TEST_CASE("filter/slope_aspect: matches the reference on random rasters, strided
     const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {
         {1, 1}, {1, 17}, {19, 1}, {2, 2}, {3, 3}, {7, 13}, {40, 33}, {257, 131}};
     int trial = 0;
-    for (const auto& [rows, cols] : shapes) {
+    for (const auto& shape : shapes) {
+        const std::ptrdiff_t rows = shape.first, cols = shape.second;
         for (double nan_share : {0.0, 0.05, 0.4}) {
             ++trial;
             INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << " NaN share " << nan_share);
