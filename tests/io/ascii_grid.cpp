@@ -5,8 +5,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
-#include <limits>
 #include <random>
 
 #include "io_test_util.hpp"
