@@ -64,26 +64,17 @@ bool overlaps(raster_view<A> a, raster_view<B> b) noexcept
     return a0 < b1 && b0 < a1;
 }
 
-/// Read access to any raster_input as cells of T: strided rasters of T are viewed in place, anything else
-/// (other value types, non-strided hosts) is converted once into an owned raster<T>.
-template <class T, raster_input In>
-class readable_as {
-public:
-    explicit readable_as(const In& in)
-    {
-        if constexpr (std::is_same_v<typename In::value_type, T> && strided_raster<In>) {
-            view_ = view_of(in);
-        } else {
-            copy_ = raster<T>(in);
-            view_ = copy_.view();
-        }
+/// Calls f(raster_view<const float>) on z's cells: through detail::readable (in place for strided rasters)
+/// when z holds floats, else on one converted float copy.
+template <raster_input In, class F>
+decltype(auto) with_float_view(const In& z, F&& f)
+{
+    if constexpr (std::is_same_v<typename In::value_type, float>) {
+        return f(readable<In>(z).view());
+    } else {
+        return f(raster<float>(z).view());
     }
-    raster_view<const T> view() const noexcept { return view_; }
-
-private:
-    raster<T> copy_;
-    raster_view<const T> view_;
-};
+}
 
 /// Factors 1 / (cell_m * sqrt(a^2 + b^2)) for 0 <= a, b <= radius, row-major by a (0 at a = b = 0). An offset
 /// (dr, dc) uses entry (|dr|, |dc|); every path of the kernel reads the same float factors, so all agree exactly.
@@ -209,12 +200,13 @@ void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_
 {
     detail::check_angular_filter(cell_m, opt);
     detail::require_same_shape(z, out, "angular_filter", "z", "out");
-    const detail::readable_as<float, In> in(z);
-    detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
-        detail::require(!detail::overlaps(in.view(), o), "angular_filter", "out must not overlap z");
-        parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            detail::angular_filter_rows(in.view(), o, cell_m, opt.radius, r0, r1);
-        }, {}, "angular_filter");
+    detail::with_float_view(z, [&](raster_view<const float> zv) {
+        detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
+            detail::require(!detail::overlaps(zv, o), "angular_filter", "out must not overlap z");
+            parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                detail::angular_filter_rows(zv, o, cell_m, opt.radius, r0, r1);
+            }, {}, "angular_filter");
+        });
     });
 }
 

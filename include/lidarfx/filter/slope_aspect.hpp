@@ -14,7 +14,7 @@
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
-#include "lidarfx/filter/angular_filter.hpp"  // detail::atan_deg, detail::overlaps, detail::readable_as
+#include "lidarfx/filter/angular_filter.hpp"  // detail::atan_deg, detail::overlaps, detail::with_float_view
 
 namespace lidarfx {
 
@@ -196,17 +196,17 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
     detail::require_same_shape(z, slope_deg, fn, "z", "slope_deg");
     detail::require_same_shape(z, aspect_deg, fn, "z", "aspect_deg");
     detail::require_same_shape(z, flat, fn, "z", "flat");
-    const detail::readable_as<float, In> in(z);
-    const raster_view<const float> zv = in.view();
-    detail::write_through<float>(std::forward<SlopeOut>(slope_deg), [&](raster_view<float> s) {
-        detail::write_through<float>(std::forward<AspectOut>(aspect_deg), [&](raster_view<float> a) {
-            detail::write_through<std::uint8_t>(std::forward<FlatOut>(flat), [&](raster_view<std::uint8_t> f) {
-                detail::require(!detail::overlaps(zv, s) && !detail::overlaps(zv, a) && !detail::overlaps(zv, f) &&
-                                    !detail::overlaps(s, a) && !detail::overlaps(s, f) && !detail::overlaps(a, f),
-                                fn, "outputs must not overlap z or each other");
-                parallel_for_rows(zv.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                    detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
-                }, {}, fn);
+    detail::with_float_view(z, [&](raster_view<const float> zv) {
+        detail::write_through<float>(std::forward<SlopeOut>(slope_deg), [&](raster_view<float> s) {
+            detail::write_through<float>(std::forward<AspectOut>(aspect_deg), [&](raster_view<float> a) {
+                detail::write_through<std::uint8_t>(std::forward<FlatOut>(flat), [&](raster_view<std::uint8_t> f) {
+                    detail::require(!detail::overlaps(zv, s) && !detail::overlaps(zv, a) && !detail::overlaps(zv, f) &&
+                                        !detail::overlaps(s, a) && !detail::overlaps(s, f) && !detail::overlaps(a, f),
+                                    fn, "outputs must not overlap z or each other");
+                    parallel_for_rows(zv.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                        detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
+                    }, {}, fn);
+                });
             });
         });
     });
