@@ -264,6 +264,24 @@ TEST_CASE("filter/morph_open: the output may be the input; other value types and
     CHECK(morph_dilate(host, morph_options{.size = 3}) == reference::dilate(host, 3, 3));
 }
 
+TEST_CASE("filter/morphology: bit packing, SIMD and portable, keeps every cell")
+{
+    std::mt19937 rng(13);
+    std::uniform_int_distribution<int> byte(0, 255), coin(0, 2);
+    for (std::ptrdiff_t cols : {1, 63, 64, 65, 200}) {
+        std::vector<std::uint8_t> cells(static_cast<std::size_t>(cols));
+        for (auto& v : cells) v = coin(rng) == 0 ? 0 : static_cast<std::uint8_t>(byte(rng));  // 0 and any nonzero
+        std::vector<detail::mask_word> bits(static_cast<std::size_t>(detail::mask_words(cols)));
+        detail::pack_mask_row(cells.data(), cols, bits.data());
+        for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(((bits[c / 64] >> (c % 64)) & 1U) == (cells[c] != 0 ? 1U : 0U));
+        for (std::ptrdiff_t c = cols; c < 64 * detail::mask_words(cols); ++c) CHECK(((bits[c / 64] >> (c % 64)) & 1U) == 0U);
+        for (std::ptrdiff_t c = 0; c + 64 <= cols; c += 64) CHECK(detail::pack64_portable(cells.data() + c) == bits[c / 64]);
+        std::vector<std::uint8_t> back(static_cast<std::size_t>(cols));
+        detail::unpack_mask_row(bits.data(), cols, back.data());
+        for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(back[c] == (cells[c] != 0 ? 1 : 0));
+    }
+}
+
 TEST_CASE("filter/morphology: bad input throws invalid_input naming the argument")
 {
     const reference::mask m(4, 5, 1);

@@ -39,6 +39,24 @@ inline constexpr std::ptrdiff_t mask_word_bits = 64;
 /// Number of 64-bit words holding `cols` bits.
 constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept { return (cols + 63) / 64; }
 
+/// Bits of 64 one-byte cells (bit j = cell j is nonzero), without SIMD: 8 cells at a time, flag the
+/// nonzero bytes in their low bit, then gather the 8 flags into the top byte with one multiplication
+/// (no two partial products share a bit).
+template <class T>
+mask_word pack64_portable(const T* src) noexcept
+{
+    static_assert(sizeof(T) == 1);
+    mask_word bits = 0;
+    for (int q = 0; q < 8; ++q) {
+        std::uint64_t v;
+        std::memcpy(&v, src + 8 * q, 8);
+        const std::uint64_t low7 = 0x7f7f7f7f7f7f7f7fULL;
+        const std::uint64_t flags = ((((v & low7) + low7) | v) >> 7) & 0x0101010101010101ULL;
+        bits |= ((flags * 0x0102040810204080ULL) >> 56) << (8 * q);
+    }
+    return bits;
+}
+
 /// Packs a row of `cols` cells into bits (bit j of word w = cell 64w + j is nonzero); bits past `cols`
 /// in the last word are 0.
 template <class T>
@@ -64,17 +82,7 @@ void pack_mask_row(const T* src, std::ptrdiff_t cols, mask_word* dst) noexcept
             }
             dst[w] = ~zeros;
 #else
-            // Portable: 8 cells at a time; flag nonzero bytes in their low bit, then gather the 8 flags
-            // into the top byte with one multiplication (no two partial products share a bit).
-            mask_word bits = 0;
-            for (int q = 0; q < 8; ++q) {
-                std::uint64_t v;
-                std::memcpy(&v, src + c + 8 * q, 8);
-                const std::uint64_t low7 = 0x7f7f7f7f7f7f7f7fULL;
-                const std::uint64_t flags = ((((v & low7) + low7) | v) >> 7) & 0x0101010101010101ULL;
-                bits |= ((flags * 0x0102040810204080ULL) >> 56) << (8 * q);
-            }
-            dst[w] = bits;
+            dst[w] = pack64_portable(src + c);
 #endif
         }
     }
