@@ -331,6 +331,16 @@ void morph_into(const In& m, Out&& out, const morph_options& opt, std::initializ
     });
 }
 
+/// Returning form shared by the four functions.
+template <raster_input In>
+raster<std::uint8_t> morph_new(const In& m, const morph_options& opt, std::initializer_list<morph_step> steps,
+                               const char* function)
+{
+    raster<std::uint8_t> out(m.rows(), m.cols());
+    morph_into(m, out, opt, steps, function);
+    return out;
+}
+
 }  // namespace detail
 
 /// Binary dilation: out(r, c) = 1 if any mask cell in the size x height rectangle centred on (r, c) is
@@ -383,54 +393,26 @@ void morph_close(const In& m, Out&& out, const morph_options& opt = {})
 /// Returning forms: a new 0/1 raster of m's shape. The `int size` overloads use a size x size square.
 template <raster_input In>
 raster<std::uint8_t> morph_dilate(const In& m, const morph_options& opt)
-{
-    raster<std::uint8_t> out(m.rows(), m.cols());
-    morph_dilate(m, out, opt);
-    return out;
-}
+{ return detail::morph_new(m, opt, {detail::morph_step::dilate}, "morph_dilate"); }
 template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, int size)
-{
-    return morph_dilate(m, morph_options{.size = size});
-}
+raster<std::uint8_t> morph_dilate(const In& m, int size) { return morph_dilate(m, morph_options{.size = size}); }
 
 template <raster_input In>
 raster<std::uint8_t> morph_erode(const In& m, const morph_options& opt)
-{
-    raster<std::uint8_t> out(m.rows(), m.cols());
-    morph_erode(m, out, opt);
-    return out;
-}
+{ return detail::morph_new(m, opt, {detail::morph_step::erode}, "morph_erode"); }
 template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, int size)
-{
-    return morph_erode(m, morph_options{.size = size});
-}
+raster<std::uint8_t> morph_erode(const In& m, int size) { return morph_erode(m, morph_options{.size = size}); }
 
 template <raster_input In>
 raster<std::uint8_t> morph_open(const In& m, const morph_options& opt)
-{
-    raster<std::uint8_t> out(m.rows(), m.cols());
-    morph_open(m, out, opt);
-    return out;
-}
+{ return detail::morph_new(m, opt, {detail::morph_step::erode, detail::morph_step::dilate}, "morph_open"); }
 template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, int size)
-{
-    return morph_open(m, morph_options{.size = size});
-}
+raster<std::uint8_t> morph_open(const In& m, int size) { return morph_open(m, morph_options{.size = size}); }
 
 template <raster_input In>
 raster<std::uint8_t> morph_close(const In& m, const morph_options& opt)
-{
-    raster<std::uint8_t> out(m.rows(), m.cols());
-    morph_close(m, out, opt);
-    return out;
-}
+{ return detail::morph_new(m, opt, {detail::morph_step::dilate, detail::morph_step::erode}, "morph_close"); }
 template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, int size)
-{
-    return morph_close(m, morph_options{.size = size});
-}
+raster<std::uint8_t> morph_close(const In& m, int size) { return morph_close(m, morph_options{.size = size}); }
 
 }  // namespace lidarfx
