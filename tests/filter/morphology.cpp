@@ -173,7 +173,8 @@ TEST_CASE("filter/morphology: wide windows place single cells and single holes e
 
 TEST_CASE("filter/morphology: all-0, all-1 and checkerboard masks")
 {
-    for (const auto& [rows, cols] : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {63, 127}, {64, 65}}) {
+    for (const auto& shape : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {63, 127}, {64, 65}}) {
+        const std::ptrdiff_t rows = shape[0], cols = shape[1];
         for (int size : {1, 3, 25}) {
             const morph_options opt{.size = size};
             const reference::mask zeros(rows, cols, 0), ones(rows, cols, 1);

@@ -83,7 +83,8 @@ TEST_CASE("label/connected_components: matches a BFS flood fill on random masks"
     INFO("seed " << seed);
     const std::vector<std::array<std::ptrdiff_t, 2>> shapes{{1, 1},   {1, 200},  {150, 1},  {7, 13},   {65, 64},
                                                             {64, 65}, {63, 127}, {257, 131}, {600, 70}};
-    for (const auto& [rows, cols] : shapes) {
+    for (const auto& shape : shapes) {
+        const std::ptrdiff_t rows = shape[0], cols = shape[1];
         for (double density : {0.1, 0.5, 0.6, 0.9}) {
             const auto m = reference::random_mask(rng, rows, cols, density);
             for (connectivity c : both) {
@@ -96,7 +97,8 @@ TEST_CASE("label/connected_components: matches a BFS flood fill on random masks"
 
 TEST_CASE("label/connected_components: all-0, all-1, checkerboards, spirals and combs")
 {
-    for (const auto& [rows, cols] : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {64, 65}, {520, 9}}) {
+    for (const auto& shape : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {64, 65}, {520, 9}}) {
+        const std::ptrdiff_t rows = shape[0], cols = shape[1];
         std::vector<reference::mask> masks{reference::mask(rows, cols, 0), reference::mask(rows, cols, 1),
                                            reference::checkerboard(rows, cols, 1), reference::checkerboard(rows, cols, 2),
                                            reference::spiral(rows, cols), reference::comb(rows, cols)};
