@@ -68,9 +68,12 @@ struct label_band_state {
     label_forest forest;
 };
 
-/// Root of `node`, halving the path on the way.
+/// Root of `node`. Sets stay shallow (roots are only ever linked to roots), so two unconditional hops
+/// (a root is its own parent) nearly always arrive, without a data-dependent branch; deeper paths are
+/// walked on, halving them.
 inline std::int32_t find_root(std::int32_t* parent, std::int32_t node) noexcept
 {
+    node = parent[parent[node]];
     while (parent[node] != node) {
         parent[node] = parent[parent[node]];
         node = parent[node];
@@ -114,14 +117,14 @@ inline std::size_t count_runs(const mask_word* bits, std::ptrdiff_t words) noexc
     return (edges + 1) / 2;
 }
 
-/// Joins the sets of the previous-row runs [q, q_end) (all touching one current run) into `root`
-/// (-1: none yet) and returns the root of the result; the smaller id stays the root.
-inline std::int32_t join_touching(const label_run* q, const label_run* q_end, std::int32_t* parent,
-                                  std::int32_t root) noexcept
+/// Joins the sets of the previous-row runs [q, q_end) (all touching one current run) and returns the
+/// root of the result, or -1 for an empty range; the smaller id stays the root.
+inline std::int32_t join_touching(const label_run* q, const label_run* q_end, std::int32_t* parent) noexcept
 {
-    for (; q != q_end; ++q) {
+    if (q == q_end) return -1;
+    std::int32_t root = find_root(parent, q->node);
+    for (++q; q != q_end; ++q) {
         const std::int32_t other = find_root(parent, q->node);
-        if (root < 0) root = other;
         const std::int32_t low = std::min(root, other);
         parent[std::max(root, other)] = low;  // a no-op when they already share the root
         root = low;
@@ -152,8 +155,11 @@ inline void link_rows(const std::vector<label_run>& prev, const std::vector<labe
         while (p != prev_end && p->end + reach <= run.begin) ++p;  // ends left of the run's reach
         const label_run* q = p;
         while (q != prev_end && q->begin < run.end + reach) ++q;
-        join_touching(p, q, forest.parent.data(), find_root(forest.parent.data(), run.node));
-        if (q != p) p = q - 1;  // the last touching run may touch the next run too
+        if (p == q) continue;
+        const std::int32_t root = join_touching(p, q, forest.parent.data());
+        const std::int32_t own = find_root(forest.parent.data(), run.node);
+        forest.parent[static_cast<std::size_t>(std::max(root, own))] = std::min(root, own);
+        p = q - 1;  // the last touching run may touch the next run too
     }
 }
 
@@ -205,7 +211,7 @@ inline void link_new_row(const std::vector<label_run>& prev, const run_ranks& pr
     for (label_run& run : cur) {
         const std::int32_t lo = prev_ranks.last_before(run.begin - reach);
         const std::int32_t hi = prev_ranks.first_before(run.end + reach);
-        settle_run(run, join_touching(p + lo, p + std::max(lo, hi), forest.parent.data(), -1), forest);
+        settle_run(run, join_touching(p + lo, p + std::max(lo, hi), forest.parent.data()), forest);
     }
 }
 
