@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "cli_common.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "io/ascii_grid.hpp"
+#include "io/geotiff.hpp"
+#include "io/las.hpp"
+
+namespace lidarfx::cli {
+
+arguments::arguments(const std::vector<std::string>& args, const std::vector<std::string>& valued,
+                     const std::vector<std::string>& flags)
+{
+    const auto is = [](const std::vector<std::string>& names, const std::string& n) {
+        return std::find(names.begin(), names.end(), n) != names.end();
+    };
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const auto& a = args[i];
+        if (a.rfind("--", 0) != 0 || a.size() == 2) {
+            positional_.push_back(a);
+            continue;
+        }
+        std::string name = a.substr(2), value;
+        if (const auto eq = name.find('='); eq != std::string::npos) {
+            value = name.substr(eq + 1);
+            name = name.substr(0, eq);
+            if (!is(valued, name)) throw std::invalid_argument("option --" + name + " takes no value or is unknown");
+        } else if (is(valued, name)) {
+            if (i + 1 >= args.size()) throw std::invalid_argument("option --" + name + " needs a value");
+            value = args[++i];
+        } else if (!is(flags, name)) {
+            throw std::invalid_argument("unknown option --" + name);
+        }
+        values_[name] = value;
+    }
+}
+
+std::string arguments::text(const std::string& name, const std::string& fallback) const
+{
+    const auto it = values_.find(name);
+    return it == values_.end() ? fallback : it->second;
+}
+
+double arguments::number(const std::string& name, double fallback) const
+{
+    const auto it = values_.find(name);
+    if (it == values_.end()) return fallback;
+    try {
+        std::size_t used = 0;
+        const double v = std::stod(it->second, &used);
+        if (used != it->second.size()) throw std::invalid_argument("trailing characters");
+        return v;
+    } catch (const std::exception&) {
+        throw std::invalid_argument("option --" + name + " expects a number (got '" + it->second + "')");
+    }
+}
+
+int arguments::integer(const std::string& name, int fallback) const
+{
+    const double v = number(name, fallback);
+    if (v != std::floor(v) || std::abs(v) > 1e9) {
+        throw std::invalid_argument("option --" + name + " expects a whole number (got '" + text(name, "") + "')");
+    }
+    return static_cast<int>(v);
+}
+
+progress_callback progress_bar(const std::string& label)
+{
+    auto last = std::make_shared<int>(-1);
+    return [label, last](double f) {
+        const int percent = static_cast<int>(std::floor(100.0 * f));
+        if (percent == *last) return true;
+        *last = percent;
+        const int filled = percent / 5;
+        std::cerr << '\r' << label << " [" << std::string(static_cast<std::size_t>(filled), '#')
+                  << std::string(static_cast<std::size_t>(20 - filled), '.') << "] " << percent << " %";
+        if (percent >= 100) std::cerr << '\n';
+        std::cerr.flush();
+        return true;
+    };
+}
+
+survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress)
+{
+    if (paths.empty()) throw std::invalid_argument("no input LAS file given");
+    if (!(cell_m > 0) || !std::isfinite(cell_m)) {
+        throw std::invalid_argument("--cell must be a positive number of metres (got " + std::to_string(cell_m) + ")");
+    }
+    survey s;
+    bounds box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+               -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    std::uint64_t total = 0;
+    for (const auto& p : paths) {
+        io::las_reader r(p);
+        const auto& h = r.header();
+        if (s.files == 0) {
+            s.crs_wkt = h.wkt;
+            s.epsg = h.epsg();
+        } else if (h.epsg() != s.epsg) {
+            std::cerr << "lidarfx: warning: " << p << " has EPSG " << h.epsg() << ", the first file " << s.epsg
+                      << "; coordinates are used as they are\n";
+        }
+        ++s.files;
+        total += h.point_count;
+        if (h.point_count == 0) continue;
+        box.xmin = std::min(box.xmin, h.min[0]);
+        box.ymin = std::min(box.ymin, h.min[1]);
+        box.xmax = std::max(box.xmax, h.max[0]);
+        box.ymax = std::max(box.ymax, h.max[1]);
+    }
+    if (total == 0) throw std::runtime_error("the input files hold no point");
+    const grid g = snapped_grid(box, cell_m);
+    raster_accumulator acc(g);
+    auto bar = show_progress ? progress_bar("reading  ") : progress_callback{};
+    io::las_points chunk;
+    std::uint64_t done = 0;
+    for (const auto& p : paths) {
+        io::las_reader r(p);
+        while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
+            acc.add(chunk.cloud());
+            done += n;
+            if (bar) bar(static_cast<double>(done) / static_cast<double>(total));
+        }
+    }
+    s.rasters = acc.finish();
+    s.points = done;
+    if (s.rasters.points_outside > 0) {
+        throw std::runtime_error(std::to_string(s.rasters.points_outside) +
+                                 " points lie outside the bounds their LAS headers declare; fix the headers "
+                                 "(e.g. lasinfo -repair) before rasterizing");
+    }
+    return s;
+}
+
+void write_raster(const std::filesystem::path& dir, const std::string& name, raster_view<const float> values,
+                  const grid& g, const std::string& crs_wkt, int epsg)
+{
+    const auto asc = dir / (name + ".asc");
+    io::write_ascii_grid(asc.string(), values, g);
+    say_wrote(asc);
+    if (io::geotiff_available()) {
+        const auto tif = dir / (name + ".tif");
+        io::write_geotiff(tif.string(), values, g, !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : ""));
+        say_wrote(tif);
+    }
+}
+
+void say_wrote(const std::filesystem::path& path) { std::cout << "  wrote " << path.string() << '\n'; }
+
+}  // namespace lidarfx::cli

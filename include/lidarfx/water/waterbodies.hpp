@@ -1,0 +1,578 @@
+// SPDX-License-Identifier: Apache-2.0
+// extract_waterbodies: waterbody maps from the rasters of an airborne LiDAR survey (dissertation ch. 2).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/filter/angular_filter.hpp"
+#include "lidarfx/filter/morphology.hpp"
+#include "lidarfx/label/connected_components.hpp"
+#include "lidarfx/raster/idw_fill.hpp"
+#include "lidarfx/raster/rasterize.hpp"
+#include "lidarfx/raster/vegetation_mask.hpp"
+#include "lidarfx/water/grow_waterbody.hpp"
+
+namespace lidarfx {
+
+/// The rasters of a survey that the method reads, all of one shape on one grid (see rasterize()).
+struct water_rasters {
+    raster_view<const float> min_z;                          ///< lowest return, metres; NaN = no return
+    raster_view<const float> max_z;                          ///< highest return, metres; NaN = no return
+    raster_view<const float> mean_intensity;                 ///< mean return intensity; ignored where dropout
+    raster_view<const std::uint8_t> dropout;                 ///< 1 = no return in the cell
+    raster_view<const std::uint8_t> multiple_returns = {};   ///< optional: 1 = a pulse with several returns
+    raster_view<const std::uint32_t> count = {};             ///< optional: points per cell (density checks)
+};
+
+/// Which elevation the angular filter reads.
+enum class angular_input {
+    returns_only,  ///< minimum elevation of cells with returns; dropouts are skipped as neighbours and
+                   ///< join the region at any threshold (their height is unknown, not steep)
+    idw_filled,    ///< minimum elevation with dropouts filled by IDW, as in the dissertation
+};
+
+/// Options of extract_waterbodies; defaults follow the dissertation where it gives a value.
+struct waterbody_options {
+    double vegetation_height_m = 2.0;      ///< h: max_z - min_z above this is vegetation, metres
+    int vegetation_closing_size = 5;       ///< closing of the vegetation mask, cells (odd)
+    bool vegetation_from_multiple_returns = true;  ///< cells with multiple-return pulses are vegetation too
+    int angular_radius = 2;                ///< angular filter window radius, cells ("two tiers")
+    angular_input angular_on = angular_input::returns_only;  ///< elevation read by the angular filter
+    bool dropouts_join_any_threshold = true;  ///< dropout cells join a region at any θ (their angle is
+                                              ///< unknown); false = the dissertation's literal behaviour
+    int seed_opening_size = 5;             ///< opening of the dropout mask before seeding, cells (odd)
+    std::size_t min_seed_cells = 100;      ///< smallest seed component, cells
+    grow_options grow = {};                ///< θ schedule, KS test, min_ks_samples
+    double intensity_resolution = 1.0;     ///< intensity quantum of the KS samples (values are rounded), > 0
+    double level_tolerance_m = 0.15;       ///< refinement: land cells next to a body whose min z is within this
+                                           ///< of the adjacent water level join it; 0 disables
+    double level_max_rise_m = 0.5;         ///< ... and whose highest return is at most this above that level
+                                           ///< (a cell mostly on the bank is not water), metres
+    int level_join_depth_cells = 2;        ///< how far (cells) from the grown region the refinement reaches
+    double island_min_area_m2 = 200.0;     ///< holes in a body at least this large stay land; smaller are water
+    double bridge_max_span_m = 30.0;       ///< gaps up to this long between two bodies at one water level are
+                                           ///< bridged (decks become water, bodies merge); 0 disables
+    double bridge_level_tolerance_m = 1.0; ///< water levels on both sides of a bridge differ by at most this
+    double bridge_min_clearance_m = 2.0;   ///< a deck cell's lowest return stands at least this high above the
+                                           ///< water on both sides (low banks beside a bridge stay land), metres
+    double min_points_per_cell = 2.0;      ///< below this mean density the inputs are refused (check_inputs)
+    bool check_inputs = true;              ///< refuse inputs that cannot support the method (see diagnostics)
+    int threads = 1;                       ///< threads for the raster kernels (0 = all cores); same result
+    progress_callback progress = {};       ///< progress over seeds; returning false cancels
+};
+
+/// One extracted waterbody.
+struct waterbody {
+    std::int32_t label = 0;                ///< 1..n by decreasing area
+    std::size_t cells = 0;
+    double area_m2 = 0;
+    std::ptrdiff_t row_min = 0, col_min = 0, row_max = -1, col_max = -1;  ///< bounding box, cells (inclusive)
+    std::int32_t seed = 0;                 ///< rank of the seed it grew from (1 = largest seed)
+    double theta_deg = NAN;                ///< angular threshold reached when growth stopped
+    bool stopped_by_ks = false;            ///< false: θ_max reached without a KS rejection
+    double mean_intensity = NAN;           ///< mean intensity of its cells with returns (NaN if none)
+    double water_level_m = NAN;            ///< median min z of its cells with returns, metres (NaN if none)
+    double dropout_fraction = 0;           ///< share of its cells without returns
+};
+
+/// What the inputs can support. `problems` block the method (check_inputs), `warnings` do not.
+struct water_diagnostics {
+    double points_per_cell = NAN;          ///< mean points per cell over the grid (needs the count raster)
+    double dropout_fraction = NAN;         ///< share of cells without returns
+    bool has_intensity = false;            ///< intensity varies between cells with returns
+    bool has_multiple_returns = false;     ///< some cell has a multiple-return pulse
+    double suggested_cell_m = NAN;         ///< smallest cell (0.5 m steps) reaching min_points_per_cell
+    std::vector<std::string> problems;
+    std::vector<std::string> warnings;
+    bool usable() const noexcept { return problems.empty(); }
+};
+
+/// Result of extract_waterbodies, with the intermediate rasters for inspection.
+struct waterbody_result {
+    raster<std::int32_t> labels;           ///< 0 land, 1..n waterbodies by decreasing area
+    raster<std::uint8_t> water;            ///< 1 water, 0 land
+    std::vector<waterbody> bodies;         ///< bodies[i].label == i + 1
+    water_diagnostics diagnostics;
+    raster<std::uint8_t> vegetation;       ///< vegetation mask used
+    raster<float> angle_deg;               ///< angular filter output
+    raster<std::int32_t> seeds;            ///< seed components, 1 = largest
+    std::size_t seeds_found = 0, seeds_grown = 0;
+    bool ran = false;                      ///< false when check_inputs refused the data
+};
+
+namespace detail {
+
+inline void validate(const waterbody_options& o, double cell_m, const char* fn)
+{
+    require_positive(cell_m, fn, "cell_m");
+    require(o.vegetation_height_m > 0, fn, "vegetation_height_m", "> 0", o.vegetation_height_m);
+    require(o.vegetation_closing_size >= 1 && o.vegetation_closing_size % 2 == 1, fn, "vegetation_closing_size",
+            "odd and >= 1", o.vegetation_closing_size);
+    require(o.angular_radius >= 1, fn, "angular_radius", ">= 1", o.angular_radius);
+    require(o.seed_opening_size >= 1 && o.seed_opening_size % 2 == 1, fn, "seed_opening_size", "odd and >= 1",
+            o.seed_opening_size);
+    require(o.min_seed_cells >= 1, fn, "min_seed_cells", ">= 1", o.min_seed_cells);
+    require_positive(o.intensity_resolution, fn, "intensity_resolution");
+    require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
+    require(o.level_max_rise_m >= 0, fn, "level_max_rise_m", ">= 0", o.level_max_rise_m);
+    require(o.level_join_depth_cells >= 0, fn, "level_join_depth_cells", ">= 0", o.level_join_depth_cells);
+    require(o.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", o.island_min_area_m2);
+    require(o.bridge_max_span_m >= 0, fn, "bridge_max_span_m", ">= 0", o.bridge_max_span_m);
+    require(o.bridge_min_clearance_m >= 0, fn, "bridge_min_clearance_m", ">= 0", o.bridge_min_clearance_m);
+    require(o.bridge_level_tolerance_m >= 0, fn, "bridge_level_tolerance_m", ">= 0", o.bridge_level_tolerance_m);
+    require(o.min_points_per_cell >= 0, fn, "min_points_per_cell", ">= 0", o.min_points_per_cell);
+    validate(o.grow, fn);
+}
+
+inline void validate(const water_rasters& in, const char* fn)
+{
+    require_same_shape(in.min_z, in.max_z, fn, "min_z", "max_z");
+    require_same_shape(in.min_z, in.mean_intensity, fn, "min_z", "mean_intensity");
+    require_same_shape(in.min_z, in.dropout, fn, "min_z", "dropout");
+    if (!in.multiple_returns.empty())
+        require_same_shape(in.min_z, in.multiple_returns, fn, "min_z", "multiple_returns");
+    if (!in.count.empty()) require_same_shape(in.min_z, in.count, fn, "min_z", "count");
+    require(!in.min_z.empty(), fn, "the rasters are empty (0 cells)");
+}
+
+inline std::string fixed(double v, int digits = 2)
+{
+    std::ostringstream os;
+    os.setf(std::ios::fixed);
+    os.precision(digits);
+    os << v;
+    return os.str();
+}
+
+}  // namespace detail
+
+/// Checks whether the rasters can support the method: point density per cell (needs `count`), intensity
+/// that varies (the KS stop compares intensity distributions), multiple returns (vegetation). Fills
+/// `problems` (the method's result would be meaningless) and `warnings`. O(cells).
+inline water_diagnostics assess_water_inputs(const water_rasters& in, double cell_m, const waterbody_options& opt = {})
+{
+    constexpr const char* fn = "assess_water_inputs";
+    detail::validate(in, fn);
+    detail::validate(opt, cell_m, fn);
+    water_diagnostics d;
+    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
+    double points = 0, dropouts = 0;
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (!in.count.empty()) points += in.count(r, c);
+            if (in.dropout(r, c)) {
+                ++dropouts;
+                continue;
+            }
+            const float v = in.mean_intensity(r, c);
+            if (std::isfinite(v)) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+            if (!in.multiple_returns.empty() && in.multiple_returns(r, c)) d.has_multiple_returns = true;
+        }
+    }
+    const double cells = static_cast<double>(rows * cols);
+    d.dropout_fraction = dropouts / cells;
+    d.has_intensity = hi > lo;
+    if (!d.has_intensity) {
+        d.problems.push_back(lo <= hi ? "intensity is the same (" + detail::fixed(lo, 0) +
+                                            ") in every cell with returns: the KS test that stops region growing "
+                                            "compares intensity distributions and cannot work"
+                                      : "no cell has a return: nothing to analyse");
+    }
+    if (!in.count.empty()) {
+        d.points_per_cell = points / cells;
+        const double density = points / (cells * cell_m * cell_m);
+        if (density > 0) {
+            d.suggested_cell_m = std::max(cell_m, std::ceil(2.0 * std::sqrt(opt.min_points_per_cell / density)) / 2.0);
+        }
+        if (d.points_per_cell < opt.min_points_per_cell) {
+            d.problems.push_back("point density " + detail::fixed(density) + " points/m² gives " +
+                                 detail::fixed(d.points_per_cell) + " points per " + detail::fixed(cell_m, 1) +
+                                 " m cell (below " + detail::fixed(opt.min_points_per_cell, 1) + "): " +
+                                 detail::fixed(100 * d.dropout_fraction, 0) +
+                                 " % of cells are empty by sparse sampling, so dropouts no longer mark water; use "
+                                 "a cell of at least " + detail::fixed(d.suggested_cell_m, 1) + " m");
+        }
+    } else {
+        d.warnings.push_back("no count raster: point density was not checked");
+    }
+    if (!in.multiple_returns.empty() && !d.has_multiple_returns) {
+        d.warnings.push_back("no pulse has multiple returns: vegetation comes from max z - min z alone");
+    }
+    return d;
+}
+
+/// Seeds: the dropout mask opened by a size x size square (removes sparse dropouts), its 8-connected
+/// components with at least min_cells cells, ranked by size (label 1 = largest; ties by scan order).
+template <raster_input Mask>
+components water_seeds(const Mask& dropout, int opening_size = 5, std::size_t min_cells = 100, int threads = 1)
+{
+    const auto opened = morph_open(dropout, morph_options{.size = opening_size, .threads = threads});
+    auto seeds = connected_components(remove_small_components(opened, min_cells, connectivity::eight),
+                                      connectivity::eight);
+    rank_by_size(seeds);
+    return seeds;
+}
+
+namespace detail {
+
+/// Cells of each label of `labels` (1..n) as linear indices in scan order.
+inline std::vector<std::vector<std::ptrdiff_t>> cells_by_label(const raster<std::int32_t>& labels, std::size_t n)
+{
+    std::vector<std::vector<std::ptrdiff_t>> out(n + 1);
+    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
+        const auto l = labels.data()[i];
+        if (l > 0) out[static_cast<std::size_t>(l)].push_back(i);
+    }
+    return out;
+}
+
+/// Rounds intensities of cells with returns to multiples of `resolution` and ranks the distinct values,
+/// so KS histograms have one bin per distinct value (the KS statistic only depends on the order).
+inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resolution, int& bins)
+{
+    raster<std::int32_t> out(in.min_z.rows(), in.min_z.cols(), -1);
+    std::vector<long long> values;
+    for (std::ptrdiff_t r = 0; r < out.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < out.cols(); ++c)
+            if (!in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c)))
+                values.push_back(std::llround(in.mean_intensity(r, c) / resolution));
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    bins = std::max<int>(1, static_cast<int>(values.size()));
+    for (std::ptrdiff_t r = 0; r < out.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < out.cols(); ++c)
+            if (!in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c))) {
+                const auto v = std::llround(in.mean_intensity(r, c) / resolution);
+                out(r, c) = static_cast<std::int32_t>(std::lower_bound(values.begin(), values.end(), v) - values.begin());
+            }
+    return out;
+}
+
+/// Refinement for narrow water: eligible cells within `depth` steps (8-neighbourhood) of the region whose
+/// returns (min z and max z) all lie within `tolerance` of the level of the region cell they are reached
+/// from join the region.
+inline void join_level_cells(std::vector<std::ptrdiff_t>& region, const water_rasters& in,
+                             const raster<std::uint8_t>& eligible, raster<std::int32_t>& seen, std::int32_t stamp,
+                             double tolerance, double max_rise, int depth)
+{
+    if (tolerance <= 0 || depth <= 0) return;
+    const std::ptrdiff_t rows = eligible.rows(), cols = eligible.cols();
+    struct entry { std::ptrdiff_t cell; float level; int depth; };
+    std::vector<entry> frontier;
+    for (const auto i : region) {
+        seen.data()[i] = stamp;
+    }
+    for (const auto i : region) {
+        const float z = in.min_z(i / cols, i % cols);
+        if (std::isfinite(z)) frontier.push_back({i, z, 0});
+    }
+    for (std::size_t q = 0; q < frontier.size(); ++q) {
+        const entry e = frontier[q];
+        if (e.depth >= depth) continue;
+        const std::ptrdiff_t r = e.cell / cols, c = e.cell % cols;
+        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                const std::ptrdiff_t j = rr * cols + cc;
+                if (seen.data()[j] == stamp || !eligible.data()[j]) continue;
+                // The whole cell must lie at the water level: a shore cell holding water and bank returns
+                // has its lowest return on the water but its highest on the bank.
+                const float lo = in.min_z(rr, cc), hi = in.max_z(rr, cc);
+                if (!std::isfinite(lo) || std::abs(static_cast<double>(lo) - e.level) > tolerance ||
+                    !(static_cast<double>(hi) - e.level <= max_rise)) {
+                    continue;
+                }
+                seen.data()[j] = stamp;
+                region.push_back(j);
+                frontier.push_back({j, e.level, e.depth + 1});
+            }
+        }
+    }
+}
+
+/// Holes of the water mask (4-connected land components not touching the border) smaller than
+/// `max_hole_cells` and surrounded by a single body become part of that body.
+inline void fill_small_islands(raster<std::int32_t>& labels, std::size_t max_hole_cells)
+{
+    if (max_hole_cells == 0) return;
+    raster<std::uint8_t> land(labels.rows(), labels.cols());
+    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) land.data()[i] = labels.data()[i] == 0;
+    const auto holes = connected_components(land, connectivity::four);
+    const std::size_t n = holes.sizes.size();
+    std::vector<std::int32_t> owner(n, 0);  // 0 unknown, -1 not fillable, else the single adjacent body
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto h = holes.labels(r, c);
+            if (h == 0) continue;
+            auto& o = owner[static_cast<std::size_t>(h)];
+            if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1 || holes.sizes[static_cast<std::size_t>(h)] >= max_hole_cells) {
+                o = -1;
+                continue;
+            }
+            if (o == -1) continue;
+            const std::ptrdiff_t nb[4][2] = {{r - 1, c}, {r + 1, c}, {r, c - 1}, {r, c + 1}};
+            for (const auto& p : nb) {
+                const auto l = labels(p[0], p[1]);
+                if (l == 0) continue;
+                if (o == 0) o = l;
+                else if (o != l) o = -1;
+            }
+        }
+    }
+    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
+        const auto h = holes.labels.data()[i];
+        if (h > 0 && owner[static_cast<std::size_t>(h)] > 0) labels.data()[i] = owner[static_cast<std::size_t>(h)];
+    }
+}
+
+inline double median_level(const std::vector<std::ptrdiff_t>& cells, const water_rasters& in)
+{
+    std::vector<float> z;
+    const auto cols = in.min_z.cols();
+    for (const auto i : cells) {
+        const float v = in.min_z(i / cols, i % cols);
+        if (std::isfinite(v)) z.push_back(v);
+    }
+    if (z.empty()) return NAN;
+    auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
+    std::nth_element(z.begin(), mid, z.end());
+    return *mid;
+}
+
+/// Bridges: a land cell lying on a straight run (row, column or diagonal) of at most `span_cells` land
+/// cells whose two ends touch two different bodies at water levels within `level_tolerance`, and whose
+/// lowest return is NaN (none), at least `clearance` above both levels (the deck) or within
+/// `water_tolerance` of them (water seen past the deck's edge), becomes water; the two bodies merge.
+/// Returns the number of bridged cells.
+inline std::size_t join_across_bridges(raster<std::int32_t>& labels, raster_view<const float> min_z,
+                                       const std::vector<double>& level, int span_cells, double level_tolerance,
+                                       double clearance, double water_tolerance)
+{
+    if (span_cells <= 0) return 0;
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    std::vector<std::int32_t> parent(level.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto find = [&](std::int32_t x) {
+        while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+        return x;
+    };
+    const raster<std::int32_t> original = labels;
+    std::vector<std::pair<std::ptrdiff_t, std::int32_t>> bridged;
+    const int dirs[4][2] = {{0, 1}, {1, 0}, {1, 1}, {1, -1}};
+    const auto walk = [&](std::ptrdiff_t r, std::ptrdiff_t c, int dr, int dc, int& steps) -> std::int32_t {
+        for (steps = 1; steps <= span_cells; ++steps) {
+            const std::ptrdiff_t rr = r + dr * steps, cc = c + dc * steps;
+            if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) return 0;
+            const auto l = original(rr, cc);
+            if (l != 0) return l;
+        }
+        return 0;
+    };
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (original(r, c) != 0) continue;
+            for (const auto& d : dirs) {
+                int s1 = 0, s2 = 0;
+                const auto a = walk(r, c, d[0], d[1], s1);
+                if (a == 0) continue;
+                const auto b = walk(r, c, -d[0], -d[1], s2);
+                if (b == 0 || a == b || s1 + s2 - 1 > span_cells) continue;
+                const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
+                if (!(std::abs(la - lb) <= level_tolerance)) continue;
+                const float z = min_z(r, c);
+                if (std::isfinite(z)) {
+                    const double above = static_cast<double>(z) - std::max(la, lb);
+                    const double below = std::min(la, lb) - static_cast<double>(z);
+                    if (!(above >= clearance) && !(above <= water_tolerance && below <= water_tolerance)) continue;
+                }
+                bridged.emplace_back(r * cols + c, std::min(a, b));
+                const auto ra = find(a), rb = find(b);
+                if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+                break;
+            }
+        }
+    }
+    for (const auto& [i, l] : bridged) labels.data()[i] = l;
+    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
+        auto& l = labels.data()[i];
+        if (l > 0) l = find(l);
+    }
+    return bridged.size();
+}
+
+}  // namespace detail
+
+/// Extracts waterbodies from the rasters of a survey (dissertation ch. 2, with DESIGN.md §5's refinements):
+/// vegetation mask (max z - min z > h, closed; plus multiple returns), angular filter of min z, seeds from
+/// opened dropouts (>= min_seed_cells, largest first), one KS-stopped bucket-queue flood per seed not yet
+/// inside a body, the level refinement for narrow water, bridges joined, holes below island_min_area_m2
+/// filled. Labels are numbered by decreasing area. When check_inputs is set and assess_water_inputs()
+/// reports problems, nothing is extracted (ran = false) and the diagnostics say why.
+/// O(cells · (kernel radius) + sum over seeds of cells reached). Progress is reported per seed.
+/// @throws invalid_input on rasters of different shapes, cell_m <= 0 or options out of range; cancelled.
+inline waterbody_result extract_waterbodies(const water_rasters& in, double cell_m, const waterbody_options& opt = {})
+{
+    constexpr const char* fn = "extract_waterbodies";
+    detail::validate(in, fn);
+    detail::validate(opt, cell_m, fn);
+    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
+
+    waterbody_result res;
+    res.diagnostics = assess_water_inputs(in, cell_m, opt);
+    res.labels = raster<std::int32_t>(rows, cols, 0);
+    res.water = raster<std::uint8_t>(rows, cols, 0);
+    if (opt.check_inputs && !res.diagnostics.usable()) return res;
+    res.ran = true;
+    detail::report(opt.progress, 0.0, fn);
+
+    // 1. Vegetation.
+    res.vegetation = vegetation_mask(in.min_z, in.max_z,
+                                     vegetation_options{.height_m = opt.vegetation_height_m,
+                                                        .closing_size = opt.vegetation_closing_size});
+    if (opt.vegetation_from_multiple_returns && !in.multiple_returns.empty()) {
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (in.multiple_returns(r, c) && !in.dropout(r, c)) res.vegetation(r, c) = 1;
+    }
+
+    // 2. Angular filter of the minimum elevation.
+    const angular_filter_options af{.radius = opt.angular_radius, .threads = opt.threads};
+    if (opt.angular_on == angular_input::idw_filled) {
+        const auto filled = idw_fill(in.min_z, idw_options{.cell_m = cell_m, .threads = opt.threads});
+        res.angle_deg = angular_filter(filled.filled, cell_m, af);
+    } else {
+        res.angle_deg = angular_filter(in.min_z, cell_m, af);
+    }
+
+    // 3. Seeds.
+    auto seeds = water_seeds(in.dropout, opt.seed_opening_size, opt.min_seed_cells, opt.threads);
+    res.seeds_found = seeds.sizes.empty() ? 0 : seeds.sizes.size() - 1;
+    const auto seed_cells = detail::cells_by_label(seeds.labels, res.seeds_found);
+    res.seeds = std::move(seeds.labels);
+
+    // 4. Growing, largest seed first; cells of accepted bodies are no longer eligible.
+    water_field field;
+    field.angle_deg = res.angle_deg;
+    // NaN in the field means "joins at any threshold"; without that option a dropout is as steep as can be
+    // unless the filter saw an (interpolated) height for it.
+    for (std::ptrdiff_t i = 0; i < field.angle_deg.size(); ++i) {
+        if (!in.dropout(i / cols, i % cols)) continue;
+        float& a = field.angle_deg.data()[i];
+        if (opt.dropouts_join_any_threshold) a = NAN;
+        else if (std::isnan(a)) a = 90.0f;
+    }
+    field.eligible = raster<std::uint8_t>(rows, cols);
+    for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
+    field.intensity_bin = detail::intensity_bins(in, opt.intensity_resolution, field.bins);
+
+    raster<std::int32_t> visited(rows, cols, 0);
+    std::int32_t stamp = 0;
+    struct grown { std::vector<std::ptrdiff_t> cells; std::int32_t seed; double theta; bool ks; };
+    std::vector<grown> bodies;
+    for (std::size_t s = 1; s <= res.seeds_found; ++s) {
+        detail::report(opt.progress, 0.9 * static_cast<double>(s - 1) / static_cast<double>(res.seeds_found), fn);
+        const auto& cells = seed_cells[s];
+        const bool taken = std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return res.labels.data()[i] != 0; });
+        if (taken) continue;
+        auto region = grow_waterbody(field, cells, opt.grow, visited, ++stamp);
+        if (region.cells.empty()) continue;
+        detail::join_level_cells(region.cells, in, field.eligible, visited, ++stamp, opt.level_tolerance_m,
+                                 opt.level_max_rise_m, opt.level_join_depth_cells);
+        const auto label = static_cast<std::int32_t>(bodies.size() + 1);
+        for (const auto i : region.cells) {
+            res.labels.data()[i] = label;
+            field.eligible.data()[i] = 0;
+        }
+        bodies.push_back({std::move(region.cells), static_cast<std::int32_t>(s), region.theta_deg, region.stopped_by_ks});
+        ++res.seeds_grown;
+    }
+
+    // 5. Bridges between bodies at one water level, then small islands.
+    if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
+        std::vector<double> level(bodies.size() + 1, NAN);
+        for (std::size_t b = 0; b < bodies.size(); ++b) level[b + 1] = detail::median_level(bodies[b].cells, in);
+        detail::join_across_bridges(res.labels, in.min_z, level,
+                                    static_cast<int>(std::floor(opt.bridge_max_span_m / cell_m)),
+                                    opt.bridge_level_tolerance_m, opt.bridge_min_clearance_m, opt.level_tolerance_m);
+    }
+    detail::fill_small_islands(res.labels,
+                               static_cast<std::size_t>(std::ceil(opt.island_min_area_m2 / (cell_m * cell_m))));
+
+    // 6. Number bodies by decreasing area and describe them.
+    std::vector<std::size_t> size(bodies.size() + 1, 0);
+    for (const auto l : res.labels) ++size[static_cast<std::size_t>(l)];
+    std::vector<std::int32_t> order;
+    for (std::size_t b = 1; b < size.size(); ++b)
+        if (size[b] > 0) order.push_back(static_cast<std::int32_t>(b));
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)]; });
+    std::vector<std::int32_t> relabel(size.size(), 0);
+    for (std::size_t k = 0; k < order.size(); ++k) relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+    for (auto& l : res.labels) l = relabel[static_cast<std::size_t>(l)];
+
+    res.bodies.resize(order.size());
+    std::vector<std::vector<std::ptrdiff_t>> members(order.size() + 1);
+    for (std::ptrdiff_t i = 0; i < res.labels.size(); ++i) {
+        const auto l = res.labels.data()[i];
+        res.water.data()[i] = l > 0;
+        if (l > 0) members[static_cast<std::size_t>(l)].push_back(i);
+    }
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const auto& src = bodies[static_cast<std::size_t>(order[k] - 1)];
+        auto& b = res.bodies[k];
+        const auto& cells = members[k + 1];
+        b.label = static_cast<std::int32_t>(k + 1);
+        b.cells = cells.size();
+        b.area_m2 = static_cast<double>(b.cells) * cell_m * cell_m;
+        b.seed = src.seed;
+        b.theta_deg = src.theta;
+        b.stopped_by_ks = src.ks;
+        b.row_min = rows;
+        b.col_min = cols;
+        double intensity = 0;
+        std::size_t with_returns = 0;
+        for (const auto i : cells) {
+            const std::ptrdiff_t r = i / cols, c = i % cols;
+            b.row_min = std::min(b.row_min, r);
+            b.row_max = std::max(b.row_max, r);
+            b.col_min = std::min(b.col_min, c);
+            b.col_max = std::max(b.col_max, c);
+            if (!in.dropout(r, c)) {
+                intensity += in.mean_intensity(r, c);
+                ++with_returns;
+            }
+        }
+        b.mean_intensity = with_returns ? intensity / static_cast<double>(with_returns) : NAN;
+        b.dropout_fraction = b.cells ? 1.0 - static_cast<double>(with_returns) / static_cast<double>(b.cells) : 0.0;
+        b.water_level_m = detail::median_level(cells, in);
+    }
+    detail::report(opt.progress, 1.0, fn);
+    return res;
+}
+
+/// Convenience overload on the output of rasterize().
+inline waterbody_result extract_waterbodies(const point_rasters& pr, const waterbody_options& opt = {})
+{
+    return extract_waterbodies(water_rasters{pr.min_z, pr.max_z, pr.mean_intensity, pr.dropout,
+                                             pr.multiple_returns, pr.count},
+                               pr.g.cell, opt);
+}
+
+}  // namespace lidarfx
