@@ -299,9 +299,29 @@ TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cel
     }
 }
 
+TEST_CASE("label/connected_components: the into form writes labels into a caller's strided raster")
+{
+    std::mt19937 rng(59);
+    const auto m = reference::random_mask(rng, 300, 77, 0.5);
+    raster<std::int32_t> big(302, 90, -7);
+    const auto window = big.view().window(1, 5, 300, 77);
+    const auto sizes = connected_components(m, window, {.conn = connectivity::four, .threads = 2});
+    const auto expected = reference::flood_label(m, connectivity::four);
+    CHECK(sizes == expected.sizes);
+    CHECK(raster<std::int32_t>(window) == expected.labels);
+    CHECK(big(0, 0) == -7);  // cells outside the window are untouched
+    CHECK(big(301, 89) == -7);
+    CHECK(big(1, 4) == -7);
+    CHECK(big(1, 82) == -7);
+}
+
 TEST_CASE("label/connected_components: bad input throws invalid_input naming the argument")
 {
     const reference::mask m(3, 3, 1);
     CHECK_THROWS_WITH_AS(connected_components(m, components_options{.threads = -2}),
                          "connected_components: threads must be >= 0 (got -2)", invalid_input);
+    raster<std::int32_t> labels(2, 3);
+    CHECK_THROWS_WITH_AS(connected_components(m, labels),
+                         "connected_components: m and labels must have the same shape (got 3x3 and 2x3)",
+                         invalid_input);
 }

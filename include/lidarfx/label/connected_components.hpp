@@ -59,7 +59,7 @@ struct label_run {
 /// Union-find forest: parent < node for non-roots, so the root of a set is its first node.
 struct label_forest {
     std::vector<std::int32_t> parent;
-    std::vector<std::size_t> cells;  // cells of the runs attached to each node when it was created
+    std::vector<std::size_t> cells;  // cells of the runs that the first pass gave each node
 };
 
 /// A band of rows labelled on its own: the rows packed to bits, and the band's forest.
@@ -364,8 +364,8 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
 /// above (bands of rows in parallel, then joined along their edges), provisional labels are written,
 /// and a second pass maps them to final labels. Identical for any thread count.
 /// O(rows * cols) time; O(number of runs) extra memory.
-/// @throws invalid_input if the shapes differ, threads < 0, or the mask has more runs than int32
-/// labels can number.
+/// @throws invalid_input if the shapes differ, threads < 0, m is wider than 2^24 columns, or the mask
+/// has more runs than int32 labels can number.
 template <raster_input In, class Out>
     requires raster_output_of<Out, std::int32_t>
 std::vector<std::size_t> connected_components(const In& m, Out&& labels, const components_options& opt = {})
@@ -374,8 +374,8 @@ std::vector<std::size_t> connected_components(const In& m, Out&& labels, const c
     constexpr const char* function = "connected_components";
     detail::resolve_threads(opt.threads, function);
     detail::require_same_shape(m, labels, function, "m", "labels");
-    detail::require(m.cols() < std::numeric_limits<std::int32_t>::max(), function, "m",
-                    "narrower than 2^31 - 1 columns", m.cols());
+    // Run nodes of a band of 256 rows are numbered in int32.
+    detail::require(m.cols() <= (std::ptrdiff_t{1} << 24), function, "m", "at most 2^24 columns wide", m.cols());
     const detail::readable<In> in(m);
     std::vector<std::size_t> sizes;
     detail::write_through<std::int32_t>(std::forward<Out>(labels), [&](raster_view<std::int32_t> out) {
