@@ -81,29 +81,40 @@ inline std::int32_t find_root(std::int32_t* parent, std::int32_t node) noexcept
     return node;
 }
 
-/// Replaces `runs` by the runs of a packed row (bits past the last column are 0), with node -1.
-inline void extract_runs(const mask_word* bits, std::ptrdiff_t words, std::vector<label_run>& runs)
-{
-    // A set bit of x ^ (x << 1 | carry) marks a change between a cell and its left neighbour: the
-    // changes alternate run begin, run end.
-    runs.clear();
-    mask_word carry = 0;
-    std::int32_t begin = 0;
-    bool inside = false;
-    for (std::ptrdiff_t w = 0; w < words; ++w) {
-        const mask_word x = bits[w];
-        mask_word edges = x ^ ((x << 1) | carry);
-        carry = x >> 63;
-        while (edges != 0) {
-            const auto at = static_cast<std::int32_t>(w * 64 + std::countr_zero(edges));
-            edges &= edges - 1;
-            if (inside) runs.push_back({begin, at, -1});
-            else begin = at;
-            inside = !inside;
+/// Reads the runs of packed rows (bits past the last column are 0) into label_run lists, node -1.
+class run_reader {
+public:
+    void read(const mask_word* bits, std::ptrdiff_t words, std::vector<label_run>& runs)
+    {
+        // A set bit of x ^ (x << 1 | carry) marks a change between a cell and its left neighbour; the
+        // changes alternate run begin, run end. Positions are written 4 at a time without testing
+        // whether each exists (simdjson's flatten_bits), so sparse words cost no mispredicted exits.
+        edges_.resize(static_cast<std::size_t>(words * 64 + 5));
+        std::int32_t* out = edges_.data();
+        std::ptrdiff_t n = 0;
+        mask_word carry = 0;
+        for (std::ptrdiff_t w = 0; w < words; ++w) {
+            const mask_word x = bits[w];
+            mask_word e = x ^ ((x << 1) | carry);
+            carry = x >> 63;
+            const int count = std::popcount(e);
+            const auto base = static_cast<std::int32_t>(w * 64);
+            for (int k = 0; k < count; k += 4) {
+                for (int j = 0; j < 4; ++j) {
+                    out[n + k + j] = base + std::countr_zero(e);  // 64 past the last edge: overwritten later
+                    e &= e - 1;
+                }
+            }
+            n += count;
         }
+        if (n % 2 != 0) out[n++] = static_cast<std::int32_t>(words * 64);  // a run reaching the last word's end
+        runs.resize(static_cast<std::size_t>(n / 2));
+        for (std::size_t i = 0; i < runs.size(); ++i) runs[i] = {out[2 * i], out[2 * i + 1], -1};
     }
-    if (inside) runs.push_back({begin, static_cast<std::int32_t>(words * 64), -1});
-}
+
+private:
+    std::vector<std::int32_t> edges_;
+};
 
 /// Number of runs in a packed row: half its edges, rounded up (a run may end at the last column).
 inline std::size_t count_runs(const mask_word* bits, std::ptrdiff_t words) noexcept
@@ -240,9 +251,9 @@ void write_label_row(const std::vector<label_run>& runs, Value value, std::int32
 /// row's runs are stored in order at the start of its own row of labels (a row of n cells has at most
 /// (n + 1) / 2 runs): memory the output needs anyway, written and read sequentially.
 inline void band_row_runs(const label_band_state& band, std::ptrdiff_t r0, std::ptrdiff_t r, std::ptrdiff_t words,
-                          raster_view<std::int32_t> labels, std::vector<label_run>& runs)
+                          raster_view<std::int32_t> labels, run_reader& reader, std::vector<label_run>& runs)
 {
-    extract_runs(band.bits.data() + (r - r0) * words, words, runs);
+    reader.read(band.bits.data() + (r - r0) * words, words, runs);
     const std::int32_t* node = labels.row(r);
     for (std::size_t i = 0; i < runs.size(); ++i) runs[i].node = node[i];
 }
@@ -267,10 +278,11 @@ void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, st
     prev.reserve(static_cast<std::size_t>(cols / 2 + 1));
     cur.reserve(static_cast<std::size_t>(cols / 2 + 1));
     run_ranks prev_ranks, cur_ranks;
+    run_reader reader;
     prev_ranks.build(std::vector<mask_word>(static_cast<std::size_t>(words), 0).data(), words);  // no row above
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
         const mask_word* bits = band.bits.data() + (r - r0) * words;
-        extract_runs(bits, words, cur);
+        reader.read(bits, words, cur);
         link_new_row(prev, prev_ranks, cur, reach, band.forest);
         std::int32_t* node = labels.row(r);
         for (std::size_t i = 0; i < cur.size(); ++i) node[i] = cur[i].node;
@@ -316,10 +328,11 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
         forest = {};
     }
     std::vector<label_run> above, below;
+    run_reader edge_reader;
     for (std::size_t b = 1; b < bands.size(); ++b) {
         const std::ptrdiff_t r = static_cast<std::ptrdiff_t>(b) * band_rows;
-        band_row_runs(bands[b - 1], r - band_rows, r - 1, words, labels, above);
-        band_row_runs(bands[b], r, r, words, labels, below);
+        band_row_runs(bands[b - 1], r - band_rows, r - 1, words, labels, edge_reader, above);
+        band_row_runs(bands[b], r, r, words, labels, edge_reader, below);
         for (auto& run : above) run.node += static_cast<std::int32_t>(offset[b - 1]);
         for (auto& run : below) run.node += static_cast<std::int32_t>(offset[b]);
         link_rows(above, below, reach, all);
@@ -346,8 +359,9 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
         const std::int32_t* table = final_label.data() + offset[b] + 1;
         std::vector<label_run> runs;
         runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
+        run_reader reader;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            band_row_runs(bands[b], r0, r, words, labels, runs);
+            band_row_runs(bands[b], r0, r, words, labels, reader, runs);
             write_label_row(runs, [table](const label_run& run) { return table[run.node]; },
                             static_cast<std::int32_t>(cols), labels.row(r));
         }
