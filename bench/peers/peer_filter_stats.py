@@ -117,8 +117,14 @@ def main():
     peers["ks_float"] = (peerlib.best_time(lambda: stats.ks_2samp(prev_f, cur_f, alternative="greater"), repeat=3),
                          "scipy ks_2samp (float32)")
 
-    ours = peerlib.run_gbench("bench_filter", "bm_angular_filter/|bm_slope_aspect/")
-    ours.update(peerlib.run_gbench("bench_stats", "bm_ks_uint16|bm_ks_float"))
+    # Best of three runs, as the peers are timed best of several: on a shared machine both sides then
+    # report their quietest moment.
+    ours = {}
+    for _ in range(3):
+        for binary, selection in (("bench_filter", "bm_angular_filter/|bm_slope_aspect/"),
+                                  ("bench_stats", "bm_ks_uint16|bm_ks_float")):
+            for name, seconds in peerlib.run_gbench(binary, selection).items():
+                ours[name] = min(seconds, ours.get(name, seconds))
 
     rows = []
     for n in SIDES:

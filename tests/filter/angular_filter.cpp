@@ -91,6 +91,8 @@ TEST_CASE("filter/angular_filter: hand-checked small rasters")
         CHECK(a(0, 2) == doctest::Approx(deg(std::atan(2.0))).epsilon(1e-6));
         CHECK(a(0, 1) == doctest::Approx(0.0));  // column 4 lies 3 cells away, outside radius 2
         CHECK(angular_filter(z, 1.0, 3)(0, 1) == doctest::Approx(deg(std::atan(4.0 / 3.0))).epsilon(1e-6));
+        // A window far wider than the raster sees the same cells as one just covering it.
+        CHECK(angular_filter(z, 1.0, 1'000'000'000) == angular_filter(z, 1.0, 4));
     }
     SUBCASE("NaN neighbours are skipped, a NaN centre gives NaN, no valid neighbour gives 0")
     {

@@ -49,7 +49,8 @@ inline float atan_deg(float x) noexcept
     return above ? 90.0f - a : a;
 }
 
-/// True if the cells of two strided views share any byte of memory (an into form must not write its input).
+/// True if the memory spans of two views (first to last cell) intersect: an into form must not write its input.
+/// Conservative: interleaved windows of one buffer (side by side, sharing rows) count as overlapping.
 template <class A, class B>
 bool overlaps(raster_view<A> a, raster_view<B> b) noexcept
 {
@@ -203,8 +204,10 @@ void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_
     detail::with_float_view(z, [&](raster_view<const float> zv) {
         detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
             detail::require(!detail::overlaps(zv, o), "angular_filter", "out must not overlap z");
+            // No neighbour lies further than the raster's extent: a larger radius changes nothing but the cost.
+            const int radius = static_cast<int>(std::min<std::ptrdiff_t>(opt.radius, std::max(zv.rows(), zv.cols())));
             parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                detail::angular_filter_rows(zv, o, cell_m, opt.radius, r0, r1);
+                detail::angular_filter_rows(zv, o, cell_m, radius, r0, r1);
             }, {}, "angular_filter");
         });
     });
