@@ -343,8 +343,8 @@ inline scene river_scene(const scene_options& options = {})
 }
 
 /// Town scene: gently undulating ground (about 2 m of relief) with a grid of 10 m roads every ~160 m,
-/// 20-40 buildings per 640 m x 640 m (scaled by area) on rectangular footprints 8-16 m wide and up to
-/// 32 m long, rotated by multiples of 15 degrees or by arbitrary angles, with flat (20 %), shed (20 %),
+/// 20-40 buildings per 640 m x 640 m (scaled by area) along the streets, on rectangular footprints 8-16 m
+/// wide and up to 32 m long, rotated by multiples of 15 degrees or by arbitrary angles, with flat (20 %), shed (20 %),
 /// gable (35 %) and hip (25 %) roofs, walls 3-15 m high, roof intensity 30-120; trees next to some
 /// buildings and a few in the open. Truth: building_id, roof_plane_id, footprints, roof_planes (tilt,
 /// facing azimuth clockwise from north, sloped area). See docs/synthetic-scenes.md.
@@ -376,13 +376,16 @@ inline scene town_scene(const scene_options& options = {})
     };
 
     const auto target = static_cast<int>(std::lround((20 + random.between(0, 20)) * (S / 640.0) * (S / 640.0)));
+    const auto first_kind = static_cast<std::size_t>(random.below(4));
     for (int attempt = 0; attempt < 400 * std::max(1, target) && static_cast<int>(w.buildings.size()) < target;
          ++attempt) {
         building b;
         b.width_m = random.uniform(8.0, 16.0);
         b.length_m = std::min(32.0, b.width_m * random.uniform(1.0, 2.0));
         b.axis_azimuth_deg = random.chance(0.5) ? 15.0 * random.between(0, 11) : random.uniform(0.0, 180.0);
-        const double kind = random.uniform();
+        // The first four buildings take one roof kind each (in a random order), so every town has all four.
+        const double kind = w.buildings.size() < 4 ? (static_cast<double>((first_kind + w.buildings.size()) % 4) + 0.5) / 4.0
+                                                   : random.uniform();
         b.kind = kind < 0.2 ? roof_kind::flat : kind < 0.4 ? roof_kind::shed : kind < 0.75 ? roof_kind::gable : roof_kind::hip;
         b.tilt_deg = b.kind == roof_kind::flat ? 0.0
                      : b.kind == roof_kind::shed ? random.uniform(5.0, 25.0)
@@ -391,10 +394,14 @@ inline scene town_scene(const scene_options& options = {})
         b.shed_facing = random.between(0, 3);
         const double wall = b.kind == roof_kind::flat ? random.uniform(3.0, 15.0) : random.uniform(3.0, 9.0);
         b.intensity = random.uniform(40.0, 110.0);
+        // Houses front onto the streets: set back 4-12 m from the edge of a random road.
         const double r = b.bounding_radius();
-        if (S <= 2 * r + 8) continue;
-        b.x = random.uniform(r + 4, S - r - 4);
-        b.y = random.uniform(r + 4, S - r - 4);
+        const auto& street = site.roads[static_cast<std::size_t>(random.below(site.roads.size()))];
+        const double setback = 0.5 * street.width_m + 4.0 + r + random.uniform(0.0, 8.0);
+        const auto spot = street.world(random.uniform(-0.5 * S, 0.5 * S), random.chance(0.5) ? setback : -setback);
+        b.x = spot[0];
+        b.y = spot[1];
+        if (b.x < r + 4 || b.y < r + 4 || b.x > S - r - 4 || b.y > S - r - 4) continue;
         if (road_clearance(b.x, b.y) < r + 4) continue;
         const bool clear = std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building& o) {
             return std::hypot(o.x - b.x, o.y - b.y) > o.bounding_radius() + r + 4;
