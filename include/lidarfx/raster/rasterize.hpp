@@ -160,29 +160,8 @@ public:
     /// The rasters of every point added so far (the accumulator is unchanged). O(cells).
     point_rasters finish() const
     {
-        const auto rows = g_.rows, cols = g_.cols;
-        constexpr float nan = std::numeric_limits<float>::quiet_NaN();
-        point_rasters out{g_,
-                          raster<float>(rows, cols, nan),
-                          raster<float>(rows, cols, nan),
-                          raster<float>(rows, cols, 0.0f),
-                          raster<std::uint32_t>(rows, cols, 0u),
-                          raster<std::uint8_t>(rows, cols, 1),
-                          raster<std::uint8_t>(rows, cols, 0),
-                          points_used_,
-                          points_outside_,
-                          points_nan_};
-        for (std::size_t i = 0; i < cells_.size(); ++i) {
-            const detail::cell_stats& s = cells_[i];
-            if (s.count == 0) continue;
-            const double sum = static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
-            out.min_z.data()[i] = s.min_z;
-            out.max_z.data()[i] = s.max_z;
-            out.mean_intensity.data()[i] = static_cast<float>(sum / static_cast<double>(s.count));
-            out.count.data()[i] = s.count;
-            out.dropout.data()[i] = 0;
-            out.multiple_returns.data()[i] = static_cast<std::uint8_t>(s.multiple);
-        }
+        point_rasters out = unfinished();
+        finish_rows(out, 0, g_.rows);
         return out;
     }
 
@@ -204,6 +183,40 @@ private:
         points_used_ += other.points_used_;
         points_outside_ += other.points_outside_;
         points_nan_ += other.points_nan_;
+    }
+
+    /// The result with its counters set and rasters allocated; finish_rows fills them.
+    point_rasters unfinished() const
+    {
+        const auto rows = g_.rows, cols = g_.cols;
+        return {g_,
+                raster<float>(rows, cols),
+                raster<float>(rows, cols),
+                raster<float>(rows, cols),
+                raster<std::uint32_t>(rows, cols),
+                raster<std::uint8_t>(rows, cols),
+                raster<std::uint8_t>(rows, cols),
+                points_used_,
+                points_outside_,
+                points_nan_};
+    }
+
+    /// Writes every cell of rows [r0, r1) of `out` (branch-free: empty cells get NaN, 0 and dropout 1).
+    void finish_rows(point_rasters& out, std::ptrdiff_t r0, std::ptrdiff_t r1) const
+    {
+        constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+        const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
+        for (std::size_t i = begin; i < end; ++i) {
+            const detail::cell_stats& s = cells_[i];
+            const bool any = s.count != 0;
+            const double sum = static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
+            out.min_z.data()[i] = any ? s.min_z : nan;
+            out.max_z.data()[i] = any ? s.max_z : nan;
+            out.mean_intensity.data()[i] = any ? static_cast<float>(sum / static_cast<double>(s.count)) : 0.0f;
+            out.count.data()[i] = s.count;
+            out.dropout.data()[i] = static_cast<std::uint8_t>(!any);
+            out.multiple_returns.data()[i] = static_cast<std::uint8_t>(s.multiple);
+        }
     }
 
     /// Folds the cell statistics of rows [r0, r1) of `other` into this one (point counters untouched).
@@ -238,6 +251,11 @@ struct accumulator_access {
     static void merge_counters(raster_accumulator& into, const raster_accumulator& from)
     {
         into.merge_counters(from);
+    }
+    static point_rasters unfinished(const raster_accumulator& acc) { return acc.unfinished(); }
+    static void finish_rows(const raster_accumulator& acc, point_rasters& out, std::ptrdiff_t r0, std::ptrdiff_t r1)
+    {
+        acc.finish_rows(out, r0, r1);
     }
 };
 
@@ -300,14 +318,17 @@ point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& 
         }
     }, {}, function);
 
-    // Merge cell rows in parallel: each row band folds every part in worker order.
+    // Merge and finish by row bands in parallel: each band folds every part in worker order.
+    using access = detail::accumulator_access;
+    for (const auto& part : parts) access::merge_counters(total, part);
+    point_rasters out = access::unfinished(total);
     const std::ptrdiff_t band = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
     parallel_for_rows(g.rows, band, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        for (const auto& part : parts) detail::accumulator_access::merge_rows(total, part, r0, r1);
+        for (const auto& part : parts) access::merge_rows(total, part, r0, r1);
+        access::finish_rows(total, out, r0, r1);
     }, {}, function);
-    for (const auto& part : parts) detail::accumulator_access::merge_counters(total, part);
     detail::report(opt.progress, 1.0, function);
-    return total.finish();
+    return out;
 }
 
 /// Bounding box of the points of `cloud` whose x, y and z are all finite (others are ignored); pass it to
