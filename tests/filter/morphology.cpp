@@ -255,6 +255,11 @@ TEST_CASE("filter/morph_open: the output may be the input; other value types and
     const auto expected = morph_open(m, 5);
     morph_open(m, m, {.size = 5});
     CHECK(m == expected);
+    // Tall enough for several strips of rows, each reading rows of the next: in place still works.
+    auto tall = reference::random_mask(rng, 700, 40, 0.5);
+    const auto tall_expected = morph_close(tall, morph_options{.size = 7, .height = 9});
+    morph_close(tall, tall.view(), {.size = 7, .height = 9, .threads = 2});
+    CHECK(tall == tall_expected);
 
     raster<float> f(70, 90);
     for (std::ptrdiff_t r = 0; r < 70; ++r)

@@ -34,7 +34,6 @@ struct morph_options {
 namespace detail {
 
 using mask_word = std::uint64_t;
-inline constexpr std::ptrdiff_t mask_word_bits = 64;
 
 /// Number of 64-bit words holding `cols` bits.
 constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept { return (cols + 63) / 64; }
