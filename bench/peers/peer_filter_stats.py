@@ -9,9 +9,15 @@ Writes terrain1024.raw, terrain4096.raw (float32) and ks_prev.raw, ks_cur.raw (1
 LIDARFX_BENCH_INPUT_DIR (a temporary folder if unset), times the peers, runs bench_filter and bench_stats on the
 same files (LIDARFX_BENCH_BUILD selects the folder holding them), and prints times, ratios and Mcells/s.
 Targets: angular_filter >= 20x the fastest NumPy version on one thread, ks_one_sided >= 20x scipy.
+
+With --cpu, both sides are timed in CPU time of the process instead of wall time, and only single-thread
+cases are compared: on a machine shared with other work, wall times mostly measure the scheduler.
 """
+import json
 import os
+import subprocess
 import sys
+import time
 
 import numpy as np
 from scipy import stats
@@ -88,7 +94,33 @@ def slope_aspect_numpy(z, cell=CELL_M):
     return slope, aspect
 
 
+def best_cpu_time(fn, repeat=5, warmup=1):
+    """Like peerlib.best_time, in CPU time of this process (NumPy runs these calls on one thread)."""
+    for _ in range(warmup):
+        fn()
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.process_time()
+        fn()
+        best = min(best, time.process_time() - t0)
+    return best
+
+
+def gbench_cpu_times(binary, selection):
+    """{benchmark name: CPU seconds per iteration} of a lidarfx benchmark binary (peerlib.run_gbench reports
+    wall time only)."""
+    exe = os.path.join(peerlib.BUILD_DIR, binary)
+    out = subprocess.run([exe, f"--benchmark_filter={selection}", "--benchmark_format=json",
+                          "--benchmark_min_time=0.5"], check=True, capture_output=True, text=True).stdout
+    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    return {b["name"]: b["cpu_time"] * scale[b["time_unit"]] for b in json.loads(out)["benchmarks"]}
+
+
 def main():
+    cpu = "--cpu" in sys.argv[1:]
+    timer = best_cpu_time if cpu else peerlib.best_time
+    run = gbench_cpu_times if cpu else peerlib.run_gbench
+    print("CPU time, single-thread cases only" if cpu else "wall time")
     rng = np.random.default_rng(42)
     build = peerlib.BUILD_DIR
     print(f"inputs in {peerlib.input_dir()}, lidarfx benchmarks from {os.path.abspath(build)}")
@@ -107,14 +139,13 @@ def main():
     peers = {}
     for n, z in surfaces.items():
         repeat = 5 if n <= 1024 else 3
-        shifted = peerlib.best_time(lambda: angular_shifted(z), repeat=repeat)
-        pairs = peerlib.best_time(lambda: angular_pairs(z), repeat=repeat)
+        shifted = timer(lambda: angular_shifted(z), repeat=repeat)
+        pairs = timer(lambda: angular_pairs(z), repeat=repeat)
         peers[("angular", n)] = min((shifted, "NumPy 24 shifted arrays"), (pairs, "NumPy 12 shared pairs"))
-        peers[("slope", n)] = (peerlib.best_time(lambda: slope_aspect_numpy(z), repeat=repeat), "NumPy gradient")
-    peers["ks"] = (peerlib.best_time(lambda: stats.ks_2samp(prev, cur, alternative="greater"), repeat=3),
-                   "scipy ks_2samp")
+        peers[("slope", n)] = (timer(lambda: slope_aspect_numpy(z), repeat=repeat), "NumPy gradient")
+    peers["ks"] = (timer(lambda: stats.ks_2samp(prev, cur, alternative="greater"), repeat=3), "scipy ks_2samp")
     prev_f, cur_f = prev.astype(np.float32), cur.astype(np.float32)
-    peers["ks_float"] = (peerlib.best_time(lambda: stats.ks_2samp(prev_f, cur_f, alternative="greater"), repeat=3),
+    peers["ks_float"] = (timer(lambda: stats.ks_2samp(prev_f, cur_f, alternative="greater"), repeat=3),
                          "scipy ks_2samp (float32)")
 
     # Best of three runs, as the peers are timed best of several: on a shared machine both sides then
@@ -123,17 +154,18 @@ def main():
     for _ in range(3):
         for binary, selection in (("bench_filter", "bm_angular_filter/|bm_slope_aspect/"),
                                   ("bench_stats", "bm_ks_uint16|bm_ks_float")):
-            for name, seconds in peerlib.run_gbench(binary, selection).items():
+            for name, seconds in run(binary, selection).items():
                 ours[name] = min(seconds, ours.get(name, seconds))
 
     rows = []
     for n in SIDES:
-        for threads, label in ((1, "1 thread"), (0, "all cores")):
+        threads_cases = ((1, "1 thread"),) if cpu else ((1, "1 thread"), (0, "all cores"))
+        for threads, label in threads_cases:
             t, name = peers[("angular", n)]
             target = 20 if threads == 1 else None
             rows.append((f"angular_filter r=2 {n}x{n}, {label}", ours[f"bm_angular_filter/n:{n}/threads:{threads}/real_time"],
                          name, t, target))
-        for threads, label in ((1, "1 thread"), (0, "all cores")):
+        for threads, label in threads_cases:
             t, name = peers[("slope", n)]
             rows.append((f"slope_aspect {n}x{n}, {label}", ours[f"bm_slope_aspect/n:{n}/threads:{threads}/real_time"],
                          name, t, None))
@@ -146,7 +178,7 @@ def main():
     print()
     print(f"{'lidarfx throughput':58s} {'Mcells/s':>11s}")
     for name, seconds in ours.items():
-        if name.startswith("bm_ks"):
+        if name.startswith("bm_ks") or (cpu and "threads:0" in name):
             continue
         n = int(name.split("/n:")[1].split("/")[0])
         print(f"{name:58s} {n * n / seconds / 1e6:11.0f}")
