@@ -82,6 +82,16 @@ TEST_CASE("stats/ks_one_sided: matches the direct supremum over the empirical CD
         const auto pi = random_sample<int>(rng, n, -1000, 1000);
         const auto cd = random_sample<double>(rng, m, -1000, 1000 + 100 * shift);
         CHECK(std::fabs(ks_one_sided(pi, cd).d - reference::ks_statistic(pi, cd)) <= d_tolerance);
+
+        // 32-bit integers (radix-sorted keys) and doubles (std::sort), many ties
+        const auto p32 = random_sample<std::int32_t>(rng, n, -50, 50);
+        const auto c32 = random_sample<std::int32_t>(rng, m, -50 + 10 * shift, 50);
+        CHECK(std::fabs(ks_one_sided(p32, c32).d - reference::ks_statistic(p32, c32)) <= d_tolerance);
+        const auto pu32 = random_sample<std::uint32_t>(rng, n, 0, 4e9);
+        const auto cu32 = random_sample<std::uint32_t>(rng, m, 1e8 * shift + 2e8, 4e9);
+        CHECK(std::fabs(ks_one_sided(pu32, cu32).d - reference::ks_statistic(pu32, cu32)) <= d_tolerance);
+        const auto pdd = random_sample<double>(rng, n, -3, 3), cdd = random_sample<double>(rng, m, -3 + shift, 3);
+        CHECK(std::fabs(ks_one_sided(pdd, cdd).d - reference::ks_statistic(pdd, cdd)) <= d_tolerance);
     }
 }
 
@@ -112,6 +122,17 @@ TEST_CASE("stats/ks_one_sided: identical, shifted and disjoint samples")
     CHECK(ks_one_sided(p, c).d == d);
     for (auto& v : c) v += 20;
     CHECK(ks_one_sided(p, c).d > d);
+}
+
+TEST_CASE("stats/ks_one_sided: floats order through negatives, both zeros and infinities")
+{
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<float> previous = {-inf, -2.5f, -0.0f, 1e-30f, 3.0f, inf};
+    const std::vector<float> current = {-1e30f, 0.0f, -0.0f, 0.0f, 2.0f, 7.0f, inf};
+    CHECK(ks_one_sided(previous, current).d == reference::ks_statistic(previous, current));
+    // -0 and +0 are one value: samples differing only in the sign of zero are identical.
+    CHECK(ks_one_sided(std::vector<float>{-0.0f, 1.0f}, std::vector<float>{0.0f, 1.0f}).d == 0.0);
+    CHECK(ks_one_sided(std::vector<float>{0.0f, 1.0f}, std::vector<float>{-0.0f, 1.0f}).d == 0.0);
 }
 
 TEST_CASE("stats/ks_one_sided: critical values, p-value and rejection")
