@@ -43,8 +43,10 @@ void bm_morph(benchmark::State& state)
     const lidarfx::morph_options opt{.size = static_cast<int>(state.range(1)),
                                      .threads = static_cast<int>(state.range(2))};
     for (auto _ : state) {
-        if constexpr (Open) lidarfx::morph_open(in, out, opt);
-        else lidarfx::morph_close(in, out, opt);
+        if constexpr (Open)
+            lidarfx::morph_open(in, out, opt);
+        else
+            lidarfx::morph_close(in, out, opt);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
     }
@@ -52,8 +54,14 @@ void bm_morph(benchmark::State& state)
     state.counters["ones"] = ones(out);
 }
 
-void bm_morph_open(benchmark::State& state) { bm_morph<true>(state); }
-void bm_morph_close(benchmark::State& state) { bm_morph<false>(state); }
+void bm_morph_open(benchmark::State& state)
+{
+    bm_morph<true>(state);
+}
+void bm_morph_close(benchmark::State& state)
+{
+    bm_morph<false>(state);
+}
 
 /// Baseline: the brute-force window min/max of the tests (cost grows with size squared).
 void bm_morph_open_naive(benchmark::State& state)

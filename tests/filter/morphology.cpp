@@ -21,10 +21,14 @@ constexpr std::array<op, 4> all_ops{op::dilate, op::erode, op::open, op::close};
 const char* name(op o)
 {
     switch (o) {
-    case op::dilate: return "dilate";
-    case op::erode: return "erode";
-    case op::open: return "open";
-    default: return "close";
+        case op::dilate:
+            return "dilate";
+        case op::erode:
+            return "erode";
+        case op::open:
+            return "open";
+        default:
+            return "close";
     }
 }
 
@@ -32,10 +36,14 @@ template <class In>
 raster<std::uint8_t> run(op o, const In& m, const morph_options& opt)
 {
     switch (o) {
-    case op::dilate: return morph_dilate(m, opt);
-    case op::erode: return morph_erode(m, opt);
-    case op::open: return morph_open(m, opt);
-    default: return morph_close(m, opt);
+        case op::dilate:
+            return morph_dilate(m, opt);
+        case op::erode:
+            return morph_erode(m, opt);
+        case op::open:
+            return morph_open(m, opt);
+        default:
+            return morph_close(m, opt);
     }
 }
 
@@ -44,10 +52,14 @@ reference::mask brute(op o, const View& m, const morph_options& opt)
 {
     const int h = opt.height == 0 ? opt.size : opt.height;
     switch (o) {
-    case op::dilate: return reference::dilate(m, opt.size, h);
-    case op::erode: return reference::erode(m, opt.size, h);
-    case op::open: return reference::open(m, opt.size, h);
-    default: return reference::close(m, opt.size, h);
+        case op::dilate:
+            return reference::dilate(m, opt.size, h);
+        case op::erode:
+            return reference::erode(m, opt.size, h);
+        case op::open:
+            return reference::open(m, opt.size, h);
+        default:
+            return reference::close(m, opt.size, h);
     }
 }
 
@@ -129,7 +141,7 @@ TEST_CASE("filter/morphology: all four operations match the brute-force window m
         std::ptrdiff_t rows, cols;
     };
     const std::vector<shape> shapes{{1, 1}, {1, 200}, {150, 1}, {7, 13}, {65, 64}, {64, 65}, {63, 127}, {257, 131}};
-    const std::vector<std::array<int, 2>> elements{{1, 0}, {3, 0}, {5, 0}, {7, 0}, {25, 0},
+    const std::vector<std::array<int, 2>> elements{{1, 0}, {3, 0},  {5, 0},  {7, 0},   {25, 0},
                                                    {3, 7}, {25, 1}, {1, 25}, {131, 3}, {5, 151}};
     int trial = 0;
     for (const auto& s : shapes) {
@@ -140,8 +152,8 @@ TEST_CASE("filter/morphology: all four operations match the brute-force window m
                 if (s.rows * s.cols > 10000 && (trial++ % 4) != 0) continue;
                 const morph_options opt{.size = e[0], .height = e[1]};
                 for (op o : all_ops) {
-                    INFO(name(o) << " " << s.rows << "x" << s.cols << " density " << density << " size "
-                                 << e[0] << " height " << e[1]);
+                    INFO(name(o) << " " << s.rows << "x" << s.cols << " density " << density << " size " << e[0]
+                                 << " height " << e[1]);
                     CHECK(run(o, m, opt) == brute(o, m, opt));
                 }
             }
@@ -285,8 +297,10 @@ TEST_CASE("filter/morphology: bit packing, SIMD and portable, keeps every cell")
         std::vector<detail::mask_word> bits(static_cast<std::size_t>(detail::mask_words(cols)));
         detail::pack_mask_row(cells.data(), cols, bits.data());
         for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(((bits[c / 64] >> (c % 64)) & 1U) == (cells[c] != 0 ? 1U : 0U));
-        for (std::ptrdiff_t c = cols; c < 64 * detail::mask_words(cols); ++c) CHECK(((bits[c / 64] >> (c % 64)) & 1U) == 0U);
-        for (std::ptrdiff_t c = 0; c + 64 <= cols; c += 64) CHECK(detail::pack64_portable(cells.data() + c) == bits[c / 64]);
+        for (std::ptrdiff_t c = cols; c < 64 * detail::mask_words(cols); ++c)
+            CHECK(((bits[c / 64] >> (c % 64)) & 1U) == 0U);
+        for (std::ptrdiff_t c = 0; c + 64 <= cols; c += 64)
+            CHECK(detail::pack64_portable(cells.data() + c) == bits[c / 64]);
         std::vector<std::uint8_t> back(static_cast<std::size_t>(cols));
         detail::unpack_mask_row(bits.data(), cols, back.data());
         for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(back[c] == (cells[c] != 0 ? 1 : 0));

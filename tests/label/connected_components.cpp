@@ -19,7 +19,10 @@ namespace {
 
 constexpr std::array<connectivity, 2> both{connectivity::four, connectivity::eight};
 
-const char* name(connectivity c) { return c == connectivity::eight ? "eight" : "four"; }
+const char* name(connectivity c)
+{
+    return c == connectivity::eight ? "eight" : "four";
+}
 
 void check_equal(const components& got, const components& expected)
 {
@@ -45,24 +48,16 @@ raster<std::int32_t> labels_from_rows(const std::vector<std::vector<int>>& rows)
 
 }  // namespace
 
+// clang-format off: the small rasters below are laid out as grids
 TEST_CASE("label/connected_components: hand-checked labels in raster order of first cells")
 {
-    const auto m = from_rows({{0, 0, 1, 0, 1},
-                              {1, 0, 0, 1, 0},
-                              {1, 0, 0, 0, 0},
-                              {0, 1, 1, 0, 7}});
+    const auto m = from_rows({{0, 0, 1, 0, 1}, {1, 0, 0, 1, 0}, {1, 0, 0, 0, 0}, {0, 1, 1, 0, 7}});
     const auto four = connected_components(m, connectivity::four);
-    CHECK(four.labels == labels_from_rows({{0, 0, 1, 0, 2},
-                                           {3, 0, 0, 4, 0},
-                                           {3, 0, 0, 0, 0},
-                                           {0, 5, 5, 0, 6}}));
+    CHECK(four.labels == labels_from_rows({{0, 0, 1, 0, 2}, {3, 0, 0, 4, 0}, {3, 0, 0, 0, 0}, {0, 5, 5, 0, 6}}));
     CHECK(four.sizes == std::vector<std::size_t>{12, 1, 1, 2, 1, 2, 1});
     CHECK(four.count() == 6);
     const auto eight = connected_components(m);
-    CHECK(eight.labels == labels_from_rows({{0, 0, 1, 0, 1},
-                                            {2, 0, 0, 1, 0},
-                                            {2, 0, 0, 0, 0},
-                                            {0, 2, 2, 0, 3}}));
+    CHECK(eight.labels == labels_from_rows({{0, 0, 1, 0, 1}, {2, 0, 0, 1, 0}, {2, 0, 0, 0, 0}, {0, 2, 2, 0, 3}}));
     CHECK(eight.sizes == std::vector<std::size_t>{12, 3, 4, 1});
 
     // A U shape: its arms meet only at the bottom, so two provisional sets merge late.
@@ -75,13 +70,14 @@ TEST_CASE("label/connected_components: hand-checked labels in raster order of fi
     CHECK(empty.sizes == std::vector<std::size_t>{0});
     CHECK(connected_components(reference::mask(1, 1, 3)).sizes == std::vector<std::size_t>{0, 1});
 }
+// clang-format on
 
 TEST_CASE("label/connected_components: matches a BFS flood fill on random masks")
 {
     const unsigned seed = 424242;
     std::mt19937 rng(seed);
     INFO("seed " << seed);
-    const std::vector<std::array<std::ptrdiff_t, 2>> shapes{{1, 1},   {1, 200},  {150, 1},  {7, 13},   {65, 64},
+    const std::vector<std::array<std::ptrdiff_t, 2>> shapes{{1, 1},   {1, 200},  {150, 1},   {7, 13},  {65, 64},
                                                             {64, 65}, {63, 127}, {257, 131}, {600, 70}};
     for (const auto& shape : shapes) {
         const std::ptrdiff_t rows = shape[0], cols = shape[1];
@@ -99,9 +95,10 @@ TEST_CASE("label/connected_components: all-0, all-1, checkerboards, spirals and 
 {
     for (const auto& shape : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {64, 65}, {520, 9}}) {
         const std::ptrdiff_t rows = shape[0], cols = shape[1];
-        std::vector<reference::mask> masks{reference::mask(rows, cols, 0), reference::mask(rows, cols, 1),
-                                           reference::checkerboard(rows, cols, 1), reference::checkerboard(rows, cols, 2),
-                                           reference::spiral(rows, cols), reference::comb(rows, cols)};
+        std::vector<reference::mask> masks{
+            reference::mask(rows, cols, 0),         reference::mask(rows, cols, 1),
+            reference::checkerboard(rows, cols, 1), reference::checkerboard(rows, cols, 2),
+            reference::spiral(rows, cols),          reference::comb(rows, cols)};
         for (std::size_t i = 0; i < masks.size(); ++i) {
             for (connectivity c : both) {
                 INFO(rows << "x" << cols << " mask " << i << " " << name(c));
@@ -165,16 +162,13 @@ TEST_CASE("label/connected_components: labels are invariant under transposition 
     }
 }
 
+// clang-format off: the small rasters below are laid out as grids
 TEST_CASE("label/rank_by_size: label 1 is the largest, ties keep raster order")
 {
-    const auto m = from_rows({{1, 0, 1, 1, 0, 1},
-                              {0, 0, 0, 0, 0, 1},
-                              {1, 1, 0, 1, 0, 1}});
+    const auto m = from_rows({{1, 0, 1, 1, 0, 1}, {0, 0, 0, 0, 0, 1}, {1, 1, 0, 1, 0, 1}});
     auto comps = connected_components(m, connectivity::four);
     rank_by_size(comps);
-    CHECK(comps.labels == labels_from_rows({{4, 0, 2, 2, 0, 1},
-                                            {0, 0, 0, 0, 0, 1},
-                                            {3, 3, 0, 5, 0, 1}}));
+    CHECK(comps.labels == labels_from_rows({{4, 0, 2, 2, 0, 1}, {0, 0, 0, 0, 0, 1}, {3, 3, 0, 5, 0, 1}}));
     CHECK(comps.sizes == std::vector<std::size_t>{9, 3, 2, 2, 1, 1});
 
     std::mt19937 rng(41);
@@ -197,13 +191,12 @@ TEST_CASE("label/rank_by_size: label 1 is the largest, ties keep raster order")
         }
     }
 }
+// clang-format on
 
+// clang-format off: the small rasters below are laid out as grids
 TEST_CASE("label/component_bounds: inclusive boxes per label, background included")
 {
-    const auto comps = connected_components(from_rows({{0, 1, 0, 0},
-                                                       {0, 1, 1, 0},
-                                                       {0, 0, 0, 0},
-                                                       {1, 0, 0, 0}}));
+    const auto comps = connected_components(from_rows({{0, 1, 0, 0}, {0, 1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}}));
     const auto boxes = component_bounds(comps);
     REQUIRE(boxes.size() == 3);
     CHECK(boxes[0] == component_box{0, 0, 3, 3});
@@ -234,6 +227,7 @@ TEST_CASE("label/component_bounds: inclusive boxes per label, background include
         CHECK((top && bottom && left && right));
     }
 }
+// clang-format on
 
 TEST_CASE("label/remove_small_components: drops exactly the components under min_cells")
 {
@@ -252,6 +246,7 @@ TEST_CASE("label/remove_small_components: drops exactly the components under min
     }
 }
 
+// clang-format off: the small rasters below are laid out as grids
 TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cells")
 {
     const auto ring = from_rows({{0, 0, 0, 0, 0, 0, 0},
@@ -298,6 +293,7 @@ TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cel
         }
     }
 }
+// clang-format on
 
 TEST_CASE("label/connected_components: the into form writes labels into a caller's strided raster")
 {

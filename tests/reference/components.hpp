@@ -12,7 +12,6 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/label/connected_components.hpp>
 
-
 namespace reference {
 
 /// Labels (0 = background, 1.. in raster order of first cells) and sizes (sizes[0] = background), by

@@ -76,7 +76,8 @@ mask window_extreme(const View& m, int width, int height, bool erode)
         for (std::ptrdiff_t c = 0; c < m.cols(); ++c) {
             bool any = false, all = true;
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - ky); rr <= std::min(m.rows() - 1, r + ky); ++rr) {
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - kx); cc <= std::min(m.cols() - 1, c + kx); ++cc) {
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - kx); cc <= std::min(m.cols() - 1, c + kx);
+                     ++cc) {
                     const bool v = m(rr, cc) != 0;
                     any = any || v;
                     all = all && v;
@@ -89,13 +90,25 @@ mask window_extreme(const View& m, int width, int height, bool erode)
 }
 
 template <class View>
-mask dilate(const View& m, int width, int height) { return window_extreme(m, width, height, false); }
+mask dilate(const View& m, int width, int height)
+{
+    return window_extreme(m, width, height, false);
+}
 template <class View>
-mask erode(const View& m, int width, int height) { return window_extreme(m, width, height, true); }
+mask erode(const View& m, int width, int height)
+{
+    return window_extreme(m, width, height, true);
+}
 template <class View>
-mask open(const View& m, int width, int height) { return dilate(erode(m, width, height), width, height); }
+mask open(const View& m, int width, int height)
+{
+    return dilate(erode(m, width, height), width, height);
+}
 template <class View>
-mask close(const View& m, int width, int height) { return erode(dilate(m, width, height), width, height); }
+mask close(const View& m, int width, int height)
+{
+    return erode(dilate(m, width, height), width, height);
+}
 
 /// 1 - (m != 0).
 template <class View>

@@ -36,7 +36,10 @@ namespace detail {
 using mask_word = std::uint64_t;
 
 /// Number of 64-bit words holding `cols` bits.
-constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept { return (cols + 63) / 64; }
+constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept
+{
+    return (cols + 63) / 64;
+}
 
 /// Bits of 64 one-byte cells (bit j = cell j is nonzero), without SIMD: 8 cells at a time, flag the
 /// nonzero bytes in their low bit, then gather the 8 flags into the top byte with one multiplication
@@ -66,18 +69,17 @@ void pack_mask_row(const T* src, std::ptrdiff_t cols, mask_word* dst) noexcept
         for (; c + 64 <= cols; c += 64, ++w) {
 #if defined(__AVX2__)
             const __m256i zero = _mm256_setzero_si256();
-            const auto lo = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(
-                _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c)), zero)));
-            const auto hi = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(
-                _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c + 32)), zero)));
+            const auto lo = static_cast<std::uint32_t>(_mm256_movemask_epi8(
+                _mm256_cmpeq_epi8(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c)), zero)));
+            const auto hi = static_cast<std::uint32_t>(_mm256_movemask_epi8(
+                _mm256_cmpeq_epi8(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c + 32)), zero)));
             dst[w] = ~(mask_word{lo} | (mask_word{hi} << 32));
 #elif defined(__SSE2__)
             const __m128i zero = _mm_setzero_si128();
             mask_word zeros = 0;
             for (int q = 0; q < 4; ++q) {
                 const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + c + 16 * q));
-                zeros |= mask_word{static_cast<std::uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)))}
-                         << (16 * q);
+                zeros |= mask_word{static_cast<std::uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)))} << (16 * q);
             }
             dst[w] = ~zeros;
 #else
@@ -142,16 +144,15 @@ inline mask_word bits_from(const mask_word* a, std::ptrdiff_t q, int s) noexcept
 /// of two L <= 2k + 1, then out(c) = a_L(c - k) Op a_L(c + k + 1 - L): O(words * log k). The row is
 /// padded with neutral words (`buf` is scratch reused across rows).
 template <class Op>
-void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::ptrdiff_t k,
-               std::vector<mask_word>& buf)
+void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::ptrdiff_t k, std::vector<mask_word>& buf)
 {
     const std::ptrdiff_t words = mask_words(cols);
     if (k == 0) {
         std::copy(in, in + words, out);
         return;
     }
-    const std::ptrdiff_t pad = k / 64 + 1;          // neutral words left of the data: position -k exists
-    const std::ptrdiff_t n = words + 2 * pad + 1;   // and right of it, plus one for bits_from's a[q + 1]
+    const std::ptrdiff_t pad = k / 64 + 1;         // neutral words left of the data: position -k exists
+    const std::ptrdiff_t n = words + 2 * pad + 1;  // and right of it, plus one for bits_from's a[q + 1]
     buf.resize(static_cast<std::size_t>(n));
     mask_word* a = buf.data();
     std::fill(a, a + pad, Op::neutral);
@@ -243,49 +244,60 @@ void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const mor
     const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(height / 2, std::max<std::ptrdiff_t>(rows - 1, 0));
     const auto depth = static_cast<std::ptrdiff_t>(steps.size());
 
-    parallel_for_rows(rows, strip_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        const auto first_row = [&](std::ptrdiff_t j) { return std::max<std::ptrdiff_t>(0, r0 - (depth - j) * ky); };
-        const auto end_row = [&](std::ptrdiff_t j) { return std::min(rows, r1 + (depth - j) * ky); };
-        const auto horizontal = [&](morph_step step, const mask_word* src, mask_word* dst,
-                                    std::vector<mask_word>& buf) {
-            if (step == morph_step::erode) morph_row<morph_and>(src, dst, cols, kx, buf);
-            else morph_row<morph_or>(src, dst, cols, kx, buf);
-        };
-        std::vector<mask_word> buf, packed(static_cast<std::size_t>(words)), v(static_cast<std::size_t>(words));
-        std::vector<mask_word> neutral(static_cast<std::size_t>(words));
-        bit_rows h, next, prefix, suffix;
+    parallel_for_rows(
+        rows, strip_rows, opt.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            const auto first_row = [&](std::ptrdiff_t j) { return std::max<std::ptrdiff_t>(0, r0 - (depth - j) * ky); };
+            const auto end_row = [&](std::ptrdiff_t j) { return std::min(rows, r1 + (depth - j) * ky); };
+            const auto horizontal = [&](morph_step step, const mask_word* src, mask_word* dst,
+                                        std::vector<mask_word>& buf) {
+                if (step == morph_step::erode)
+                    morph_row<morph_and>(src, dst, cols, kx, buf);
+                else
+                    morph_row<morph_or>(src, dst, cols, kx, buf);
+            };
+            std::vector<mask_word> buf, packed(static_cast<std::size_t>(words)), v(static_cast<std::size_t>(words));
+            std::vector<mask_word> neutral(static_cast<std::size_t>(words));
+            bit_rows h, next, prefix, suffix;
 
-        // h holds rows [first_row(j), end_row(j)) after j steps' horizontal parts.
-        h.resize(end_row(0) - first_row(0), words);
-        for (std::ptrdiff_t r = first_row(0); r < end_row(0); ++r) {
-            pack_mask_row(in.row(r), cols, packed.data());
-            horizontal(*steps.begin(), packed.data(), h.row(r - first_row(0)), buf);
-        }
-        for (std::ptrdiff_t j = 1; j <= depth; ++j) {
-            const morph_step step = *(steps.begin() + (j - 1));
-            const bool erode = step == morph_step::erode;
-            if (ky > 0) {
-                std::fill(neutral.begin(), neutral.end(), erode ? morph_and::neutral : morph_or::neutral);
-                if (erode) van_herk_scan<morph_and>(h, ky, prefix, suffix, neutral);
-                else van_herk_scan<morph_or>(h, ky, prefix, suffix, neutral);
+            // h holds rows [first_row(j), end_row(j)) after j steps' horizontal parts.
+            h.resize(end_row(0) - first_row(0), words);
+            for (std::ptrdiff_t r = first_row(0); r < end_row(0); ++r) {
+                pack_mask_row(in.row(r), cols, packed.data());
+                horizontal(*steps.begin(), packed.data(), h.row(r - first_row(0)), buf);
             }
-            if (j < depth) next.resize(end_row(j) - first_row(j), words);
-            for (std::ptrdiff_t r = first_row(j); r < end_row(j); ++r) {
-                const std::ptrdiff_t i = r - first_row(j - 1);  // r as a row of h
-                const mask_word* col = h.row(i);
+            for (std::ptrdiff_t j = 1; j <= depth; ++j) {
+                const morph_step step = *(steps.begin() + (j - 1));
+                const bool erode = step == morph_step::erode;
                 if (ky > 0) {
-                    const mask_word* s = suffix.row(i);
-                    const mask_word* p = prefix.row(i + 2 * ky);
-                    if (erode) for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] & p[w];
-                    else for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] | p[w];
-                    col = v.data();
+                    std::fill(neutral.begin(), neutral.end(), erode ? morph_and::neutral : morph_or::neutral);
+                    if (erode)
+                        van_herk_scan<morph_and>(h, ky, prefix, suffix, neutral);
+                    else
+                        van_herk_scan<morph_or>(h, ky, prefix, suffix, neutral);
                 }
-                if (j < depth) horizontal(*(steps.begin() + j), col, next.row(r - first_row(j)), buf);
-                else unpack_mask_row(col, cols, out.row(r));
+                if (j < depth) next.resize(end_row(j) - first_row(j), words);
+                for (std::ptrdiff_t r = first_row(j); r < end_row(j); ++r) {
+                    const std::ptrdiff_t i = r - first_row(j - 1);  // r as a row of h
+                    const mask_word* col = h.row(i);
+                    if (ky > 0) {
+                        const mask_word* s = suffix.row(i);
+                        const mask_word* p = prefix.row(i + 2 * ky);
+                        if (erode)
+                            for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] & p[w];
+                        else
+                            for (std::ptrdiff_t w = 0; w < words; ++w) v[w] = s[w] | p[w];
+                        col = v.data();
+                    }
+                    if (j < depth)
+                        horizontal(*(steps.begin() + j), col, next.row(r - first_row(j)), buf);
+                    else
+                        unpack_mask_row(col, cols, out.row(r));
+                }
+                if (j < depth) std::swap(h, next);
             }
-            if (j < depth) std::swap(h, next);
-        }
-    }, {}, function);
+        },
+        {}, function);
 }
 
 /// Rows per strip: small enough for cache-resident scratch and for load balance, large enough that
@@ -322,7 +334,8 @@ void morph_into(const In& m, Out&& out, const morph_options& opt, std::initializ
         // A strip reads input rows beyond its own: if `out` shares memory with `m`, one strip (all rows)
         // reads everything before writing anything.
         const auto* in_begin = reinterpret_cast<const unsigned char*>(in.view().data());
-        const auto* in_end = reinterpret_cast<const unsigned char*>(in.view().row(in.view().rows() - 1) + in.view().cols());
+        const auto* in_end =
+            reinterpret_cast<const unsigned char*>(in.view().row(in.view().rows() - 1) + in.view().cols());
         const auto* out_begin = reinterpret_cast<const unsigned char*>(o.data());
         const auto* out_end = reinterpret_cast<const unsigned char*>(o.row(o.rows() - 1) + o.cols());
         if (std::less<>{}(out_begin, in_end) && std::less<>{}(in_begin, out_end)) strip = m.rows();
@@ -349,7 +362,7 @@ raster<std::uint8_t> morph_new(const In& m, const morph_options& opt, std::initi
 /// @throws invalid_input if size or height is even or < 1 (height 0 = square), threads < 0, or the
 /// shapes of m and out differ.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, std::uint8_t>
+requires raster_output_of<Out, std::uint8_t>
 void morph_dilate(const In& m, Out&& out, const morph_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate}, "morph_dilate");
@@ -360,7 +373,7 @@ void morph_dilate(const In& m, Out&& out, const morph_options& opt = {})
 /// one). Cost as morph_dilate; `out` may be `m`.
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, std::uint8_t>
+requires raster_output_of<Out, std::uint8_t>
 void morph_erode(const In& m, Out&& out, const morph_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode}, "morph_erode");
@@ -371,7 +384,7 @@ void morph_erode(const In& m, Out&& out, const morph_options& opt = {})
 /// Cost as two dilations, with one pack and one unpack; `out` may be `m`.
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, std::uint8_t>
+requires raster_output_of<Out, std::uint8_t>
 void morph_open(const In& m, Out&& out, const morph_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode, detail::morph_step::dilate},
@@ -382,7 +395,7 @@ void morph_open(const In& m, Out&& out, const morph_options& opt = {})
 /// the rectangle; extensive and idempotent. Cost as morph_open; `out` may be `m`.
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, std::uint8_t>
+requires raster_output_of<Out, std::uint8_t>
 void morph_close(const In& m, Out&& out, const morph_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate, detail::morph_step::erode},
@@ -392,26 +405,46 @@ void morph_close(const In& m, Out&& out, const morph_options& opt = {})
 /// Returning forms: a new 0/1 raster of m's shape. The `int size` overloads use a size x size square.
 template <raster_input In>
 raster<std::uint8_t> morph_dilate(const In& m, const morph_options& opt)
-{ return detail::morph_new(m, opt, {detail::morph_step::dilate}, "morph_dilate"); }
+{
+    return detail::morph_new(m, opt, {detail::morph_step::dilate}, "morph_dilate");
+}
 template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, int size) { return morph_dilate(m, morph_options{.size = size}); }
+raster<std::uint8_t> morph_dilate(const In& m, int size)
+{
+    return morph_dilate(m, morph_options{.size = size});
+}
 
 template <raster_input In>
 raster<std::uint8_t> morph_erode(const In& m, const morph_options& opt)
-{ return detail::morph_new(m, opt, {detail::morph_step::erode}, "morph_erode"); }
+{
+    return detail::morph_new(m, opt, {detail::morph_step::erode}, "morph_erode");
+}
 template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, int size) { return morph_erode(m, morph_options{.size = size}); }
+raster<std::uint8_t> morph_erode(const In& m, int size)
+{
+    return morph_erode(m, morph_options{.size = size});
+}
 
 template <raster_input In>
 raster<std::uint8_t> morph_open(const In& m, const morph_options& opt)
-{ return detail::morph_new(m, opt, {detail::morph_step::erode, detail::morph_step::dilate}, "morph_open"); }
+{
+    return detail::morph_new(m, opt, {detail::morph_step::erode, detail::morph_step::dilate}, "morph_open");
+}
 template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, int size) { return morph_open(m, morph_options{.size = size}); }
+raster<std::uint8_t> morph_open(const In& m, int size)
+{
+    return morph_open(m, morph_options{.size = size});
+}
 
 template <raster_input In>
 raster<std::uint8_t> morph_close(const In& m, const morph_options& opt)
-{ return detail::morph_new(m, opt, {detail::morph_step::dilate, detail::morph_step::erode}, "morph_close"); }
+{
+    return detail::morph_new(m, opt, {detail::morph_step::dilate, detail::morph_step::erode}, "morph_close");
+}
 template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, int size) { return morph_close(m, morph_options{.size = size}); }
+raster<std::uint8_t> morph_close(const In& m, int size)
+{
+    return morph_close(m, morph_options{.size = size});
+}
 
 }  // namespace lidarfx

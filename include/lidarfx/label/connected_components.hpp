@@ -307,9 +307,12 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     constexpr std::ptrdiff_t band_rows = 256;
     const std::ptrdiff_t band_count = (rows + band_rows - 1) / band_rows;
     std::vector<label_band_state> bands(static_cast<std::size_t>(band_count));
-    parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        label_band(m, r0, r1, reach, bands[static_cast<std::size_t>(r0 / band_rows)], labels);
-    }, {}, function);
+    parallel_for_rows(
+        rows, band_rows, opt.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            label_band(m, r0, r1, reach, bands[static_cast<std::size_t>(r0 / band_rows)], labels);
+        },
+        {}, function);
 
     // One global forest: band b's node ids are offset by the nodes of the bands above it.
     std::vector<std::size_t> offset(bands.size() + 1, 0);
@@ -322,7 +325,8 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     for (std::size_t b = 0; b < bands.size(); ++b) {
         auto& forest = bands[b].forest;
         const auto shift = static_cast<std::int32_t>(offset[b]);
-        std::transform(forest.parent.begin(), forest.parent.end(), all.parent.begin() + static_cast<std::ptrdiff_t>(offset[b]),
+        std::transform(forest.parent.begin(), forest.parent.end(),
+                       all.parent.begin() + static_cast<std::ptrdiff_t>(offset[b]),
                        [shift](std::int32_t p) { return p + shift; });
         std::copy(forest.cells.begin(), forest.cells.end(), all.cells.begin() + static_cast<std::ptrdiff_t>(offset[b]));
         forest = {};
@@ -354,18 +358,22 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     all = {};
 
     // Second pass: each run's band-local node becomes the final label final_label[offset[b] + node + 1].
-    parallel_for_rows(rows, band_rows, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
-        const std::int32_t* table = final_label.data() + offset[b] + 1;
-        std::vector<label_run> runs;
-        runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
-        run_reader reader;
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            band_row_runs(bands[b], r0, r, words, labels, reader, runs);
-            write_label_row(runs, [table](const label_run& run) { return table[run.node]; },
-                            static_cast<std::int32_t>(cols), labels.row(r));
-        }
-    }, {}, function);
+    parallel_for_rows(
+        rows, band_rows, opt.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
+            const std::int32_t* table = final_label.data() + offset[b] + 1;
+            std::vector<label_run> runs;
+            runs.reserve(static_cast<std::size_t>(cols / 2 + 1));
+            run_reader reader;
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                band_row_runs(bands[b], r0, r, words, labels, reader, runs);
+                write_label_row(
+                    runs, [table](const label_run& run) { return table[run.node]; }, static_cast<std::int32_t>(cols),
+                    labels.row(r));
+            }
+        },
+        {}, function);
     return sizes;
 }
 
@@ -381,8 +389,8 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
 /// @throws invalid_input if the shapes differ, threads < 0, m is wider than 2^24 columns, or the mask
 /// has more runs than int32 labels can number.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, std::int32_t>
-std::vector<std::size_t> connected_components(const In& m, Out&& labels, const components_options& opt = {})
+requires raster_output_of<Out, std::int32_t> std::vector<std::size_t> connected_components(
+    const In& m, Out&& labels, const components_options& opt = {})
 {
     static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = foreground)");
     constexpr const char* function = "connected_components";
@@ -464,8 +472,7 @@ inline std::vector<component_box> component_bounds(const components& comps)
 /// The mask (as 0/1) without its components of fewer than `min_cells` cells, under connectivity `c`.
 /// min_cells 0 or 1 keeps every component. O(rows * cols).
 template <raster_input In>
-raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells,
-                                             connectivity c = connectivity::eight)
+raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells, connectivity c = connectivity::eight)
 {
     const components comps = connected_components(m, c);
     raster<std::uint8_t> out(m.rows(), m.cols());
@@ -514,7 +521,8 @@ raster<std::uint8_t> fill_holes(const In& m, std::size_t max_hole_cells, connect
     }
     fill[0] = 0;
     for (std::ptrdiff_t i = 0; i < out.size(); ++i) {
-        out.data()[i] = static_cast<std::uint8_t>(out.data()[i] | fill[static_cast<std::size_t>(holes.labels.data()[i])]);
+        out.data()[i] =
+            static_cast<std::uint8_t>(out.data()[i] | fill[static_cast<std::size_t>(holes.labels.data()[i])]);
     }
     return out;
 }
