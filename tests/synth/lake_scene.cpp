@@ -15,16 +15,14 @@ using namespace synth_test;
 
 namespace {
 
+constexpr auto make_lake = [] { return lake_scene(); };  // built once (see once())
 const scene& lake()
 {
-    static const scene s = lake_scene();
-    return s;
+    return once(make_lake).s;
 }
-
 const cell_points& lake_cells()
 {
-    static const cell_points c = group_by_cell(lake().points, lake().truth.g);
-    return c;
+    return once(make_lake).cells;
 }
 
 /// Land cells at least `margin` cells from any water cell (Chebyshev distance).
@@ -82,12 +80,12 @@ TEST_CASE("synth/lake_scene: a large lake and a pond, each flat, below banks tha
         }
     }
     CHECK(inconsistent == 0);
-    REQUIRE(cells_by_level.size() == 2);   // two flat water surfaces
+    REQUIRE(cells_by_level.size() == 2);  // two flat water surfaces
     std::vector<std::size_t> sizes;
     for (const auto& [level, n] : cells_by_level) sizes.push_back(n);
     std::sort(sizes.begin(), sizes.end());
-    CHECK(sizes[1] > 10000);     // the lake: > 4 ha of 2 m cells
-    CHECK(sizes[0] > 750);       // the pond: > 0.3 ha
+    CHECK(sizes[1] > 10000);  // the lake: > 4 ha of 2 m cells
+    CHECK(sizes[0] > 750);    // the pond: > 0.3 ha
     CHECK(sizes[0] * 4 < sizes[1]);
     // Every land cell next to water stands above that water by the bank's 0.3 m (truth has no noise).
     int low_banks = 0, bank_cells = 0;
@@ -150,7 +148,7 @@ TEST_CASE("synth/lake_scene: islands over 200 m^2 are land in both masks, smalle
         for (std::ptrdiff_t r = 0; r < t.g.rows; ++r) {
             for (std::ptrdiff_t c = 0; c < t.g.cols; ++c) {
                 const auto [cx, cy] = t.g.center(r, c);
-                if (std::hypot(cx - x, cy - y) > radius - 1.5) continue;   // whole cell on the island
+                if (std::hypot(cx - x, cy - y) > radius - 1.5) continue;  // whole cell on the island
                 for (const auto i : cells.at(r, c)) {
                     ++island_points;
                     water_points += lake().points.classification[i] == las_class::water;
@@ -190,7 +188,7 @@ TEST_CASE("synth/lake_scene: water cells hold only weak returns and a few glints
                 weak += v >= 2 && v <= 20;
                 glints += v >= 200 && v <= 400;
                 off_class += s.points.classification[i] != las_class::water || s.points.number_of_returns[i] != 1;
-                off_level += std::abs(s.points.z[i] - t.water_z(r, c)) > 0.05 + 1e-6;   // +-5 cm noise
+                off_level += std::abs(s.points.z[i] - t.water_z(r, c)) > 0.05 + 1e-6;  // +-5 cm noise
             }
         }
     }
@@ -278,9 +276,7 @@ TEST_CASE("synth/lake_scene: water dropouts come in large patches plus single ce
     for (std::size_t k = 1; k < land_parts.sizes.size(); ++k) isolated += land_parts.sizes[k] == 1;
     // Independent 1.5 % cells: a cell has no empty 8-neighbour with probability 0.985^8 = 0.89.
     CHECK(static_cast<double>(isolated) > 0.8 * static_cast<double>(land_empty));
-    std::size_t largest = 0;
-    for (std::size_t k = 1; k < land_parts.sizes.size(); ++k) largest = std::max(largest, land_parts.sizes[k]);
-    CHECK(largest < 25);   // never a 5x5 block: a 5x5 opening removes all land dropouts
+    CHECK(largest(land_parts) < 25);  // never a 5x5 block: a 5x5 opening removes all land dropouts
 }
 
 TEST_CASE("synth/lake_scene: pulse density on open land is the option's")
@@ -292,7 +288,7 @@ TEST_CASE("synth/lake_scene: pulse density on open land is the option's")
     std::size_t first = 0, area_cells = 0;
     for (std::ptrdiff_t r = 0; r < t.g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < t.g.cols; ++c) {
-            if (!open_land(r, c) || cells.count(r, c) == 0) continue;   // skip single-cell dropouts
+            if (!open_land(r, c) || cells.count(r, c) == 0) continue;  // skip single-cell dropouts
             ++area_cells;
             for (const auto i : cells.at(r, c)) first += s.points.return_number[i] == 1;
         }
@@ -315,13 +311,13 @@ TEST_CASE("synth/lake_scene: trees give multi-return pulses from canopy to groun
         for (int k = 0; ok && k < n; ++k) {
             const auto j = i + static_cast<std::size_t>(k);
             ok = p.return_number[j] == k + 1 && p.number_of_returns[j] == n && p.x[j] == p.x[i] &&
-                 (k == 0 || p.z[j] <= p.z[j - 1] + 0.1);   // +-5 cm noise on each return
+                 (k == 0 || p.z[j] <= p.z[j - 1] + 0.1);  // +-5 cm noise on each return
         }
         pulses_ok += ok;
         i += static_cast<std::size_t>(std::max(1, n));
     }
     CHECK(pulses_ok == pulses);
-    CHECK(by_returns.size() == 4);   // 1..4 returns
+    CHECK(by_returns.size() == 4);  // 1..4 returns
     CHECK(by_returns[2] > 10000);
     CHECK(by_returns[4] > 1000);
     // Tree cells: the height spread within a cell exceeds 2 m in most of them (the vegetation mask).
@@ -342,8 +338,10 @@ TEST_CASE("synth/lake_scene: trees give multi-return pulses from canopy to groun
     std::size_t ground = 0, ground_ok = 0, road = 0, road_ok = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.number_of_returns[i] != 1) continue;
-        if (p.classification[i] == las_class::ground) ++ground, ground_ok += p.intensity[i] >= 59 && p.intensity[i] <= 181;
-        if (p.classification[i] == las_class::road_surface) ++road, road_ok += p.intensity[i] >= 40 && p.intensity[i] <= 83;
+        if (p.classification[i] == las_class::ground)
+            ++ground, ground_ok += p.intensity[i] >= 59 && p.intensity[i] <= 181;
+        if (p.classification[i] == las_class::road_surface)
+            ++road, road_ok += p.intensity[i] >= 40 && p.intensity[i] <= 83;
     }
     CHECK(road > 3000);
     CHECK(ground_ok == ground);
@@ -361,7 +359,8 @@ TEST_CASE("synth/lake_scene: ground returns lie on the truth ground")
             if (t.water(r, c)) continue;
             // Local slope from the truth bounds how far a point in the cell may sit from the centre value.
             const double slope = std::max(std::abs(t.ground_z(r, c + 1) - t.ground_z(r, c - 1)),
-                                          std::abs(t.ground_z(r + 1, c) - t.ground_z(r - 1, c))) / (2 * t.g.cell);
+                                          std::abs(t.ground_z(r + 1, c) - t.ground_z(r - 1, c))) /
+                                 (2 * t.g.cell);
             for (const auto i : cells.at(r, c)) {
                 if (p.classification[i] != las_class::ground) continue;
                 off.push_back(std::abs(p.z[i] - t.ground_z(r, c)) - slope * t.g.cell);
@@ -370,6 +369,6 @@ TEST_CASE("synth/lake_scene: ground returns lie on the truth ground")
     }
     REQUIRE(off.size() > 100000);
     std::sort(off.begin(), off.end());
-    CHECK(off[off.size() / 2] < 0.05);          // median within the noise
-    CHECK(off[off.size() * 99 / 100] < 0.35);   // micro-relief curvature and bank bends
+    CHECK(off[off.size() / 2] < 0.05);         // median within the noise
+    CHECK(off[off.size() * 99 / 100] < 0.35);  // micro-relief curvature and bank bends
 }

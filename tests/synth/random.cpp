@@ -71,8 +71,8 @@ TEST_CASE("synth/rng: uniform, below, between, chance and triangular have their 
         const auto b = r.below(7);
         const int k = r.between(-2, 2);
         const double t = r.triangular();
-        in_range = in_range && u >= 0.0 && u < 1.0 && v >= -3.0 && v < 5.0 && b < 7 && k >= -2 && k <= 2 &&
-                   std::abs(t) < 1.0;
+        in_range =
+            in_range && u >= 0.0 && u < 1.0 && v >= -3.0 && v < 5.0 && b < 7 && k >= -2 && k <= 2 && std::abs(t) < 1.0;
         sum += u;
         ++hist[b];
         between_lo += k == -2;

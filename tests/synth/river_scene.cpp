@@ -13,16 +13,14 @@ using namespace synth_test;
 
 namespace {
 
+constexpr auto make_river = [] { return river_scene(); };  // built once (see once())
 const scene& river()
 {
-    static const scene s = river_scene();
-    return s;
+    return once(make_river).s;
 }
-
 const cell_points& river_cells()
 {
-    static const cell_points c = group_by_cell(river().points, river().truth.g);
-    return c;
+    return once(make_river).cells;
 }
 
 }  // namespace
@@ -31,7 +29,7 @@ TEST_CASE("synth/river_scene: one river crossing the scene from west to east, 15
 {
     const auto& t = river().truth;
     const auto parts = components8(t.water);
-    REQUIRE(parts.sizes.size() == 2);   // a single waterbody, continuous under the bridge
+    REQUIRE(parts.sizes.size() == 2);  // a single waterbody, continuous under the bridge
     // It touches the west and the east edges.
     bool west = false, east = false;
     for (std::ptrdiff_t r = 0; r < t.g.rows; ++r) {
@@ -104,8 +102,10 @@ TEST_CASE("synth/river_scene: the bridge deck stands 5-8 m above the water, and 
             }
             // Under the deck, the truth is water; only deck returns come back from there.
             if (t.surface(r, c) == las_class::bridge_deck && t.water(r, c)) ++deck_water_cells;
-            if (block_all(t.g.rows, t.g.cols, r, c, [&](auto rr, auto cc) { return t.surface(rr, cc) == las_class::bridge_deck; })) {
-                for (const auto i : cells.at(r, c)) hidden_returns += s.points.classification[i] != las_class::bridge_deck;
+            if (block_all(t.g.rows, t.g.cols, r, c,
+                          [&](auto rr, auto cc) { return t.surface(rr, cc) == las_class::bridge_deck; })) {
+                for (const auto i : cells.at(r, c))
+                    hidden_returns += s.points.classification[i] != las_class::bridge_deck;
             }
         }
     }
@@ -134,8 +134,8 @@ TEST_CASE("synth/river_scene: a road on embankments leads to both ends of the br
             bool next_to_deck = false;
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr)
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc)
-                    next_to_deck = next_to_deck ||
-                                   (t.g.contains(r + dr, c + dc) && t.surface(r + dr, c + dc) == las_class::bridge_deck);
+                    next_to_deck = next_to_deck || (t.g.contains(r + dr, c + dc) &&
+                                                    t.surface(r + dr, c + dc) == las_class::bridge_deck);
             if (!next_to_deck) continue;
             road_at_deck(r, c) = 1;
             for (const auto i : cells.at(r, c)) {
@@ -146,8 +146,8 @@ TEST_CASE("synth/river_scene: a road on embankments leads to both ends of the br
             }
         }
     }
-    CHECK(road_on_border >= 4);   // the road leaves the scene north and south
-    CHECK(components8(road_at_deck).sizes.size() == 3);   // and reaches the deck at both ends
+    CHECK(road_on_border >= 4);                          // the road leaves the scene north and south
+    CHECK(components8(road_at_deck).sizes.size() == 3);  // and reaches the deck at both ends
     CHECK(ramp_points > 10);
     CHECK(ramp_low == 0);
 }
@@ -174,7 +174,7 @@ TEST_CASE("synth/river_scene: banks carry trees, water dropouts come in patches"
                 nearest = std::min(nearest, std::abs(dr));
             }
             const bool tree = t.surface(r, c) == las_class::high_vegetation;
-            if (nearest >= 2 && nearest <= 10) ++near_cells, near_trees += tree;   // 4-20 m from the water
+            if (nearest >= 2 && nearest <= 10) ++near_cells, near_trees += tree;  // 4-20 m from the water
             if (nearest > 40) ++far_cells, far_trees += tree;
         }
     }
@@ -185,5 +185,5 @@ TEST_CASE("synth/river_scene: banks carry trees, water dropouts come in patches"
     CHECK(empty_share > 0.35);
     CHECK(empty_share < 0.55);
     const auto parts = components8(empty_water);
-    CHECK(*std::max_element(parts.sizes.begin(), parts.sizes.end()) >= 100);
+    CHECK(largest(parts) >= 100);
 }

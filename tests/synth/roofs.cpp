@@ -94,7 +94,7 @@ TEST_CASE("synth/building: gable and hip roofs close at the ridge and meet the e
     hip.axis_azimuth_deg = 0;  // long axis north: u = y, v = x
     const double l = hip.length_m, w = hip.width_m;
     for (double t = 0.05; t < 0.5; t += 0.05) {
-        const double along = 0.5 * l - t * w, across = 0.5 * w - t * w;   // on the hip line
+        const double along = 0.5 * l - t * w, across = 0.5 * w - t * w;  // on the hip line
         CHECK(hip.roof_at(hip.x + across + 1e-7, hip.y + along).z ==
               doctest::Approx(hip.roof_at(hip.x + across - 1e-7, hip.y + along).z));
     }
@@ -111,7 +111,7 @@ TEST_CASE("synth/building: footprints are closed clockwise rectangles matching c
         double twice_area = 0;
         for (std::size_t i = 0; i + 1 < ring.size(); ++i)
             twice_area += ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1];
-        CHECK(-0.5 * twice_area == doctest::Approx(b.length_m * b.width_m));   // negative: clockwise
+        CHECK(-0.5 * twice_area == doctest::Approx(b.length_m * b.width_m));  // negative: clockwise
         int mismatches = 0;
         for (int k = 0; k < 2000; ++k) {
             const double x = b.x + r.uniform(-20, 20), y = b.y + r.uniform(-20, 20);

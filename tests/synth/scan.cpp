@@ -38,7 +38,8 @@ TEST_CASE("synth/scan_square: density is even at the scale of 10 m blocks; strip
     std::vector<int> count(blocks * blocks, 0);
     std::vector<double> angle_at_edge;
     scan_square(size, density, 3, {}, [&](const pulse& p) {
-        const int c = std::min(blocks - 1, static_cast<int>(p.x / 10)), r = std::min(blocks - 1, static_cast<int>(p.y / 10));
+        const int c = std::min(blocks - 1, static_cast<int>(p.x / 10)),
+                  r = std::min(blocks - 1, static_cast<int>(p.y / 10));
         ++count[r * blocks + c];
     });
     // 200 pulses expected per block; jitter moves a few across block borders.
@@ -51,7 +52,8 @@ TEST_CASE("synth/scan_square: density is even at the scale of 10 m blocks; strip
     scan_square(size, 0.1, 3, {}, [&](const pulse& p) {
         max_angle = std::max(max_angle, std::abs(p.scan_angle_deg));
         const double centre = (std::floor(p.x / 400) + 0.5) * 400;
-        max_error = std::max(max_error, std::abs(p.scan_angle_deg - std::atan((p.x - centre) / 1000) * 57.29577951308232));
+        max_error =
+            std::max(max_error, std::abs(p.scan_angle_deg - std::atan((p.x - centre) / 1000) * 57.29577951308232));
     });
     CHECK(max_error < 1e-9);
     CHECK(max_angle == doctest::Approx(11.31).epsilon(0.01));

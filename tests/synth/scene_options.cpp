@@ -84,7 +84,7 @@ TEST_CASE("synth/scenes: the truth cell option sets the truth grid, not the poin
     CHECK(coarse.points == odd.points);
     CHECK(coarse.truth.g == grid{0.0, 160.0, 4.0, 40, 40});
     CHECK(fine.truth.g == grid{0.0, 160.0, 0.5, 320, 320});
-    CHECK(odd.truth.g == grid{0.0, 162.0, 3.0, 54, 54});   // aligned to multiples of 3 m, covering 160 m
+    CHECK(odd.truth.g == grid{0.0, 162.0, 3.0, 54, 54});  // aligned to multiples of 3 m, covering 160 m
     // The same world sampled at other centres: the water share agrees.
     const auto share = [](const scene_truth& t) {
         double w = 0;
@@ -98,8 +98,10 @@ TEST_CASE("synth/scenes: bad options are refused with the option named")
 {
     for (const auto& [name, make] : all_scenes) {
         const std::string fn = name;
-        CHECK_THROWS_WITH_AS(make({.size_m = 0}), (fn + ": size_m must be finite and > 0 (got 0)").c_str(), invalid_input);
-        CHECK_THROWS_WITH_AS(make({.size_m = -5}), (fn + ": size_m must be finite and > 0 (got -5)").c_str(), invalid_input);
+        CHECK_THROWS_WITH_AS(make({.size_m = 0}), (fn + ": size_m must be finite and > 0 (got 0)").c_str(),
+                             invalid_input);
+        CHECK_THROWS_WITH_AS(make({.size_m = -5}), (fn + ": size_m must be finite and > 0 (got -5)").c_str(),
+                             invalid_input);
         CHECK_THROWS_WITH_AS(make({.density_per_m2 = 0}),
                              (fn + ": density_per_m2 must be finite and > 0 (got 0)").c_str(), invalid_input);
         CHECK_THROWS_WITH_AS(make({.truth_cell_m = -1}),

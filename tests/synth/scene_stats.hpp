@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// Test helpers for the synthetic scenes: points grouped by truth cell, 8-connected components, plane fits.
+// Test helpers for the synthetic scenes: points grouped by truth cell, components, plane fits, comparisons.
 #pragma once
 
 #include <lidarfx/synth/scenes.hpp>
 
+#include "reference/components.hpp"
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <deque>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace synth_test {
@@ -49,40 +52,37 @@ inline cell_points group_by_cell(const point_set& p, const grid& g)
     return out;
 }
 
-/// 8-connected components of the cells where mask != 0, by breadth-first search: labels from 1, sizes[label].
-struct labelled {
-    raster<std::int32_t> labels;
-    std::vector<std::size_t> sizes{0};
+/// A scene with its points grouped by truth cell, built once per test file.
+struct indexed_scene {
+    scene s;
+    cell_points cells;
 };
 
-inline labelled components8(const raster<std::uint8_t>& mask)
+inline indexed_scene indexed(scene s)
 {
-    labelled out{raster<std::int32_t>(mask.rows(), mask.cols()), {0}};
-    std::deque<std::array<std::ptrdiff_t, 2>> queue;
-    for (std::ptrdiff_t r = 0; r < mask.rows(); ++r) {
-        for (std::ptrdiff_t c = 0; c < mask.cols(); ++c) {
-            if (!mask(r, c) || out.labels(r, c)) continue;
-            const auto label = static_cast<std::int32_t>(out.sizes.size());
-            out.sizes.push_back(0);
-            out.labels(r, c) = label;
-            queue.push_back({r, c});
-            while (!queue.empty()) {
-                const auto [qr, qc] = queue.front();
-                queue.pop_front();
-                ++out.sizes.back();
-                for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
-                    for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
-                        const auto nr = qr + dr, nc = qc + dc;
-                        if (nr < 0 || nc < 0 || nr >= mask.rows() || nc >= mask.cols()) continue;
-                        if (!mask(nr, nc) || out.labels(nr, nc)) continue;
-                        out.labels(nr, nc) = label;
-                        queue.push_back({nr, nc});
-                    }
-                }
-            }
-        }
-    }
-    return out;
+    auto cells = group_by_cell(s.points, s.truth.g);
+    return {std::move(s), std::move(cells)};
+}
+
+/// The scene `make()` returns, indexed, built on first use and kept: each lambda type has its own.
+template <class Make>
+const indexed_scene& once(Make make)
+{
+    static const indexed_scene kept = indexed(make());
+    return kept;
+}
+
+/// 8-connected components of the cells where mask != 0 (plain breadth-first reference): labels from 1,
+/// sizes[label], sizes[0] = background cells.
+inline components components8(const raster<std::uint8_t>& mask)
+{
+    return reference::flood_label(mask, connectivity::eight);
+}
+
+/// Size of the largest component (0 when there is none).
+inline std::size_t largest(const components& parts)
+{
+    return parts.sizes.size() < 2 ? 0 : *std::max_element(parts.sizes.begin() + 1, parts.sizes.end());
 }
 
 /// True when every cell of the 3x3 block around (r, c) is inside the raster and satisfies pred(r, c).

@@ -15,16 +15,14 @@ using namespace synth_test;
 namespace {
 
 // Half-metre truth cells: roof faces are resolved finely enough to pick points well inside each face.
+constexpr auto make_town = [] { return town_scene({.truth_cell_m = 0.5}); };  // built once (see once())
 const scene& town()
 {
-    static const scene s = town_scene({.truth_cell_m = 0.5});
-    return s;
+    return once(make_town).s;
 }
-
 const cell_points& town_cells()
 {
-    static const cell_points c = group_by_cell(town().points, town().truth.g);
-    return c;
+    return once(make_town).cells;
 }
 
 }  // namespace
@@ -95,7 +93,8 @@ TEST_CASE("synth/town_scene: roof points lie on the stated planes (tilt and azim
     for (std::size_t k = 0; k < t.roof_planes.size(); ++k) {
         if (on_plane[k].size() < 20) {
             // Only small faces (hip ends of narrow houses) may lack 20 points well inside them.
-            const double horizontal = t.roof_planes[k].area_m2 * std::cos(t.roof_planes[k].tilt_deg / 57.29577951308232);
+            const double horizontal =
+                t.roof_planes[k].area_m2 * std::cos(t.roof_planes[k].tilt_deg / 57.29577951308232);
             large_unchecked += horizontal > 30.0;
             continue;
         }
@@ -158,7 +157,8 @@ TEST_CASE("synth/town_scene: sloped areas match the counted faces; walls 3-15 m;
     CHECK(area_off == 0);
     // Eaves: the lowest roof return of each building stands 3-15 m above the ground under it.
     const auto& cells = town_cells();
-    std::vector<double> lowest_roof(t.footprints.size(), 1e9), ground(t.footprints.size(), 0), ground_n(t.footprints.size(), 0);
+    std::vector<double> lowest_roof(t.footprints.size(), 1e9), ground(t.footprints.size(), 0),
+        ground_n(t.footprints.size(), 0);
     std::size_t roof_points = 0, roof_intensity_off = 0, multi_on_roofs = 0;
     for (std::ptrdiff_t r = 0; r < t.g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < t.g.cols; ++c) {
@@ -178,7 +178,7 @@ TEST_CASE("synth/town_scene: sloped areas match the counted faces; walls 3-15 m;
     }
     CHECK(roof_points > 5000);
     CHECK(roof_intensity_off == 0);
-    CHECK(multi_on_roofs == 0);   // trees never overhang roofs
+    CHECK(multi_on_roofs == 0);  // trees never overhang roofs
     std::size_t wall_off = 0;
     for (std::size_t b = 0; b < t.footprints.size(); ++b) {
         const double wall = lowest_roof[b] - ground[b] / ground_n[b];
@@ -199,7 +199,7 @@ TEST_CASE("synth/town_scene: trees near buildings; a road grid")
             road_cells += t.surface(r, c) == las_class::road_surface;
             if (t.surface(r, c) != las_class::high_vegetation) continue;
             bool near = false;
-            for (std::ptrdiff_t dr = -20; dr <= 20 && !near; dr += 4)    // within 10 m
+            for (std::ptrdiff_t dr = -20; dr <= 20 && !near; dr += 4)  // within 10 m
                 for (std::ptrdiff_t dc = -20; dc <= 20 && !near; dc += 4)
                     near = t.g.contains(r + dr, c + dc) && t.building_id(r + dr, c + dc) != 0;
             tree_cells_near_buildings += near;

@@ -20,14 +20,14 @@ TEST_CASE("synth/tree: crown surface from the top at the stem down to the crown'
 
 TEST_CASE("synth/tree_returns: multi-return pulses from the crown down to the ground")
 {
-    const tree t{.x = 0, .y = 0, .ground_z = 50, .crown_radius_m = 4, .crown_base_m = 5, .height_m = 18,
-                 .intensity = 100};
+    const tree t{
+        .x = 0, .y = 0, .ground_z = 50, .crown_radius_m = 4, .crown_base_m = 5, .height_m = 18, .intensity = 100};
     rng r(41);
     constexpr int pulses = 20000;
     std::array<int, 5> by_count{};
     int ground_last = 0, ordered = 0, numbered = 0, first_near_top = 0, classes_ok = 0, multi = 0;
     for (int k = 0; k < pulses; ++k) {
-        std::vector<std::array<double, 5>> returns;   // z, intensity, rn, nr, class
+        std::vector<std::array<double, 5>> returns;  // z, intensity, rn, nr, class
         const double top = 15.0;
         tree_returns(t, top, t.ground_z, 120.0, r, [&](double z, double i, int rn, int nr, std::uint8_t cls) {
             returns.push_back({z, i, double(rn), double(nr), double(cls)});
@@ -40,7 +40,7 @@ TEST_CASE("synth/tree_returns: multi-return pulses from the crown down to the gr
             if (j > 0) ok_order = ok_order && returns[j][0] <= returns[j - 1][0];
             const double h = returns[j][0] - t.ground_z;
             const auto cls = static_cast<std::uint8_t>(returns[j][4]);
-            ok_classes = ok_classes && (h == 0 ? cls == las_class::ground
+            ok_classes = ok_classes && (h == 0  ? cls == las_class::ground
                                         : h > 2 ? cls == las_class::high_vegetation
                                                 : cls == las_class::low_vegetation);
         }
@@ -59,7 +59,9 @@ TEST_CASE("synth/tree_returns: multi-return pulses from the crown down to the gr
     CHECK(first_near_top == multi);
     CHECK(by_count[0] == 0);
     // Shares: gap 10 %; then 2, 3, 4 returns 45/35/20 % of the rest; ground last 85 %. 5 sigma bounds.
-    const auto near = [](int count, double p, int n) { return std::abs(count - p * n) < 5 * std::sqrt(p * (1 - p) * n); };
+    const auto near = [](int count, double p, int n) {
+        return std::abs(count - p * n) < 5 * std::sqrt(p * (1 - p) * n);
+    };
     CHECK(near(by_count[1], 0.1, pulses));
     CHECK(near(by_count[2], 0.9 * 0.45, pulses));
     CHECK(near(by_count[3], 0.9 * 0.35, pulses));

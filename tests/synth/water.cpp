@@ -13,7 +13,8 @@ TEST_CASE("synth/lake_outline: radius matches the harmonic series and stays with
     rng r(31);
     for (int trial = 0; trial < 20; ++trial) {
         const double irregularity = r.uniform(0.0, 0.6);
-        const auto lake = lake_outline::random(r, r.uniform(-50, 50), r.uniform(-50, 50), r.uniform(20, 200), irregularity);
+        const auto lake =
+            lake_outline::random(r, r.uniform(-50, 50), r.uniform(-50, 50), r.uniform(20, 200), irregularity);
         double lo = 1e300, hi = 0, worst = 0;
         for (int k = 0; k < 3600; ++k) {
             const double theta = k * 0.0017453292519943296;
@@ -80,7 +81,8 @@ TEST_CASE("synth/water_returns: dropout and glint probabilities, bimodal intensi
     const water_returns w;
     CHECK(w.pulse_drop_probability(0, 15) == doctest::Approx(w.pulse_drop_nadir));
     CHECK(w.pulse_drop_probability(-15, 15) == doctest::Approx(w.pulse_drop_edge));
-    CHECK(w.pulse_drop_probability(7.5, 15) == doctest::Approx(0.5 * (w.pulse_drop_nadir + w.pulse_drop_edge)).epsilon(0.3));
+    CHECK(w.pulse_drop_probability(7.5, 15) ==
+          doctest::Approx(0.5 * (w.pulse_drop_nadir + w.pulse_drop_edge)).epsilon(0.3));
     CHECK(w.specular_probability(0) == doctest::Approx(w.specular_floor + w.specular_peak));
     CHECK(w.specular_probability(10) == doctest::Approx(w.specular_floor).epsilon(0.01));
     rng r(32);
@@ -93,9 +95,9 @@ TEST_CASE("synth/water_returns: dropout and glint probabilities, bimodal intensi
             if (i >= w.low_min && i <= w.low_max) ++low;
             if (i < 8) ++low_under_8;
         }
-        CHECK(glints + low == n);   // nothing in between: bimodal
+        CHECK(glints + low == n);  // nothing in between: bimodal
         const double p = w.specular_probability(angle);
-        CHECK(std::abs(glints - p * n) < 5 * std::sqrt(p * (1 - p) * n));   // 5 standard deviations
+        CHECK(std::abs(glints - p * n) < 5 * std::sqrt(p * (1 - p) * n));  // 5 standard deviations
         // Skewed towards low_min: P(i < 8) = sqrt((8 - 2) / 18) = 0.577 of the low returns.
         CHECK(static_cast<double>(low_under_8) / low == doctest::Approx(std::sqrt(6.0 / 18.0)).epsilon(0.02));
     }

@@ -21,7 +21,10 @@ public:
     /// Buckets of about `bucket_m` metres over [0, size_m]^2 (size_m, bucket_m > 0).
     bucket_index(double size_m, double bucket_m)
         : n_(static_cast<std::ptrdiff_t>(std::max(1.0, std::ceil(size_m / bucket_m)))),
-          inv_(static_cast<double>(n_) / size_m), buckets_(static_cast<std::size_t>(n_ * n_)) {}
+          inv_(static_cast<double>(n_) / size_m),
+          buckets_(static_cast<std::size_t>(n_ * n_))
+    {
+    }
 
     /// Lists object `id` in every bucket overlapping the box [xmin, xmax] x [ymin, ymax].
     void insert(std::int32_t id, double xmin, double ymin, double xmax, double ymax)

@@ -17,18 +17,18 @@ namespace lidarfx::synth {
 inline double gradient_noise(double x, double y, std::uint64_t seed) noexcept
 {
     // cos and sin of k * 22.5 degrees, k = 0..15.
-    static constexpr std::array<double, 16> gx{1.0, 0.9238795325112867, 0.7071067811865476, 0.3826834323650898,
-                                               0.0, -0.3826834323650898, -0.7071067811865476, -0.9238795325112867,
+    static constexpr std::array<double, 16> gx{1.0,  0.9238795325112867,  0.7071067811865476,  0.3826834323650898,
+                                               0.0,  -0.3826834323650898, -0.7071067811865476, -0.9238795325112867,
                                                -1.0, -0.9238795325112867, -0.7071067811865476, -0.3826834323650898,
-                                               0.0, 0.3826834323650898, 0.7071067811865476, 0.9238795325112867};
+                                               0.0,  0.3826834323650898,  0.7071067811865476,  0.9238795325112867};
     const double fx = std::floor(x), fy = std::floor(y);
     const auto ix = static_cast<std::int64_t>(fx), iy = static_cast<std::int64_t>(fy);
     const double dx = x - fx, dy = y - fy;
     const auto corner = [&](std::int64_t i, std::int64_t j, double px, double py) {
         // One mix of a keyed linear combination is enough to decorrelate neighbouring corners.
-        const auto k = static_cast<std::size_t>(
-            mix64(seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull) ^
-                  (static_cast<std::uint64_t>(j) * 0xD1B54A32D192ED03ull)) >> 60);
+        const std::uint64_t h = mix64(seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull) ^
+                                      (static_cast<std::uint64_t>(j) * 0xD1B54A32D192ED03ull));
+        const auto k = static_cast<std::size_t>(h >> 60);
         return gx[k] * px + gx[(k + 12) & 15] * py;  // sin(a) = cos(a - 90 degrees)
     };
     const auto fade = [](double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); };
@@ -44,10 +44,10 @@ inline double gradient_noise(double x, double y, std::uint64_t seed) noexcept
 /// result stays in about [-1, 1] (typical standard deviation 0.2-0.3). Thresholding it gives blobs of
 /// about half the wavelength (dropout patches, woods); scaling it gives rolling terrain.
 struct noise_field {
-    std::uint64_t seed = 1;      ///< seed; each octave hashes with its own derived seed
-    double wavelength_m = 100;   ///< wavelength of the first octave, metres, > 0
-    int octaves = 4;             ///< number of octaves, >= 1
-    double gain = 0.5;           ///< amplitude ratio between successive octaves, in (0, 1]
+    std::uint64_t seed = 1;     ///< seed; each octave hashes with its own derived seed
+    double wavelength_m = 100;  ///< wavelength of the first octave, metres, > 0
+    int octaves = 4;            ///< number of octaves, >= 1
+    double gain = 0.5;          ///< amplitude ratio between successive octaves, in (0, 1]
 
     /// Field value at world point (x, y) metres. O(octaves).
     double operator()(double x, double y) const noexcept

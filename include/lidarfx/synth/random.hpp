@@ -18,8 +18,7 @@ constexpr std::uint64_t mix64(std::uint64_t z) noexcept
 
 /// Hash of up to four 64-bit keys (a seed, a purpose tag, lattice coordinates): counter-based randomness,
 /// so a value depends only on its keys, never on how many numbers were drawn before. O(1).
-constexpr std::uint64_t hash64(std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0,
-                               std::uint64_t d = 0) noexcept
+constexpr std::uint64_t hash64(std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0, std::uint64_t d = 0) noexcept
 {
     constexpr std::uint64_t golden = 0x9E3779B97F4A7C15ull;
     std::uint64_t h = mix64(a + golden);

@@ -29,18 +29,18 @@ inline constexpr double island_fill_area_m2 = 200.0;
 
 /// The truth of a synthetic scene, sampled at the centres of the cells of `g`.
 struct scene_truth {
-    grid g;                                   ///< truth grid: x0 = 0, y0 = size rounded up to whole cells
-    raster<std::uint8_t> water;               ///< 1 = water surface (islands of any size are 0; water under a
-                                              ///< bridge deck is 1)
-    raster<std::uint8_t> water_filled;        ///< water plus islands smaller than island_fill_area_m2
-    raster<std::int32_t> building_id;         ///< footprint holding the cell centre, 1-based; 0 = none
-    raster<std::int32_t> roof_plane_id;       ///< 1 + index into roof_planes of the face above the centre; 0 = none
-    raster<float> ground_z;                   ///< bare-earth elevation (water level on water), metres
-    raster<float> water_z;                    ///< water surface elevation on water cells, NaN elsewhere
-    raster<std::uint8_t> surface;             ///< las_class of the topmost surface above the cell centre
-    std::vector<roof_plane> roof_planes;      ///< every roof face, grouped by building in id order
+    grid g;                               ///< truth grid: x0 = 0, y0 = size rounded up to whole cells
+    raster<std::uint8_t> water;           ///< 1 = water surface (islands of any size are 0; water under a
+                                          ///< bridge deck is 1)
+    raster<std::uint8_t> water_filled;    ///< water plus islands smaller than island_fill_area_m2
+    raster<std::int32_t> building_id;     ///< footprint holding the cell centre, 1-based; 0 = none
+    raster<std::int32_t> roof_plane_id;   ///< 1 + index into roof_planes of the face above the centre; 0 = none
+    raster<float> ground_z;               ///< bare-earth elevation (water level on water), metres
+    raster<float> water_z;                ///< water surface elevation on water cells, NaN elsewhere
+    raster<std::uint8_t> surface;         ///< las_class of the topmost surface above the cell centre
+    std::vector<roof_plane> roof_planes;  ///< every roof face, grouped by building in id order
     std::vector<std::vector<std::array<double, 2>>> footprints;  ///< per building id-1: closed clockwise ring
-    std::vector<std::array<double, 4>> islands;   ///< (x, y, radius_m, area_m2) of each island
+    std::vector<std::array<double, 4>> islands;                  ///< (x, y, radius_m, area_m2) of each island
 };
 
 /// Points and truth of a synthetic scene.
@@ -51,11 +51,11 @@ struct scene {
 
 /// What lies at a point beneath trees, buildings and bridges.
 struct site_sample {
-    double z = 0;                          ///< bare-earth or water surface elevation, metres
-    std::uint8_t cover = las_class::ground;   ///< ground, road_surface or water
-    std::int32_t water_body = -1;          ///< index of the waterbody, -1 on land
-    double island_area_m2 = 0;             ///< area of the island holding the point; 0 if none
-    double intensity = 100;                ///< mean intensity of the land cover (unused on water)
+    double z = 0;                            ///< bare-earth or water surface elevation, metres
+    std::uint8_t cover = las_class::ground;  ///< ground, road_surface or water
+    std::int32_t water_body = -1;            ///< index of the waterbody, -1 on land
+    double island_area_m2 = 0;               ///< area of the island holding the point; 0 if none
+    double intensity = 100;                  ///< mean intensity of the land cover (unused on water)
 };
 
 namespace detail {
@@ -80,7 +80,7 @@ struct world {
 struct top_hit {
     enum kind_t { none, bridge, building, tree } kind = none;
     std::int32_t index = -1;
-    double height = 0;   ///< crown top above ground (trees)
+    double height = 0;  ///< crown top above ground (trees)
 };
 
 /// Finds the object a pulse meets first: bridge decks, then roofs, then the tallest crown.
@@ -88,7 +88,10 @@ class top_finder {
 public:
     top_finder(double size_m, const std::vector<tree>& trees, const std::vector<building>& buildings,
                const std::vector<bridge_deck>& bridges)
-        : trees_(trees), buildings_(buildings), bridges_(bridges), tree_index_(size_m, 12.0),
+        : trees_(trees),
+          buildings_(buildings),
+          bridges_(bridges),
+          tree_index_(size_m, 12.0),
           building_index_(size_m, 16.0)
     {
         for (std::size_t i = 0; i < trees.size(); ++i) {
@@ -170,12 +173,13 @@ point_set render_points(const world<Site>& w, double density_per_m2)
     rng random(w.seed, returns_tag);
     point_set points;
     points.reserve(static_cast<std::size_t>(1.1 * w.size_m * w.size_m * density_per_m2));
-    const auto noise = [&] { return 0.05 * random.triangular(); };   // +-5 cm, sd 2 cm
+    const auto noise = [&] { return 0.05 * random.triangular(); };  // +-5 cm, sd 2 cm
 
     scan_square(w.size_m, density_per_m2, hash64(w.seed, 0x5CA9), w.scan, [&](const pulse& p) {
-        const double speck = hash_unit(w.seed, speck_tag,
-                                       static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x / w.water.speck_cell_m))),
-                                       static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y / w.water.speck_cell_m))));
+        const double speck =
+            hash_unit(w.seed, speck_tag,
+                      static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x / w.water.speck_cell_m))),
+                      static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y / w.water.speck_cell_m))));
         if (speck < w.water.speck_share_land) return;
         const top_hit hit = top.at(p.x, p.y);
         if (hit.kind == top_hit::bridge) {
@@ -186,8 +190,8 @@ point_set render_points(const world<Site>& w, double density_per_m2)
         }
         if (hit.kind == top_hit::building) {
             const auto& b = w.buildings[static_cast<std::size_t>(hit.index)];
-            points.push(p.x, p.y, b.roof_at(p.x, p.y).z + noise(), b.intensity * (1.0 + 0.1 * random.triangular()),
-                        1, 1, las_class::building);
+            points.push(p.x, p.y, b.roof_at(p.x, p.y).z + noise(), b.intensity * (1.0 + 0.1 * random.triangular()), 1,
+                        1, las_class::building);
             return;
         }
         const site_sample s = w.site(p.x, p.y);
@@ -201,7 +205,8 @@ point_set render_points(const world<Site>& w, double density_per_m2)
         if (s.water_body >= 0) {
             if (speck < w.water.speck_share_water) return;
             // A little noise on the field makes patch borders ragged, as on real surveys.
-            if (patch(p.x, p.y) + 0.03 * random.triangular() > thresholds[static_cast<std::size_t>(s.water_body)]) return;
+            if (patch(p.x, p.y) + 0.03 * random.triangular() > thresholds[static_cast<std::size_t>(s.water_body)])
+                return;
             if (random.chance(w.water.pulse_drop_probability(p.scan_angle_deg, w.scan.max_scan_angle_deg))) return;
             points.push(p.x, p.y, s.z + noise(), w.water.intensity(p.scan_angle_deg, random), 1, 1, las_class::water);
             return;

@@ -11,9 +11,9 @@ namespace lidarfx::synth {
 /// A straight strip: centre line through (x, y) heading `azimuth_deg` (clockwise from north), `width_m`
 /// wide, reaching `half_length_m` either way from (x, y) (infinite by default).
 struct strip {
-    double x = 0, y = 0;            ///< a point on the centre line (its middle), metres
-    double azimuth_deg = 0;         ///< heading of the centre line, clockwise from north
-    double width_m = 7;             ///< full width, metres
+    double x = 0, y = 0;     ///< a point on the centre line (its middle), metres
+    double azimuth_deg = 0;  ///< heading of the centre line, clockwise from north
+    double width_m = 7;      ///< full width, metres
     double half_length_m = std::numeric_limits<double>::infinity();
 
     /// (along, across) coordinates of (px, py): along the heading from (x, y), and across to its right.
@@ -32,6 +32,9 @@ struct strip {
         return {x + along * s + across * c, y + along * c - across * s};
     }
 
+    /// Distance from (px, py) to the nearer long edge, metres; negative on the strip (ignores its ends).
+    double edge_distance(double px, double py) const noexcept { return std::abs(local(px, py)[1]) - 0.5 * width_m; }
+
     /// True when (px, py) lies on the strip (edges included).
     bool contains(double px, double py) const noexcept
     {
@@ -43,9 +46,9 @@ struct strip {
 /// A flat bridge deck: a strip at elevation `z` (top surface, metres). Pulses over it return from the deck
 /// and never reach the ground or water below.
 struct bridge_deck {
-    strip span;                     ///< plan of the deck
-    double z = 0;                   ///< deck surface elevation, metres
-    double intensity = 80;          ///< mean intensity of the deck surface
+    strip span;             ///< plan of the deck
+    double z = 0;           ///< deck surface elevation, metres
+    double intensity = 80;  ///< mean intensity of the deck surface
 };
 
 }  // namespace lidarfx::synth

@@ -11,10 +11,10 @@ namespace lidarfx::synth {
 
 /// One planar roof face of a building, as recorded in the scene truth.
 struct roof_plane {
-    std::int32_t building_id = 0;   ///< id of the building (1-based, as in the building_id raster)
-    double tilt_deg = 0;            ///< 0 horizontal .. 90 vertical
-    double azimuth_deg = 0;         ///< down-slope direction, clockwise from north, [0, 360); 0 when tilt is 0
-    double area_m2 = 0;             ///< sloped (true) area = horizontal area / cos(tilt), m^2
+    std::int32_t building_id = 0;  ///< id of the building (1-based, as in the building_id raster)
+    double tilt_deg = 0;           ///< 0 horizontal .. 90 vertical
+    double azimuth_deg = 0;        ///< down-slope direction, clockwise from north, [0, 360); 0 when tilt is 0
+    double area_m2 = 0;            ///< sloped (true) area = horizontal area / cos(tilt), m^2
 };
 
 /// Roof shapes. Gable ridges and hip ridges run along the footprint's long axis; a hip roof has the same
@@ -27,15 +27,15 @@ enum class roof_kind { flat, shed, gable, hip };
 /// of planes(): gable 0 faces +v and 1 faces -v; hip adds 2 facing +u and 3 facing -u; a shed faces
 /// `shed_facing` (0 +v, 1 -v, 2 +u, 3 -u).
 struct building {
-    std::int32_t id = 1;            ///< 1-based id
-    double x = 0, y = 0;            ///< footprint centre, metres
+    std::int32_t id = 1;  ///< 1-based id
+    double x = 0, y = 0;  ///< footprint centre, metres
     double length_m = 12, width_m = 8;
-    double axis_azimuth_deg = 0;    ///< direction of the long axis, clockwise from north
+    double axis_azimuth_deg = 0;  ///< direction of the long axis, clockwise from north
     roof_kind kind = roof_kind::gable;
-    double tilt_deg = 30;           ///< roof tilt of every face (ignored for flat roofs)
-    int shed_facing = 0;            ///< facing of a shed roof, 0..3 (see above)
-    double eave_z = 10;             ///< elevation of the eaves (top of the walls), metres
-    double intensity = 70;          ///< mean intensity of the roof material
+    double tilt_deg = 30;   ///< roof tilt of every face (ignored for flat roofs)
+    int shed_facing = 0;    ///< facing of a shed roof, 0..3 (see above)
+    double eave_z = 10;     ///< elevation of the eaves (top of the walls), metres
+    double intensity = 70;  ///< mean intensity of the roof material
 
     /// Local coordinates (along u, along v) of world point (px, py).
     std::array<double, 2> local(double px, double py) const noexcept
@@ -66,16 +66,18 @@ struct building {
         const double slope = std::tan(tilt_deg * 0.017453292519943295);
         const double to_long_edge = 0.5 * width_m - std::abs(pv), to_short_edge = 0.5 * length_m - std::abs(pu);
         switch (kind) {
-        case roof_kind::flat: return {eave_z, 0};
-        case roof_kind::shed: {
-            const double along = shed_facing == 0 ? pv : shed_facing == 1 ? -pv : shed_facing == 2 ? pu : -pu;
-            const double half = shed_facing < 2 ? 0.5 * width_m : 0.5 * length_m;
-            return {eave_z + slope * (half - along), 0};
-        }
-        case roof_kind::gable: return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
-        case roof_kind::hip:
-            if (to_long_edge <= to_short_edge) return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
-            return {eave_z + slope * to_short_edge, pu >= 0 ? 2 : 3};
+            case roof_kind::flat:
+                return {eave_z, 0};
+            case roof_kind::shed: {
+                const double along = shed_facing == 0 ? pv : shed_facing == 1 ? -pv : shed_facing == 2 ? pu : -pu;
+                const double half = shed_facing < 2 ? 0.5 * width_m : 0.5 * length_m;
+                return {eave_z + slope * (half - along), 0};
+            }
+            case roof_kind::gable:
+                return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
+            case roof_kind::hip:
+                if (to_long_edge <= to_short_edge) return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
+                return {eave_z + slope * to_short_edge, pu >= 0 ? 2 : 3};
         }
         return {eave_z, 0};
     }
@@ -87,18 +89,22 @@ struct building {
         const auto facing = [&](double offset) { return std::fmod(axis_azimuth_deg + offset + 720.0, 360.0); };
         const double l = length_m, w = width_m;
         switch (kind) {
-        case roof_kind::flat: return {{id, 0.0, 0.0, l * w}};
-        case roof_kind::shed: {
-            static constexpr double offsets[] = {90, 270, 0, 180};
-            return {{id, tilt_deg, facing(offsets[shed_facing]), l * w / cos_tilt}};
-        }
-        case roof_kind::gable:
-            return {{id, tilt_deg, facing(90), 0.5 * l * w / cos_tilt}, {id, tilt_deg, facing(270), 0.5 * l * w / cos_tilt}};
-        case roof_kind::hip: {
-            const double side = 0.25 * (2 * l - w) * w / cos_tilt, end = 0.25 * w * w / cos_tilt;
-            return {{id, tilt_deg, facing(90), side}, {id, tilt_deg, facing(270), side},
-                    {id, tilt_deg, facing(0), end}, {id, tilt_deg, facing(180), end}};
-        }
+            case roof_kind::flat:
+                return {{id, 0.0, 0.0, l * w}};
+            case roof_kind::shed: {
+                static constexpr double offsets[] = {90, 270, 0, 180};
+                return {{id, tilt_deg, facing(offsets[shed_facing]), l * w / cos_tilt}};
+            }
+            case roof_kind::gable:
+                return {{id, tilt_deg, facing(90), 0.5 * l * w / cos_tilt},
+                        {id, tilt_deg, facing(270), 0.5 * l * w / cos_tilt}};
+            case roof_kind::hip: {
+                const double side = 0.25 * (2 * l - w) * w / cos_tilt, end = 0.25 * w * w / cos_tilt;
+                return {{id, tilt_deg, facing(90), side},
+                        {id, tilt_deg, facing(270), side},
+                        {id, tilt_deg, facing(0), end},
+                        {id, tilt_deg, facing(180), end}};
+            }
         }
         return {};
     }

@@ -13,16 +13,16 @@ namespace lidarfx::synth {
 
 /// Geometry of a linear (rotating-polygon) airborne scanner flying north-south strips.
 struct scan_pattern {
-    double flying_height_m = 1000;      ///< height above ground, metres, > 0
-    double max_scan_angle_deg = 15;     ///< half field of view, degrees, in (0, 60]; sets the strip width
-    double across_jitter = 0.35;        ///< across-track jitter, fraction of the pulse spacing, in [0, 0.45]
-    double along_jitter = 0.15;         ///< along-track jitter, fraction of the line spacing, in [0, 0.15]
+    double flying_height_m = 1000;   ///< height above ground, metres, > 0
+    double max_scan_angle_deg = 15;  ///< half field of view, degrees, in (0, 60]; sets the strip width
+    double across_jitter = 0.35;     ///< across-track jitter, fraction of the pulse spacing, in [0, 0.45]
+    double along_jitter = 0.15;      ///< along-track jitter, fraction of the line spacing, in [0, 0.15]
 };
 
 /// One laser pulse: footprint centre and the scan angle it was fired at.
 struct pulse {
-    double x = 0, y = 0;            ///< footprint, metres
-    double scan_angle_deg = 0;      ///< off-nadir angle, degrees; > 0 east of the flight line
+    double x = 0, y = 0;        ///< footprint, metres
+    double scan_angle_deg = 0;  ///< off-nadir angle, degrees; > 0 east of the flight line
 };
 
 /// Fires `size_m^2 * density_per_m2` pulses (rounded to whole lines and pulses) over [0, size_m]^2 and
@@ -33,19 +33,18 @@ struct pulse {
 /// mean is exact. Scan angle = atan(across-track offset / H). Deterministic from `seed`.
 /// O(pulses). @throws invalid_input on size_m or density_per_m2 <= 0, or options out of range.
 template <class Emit>
-void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const scan_pattern& pattern,
-                 Emit&& emit)
+void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const scan_pattern& pattern, Emit&& emit)
 {
     constexpr const char* fn = "scan_square";
     lidarfx::detail::require_positive(size_m, fn, "size_m");
     lidarfx::detail::require_positive(density_per_m2, fn, "density_per_m2");
     lidarfx::detail::require_positive(pattern.flying_height_m, fn, "flying_height_m");
     lidarfx::detail::require(pattern.max_scan_angle_deg > 0 && pattern.max_scan_angle_deg <= 60, fn,
-                    "max_scan_angle_deg", "in (0, 60]", pattern.max_scan_angle_deg);
+                             "max_scan_angle_deg", "in (0, 60]", pattern.max_scan_angle_deg);
     lidarfx::detail::require(pattern.across_jitter >= 0 && pattern.across_jitter <= 0.45, fn, "across_jitter",
-                    "in [0, 0.45]", pattern.across_jitter);
+                             "in [0, 0.45]", pattern.across_jitter);
     lidarfx::detail::require(pattern.along_jitter >= 0 && pattern.along_jitter <= 0.15, fn, "along_jitter",
-                    "in [0, 0.15]", pattern.along_jitter);
+                             "in [0, 0.15]", pattern.along_jitter);
 
     const double swath = 2.0 * pattern.flying_height_m * std::tan(pattern.max_scan_angle_deg * 0.017453292519943295);
     const auto strips = static_cast<long long>(std::max(1.0, std::ceil(size_m / swath - 1e-9)));
@@ -69,7 +68,8 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
                 // pulse inside its own line cell, so pulses never leave the square.
                 const double drift = 0.2 + 0.6 * (static_cast<double>(j) + 0.5) / static_cast<double>(per_line);
                 const double dy = northbound ? drift : 1.0 - drift;
-                const double x = x_left + (static_cast<double>(j) + 0.5 + pattern.across_jitter * random.triangular()) * across;
+                const double x =
+                    x_left + (static_cast<double>(j) + 0.5 + pattern.across_jitter * random.triangular()) * across;
                 const double y = (static_cast<double>(line) + dy + pattern.along_jitter * random.triangular()) * along;
                 emit(pulse{x, y, std::atan((x - x_flight) / pattern.flying_height_m) * degrees});
             }

@@ -23,10 +23,10 @@ namespace lidarfx::synth {
 
 /// Options shared by every scene.
 struct scene_options {
-    unsigned seed = 1;             ///< everything in the scene follows from it
-    double size_m = 640;           ///< side of the square scene, metres (x and y from 0 to size_m), > 0
-    double density_per_m2 = 2.0;   ///< pulses (first returns) per m^2, > 0
-    double truth_cell_m = 2.0;     ///< cell of the truth rasters, metres, > 0
+    unsigned seed = 1;            ///< everything in the scene follows from it
+    double size_m = 640;          ///< side of the square scene, metres (x and y from 0 to size_m), > 0
+    double density_per_m2 = 2.0;  ///< pulses (first returns) per m^2, > 0
+    double truth_cell_m = 2.0;    ///< cell of the truth rasters, metres, > 0
 };
 
 namespace detail {
@@ -60,14 +60,41 @@ inline double bank_height(double d_m)
     return 0.3 + 0.6 * smoothstep(0.0, 4.0, d_m) + 0.02 * d_m;
 }
 
+/// The relief, micro-relief, land-cover and woodland fields every scene's ground uses.
+struct ground_fields {
+    noise_field relief, micro, cover, woods;
+    ground_fields() = default;
+    ground_fields(std::uint64_t seed, double relief_wavelength_m)
+        : relief{hash64(seed, 1), relief_wavelength_m, 4, 0.45},
+          micro{hash64(seed, 2), 12.0, 2, 0.5},
+          cover{hash64(seed, 3), 70.0, 3, 0.5},
+          woods{hash64(seed, 4), 160.0, 3, 0.5}
+    {
+    }
+};
+
+/// Where trees stand near water: never within crown radius + 1.5 m of the shore (no crown over the water)
+/// nor within crown radius + road_gap_m of the road's edge; elsewhere with probability 0.55 within bank_m
+/// of the water, `in_woods` where the woods field exceeds `woods_above`, and 0.03 in the open.
+struct bank_trees {
+    double bank_m = 30, woods_above = 0.2, in_woods = 0.7, road_gap_m = 1;
+
+    double probability(double shore_m, double road_edge_m, double crown_radius_m, double woods) const
+    {
+        if (shore_m < crown_radius_m + 1.5 || road_edge_m < crown_radius_m + road_gap_m) return 0.0;
+        if (shore_m < bank_m) return 0.55;
+        return woods > woods_above ? in_woods : 0.03;
+    }
+};
+
 /// Lake scene ground: rolling terrain bent down to the banks of each lake, flat lakes with islands, a road.
-struct lake_site {
-    noise_field relief, micro, cover, coves;
+struct lake_site : ground_fields {
+    noise_field coves;
     double base_z = 120, relief_m = 30, micro_m = 0.3;
-    double coves_m = 5.0;                 ///< amplitude of the small-scale shoreline wiggle, metres
-    std::array<lake_outline, 2> lakes;    ///< the lake (0) and the pond (1)
-    std::array<double, 2> levels{};       ///< water level of each
-    std::vector<island> islands;          ///< all in lake 0
+    double coves_m = 5.0;               ///< amplitude of the small-scale shoreline wiggle, metres
+    std::array<lake_outline, 2> lakes;  ///< the lake (0) and the pond (1)
+    std::array<double, 2> levels{};     ///< water level of each
+    std::vector<island> islands;        ///< all in lake 0
     strip road;
     static constexpr double bank_m = 50;  ///< width of the band where the terrain bends to a bank
 
@@ -111,18 +138,18 @@ struct lake_site {
             return {banked(p[0], p[1], shores(p[0], p[1])), las_class::road_surface, -1, 0.0,
                     road_intensity(cover, x, y)};
         }
-        const double z = banked(x, y, shore) + micro_m * micro(x, y) * smoothstep(0.0, 10.0, std::min(shore[0], shore[1]));
+        const double z =
+            banked(x, y, shore) + micro_m * micro(x, y) * smoothstep(0.0, 10.0, std::min(shore[0], shore[1]));
         return {z, las_class::ground, -1, 0.0, cover_intensity(cover, x, y)};
     }
 };
 
 /// River scene ground: a valley falling eastwards along a meandering river, and a road on embankments
 /// that climbs to a bridge deck.
-struct river_site {
+struct river_site : ground_fields {
     double size_m = 640;
     river_channel channel;
-    noise_field relief, micro, cover;
-    strip road;                        ///< infinite road through the bridge; along = 0 at the deck centre
+    strip road;  ///< infinite road through the bridge; along = 0 at the deck centre
     double deck_half_length_m = 30;
     double deck_z = 0;
     static constexpr double ramp_slope = 0.06, embankment_slope = 0.5;
@@ -157,8 +184,7 @@ struct river_site {
 };
 
 /// Town scene ground: gently undulating, with a grid of roads.
-struct town_site {
-    noise_field relief, micro, cover;
+struct town_site : ground_fields {
     double base_z = 50, relief_m = 2.0;
     std::vector<strip> roads;
 
@@ -177,18 +203,32 @@ struct town_site {
     }
 };
 
-/// The relief, micro-relief and land-cover fields every scene uses, seeded from the scene seed.
-struct ground_fields {
-    noise_field relief, micro, cover, woods;
-    explicit ground_fields(std::uint64_t seed, double relief_wavelength_m)
-        : relief{hash64(seed, 1), relief_wavelength_m, 4, 0.45}, micro{hash64(seed, 2), 12.0, 2, 0.5},
-          cover{hash64(seed, 3), 70.0, 3, 0.5}, woods{hash64(seed, 4), 160.0, 3, 0.5} {}
-};
-
 template <class Site>
 scene render(const world<Site>& w, const scene_options& o)
 {
     return {render_points(w, o.density_per_m2), render_truth(w, o.truth_cell_m)};
+}
+
+/// An empty world of the scene's size, its seed derived from the options' seed and the scene's tag, its
+/// ground fields seeded. @throws invalid_input on bad options (see validate).
+template <class Site>
+world<Site> new_world(const scene_options& o, const char* fn, std::uint64_t tag, double relief_wavelength_m)
+{
+    validate(o, fn);
+    world<Site> w;
+    w.size_m = o.size_m;
+    w.seed = hash64(o.seed, tag);
+    static_cast<ground_fields&>(w.site) = ground_fields(w.seed, relief_wavelength_m);
+    return w;
+}
+
+/// Trees scattered over the world (see scatter_trees), standing on its ground.
+template <class Site, class Probability>
+std::vector<tree> site_trees(const world<Site>& w, rng& random, double spacing_m, const tree_size& sizes,
+                             Probability&& probability)
+{
+    return scatter_trees(random, w.size_m, spacing_m, sizes, probability,
+                         [&](double x, double y) { return w.site(x, y).z; });
 }
 
 }  // namespace detail
@@ -205,19 +245,11 @@ scene render(const world<Site>& w, const scene_options& o)
 /// would exceed 1e9 pulses or 2.5e8 truth cells.
 inline scene lake_scene(const scene_options& options = {})
 {
-    detail::validate(options, "lake_scene");
-    const std::uint64_t seed = hash64(options.seed, 0x1A4E);
-    const double S = options.size_m;
-    rng random(seed, 10);
-    const detail::ground_fields fields(seed, 320.0);
-    detail::world<detail::lake_site> w;
-    w.size_m = S;
-    w.seed = seed;
+    auto w = detail::new_world<detail::lake_site>(options, "lake_scene", 0x1A4E, 320.0);
+    const double S = w.size_m;
+    rng random(w.seed, 10);
     auto& site = w.site;
-    site.relief = fields.relief;
-    site.micro = fields.micro;
-    site.cover = fields.cover;
-    site.coves = noise_field{hash64(seed, 5), 45.0, 2, 0.5};
+    site.coves = noise_field{hash64(w.seed, 5), 45.0, 2, 0.5};
     site.lakes[0] = lake_outline::random(random, S * (0.45 + 0.03 * random.triangular()),
                                          S * (0.58 + 0.03 * random.triangular()), 0.22 * S, 0.38);
     site.lakes[1] = lake_outline::random(random, S * (0.84 + 0.02 * random.triangular()),
@@ -258,23 +290,17 @@ inline scene lake_scene(const scene_options& options = {})
     place_islands(random.between(3, 5), 40.0, 100.0, 0.3, 1.2);
     w.water_bodies = 2;
 
-    rng tree_random(seed, 11);
-    w.trees = scatter_trees(
-        tree_random, S, 7.0, tree_size{},
-        [&](double x, double y, double rc) {
-            for (const auto& isl : site.islands) {
-                const double rho = std::hypot(x - isl.x, y - isl.y);
-                if (rho < isl.radius_m + rc + 1.5)
-                    return isl.area_m2() >= island_fill_area_m2 && rho + rc + 1.0 <= isl.radius_m ? 0.35 : 0.0;
-            }
-            const auto shores = site.shores(x, y);
-            const double shore = std::min(shores[0], shores[1]);
-            if (shore < rc + 1.5) return 0.0;
-            if (std::abs(site.road.local(x, y)[1]) < 0.5 * site.road.width_m + rc + 1.0) return 0.0;
-            if (shore < 30.0) return 0.55;
-            return fields.woods(x, y) > 0.2 ? 0.7 : 0.03;
-        },
-        [&](double x, double y) { return site(x, y).z; });
+    rng tree_random(w.seed, 11);
+    w.trees = detail::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
+        for (const auto& isl : site.islands) {
+            const double rho = std::hypot(x - isl.x, y - isl.y);
+            if (rho < isl.radius_m + rc + 1.5)
+                return isl.area_m2() >= island_fill_area_m2 && rho + rc + 1.0 <= isl.radius_m ? 0.35 : 0.0;
+        }
+        const auto shores = site.shores(x, y);
+        return detail::bank_trees{}.probability(std::min(shores[0], shores[1]), site.road.edge_distance(x, y), rc,
+                                                site.woods(x, y));
+    });
     return detail::render(w, options);
 }
 
@@ -286,19 +312,11 @@ inline scene lake_scene(const scene_options& options = {})
 /// @throws invalid_input as lake_scene.
 inline scene river_scene(const scene_options& options = {})
 {
-    detail::validate(options, "river_scene");
-    const std::uint64_t seed = hash64(options.seed, 0x71FE);
-    const double S = options.size_m;
-    rng random(seed, 10);
-    const detail::ground_fields fields(seed, 260.0);
-    detail::world<detail::river_site> w;
-    w.size_m = S;
-    w.seed = seed;
+    auto w = detail::new_world<detail::river_site>(options, "river_scene", 0x71FE, 260.0);
+    const double S = w.size_m;
+    rng random(w.seed, 10);
     auto& site = w.site;
     site.size_m = S;
-    site.relief = fields.relief;
-    site.micro = fields.micro;
-    site.cover = fields.cover;
     auto& ch = site.channel;
     constexpr double two_pi = river_channel::two_pi;
     ch.y_mid = S * (0.5 + 0.03 * random.triangular());
@@ -332,41 +350,29 @@ inline scene river_scene(const scene_options& options = {})
     w.bridges.push_back({strip{centre[0], centre[1], axis.azimuth_deg, 8.0, site.deck_half_length_m}, site.deck_z,
                          random.uniform(60.0, 100.0)});
 
-    rng tree_random(seed, 11);
-    w.trees = scatter_trees(
-        tree_random, S, 7.0, tree_size{},
-        [&](double x, double y, double rc) {
-            const double d = std::abs(ch.offset(x, y)) - 0.5 * ch.width(x);
-            if (d < rc + 1.5) return 0.0;
-            if (std::abs(site.road.local(x, y)[1]) < 0.5 * site.road.width_m + rc + 10.0) return 0.0;
-            if (d < 25.0) return 0.55;
-            return fields.woods(x, y) > 0.25 ? 0.6 : 0.03;
-        },
-        [&](double x, double y) { return site(x, y).z; });
+    rng tree_random(w.seed, 11);
+    w.trees = detail::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
+        // Wider clearance from the road: its embankments.
+        const detail::bank_trees rules{.bank_m = 25, .woods_above = 0.25, .in_woods = 0.6, .road_gap_m = 10};
+        return rules.probability(std::abs(ch.offset(x, y)) - 0.5 * ch.width(x), site.road.edge_distance(x, y), rc,
+                                 site.woods(x, y));
+    });
     return detail::render(w, options);
 }
 
 /// Town scene: gently undulating ground (about 2 m of relief) with a grid of 10 m roads every ~160 m,
 /// 20-40 buildings per 640 m x 640 m (scaled by area) along the streets, on rectangular footprints 8-16 m
-/// wide and up to 32 m long, rotated by multiples of 15 degrees or by arbitrary angles, with flat (20 %), shed (20 %),
-/// gable (35 %) and hip (25 %) roofs, walls 3-15 m high, roof intensity 30-120; trees next to some
-/// buildings and a few in the open. Truth: building_id, roof_plane_id, footprints, roof_planes (tilt,
-/// facing azimuth clockwise from north, sloped area). See docs/synthetic-scenes.md.
+/// wide and up to 32 m long, rotated by multiples of 15 degrees or by arbitrary angles, with flat (20 %),
+/// shed (20 %), gable (35 %) and hip (25 %) roofs (at least one of each), walls 3-15 m high, roof
+/// intensity 36-121; trees next to some buildings and a few in the open. Truth: building_id, roof_plane_id, footprints,
+/// roof_planes (tilt, facing azimuth clockwise from north, sloped area). See docs/synthetic-scenes.md.
 /// @throws invalid_input as lake_scene.
 inline scene town_scene(const scene_options& options = {})
 {
-    detail::validate(options, "town_scene");
-    const std::uint64_t seed = hash64(options.seed, 0x70AB);
-    const double S = options.size_m;
-    rng random(seed, 10);
-    const detail::ground_fields fields(seed, 300.0);
-    detail::world<detail::town_site> w;
-    w.size_m = S;
-    w.seed = seed;
+    auto w = detail::new_world<detail::town_site>(options, "town_scene", 0x70AB, 300.0);
+    const double S = w.size_m;
+    rng random(w.seed, 10);
     auto& site = w.site;
-    site.relief = fields.relief;
-    site.micro = fields.micro;
-    site.cover = fields.cover;
     const int road_count = std::max(1, static_cast<int>(std::lround(S / 160.0)));
     for (int k = 0; k < road_count; ++k) {
         const double p = (k + 0.5) * S / road_count;
@@ -375,7 +381,7 @@ inline scene town_scene(const scene_options& options = {})
     }
     const auto road_clearance = [&](double x, double y) {
         double nearest = std::numeric_limits<double>::infinity();
-        for (const auto& road : site.roads) nearest = std::min(nearest, std::abs(road.local(x, y)[1]) - 0.5 * road.width_m);
+        for (const auto& road : site.roads) nearest = std::min(nearest, road.edge_distance(x, y));
         return nearest;
     };
 
@@ -388,11 +394,15 @@ inline scene town_scene(const scene_options& options = {})
         b.length_m = std::min(32.0, b.width_m * random.uniform(1.0, 2.0));
         b.axis_azimuth_deg = random.chance(0.5) ? 15.0 * random.between(0, 11) : random.uniform(0.0, 180.0);
         // The first four buildings take one roof kind each (in a random order), so every town has all four.
-        const double kind = w.buildings.size() < 4 ? (static_cast<double>((first_kind + w.buildings.size()) % 4) + 0.5) / 4.0
-                                                   : random.uniform();
-        b.kind = kind < 0.2 ? roof_kind::flat : kind < 0.4 ? roof_kind::shed : kind < 0.75 ? roof_kind::gable : roof_kind::hip;
-        b.tilt_deg = b.kind == roof_kind::flat ? 0.0
-                     : b.kind == roof_kind::shed ? random.uniform(5.0, 25.0)
+        const double kind = w.buildings.size() < 4
+                                ? (static_cast<double>((first_kind + w.buildings.size()) % 4) + 0.5) / 4.0
+                                : random.uniform();
+        b.kind = kind < 0.2    ? roof_kind::flat
+                 : kind < 0.4  ? roof_kind::shed
+                 : kind < 0.75 ? roof_kind::gable
+                               : roof_kind::hip;
+        b.tilt_deg = b.kind == roof_kind::flat    ? 0.0
+                     : b.kind == roof_kind::shed  ? random.uniform(5.0, 25.0)
                      : b.kind == roof_kind::gable ? random.uniform(20.0, 45.0)
                                                   : random.uniform(20.0, 40.0);
         b.shed_facing = random.between(0, 3);
@@ -423,7 +433,7 @@ inline scene town_scene(const scene_options& options = {})
             return std::hypot(o.x - x, o.y - y) > o.bounding_radius() + rc + 1.0;
         });
     };
-    rng tree_random(seed, 11);
+    rng tree_random(w.seed, 11);
     const tree_size sizes{.min_radius_m = 2.0, .max_radius_m = 4.5, .min_height_m = 6.0, .max_height_m = 16.0};
     for (const auto& b : w.buildings) {
         const int count = tree_random.chance(0.4) ? tree_random.between(1, 3) : 0;
@@ -442,10 +452,8 @@ inline scene town_scene(const scene_options& options = {})
             w.trees.push_back(t);
         }
     }
-    const auto park = scatter_trees(
-        tree_random, S, 9.0, sizes,
-        [&](double x, double y, double rc) { return tree_fits(x, y, rc) ? 0.03 : 0.0; },
-        [&](double x, double y) { return site(x, y).z; });
+    const auto park = detail::site_trees(
+        w, tree_random, 9.0, sizes, [&](double x, double y, double rc) { return tree_fits(x, y, rc) ? 0.03 : 0.0; });
     w.trees.insert(w.trees.end(), park.begin(), park.end());
     return detail::render(w, options);
 }

@@ -16,12 +16,12 @@ namespace lidarfx::synth {
 /// A tree: stem position and ground height, and a crown shaped as the upper half of an ellipsoid whose
 /// equator sits halfway between the crown base and the top.
 struct tree {
-    double x = 0, y = 0;            ///< stem position, metres
-    double ground_z = 0;            ///< ground elevation at the stem, metres
-    double crown_radius_m = 3;      ///< horizontal crown radius, metres, > 0
-    double crown_base_m = 4;        ///< crown base above ground, metres, >= 1.5
-    double height_m = 12;           ///< tree top above ground, metres, > crown_base_m + 1
-    double intensity = 90;          ///< mean first-return intensity of the foliage
+    double x = 0, y = 0;        ///< stem position, metres
+    double ground_z = 0;        ///< ground elevation at the stem, metres
+    double crown_radius_m = 3;  ///< horizontal crown radius, metres, > 0
+    double crown_base_m = 4;    ///< crown base above ground, metres, >= 1.5
+    double height_m = 12;       ///< tree top above ground, metres, > crown_base_m + 1
+    double intensity = 90;      ///< mean first-return intensity of the foliage
 
     /// Height of the crown surface above ground at (px, py): mid + semi * sqrt(1 - rho^2/R^2) with
     /// mid, semi the crown's half-height centre and half-height; a negative number outside the crown.
@@ -37,9 +37,9 @@ struct tree {
 
 /// Size ranges of scattered trees (uniform in each range).
 struct tree_size {
-    double min_radius_m = 2.0, max_radius_m = 5.0;     ///< crown radius, metres
-    double min_height_m = 8.0, max_height_m = 22.0;    ///< total height, metres (>= 6)
-    double min_intensity = 50, max_intensity = 140;    ///< mean first-return intensity
+    double min_radius_m = 2.0, max_radius_m = 5.0;   ///< crown radius, metres
+    double min_height_m = 8.0, max_height_m = 22.0;  ///< total height, metres (>= 6)
+    double min_intensity = 50, max_intensity = 140;  ///< mean first-return intensity
 };
 
 /// Scatters trees over [0, size_m]^2 on a jittered lattice of `spacing_m`: in each lattice cell a tree of
@@ -80,8 +80,7 @@ std::vector<tree> scatter_trees(rng& random, double size_m, double spacing_m, co
 /// ground return gets 40 % of the ground's intensity. Calls emit(z, intensity, return_number,
 /// number_of_returns, classification) from the first return to the last. O(returns).
 template <class Emit>
-void tree_returns(const tree& t, double crown_top_m, double ground_z, double ground_intensity, rng& random,
-                  Emit&& emit)
+void tree_returns(const tree& t, double crown_top_m, double ground_z, double ground_intensity, rng& random, Emit&& emit)
 {
     if (random.chance(0.1)) {
         emit(ground_z, ground_intensity, 1, 1, las_class::ground);
@@ -98,8 +97,8 @@ void tree_returns(const tree& t, double crown_top_m, double ground_z, double gro
     for (int k = 0; k < n; ++k) {
         const double h = heights[k];
         const bool on_ground = h == 0.0;
-        const double intensity = on_ground ? 0.4 * ground_intensity
-                                           : energy * t.intensity * (1.0 + 0.2 * random.triangular());
+        const double intensity =
+            on_ground ? 0.4 * ground_intensity : energy * t.intensity * (1.0 + 0.2 * random.triangular());
         const std::uint8_t cls = on_ground ? las_class::ground
                                  : h > 2.0 ? las_class::high_vegetation
                                            : las_class::low_vegetation;

@@ -14,9 +14,9 @@ namespace lidarfx::synth {
 /// A star-shaped lake: the shoreline radius toward direction theta is
 /// R(theta) = mean_radius_m * (1 + sum_k (a_k cos k theta + b_k sin k theta)), k = 2..7.
 struct lake_outline {
-    double x = 0, y = 0;                 ///< centre, metres
-    double mean_radius_m = 100;          ///< mean shoreline radius, metres, > 0
-    std::array<double, 6> a{}, b{};      ///< harmonic coefficients of orders 2..7 (sum of |a|+|b| < 1)
+    double x = 0, y = 0;             ///< centre, metres
+    double mean_radius_m = 100;      ///< mean shoreline radius, metres, > 0
+    std::array<double, 6> a{}, b{};  ///< harmonic coefficients of orders 2..7 (sum of |a|+|b| < 1)
 
     /// Random irregular outline: harmonic amplitudes falling as 1/k, scaled so the radius stays within
     /// mean_radius_m * (1 +- irregularity); irregularity in [0, 0.9].
@@ -75,16 +75,16 @@ struct lake_outline {
 /// w(x) = mean_width_m + width_swing_m * (0.6 sin(...) + 0.4 sin(...)), water level falling linearly
 /// eastwards. Distances across the channel are first-order perpendicular offsets (dy / sqrt(1 + y'^2)).
 struct river_channel {
-    double y_mid = 320;                                  ///< mean northing of the centre line, metres
-    std::array<double, 2> meander_amplitude_m{60, 20};   ///< amplitudes of the two meander sines
+    double y_mid = 320;                                 ///< mean northing of the centre line, metres
+    std::array<double, 2> meander_amplitude_m{60, 20};  ///< amplitudes of the two meander sines
     std::array<double, 2> meander_wavelength_m{450, 190};
-    std::array<double, 2> meander_phase{0, 0};           ///< radians
-    double mean_width_m = 27.5;                          ///< mean water width, metres
-    double width_swing_m = 12.5;                         ///< width varies within mean +- swing
+    std::array<double, 2> meander_phase{0, 0};  ///< radians
+    double mean_width_m = 27.5;                 ///< mean water width, metres
+    double width_swing_m = 12.5;                ///< width varies within mean +- swing
     std::array<double, 2> width_wavelength_m{290, 130};
-    std::array<double, 2> width_phase{0, 0};             ///< radians
-    double level_west_z = 50;                            ///< water level at x = 0, metres
-    double level_drop_per_m = 1.5 / 640;                 ///< fall of the water level per metre eastwards
+    std::array<double, 2> width_phase{0, 0};  ///< radians
+    double level_west_z = 50;                 ///< water level at x = 0, metres
+    double level_drop_per_m = 1.5 / 640;      ///< fall of the water level per metre eastwards
 
     static constexpr double two_pi = 6.283185307179586;
 
@@ -129,9 +129,9 @@ struct river_channel {
 /// A round island (or rock) in a lake: a dome rising from `shore_rise_m` above the water at its rim to
 /// shore_rise_m + height_m at its centre.
 struct island {
-    double x = 0, y = 0;        ///< centre, metres
-    double radius_m = 10;       ///< radius, metres
-    double height_m = 2;        ///< dome height above the rim, metres
+    double x = 0, y = 0;   ///< centre, metres
+    double radius_m = 10;  ///< radius, metres
+    double height_m = 2;   ///< dome height above the rim, metres
     static constexpr double shore_rise_m = 0.25;
 
     double area_m2() const noexcept { return 3.141592653589793 * radius_m * radius_m; }
@@ -151,18 +151,18 @@ struct island {
 /// dropping every pulse (`speck_share_water` of water cells, `speck_share_land` of land cells), and
 /// pulse-by-pulse losses rising with the scan angle.
 struct water_returns {
-    double patch_share = 0.4;             ///< share of each waterbody's area inside dropout patches
-    double patch_wavelength_m = 90;       ///< wavelength of the patch field: patches of tens of metres
-    double speck_cell_m = 2.0;            ///< side of the lattice cells of single dropouts (aligned to 0)
-    double speck_share_water = 0.10;      ///< share of lattice cells whose water pulses all drop
-    double speck_share_land = 0.015;      ///< share of lattice cells where every pulse drops (any cover)
-    double pulse_drop_nadir = 0.15;       ///< dropout probability of other water pulses at nadir ...
-    double pulse_drop_edge = 0.50;        ///< ... and at the swath edge (quadratic in the scan angle)
-    double specular_peak = 0.08;          ///< glint probability at nadir, falling as exp(-(angle/width)^2)
+    double patch_share = 0.4;         ///< share of each waterbody's area inside dropout patches
+    double patch_wavelength_m = 90;   ///< wavelength of the patch field: patches of tens of metres
+    double speck_cell_m = 2.0;        ///< side of the lattice cells of single dropouts (aligned to 0)
+    double speck_share_water = 0.10;  ///< share of lattice cells whose water pulses all drop
+    double speck_share_land = 0.015;  ///< share of lattice cells where every pulse drops (any cover)
+    double pulse_drop_nadir = 0.15;   ///< dropout probability of other water pulses at nadir ...
+    double pulse_drop_edge = 0.50;    ///< ... and at the swath edge (quadratic in the scan angle)
+    double specular_peak = 0.08;      ///< glint probability at nadir, falling as exp(-(angle/width)^2)
     double specular_width_deg = 2.0;
-    double specular_floor = 0.003;        ///< glint probability at any angle (waves facing the sensor)
-    double low_min = 2, low_max = 20;     ///< range of ordinary water intensities (skewed towards low_min)
-    double glint_min = 200, glint_max = 400;   ///< range of specular intensities
+    double specular_floor = 0.003;            ///< glint probability at any angle (waves facing the sensor)
+    double low_min = 2, low_max = 20;         ///< range of ordinary water intensities (skewed towards low_min)
+    double glint_min = 200, glint_max = 400;  ///< range of specular intensities
 
     /// Probability that a water pulse outside patches and specks is lost at `scan_angle_deg`.
     double pulse_drop_probability(double scan_angle_deg, double max_scan_angle_deg) const noexcept
