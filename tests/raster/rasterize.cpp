@@ -72,7 +72,7 @@ std::vector<grid> test_grids()
 {
     return {grid{0.0, 0.0, 1.0, 1, 1},        grid{512345.25, 4100000.5, 2.0, 1, 17},
             grid{-3.5, 7.0, 0.5, 19, 1},      grid{1000.0, 2000.0, 0.3, 7, 13},
-            grid{300000.0, 5000000.0, 2.0, 37, 23}};
+            grid{300000.0, 5000000.0, 2.0, 37, 23},  grid{-12.25, -40.75, 0.25, 257, 131}};
 }
 
 /// A point type a host might have, read through its own methods (no lidarfx adaptor).
