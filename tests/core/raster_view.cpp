@@ -4,6 +4,7 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/core/raster_view.hpp>
 
+#include <cstdint>
 #include <numeric>
 #include <string>
 #include <type_traits>
@@ -164,4 +165,17 @@ TEST_CASE("core/raster: write_through writes into strided and non-strided output
     CHECK(pixels[1] == 0);
     CHECK(pixels[3] == -1);  // padding untouched
     CHECK(pixels[5] == 1);
+}
+
+TEST_CASE("core/raster: large rasters are 2 MiB aligned (huge pages) and behave like small ones")
+{
+    raster<std::int32_t> big(1100, 1000, 7);  // 4.4 MB: the huge-page path
+    CHECK(reinterpret_cast<std::uintptr_t>(big.data()) % (std::size_t{2} << 20) == 0);
+    CHECK(big(1099, 999) == 7);
+    raster<std::int32_t> copy = big;
+    copy(0, 0) = 1;
+    CHECK(big(0, 0) == 7);
+    CHECK(copy != big);
+    big = raster<std::int32_t>(3, 3, 1);  // the large block is released through the same path
+    CHECK(big.size() == 9);
 }
