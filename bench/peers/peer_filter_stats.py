@@ -176,7 +176,7 @@ def main():
     ok = peerlib.report(rows)
 
     print()
-    print(f"{'lidarfx throughput':58s} {'Mcells/s':>11s}")
+    print(f"{'lidarfx throughput (' + ('CPU' if cpu else 'wall') + ' time)':58s} {'Mcells/s':>11s}")
     for name, seconds in ours.items():
         if name.startswith("bm_ks") or (cpu and "threads:0" in name):
             continue
