@@ -10,8 +10,9 @@ import time
 
 import numpy as np
 
+# The bench preset builds into build/bench and puts the benchmark programs in its bench/ folder.
 BUILD_DIR = os.environ.get("LIDARFX_BENCH_BUILD", os.path.join(os.path.dirname(__file__), "..", "..",
-                                                                "build", "bench"))
+                                                                "build", "bench", "bench"))
 
 
 def best_time(fn, repeat=5, warmup=1):
