@@ -7,9 +7,9 @@
 #include <lidarfx/filter/angular_filter.hpp>
 #include <lidarfx/filter/slope_aspect.hpp>
 
-#include "common.hpp"
 #include "../tests/reference/angular_filter.hpp"
 #include "../tests/reference/slope_aspect.hpp"
+#include "common.hpp"
 
 #include <string>
 

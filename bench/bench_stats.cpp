@@ -6,8 +6,8 @@
 
 #include <lidarfx/stats/ks_one_sided.hpp>
 
-#include "common.hpp"
 #include "../tests/reference/ks.hpp"
+#include "common.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -67,7 +67,8 @@ BENCHMARK(bm_ks_histogram_test)->UseRealTime()->Unit(benchmark::kMicrosecond);
 void bm_ks_reference(benchmark::State& state)
 {
     const auto p16 = intensities("ks_prev", 800, 1), c16 = intensities("ks_cur", 820, 2);
-    const std::vector<std::uint16_t> previous(p16.begin(), p16.begin() + 2000), current(c16.begin(), c16.begin() + 2000);
+    const std::vector<std::uint16_t> previous(p16.begin(), p16.begin() + 2000),
+        current(c16.begin(), c16.begin() + 2000);
     for (auto _ : state) benchmark::DoNotOptimize(reference::ks_statistic(previous, current));
     state.SetItemsProcessed(state.iterations() * 4000);
 }

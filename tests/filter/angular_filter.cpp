@@ -18,7 +18,10 @@ namespace {
 
 constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
-double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+double deg(double rad)
+{
+    return rad * 180.0 / std::numbers::pi;
+}
 
 // The kernel takes the max ratio |dz|/d in float and one float atan; the reference takes atan per neighbour in
 // double. The float ratio carries at most 3 roundings (|dz|, 1/d, the product): relative error <= 3 * 2^-24,
@@ -120,8 +123,8 @@ TEST_CASE("filter/angular_filter: matches the per-neighbour reference on random 
 {
     const unsigned seed = 20240611;
     std::mt19937 rng(seed);
-    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {
-        {1, 1}, {1, 17}, {19, 1}, {2, 2}, {7, 13}, {13, 7}, {40, 33}, {257, 131}};
+    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {{1, 1},  {1, 17}, {19, 1},  {2, 2},
+                                                                           {7, 13}, {13, 7}, {40, 33}, {257, 131}};
     int trial = 0;
     for (const auto& shape : shapes) {
         const std::ptrdiff_t rows = shape.first, cols = shape.second;

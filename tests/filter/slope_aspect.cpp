@@ -34,8 +34,7 @@ double angle_gap(double a, double b)
 }
 
 // Describes the first disagreement with the reference, or returns "" when every cell agrees.
-std::string mismatch(const slope_aspect_result& got, const reference::slope_aspect_rasters& want,
-                     double flat_slope_deg)
+std::string mismatch(const slope_aspect_result& got, const reference::slope_aspect_rasters& want, double flat_slope_deg)
 {
     for (std::ptrdiff_t r = 0; r < want.slope_deg.rows(); ++r) {
         for (std::ptrdiff_t c = 0; c < want.slope_deg.cols(); ++c) {
@@ -76,11 +75,15 @@ raster<float> plane(std::ptrdiff_t rows, std::ptrdiff_t cols, double cell, doubl
     raster<float> z(rows, cols);
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
-            z(r, c) = static_cast<float>(100.0 + east * cell * static_cast<double>(c) - north * cell * static_cast<double>(r));
+            z(r, c) = static_cast<float>(100.0 + east * cell * static_cast<double>(c) -
+                                         north * cell * static_cast<double>(r));
     return z;
 }
 
-double slope_of(double east, double north) { return std::atan(std::hypot(east, north)) * 180 / std::numbers::pi; }
+double slope_of(double east, double north)
+{
+    return std::atan(std::hypot(east, north)) * 180 / std::numbers::pi;
+}
 
 double aspect_of(double east, double north)
 {
@@ -168,8 +171,8 @@ TEST_CASE("filter/slope_aspect: matches the reference on random rasters, strided
 {
     const unsigned seed = 20240611;
     std::mt19937 rng(seed);
-    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {
-        {1, 1}, {1, 17}, {19, 1}, {2, 2}, {3, 3}, {7, 13}, {40, 33}, {257, 131}};
+    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> shapes = {{1, 1}, {1, 17}, {19, 1},  {2, 2},
+                                                                           {3, 3}, {7, 13}, {40, 33}, {257, 131}};
     int trial = 0;
     for (const auto& shape : shapes) {
         const std::ptrdiff_t rows = shape.first, cols = shape.second;
@@ -244,7 +247,8 @@ TEST_CASE("filter/slope_aspect: turning the raster a quarter turn turns the aspe
         for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
             const std::ptrdiff_t tr = c, tc = z.rows() - 1 - r;
             CHECK(std::fabs(b.slope_deg(tr, tc) - a.slope_deg(r, c)) <= slope_tolerance_deg);
-            CHECK(angle_gap(b.aspect_deg(tr, tc), std::fmod(a.aspect_deg(r, c) + 90.0, 360.0)) <= 2 * aspect_tolerance_deg);
+            CHECK(angle_gap(b.aspect_deg(tr, tc), std::fmod(a.aspect_deg(r, c) + 90.0, 360.0)) <=
+                  2 * aspect_tolerance_deg);
         }
     }
 }

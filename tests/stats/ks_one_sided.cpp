@@ -236,10 +236,10 @@ TEST_CASE("stats/ks_one_sided: bad arguments throw with a clear message")
     CHECK_THROWS_WITH_AS(ks_one_sided(a, a, 1.0), "ks_one_sided: alpha must be in (0, 1) (got 1)", invalid_input);
     CHECK_THROWS_AS(ks_one_sided(a, a, std::nan("")), invalid_input);
     CHECK_THROWS_AS(ks_one_sided(a, a, {.alpha = -0.5}), invalid_input);
-    CHECK_THROWS_WITH_AS(ks_one_sided(empty, a), "ks_one_sided: previous must hold at least one non-NaN value (got none)",
-                         invalid_input);
-    CHECK_THROWS_WITH_AS(ks_one_sided(a, all_nan), "ks_one_sided: current must hold at least one non-NaN value (got none)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(ks_one_sided(empty, a),
+                         "ks_one_sided: previous must hold at least one non-NaN value (got none)", invalid_input);
+    CHECK_THROWS_WITH_AS(ks_one_sided(a, all_nan),
+                         "ks_one_sided: current must hold at least one non-NaN value (got none)", invalid_input);
     const std::vector<std::uint16_t> none;
     CHECK_THROWS_AS(ks_one_sided(none, std::vector<std::uint16_t>{1}), invalid_input);
     CHECK_THROWS_AS(ks_one_sided(std::list<std::uint16_t>{1}, none), invalid_input);

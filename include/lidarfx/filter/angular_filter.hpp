@@ -85,7 +85,8 @@ inline std::vector<float> inverse_distances(double cell_m, int radius)
     std::vector<float> inv(static_cast<std::size_t>(n * n), 0.0f);
     for (std::ptrdiff_t a = 0; a < n; ++a) {
         for (std::ptrdiff_t b = 0; b < n; ++b) {
-            if (a + b > 0) inv[a * n + b] = static_cast<float>(1.0 / (cell_m * std::sqrt(static_cast<double>(a * a + b * b))));
+            if (a + b > 0)
+                inv[a * n + b] = static_cast<float>(1.0 / (cell_m * std::sqrt(static_cast<double>(a * a + b * b))));
         }
     }
     return inv;
@@ -110,8 +111,8 @@ inline void angular_offset_pass(const float* centre, const float* other, float* 
 /// (+-b, +-a) share one distance, so their largest |dz| is taken first and multiplied once: rounding is
 /// monotone, so max(|dz|) * f equals max(|dz| * f) bit for bit, and NaN differences never win.
 template <int R>
-void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0,
-                      std::ptrdiff_t c1, const float* inv_d) noexcept
+void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
+                      const float* inv_d) noexcept
 {
     for (std::ptrdiff_t c = c0; c < c1; ++c) {
         const float p = centre[c];
@@ -196,7 +197,7 @@ inline void check_angular_filter(double cell_m, const angular_filter_options& op
 /// O(rows * cols * radius^2), one atan per cell. @throws invalid_input if the shapes differ, cell_m is not
 /// finite and > 0, radius < 1, threads < 0, or out overlaps z.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, float>
+requires raster_output_of<Out, float>
 void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_options& opt = {})
 {
     detail::check_angular_filter(cell_m, opt);
@@ -206,9 +207,12 @@ void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_
             detail::require(!detail::overlaps(zv, o), "angular_filter", "out must not overlap z");
             // No neighbour lies further than the raster's extent: a larger radius changes nothing but the cost.
             const int radius = static_cast<int>(std::min<std::ptrdiff_t>(opt.radius, std::max(zv.rows(), zv.cols())));
-            parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                detail::angular_filter_rows(zv, o, cell_m, radius, r0, r1);
-            }, {}, "angular_filter");
+            parallel_for_rows(
+                o.rows(), 64, opt.threads,
+                [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                    detail::angular_filter_rows(zv, o, cell_m, radius, r0, r1);
+                },
+                {}, "angular_filter");
         });
     });
 }

@@ -26,9 +26,9 @@ struct slope_aspect_options {
 
 /// Slope, aspect and flat mask of a surface, each with the input's shape.
 struct slope_aspect_result {
-    raster<float> slope_deg;          ///< slope, degrees in [0, 90]; NaN where the gradient is unknown
-    raster<float> aspect_deg;         ///< down-slope azimuth, degrees clockwise from north in [0, 360); NaN if flat
-    raster<std::uint8_t> flat;        ///< 1 where slope <= flat_slope_deg, else 0 (0 where slope is NaN)
+    raster<float> slope_deg;    ///< slope, degrees in [0, 90]; NaN where the gradient is unknown
+    raster<float> aspect_deg;   ///< down-slope azimuth, degrees clockwise from north in [0, 360); NaN if flat
+    raster<std::uint8_t> flat;  ///< 1 where slope <= flat_slope_deg, else 0 (0 where slope is NaN)
 };
 
 namespace detail {
@@ -112,7 +112,8 @@ inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, s
     for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
             const std::ptrdiff_t rr = r + dr, cc = c + dc;
-            w[dr + 1][dc + 1] = rr < 0 || rr >= z.rows() || cc < 0 || cc >= z.cols() ? nan : static_cast<double>(z(rr, cc));
+            w[dr + 1][dc + 1] =
+                rr < 0 || rr >= z.rows() || cc < 0 || cc >= z.cols() ? nan : static_cast<double>(z(rr, cc));
         }
     }
     if (std::isnan(w[1][1])) {
@@ -152,11 +153,14 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
             const float* so = z.row(r + 1);
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
                 // (m[c] - m[c]) is 0, or NaN for a NaN centre, which sends the cell to the general path.
-                east[c] = ((static_cast<double>(n[c + 1]) - n[c - 1]) + 2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
-                           (static_cast<double>(so[c + 1]) - so[c - 1])) * scale +
-                          (static_cast<double>(m[c]) - m[c]);
+                east[c] =
+                    ((static_cast<double>(n[c + 1]) - n[c - 1]) + 2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
+                     (static_cast<double>(so[c + 1]) - so[c - 1])) *
+                        scale +
+                    (static_cast<double>(m[c]) - m[c]);
                 north[c] = ((static_cast<double>(n[c - 1]) - so[c - 1]) + 2.0 * (static_cast<double>(n[c]) - so[c]) +
-                            (static_cast<double>(n[c + 1]) - so[c + 1])) * scale;
+                            (static_cast<double>(n[c + 1]) - so[c + 1])) *
+                           scale;
             }
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
                 slope_aspect_cell(east[c], north[c], flat_slope_deg, s[c], a[c], f[c]);
@@ -183,8 +187,8 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
 /// @throws invalid_input if shapes differ, cell_m is not finite and > 0, flat_slope_deg is outside [0, 90),
 /// threads < 0, or an output overlaps z or another output.
 template <raster_input In, class SlopeOut, class AspectOut, class FlatOut>
-    requires raster_output_of<SlopeOut, float> && raster_output_of<AspectOut, float> &&
-             raster_output_of<FlatOut, std::uint8_t>
+requires raster_output_of<SlopeOut, float> && raster_output_of<AspectOut, float> &&
+    raster_output_of<FlatOut, std::uint8_t>
 void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, FlatOut&& flat, double cell_m,
                   const slope_aspect_options& opt = {})
 {
@@ -203,9 +207,12 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
                     detail::require(!detail::overlaps(zv, s) && !detail::overlaps(zv, a) && !detail::overlaps(zv, f) &&
                                         !detail::overlaps(s, a) && !detail::overlaps(s, f) && !detail::overlaps(a, f),
                                     fn, "outputs must not overlap z or each other");
-                    parallel_for_rows(zv.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                        detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
-                    }, {}, fn);
+                    parallel_for_rows(
+                        zv.rows(), 64, opt.threads,
+                        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                            detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
+                        },
+                        {}, fn);
                 });
             });
         });

@@ -33,7 +33,7 @@ enum class ks_critical {
 
 /// Settings of ks_one_sided.
 struct ks_options {
-    double alpha = 0.05;                                   ///< significance level, in (0, 1)
+    double alpha = 0.05;                                  ///< significance level, in (0, 1)
     ks_critical critical = ks_critical::documents_table;  ///< how c(alpha) is chosen
 };
 
@@ -49,7 +49,11 @@ struct ks_result {
 /// (std::vector<float>, std::span<const std::uint16_t>, a C array, std::list<double>, a views pipeline, ...).
 template <class R>
 concept ks_sample = std::ranges::input_range<R> && std::is_arithmetic_v<std::ranges::range_value_t<R>> &&
-                    !std::same_as<std::ranges::range_value_t<R>, bool>;
+    !std::same_as<std::ranges::range_value_t<R>, bool>;
+
+/// An integer type other than bool: a value ks_histogram counts.
+template <class V>
+concept ks_integer = std::integral<V> && !std::same_as<V, bool>;
 
 /// Counts of integer values 0..max_value: a KS sample that grows by adding values or other histograms, for
 /// callers that test a growing region step after step (O(1) per added value, O(bins) per test).
@@ -61,13 +65,12 @@ public:
     explicit ks_histogram(std::uint32_t max_value = 65535) : counts_(checked_bins(max_value)) {}
 
     /// Adds one value. @throws invalid_input if value is outside [0, max_value()].
-    template <std::integral V>
-        requires(!std::same_as<V, bool>)
+    template <ks_integer V>
     void add(V value)
     {
         if (std::cmp_less(value, 0) || std::cmp_greater(value, max_value())) {
-            throw invalid_input(detail::concat("ks_histogram::add: value must be in [0, ", max_value(), "] (got ",
-                                               +value, ")"));
+            throw invalid_input(
+                detail::concat("ks_histogram::add: value must be in [0, ", max_value(), "] (got ", +value, ")"));
         }
         ++counts_[static_cast<std::size_t>(value)];
         ++size_;
@@ -76,7 +79,7 @@ public:
     /// Adds every value of a range of integers. @throws invalid_input on a value outside [0, max_value()]
     /// (the values before it stay added).
     template <ks_sample R>
-        requires std::integral<std::ranges::range_value_t<R>>
+    requires std::integral<std::ranges::range_value_t<R>>
     void add(const R& values)
     {
         for (const auto& v : values) add(v);
@@ -125,7 +128,7 @@ inline void check_ks_options(const ks_options& opt)
 inline double ks_coefficient(const ks_options& opt) noexcept
 {
     if (opt.critical == ks_critical::one_sided) return std::sqrt(-std::log(opt.alpha) / 2);
-    constexpr std::pair<double, double> table[] = {{0.10, 1.22}, {0.05, 1.36}, {0.025, 1.48},
+    constexpr std::pair<double, double> table[] = {{0.10, 1.22}, {0.05, 1.36},  {0.025, 1.48},
                                                    {0.01, 1.63}, {0.005, 1.73}, {0.001, 1.95}};
     for (const auto& [alpha, c] : table) {
         if (opt.alpha == alpha) return c;
@@ -329,8 +332,8 @@ inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& 
                                    " and ", current.max_value(), ")"));
     detail::require_sample(previous.size(), "previous", "value");
     detail::require_sample(current.size(), "current", "value");
-    const double d = detail::ks_statistic_from_counts(previous.counts(), current.counts(), previous.size(),
-                                                      current.size());
+    const double d =
+        detail::ks_statistic_from_counts(previous.counts(), current.counts(), previous.size(), current.size());
     return detail::ks_finish(d, previous.size(), current.size(), opt);
 }
 
