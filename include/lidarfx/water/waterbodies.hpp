@@ -106,7 +106,7 @@ struct waterbody_result {
     std::vector<waterbody> bodies;         ///< bodies[i].label == i + 1
     water_diagnostics diagnostics;
     raster<std::uint8_t> vegetation;       ///< vegetation mask used
-    raster<float> angle_deg;               ///< angular filter output
+    raster<float> angle_deg;               ///< angular filter output as growing saw it (NaN: joins at any θ)
     raster<std::int32_t> seeds;            ///< seed components, 1 = largest
     std::size_t seeds_found = 0, seeds_grown = 0;
     bool ran = false;                      ///< false when check_inputs refused the data
@@ -223,9 +223,18 @@ template <raster_input Mask>
 components water_seeds(const Mask& dropout, int opening_size = 5, std::size_t min_cells = 100, int threads = 1)
 {
     const auto opened = morph_open(dropout, morph_options{.size = opening_size, .threads = threads});
-    auto seeds = connected_components(remove_small_components(opened, min_cells, connectivity::eight),
-                                      connectivity::eight);
+    auto seeds = connected_components(opened, components_options{.conn = connectivity::eight, .threads = threads});
     rank_by_size(seeds);
+    // Ranked by size: the seeds to keep are the labels 1..kept.
+    std::size_t kept = 0;
+    while (kept + 1 < seeds.sizes.size() && seeds.sizes[kept + 1] >= min_cells) ++kept;
+    for (auto& l : seeds.labels) {
+        if (static_cast<std::size_t>(l) > kept) {
+            seeds.sizes[0] += 1;
+            l = 0;
+        }
+    }
+    seeds.sizes.resize(kept + 1);
     return seeds;
 }
 
@@ -244,23 +253,59 @@ inline std::vector<std::vector<std::ptrdiff_t>> cells_by_label(const raster<std:
 
 /// Rounds intensities of cells with returns to multiples of `resolution` and ranks the distinct values,
 /// so KS histograms have one bin per distinct value (the KS statistic only depends on the order).
+/// O(cells + range of the rounded values) when that range is small (LAS intensities), else a sort.
 inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resolution, int& bins)
 {
-    raster<std::int32_t> out(in.min_z.rows(), in.min_z.cols(), -1);
-    std::vector<long long> values;
-    for (std::ptrdiff_t r = 0; r < out.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < out.cols(); ++c)
-            if (!in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c)))
-                values.push_back(std::llround(in.mean_intensity(r, c) / resolution));
-    std::sort(values.begin(), values.end());
-    values.erase(std::unique(values.begin(), values.end()), values.end());
-    bins = std::max<int>(1, static_cast<int>(values.size()));
-    for (std::ptrdiff_t r = 0; r < out.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < out.cols(); ++c)
-            if (!in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c))) {
-                const auto v = std::llround(in.mean_intensity(r, c) / resolution);
-                out(r, c) = static_cast<std::int32_t>(std::lower_bound(values.begin(), values.end(), v) - values.begin());
-            }
+    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
+    raster<std::int32_t> out(rows, cols, -1);
+    const auto sampled = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return !in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c));
+    };
+    const auto rounded = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return std::round(static_cast<double>(in.mean_intensity(r, c)) / resolution);
+    };
+    // Pass 1: rounded values as integers in `out` while they fit (LAS intensities always do).
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        std::int32_t* o = out.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (!sampled(r, c)) continue;
+            const double q = rounded(r, c);
+            lo = std::min(lo, q);
+            hi = std::max(hi, q);
+            o[c] = static_cast<std::int32_t>(std::clamp(q, -1.0e9, 1.0e9));
+        }
+    }
+    bins = 1;
+    if (lo > hi) return out;
+    if (hi - lo < double(1 << 24) && lo >= -1.0e9 && hi <= 1.0e9) {
+        // Ranks from a presence table over the range of values.
+        const auto base = static_cast<std::int64_t>(lo);
+        std::vector<std::int32_t> rank(static_cast<std::size_t>(hi - lo) + 1, 0);
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (sampled(r, c)) rank[static_cast<std::size_t>(out(r, c) - base)] = 1;
+        std::int32_t next = 0;
+        for (auto& k : rank) k = k ? next++ : -1;
+        bins = std::max(1, static_cast<int>(next));
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (sampled(r, c)) out(r, c) = rank[static_cast<std::size_t>(out(r, c) - base)];
+        return out;
+    }
+    // Wide ranges: ranks from the sorted distinct values.
+    std::vector<double> distinct;
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (sampled(r, c)) distinct.push_back(rounded(r, c));
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    bins = std::max(1, static_cast<int>(distinct.size()));
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (sampled(r, c))
+                out(r, c) = static_cast<std::int32_t>(
+                    std::lower_bound(distinct.begin(), distinct.end(), rounded(r, c)) - distinct.begin());
     return out;
 }
 
@@ -361,6 +406,8 @@ inline double median_level(const std::vector<std::ptrdiff_t>& cells, const water
 /// cells whose two ends touch two different bodies at water levels within `level_tolerance`, and whose
 /// lowest return is NaN (none), at least `clearance` above both levels (the deck) or within
 /// `water_tolerance` of them (water seen past the deck's edge), becomes water; the two bodies merge.
+/// One row-major pass keeps, for each line of the 4 directions, the last water cell seen on it; a run is
+/// examined when a water cell of another body closes it. O(cells + cells of examined runs).
 /// Returns the number of bridged cells.
 inline std::size_t join_across_bridges(raster<std::int32_t>& labels, raster_view<const float> min_z,
                                        const std::vector<double>& level, int span_cells, double level_tolerance,
@@ -371,51 +418,67 @@ inline std::size_t join_across_bridges(raster<std::int32_t>& labels, raster_view
     std::vector<std::int32_t> parent(level.size());
     std::iota(parent.begin(), parent.end(), 0);
     const auto find = [&](std::int32_t x) {
-        while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+        while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)];
         return x;
     };
-    const raster<std::int32_t> original = labels;
-    std::vector<std::pair<std::ptrdiff_t, std::int32_t>> bridged;
-    const int dirs[4][2] = {{0, 1}, {1, 0}, {1, 1}, {1, -1}};
-    const auto walk = [&](std::ptrdiff_t r, std::ptrdiff_t c, int dr, int dc, int& steps) -> std::int32_t {
-        for (steps = 1; steps <= span_cells; ++steps) {
-            const std::ptrdiff_t rr = r + dr * steps, cc = c + dc * steps;
-            if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) return 0;
-            const auto l = original(rr, cc);
-            if (l != 0) return l;
+    const auto bridge_ok = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t a, std::int32_t b) {
+        const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
+        if (!(std::abs(la - lb) <= level_tolerance)) return false;
+        const float z = min_z(r, c);
+        if (!std::isfinite(z)) return true;
+        const double above = static_cast<double>(z) - std::max(la, lb);
+        const double below = std::min(la, lb) - static_cast<double>(z);
+        return above >= clearance || (above <= water_tolerance && below <= water_tolerance);
+    };
+    // Last water cell on each line: its row (for rows: its column) and label; -1 = none yet.
+    struct last_water { std::ptrdiff_t at = -1; std::int32_t label = 0; };
+    std::vector<last_water> down(static_cast<std::size_t>(cols)), diag(static_cast<std::size_t>(rows + cols)),
+        anti(static_cast<std::size_t>(rows + cols));
+    // Bridged cells are recorded and written after the pass, so every decision reads the original labels;
+    // a cell bridged in several directions takes the label of the first direction (row, column, diagonal,
+    // anti-diagonal).
+    struct bridged_cell { std::ptrdiff_t cell; int direction; std::int32_t label; };
+    std::vector<bridged_cell> bridged;
+    const auto close_run = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r,
+                               std::ptrdiff_t c, int dr, int dc, int direction) {
+        const std::ptrdiff_t gap = at - lw.at - 1;
+        if (lw.at >= 0 && lw.label != l && gap >= 1 && gap <= span_cells) {
+            bool any = false;
+            for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
+                const std::ptrdiff_t rr = r - k * dr, cc = c - k * dc;
+                if (!bridge_ok(rr, cc, lw.label, l)) continue;
+                bridged.push_back({rr * cols + cc, direction, std::min(lw.label, l)});
+                any = true;
+            }
+            const auto ra = find(lw.label), rb = find(l);
+            if (any && ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
-        return 0;
+        lw = {at, l};
     };
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        last_water across;
+        const std::int32_t* row = labels.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (original(r, c) != 0) continue;
-            for (const auto& d : dirs) {
-                int s1 = 0, s2 = 0;
-                const auto a = walk(r, c, d[0], d[1], s1);
-                if (a == 0) continue;
-                const auto b = walk(r, c, -d[0], -d[1], s2);
-                if (b == 0 || a == b || s1 + s2 - 1 > span_cells) continue;
-                const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
-                if (!(std::abs(la - lb) <= level_tolerance)) continue;
-                const float z = min_z(r, c);
-                if (std::isfinite(z)) {
-                    const double above = static_cast<double>(z) - std::max(la, lb);
-                    const double below = std::min(la, lb) - static_cast<double>(z);
-                    if (!(above >= clearance) && !(above <= water_tolerance && below <= water_tolerance)) continue;
-                }
-                bridged.emplace_back(r * cols + c, std::min(a, b));
-                const auto ra = find(a), rb = find(b);
-                if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
-                break;
-            }
+            const std::int32_t l = row[c];
+            if (l == 0) continue;
+            close_run(across, c, l, r, c, 0, 1, 0);
+            close_run(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
+            close_run(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
+            close_run(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
         }
     }
-    for (const auto& [i, l] : bridged) labels.data()[i] = l;
-    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
-        auto& l = labels.data()[i];
-        if (l > 0) l = find(l);
+    std::sort(bridged.begin(), bridged.end(), [](const bridged_cell& a, const bridged_cell& b) {
+        return a.cell != b.cell ? a.cell < b.cell : a.direction < b.direction;
+    });
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < bridged.size(); ++k) {
+        if (k > 0 && bridged[k].cell == bridged[k - 1].cell) continue;
+        labels.data()[bridged[k].cell] = bridged[k].label;
+        ++count;
     }
-    return bridged.size();
+    for (auto& l : labels)
+        if (l > 0) l = find(l);
+    return count;
 }
 
 }  // namespace detail
@@ -453,13 +516,14 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
                 if (in.multiple_returns(r, c) && !in.dropout(r, c)) res.vegetation(r, c) = 1;
     }
 
-    // 2. Angular filter of the minimum elevation.
+    // 2. Angular filter of the minimum elevation (into the growing field; moved to the result at the end).
+    water_field field;
     const angular_filter_options af{.radius = opt.angular_radius, .threads = opt.threads};
     if (opt.angular_on == angular_input::idw_filled) {
         const auto filled = idw_fill(in.min_z, idw_options{.cell_m = cell_m, .threads = opt.threads});
-        res.angle_deg = angular_filter(filled.filled, cell_m, af);
+        field.angle_deg = angular_filter(filled.filled, cell_m, af);
     } else {
-        res.angle_deg = angular_filter(in.min_z, cell_m, af);
+        field.angle_deg = angular_filter(in.min_z, cell_m, af);
     }
 
     // 3. Seeds.
@@ -469,8 +533,6 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     res.seeds = std::move(seeds.labels);
 
     // 4. Growing, largest seed first; cells of accepted bodies are no longer eligible.
-    water_field field;
-    field.angle_deg = res.angle_deg;
     // NaN in the field means "joins at any threshold"; without that option a dropout is as steep as can be
     // unless the filter saw an (interpolated) height for it.
     for (std::ptrdiff_t i = 0; i < field.angle_deg.size(); ++i) {
@@ -563,6 +625,7 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
         b.dropout_fraction = b.cells ? 1.0 - static_cast<double>(with_returns) / static_cast<double>(b.cells) : 0.0;
         b.water_level_m = detail::median_level(cells, in);
     }
+    res.angle_deg = std::move(field.angle_deg);
     detail::report(opt.progress, 1.0, fn);
     return res;
 }
