@@ -55,7 +55,8 @@ struct waterbody_options {
     int seed_opening_size = 5;             ///< opening of the dropout mask before seeding, cells (odd)
     std::size_t min_seed_cells = 100;      ///< smallest seed component, cells
     grow_options grow = {};                ///< θ schedule, KS test, min_ks_samples
-    double intensity_resolution = 1.0;     ///< intensity quantum of the KS samples (values are rounded), > 0
+    double intensity_resolution = 1.0;     ///< intensity quantum of the KS samples (rounded to nearest, ties to
+                                           ///< even), > 0
     double level_tolerance_m = 0.15;       ///< refinement: land cells next to a body whose min z is within this
                                            ///< of the adjacent water level join it; 0 disables
     double level_max_rise_m = 0.5;         ///< ... and whose highest return is at most this above that level
@@ -257,55 +258,59 @@ inline std::vector<std::vector<std::ptrdiff_t>> cells_by_label(const raster<std:
 inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resolution, int& bins)
 {
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    raster<std::int32_t> out(rows, cols, -1);
-    const auto sampled = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return !in.dropout(r, c) && std::isfinite(in.mean_intensity(r, c));
-    };
-    const auto rounded = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return std::round(static_cast<double>(in.mean_intensity(r, c)) / resolution);
-    };
-    // Pass 1: rounded values as integers in `out` while they fit (LAS intensities always do).
+    constexpr std::int32_t none = std::numeric_limits<std::int32_t>::min();
+    raster<std::int32_t> out(rows, cols);
+    // Pass 1: rounded values as integers (none = no sample), while they fit in +-1e9 (LAS intensities do).
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    const double inverse = 1.0 / resolution;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* o = out.row(r);
+        const std::uint8_t* dropout = in.dropout.row(r);
+        const float* mean = in.mean_intensity.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (!sampled(r, c)) continue;
-            const double q = rounded(r, c);
+            if (dropout[c] || !std::isfinite(mean[c])) {
+                o[c] = none;
+                continue;
+            }
+            const double q = std::nearbyint(static_cast<double>(mean[c]) * inverse);
             lo = std::min(lo, q);
             hi = std::max(hi, q);
             o[c] = static_cast<std::int32_t>(std::clamp(q, -1.0e9, 1.0e9));
         }
     }
     bins = 1;
-    if (lo > hi) return out;
+    if (lo > hi) {
+        out.fill(-1);
+        return out;
+    }
+    std::int32_t* cell = out.data();
+    const std::ptrdiff_t n = out.size();
     if (hi - lo < double(1 << 24) && lo >= -1.0e9 && hi <= 1.0e9) {
         // Ranks from a presence table over the range of values.
         const auto base = static_cast<std::int64_t>(lo);
         std::vector<std::int32_t> rank(static_cast<std::size_t>(hi - lo) + 1, 0);
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (sampled(r, c)) rank[static_cast<std::size_t>(out(r, c) - base)] = 1;
+        for (std::ptrdiff_t i = 0; i < n; ++i)
+            if (cell[i] != none) rank[static_cast<std::size_t>(cell[i] - base)] = 1;
         std::int32_t next = 0;
         for (auto& k : rank) k = k ? next++ : -1;
         bins = std::max(1, static_cast<int>(next));
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (sampled(r, c)) out(r, c) = rank[static_cast<std::size_t>(out(r, c) - base)];
+        for (std::ptrdiff_t i = 0; i < n; ++i) cell[i] = cell[i] == none ? -1 : rank[static_cast<std::size_t>(cell[i] - base)];
         return out;
     }
-    // Wide ranges: ranks from the sorted distinct values.
+    // Wide ranges: ranks from the sorted distinct values, recomputed exactly.
     std::vector<double> distinct;
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (sampled(r, c)) distinct.push_back(rounded(r, c));
+    const auto value = [&](std::ptrdiff_t i) {
+        return std::nearbyint(static_cast<double>(in.mean_intensity(i / cols, i % cols)) * inverse);
+    };
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        if (cell[i] != none) distinct.push_back(value(i));
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
     bins = std::max(1, static_cast<int>(distinct.size()));
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (sampled(r, c))
-                out(r, c) = static_cast<std::int32_t>(
-                    std::lower_bound(distinct.begin(), distinct.end(), rounded(r, c)) - distinct.begin());
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        cell[i] = cell[i] == none ? -1
+                                  : static_cast<std::int32_t>(std::lower_bound(distinct.begin(), distinct.end(), value(i)) -
+                                                              distinct.begin());
     return out;
 }
 
@@ -388,18 +393,26 @@ inline void fill_small_islands(raster<std::int32_t>& labels, std::size_t max_hol
     }
 }
 
+/// Median of `values` (reordered; NaN when empty).
+inline double median(std::vector<float>& values)
+{
+    if (values.empty()) return NAN;
+    const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), mid, values.end());
+    return *mid;
+}
+
+/// Median min z of the cells (linear indices) that have a return; NaN when none has.
 inline double median_level(const std::vector<std::ptrdiff_t>& cells, const water_rasters& in)
 {
     std::vector<float> z;
+    z.reserve(cells.size());
     const auto cols = in.min_z.cols();
     for (const auto i : cells) {
         const float v = in.min_z(i / cols, i % cols);
         if (std::isfinite(v)) z.push_back(v);
     }
-    if (z.empty()) return NAN;
-    auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
-    std::nth_element(z.begin(), mid, z.end());
-    return *mid;
+    return median(z);
 }
 
 /// Bridges: a land cell lying on a straight run (row, column or diagonal) of at most `span_cells` land
@@ -535,14 +548,19 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     // 4. Growing, largest seed first; cells of accepted bodies are no longer eligible.
     // NaN in the field means "joins at any threshold"; without that option a dropout is as steep as can be
     // unless the filter saw an (interpolated) height for it.
-    for (std::ptrdiff_t i = 0; i < field.angle_deg.size(); ++i) {
-        if (!in.dropout(i / cols, i % cols)) continue;
-        float& a = field.angle_deg.data()[i];
-        if (opt.dropouts_join_any_threshold) a = NAN;
-        else if (std::isnan(a)) a = 90.0f;
-    }
     field.eligible = raster<std::uint8_t>(rows, cols);
-    for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        float* angle = field.angle_deg.row(r);
+        const std::uint8_t* dropout = in.dropout.row(r);
+        const std::uint8_t* vegetation = res.vegetation.row(r);
+        std::uint8_t* eligible = field.eligible.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            eligible[c] = !vegetation[c];
+            if (!dropout[c]) continue;
+            if (opt.dropouts_join_any_threshold) angle[c] = NAN;
+            else if (std::isnan(angle[c])) angle[c] = 90.0f;
+        }
+    }
     field.intensity_bin = detail::intensity_bins(in, opt.intensity_resolution, field.bins);
 
     raster<std::int32_t> visited(rows, cols, 0);
@@ -589,41 +607,47 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     for (std::size_t k = 0; k < order.size(); ++k) relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
     for (auto& l : res.labels) l = relabel[static_cast<std::size_t>(l)];
 
+    // One row-major pass gathers every body's extent, intensity and the heights for its water level.
     res.bodies.resize(order.size());
-    std::vector<std::vector<std::ptrdiff_t>> members(order.size() + 1);
-    for (std::ptrdiff_t i = 0; i < res.labels.size(); ++i) {
-        const auto l = res.labels.data()[i];
-        res.water.data()[i] = l > 0;
-        if (l > 0) members[static_cast<std::size_t>(l)].push_back(i);
+    std::vector<double> intensity(order.size(), 0.0);
+    std::vector<std::size_t> with_returns(order.size(), 0);
+    std::vector<std::vector<float>> heights(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        auto& b = res.bodies[k];
+        b.label = static_cast<std::int32_t>(k + 1);
+        b.row_min = rows;
+        b.col_min = cols;
+    }
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* label = res.labels.row(r);
+        std::uint8_t* water = res.water.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto l = label[c];
+            water[c] = l > 0;
+            if (l <= 0) continue;
+            const auto k = static_cast<std::size_t>(l - 1);
+            auto& b = res.bodies[k];
+            ++b.cells;
+            b.row_min = std::min(b.row_min, r);
+            b.row_max = r;
+            b.col_min = std::min(b.col_min, c);
+            b.col_max = std::max(b.col_max, c);
+            if (in.dropout(r, c)) continue;
+            intensity[k] += in.mean_intensity(r, c);
+            ++with_returns[k];
+            if (const float z = in.min_z(r, c); std::isfinite(z)) heights[k].push_back(z);
+        }
     }
     for (std::size_t k = 0; k < order.size(); ++k) {
         const auto& src = bodies[static_cast<std::size_t>(order[k] - 1)];
         auto& b = res.bodies[k];
-        const auto& cells = members[k + 1];
-        b.label = static_cast<std::int32_t>(k + 1);
-        b.cells = cells.size();
         b.area_m2 = static_cast<double>(b.cells) * cell_m * cell_m;
         b.seed = src.seed;
         b.theta_deg = src.theta;
         b.stopped_by_ks = src.ks;
-        b.row_min = rows;
-        b.col_min = cols;
-        double intensity = 0;
-        std::size_t with_returns = 0;
-        for (const auto i : cells) {
-            const std::ptrdiff_t r = i / cols, c = i % cols;
-            b.row_min = std::min(b.row_min, r);
-            b.row_max = std::max(b.row_max, r);
-            b.col_min = std::min(b.col_min, c);
-            b.col_max = std::max(b.col_max, c);
-            if (!in.dropout(r, c)) {
-                intensity += in.mean_intensity(r, c);
-                ++with_returns;
-            }
-        }
-        b.mean_intensity = with_returns ? intensity / static_cast<double>(with_returns) : NAN;
-        b.dropout_fraction = b.cells ? 1.0 - static_cast<double>(with_returns) / static_cast<double>(b.cells) : 0.0;
-        b.water_level_m = detail::median_level(cells, in);
+        b.mean_intensity = with_returns[k] ? intensity[k] / static_cast<double>(with_returns[k]) : NAN;
+        b.dropout_fraction = b.cells ? 1.0 - static_cast<double>(with_returns[k]) / static_cast<double>(b.cells) : 0.0;
+        b.water_level_m = detail::median(heights[k]);
     }
     res.angle_deg = std::move(field.angle_deg);
     detail::report(opt.progress, 1.0, fn);
