@@ -292,16 +292,16 @@ point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& 
         return total.finish();
     }
 
-    // Worker w adds the contiguous chunks [w*chunks/workers, (w+1)*chunks/workers) into its own
-    // accumulator; the caller's thread reports progress (and may cancel) between its chunks.
+    // One block per worker, each with its own accumulator; the workers pull chunks in turn, so a thread
+    // that the system slows down takes fewer (which accumulator got which chunk never matters). The
+    // caller's thread reports progress (and may cancel) after each of its chunks.
     std::vector<raster_accumulator> parts(workers - 1, raster_accumulator(g));
-    std::atomic<std::size_t> done{0};
+    std::atomic<std::size_t> next{0}, done{0};
     std::atomic<bool> stop{false};
     const auto caller = std::this_thread::get_id();
-    parallel_for_rows(static_cast<std::ptrdiff_t>(workers), 1, threads, [&](std::ptrdiff_t w0, std::ptrdiff_t) {
-        const auto w = static_cast<std::size_t>(w0);
-        raster_accumulator& acc = w == 0 ? total : parts[w - 1];
-        for (std::size_t k = w * chunks / workers; k < (w + 1) * chunks / workers; ++k) {
+    parallel_for_rows(static_cast<std::ptrdiff_t>(workers), 1, threads, [&](std::ptrdiff_t w, std::ptrdiff_t) {
+        raster_accumulator& acc = w == 0 ? total : parts[static_cast<std::size_t>(w - 1)];
+        for (std::size_t k = next.fetch_add(1); k < chunks; k = next.fetch_add(1)) {
             if (stop.load(std::memory_order_relaxed)) return;
             const auto [first, last] = chunk_range(k);
             acc.add(cloud, first, last);
