@@ -4,6 +4,7 @@
 #include <lidarfx/water/waterbodies.hpp>
 
 #include "reference/bridges.hpp"
+#include "reference/islands.hpp"
 
 #include <random>
 
@@ -75,4 +76,27 @@ TEST_CASE("water/fill_small_islands: small holes of one body fill, large ones an
     CHECK(labels(6, 6) == 0);
     CHECK(labels(2, 8) == 0);
     CHECK(labels(0, 0) == 0);                               // land touching the border is never a hole
+}
+
+TEST_CASE("water/fill_small_islands: equals a whole-raster search for holes on random bodies")
+{
+    std::mt19937 rng(91);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int filled_scenes = 0;
+    for (int trial = 0; trial < 80; ++trial) {
+        CAPTURE(trial);
+        const std::ptrdiff_t rows = 1 + rng() % 45, cols = 1 + rng() % 45;
+        raster<std::int32_t> labels(rows, cols);
+        const double density = 0.5 + 0.45 * u(rng);
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                labels(r, c) = u(rng) < density ? 1 + static_cast<std::int32_t>((r / 15 + c / 17) % 3) : 0;
+        const std::size_t max_hole = 1 + rng() % 12;
+        auto fast = labels, slow = labels;
+        detail::fill_small_islands(fast, max_hole);
+        reference::fill_small_islands(slow, max_hole);
+        CHECK(fast == slow);
+        filled_scenes += !(fast == labels);
+    }
+    CHECK(filled_scenes > 40);
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -358,38 +359,51 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, const water_ra
 }
 
 /// Holes of the water mask (4-connected land components not touching the border) smaller than
-/// `max_hole_cells` and surrounded by a single body become part of that body.
+/// `max_hole_cells` and surrounded by a single body become part of that body. A hole lies inside its body's
+/// bounding box, so each body is examined in that box grown by one cell: O(sum of the boxes' areas).
 inline void fill_small_islands(raster<std::int32_t>& labels, std::size_t max_hole_cells)
 {
     if (max_hole_cells == 0) return;
-    raster<std::uint8_t> land(labels.rows(), labels.cols());
-    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) land.data()[i] = labels.data()[i] == 0;
-    const auto holes = connected_components(land, connectivity::four);
-    const std::size_t n = holes.sizes.size();
-    std::vector<std::int32_t> owner(n, 0);  // 0 unknown, -1 not fillable, else the single adjacent body
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    std::int32_t bodies = 0;
+    for (const auto l : labels) bodies = std::max(bodies, l);
+    std::vector<std::array<std::ptrdiff_t, 4>> box(static_cast<std::size_t>(bodies) + 1,
+                                                   {rows, cols, -1, -1});  // r0, c0, r1, c1 inclusive
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* row = labels.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const auto h = holes.labels(r, c);
-            if (h == 0) continue;
-            auto& o = owner[static_cast<std::size_t>(h)];
-            if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1 || holes.sizes[static_cast<std::size_t>(h)] >= max_hole_cells) {
-                o = -1;
-                continue;
-            }
-            if (o == -1) continue;
-            const std::ptrdiff_t nb[4][2] = {{r - 1, c}, {r + 1, c}, {r, c - 1}, {r, c + 1}};
-            for (const auto& p : nb) {
-                const auto l = labels(p[0], p[1]);
-                if (l == 0) continue;
-                if (o == 0) o = l;
-                else if (o != l) o = -1;
-            }
+            if (row[c] <= 0) continue;
+            auto& b = box[static_cast<std::size_t>(row[c])];
+            b = {std::min(b[0], r), std::min(b[1], c), std::max(b[2], r), std::max(b[3], c)};
         }
     }
-    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
-        const auto h = holes.labels.data()[i];
-        if (h > 0 && owner[static_cast<std::size_t>(h)] > 0) labels.data()[i] = owner[static_cast<std::size_t>(h)];
+    raster<std::uint8_t> other;
+    for (std::int32_t body = 1; body <= bodies; ++body) {
+        const auto& b = box[static_cast<std::size_t>(body)];
+        if (b[2] < 0) continue;
+        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b[0] - 1), c0 = std::max<std::ptrdiff_t>(0, b[1] - 1);
+        const std::ptrdiff_t r1 = std::min(rows - 1, b[2] + 1), c1 = std::min(cols - 1, b[3] + 1);
+        const std::ptrdiff_t nr = r1 - r0 + 1, nc = c1 - c0 + 1;
+        if (nr < 3 || nc < 3) continue;
+        other = raster<std::uint8_t>(nr, nc);
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c) other(r, c) = labels(r0 + r, c0 + c) != body;
+        const auto parts = connected_components(other, connectivity::four);
+        // A part is a hole to fill when it touches no edge of the box (nor so the raster's border), holds
+        // only land and is small enough.
+        std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
+        fill[0] = 0;
+        for (std::size_t k = 1; k < parts.sizes.size(); ++k)
+            if (parts.sizes[k] >= max_hole_cells) fill[k] = 0;
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                const auto k = static_cast<std::size_t>(parts.labels(r, c));
+                if (k == 0 || !fill[k]) continue;
+                if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || labels(r0 + r, c0 + c) != 0) fill[k] = 0;
+            }
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c)
+                if (fill[static_cast<std::size_t>(parts.labels(r, c))]) labels(r0 + r, c0 + c) = body;
     }
 }
 
