@@ -13,9 +13,7 @@ Targets: angular_filter >= 20x the fastest NumPy version on one thread at 4096^2
 With --cpu, both sides are timed in CPU time of the process instead of wall time, and only single-thread
 cases are compared: on a machine shared with other work, wall times mostly measure the scheduler.
 """
-import json
 import os
-import subprocess
 import sys
 import time
 
@@ -94,32 +92,12 @@ def slope_aspect_numpy(z, cell=CELL_M):
     return slope, aspect
 
 
-def best_cpu_time(fn, repeat=5, warmup=1):
-    """Like peerlib.best_time, in CPU time of this process (NumPy runs these calls on one thread)."""
-    for _ in range(warmup):
-        fn()
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.process_time()
-        fn()
-        best = min(best, time.process_time() - t0)
-    return best
-
-
-def gbench_cpu_times(binary, selection):
-    """{benchmark name: CPU seconds per iteration} of a lidarfx benchmark binary (peerlib.run_gbench reports
-    wall time only)."""
-    exe = os.path.join(peerlib.BUILD_DIR, binary)
-    out = subprocess.run([exe, f"--benchmark_filter={selection}", "--benchmark_format=json",
-                          "--benchmark_min_time=0.5"], check=True, capture_output=True, text=True).stdout
-    scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
-    return {b["name"]: b["cpu_time"] * scale[b["time_unit"]] for b in json.loads(out)["benchmarks"]}
-
-
 def main():
     cpu = "--cpu" in sys.argv[1:]
-    timer = best_cpu_time if cpu else peerlib.best_time
-    run = gbench_cpu_times if cpu else peerlib.run_gbench
+    clock = time.process_time if cpu else time.perf_counter
+    timer = lambda fn, **kw: peerlib.best_time(fn, clock=clock, **kw)  # noqa: E731
+    run = lambda binary, selection: peerlib.run_gbench(binary, selection,  # noqa: E731
+                                                       field="cpu_time" if cpu else "real_time")
     print("CPU time, single-thread cases only" if cpu else "wall time")
     rng = np.random.default_rng(42)
     build = peerlib.BUILD_DIR

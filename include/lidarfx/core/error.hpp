@@ -11,7 +11,7 @@ namespace lidarfx {
 
 /// Thrown when a caller passes input that violates a documented precondition (mismatched shapes,
 /// non-positive cell size, options out of range). The message names the function, the argument and
-/// the offending value, e.g. "angular_filter: cell must be > 0 (got -1)".
+/// the offending value, e.g. "angular_filter: cell_m must be finite and > 0 (got -1)".
 struct invalid_input : std::invalid_argument {
     using std::invalid_argument::invalid_argument;
 };
