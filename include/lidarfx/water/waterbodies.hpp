@@ -170,25 +170,29 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
     detail::validate(opt, cell_m, fn);
     water_diagnostics d;
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    double points = 0, dropouts = 0;
+    std::uint64_t points = 0, dropouts = 0;
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::uint8_t* dropout = in.dropout.row(r);
+        const float* mean = in.mean_intensity.row(r);
+        if (!in.count.empty()) {
+            const std::uint32_t* count = in.count.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) points += count[c];
+        }
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (!in.count.empty()) points += in.count(r, c);
-            if (in.dropout(r, c)) {
-                ++dropouts;
-                continue;
-            }
-            const float v = in.mean_intensity(r, c);
-            if (std::isfinite(v)) {
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
-            }
-            if (!in.multiple_returns.empty() && in.multiple_returns(r, c)) d.has_multiple_returns = true;
+            dropouts += dropout[c] != 0;
+            // NaN compares false, so it changes neither bound.
+            const float v = dropout[c] ? lo : mean[c];
+            lo = std::min(lo, v);
+            hi = std::max(hi, dropout[c] ? hi : v);
+        }
+        if (!in.multiple_returns.empty() && !d.has_multiple_returns) {
+            const std::uint8_t* multiple = in.multiple_returns.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) d.has_multiple_returns |= multiple[c] && !dropout[c];
         }
     }
     const double cells = static_cast<double>(rows * cols);
-    d.dropout_fraction = dropouts / cells;
+    d.dropout_fraction = static_cast<double>(dropouts) / cells;
     d.has_intensity = hi > lo;
     if (!d.has_intensity) {
         d.problems.push_back(lo <= hi ? "intensity is the same (" + detail::fixed(lo, 0) +
@@ -197,8 +201,8 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
                                       : "no cell has a return: nothing to analyse");
     }
     if (!in.count.empty()) {
-        d.points_per_cell = points / cells;
-        const double density = points / (cells * cell_m * cell_m);
+        d.points_per_cell = static_cast<double>(points) / cells;
+        const double density = static_cast<double>(points) / (cells * cell_m * cell_m);
         if (density > 0) {
             d.suggested_cell_m = std::max(cell_m, std::ceil(2.0 * std::sqrt(opt.min_points_per_cell / density)) / 2.0);
         }
@@ -503,8 +507,11 @@ inline std::size_t join_across_bridges(raster<std::int32_t>& labels, raster_view
         labels.data()[bridged[k].cell] = bridged[k].label;
         ++count;
     }
-    for (auto& l : labels)
-        if (l > 0) l = find(l);
+    bool merged = false;
+    for (std::size_t b = 0; b < parent.size(); ++b) merged |= parent[b] != static_cast<std::int32_t>(b);
+    if (merged)
+        for (auto& l : labels)
+            if (l > 0) l = find(l);
     return count;
 }
 
@@ -577,18 +584,20 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     }
     field.intensity_bin = detail::intensity_bins(in, opt.intensity_resolution, field.bins);
 
-    raster<std::int32_t> visited(rows, cols, 0);
+    // The label raster doubles as the flood's scratch: bodies are > 0, a flood marks the cells it visits
+    // with its own negative stamp, and the marks are cleared once every seed has grown.
+    raster<std::int32_t>& visited = res.labels;
     std::int32_t stamp = 0;
     struct grown { std::vector<std::ptrdiff_t> cells; std::int32_t seed; double theta; bool ks; };
     std::vector<grown> bodies;
     for (std::size_t s = 1; s <= res.seeds_found; ++s) {
         detail::report(opt.progress, 0.9 * static_cast<double>(s - 1) / static_cast<double>(res.seeds_found), fn);
         const auto& cells = seed_cells[s];
-        const bool taken = std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return res.labels.data()[i] != 0; });
+        const bool taken = std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return res.labels.data()[i] > 0; });
         if (taken) continue;
-        auto region = grow_waterbody(field, cells, opt.grow, visited, ++stamp);
+        auto region = grow_waterbody(field, cells, opt.grow, visited, --stamp);
         if (region.cells.empty()) continue;
-        detail::join_level_cells(region.cells, in, field.eligible, visited, ++stamp, opt.level_tolerance_m,
+        detail::join_level_cells(region.cells, in, field.eligible, visited, --stamp, opt.level_tolerance_m,
                                  opt.level_max_rise_m, opt.level_join_depth_cells);
         const auto label = static_cast<std::int32_t>(bodies.size() + 1);
         for (const auto i : region.cells) {
@@ -598,6 +607,7 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
         bodies.push_back({std::move(region.cells), static_cast<std::int32_t>(s), region.theta_deg, region.stopped_by_ks});
         ++res.seeds_grown;
     }
+    for (auto& l : res.labels) l = std::max(l, 0);
 
     // 5. Bridges between bodies at one water level, then small islands.
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
@@ -619,7 +629,6 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)]; });
     std::vector<std::int32_t> relabel(size.size(), 0);
     for (std::size_t k = 0; k < order.size(); ++k) relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
-    for (auto& l : res.labels) l = relabel[static_cast<std::size_t>(l)];
 
     // One row-major pass gathers every body's extent, intensity and the heights for its water level.
     res.bodies.resize(order.size());
@@ -633,10 +642,10 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
         b.col_min = cols;
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* label = res.labels.row(r);
+        std::int32_t* label = res.labels.row(r);
         std::uint8_t* water = res.water.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const auto l = label[c];
+            const auto l = label[c] = relabel[static_cast<std::size_t>(label[c])];
             water[c] = l > 0;
             if (l <= 0) continue;
             const auto k = static_cast<std::size_t>(l - 1);
