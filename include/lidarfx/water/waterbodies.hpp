@@ -268,6 +268,9 @@ inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resol
     // Pass 1: rounded values as integers (none = no sample), while they fit in +-1e9 (LAS intensities do).
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     const double inverse = 1.0 / resolution;
+    // Presence of the values 0..65535 (16-bit LAS intensities), marked on the way.
+    constexpr std::int32_t small = 65536;
+    std::vector<std::uint8_t> seen_small(small, 0);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* o = out.row(r);
         const std::uint8_t* dropout = in.dropout.row(r);
@@ -281,6 +284,7 @@ inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resol
             lo = std::min(lo, q);
             hi = std::max(hi, q);
             o[c] = static_cast<std::int32_t>(std::clamp(q, -1.0e9, 1.0e9));
+            if (o[c] >= 0 && o[c] < small) seen_small[static_cast<std::size_t>(o[c])] = 1;
         }
     }
     bins = 1;
@@ -294,8 +298,12 @@ inline raster<std::int32_t> intensity_bins(const water_rasters& in, double resol
         // Ranks from a presence table over the range of values.
         const auto base = static_cast<std::int64_t>(lo);
         std::vector<std::int32_t> rank(static_cast<std::size_t>(hi - lo) + 1, 0);
-        for (std::ptrdiff_t i = 0; i < n; ++i)
-            if (cell[i] != none) rank[static_cast<std::size_t>(cell[i] - base)] = 1;
+        if (lo >= 0 && hi < small) {
+            for (std::size_t k = 0; k < rank.size(); ++k) rank[k] = seen_small[k + static_cast<std::size_t>(base)];
+        } else {
+            for (std::ptrdiff_t i = 0; i < n; ++i)
+                if (cell[i] != none) rank[static_cast<std::size_t>(cell[i] - base)] = 1;
+        }
         std::int32_t next = 0;
         for (auto& k : rank) k = k ? next++ : -1;
         bins = std::max(1, static_cast<int>(next));
@@ -333,9 +341,17 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, const water_ra
     for (const auto i : region) {
         seen.data()[i] = stamp;
     }
+    // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
+    const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
+            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                if (seen.data()[rr * cols + cc] != stamp) return true;
+        return false;
+    };
     for (const auto i : region) {
-        const float z = in.min_z(i / cols, i % cols);
-        if (std::isfinite(z)) frontier.push_back({i, z, 0});
+        const std::ptrdiff_t r = i / cols, c = i % cols;
+        const float z = in.min_z(r, c);
+        if (std::isfinite(z) && on_edge(r, c)) frontier.push_back({i, z, 0});
     }
     for (std::size_t q = 0; q < frontier.size(); ++q) {
         const entry e = frontier[q];
@@ -426,8 +442,9 @@ inline double median_level(const std::vector<std::ptrdiff_t>& cells, const water
     std::vector<float> z;
     z.reserve(cells.size());
     const auto cols = in.min_z.cols();
+    const bool contiguous = in.min_z.is_contiguous();
     for (const auto i : cells) {
-        const float v = in.min_z(i / cols, i % cols);
+        const float v = contiguous ? in.min_z.data()[i] : in.min_z(i / cols, i % cols);
         if (std::isfinite(v)) z.push_back(v);
     }
     return median(z);
