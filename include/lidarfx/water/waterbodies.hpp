@@ -560,11 +560,16 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     // 1. Vegetation.
     res.vegetation = vegetation_mask(in.min_z, in.max_z,
                                      vegetation_options{.height_m = opt.vegetation_height_m,
-                                                        .closing_size = opt.vegetation_closing_size});
+                                                        .closing_size = opt.vegetation_closing_size,
+                                                        .threads = opt.threads});
     if (opt.vegetation_from_multiple_returns && !in.multiple_returns.empty()) {
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const std::uint8_t* multiple = in.multiple_returns.row(r);
+            const std::uint8_t* dropout = in.dropout.row(r);
+            std::uint8_t* vegetation = res.vegetation.row(r);
             for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (in.multiple_returns(r, c) && !in.dropout(r, c)) res.vegetation(r, c) = 1;
+                vegetation[c] = static_cast<std::uint8_t>(vegetation[c] | ((multiple[c] != 0) & (dropout[c] == 0)));
+        }
     }
 
     // 2. Angular filter of the minimum elevation (into the growing field; moved to the result at the end).
@@ -592,11 +597,11 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
         const std::uint8_t* dropout = in.dropout.row(r);
         const std::uint8_t* vegetation = res.vegetation.row(r);
         std::uint8_t* eligible = field.eligible.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            eligible[c] = !vegetation[c];
-            if (!dropout[c]) continue;
-            if (opt.dropouts_join_any_threshold) angle[c] = NAN;
-            else if (std::isnan(angle[c])) angle[c] = 90.0f;
+        for (std::ptrdiff_t c = 0; c < cols; ++c) eligible[c] = !vegetation[c];
+        if (opt.dropouts_join_any_threshold) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) angle[c] = dropout[c] ? NAN : angle[c];
+        } else {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) angle[c] = dropout[c] && std::isnan(angle[c]) ? 90.0f : angle[c];
         }
     }
     field.intensity_bin = detail::intensity_bins(in, opt.intensity_resolution, field.bins);
