@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -149,6 +152,34 @@ private:
     raster<T> copy_;
     raster_view<const T> view_;
 };
+
+/// True if the memory spans of two views (first to last cell) intersect: an into form must not write its input.
+/// Conservative: interleaved windows of one buffer (side by side, sharing rows) count as overlapping.
+template <class A, class B>
+bool overlaps(raster_view<A> a, raster_view<B> b) noexcept
+{
+    if (a.empty() || b.empty()) return false;
+    const auto bytes = [](auto v) {
+        const auto* first = reinterpret_cast<const unsigned char*>(v.data());
+        const auto* last = reinterpret_cast<const unsigned char*>(&v(v.rows() - 1, v.cols() - 1) + 1);
+        return std::pair{reinterpret_cast<std::uintptr_t>(first), reinterpret_cast<std::uintptr_t>(last)};
+    };
+    const auto [a0, a1] = bytes(a);
+    const auto [b0, b1] = bytes(b);
+    return a0 < b1 && b0 < a1;
+}
+
+/// Calls f(raster_view<const float>) on z's cells: through detail::readable (in place for strided rasters)
+/// when z holds floats, else on one converted float copy.
+template <raster_input In, class F>
+decltype(auto) with_float_view(const In& z, F&& f)
+{
+    if constexpr (std::is_same_v<typename In::value_type, float>) {
+        return f(readable<In>(z).view());
+    } else {
+        return f(raster<float>(z).view());
+    }
+}
 
 /// Calls `compute(raster_view<T>)` on `out` directly when it is a strided raster of T, otherwise on a
 /// scratch raster that is then copied into `out` cell by cell.

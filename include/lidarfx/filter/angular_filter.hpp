@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
@@ -27,55 +28,6 @@ struct angular_filter_options {
 };
 
 namespace detail {
-
-/// atan(x) in degrees for x >= 0 in float arithmetic (+inf gives 90, NaN gives NaN), branch-free so that loops
-/// calling it vectorize 16 lanes wide. t = min(x, 1/x) in [0, 1], atan(t) = t P(t^2) with P a degree-8
-/// minimax fit (relative error 1.4e-7 evaluated in float), and atan(x) = pi/2 - atan(1/x) for x > 1.
-inline float atan_deg(float x) noexcept
-{
-    const bool above = x > 1.0f;
-    const float t = above ? 1.0f / x : x;
-    const float s = t * t;
-    float p = 0.0029035008046776056f;
-    p = p * s - 0.01628280244767666f;
-    p = p * s + 0.04303903877735138f;
-    p = p * s - 0.07533648610115051f;
-    p = p * s + 0.10654664784669876f;
-    p = p * s - 0.14207130670547485f;
-    p = p * s + 0.19993053376674652f;
-    p = p * s - 0.3333309292793274f;
-    p = p * s + 1.0f;
-    const float a = t * p * static_cast<float>(180 / std::numbers::pi);
-    return above ? 90.0f - a : a;
-}
-
-/// True if the memory spans of two views (first to last cell) intersect: an into form must not write its input.
-/// Conservative: interleaved windows of one buffer (side by side, sharing rows) count as overlapping.
-template <class A, class B>
-bool overlaps(raster_view<A> a, raster_view<B> b) noexcept
-{
-    if (a.empty() || b.empty()) return false;
-    const auto bytes = [](auto v) {
-        const auto* first = reinterpret_cast<const unsigned char*>(v.data());
-        const auto* last = reinterpret_cast<const unsigned char*>(&v(v.rows() - 1, v.cols() - 1) + 1);
-        return std::pair{reinterpret_cast<std::uintptr_t>(first), reinterpret_cast<std::uintptr_t>(last)};
-    };
-    const auto [a0, a1] = bytes(a);
-    const auto [b0, b1] = bytes(b);
-    return a0 < b1 && b0 < a1;
-}
-
-/// Calls f(raster_view<const float>) on z's cells: through detail::readable (in place for strided rasters)
-/// when z holds floats, else on one converted float copy.
-template <raster_input In, class F>
-decltype(auto) with_float_view(const In& z, F&& f)
-{
-    if constexpr (std::is_same_v<typename In::value_type, float>) {
-        return f(readable<In>(z).view());
-    } else {
-        return f(raster<float>(z).view());
-    }
-}
 
 /// Factors 1 / (cell_m * sqrt(a^2 + b^2)) for 0 <= a, b <= radius, row-major by a (0 at a = b = 0). An offset
 /// (dr, dc) uses entry (|dr|, |dc|); every path of the kernel reads the same float factors, so all agree exactly.

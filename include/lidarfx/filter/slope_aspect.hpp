@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
-#include "lidarfx/filter/angular_filter.hpp"  // detail::atan_deg, detail::overlaps, detail::with_float_view
 
 namespace lidarfx {
 

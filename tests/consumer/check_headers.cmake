@@ -1,0 +1,18 @@
+# Every public header compiles on its own (it includes what it uses): one syntax-only compile per header.
+file(GLOB_RECURSE headers RELATIVE "${SOURCE_DIR}/include" "${SOURCE_DIR}/include/lidarfx/*.hpp")
+set(failed "")
+foreach(header IN LISTS headers)
+    string(REPLACE "/" "_" tu_name "${header}")
+    set(tu "${WORK_DIR}/include_${tu_name}.cpp")
+    file(WRITE "${tu}" "#include <${header}>\n#include <${header}>  // and twice: include guards\n")
+    execute_process(COMMAND ${CXX} -std=c++20 -fsyntax-only -Wall -Wextra -I${SOURCE_DIR}/include ${EXTRA_INCLUDES} "${tu}"
+                    RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+        string(APPEND failed "\n${header}:\n${err}")
+    endif()
+endforeach()
+list(LENGTH headers count)
+if(failed)
+    message(FATAL_ERROR "headers that do not compile on their own:${failed}")
+endif()
+message(STATUS "${count} headers compile on their own")
