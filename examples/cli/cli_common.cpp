@@ -71,6 +71,19 @@ int arguments::integer(const std::string& name, int fallback) const
     return static_cast<int>(v);
 }
 
+std::optional<int> stop_for_usage(const arguments& a, const char* usage, bool needs_inputs_and_out)
+{
+    if (a.has("help")) {
+        std::cout << usage;
+        return 0;
+    }
+    if (needs_inputs_and_out && (a.positional().empty() || !a.has("out"))) {
+        std::cerr << usage;
+        return 2;
+    }
+    return std::nullopt;
+}
+
 progress_callback progress_bar(const std::string& label)
 {
     auto last = std::make_shared<int>(-1);

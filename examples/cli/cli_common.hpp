@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ private:
     std::vector<std::string> positional_;
     std::map<std::string, std::string> values_;
 };
+
+/// Handles --help (usage on stdout, exit code 0) and, when `needs_inputs_and_out`, missing input files or
+/// --out (usage on stderr, exit code 2); nullopt when the command should go on.
+std::optional<int> stop_for_usage(const arguments& a, const char* usage, bool needs_inputs_and_out);
 
 /// A progress bar on stderr: "label [#####.....]  45%"; returns true (never cancels).
 progress_callback progress_bar(const std::string& label);

@@ -77,10 +77,7 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
 int run_demo(const std::vector<std::string>& args)
 {
     const lidarfx::cli::arguments a(args, {"out", "size", "seed", "threads"}, {"help"});
-    if (a.has("help")) {
-        std::cout << usage;
-        return 0;
-    }
+    if (const auto code = lidarfx::cli::stop_for_usage(a, usage, false)) return *code;
     const std::filesystem::path out = a.text("out", "lidarfx-demo");
     const int threads = a.integer("threads", 0);
     lidarfx::synth::scene_options so;

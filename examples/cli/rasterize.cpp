@@ -22,14 +22,7 @@ constexpr const char* usage =
 int run_rasterize(const std::vector<std::string>& args)
 {
     const lidarfx::cli::arguments a(args, {"cell", "out", "threads"}, {"help"});
-    if (a.has("help")) {
-        std::cout << usage;
-        return 0;
-    }
-    if (a.positional().empty() || !a.has("out")) {
-        std::cerr << usage;
-        return 2;
-    }
+    if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     const std::filesystem::path out = a.text("out", "");
     std::filesystem::create_directories(out);
     const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true);

@@ -41,14 +41,7 @@ int run_water(const std::vector<std::string>& args)
                                      "theta-step", "theta-max", "alpha", "level-tolerance", "island-min-area",
                                      "bridge-span"},
                                     {"help", "force", "one-sided"});
-    if (a.has("help")) {
-        std::cout << usage;
-        return 0;
-    }
-    if (a.positional().empty() || !a.has("out")) {
-        std::cerr << usage;
-        return 2;
-    }
+    if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     lidarfx::waterbody_options opt;
     opt.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
