@@ -179,3 +179,16 @@ TEST_CASE("core/raster: large rasters are 2 MiB aligned (huge pages) and behave 
     big = raster<std::int32_t>(3, 3, 1);  // the large block is released through the same path
     CHECK(big.size() == 9);
 }
+
+TEST_CASE("core/raster: uninitialized rasters have the shape and take writes")
+{
+    raster<float> r(300, 700, uninitialized);  // large: the huge-page path
+    CHECK(r.rows() == 300);
+    CHECK(r.cols() == 700);
+    r.fill(2.5f);
+    CHECK(r(299, 699) == 2.5f);
+    raster<std::int32_t> small(2, 3, uninitialized);
+    small.fill(4);
+    CHECK(small == raster<std::int32_t>(2, 3, 4));
+    CHECK_THROWS_AS(raster<int>(-1, 3, uninitialized), invalid_input);
+}

@@ -51,10 +51,27 @@ struct raster_allocator {
         if (n * sizeof(T) < 2 * huge) std::allocator<T>().deallocate(p, n);
         else std::free(p);
     }
+    /// Value-less construction default-initializes (no zeroing of trivial cells; see raster(.., uninitialized)).
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
+    {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args)
+    {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
     friend bool operator==(const raster_allocator&, const raster_allocator&) noexcept { return true; }
 };
 
 }  // namespace detail
+
+/// Tag for rasters whose cells an algorithm is about to overwrite: raster(rows, cols, uninitialized).
+struct uninitialized_t {
+    explicit uninitialized_t() = default;
+};
+inline constexpr uninitialized_t uninitialized{};
 
 /// Owning rows x cols raster of T, stored row-major and contiguous (row_stride() == cols()).
 /// Converts implicitly to raster_view<T> / raster_view<const T>; copying a raster copies its cells.
@@ -69,6 +86,14 @@ public:
     raster(std::ptrdiff_t rows, std::ptrdiff_t cols, T fill = T{})
         : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")),
           cells_(static_cast<std::size_t>(rows * cols), fill) {}
+
+    /// rows x cols cells left default-initialized (indeterminate for arithmetic T): for outputs that are
+    /// written in full before being read, which saves zeroing a large block. @throws invalid_input if < 0.
+    raster(std::ptrdiff_t rows, std::ptrdiff_t cols, uninitialized_t)
+        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols"))
+    {
+        cells_.resize(static_cast<std::size_t>(rows * cols));
+    }
 
     /// Deep copy of any raster-like input.
     template <raster_input V>

@@ -173,7 +173,7 @@ void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_
 template <raster_input In>
 raster<float> angular_filter(const In& z, double cell_m, const angular_filter_options& opt)
 {
-    raster<float> out(z.rows(), z.cols());
+    raster<float> out(z.rows(), z.cols(), uninitialized);  // every cell is written
     angular_filter(z, out, cell_m, opt);
     return out;
 }

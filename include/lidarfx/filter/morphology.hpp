@@ -348,7 +348,7 @@ template <raster_input In>
 raster<std::uint8_t> morph_new(const In& m, const morph_options& opt, std::initializer_list<morph_step> steps,
                                const char* function)
 {
-    raster<std::uint8_t> out(m.rows(), m.cols());
+    raster<std::uint8_t> out(m.rows(), m.cols(), uninitialized);  // every cell is written
     morph_into(m, out, opt, steps, function);
     return out;
 }

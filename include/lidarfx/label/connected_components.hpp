@@ -410,7 +410,7 @@ requires raster_output_of<Out, std::int32_t> std::vector<std::size_t> connected_
 template <raster_input In>
 components connected_components(const In& m, const components_options& opt)
 {
-    components result{raster<std::int32_t>(m.rows(), m.cols()), {}};
+    components result{raster<std::int32_t>(m.rows(), m.cols(), uninitialized), {}};  // every cell is written
     result.sizes = connected_components(m, result.labels, opt);
     return result;
 }
