@@ -7,6 +7,7 @@
 #include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/water/waterbodies.hpp>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "io/las.hpp"
@@ -151,4 +152,27 @@ TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")
     o = {};
     o.seed_opening_size = 4;
     CHECK_THROWS_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o), invalid_input);
+}
+
+TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; returning false cancels")
+{
+    synth::scene_options so;
+    so.size_m = 300;
+    const auto sc = synth::lake_scene(so);
+    const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
+    std::vector<double> seen;
+    waterbody_options o;
+    o.progress = [&](double f) {
+        seen.push_back(f);
+        return true;
+    };
+    const auto w = extract_waterbodies(pr, o);
+    REQUIRE(seen.size() >= 2);
+    CHECK(seen.front() == 0.0);
+    CHECK(seen.back() == 1.0);
+    CHECK(std::is_sorted(seen.begin(), seen.end()));
+    CHECK_FALSE(w.bodies.empty());
+
+    o.progress = [](double f) { return f < 0.5; };
+    CHECK_THROWS_WITH_AS(extract_waterbodies(pr, o), "extract_waterbodies: cancelled", cancelled);
 }
