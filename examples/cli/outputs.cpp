@@ -16,16 +16,9 @@ namespace lidarfx::cli {
 
 namespace {
 
-raster<float> as_float(raster_view<const std::uint8_t> m)
-{
-    raster<float> out(m.rows(), m.cols());
-    for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < m.cols(); ++c) out(r, c) = m(r, c);
-    return out;
-}
-
+/// A mask or count raster as floats, for the raster writers.
 template <class T>
-raster<float> as_float_counts(raster_view<const T> m)
+raster<float> as_float(raster_view<const T> m)
 {
     raster<float> out(m.rows(), m.cols());
     for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
@@ -63,8 +56,8 @@ void write_point_rasters(const std::filesystem::path& dir, const survey& s)
     write_raster(dir, "min_z", pr.min_z, pr.g, s.crs_wkt, s.epsg);
     write_raster(dir, "max_z", pr.max_z, pr.g, s.crs_wkt, s.epsg);
     write_raster(dir, "mean_intensity", pr.mean_intensity, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "count", as_float_counts<std::uint32_t>(pr.count), pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "dropout", as_float(pr.dropout), pr.g, s.crs_wkt, s.epsg);
+    write_raster(dir, "count", as_float<std::uint32_t>(pr.count), pr.g, s.crs_wkt, s.epsg);
+    write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), pr.g, s.crs_wkt, s.epsg);
     const auto png = [&](const std::string& name, const io::rgb_image& img) {
         io::write_png_rgb((dir / name).string(), img);
         say_wrote(dir / name);
