@@ -4,11 +4,11 @@
 // bench/peers/peer_filter_stats.py) so that lidarfx and its NumPy peers time the same cells.
 #include <benchmark/benchmark.h>
 
-#include <lidarfx/filter/angular_filter.hpp>
-#include <lidarfx/filter/slope_aspect.hpp>
+#include <lidarfx/kernels/filter/angular_filter.hpp>
+#include <lidarfx/kernels/filter/slope_aspect.hpp>
 
-#include "../tests/reference/angular_filter.hpp"
-#include "../tests/reference/slope_aspect.hpp"
+#include "reference/angular_filter.hpp"
+#include "reference/slope_aspect.hpp"
 #include "common.hpp"
 
 #include <string>

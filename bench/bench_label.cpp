@@ -5,9 +5,9 @@
 // OpenCV's.
 #include <benchmark/benchmark.h>
 
-#include <lidarfx/label/connected_components.hpp>
+#include <lidarfx/kernels/label/connected_components.hpp>
 
-#include "../tests/reference/components.hpp"
+#include "reference/components.hpp"
 #include "common.hpp"
 
 #include <cstdint>

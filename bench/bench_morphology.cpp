@@ -5,9 +5,9 @@
 // that OpenCV computed the same result.
 #include <benchmark/benchmark.h>
 
-#include <lidarfx/filter/morphology.hpp>
+#include <lidarfx/kernels/filter/morphology.hpp>
 
-#include "../tests/reference/morphology.hpp"
+#include "reference/morphology.hpp"
 #include "common.hpp"
 
 #include <algorithm>

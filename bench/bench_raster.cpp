@@ -5,11 +5,11 @@
 // points_returns.raw uint8, idw_z.raw float32), so lidarfx and NumPy/SciPy time the same data.
 #include <benchmark/benchmark.h>
 
-#include <lidarfx/raster/idw_fill.hpp>
-#include <lidarfx/raster/rasterize.hpp>
+#include <lidarfx/kernels/interpolate/idw_fill.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
 
-#include "../tests/reference/idw.hpp"
-#include "../tests/reference/rasterize.hpp"
+#include "reference/idw.hpp"
+#include "reference/rasterize.hpp"
 #include "common.hpp"
 
 #include <algorithm>

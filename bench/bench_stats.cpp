@@ -4,9 +4,9 @@
 // each, written by bench/peers/peer_filter_stats.py) so that lidarfx and scipy test the same values.
 #include <benchmark/benchmark.h>
 
-#include <lidarfx/stats/ks_one_sided.hpp>
+#include <lidarfx/kernels/stats/ks_one_sided.hpp>
 
-#include "../tests/reference/ks.hpp"
+#include "reference/ks.hpp"
 #include "common.hpp"
 
 #include <algorithm>

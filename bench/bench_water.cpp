@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <map>
 
-#include <lidarfx/raster/rasterize.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/waterbodies.hpp>
 
 #include "io/las.hpp"
 #include "io/las_writer.hpp"

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include <lidarfx/metrics/confusion.hpp>
-#include <lidarfx/raster/rasterize.hpp>
+#include <lidarfx/kernels/metrics/confusion.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/waterbodies.hpp>
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include <lidarfx/core/grid.hpp>
 #include <lidarfx/core/parallel.hpp>
-#include <lidarfx/raster/rasterize.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
 
 namespace lidarfx::cli {
 

@@ -8,9 +8,9 @@
 #include <iostream>
 
 #include <lidarfx/lidarfx.hpp>
-#include <lidarfx/metrics/confusion.hpp>
+#include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/waterbodies.hpp>
 
 #include "cli_common.hpp"
 #include "command.hpp"

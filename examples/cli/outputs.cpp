@@ -5,8 +5,8 @@
 #include <iomanip>
 #include <iostream>
 
-#include <lidarfx/label/polygonize.hpp>
-#include <lidarfx/raster/idw_fill.hpp>
+#include <lidarfx/kernels/vector/polygonize.hpp>
+#include <lidarfx/kernels/interpolate/idw_fill.hpp>
 
 #include "io/png.hpp"
 #include "io/quicklook.hpp"

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include <lidarfx/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/waterbodies.hpp>
 
 #include "cli_common.hpp"
 

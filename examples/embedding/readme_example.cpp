@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <lidarfx/lidarfx.hpp>
+#include <lidarfx/synth/scenes.hpp>  // only for the stand-in points
 
 namespace {
 void report(const std::string& why) { std::printf("cannot map water: %s\n", why.c_str()); }

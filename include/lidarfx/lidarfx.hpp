@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// Umbrella header: includes every public lidarfx header (adapters/ needs third-party headers: include it apart).
+// Umbrella header: every public lidarfx header, layer by layer (docs/architecture.md). adapters/ needs
+// third-party headers and synthetic scenes are a separate target (lidarfx::synth): include them apart.
 #pragma once
 
+// core: types, errors, execution
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
@@ -9,16 +11,19 @@
 #include "lidarfx/core/point_cloud.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
-#include "lidarfx/filter/angular_filter.hpp"
-#include "lidarfx/filter/morphology.hpp"
-#include "lidarfx/filter/slope_aspect.hpp"
-#include "lidarfx/label/connected_components.hpp"
-#include "lidarfx/label/polygonize.hpp"
-#include "lidarfx/metrics/confusion.hpp"
-#include "lidarfx/raster/idw_fill.hpp"
-#include "lidarfx/raster/rasterize.hpp"
-#include "lidarfx/raster/vegetation_mask.hpp"
-#include "lidarfx/stats/ks_one_sided.hpp"
-#include "lidarfx/synth/scenes.hpp"
-#include "lidarfx/water/grow_waterbody.hpp"
-#include "lidarfx/water/waterbodies.hpp"
+
+// kernels: single-purpose algorithms
+#include "lidarfx/kernels/filter/angular_filter.hpp"
+#include "lidarfx/kernels/filter/morphology.hpp"
+#include "lidarfx/kernels/filter/slope_aspect.hpp"
+#include "lidarfx/kernels/filter/vegetation_mask.hpp"
+#include "lidarfx/kernels/interpolate/idw_fill.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
+#include "lidarfx/kernels/metrics/confusion.hpp"
+#include "lidarfx/kernels/points/rasterize.hpp"
+#include "lidarfx/kernels/stats/ks_one_sided.hpp"
+#include "lidarfx/kernels/vector/polygonize.hpp"
+
+// pipelines: methods composed of kernels
+#include "lidarfx/pipelines/water/grow_waterbody.hpp"
+#include "lidarfx/pipelines/water/waterbodies.hpp"

@@ -1,5 +1,8 @@
 # Every public header compiles on its own (it includes what it uses): one syntax-only compile per header.
+# The library's headers (include/) and the synthetic scenes' (synth/include/, target lidarfx::synth).
 file(GLOB_RECURSE headers RELATIVE "${SOURCE_DIR}/include" "${SOURCE_DIR}/include/lidarfx/*.hpp")
+file(GLOB_RECURSE synth_headers RELATIVE "${SOURCE_DIR}/synth/include" "${SOURCE_DIR}/synth/include/lidarfx/*.hpp")
+list(APPEND headers ${synth_headers})
 set(failed "")
 foreach(header IN LISTS headers)
     string(REPLACE "/" "_" tu_name "${header}")

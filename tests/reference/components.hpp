@@ -10,7 +10,7 @@
 #include <vector>
 
 #include <lidarfx/core/raster.hpp>
-#include <lidarfx/label/connected_components.hpp>
+#include <lidarfx/kernels/label/connected_components.hpp>
 
 namespace reference {
 

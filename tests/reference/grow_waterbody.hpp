@@ -8,8 +8,8 @@
 #include <queue>
 #include <vector>
 
-#include <lidarfx/stats/ks_one_sided.hpp>
-#include <lidarfx/water/grow_waterbody.hpp>
+#include <lidarfx/kernels/stats/ks_one_sided.hpp>
+#include <lidarfx/pipelines/water/grow_waterbody.hpp>
 
 namespace reference {
 

@@ -5,7 +5,7 @@
 
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/core/raster_view.hpp>
-#include <lidarfx/raster/idw_fill.hpp>
+#include <lidarfx/kernels/interpolate/idw_fill.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 
 #include <lidarfx/core/grid.hpp>
 #include <lidarfx/core/point_cloud.hpp>
-#include <lidarfx/raster/rasterize.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: Apache-2.0
+// vegetation_mask: cells whose points spread over more than a height (trees, shrubs), closed by a square.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/filter/morphology.hpp"
+
+namespace lidarfx {
+
+/// Settings of vegetation_mask.
+struct vegetation_options {
+    double height_m = 2.0;  ///< vegetation where max_z - min_z > height_m, metres; finite, >= 0. Default 2 m.
+    int closing_size = 5;   ///< side of the square closing the mask, cells; odd, >= 1 (1 = no closing). Default 5.
+    int threads = 1;        ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+};
+
+/// Vegetation mask of a survey (dissertation 2.3.1): 1 where the vertical spread of a cell's points,
+/// max_z - min_z, exceeds height_m (canopy above ground), 0 elsewhere and where either raster is NaN
+/// (no return); then a morphological closing by a closing_size square (morph_close, clipped at the
+/// border) joins the scattered cells of one canopy. Heights in metres. O(cells).
+/// @throws invalid_input if the shapes of min_z, max_z and out differ, height_m is negative or not
+/// finite, closing_size is even or < 1, or threads < 0.
+template <raster_input MinZ, raster_input MaxZ, class Out>
+    requires raster_output_of<Out, std::uint8_t> && std::is_arithmetic_v<typename MinZ::value_type> &&
+             std::is_arithmetic_v<typename MaxZ::value_type>
+void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vegetation_options& opt = {})
+{
+    constexpr const char* function = "vegetation_mask";
+    detail::require_same_shape(min_z, max_z, function, "min_z", "max_z");
+    detail::require_same_shape(min_z, out, function, "min_z", "out");
+    detail::require(opt.height_m >= 0 && opt.height_m <= 1.0e300, function, "height_m", "finite and >= 0",
+                    opt.height_m);
+    detail::require(opt.closing_size >= 1 && opt.closing_size % 2 == 1, function, "closing_size", "odd and >= 1",
+                    opt.closing_size);
+    detail::resolve_threads(opt.threads, function);
+    const detail::readable<MinZ> lo(min_z);
+    const detail::readable<MaxZ> hi(max_z);
+    detail::write_through<std::uint8_t>(std::forward<Out>(out), [&](raster_view<std::uint8_t> o) {
+        const auto a = lo.view();
+        const auto b = hi.view();
+        parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                for (std::ptrdiff_t c = 0; c < o.cols(); ++c) {
+                    // A NaN on either side makes the comparison false: no return, no vegetation.
+                    const double spread = static_cast<double>(b(r, c)) - static_cast<double>(a(r, c));
+                    o(r, c) = static_cast<std::uint8_t>(spread > opt.height_m);
+                }
+            }
+        }, {}, function);
+        if (opt.closing_size > 1) morph_close(o, o, morph_options{.size = opt.closing_size, .threads = opt.threads});
+    });
+}
+
+/// Returning form of vegetation_mask: a new 0/1 raster of min_z's shape.
+template <raster_input MinZ, raster_input MaxZ>
+    requires std::is_arithmetic_v<typename MinZ::value_type> && std::is_arithmetic_v<typename MaxZ::value_type>
+raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_options& opt = {})
+{
+    raster<std::uint8_t> out(min_z.rows(), min_z.cols());
+    vegetation_mask(min_z, max_z, out, opt);
+    return out;
+}
+
+}  // namespace lidarfx

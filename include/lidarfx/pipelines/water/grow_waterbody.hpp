@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: Apache-2.0
+// grow_waterbody: KS-stopped region growing of one seed as a single bucket-queue flood.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/stats/ks_one_sided.hpp"
+
+namespace lidarfx {
+
+/// Per-cell inputs of the growing step, all of one shape (contiguous, owned).
+struct water_field {
+    raster<float> angle_deg;             ///< angular filter value, degrees; NaN = may join at any threshold
+    raster<std::uint8_t> eligible;       ///< 1 = may join a waterbody (not vegetation, not already taken)
+    raster<std::int32_t> intensity_bin;  ///< intensity sample of the cell as a bin in [0, bins); -1 = none
+    int bins = 1;                        ///< number of intensity bins, >= 1
+};
+
+/// Which sample a growth step is compared with the previous region's sample.
+enum class ks_sample_mode {
+    cumulative,  ///< the whole new region (the dissertation): a small leak into land hides in a large body
+    increment,   ///< only the cells the step added: a leak is tested on its own and caught while small
+};
+
+/// Threshold schedule and stopping rule of the growing step (dissertation §2.3.3, DESIGN.md §5).
+struct grow_options {
+    double theta_start_deg = 2.0;        ///< first angular threshold θ_0, degrees, >= 0
+    double theta_step_deg = 1.0;         ///< increment of θ per step, degrees, > 0
+    double theta_max_deg = 30.0;         ///< last threshold, degrees, >= theta_start_deg, <= 90
+    ks_options ks = {};                  ///< one-sided KS test between consecutive regions (α, critical value)
+    std::size_t min_ks_samples = 30;     ///< steps are accepted untested until the reference sample has this
+                                         ///< many intensity values (a seed of dropouts has none)
+    ks_sample_mode sample = ks_sample_mode::increment;  ///< what each step's sample holds (cumulative =
+                                                        ///< the dissertation's literal test)
+};
+
+/// Result of growing one seed.
+struct grown_region {
+    std::vector<std::ptrdiff_t> cells;   ///< linear cell indices r * cols + c, in the order they joined
+    int steps_accepted = -1;             ///< last accepted step k (θ_k = θ_0 + k·Δθ); -1 when nothing joined
+    double theta_deg = NAN;              ///< θ of the last accepted step
+    bool stopped_by_ks = false;          ///< true when the KS test rejected step steps_accepted + 1
+};
+
+namespace detail {
+
+inline void validate(const grow_options& o, const char* function)
+{
+    require(o.theta_start_deg >= 0 && o.theta_start_deg <= 90, function, "theta_start_deg", "in [0, 90]",
+            o.theta_start_deg);
+    require(o.theta_step_deg > 0 && o.theta_step_deg <= 90, function, "theta_step_deg", "in (0, 90]",
+            o.theta_step_deg);
+    require(o.theta_max_deg >= o.theta_start_deg && o.theta_max_deg <= 90, function, "theta_max_deg",
+            ">= theta_start_deg and <= 90", o.theta_max_deg);
+    require(o.ks.alpha > 0 && o.ks.alpha < 1, function, "ks.alpha", "in (0, 1)", o.ks.alpha);
+}
+
+/// θ_k, computed the same way everywhere so that step membership is exact.
+inline double theta_of_step(const grow_options& o, int k) noexcept
+{
+    return o.theta_start_deg + static_cast<double>(k) * o.theta_step_deg;
+}
+
+inline int last_step(const grow_options& o) noexcept
+{
+    int k = static_cast<int>(std::floor((o.theta_max_deg - o.theta_start_deg) / o.theta_step_deg));
+    while (k > 0 && theta_of_step(o, k) > o.theta_max_deg) --k;
+    while (theta_of_step(o, k + 1) <= o.theta_max_deg) ++k;
+    return k;
+}
+
+/// Smallest step k with angle <= θ_k (NaN: 0); last + 1 when the angle exceeds θ_max.
+inline int step_of_angle(const grow_options& o, float angle, int last) noexcept
+{
+    if (std::isnan(angle)) return 0;
+    const double a = angle;
+    if (a <= o.theta_start_deg) return 0;
+    int k = static_cast<int>(std::ceil((a - o.theta_start_deg) / o.theta_step_deg));
+    if (k > last + 1) return last + 1;
+    while (k > 0 && a <= theta_of_step(o, k - 1)) --k;
+    while (k <= last && a > theta_of_step(o, k)) ++k;
+    return k;
+}
+
+}  // namespace detail
+
+/// Grows one seed into a waterbody. The region at step k is the set of eligible cells 8-connected to the
+/// seed through eligible cells whose angle is <= θ_k = θ_0 + k·Δθ (NaN angles join at any step). After
+/// each step the intensity sample of the previous region is compared with the new one by ks_one_sided
+/// (samples: cells with intensity_bin >= 0); on rejection the previous region is kept and growth stops.
+/// All steps run as ONE flood: a bucket queue keyed by the step at which a cell can first join (the
+/// minimax of steps along its best path), so each cell enters the queue once, with a cumulative intensity
+/// histogram per step. O(cells reached + steps * bins). `visited` is scratch of the field's shape whose
+/// cells must differ from `stamp` on entry (pass a fresh stamp per call to reuse it without clearing).
+/// @throws invalid_input on a field of mismatched shapes, bins < 1, or options out of range.
+inline grown_region grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
+                                   const grow_options& opt, raster<std::int32_t>& visited, std::int32_t stamp)
+{
+    constexpr const char* fn = "grow_waterbody";
+    detail::validate(opt, fn);
+    detail::require_same_shape(field.angle_deg, field.eligible, fn, "field.angle_deg", "field.eligible");
+    detail::require_same_shape(field.angle_deg, field.intensity_bin, fn, "field.angle_deg", "field.intensity_bin");
+    detail::require_same_shape(field.angle_deg, visited, fn, "field.angle_deg", "visited");
+    detail::require(field.bins >= 1, fn, "field.bins", ">= 1", field.bins);
+
+    const std::ptrdiff_t rows = field.angle_deg.rows(), cols = field.angle_deg.cols(), n = rows * cols;
+    const float* angle = field.angle_deg.data();
+    const std::uint8_t* eligible = field.eligible.data();
+    const std::int32_t* bin = field.intensity_bin.data();
+    std::int32_t* seen = visited.data();
+    const int last = detail::last_step(opt);
+
+    std::vector<std::vector<std::ptrdiff_t>> buckets(static_cast<std::size_t>(last + 1));
+    const auto push = [&](std::ptrdiff_t i, int from_step) {
+        if (seen[i] == stamp || !eligible[i]) return;
+        const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
+        if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
+        seen[i] = stamp;
+        buckets[static_cast<std::size_t>(k)].push_back(i);
+    };
+    for (const auto i : seed_cells) {
+        detail::require(i >= 0 && i < n, fn, "seed cell index", "inside the field", i);
+        push(i, 0);
+    }
+
+    grown_region out;
+    const auto max_bin = static_cast<std::uint32_t>(field.bins - 1);
+    ks_histogram previous(max_bin), current(max_bin), added(max_bin);
+    const bool increment = opt.sample == ks_sample_mode::increment;
+    for (int k = 0; k <= last; ++k) {
+        const std::size_t before = out.cells.size();
+        auto& bucket = buckets[static_cast<std::size_t>(k)];
+        // Cells pushed into this bucket while it is being drained join at this same step.
+        for (std::size_t q = 0; q < bucket.size(); ++q) {
+            const std::ptrdiff_t i = bucket[q];
+            out.cells.push_back(i);
+            if (bin[i] >= 0) {
+                current.add(bin[i]);
+                if (increment) added.add(bin[i]);
+            }
+            const std::ptrdiff_t r = i / cols, c = i % cols;
+            for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+                const std::ptrdiff_t rr = r + dr;
+                if (rr < 0 || rr >= rows) continue;
+                for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                    const std::ptrdiff_t cc = c + dc;
+                    if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
+                    push(rr * cols + cc, k);
+                }
+            }
+        }
+        std::vector<std::ptrdiff_t>().swap(bucket);
+        const bool grew = out.cells.size() > before;
+        if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&
+            current.size() > previous.size()) {
+            if (ks_one_sided(previous, increment ? added : current, opt.ks).reject) {
+                out.cells.resize(before);
+                out.stopped_by_ks = true;
+                break;
+            }
+        }
+        if (!out.cells.empty()) {
+            out.steps_accepted = k;
+            out.theta_deg = detail::theta_of_step(opt, k);
+        }
+        if (grew) previous = current;
+        if (increment && !added.empty()) added.clear();
+    }
+    return out;
+}
+
+}  // namespace lidarfx

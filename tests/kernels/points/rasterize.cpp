@@ -1,0 +1,336 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/kernels/points/rasterize.hpp>
+
+#include "reference/rasterize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <vector>
+
+using namespace lidarfx;
+
+namespace {
+
+/// A cloud as plain columns (what a LAS reader hands over), viewable as soa_cloud.
+struct columns {
+    std::vector<double> x, y, z;
+    std::vector<std::uint16_t> intensity;
+    std::vector<std::uint8_t> number_of_returns;
+
+    soa_cloud<> soa() const { return soa_cloud<>(x, y, z, intensity, {}, number_of_returns); }
+    std::size_t size() const { return x.size(); }
+    void push(double xi, double yi, double zi, std::uint16_t i, std::uint8_t n)
+    {
+        x.push_back(xi);
+        y.push_back(yi);
+        z.push_back(zi);
+        intensity.push_back(i);
+        number_of_returns.push_back(n);
+    }
+};
+
+/// Random points for grid g: inside, exactly on lattice lines, on the far east/south border, outside, and
+/// with NaN/infinite coordinates.
+columns random_cloud(std::mt19937& rng, const grid& g, std::size_t n)
+{
+    columns out;
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::uniform_int_distribution<int> intensity(0, 65535), kind(0, 19), returns(1, 3);
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    const double w = static_cast<double>(g.cols) * g.cell, h = static_cast<double>(g.rows) * g.cell;
+    for (std::size_t i = 0; i < n; ++i) {
+        double x = g.x0 + u(rng) * w, y = g.y0 - u(rng) * h, z = 100.0 + 50.0 * u(rng);
+        switch (kind(rng)) {
+        case 0:  // on a lattice line (cell edges, the west/north edges and the east/south border included)
+            x = g.x0 + static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.cols)(rng)) * g.cell;
+            break;
+        case 1:
+            y = g.y0 - static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.rows)(rng)) * g.cell;
+            break;
+        case 2: x = g.x1(); y = g.y1(); break;        // far south-east corner
+        case 3: x = g.x0 - g.cell * u(rng) - 1e-9; break;  // west of the grid
+        case 4: y = g.y1() - g.cell * u(rng) - 1e-9; break;  // south of the grid
+        case 5: x = g.x1() + 1e-7; break;
+        case 6: x = nan; break;
+        case 7: z = (i % 2) ? nan : -inf; break;
+        case 8: y = inf; break;
+        case 9: z = std::round(z); break;  // ties between points of one cell
+        default: break;
+        }
+        out.push(x, y, z, static_cast<std::uint16_t>(intensity(rng)), static_cast<std::uint8_t>(returns(rng) == 3 ? 2 : 1));
+    }
+    return out;
+}
+
+std::vector<grid> test_grids()
+{
+    return {grid{0.0, 0.0, 1.0, 1, 1},        grid{512345.25, 4100000.5, 2.0, 1, 17},
+            grid{-3.5, 7.0, 0.5, 19, 1},      grid{1000.0, 2000.0, 0.3, 7, 13},
+            grid{300000.0, 5000000.0, 2.0, 37, 23},  grid{-12.25, -40.75, 0.25, 257, 131}};
+}
+
+/// A point type a host might have, read through its own methods (no lidarfx adaptor).
+struct host_cloud {
+    struct point {
+        float x, y, z;
+        float intensity;
+        int returns;
+    };
+    std::vector<point> points;
+    std::size_t size() const { return points.size(); }
+    double x(std::size_t i) const { return points[i].x; }
+    double y(std::size_t i) const { return points[i].y; }
+    double z(std::size_t i) const { return points[i].z; }
+    double intensity(std::size_t i) const { return points[i].intensity; }
+    int number_of_returns(std::size_t i) const { return points[i].returns; }
+};
+
+}  // namespace
+
+TEST_CASE("raster/rasterize: a hand-checked 2x3 grid")
+{
+    // Cells are 10 m; the grid spans x 100..130 and y 200..180.
+    const grid g{100.0, 200.0, 10.0, 2, 3};
+    columns pts;
+    pts.push(101, 199, 5.0, 10, 1);    // (0, 0)
+    pts.push(109, 191, 7.0, 21, 2);    // (0, 0), multiple returns
+    pts.push(110, 200, 1.5, 7, 1);     // west edge of (0, 1), on the north edge
+    pts.push(130, 180, 9.0, 4, 1);     // far south-east corner -> (1, 2)
+    pts.push(125, 190, 3.0, 8, 1);     // on the row edge -> (1, 2)
+    pts.push(131, 185, 0.0, 0, 1);     // outside (east)
+    pts.push(std::nan(""), 185, 0.0, 0, 1);
+    const auto out = rasterize(pts.soa(), g);
+    CHECK(out.points_used == 5);
+    CHECK(out.points_outside == 1);
+    CHECK(out.points_nan == 1);
+    CHECK(out.count(0, 0) == 2);
+    CHECK(out.min_z(0, 0) == 5.0f);
+    CHECK(out.max_z(0, 0) == 7.0f);
+    CHECK(out.mean_intensity(0, 0) == 15.5f);
+    CHECK(out.multiple_returns(0, 0) == 1);
+    CHECK(out.count(0, 1) == 1);
+    CHECK(out.min_z(0, 1) == 1.5f);
+    CHECK(out.count(1, 2) == 2);
+    CHECK(out.min_z(1, 2) == 3.0f);
+    CHECK(out.max_z(1, 2) == 9.0f);
+    CHECK(out.mean_intensity(1, 2) == 6.0f);
+    CHECK(out.multiple_returns(1, 2) == 0);
+    for (auto [r, c] : {std::pair{0, 2}, {1, 0}, {1, 1}}) {
+        CHECK(out.dropout(r, c) == 1);
+        CHECK(out.count(r, c) == 0);
+        CHECK(std::isnan(out.min_z(r, c)));
+        CHECK(std::isnan(out.max_z(r, c)));
+        CHECK(out.mean_intensity(r, c) == 0.0f);
+    }
+    CHECK(out.dropout(0, 0) == 0);
+    CHECK(out.dropout(1, 2) == 0);
+}
+
+TEST_CASE("raster/rasterize: equals the per-point reference on random clouds with edge, outside and NaN points")
+{
+    const unsigned seed = 20240611;
+    std::mt19937 rng(seed);
+    for (const grid& g : test_grids()) {
+        for (std::size_t n : {0u, 1u, 50u, 3000u}) {
+            CAPTURE(seed);
+            CAPTURE(g.rows);
+            CAPTURE(g.cols);
+            CAPTURE(n);
+            const auto pts = random_cloud(rng, g, n);
+            const auto expected = reference::rasterize(pts.soa(), g);
+            CHECK(reference::same_bits(rasterize(pts.soa(), g), expected));
+            CHECK(expected.points_used + expected.points_outside + expected.points_nan == n);
+        }
+    }
+}
+
+TEST_CASE("raster/rasterize: any chunking, merge order or thread count gives bit-identical rasters")
+{
+    const unsigned seed = 77;
+    std::mt19937 rng(seed);
+    const grid g{2000.0, 3000.0, 0.7, 23, 31};
+    const auto pts = random_cloud(rng, g, 20000);
+    const auto cloud = pts.soa();
+    const auto expected = rasterize(cloud, g);
+    REQUIRE(reference::same_bits(expected, reference::rasterize(cloud, g)));
+
+    for (int threads : {1, 2, 3}) {
+        for (std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1} << 20}) {
+            CAPTURE(threads);
+            CAPTURE(chunk);
+            CHECK(reference::same_bits(rasterize(cloud, g, {.threads = threads, .chunk_points = chunk}), expected));
+        }
+    }
+
+    // Random pieces added to random accumulators in random order, merged in random order.
+    for (int trial = 0; trial < 10; ++trial) {
+        CAPTURE(trial);
+        std::vector<std::size_t> cuts{0, pts.size()};
+        for (int k = 0; k < 1 + trial * 3; ++k) cuts.push_back(std::uniform_int_distribution<std::size_t>(0, pts.size())(rng));
+        std::sort(cuts.begin(), cuts.end());
+        std::vector<std::size_t> pieces(cuts.size() - 1);
+        std::iota(pieces.begin(), pieces.end(), std::size_t{0});
+        std::shuffle(pieces.begin(), pieces.end(), rng);
+        std::vector<raster_accumulator> parts(1 + trial % 4, raster_accumulator(g));
+        for (std::size_t p : pieces) parts[p % parts.size()].add(cloud, cuts[p], cuts[p + 1]);
+        std::shuffle(parts.begin(), parts.end(), rng);
+        for (std::size_t k = 1; k < parts.size(); ++k) parts[0].merge(parts[k]);
+        CHECK(parts[0].points_used() == expected.points_used);
+        CHECK(reference::same_bits(parts[0].finish(), expected));
+    }
+}
+
+TEST_CASE("raster/rasterize: soa_cloud, aos_cloud and a host type give the same rasters")
+{
+    std::mt19937 rng(5);
+    const grid g{10.0, 20.0, 1.0, 9, 11};
+    auto pts = random_cloud(rng, g, 2000);
+    // Floats in the host type: keep coordinates representable so all three clouds hold the same points.
+    host_cloud host;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        pts.x[i] = static_cast<float>(pts.x[i]);
+        pts.y[i] = static_cast<float>(pts.y[i]);
+        pts.z[i] = static_cast<float>(pts.z[i]);
+        host.points.push_back({static_cast<float>(pts.x[i]), static_cast<float>(pts.y[i]),
+                               static_cast<float>(pts.z[i]), static_cast<float>(pts.intensity[i]),
+                               pts.number_of_returns[i]});
+    }
+    struct las_point {
+        double x, y, z;
+        std::uint16_t intensity;
+        std::uint8_t returns;
+    };
+    std::vector<las_point> aos;
+    for (std::size_t i = 0; i < pts.size(); ++i)
+        aos.push_back({pts.x[i], pts.y[i], pts.z[i], pts.intensity[i], pts.number_of_returns[i]});
+    const aos_cloud aos_view(std::span<const las_point>(aos), &las_point::x, &las_point::y, &las_point::z,
+                             &las_point::intensity, no_attribute{}, &las_point::returns);
+
+    const auto expected = reference::rasterize(pts.soa(), g);
+    CHECK(reference::same_bits(rasterize(pts.soa(), g), expected));
+    CHECK(reference::same_bits(rasterize(aos_view, g), expected));
+    CHECK(reference::same_bits(rasterize(host, g, {.threads = 2, .chunk_points = 300}), expected));
+}
+
+TEST_CASE("raster/rasterize: clouds without intensity or returns read 0 and single returns")
+{
+    const grid g{0.0, 4.0, 2.0, 2, 2};
+    const std::vector<double> x{1, 3, 3}, y{3, 1, 1.5}, z{1, 2, 3};
+    const auto out = rasterize(soa_cloud<>(x, y, z), g);
+    CHECK(out.count(0, 0) == 1);
+    CHECK(out.count(1, 1) == 2);
+    CHECK(out.mean_intensity(1, 1) == 0.0f);
+    CHECK(out.multiple_returns(1, 1) == 0);
+    CHECK(out.dropout(0, 1) == 1);
+}
+
+TEST_CASE("raster/rasterize: an empty cloud rasterizes to all dropout")
+{
+    const grid g{0.0, 0.0, 1.0, 3, 4};
+    const std::vector<double> none;
+    const auto out = rasterize(soa_cloud<>(none, none, none), g, {.threads = 3});
+    CHECK(out.points_used + out.points_outside + out.points_nan == 0);
+    for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+            CHECK(out.dropout(r, c) == 1);
+            CHECK(out.count(r, c) == 0);
+            CHECK(std::isnan(out.min_z(r, c)));
+            CHECK(std::isnan(out.max_z(r, c)));
+            CHECK(out.mean_intensity(r, c) == 0.0f);
+            CHECK(out.multiple_returns(r, c) == 0);
+        }
+    }
+    const auto zero = rasterize(soa_cloud<>(none, none, none), grid{0.0, 0.0, 1.0, 0, 0});
+    CHECK(zero.count.size() == 0);
+}
+
+TEST_CASE("raster/rasterize: non-integer intensities are summed in steps of 2^-16")
+{
+    const grid g{0.0, 1.0, 1.0, 1, 1};
+    host_cloud host;
+    // 0.5 and 0.25 are multiples of 2^-16: exact. 2^-18 rounds to 0 and 3*2^-18 to 2^-16 (half away from zero).
+    host.points = {{0.5f, 0.5f, 1.0f, 0.5f, 1}, {0.5f, 0.5f, 1.0f, 0.25f, 1}};
+    CHECK(rasterize(host, g).mean_intensity(0, 0) == 0.375f);
+    host.points = {{0.5f, 0.5f, 1.0f, std::ldexp(1.0f, -18), 1}, {0.5f, 0.5f, 1.0f, std::ldexp(3.0f, -18), 1}};
+    CHECK(rasterize(host, g).mean_intensity(0, 0) == std::ldexp(1.0f, -17));
+    host.points = {{0.5f, 0.5f, 1.0f, -3.0f, 1}, {0.5f, 0.5f, 1.0f, 1.0f, 1}};
+    CHECK(rasterize(host, g).mean_intensity(0, 0) == -1.0f);
+    // NaN intensities count as 0, huge ones clamp to 2^24.
+    host.points = {{0.5f, 0.5f, 1.0f, std::nanf(""), 1}, {0.5f, 0.5f, 1.0f, 4.0f, 1}, {0.5f, 0.5f, 1.0f, 1e30f, 1}};
+    CHECK(rasterize(host, g).mean_intensity(0, 0) == static_cast<float>((4.0 + 16777216.0) / 3.0));
+}
+
+TEST_CASE("raster/rasterize: z beyond the float range saturates")
+{
+    const grid g{0.0, 1.0, 1.0, 1, 1};
+    const std::vector<double> x{0.5, 0.5, 0.5}, y{0.5, 0.5, 0.5}, z{1e300, -1e300, 3.0};
+    const auto out = rasterize(soa_cloud<>(x, y, z), g);
+    CHECK(out.max_z(0, 0) == std::numeric_limits<float>::max());
+    CHECK(out.min_z(0, 0) == -std::numeric_limits<float>::max());
+    CHECK(out.points_used == 3);
+}
+
+TEST_CASE("raster/rasterize: progress is reported and can cancel")
+{
+    std::mt19937 rng(9);
+    const grid g{0.0, 0.0, 1.0, 8, 8};
+    const auto pts = random_cloud(rng, g, 1000);
+    for (int threads : {1, 2}) {
+        std::vector<double> seen;
+        rasterize(pts.soa(), g, {.threads = threads, .chunk_points = 100, .progress = [&](double f) {
+                                     seen.push_back(f);
+                                     return true;
+                                 }});
+        REQUIRE_FALSE(seen.empty());
+        CHECK(seen.back() == 1.0);
+        CHECK(std::is_sorted(seen.begin(), seen.end()));
+        CHECK_THROWS_WITH_AS(rasterize(pts.soa(), g, {.threads = threads, .chunk_points = 100,
+                                                      .progress = [](double) { return false; }}),
+                             "rasterize: cancelled", cancelled);
+    }
+}
+
+TEST_CASE("raster/rasterize: bad arguments throw invalid_input")
+{
+    const std::vector<double> v{1.0};
+    const soa_cloud<> cloud(v, v, v);
+    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 0.0, 1, 1}), "rasterize: grid.cell must be finite and > 0 (got 0)",
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, -1, 1}), "rasterize: grid.rows must be >= 0 (got -1)",
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, 1, 1}, {.chunk_points = 0}),
+                         "rasterize: chunk_points must be >= 1 (got 0)", invalid_input);
+    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, 1, 1}, {.threads = -1}),
+                         "rasterize: threads must be >= 0 (got -1)", invalid_input);
+
+    raster_accumulator a(grid{0, 0, 1.0, 2, 2});
+    CHECK_THROWS_WITH_AS(a.merge(raster_accumulator(grid{0, 0, 1.0, 2, 3})),
+                         "raster_accumulator::merge: other accumulator must be on the same grid", invalid_input);
+    CHECK_THROWS_WITH_AS(a.add(cloud, 0, 2), "raster_accumulator::add: range [first, last) must lie in [0, 1] (got [0, 2))",
+                         invalid_input);
+    CHECK_THROWS_AS(raster_accumulator(grid{0, 0, -1.0, 2, 2}), invalid_input);
+}
+
+TEST_CASE("raster/bounds_of: box of the finite points, fits snapped_grid")
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> x{3.0, -1.0, nan, 7.5, 100.0}, y{2.0, 5.0, 0.0, -4.0, 1.0}, z{0.0, 1.0, 1.0, 2.0, nan};
+    const soa_cloud<> cloud(x, y, z);
+    CHECK(bounds_of(cloud) == bounds{-1.0, -4.0, 7.5, 5.0});
+    const auto g = snapped_grid(bounds_of(cloud), 2.0);
+    const auto out = rasterize(cloud, g);
+    CHECK(out.points_outside == 0);
+    CHECK(out.points_used == 3);
+
+    const std::vector<double> none;
+    CHECK_THROWS_WITH_AS(bounds_of(soa_cloud<>(none, none, none)),
+                         "bounds_of: cloud has no point with finite x, y and z", invalid_input);
+    const std::vector<double> bad{nan};
+    CHECK_THROWS_AS(bounds_of(soa_cloud<>(bad, bad, bad)), invalid_input);
+}

@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/kernels/label/connected_components.hpp>
+#include <lidarfx/kernels/metrics/confusion.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
+#include <lidarfx/synth/scenes.hpp>
+#include <lidarfx/pipelines/water/waterbodies.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "io/las.hpp"
+
+using namespace lidarfx;
+
+namespace {
+
+struct scene_run {
+    synth::scene scene;
+    point_rasters rasters;
+    waterbody_result result;
+    confusion score;
+};
+
+scene_run run(synth::scene sc, const waterbody_options& opt = {})
+{
+    scene_run out{std::move(sc), {}, {}, {}};
+    out.rasters = rasterize(out.scene.points.cloud(), out.scene.truth.g);
+    out.result = extract_waterbodies(out.rasters, opt);
+    out.score = confusion_counts(out.result.water, out.scene.truth.water_filled, out.scene.truth.g.cell);
+    MESSAGE("accuracy " << 100 * out.score.accuracy() << " %, sensitivity " << 100 * out.score.sensitivity()
+                        << " %, specificity " << 100 * out.score.specificity() << " %, IoU " << 100 * out.score.iou()
+                        << " %, bodies " << out.result.bodies.size());
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("water/extract_waterbodies: the synthetic lake scene is mapped to the documents' accuracy and beyond")
+{
+    const auto r = run(synth::lake_scene());
+    REQUIRE(r.result.ran);
+    CHECK(r.score.accuracy() >= 0.995);
+    CHECK(r.score.sensitivity() >= 0.97);
+    CHECK(r.score.specificity() >= 0.995);
+
+    // Bodies are numbered by decreasing area and their statistics match the label raster.
+    std::size_t cells = 0;
+    for (std::size_t i = 0; i < r.result.bodies.size(); ++i) {
+        const auto& b = r.result.bodies[i];
+        CHECK(b.label == static_cast<std::int32_t>(i + 1));
+        if (i > 0) CHECK(b.area_m2 <= r.result.bodies[i - 1].area_m2);
+        cells += b.cells;
+        CHECK(b.row_min <= b.row_max);
+    }
+    std::size_t water_cells = 0;
+    for (const auto v : r.result.water) water_cells += v;
+    CHECK(cells == water_cells);
+
+    // Islands of 200 m² and more stay land; smaller holes inside water were filled.
+    const auto& t = r.scene.truth;
+    const auto land_inside = connected_components(
+        [&] {
+            raster<std::uint8_t> m(t.g.rows, t.g.cols);
+            for (std::ptrdiff_t i = 0; i < m.size(); ++i) m.data()[i] = !r.result.water.data()[i];
+            return m;
+        }(),
+        connectivity::four);
+    const double cell_area = t.g.cell * t.g.cell;
+    const auto bounds = component_bounds(land_inside);
+    for (std::size_t l = 1; l < land_inside.sizes.size(); ++l) {
+        const auto& b = bounds[l];
+        const bool touches_border = b.row_min == 0 || b.col_min == 0 || b.row_max == t.g.rows - 1 || b.col_max == t.g.cols - 1;
+        if (!touches_border) CHECK(static_cast<double>(land_inside.sizes[l]) * cell_area >= 200.0);
+    }
+}
+
+TEST_CASE("water/extract_waterbodies: the synthetic river is one body, across its bridge")
+{
+    const auto r = run(synth::river_scene());
+    REQUIRE(r.result.ran);
+    CHECK(r.score.accuracy() >= 0.995);
+    CHECK(r.score.sensitivity() >= 0.97);
+    CHECK(r.score.specificity() >= 0.995);
+    REQUIRE_FALSE(r.result.bodies.empty());
+    // The river is the largest body and holds nearly all the water found.
+    std::size_t water_cells = 0;
+    for (const auto v : r.result.water) water_cells += v;
+    CHECK(static_cast<double>(r.result.bodies[0].cells) >= 0.95 * static_cast<double>(water_cells));
+}
+
+TEST_CASE("water/extract_waterbodies: same result for any thread count")
+{
+    synth::scene_options so;
+    so.size_m = 300;
+    const auto sc = synth::lake_scene(so);
+    const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
+    const auto one = extract_waterbodies(pr, {.threads = 1});
+    const auto three = extract_waterbodies(pr, {.threads = 3});
+    CHECK(one.labels == three.labels);
+    CHECK(one.bodies.size() == three.bodies.size());
+}
+
+TEST_CASE("water/extract_waterbodies: data without intensity or density is refused with the reason")
+{
+    const std::filesystem::path path = std::filesystem::path(LIDARFX_DATA_DIR) / "Haystack_Rock.las";
+    if (!std::filesystem::exists(path)) {
+        MESSAGE("sample data not found: " << path.string());
+        return;
+    }
+    const auto pts = io::read_las(path.string());
+    const grid g = snapped_grid(bounds_of(pts.cloud()), 2.0);
+    const auto pr = rasterize(pts.cloud(), g);
+    const auto w = extract_waterbodies(pr);
+    CHECK_FALSE(w.ran);
+    CHECK_FALSE(w.diagnostics.usable());
+    CHECK_FALSE(w.diagnostics.has_intensity);
+    REQUIRE(w.diagnostics.problems.size() == 2);
+    CHECK(w.diagnostics.problems[0].find("intensity") != std::string::npos);
+    CHECK(w.diagnostics.problems[1].find("points per 2.0 m cell") != std::string::npos);
+    CHECK(w.diagnostics.suggested_cell_m > 2.0);
+    CHECK(w.bodies.empty());
+    for (const auto v : w.water) REQUIRE(v == 0);
+    // Forcing the run is possible, and the diagnostics still travel with the result.
+    waterbody_options forced;
+    forced.check_inputs = false;
+    const auto f = extract_waterbodies(pr, forced);
+    CHECK(f.ran);
+    CHECK_FALSE(f.diagnostics.usable());
+}
+
+TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")
+{
+    raster<float> z(4, 4, 1.0f), z2(4, 5, 1.0f);
+    raster<std::uint8_t> d(4, 4);
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z2, z, d}, 2.0),
+                         "extract_waterbodies: min_z and max_z must have the same shape (got 4x4 and 4x5)",
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 0.0),
+                         "extract_waterbodies: cell_m must be finite and > 0 (got 0)", invalid_input);
+    waterbody_options o;
+    o.grow.ks.alpha = 1.0;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
+                         "extract_waterbodies: ks.alpha must be in (0, 1) (got 1)", invalid_input);
+    o = {};
+    o.grow.theta_start_deg = 10;
+    o.grow.theta_max_deg = 5;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
+                         "extract_waterbodies: theta_max_deg must be >= theta_start_deg and <= 90 (got 5)",
+                         invalid_input);
+    o = {};
+    o.seed_opening_size = 4;
+    CHECK_THROWS_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o), invalid_input);
+}
+
+TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; returning false cancels")
+{
+    synth::scene_options so;
+    so.size_m = 300;
+    const auto sc = synth::lake_scene(so);
+    const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
+    std::vector<double> seen;
+    waterbody_options o;
+    o.progress = [&](double f) {
+        seen.push_back(f);
+        return true;
+    };
+    const auto w = extract_waterbodies(pr, o);
+    REQUIRE(seen.size() >= 2);
+    CHECK(seen.front() == 0.0);
+    CHECK(seen.back() == 1.0);
+    CHECK(std::is_sorted(seen.begin(), seen.end()));
+    CHECK_FALSE(w.bodies.empty());
+
+    o.progress = [](double f) { return f < 0.5; };
+    CHECK_THROWS_WITH_AS(extract_waterbodies(pr, o), "extract_waterbodies: cancelled", cancelled);
+}
