@@ -103,9 +103,8 @@ void write_waterbodies(const std::filesystem::path& dir, const survey& s, const 
                                     "dropout_fraction"};
     std::vector<std::vector<io::table_value>> rows;
     for (const auto& b : w.bodies) {
-        const auto [xa, ya] = g.to_world(static_cast<double>(b.row_max + 1), static_cast<double>(b.col_min));
-        const auto [xb, yb] = g.to_world(static_cast<double>(b.row_min), static_cast<double>(b.col_max + 1));
-        rows.push_back({b.label, b.area_m2, b.cells, xa, ya, xb, yb, b.seed, b.theta_deg, b.stopped_by_ks,
+        const bounds box = g.extent(b.box);
+        rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg, b.stopped_by_ks,
                         b.mean_intensity, b.water_level_m, b.dropout_fraction});
     }
     io::write_csv((dir / "waterbodies.csv").string(), header, rows);

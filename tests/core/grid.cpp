@@ -36,13 +36,30 @@ TEST_CASE("core/grid: world <-> cell round trips on random points")
         REQUIRE(idx);
         CHECK(idx->row == r);
         CHECK(idx->col == c);
-        const auto [fr, fc] = g.to_cell_coords(x, y);
-        CHECK(fr == doctest::Approx(static_cast<double>(r) + 0.5));
-        CHECK(fc == doctest::Approx(static_cast<double>(c) + 0.5));
-        const auto [wx, wy] = g.to_world(fr, fc);
+        const cell_coords rc = g.to_cell_coords(x, y);
+        CHECK(rc.row == doctest::Approx(static_cast<double>(r) + 0.5));
+        CHECK(rc.col == doctest::Approx(static_cast<double>(c) + 0.5));
+        const auto [wx, wy] = g.to_world(rc);
         CHECK(wx == doctest::Approx(x));  // exact up to rounding of a few flops
         CHECK(wy == doctest::Approx(y));
     }
+}
+
+TEST_CASE("core/grid: cell boxes grow cell by cell and map to the world rectangle of their outer edges")
+{
+    cell_box b;
+    CHECK(b.empty());
+    CHECK(b.rows() == 0);
+    b.extend(3, 5);
+    CHECK(b == cell_box{3, 5, 3, 5});
+    b.extend(1, 7);
+    b.extend(4, 2);
+    CHECK(b == cell_box{1, 2, 4, 7});
+    CHECK(b.rows() == 4);
+    CHECK(b.cols() == 6);
+    const grid g{100.0, 50.0, 2.0, 10, 10};
+    CHECK(g.extent(b) == bounds{104.0, 40.0, 116.0, 48.0});
+    CHECK(g.extent(cell_box{0, 0, 9, 9}) == g.extent());
 }
 
 TEST_CASE("core/grid: edges belong to cells as documented; outside and NaN are nowhere")

@@ -17,6 +17,35 @@ struct cell_index {
     friend constexpr bool operator==(const cell_index&, const cell_index&) = default;
 };
 
+/// Fractional cell coordinates: the centre of cell (r, c) is (r + 0.5, c + 0.5). Named members, so a
+/// (row, col) pair is never mistaken for a world (x, y) pair.
+struct cell_coords {
+    double row = 0, col = 0;
+    friend constexpr bool operator==(const cell_coords&, const cell_coords&) = default;
+};
+
+/// The library's one box of cells: rows row_min..row_max and columns col_min..col_max, both inclusive.
+/// Default-constructed it is empty (row_max < row_min). World rectangles are `bounds`.
+struct cell_box {
+    std::ptrdiff_t row_min = 0, col_min = 0, row_max = -1, col_max = -1;
+    constexpr bool empty() const noexcept { return row_max < row_min || col_max < col_min; }
+    constexpr std::ptrdiff_t rows() const noexcept { return empty() ? 0 : row_max - row_min + 1; }
+    constexpr std::ptrdiff_t cols() const noexcept { return empty() ? 0 : col_max - col_min + 1; }
+    /// Grows the box to hold cell (r, c).
+    constexpr void extend(std::ptrdiff_t r, std::ptrdiff_t c) noexcept
+    {
+        if (empty()) {
+            *this = {r, c, r, c};
+            return;
+        }
+        row_min = r < row_min ? r : row_min;
+        row_max = r > row_max ? r : row_max;
+        col_min = c < col_min ? c : col_min;
+        col_max = c > col_max ? c : col_max;
+    }
+    friend constexpr bool operator==(const cell_box&, const cell_box&) = default;
+};
+
 /// Axis-aligned world rectangle in projected metres (xmin <= xmax, ymin <= ymax).
 struct bounds {
     double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
@@ -45,6 +74,12 @@ struct grid {
     constexpr double x1() const noexcept { return x0 + static_cast<double>(cols) * cell; }  ///< east edge
     constexpr double y1() const noexcept { return y0 - static_cast<double>(rows) * cell; }  ///< south edge
     constexpr bounds extent() const noexcept { return {x0, y1(), x1(), y0}; }
+    /// World rectangle covered by the cells of `b` (outer cell edges); b must not be empty.
+    constexpr bounds extent(const cell_box& b) const noexcept
+    {
+        return {x0 + static_cast<double>(b.col_min) * cell, y0 - static_cast<double>(b.row_max + 1) * cell,
+                x0 + static_cast<double>(b.col_max + 1) * cell, y0 - static_cast<double>(b.row_min) * cell};
+    }
     constexpr std::ptrdiff_t size() const noexcept { return rows * cols; }
 
     /// World coordinates (x, y) of the centre of cell (r, c).
@@ -53,17 +88,19 @@ struct grid {
         return {x0 + (static_cast<double>(c) + 0.5) * cell, y0 - (static_cast<double>(r) + 0.5) * cell};
     }
 
-    /// Fractional cell coordinates: col = (x - x0)/cell, row = (y0 - y)/cell (cell centres at k + 0.5).
-    constexpr std::array<double, 2> to_cell_coords(double x, double y) const noexcept
+    /// Fractional cell coordinates of world point (x, y): row = (y0 - y)/cell, col = (x - x0)/cell (cell
+    /// centres at k + 0.5).
+    constexpr cell_coords to_cell_coords(double x, double y) const noexcept
     {
         return {(y0 - y) / cell, (x - x0) / cell};
     }
 
-    /// World coordinates of fractional cell coordinates (inverse of to_cell_coords).
+    /// World coordinates (x, y) of fractional cell coordinates (inverse of to_cell_coords).
     constexpr std::array<double, 2> to_world(double row, double col) const noexcept
     {
         return {x0 + col * cell, y0 - row * cell};
     }
+    constexpr std::array<double, 2> to_world(cell_coords rc) const noexcept { return to_world(rc.row, rc.col); }
 
     /// The cell holding world point (x, y), or nullopt when outside. Points on the east or south edge of
     /// the grid belong to the last column / row, so the closed extent is covered; NaN gives nullopt.

@@ -199,9 +199,9 @@ TEST_CASE("label/component_bounds: inclusive boxes per label, background include
     const auto comps = connected_components(from_rows({{0, 1, 0, 0}, {0, 1, 1, 0}, {0, 0, 0, 0}, {1, 0, 0, 0}}));
     const auto boxes = component_bounds(comps);
     REQUIRE(boxes.size() == 3);
-    CHECK(boxes[0] == component_box{0, 0, 3, 3});
-    CHECK(boxes[1] == component_box{0, 1, 1, 2});
-    CHECK(boxes[2] == component_box{3, 0, 3, 0});
+    CHECK(boxes[0] == cell_box{0, 0, 3, 3});
+    CHECK(boxes[1] == cell_box{0, 1, 1, 2});
+    CHECK(boxes[2] == cell_box{3, 0, 3, 0});
     CHECK(component_bounds(connected_components(reference::mask(2, 2, 1)))[0].empty());
 
     std::mt19937 rng(43);

@@ -52,7 +52,7 @@ TEST_CASE("water/extract_waterbodies: the synthetic lake scene is mapped to the 
         CHECK(b.label == static_cast<std::int32_t>(i + 1));
         if (i > 0) CHECK(b.area_m2 <= r.result.bodies[i - 1].area_m2);
         cells += b.cells;
-        CHECK(b.row_min <= b.row_max);
+        CHECK(b.box.row_min <= b.box.row_max);
     }
     std::size_t water_cells = 0;
     for (const auto v : r.result.water) water_cells += v;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
@@ -41,13 +42,6 @@ struct components_options {
     int threads = 1;                          ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
 };
 
-/// Inclusive bounding box of one label, in cells: rows row_min..row_max, columns col_min..col_max.
-/// A label without cells has the empty box {0, 0, -1, -1}.
-struct component_box {
-    std::ptrdiff_t row_min = 0, col_min = 0, row_max = -1, col_max = -1;
-    bool empty() const noexcept { return row_max < row_min; }
-    friend bool operator==(const component_box&, const component_box&) = default;
-};
 
 namespace detail {
 
@@ -446,16 +440,16 @@ inline void rank_by_size(components& comps)
 
 /// Bounding box of every label: result[label] for label 0 (background) .. count(); a label without
 /// cells gets the empty box {0, 0, -1, -1}. O(rows * cols).
-inline std::vector<component_box> component_bounds(const components& comps)
+inline std::vector<cell_box> component_bounds(const components& comps)
 {
-    std::vector<component_box> boxes(comps.sizes.size());
+    std::vector<cell_box> boxes(comps.sizes.size());
     std::vector<bool> seen(comps.sizes.size(), false);
     const auto& labels = comps.labels;
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
         const std::int32_t* row = labels.row(r);
         for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
             const auto l = static_cast<std::size_t>(row[c]);
-            component_box& b = boxes[l];
+            cell_box& b = boxes[l];
             if (!seen[l]) {
                 seen[l] = true;
                 b = {r, c, r, c};

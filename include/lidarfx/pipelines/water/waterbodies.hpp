@@ -80,7 +80,7 @@ struct waterbody {
     std::int32_t label = 0;                ///< 1..n by decreasing area
     std::size_t cells = 0;
     double area_m2 = 0;
-    std::ptrdiff_t row_min = 0, col_min = 0, row_max = -1, col_max = -1;  ///< bounding box, cells (inclusive)
+    cell_box box;                          ///< bounding box, cells (inclusive)
     std::int32_t seed = 0;                 ///< rank of the seed it grew from (1 = largest seed)
     double theta_deg = NAN;                ///< angular threshold reached when growth stopped
     bool stopped_by_ks = false;            ///< false: θ_max reached without a KS rejection
@@ -660,8 +660,8 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
     for (std::size_t k = 0; k < order.size(); ++k) {
         auto& b = res.bodies[k];
         b.label = static_cast<std::int32_t>(k + 1);
-        b.row_min = rows;
-        b.col_min = cols;
+        b.box.row_min = rows;
+        b.box.col_min = cols;
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* label = res.labels.row(r);
@@ -673,10 +673,10 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
             const auto k = static_cast<std::size_t>(l - 1);
             auto& b = res.bodies[k];
             ++b.cells;
-            b.row_min = std::min(b.row_min, r);
-            b.row_max = r;
-            b.col_min = std::min(b.col_min, c);
-            b.col_max = std::max(b.col_max, c);
+            b.box.row_min = std::min(b.box.row_min, r);
+            b.box.row_max = r;
+            b.box.col_min = std::min(b.box.col_min, c);
+            b.box.col_max = std::max(b.box.col_max, c);
             if (in.dropout(r, c)) continue;
             intensity[k] += in.mean_intensity(r, c);
             ++with_returns[k];
