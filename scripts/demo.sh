@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# Builds the lidarfx program and runs `lidarfx demo` on its embedded data; outputs go to ./lidarfx-demo/.
+# Builds the lidarfx program and runs `lidarfx demo` on its embedded scenes (plus ../shared/data/Haystack_Rock.las
+# when present); outputs go to ./lidarfx-demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --gdal
 cmake --preset release >/dev/null
 cmake --build --preset release --target lidarfx_cli
-./build/release/lidarfx demo --out lidarfx-demo "$@"
+# The demo runs on its embedded scenes; the sample survey next to the repository is added when present.
+sample=../shared/data/Haystack_Rock.las
+extra=()
+[[ -f "$sample" ]] && extra=(--las "$sample")
+./build/release/lidarfx demo --out lidarfx-demo "${extra[@]}" "$@"

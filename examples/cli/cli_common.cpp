@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -100,8 +101,9 @@ progress_callback progress_bar(const std::string& label)
     };
 }
 
-survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress)
+survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress, int threads)
 {
+    if (threads < 0) throw std::invalid_argument("--threads must be >= 0 (got " + std::to_string(threads) + ")");
     if (paths.empty()) throw std::invalid_argument("no input LAS file given");
     if (!(cell_m > 0) || !std::isfinite(cell_m)) {
         throw std::invalid_argument("--cell must be a positive number of metres (got " + std::to_string(cell_m) + ")");
@@ -132,14 +134,36 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     const grid g = snapped_grid(box, cell_m);
     raster_accumulator acc(g);
     auto bar = show_progress ? progress_bar("reading  ") : progress_callback{};
-    io::las_points chunk;
+    // The files' chunks in order: next_chunk(dst) fills dst and returns its size, 0 after the last one.
+    std::size_t file = 0;
+    std::unique_ptr<io::las_reader> reader;
+    const auto next_chunk = [&](io::las_points& dst) -> std::size_t {
+        for (;;) {
+            if (!reader) {
+                if (file == paths.size()) return 0;
+                reader = std::make_unique<io::las_reader>(paths[file++]);
+            }
+            if (const std::size_t n = reader->read(dst, std::size_t{1} << 20)) return n;
+            reader.reset();
+        }
+    };
     std::uint64_t done = 0;
-    for (const auto& p : paths) {
-        io::las_reader r(p);
-        while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
-            acc.add(chunk.cloud());
-            done += n;
-            if (bar) bar(static_cast<double>(done) / static_cast<double>(total));
+    const auto add = [&](const io::las_points& chunk, std::size_t n) {
+        acc.add(chunk.cloud());
+        done += n;
+        if (bar) bar(static_cast<double>(done) / static_cast<double>(total));
+    };
+    io::las_points current, ahead;
+    std::size_t n = next_chunk(current);
+    if (threads == 1) {
+        for (; n > 0; n = next_chunk(current)) add(current, n);
+    } else {
+        // Two threads: one decodes the next chunk while this one rasterizes the current chunk.
+        while (n > 0) {
+            auto reading = std::async(std::launch::async, [&] { return next_chunk(ahead); });
+            add(current, n);
+            n = reading.get();
+            std::swap(current, ahead);
         }
     }
     s.rasters = acc.finish();

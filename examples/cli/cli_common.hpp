@@ -51,8 +51,10 @@ struct survey {
 
 /// Reads every point of `paths` in chunks and rasterizes them on the snapped grid covering the union of
 /// the files' header bounds; points outside those bounds (a header that lies) are reported as an error.
+/// With `threads` != 1 (0 = all cores) the next chunk is read while the current one is rasterized; the
+/// chunks are added in file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
-survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress);
+survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress, int threads = 1);
 
 /// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `dir`.
 void write_raster(const std::filesystem::path& dir, const std::string& name, raster_view<const float> values,

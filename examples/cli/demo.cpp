@@ -20,10 +20,11 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx demo [--out DIR] [--size M] [--seed N] [--threads N]\n"
-    "Runs rasterize and water on the synthetic lake and river scenes (DIR/lake, DIR/river), scores the\n"
-    "waterbodies against the scenes' truth (DIR/scores.csv), and runs them on the sample survey\n"
-    "Haystack_Rock.las when it is found (DIR/haystack). Default DIR: lidarfx-demo.\n";
+    "usage: lidarfx demo [--out DIR] [--size M] [--seed N] [--threads N] [--las FILE]\n"
+    "Runs rasterize and water on the embedded synthetic lake and river scenes (DIR/lake, DIR/river) and\n"
+    "scores the waterbodies against the scenes' truth (DIR/scores.csv). --las FILE adds a real survey\n"
+    "(DIR/<file name>): its rasters, and its waterbodies or the reasons the data cannot support them.\n"
+    "Default DIR: lidarfx-demo; --threads 0 = all cores (default).\n";
 
 struct scored {
     std::string scene;
@@ -76,7 +77,7 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
 
 int run_demo(const std::vector<std::string>& args)
 {
-    const lidarfx::cli::arguments a(args, {"out", "size", "seed", "threads"}, {"help"});
+    const lidarfx::cli::arguments a(args, {"out", "size", "seed", "threads", "las"}, {"help"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, false)) return *code;
     const std::filesystem::path out = a.text("out", "lidarfx-demo");
     const int threads = a.integer("threads", 0);
@@ -99,20 +100,22 @@ int run_demo(const std::vector<std::string>& args)
     }
     lidarfx::cli::say_wrote(out / "scores.csv");
 
-    const std::filesystem::path sample = std::filesystem::path(LIDARFX_DATA_DIR) / "Haystack_Rock.las";
-    if (std::filesystem::exists(sample)) {
-        std::cout << "\n== sample survey " << sample.string() << " ==\n";
-        const auto dir = out / "haystack";
+    if (a.has("las")) {
+        const std::filesystem::path survey_file = a.text("las", "");
+        std::cout << "\n== survey " << survey_file.string() << " ==\n";
+        const auto dir = out / survey_file.stem();
         std::filesystem::create_directories(dir);
-        const auto s = lidarfx::cli::read_survey({sample.string()}, 2.0, false);
+        const auto s = lidarfx::cli::read_survey({survey_file.string()}, 2.0, false, threads);
         lidarfx::cli::print_survey(s);
         lidarfx::cli::write_point_rasters(dir, s);
         const auto w = lidarfx::extract_waterbodies(s.rasters, {.threads = threads});
         lidarfx::cli::print_diagnostics(w.diagnostics);
-        std::cout << (w.ran ? "waterbody extraction ran\n"
-                            : "waterbody extraction refused on these data, as it should be (no map written)\n");
-    } else {
-        std::cout << "\n(sample survey " << sample.string() << " not found: skipped)\n";
+        if (w.ran) {
+            lidarfx::cli::print_waterbodies(w, 5);
+            lidarfx::cli::write_waterbodies(dir, s, w);
+        } else {
+            std::cout << "waterbody extraction refused on these data (no map written)\n";
+        }
     }
     return 0;
 }

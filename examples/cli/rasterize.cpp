@@ -17,7 +17,8 @@ constexpr const char* usage =
     "usage: lidarfx rasterize IN.las [MORE.las ...] --cell METRES --out DIR [--threads N]\n"
     "Writes min_z, max_z, mean_intensity, count and dropout as ESRI ASCII grids (.asc; GeoTIFF .tif too\n"
     "when built with GDAL) on a grid aligned to multiples of the cell size (no data = -9999), and PNG\n"
-    "quicklooks. Default cell: 2 m.\n";
+    "quicklooks. Default cell: 2 m. --threads N: 0 = all cores (default), 1 = read and rasterize on one\n"
+    "thread; the rasters are the same for every N.\n";
 
 int run_rasterize(const std::vector<std::string>& args)
 {
@@ -25,7 +26,7 @@ int run_rasterize(const std::vector<std::string>& args)
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     const std::filesystem::path out = a.text("out", "");
     std::filesystem::create_directories(out);
-    const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true);
+    const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true, a.integer("threads", 0));
     lidarfx::cli::print_survey(s);
     lidarfx::cli::write_point_rasters(out, s);
     return 0;

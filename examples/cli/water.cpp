@@ -21,7 +21,7 @@ constexpr const char* usage =
     "are refused with the reason and exit code 3; --force runs anyway.\n"
     "options (defaults in brackets):\n"
     "  --cell M              cell size, metres [2]\n"
-    "  --threads N           threads for the raster kernels, 0 = all cores [0]\n"
+    "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
     "  --veg-height M        vegetation height h, metres [2]\n"
     "  --min-seed-cells N    smallest dropout seed, cells [100]\n"
     "  --theta-start D       first angular threshold, degrees [2]\n"
@@ -60,7 +60,7 @@ int run_water(const std::vector<std::string>& args)
     opt.progress = lidarfx::cli::progress_bar("waterbodies");
 
     const std::filesystem::path out = a.text("out", "");
-    const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true);
+    const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true, a.integer("threads", 0));
     lidarfx::cli::print_survey(s);
     const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
     lidarfx::cli::print_diagnostics(w.diagnostics);
