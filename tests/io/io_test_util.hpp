@@ -16,6 +16,10 @@
 
 #include <lidarfx/core/raster_view.hpp>
 
+#include <doctest/doctest.h>
+
+#include "io/las.hpp"
+
 namespace io_test {
 
 /// A fresh folder under the system temp dir, removed with everything in it when the object dies.
@@ -80,6 +84,27 @@ inline bool same_cells(lidarfx::raster_view<const float> a, lidarfx::raster_view
         }
     }
     return true;
+}
+
+/// Every attribute of a and b is equal.
+inline bool identical(const lidarfx::io::las_points& a, const lidarfx::io::las_points& b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity &&
+           a.return_number == b.return_number && a.number_of_returns == b.number_of_returns &&
+           a.classification == b.classification && a.classification_flags == b.classification_flags &&
+           a.scan_angle_deg == b.scan_angle_deg && a.gps_time == b.gps_time;
+}
+
+/// All points of r read from the start in chunks of chunk_size (checking each chunk's size).
+inline lidarfx::io::las_points read_in_chunks(lidarfx::io::las_reader& r, std::size_t chunk_size)
+{
+    r.seek(0);
+    lidarfx::io::las_points all, chunk;
+    while (r.read(chunk, chunk_size) > 0) {
+        CHECK(chunk.size() <= chunk_size);
+        all.append(chunk);
+    }
+    return all;
 }
 
 inline bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
