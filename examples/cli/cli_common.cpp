@@ -176,19 +176,35 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     return s;
 }
 
-void write_raster(const std::filesystem::path& dir, const std::string& name, raster_view<const float> values,
-                  const grid& g, const std::string& crs_wkt, int epsg)
+void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
+                  const std::string& crs_wkt, int epsg)
 {
-    const auto asc = dir / (name + ".asc");
-    io::write_ascii_grid(asc.string(), values, g);
-    say_wrote(asc);
+    out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
     if (io::geotiff_available()) {
-        const auto tif = dir / (name + ".tif");
-        io::write_geotiff(tif.string(), values, g, !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : ""));
-        say_wrote(tif);
+        const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
+        out.write(name + ".tif", [&](const std::string& path) { io::write_geotiff(path, values, g, crs); });
     }
 }
 
-void say_wrote(const std::filesystem::path& path) { std::cout << "  wrote " << path.string() << '\n'; }
+std::vector<std::string> raster_file_names(const std::string& name)
+{
+    std::vector<std::string> names{name + ".asc"};
+    if (io::geotiff_available()) names.push_back(name + ".tif");
+    return names;
+}
+
+std::string command_line(const std::string& command, const std::vector<std::string>& args)
+{
+    std::string line = "lidarfx " + command;
+    for (const auto& a : args) line += " " + a;
+    return line;
+}
+
+void commit_and_report(io::output_folder& out, const std::string& command)
+{
+    out.commit(command);
+    for (const auto& path : out.files()) std::cout << "  wrote " << path.string() << '\n';
+    std::cout << "  wrote " << (out.path() / "manifest.json").string() << '\n';
+}
 
 }  // namespace lidarfx::cli

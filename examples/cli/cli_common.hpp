@@ -13,6 +13,8 @@
 #include <lidarfx/core/parallel.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 
+#include "io/output_folder.hpp"
+
 namespace lidarfx::cli {
 
 /// Command-line arguments: positional values and --name value / --flag options, checked against the
@@ -56,11 +58,17 @@ struct survey {
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress, int threads = 1);
 
-/// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `dir`.
-void write_raster(const std::filesystem::path& dir, const std::string& name, raster_view<const float> values,
-                  const grid& g, const std::string& crs_wkt, int epsg);
+/// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `out`.
+void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
+                  const std::string& crs_wkt, int epsg);
 
-/// Prints "  wrote <path>" for the files a command produced.
-void say_wrote(const std::filesystem::path& path);
+/// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
+std::vector<std::string> raster_file_names(const std::string& name);
+
+/// "lidarfx <command> <args...>", for manifests.
+std::string command_line(const std::string& command, const std::vector<std::string>& args);
+
+/// Commits `out` (files move into place, manifest.json last) and prints "  wrote <path>" for each file.
+void commit_and_report(io::output_folder& out, const std::string& command);
 
 }  // namespace lidarfx::cli

@@ -3,7 +3,7 @@
 // writing rasters, pictures and tables to a folder and printing the scores against the scenes' truth.
 #include <chrono>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <iomanip>
 #include <iostream>
 
@@ -14,6 +14,7 @@
 
 #include "cli_common.hpp"
 #include "command.hpp"
+#include "io/file_output.hpp"
 #include "io/png.hpp"
 #include "outputs.hpp"
 
@@ -36,7 +37,7 @@ struct scored {
 scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const std::filesystem::path& dir,
                  int threads)
 {
-    std::filesystem::create_directories(dir);
+    lidarfx::io::output_folder folder(dir);
     std::cout << "\n== " << name << " scene: " << sc.points.size() << " points ==\n";
     const auto t0 = std::chrono::steady_clock::now();
     lidarfx::cli::survey s;
@@ -51,8 +52,8 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     lidarfx::cli::print_survey(s);
     lidarfx::cli::print_diagnostics(w.diagnostics);
     lidarfx::cli::print_waterbodies(w, 5);
-    lidarfx::cli::write_point_rasters(dir, s);
-    lidarfx::cli::write_waterbodies(dir, s, w);
+    lidarfx::cli::write_point_rasters(folder, s);
+    lidarfx::cli::write_waterbodies(folder, s, w);
     const auto score = lidarfx::confusion_counts(w.water, sc.truth.water_filled, sc.truth.g.cell);
     // Agreement picture: true water blue, water found on land red, water missed yellow, land grey.
     lidarfx::io::rgb_image agreement;
@@ -66,8 +67,8 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
                                                                  : std::array<std::uint8_t, 3>{200, 200, 200};
         agreement.rgb.insert(agreement.rgb.end(), color.begin(), color.end());
     }
-    lidarfx::io::write_png_rgb((dir / "agreement.png").string(), agreement);
-    lidarfx::cli::say_wrote(dir / "agreement.png");
+    folder.write("agreement.png", [&](const std::string& path) { lidarfx::io::write_png_rgb(path, agreement); });
+    lidarfx::cli::commit_and_report(folder, "lidarfx demo (" + name + " scene)");
     std::cout << std::fixed << std::setprecision(2) << "score vs truth: accuracy " << 100 * score.accuracy()
               << " %, sensitivity " << 100 * score.sensitivity() << " %, specificity " << 100 * score.specificity()
               << " %, IoU " << 100 * score.iou() << " %  (" << std::setprecision(3) << seconds << " s)\n"
@@ -84,13 +85,13 @@ int run_demo(const std::vector<std::string>& args)
     lidarfx::synth::scene_options so;
     so.size_m = a.number("size", so.size_m);
     so.seed = static_cast<unsigned>(a.integer("seed", static_cast<int>(so.seed)));
-    std::filesystem::create_directories(out);
+    lidarfx::io::output_folder top(out);
 
     std::vector<scored> results;
     results.push_back(run_scene("lake", lidarfx::synth::lake_scene(so), out / "lake", threads));
     results.push_back(run_scene("river", lidarfx::synth::river_scene(so), out / "river", threads));
 
-    std::ofstream csv(out / "scores.csv");
+    std::ostringstream csv;
     csv << "scene,waterbodies,accuracy,sensitivity,specificity,precision,iou,water_true_m2,water_found_m2,seconds\n";
     for (const auto& r : results) {
         const auto& c = r.score;
@@ -98,13 +99,13 @@ int run_demo(const std::vector<std::string>& args)
             << ',' << c.precision() << ',' << c.iou() << ',' << c.area_m2(c.true_positive + c.false_negative) << ','
             << c.area_m2(c.true_positive + c.false_positive) << ',' << r.seconds << '\n';
     }
-    lidarfx::cli::say_wrote(out / "scores.csv");
+    top.write("scores.csv", [&](const std::string& path) { lidarfx::io::write_file(path, csv.str()); });
+    lidarfx::cli::commit_and_report(top, lidarfx::cli::command_line("demo", args));
 
     if (a.has("las")) {
         const std::filesystem::path survey_file = a.text("las", "");
         std::cout << "\n== survey " << survey_file.string() << " ==\n";
-        const auto dir = out / survey_file.stem();
-        std::filesystem::create_directories(dir);
+        lidarfx::io::output_folder dir(out / survey_file.stem(), {survey_file});
         const auto s = lidarfx::cli::read_survey({survey_file.string()}, 2.0, false, threads);
         lidarfx::cli::print_survey(s);
         lidarfx::cli::write_point_rasters(dir, s);
@@ -116,6 +117,7 @@ int run_demo(const std::vector<std::string>& args)
         } else {
             std::cout << "waterbody extraction refused on these data (no map written)\n";
         }
+        lidarfx::cli::commit_and_report(dir, lidarfx::cli::command_line("demo", args));
     }
     return 0;
 }

@@ -50,7 +50,25 @@ void print_survey(const survey& s)
     if (s.rasters.points_nan) std::cout << "  " << s.rasters.points_nan << " points with NaN coordinates ignored\n";
 }
 
-void write_point_rasters(const std::filesystem::path& dir, const survey& s)
+std::vector<std::string> point_raster_file_names()
+{
+    std::vector<std::string> names{"min_z.png", "mean_intensity.png", "dropout.png"};
+    for (const char* r : {"min_z", "max_z", "mean_intensity", "count", "dropout"}) {
+        for (auto& n : raster_file_names(r)) names.push_back(std::move(n));
+    }
+    return names;
+}
+
+std::vector<std::string> waterbody_file_names()
+{
+    std::vector<std::string> names{"water_overlay.png", "waterbodies.csv", "waterbodies.geojson"};
+    for (const char* r : {"water", "waterbody_labels"}) {
+        for (auto& n : raster_file_names(r)) names.push_back(std::move(n));
+    }
+    return names;
+}
+
+void write_point_rasters(io::output_folder& dir, const survey& s)
 {
     const auto& pr = s.rasters;
     write_raster(dir, "min_z", pr.min_z, pr.g, s.crs_wkt, s.epsg);
@@ -59,8 +77,7 @@ void write_point_rasters(const std::filesystem::path& dir, const survey& s)
     write_raster(dir, "count", as_float<std::uint32_t>(pr.count), pr.g, s.crs_wkt, s.epsg);
     write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), pr.g, s.crs_wkt, s.epsg);
     const auto png = [&](const std::string& name, const io::rgb_image& img) {
-        io::write_png_rgb((dir / name).string(), img);
-        say_wrote(dir / name);
+        dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
     };
     png("min_z.png", io::colorize(pr.min_z));
     png("mean_intensity.png", io::colorize(pr.mean_intensity));
@@ -68,7 +85,7 @@ void write_point_rasters(const std::filesystem::path& dir, const survey& s)
     png("dropout.png", io::overlay_mask(grey, pr.dropout, {255, 40, 40}, 0.8));
 }
 
-void write_waterbodies(const std::filesystem::path& dir, const survey& s, const waterbody_result& w)
+void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_result& w)
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
@@ -95,8 +112,8 @@ void write_waterbodies(const std::filesystem::path& dir, const survey& s, const 
     write_raster(dir, "waterbody_labels", labels, g, s.crs_wkt, s.epsg);
 
     const auto grey = io::hillshade(picture_elevation(pr), g.cell);
-    io::write_png_rgb((dir / "water_overlay.png").string(), io::overlay_mask(grey, w.water, {30, 110, 255}, 0.65));
-    say_wrote(dir / "water_overlay.png");
+    const auto overlay = io::overlay_mask(grey, w.water, {30, 110, 255}, 0.65);
+    dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
 
     std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
                                     "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
@@ -107,8 +124,7 @@ void write_waterbodies(const std::filesystem::path& dir, const survey& s, const 
         rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg, b.stopped_by_ks,
                         b.mean_intensity, b.water_level_m, b.dropout_fraction});
     }
-    io::write_csv((dir / "waterbodies.csv").string(), header, rows);
-    say_wrote(dir / "waterbodies.csv");
+    dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
 
     std::vector<io::geojson_feature> features;
     for (const auto& lp : polygonize(w.labels, g)) {
@@ -118,8 +134,7 @@ void write_waterbodies(const std::filesystem::path& dir, const survey& s, const 
                                              {"water_level_m", b.water_level_m}, {"theta_deg", b.theta_deg}}});
         }
     }
-    io::write_geojson((dir / "waterbodies.geojson").string(), features, s.epsg);
-    say_wrote(dir / "waterbodies.geojson");
+    dir.write("waterbodies.geojson", [&](const std::string& path) { io::write_geojson(path, features, s.epsg); });
 }
 
 void print_diagnostics(const water_diagnostics& d)

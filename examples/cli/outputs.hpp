@@ -14,11 +14,15 @@ namespace lidarfx::cli {
 void print_survey(const survey& s);
 
 /// min_z, max_z, mean_intensity, count, dropout (.asc/.tif) and PNG quicklooks of the survey rasters.
-void write_point_rasters(const std::filesystem::path& dir, const survey& s);
+void write_point_rasters(io::output_folder& dir, const survey& s);
+
+/// The names write_point_rasters and write_waterbodies give their files (checked before long work).
+std::vector<std::string> point_raster_file_names();
+std::vector<std::string> waterbody_file_names();
 
 /// water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land, 1..n by decreasing area),
 /// GeoTIFF twins, water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
-void write_waterbodies(const std::filesystem::path& dir, const survey& s, const waterbody_result& w);
+void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_result& w);
 
 /// Prints the diagnostics of the inputs: problems and warnings.
 void print_diagnostics(const water_diagnostics& d);

@@ -24,11 +24,12 @@ int run_rasterize(const std::vector<std::string>& args)
 {
     const lidarfx::cli::arguments a(args, {"cell", "out", "threads"}, {"help"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
-    const std::filesystem::path out = a.text("out", "");
-    std::filesystem::create_directories(out);
+    lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
+    for (const auto& name : lidarfx::cli::point_raster_file_names()) out.check_name(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true, a.integer("threads", 0));
     lidarfx::cli::print_survey(s);
     lidarfx::cli::write_point_rasters(out, s);
+    lidarfx::cli::commit_and_report(out, lidarfx::cli::command_line("rasterize", args));
     return 0;
 }
 

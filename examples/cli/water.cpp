@@ -59,7 +59,8 @@ int run_water(const std::vector<std::string>& args)
     opt.check_inputs = !a.has("force");
     opt.progress = lidarfx::cli::progress_bar("waterbodies");
 
-    const std::filesystem::path out = a.text("out", "");
+    lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
+    for (const auto& name : lidarfx::cli::waterbody_file_names()) out.check_name(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true, a.integer("threads", 0));
     lidarfx::cli::print_survey(s);
     const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
@@ -69,9 +70,9 @@ int run_water(const std::vector<std::string>& args)
                      "written. Use --force to run anyway.\n";
         return 3;
     }
-    std::filesystem::create_directories(out);
     lidarfx::cli::print_waterbodies(w);
     lidarfx::cli::write_waterbodies(out, s, w);
+    lidarfx::cli::commit_and_report(out, lidarfx::cli::command_line("water", args));
     return 0;
 }
 

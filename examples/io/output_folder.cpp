@@ -1,0 +1,310 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "io/output_folder.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "io/file_output.hpp"
+
+namespace lidarfx::io {
+
+namespace {
+
+constexpr const char* temporary_suffix = ".lidarfx-tmp";
+constexpr const char* lock_name = ".lidarfx.lock";
+constexpr const char* manifest_name = "manifest.json";
+
+std::runtime_error failure(const std::filesystem::path& path, const std::string& what)
+{
+    return std::runtime_error(path.string() + ": " + what);
+}
+
+std::string errno_text() { return std::strerror(errno); }
+
+/// ".<name>.<pid>.lidarfx-tmp": hidden, unique to this process, recognisable as a leftover.
+std::string temporary_name(const std::string& name)
+{
+    std::string t = ".";
+    t += name;
+    t += '.';
+    t += std::to_string(::getpid());
+    t += temporary_suffix;
+    return t;
+}
+
+/// lstat of `path`: nullopt-like false when nothing is there.
+bool entry_at(const std::filesystem::path& path, struct stat& st)
+{
+    if (::lstat(path.c_str(), &st) == 0) return true;
+    if (errno == ENOENT) return false;
+    throw failure(path, "cannot inspect: " + errno_text());
+}
+
+/// Flushes a file's (or folder's) contents to the disk.
+void sync_path(const std::filesystem::path& path, bool directory)
+{
+    const int fd = ::open(path.c_str(), (directory ? O_RDONLY | O_DIRECTORY : O_RDONLY) | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) throw failure(path, "cannot open to flush: " + errno_text());
+    const bool ok = ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: the file system cannot sync (e.g. some tmpfs)
+    ::close(fd);
+    if (!ok) throw failure(path, "flushing to disk failed: " + errno_text());
+}
+
+std::string json_escaped(const std::string& s)
+{
+    std::string out;
+    for (const char ch : s) {
+        if (ch == '"' || ch == '\\') {
+            out += '\\';
+            out += ch;
+        } else if (static_cast<unsigned char>(ch) < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
+            out += buf;
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
+/// SHA-256 (FIPS 180-4), streaming.
+class sha256 {
+public:
+    void add(const unsigned char* data, std::size_t n)
+    {
+        bytes_ += n;
+        while (n > 0) {
+            const std::size_t take = std::min(n, std::size_t{64} - used_);
+            std::memcpy(block_.data() + used_, data, take);
+            used_ += take;
+            data += take;
+            n -= take;
+            if (used_ == 64) {
+                compress();
+                used_ = 0;
+            }
+        }
+    }
+
+    std::string hex()
+    {
+        const std::uint64_t bits = bytes_ * 8;
+        const unsigned char one = 0x80, zero = 0;
+        add(&one, 1);
+        while (used_ != 56) add(&zero, 1);
+        for (int i = 7; i >= 0; --i) {
+            const auto b = static_cast<unsigned char>(bits >> (8 * i));
+            add(&b, 1);
+        }
+        std::string out;
+        char buf[9];
+        for (const std::uint32_t v : h_) {
+            std::snprintf(buf, sizeof buf, "%08x", static_cast<unsigned>(v));
+            out += buf;
+        }
+        return out;
+    }
+
+private:
+    static std::uint32_t rotr(std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); }
+
+    void compress()
+    {
+        static constexpr std::array<std::uint32_t, 64> k{
+            0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5,
+            0xd807aa98, 0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174,
+            0xe49b69c1, 0xefbe4786, 0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da,
+            0x983e5152, 0xa831c66d, 0xb00327c8, 0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967,
+            0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13, 0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85,
+            0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819, 0xd6990624, 0xf40e3585, 0x106aa070,
+            0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
+            0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
+        std::array<std::uint32_t, 64> w{};
+        for (int i = 0; i < 16; ++i) {
+            w[i] = (std::uint32_t{block_[4 * i]} << 24) | (std::uint32_t{block_[4 * i + 1]} << 16) |
+                   (std::uint32_t{block_[4 * i + 2]} << 8) | std::uint32_t{block_[4 * i + 3]};
+        }
+        for (int i = 16; i < 64; ++i) {
+            const std::uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
+            const std::uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
+            w[i] = w[i - 16] + s0 + w[i - 7] + s1;
+        }
+        auto [a, b, c, d, e, f, g, h] = h_;
+        for (int i = 0; i < 64; ++i) {
+            const std::uint32_t t1 = h + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + k[i] + w[i];
+            const std::uint32_t t2 = (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
+            h = g;
+            g = f;
+            f = e;
+            e = d + t1;
+            d = c;
+            c = b;
+            b = a;
+            a = t1 + t2;
+        }
+        const std::array<std::uint32_t, 8> add{a, b, c, d, e, f, g, h};
+        for (std::size_t i = 0; i < 8; ++i) h_[i] += add[i];
+    }
+
+    std::array<std::uint32_t, 8> h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+                                    0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
+    std::array<unsigned char, 64> block_{};
+    std::size_t used_ = 0;
+    std::uint64_t bytes_ = 0;
+};
+
+}  // namespace
+
+std::string sha256_of_file(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw failure(path, "cannot open for reading");
+    sha256 hash;
+    std::vector<char> buffer(1 << 16);
+    while (in) {
+        in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        hash.add(reinterpret_cast<const unsigned char*>(buffer.data()), static_cast<std::size_t>(in.gcount()));
+    }
+    if (in.bad()) throw failure(path, "read failed");
+    return hash.hex();
+}
+
+output_folder::output_folder(std::filesystem::path dir, std::vector<std::filesystem::path> inputs)
+    : dir_(std::move(dir)), inputs_(std::move(inputs))
+{
+    if (dir_.empty()) throw std::runtime_error("no output folder given");
+    struct stat st {};
+    if (entry_at(dir_, st) && !S_ISDIR(st.st_mode)) {
+        // A symlink to a folder is accepted (the user chose it); anything else is not a folder.
+        if (!S_ISLNK(st.st_mode) || !std::filesystem::is_directory(dir_)) {
+            throw failure(dir_, "exists and is not a folder");
+        }
+    }
+    std::error_code ec;
+    created_ = !std::filesystem::exists(dir_);
+    std::filesystem::create_directories(dir_, ec);
+    if (ec) throw failure(dir_, "cannot create the output folder: " + ec.message());
+    const auto lock = dir_ / lock_name;
+    lock_fd_ = ::open(lock.c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (lock_fd_ < 0) throw failure(dir_, "cannot write into the output folder: " + errno_text());
+    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+        ::close(lock_fd_);
+        lock_fd_ = -1;
+        throw failure(dir_, "another lidarfx run is writing into this folder; wait for it or choose another --out");
+    }
+    // Holding the lock, no other run is active: temporary files here are leftovers of killed runs.
+    for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
+        const auto name = entry.path().filename().string();
+        if (name.size() > std::strlen(temporary_suffix) &&
+            name.compare(name.size() - std::strlen(temporary_suffix), std::string::npos, temporary_suffix) == 0) {
+            std::filesystem::remove(entry.path(), ec);
+        }
+    }
+}
+
+output_folder::~output_folder()
+{
+    std::error_code ec;
+    if (!committed_) {
+        for (const auto& p : pending_) std::filesystem::remove(p.temporary, ec);
+    }
+    if (!committed_ && created_ && lock_fd_ >= 0) {
+        std::filesystem::remove(dir_ / lock_name, ec);
+        std::filesystem::remove(dir_, ec);  // only succeeds when empty
+    }
+    if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+}
+
+void output_folder::check_name(const std::string& name) const
+{
+    if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos || name == lock_name) {
+        throw std::runtime_error("output name '" + name + "' is not a plain file name");
+    }
+    const auto target = dir_ / name;
+    struct stat st {};
+    if (!entry_at(target, st)) return;
+    if (S_ISLNK(st.st_mode)) throw failure(target, "is a symbolic link; refusing to write through or replace it");
+    if (!S_ISREG(st.st_mode)) throw failure(target, "exists and is not a regular file; refusing to replace it");
+    for (const auto& input : inputs_) {
+        struct stat in {};
+        if (::stat(input.c_str(), &in) == 0 && in.st_dev == st.st_dev && in.st_ino == st.st_ino) {
+            throw failure(target, "is an input of this run (" + input.string() + "); refusing to overwrite it");
+        }
+    }
+}
+
+void output_folder::write(const std::string& name,
+                          const std::function<void(const std::string& temporary_path)>& writer)
+{
+    if (committed_) throw failure(dir_ / name, "written after the run was committed");
+    check_name(name);
+    if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) {
+        throw failure(dir_ / name, "written twice in one run");
+    }
+    const auto temporary = dir_ / temporary_name(name);
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);  // never write through whatever stands at the temporary name
+    pending_.push_back({name, temporary});
+    writer(temporary.string());
+    struct stat st {};
+    if (!entry_at(temporary, st) || !S_ISREG(st.st_mode)) throw failure(dir_ / name, "the writer produced no file");
+}
+
+void output_folder::commit(const std::string& command)
+{
+    if (committed_) return;
+    // Everything is checked before anything moves, so a refusal leaves the folder as it was.
+    for (const auto& p : pending_) {
+        check_name(p.name);
+        sync_path(p.temporary, false);
+    }
+    std::ostringstream manifest;
+    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": \"" << json_escaped(command) << "\",\n  \"files\": [";
+    for (std::size_t i = 0; i < pending_.size(); ++i) {
+        const auto& p = pending_[i];
+        manifest << (i ? ",\n" : "\n") << "    {\"name\": \"" << json_escaped(p.name)
+                 << "\", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \""
+                 << sha256_of_file(p.temporary) << "\"}";
+    }
+    manifest << "\n  ]\n}\n";
+    check_name(manifest_name);
+    std::error_code ec;
+    std::filesystem::remove(dir_ / manifest_name, ec);  // from here until the new one exists, the folder is incomplete
+    sync_path(dir_, true);
+    for (const auto& p : pending_) {
+        if (std::rename(p.temporary.c_str(), (dir_ / p.name).c_str()) != 0) {
+            throw failure(dir_ / p.name, "cannot move into place: " + errno_text());
+        }
+    }
+    const auto manifest_temporary = dir_ / temporary_name(manifest_name);
+    write_file(manifest_temporary.string(), manifest.str());
+    sync_path(manifest_temporary, false);
+    if (std::rename(manifest_temporary.c_str(), (dir_ / manifest_name).c_str()) != 0) {
+        throw failure(dir_ / manifest_name, "cannot move into place: " + errno_text());
+    }
+    sync_path(dir_, true);
+    committed_ = true;
+}
+
+std::vector<std::filesystem::path> output_folder::files() const
+{
+    std::vector<std::filesystem::path> out;
+    for (const auto& p : pending_) out.push_back(dir_ / p.name);
+    return out;
+}
+
+}  // namespace lidarfx::io
