@@ -8,6 +8,11 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include <sys/stat.h>
 #include <stdexcept>
 
 #include "io/ascii_grid.hpp"
@@ -22,9 +27,19 @@ arguments::arguments(const std::vector<std::string>& args, const std::vector<std
     const auto is = [](const std::vector<std::string>& names, const std::string& n) {
         return std::find(names.begin(), names.end(), n) != names.end();
     };
+    bool options_ended = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const auto& a = args[i];
-        if (a.rfind("--", 0) != 0 || a.size() == 2) {
+        if (options_ended) {
+            positional_.push_back(a);
+            continue;
+        }
+        if (a == "--") {  // everything after it is a file name, even when it starts with '-'
+            options_ended = true;
+            continue;
+        }
+        if (a.rfind("--", 0) != 0) {
+            if (a.size() > 1 && a[0] == '-') throw std::invalid_argument("unknown option " + a + " (options are --name)");
             positional_.push_back(a);
             continue;
         }
@@ -39,6 +54,7 @@ arguments::arguments(const std::vector<std::string>& args, const std::vector<std
         } else if (!is(flags, name)) {
             throw std::invalid_argument("unknown option --" + name);
         }
+        if (values_.count(name)) throw std::invalid_argument("option --" + name + " is given more than once");
         values_[name] = value;
     }
 }
@@ -108,6 +124,19 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     if (!(cell_m > 0) || !std::isfinite(cell_m)) {
         throw std::invalid_argument("--cell must be a positive number of metres (got " + std::to_string(cell_m) + ")");
     }
+    // The same file twice (by another name or through a link) would count its points twice.
+    std::vector<std::pair<std::uintmax_t, std::uintmax_t>> identities;
+    for (const auto& p : paths) {
+        struct stat st {};
+        if (::stat(p.c_str(), &st) != 0) throw std::runtime_error(p + ": cannot open: " + std::strerror(errno));
+        const std::pair<std::uintmax_t, std::uintmax_t> id{st.st_dev, st.st_ino};
+        const auto same = std::find(identities.begin(), identities.end(), id);
+        if (same != identities.end()) {
+            throw std::invalid_argument(p + " is the same file as " + paths[static_cast<std::size_t>(same - identities.begin())] +
+                                        "; give each file once");
+        }
+        identities.push_back(id);
+    }
     survey s;
     bounds box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
@@ -134,26 +163,38 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     const grid g = snapped_grid(box, cell_m);
     raster_accumulator acc(g);
     auto bar = show_progress ? progress_bar("reading  ") : progress_callback{};
-    // The files' chunks in order: next_chunk(dst) fills dst and returns its size, 0 after the last one.
+    // The files' chunks in order: next_chunk(dst) fills dst, records its file and returns its size, 0 after
+    // the last one.
+    struct chunk {
+        io::las_points points;
+        std::size_t file = 0;
+    };
     std::size_t file = 0;
     std::unique_ptr<io::las_reader> reader;
-    const auto next_chunk = [&](io::las_points& dst) -> std::size_t {
+    const auto next_chunk = [&](chunk& dst) -> std::size_t {
         for (;;) {
             if (!reader) {
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
             }
-            if (const std::size_t n = reader->read(dst, std::size_t{1} << 20)) return n;
+            dst.file = file - 1;
+            if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) return n;
             reader.reset();
         }
     };
     std::uint64_t done = 0;
-    const auto add = [&](const io::las_points& chunk, std::size_t n) {
-        acc.add(chunk.cloud());
+    const auto add = [&](const chunk& c, std::size_t n) {
+        const std::size_t outside_before = acc.points_outside();
+        acc.add(c.points.cloud());
+        if (const std::size_t outside = acc.points_outside() - outside_before; outside > 0) {
+            throw std::runtime_error(paths[c.file] + ": " + std::to_string(outside) +
+                                     " points lie outside the bounds its LAS header declares; fix the header "
+                                     "(e.g. lasinfo -repair) before rasterizing");
+        }
         done += n;
         if (bar) bar(static_cast<double>(done) / static_cast<double>(total));
     };
-    io::las_points current, ahead;
+    chunk current, ahead;
     std::size_t n = next_chunk(current);
     if (threads == 1) {
         for (; n > 0; n = next_chunk(current)) add(current, n);
@@ -168,10 +209,9 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     }
     s.rasters = acc.finish();
     s.points = done;
-    if (s.rasters.points_outside > 0) {
-        throw std::runtime_error(std::to_string(s.rasters.points_outside) +
-                                 " points lie outside the bounds their LAS headers declare; fix the headers "
-                                 "(e.g. lasinfo -repair) before rasterizing");
+    if (s.rasters.points_used == 0) {
+        throw std::runtime_error("no point of the input has finite coordinates (" + std::to_string(s.rasters.points_nan) +
+                                 " points with NaN or infinite x, y or z): nothing to rasterize");
     }
     return s;
 }
