@@ -11,8 +11,11 @@
 #include <cerrno>
 #include <cstring>
 #include <utility>
+#include <iomanip>
+#include <sstream>
 
 #include <sys/stat.h>
+#include <unistd.h>
 #include <stdexcept>
 
 #include "io/ascii_grid.hpp"
@@ -117,12 +120,91 @@ progress_callback progress_bar(const std::string& label)
     };
 }
 
-survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress, int threads)
+std::uint64_t parse_bytes(const std::string& text, const std::string& option)
 {
-    if (threads < 0) throw std::invalid_argument("--threads must be >= 0 (got " + std::to_string(threads) + ")");
-    if (paths.empty()) throw std::invalid_argument("no input LAS file given");
+    std::size_t used = 0;
+    double value = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        throw usage_error(option + " expects a size such as 4GiB or 512MiB (got '" + text + "')");
+    }
+    std::string unit = text.substr(used);
+    unit.erase(std::remove(unit.begin(), unit.end(), ' '), unit.end());
+    static const std::map<std::string, double> units{
+        {"", 1.0},           {"B", 1.0},           {"K", 1024.0},        {"KB", 1e3},          {"KiB", 1024.0},
+        {"M", 1048576.0},    {"MB", 1e6},          {"MiB", 1048576.0},   {"G", 1073741824.0},  {"GB", 1e9},
+        {"GiB", 1073741824.0}, {"T", 1099511627776.0}, {"TB", 1e12},     {"TiB", 1099511627776.0}};
+    const auto it = units.find(unit);
+    const double bytes = it == units.end() ? -1 : value * it->second;
+    if (!(bytes >= 1) || !(bytes < 1.8e19)) {
+        throw usage_error(option + " expects a positive size such as 4GiB or 512MiB (got '" + text + "')");
+    }
+    return static_cast<std::uint64_t>(bytes);
+}
+
+survey_options survey_options_from(const arguments& a, double bytes_per_cell)
+{
+    survey_options o;
+    o.bytes_per_cell = bytes_per_cell;
+    o.cell_m = a.number("cell", o.cell_m);
+    if (!(o.cell_m > 0) || !std::isfinite(o.cell_m)) {
+        throw usage_error("--cell must be a positive number of metres (got " + a.text("cell", "") + ")");
+    }
+    o.threads = a.integer("threads", o.threads);
+    if (o.threads < 0) throw usage_error("--threads must be >= 0 (got " + std::to_string(o.threads) + ")");
+    if (a.has("memory")) o.memory_budget_bytes = parse_bytes(a.text("memory", ""), "--memory");
+    if (a.has("crop")) {
+        const std::string text = a.text("crop", "");
+        bounds b{};
+        char c1 = 0, c2 = 0, c3 = 0;
+        std::istringstream in(text);
+        if (!(in >> b.xmin >> c1 >> b.ymin >> c2 >> b.xmax >> c3 >> b.ymax) || c1 != ',' || c2 != ',' || c3 != ',' ||
+            !(in >> std::ws).eof() || !std::isfinite(b.xmin) || !std::isfinite(b.ymin) || !std::isfinite(b.xmax) ||
+            !std::isfinite(b.ymax) || !(b.xmin < b.xmax) || !(b.ymin < b.ymax)) {
+            throw usage_error("--crop expects xmin,ymin,xmax,ymax with min < max (got '" + text + "')");
+        }
+        o.crop = b;
+    }
+    o.force = a.has("force");
+    return o;
+}
+
+namespace {
+
+std::uint64_t physical_memory_bytes()
+{
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+}
+
+std::string gib(double bytes)
+{
+    std::ostringstream s;
+    s << std::setprecision(3) << bytes / 1073741824.0 << " GiB";
+    return s.str();
+}
+
+/// Smallest "round" cell size (1, 2 or 5 times a power of ten) that is at least `cell_m`.
+double round_cell_up(double cell_m)
+{
+    const double decade = std::pow(10.0, std::floor(std::log10(cell_m)));
+    for (const double m : {1.0, 2.0, 5.0, 10.0}) {
+        if (m * decade >= cell_m * (1 - 1e-12)) return m * decade;
+    }
+    return 10 * decade;
+}
+
+}  // namespace
+
+survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
+{
+    const double cell_m = opt.cell_m;
+    const int threads = opt.threads;
+    if (threads < 0) throw usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
+    if (paths.empty()) throw usage_error("no input LAS file given");
     if (!(cell_m > 0) || !std::isfinite(cell_m)) {
-        throw std::invalid_argument("--cell must be a positive number of metres (got " + std::to_string(cell_m) + ")");
+        throw usage_error("--cell must be a positive number of metres (got " + std::to_string(cell_m) + ")");
     }
     // The same file twice (by another name or through a link) would count its points twice.
     std::vector<std::pair<std::uintmax_t, std::uintmax_t>> identities;
@@ -160,9 +242,40 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
         box.ymax = std::max(box.ymax, h.max[1]);
     }
     if (total == 0) throw std::runtime_error("the input files hold no point");
+    if (opt.crop) {
+        const bounds& c = *opt.crop;
+        box = {std::max(box.xmin, c.xmin), std::max(box.ymin, c.ymin), std::min(box.xmax, c.xmax), std::min(box.ymax, c.ymax)};
+        if (!(box.xmin <= box.xmax && box.ymin <= box.ymax)) throw usage_error("--crop does not overlap the survey");
+    }
+    // Refuse before allocating: the grid's memory against the budget, the cell against the density.
+    const double width = box.xmax - box.xmin, height = box.ymax - box.ymin;
+    const double cells = (std::floor(width / cell_m) + 1) * (std::floor(height / cell_m) + 1);
+    const double area = std::max(width, cell_m) * std::max(height, cell_m);
+    const std::uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : physical_memory_bytes() / 2;
+    const double need = cells * opt.bytes_per_cell;
+    std::ostringstream extent;
+    extent << std::fixed << std::setprecision(0) << width << " m x " << height << " m";
+    if (budget > 0 && need > static_cast<double>(budget)) {
+        const double fits = round_cell_up(cell_m * std::sqrt(need / static_cast<double>(budget)));
+        std::ostringstream why;
+        why << "a grid of " << extent.str() << " at " << cell_m << " m cells (" << std::setprecision(4) << cells
+            << " cells) needs about " << gib(need) << ", over the memory budget of "
+            << gib(static_cast<double>(budget)) << "; use --cell " << fits
+            << " or more, --crop to a smaller extent, or a larger --memory";
+        throw usage_error(why.str());
+    }
+    const double points_per_cell = static_cast<double>(total) / area * cell_m * cell_m;
+    if (!opt.force && points_per_cell < 0.01) {
+        const double fits = round_cell_up(std::sqrt(area / static_cast<double>(total)));
+        std::ostringstream why;
+        why << total << " points over " << extent.str() << " give " << std::setprecision(2) << points_per_cell
+            << " points per " << cell_m << " m cell: over 99 % of the cells would be empty. Use --cell " << fits
+            << " or more (about one point per cell), --crop to where the points are, or --force";
+        throw usage_error(why.str());
+    }
     const grid g = snapped_grid(box, cell_m);
     raster_accumulator acc(g);
-    auto bar = show_progress ? progress_bar("reading  ") : progress_callback{};
+    auto bar = opt.show_progress ? progress_bar("reading  ") : progress_callback{};
     // The files' chunks in order: next_chunk(dst) fills dst, records its file and returns its size, 0 after
     // the last one.
     struct chunk {
@@ -186,7 +299,7 @@ survey read_survey(const std::vector<std::string>& paths, double cell_m, bool sh
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
-        if (const std::size_t outside = acc.points_outside() - outside_before; outside > 0) {
+        if (const std::size_t outside = acc.points_outside() - outside_before; outside > 0 && !opt.crop) {
             throw std::runtime_error(paths[c.file] + ": " + std::to_string(outside) +
                                      " points lie outside the bounds its LAS header declares; fix the header "
                                      "(e.g. lasinfo -repair) before rasterizing");

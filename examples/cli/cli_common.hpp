@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <stdexcept>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,31 @@ std::optional<int> stop_for_usage(const arguments& a, const char* usage, bool ne
 /// A progress bar on stderr: "label [#####.....]  45%"; returns true (never cancels).
 progress_callback progress_bar(const std::string& label);
 
+/// A refusal of what the command line asks (a value out of range, a grid over the memory budget, a cell far
+/// too small for the data): the program prints it and exits with code 2.
+struct usage_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// How read_survey reads and what it refuses; survey_options_from() fills it from --cell, --threads,
+/// --memory, --crop and --force.
+struct survey_options {
+    double cell_m = 2.0;                     ///< cell size, metres of the file's CRS
+    int threads = 0;                         ///< 0 = all cores
+    bool show_progress = true;
+    std::uint64_t memory_budget_bytes = 0;   ///< 0: half the physical memory
+    double bytes_per_cell = 64;              ///< what the command keeps per grid cell (its memory estimate)
+    std::optional<bounds> crop;              ///< keep the points inside, build the grid over it
+    bool force = false;                      ///< run even when the cell is far too small for the point density
+};
+
+/// --cell (default 2), --threads (default 0), --memory (bytes: 4GiB, 512MiB, 2G, 1e9), --crop
+/// xmin,ymin,xmax,ymax and --force of `a`, validated; `bytes_per_cell` is the command's estimate.
+survey_options survey_options_from(const arguments& a, double bytes_per_cell);
+
+/// "4GiB", "512 MiB", "2G", "1.5e9" → bytes. @throws usage_error naming `option`.
+std::uint64_t parse_bytes(const std::string& text, const std::string& option);
+
 /// The rasters of one or more LAS files on one grid snapped to multiples of the cell size.
 struct survey {
     point_rasters rasters;
@@ -52,11 +79,14 @@ struct survey {
 };
 
 /// Reads every point of `paths` in chunks and rasterizes them on the snapped grid covering the union of
-/// the files' header bounds; points outside those bounds (a header that lies) are reported as an error.
-/// With `threads` != 1 (0 = all cores) the next chunk is read while the current one is rasterized; the
-/// chunks are added in file order either way, so the rasters do not depend on `threads`.
+/// the files' header bounds (or the crop box); points outside those bounds (a header that lies) are reported
+/// as an error naming the file. Before reading any point it refuses (usage_error, exit code 2) a grid whose
+/// memory estimate (cells x bytes_per_cell) exceeds the budget, and, unless `force`, a cell so small that
+/// 99 % of the cells would be empty at the survey's mean density; both messages name a cell size that fits.
+/// With `threads` != 1 the next chunk is read while the current one is rasterized; the chunks are added in
+/// file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
-survey read_survey(const std::vector<std::string>& paths, double cell_m, bool show_progress, int threads = 1);
+survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
 
 /// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `out`.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,

@@ -106,7 +106,11 @@ int run_demo(const std::vector<std::string>& args)
         const std::filesystem::path survey_file = a.text("las", "");
         std::cout << "\n== survey " << survey_file.string() << " ==\n";
         lidarfx::io::output_folder dir(out / survey_file.stem(), {survey_file});
-        const auto s = lidarfx::cli::read_survey({survey_file.string()}, 2.0, false, threads);
+        lidarfx::cli::survey_options options;
+        options.threads = threads;
+        options.show_progress = false;
+        options.bytes_per_cell = 120;
+        const auto s = lidarfx::cli::read_survey({survey_file.string()}, options);
         lidarfx::cli::print_survey(s);
         lidarfx::cli::write_point_rasters(dir, s);
         const auto w = lidarfx::extract_waterbodies(s.rasters, {.threads = threads});

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_common.hpp"
 #include "command.hpp"
 
 namespace {
@@ -32,6 +33,9 @@ int main(int argc, char** argv)
     }
     try {
         return it->second.run(std::vector<std::string>(argv + 2, argv + argc));
+    } catch (const lidarfx::cli::usage_error& e) {
+        std::cerr << "lidarfx " << it->first << ": " << e.what() << '\n';
+        return 2;
     } catch (const std::exception& e) {
         std::cerr << "lidarfx " << it->first << ": error: " << e.what() << '\n';
         return 1;

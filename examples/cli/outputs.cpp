@@ -47,7 +47,10 @@ void print_survey(const survey& s)
               << " points/m2";
     if (s.epsg) std::cout << "; EPSG:" << s.epsg;
     std::cout << '\n';
-    if (s.rasters.points_nan) std::cout << "  " << s.rasters.points_nan << " points with NaN coordinates ignored\n";
+    if (s.rasters.points_nan) {
+        std::cout << "  " << s.rasters.points_nan << " points with NaN or infinite coordinates ignored\n";
+    }
+    if (s.rasters.points_outside) std::cout << "  " << s.rasters.points_outside << " points outside --crop ignored\n";
 }
 
 std::vector<std::string> point_raster_file_names()

@@ -32,6 +32,8 @@ constexpr const char* usage =
     "  --level-tolerance M   narrow-water refinement tolerance, metres, 0 = off [0.15]\n"
     "  --island-min-area A   islands at least this large stay land, m2 [200]\n"
     "  --bridge-span M       bridge gaps up to this long, metres, 0 = off [30]\n"
+    "  --memory SIZE         refuse grids whose estimate exceeds SIZE (4GiB, 512MiB) [half the memory]\n"
+    "  --crop X0,Y0,X1,Y1    only points inside this box, metres of the file's CRS\n"
     "  --force               run even when the inputs cannot support the method\n";
 
 int run_water(const std::vector<std::string>& args)
@@ -39,7 +41,7 @@ int run_water(const std::vector<std::string>& args)
     const lidarfx::cli::arguments a(args,
                                     {"cell", "out", "threads", "veg-height", "min-seed-cells", "theta-start",
                                      "theta-step", "theta-max", "alpha", "level-tolerance", "island-min-area",
-                                     "bridge-span"},
+                                     "bridge-span", "memory", "crop"},
                                     {"help", "force", "one-sided"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     lidarfx::waterbody_options opt;
@@ -59,9 +61,11 @@ int run_water(const std::vector<std::string>& args)
     opt.check_inputs = !a.has("force");
     opt.progress = lidarfx::cli::progress_bar("waterbodies");
 
+    // Per cell: the survey rasters (42 B while reading) and the method's rasters (labels, angles, masks, bins).
+    const auto survey_options = lidarfx::cli::survey_options_from(a, 120);
     lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
     for (const auto& name : lidarfx::cli::waterbody_file_names()) out.check_name(name);
-    const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true, a.integer("threads", 0));
+    const auto s = lidarfx::cli::read_survey(a.positional(), survey_options);
     lidarfx::cli::print_survey(s);
     const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
     lidarfx::cli::print_diagnostics(w.diagnostics);

@@ -1,0 +1,38 @@
+# SPDX-License-Identifier: Apache-2.0
+# The program refuses what it cannot do well, at once, with a message naming the way out, and leaves no folder
+# behind: each case is "exit code|phrase|another phrase|arguments separated by ^".
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(CREATE_LINK "${DATA}" "${WORK_DIR}/link.las" SYMBOLIC)
+set(out "${WORK_DIR}/out")
+set(cases
+    "2|over the memory budget of 1 GiB|use --cell 0.1 or more|rasterize^${DATA}^--cell^0.001^--memory^1GiB^--out^${out}"
+    "2|over 99 % of the cells would be empty|Use --cell 5 or more|rasterize^${DATA}^--cell^0.2^--out^${out}"
+    "2|--threads must be >= 0|(got -1)|rasterize^${DATA}^--threads^-1^--out^${out}"
+    "2|--memory expects|0.5x|rasterize^${DATA}^--memory^0.5x^--out^${out}"
+    "2|--crop expects|min < max|rasterize^${DATA}^--crop^1,2,0,4^--out^${out}"
+    "1|is the same file as|give each file once|rasterize^${DATA}^${WORK_DIR}/link.las^--out^${out}"
+    "1|option --cell is given more than once|--cell|rasterize^${DATA}^--cell^2^--cell^3^--out^${out}"
+    "1|unknown option -v|options are --name|rasterize^-v^${DATA}^--out^${out}"
+    "1|cannot open|no-such.las|rasterize^--out^${out}^--^${WORK_DIR}/no-such.las")
+foreach(case IN LISTS cases)
+    string(REPLACE "|" ";" parts "${case}")
+    list(POP_FRONT parts code phrase phrase2)
+    string(REGEX REPLACE "^[^|]*\\|[^|]*\\|[^|]*\\|" "" args "${case}")
+    string(REPLACE "^" ";" args "${args}")
+    execute_process(COMMAND "${LIDARFX}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
+    string(REGEX REPLACE "[ \t\r\n]+" " " said "${stdout}${stderr}")
+    if(NOT rc EQUAL code)
+        message(FATAL_ERROR "lidarfx ${args}: expected exit code ${code}, got ${rc}\n${said}")
+    endif()
+    foreach(p IN ITEMS "${phrase}" "${phrase2}")
+        string(FIND "${said}" "${p}" at)
+        if(at EQUAL -1)
+            message(FATAL_ERROR "lidarfx ${args}: the message does not say '${p}':\n${said}")
+        endif()
+    endforeach()
+    if(EXISTS "${out}")
+        message(FATAL_ERROR "lidarfx ${args}: a refused run left ${out} behind")
+    endif()
+    message(STATUS "refused (${rc}): ${phrase}")
+endforeach()
