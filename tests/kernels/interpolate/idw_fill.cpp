@@ -271,6 +271,9 @@ TEST_CASE("raster/idw_fill: bad arguments throw invalid_input")
     raster<float> wrong(3, 2);
     CHECK_THROWS_WITH_AS(idw_fill(z, wrong, 1.0), "idw_fill: z and out must have the same shape (got 2x2 and 3x2)",
                          invalid_input);
+    raster<float> shared(3, 3, 1.0f);
+    shared(1, 1) = nan_f;
+    CHECK_THROWS_WITH_AS(idw_fill(shared, shared, 1.0), "idw_fill: out must not overlap z", invalid_input);
     const raster<float> all_nan(4, 5, nan_f);
     CHECK_THROWS_WITH_AS(idw_fill(all_nan, 1.0), "idw_fill: z has no finite cell to interpolate from", invalid_input);
     CHECK_THROWS_AS(idw_fill(raster<float>(0, 0), 1.0), invalid_input);

@@ -311,9 +311,9 @@ void validate_idw_extent(const In& z)
 /// are copied but never used; holes with nothing in reach stay NaN (unfilled). Same bits for any thread
 /// count; `out` must not overlap `z`. Ring search skipping empty rings and runs of holes: per hole
 /// O(rings searched + cells offered), plus a 12-byte-per-cell index. Details in docs/rasters.md.
-/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, run.threads < 0, or z
-/// has no finite cell ("idw_fill: z has no finite cell to interpolate from"); cancelled if run.progress
-/// returns false.
+/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, run.threads < 0, out
+/// overlaps z, or z has no finite cell ("idw_fill: z has no finite cell to interpolate from"); cancelled if
+/// run.progress returns false.
 template <raster_input In, class Out>
     requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type>
 idw_fill_counts idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_options& opt = {})
@@ -325,6 +325,8 @@ idw_fill_counts idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_o
     detail::require(detail::has_finite_cell(in.view()), "idw_fill", "z has no finite cell to interpolate from");
     idw_fill_counts counts;
     detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
+        // Filled holes written into z would become data for the holes after them.
+        detail::require(!detail::overlaps(in.view(), o), "idw_fill", "out must not overlap z");
         counts = detail::idw_fill_view(in.view(), o, cell_m, opt);
     });
     return counts;

@@ -39,7 +39,7 @@ struct components {
 /// Settings of connected_components.
 struct connected_components_options {
     connectivity conn = connectivity::eight;  ///< neighbourhood of foreground cells; default eight
-    execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
+    execution run = {};                       ///< threads, progress, cancellation (core/parallel.hpp); same result
 };
 
 namespace detail {
