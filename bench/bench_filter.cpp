@@ -28,7 +28,7 @@ void bm_angular_filter(benchmark::State& state)
     const auto n = state.range(0);
     const auto z = terrain(n);
     lidarfx::raster<float> out(n, n);
-    const lidarfx::angular_filter_options opt{.radius = 2, .threads = static_cast<int>(state.range(1))};
+    const lidarfx::angular_filter_options opt{.radius_cells = 2, .run = {.threads = static_cast<int>(state.range(1))}};
     for (auto _ : state) {
         lidarfx::angular_filter(z, out, 0.5, opt);
         benchmark::DoNotOptimize(out.data());
@@ -57,7 +57,7 @@ void bm_slope_aspect(benchmark::State& state)
     const auto z = terrain(n);
     lidarfx::slope_aspect_result out{lidarfx::raster<float>(n, n), lidarfx::raster<float>(n, n),
                                      lidarfx::raster<std::uint8_t>(n, n)};
-    const lidarfx::slope_aspect_options opt{.threads = static_cast<int>(state.range(1))};
+    const lidarfx::slope_aspect_options opt{.run = {.threads = static_cast<int>(state.range(1))}};
     for (auto _ : state) {
         lidarfx::slope_aspect(z, out.slope_deg, out.aspect_deg, out.flat, 0.5, opt);
         benchmark::DoNotOptimize(out.slope_deg.data());

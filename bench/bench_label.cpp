@@ -24,8 +24,8 @@ void bm_connected_components(benchmark::State& state)
 {
     const auto n = state.range(0);
     const auto in = input_mask(n);
-    const lidarfx::components_options opt{.conn = lidarfx::connectivity::eight,
-                                          .threads = static_cast<int>(state.range(1))};
+    const lidarfx::connected_components_options opt{.conn = lidarfx::connectivity::eight,
+                                                    .run = {.threads = static_cast<int>(state.range(1))}};
     std::size_t count = 0;
     for (auto _ : state) {
         const auto comps = lidarfx::connected_components(in, opt);
@@ -41,8 +41,8 @@ void bm_connected_components_into(benchmark::State& state)
 {
     const auto n = state.range(0);
     const auto in = input_mask(n);
-    const lidarfx::components_options opt{.conn = lidarfx::connectivity::eight,
-                                          .threads = static_cast<int>(state.range(1))};
+    const lidarfx::connected_components_options opt{.conn = lidarfx::connectivity::eight,
+                                                    .run = {.threads = static_cast<int>(state.range(1))}};
     lidarfx::raster<std::int32_t> labels(n, n);
     std::size_t count = 0;
     for (auto _ : state) {

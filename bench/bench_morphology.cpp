@@ -40,8 +40,8 @@ void bm_morph(benchmark::State& state)
     const auto n = state.range(0);
     const auto in = input_mask(n);
     lidarfx::raster<std::uint8_t> out(n, n);
-    const lidarfx::morph_options opt{.size = static_cast<int>(state.range(1)),
-                                     .threads = static_cast<int>(state.range(2))};
+    const lidarfx::morphology_options opt{.size_cells = static_cast<int>(state.range(1)),
+                                          .run = {.threads = static_cast<int>(state.range(2))}};
     for (auto _ : state) {
         if constexpr (Open)
             lidarfx::morph_open(in, out, opt);

@@ -148,7 +148,7 @@ void bm_rasterize(benchmark::State& state, const survey& s)
     const auto g = survey_grid(s);
     const int threads = static_cast<int>(state.range(0));
     for (auto _ : state) {
-        auto out = lidarfx::rasterize(cloud, g, {.threads = threads});
+        auto out = lidarfx::rasterize(cloud, g, {.run = {.threads = threads}});
         benchmark::DoNotOptimize(out.count.data());
     }
     state.counters["cells"] = static_cast<double>(g.size());
@@ -181,10 +181,10 @@ void bm_idw_fill(benchmark::State& state)
     const auto& z = idw_input();
     const auto n = z.rows();
     lidarfx::raster<float> out(n, n);
-    const lidarfx::idw_options opt{.k = static_cast<int>(state.range(1)), .cell_m = cell_m,
-                                   .threads = static_cast<int>(state.range(2))};
+    const lidarfx::idw_fill_options opt{.k = static_cast<int>(state.range(1)),
+                                        .run = {.threads = static_cast<int>(state.range(2))}};
     for (auto _ : state) {
-        lidarfx::idw_fill(z, out, opt);
+        lidarfx::idw_fill(z, out, cell_m, opt);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(state.iterations() * n * n);
@@ -195,7 +195,7 @@ void bm_idw_fill_reference(benchmark::State& state)
     const auto n = state.range(0);
     const auto z = holes_raster(n, 11);
     for (auto _ : state) {
-        auto out = reference::idw_fill(z.view(), {.k = 8, .cell_m = cell_m});
+        auto out = reference::idw_fill(z.view(), cell_m, {.k = 8});
         benchmark::DoNotOptimize(out.data());
     }
     state.SetItemsProcessed(state.iterations() * n * n);

@@ -30,13 +30,13 @@ const lidarfx::synth::scene& lake(double size_m)
 }
 
 /// 4096 x 4096 rasters: 4 x 4 copies of the rasters of a 2048 m lake scene (1024 x 1024 cells).
-const lidarfx::point_rasters& rasters_4096()
+const lidarfx::rasterize_result& rasters_4096()
 {
-    static const lidarfx::point_rasters big = [] {
+    static const lidarfx::rasterize_result big = [] {
         const auto& sc = lake(2048);
-        const auto tile = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.threads = 0});
+        const auto tile = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.run = {.threads = 0}});
         const std::ptrdiff_t n = tile.g.rows, m = tile.g.cols;
-        lidarfx::point_rasters out;
+        lidarfx::rasterize_result out;
         out.g = lidarfx::grid{0, 4.0 * static_cast<double>(n) * tile.g.cell, tile.g.cell, 4 * n, 4 * m};
         out.min_z = lidarfx::raster<float>(4 * n, 4 * m);
         out.max_z = out.mean_intensity = out.min_z;

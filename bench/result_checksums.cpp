@@ -60,7 +60,7 @@ int main()
             print(name, "rasterize.dropout", raster_hash(pr.dropout.view()));
             print(name, "rasterize.multiple_returns", raster_hash(pr.multiple_returns.view()));
             const double cell = pr.g.cell;
-            const auto filled = idw_fill(pr.min_z.view(), {.cell_m = cell});
+            const auto filled = idw_fill(pr.min_z.view(), cell);
             print(name, "idw_fill", raster_hash(filled.filled.view()));
             print(name, "angular_filter", raster_hash(angular_filter(filled.filled.view(), cell, 2).view()));
             const auto sa = slope_aspect(filled.filled.view(), cell);
@@ -78,7 +78,7 @@ int main()
             print(name, "components8", raster_hash(cc8.labels.view()));
             print(name, "components4", raster_hash(cc4.labels.view()));
             print(name, "remove_small_components", raster_hash(remove_small_components(dropout, 20).view()));
-            print(name, "fill_holes", raster_hash(fill_holes(dropout, 20).view()));
+            print(name, "fill_holes", raster_hash(fill_holes(dropout, 19).view()));  // holes of <= 19 cells
             fnv poly;
             for (const auto& lp : polygonize(cc8.labels.view(), pr.g)) {
                 poly.value(lp.label);

@@ -50,7 +50,7 @@ int main()
         {"lidarfx defaults", [](waterbody_options&) {}},
     };
     std::vector<synth::scene> lakes, rivers;
-    std::vector<point_rasters> lake_rasters, river_rasters;
+    std::vector<rasterize_result> lake_rasters, river_rasters;
     for (unsigned seed = 1; seed <= 4; ++seed) {
         synth::scene_options so;
         so.seed = seed;

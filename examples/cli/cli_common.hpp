@@ -71,7 +71,7 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option);
 
 /// The rasters of one or more LAS files on one grid snapped to multiples of the cell size.
 struct survey {
-    point_rasters rasters;
+    rasterize_result rasters;
     std::string crs_wkt;         ///< WKT of the first file, if it has one
     int epsg = 0;                ///< horizontal EPSG code of the first file (0 = unknown)
     std::size_t points = 0;      ///< points read

@@ -41,7 +41,7 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     std::cout << "\n== " << name << " scene: " << sc.points.size() << " points ==\n";
     const auto t0 = std::chrono::steady_clock::now();
     lidarfx::cli::survey s;
-    s.rasters = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.threads = threads});
+    s.rasters = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.run = {.threads = threads}});
     s.points = sc.points.size();
     s.files = 1;
     lidarfx::waterbody_options opt;

@@ -27,12 +27,12 @@ raster<float> as_float(raster_view<const T> m)
 }
 
 /// Elevation with dropout holes filled, for shaded pictures only.
-raster<float> picture_elevation(const point_rasters& pr)
+raster<float> picture_elevation(const rasterize_result& pr)
 {
     bool any = false;
     for (const auto v : pr.min_z) any |= std::isfinite(v);
     if (!any) return pr.min_z;
-    return idw_fill(pr.min_z, idw_options{.k = 4, .cell_m = pr.g.cell}).filled;
+    return idw_fill(pr.min_z, pr.g.cell, idw_fill_options{.k = 4}).filled;
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ int main()
     // --- as in the README ---
     lidarfx::soa_cloud<> cloud(xs, ys, zs, intensities, returns, nreturns);
     const lidarfx::grid g = lidarfx::snapped_grid(lidarfx::bounds_of(cloud), 2.0);    // 2 m cells on a 2 m lattice
-    const lidarfx::point_rasters pr = lidarfx::rasterize(cloud, g, {.threads = 0});   // min/max z, intensity, dropouts
+    const auto pr = lidarfx::rasterize(cloud, g, {.run = {.threads = 0}});            // min/max z, intensity, dropouts
 
     const auto angles = lidarfx::angular_filter(pr.min_z, g.cell);                    // degrees, NaN-aware
     const auto seeds = lidarfx::morph_open(pr.dropout, 5);                            // 5x5, bit-packed

@@ -90,7 +90,7 @@ TEST_CASE("core/grid: snapped grids sit on multiples of the cell and cover the b
     CHECK(one.rows == 1);
     CHECK(one.cols == 1);
     CHECK(one.cell_of(4.0, 4.0));
-    CHECK_THROWS_WITH_AS(snapped_grid({0, 0, 1, 1}, 0.0), "snapped_grid: cell must be finite and > 0 (got 0)",
+    CHECK_THROWS_WITH_AS(snapped_grid({0, 0, 1, 1}, 0.0), "snapped_grid: cell_m must be finite and > 0 (got 0)",
                          invalid_input);
     CHECK_THROWS_AS(snapped_grid({0, 0, NAN, 1}, 1.0), invalid_input);
     CHECK_THROWS_AS(snapped_grid({2, 0, 1, 1}, 1.0), invalid_input);

@@ -66,3 +66,29 @@ TEST_CASE("core/parallel_for_rows: exceptions propagate; progress reports and ca
                          "parallel_for_rows: block_rows must be >= 1 (got 0)", invalid_input);
     CHECK_THROWS_AS(parallel_for_rows(10, 1, -2, [](std::ptrdiff_t, std::ptrdiff_t) {}), invalid_input);
 }
+
+TEST_CASE("core/execution: phases keep progress monotone and end at exactly 1; run.threads is checked")
+{
+    std::vector<double> seen;
+    const progress_callback progress = [&](double f) {
+        seen.push_back(f);
+        return true;
+    };
+    const auto nothing = [](std::ptrdiff_t, std::ptrdiff_t) {};
+    parallel_for_rows(30, 10, 1, nothing, detail::progress_phase(progress, 0.0, 0.05));
+    parallel_for_rows(0, 10, 1, nothing, detail::progress_phase(progress, 0.05, 0.3));  // empty: reports 1 too
+    parallel_for_rows(30, 7, 2, nothing, detail::progress_phase(progress, 0.3, 1.0));
+    REQUIRE(seen.size() >= 5);
+    for (std::size_t i = 1; i < seen.size(); ++i) CHECK(seen[i] >= seen[i - 1]);
+    CHECK(seen[2] == 0.05);  // the end of each phase is exact
+    CHECK(seen[3] == 0.3);
+    CHECK(seen.back() == 1.0);
+    CHECK_FALSE(detail::progress_phase({}, 0.0, 1.0));  // no callback, no reports
+
+    const progress_callback stop = [](double) { return false; };
+    CHECK_THROWS_WITH_AS(parallel_for_rows(30, 10, 1, nothing, detail::progress_phase(stop, 0.5, 1.0), "job"),
+                         "job: cancelled", cancelled);
+    CHECK_NOTHROW(detail::check_execution(execution{}, "job"));
+    CHECK_THROWS_WITH_AS(detail::check_execution({.threads = -1}, "job"), "job: run.threads must be >= 0 (got -1)",
+                         invalid_input);
+}

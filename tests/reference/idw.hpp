@@ -17,7 +17,8 @@
 namespace reference {
 
 /// Brute-force lidarfx::idw_fill: O(holes x data cells x log). Holes are NaN cells, data cells finite ones.
-inline lidarfx::raster<float> idw_fill(lidarfx::raster_view<const float> z, const lidarfx::idw_options& opt)
+inline lidarfx::raster<float> idw_fill(lidarfx::raster_view<const float> z, double cell_m,
+                                       const lidarfx::idw_fill_options& opt)
 {
     struct candidate {
         std::int64_t d2;
@@ -40,7 +41,7 @@ inline lidarfx::raster<float> idw_fill(lidarfx::raster_view<const float> z, cons
                 d.d2 = (d.r - r) * (d.r - r) + (d.c - c) * (d.c - c);
                 // Inclusive radius, with the documented tolerance of 1e-9 cells.
                 const bool within = opt.radius_m == 0 ||
-                                    std::sqrt(static_cast<double>(d.d2)) <= opt.radius_m / opt.cell_m + 1e-9;
+                                    std::sqrt(static_cast<double>(d.d2)) <= opt.radius_m / cell_m + 1e-9;
                 if (within) near.push_back(d);
             }
             std::sort(near.begin(), near.end(), [](const candidate& a, const candidate& b) {
@@ -50,7 +51,7 @@ inline lidarfx::raster<float> idw_fill(lidarfx::raster_view<const float> z, cons
             if (near.empty()) continue;  // stays NaN
             double weights = 0, weighted = 0;
             for (const candidate& n : near) {
-                const double w = 1.0 / std::pow(opt.cell_m * std::sqrt(static_cast<double>(n.d2)), opt.power);
+                const double w = 1.0 / std::pow(cell_m * std::sqrt(static_cast<double>(n.d2)), opt.power);
                 weights += w;
                 weighted += w * n.z;
             }

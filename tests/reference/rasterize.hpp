@@ -18,12 +18,12 @@ namespace reference {
 /// Per-point reference of lidarfx::rasterize for clouds whose intensities are integers (so a plain double
 /// sum is exact): min/max of the z of each cell, mean = sum / count, flags from number_of_returns.
 template <lidarfx::point_cloud C>
-lidarfx::point_rasters rasterize(const C& cloud, const lidarfx::grid& g)
+lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
 {
     const auto cells = static_cast<std::size_t>(g.rows * g.cols);
     std::vector<std::vector<double>> z(cells), intensity(cells);
     std::vector<int> multiple(cells, 0);
-    lidarfx::point_rasters out;
+    lidarfx::rasterize_result out;
     out.g = g;
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const double x = cloud.x(i), y = cloud.y(i), zi = cloud.z(i);
@@ -75,7 +75,7 @@ bool same_bits(const lidarfx::raster<T>& a, const lidarfx::raster<T>& b)
 }
 
 /// True when every raster, the grid and the point counters of a and b are identical.
-inline bool same_bits(const lidarfx::point_rasters& a, const lidarfx::point_rasters& b)
+inline bool same_bits(const lidarfx::rasterize_result& a, const lidarfx::rasterize_result& b)
 {
     return a.g == b.g && same_bits(a.min_z, b.min_z) && same_bits(a.max_z, b.max_z) &&
            same_bits(a.mean_intensity, b.mean_intensity) && same_bits(a.count, b.count) &&

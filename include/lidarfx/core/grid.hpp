@@ -151,22 +151,23 @@ inline cell_index offset_of(const grid& a, const grid& b)
             static_cast<std::ptrdiff_t>(std::llround((b.x0 - a.x0) / a.cell))};
 }
 
-/// Smallest grid whose corners lie on multiples of `cell` and whose extent covers `b` (closed: a point
-/// on the east/south edge falls in the last cell). @throws invalid_input on cell <= 0 or a bad box.
-inline grid snapped_grid(const bounds& b, double cell)
+/// Smallest grid of cell_m-metre cells whose corners lie on multiples of cell_m and whose extent covers `b`
+/// (closed: a point on the east/south edge falls in the last cell). @throws invalid_input on cell_m <= 0 or
+/// a bad box.
+inline grid snapped_grid(const bounds& b, double cell_m)
 {
-    detail::require_positive(cell, "snapped_grid", "cell");
+    detail::require_positive(cell_m, "snapped_grid", "cell_m");
     detail::require(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) &&
                         std::isfinite(b.ymax) && b.xmin <= b.xmax && b.ymin <= b.ymax,
                     "snapped_grid", "bounds must be finite with min <= max");
-    const double x0 = std::floor(b.xmin / cell) * cell;
-    const double y0 = std::ceil(b.ymax / cell) * cell;
-    auto cols = static_cast<std::ptrdiff_t>(std::floor((b.xmax - x0) / cell)) + 1;
-    auto rows = static_cast<std::ptrdiff_t>(std::floor((y0 - b.ymin) / cell)) + 1;
+    const double x0 = std::floor(b.xmin / cell_m) * cell_m;
+    const double y0 = std::ceil(b.ymax / cell_m) * cell_m;
+    auto cols = static_cast<std::ptrdiff_t>(std::floor((b.xmax - x0) / cell_m)) + 1;
+    auto rows = static_cast<std::ptrdiff_t>(std::floor((y0 - b.ymin) / cell_m)) + 1;
     // A maximum exactly on a lattice line would open an extra empty cell; the closed-edge rule covers it.
-    if (cols > 1 && x0 + static_cast<double>(cols - 1) * cell >= b.xmax) --cols;
-    if (rows > 1 && y0 - static_cast<double>(rows - 1) * cell <= b.ymin) --rows;
-    return {x0, y0, cell, rows, cols};
+    if (cols > 1 && x0 + static_cast<double>(cols - 1) * cell_m >= b.xmax) --cols;
+    if (rows > 1 && y0 - static_cast<double>(rows - 1) * cell_m <= b.ymin) --rows;
+    return {x0, y0, cell_m, rows, cols};
 }
 
 /// Grid from a GDAL geotransform {x0, cell, 0, y0, 0, -cell}.

@@ -1,5 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// Deterministic parallel-for over blocks of rows, and the progress/cancellation callback.
+// How algorithms run: the execution settings (threads, progress, cancellation) and a deterministic
+// parallel-for over blocks of rows.
+//
+// Running: threads, progress, cancellation. Every algorithm that may run long takes, in its options
+// struct, the member `execution run = {};`, and nothing else about running:
+//   - run.threads: worker threads, 1 by default (the caller's thread only), 0 = all cores. Work is cut into
+//     blocks fixed by the input alone and every output cell is computed the same way in any block, so
+//     results never depend on the thread count, bit for bit.
+//   - run.progress: called from the caller's thread with the fraction done, monotone in [0, 1] and ending
+//     with exactly 1 on success, reported between blocks of rows or chunks of points. Returning false
+//     cancels: the algorithm stops after the block at hand and throws lidarfx::cancelled("<function>:
+//     cancelled"); its outputs are then unspecified. The callback need not be thread-safe.
+// Example: rasterize(cloud, g, {.run = {.threads = 0, .progress = show}}).
 #pragma once
 
 #include <algorithm>
@@ -20,10 +32,11 @@ namespace lidarfx {
 /// the caller's thread, so it need not be thread-safe. An empty function means "no progress reports".
 using progress_callback = std::function<bool(double fraction_done)>;
 
-/// How an algorithm may run: thread count and progress. Default: the caller's thread only, no reports.
+/// How an algorithm runs (see the header comment): thread count, and progress with cancellation.
+/// Default: the caller's thread only, no reports. Never changes a result.
 struct execution {
     int threads = 1;                   ///< worker threads; 0 = std::thread::hardware_concurrency(); >= 0
-    progress_callback progress = {};   ///< optional progress / cancellation callback
+    progress_callback progress = {};   ///< optional progress / cancellation callback (empty = no reports)
 };
 
 namespace detail {
@@ -34,11 +47,28 @@ inline void report(const progress_callback& progress, double fraction, const cha
     if (progress && !progress(std::clamp(fraction, 0.0, 1.0))) throw cancelled(concat(function, ": cancelled"));
 }
 
-inline int resolve_threads(int threads, const char* function)
+/// The thread count to use: `threads`, or all cores for 0. @throws invalid_input naming `argument` if < 0.
+inline int resolve_threads(int threads, const char* function, const char* argument = "threads")
 {
-    require(threads >= 0, function, "threads", ">= 0", threads);
+    require(threads >= 0, function, argument, ">= 0", threads);
     if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     return threads;
+}
+
+/// Validates an algorithm's `run` member: "<function>: run.threads must be >= 0 (got -1)".
+inline void check_execution(const execution& run, const char* function)
+{
+    resolve_threads(run.threads, function, "run.threads");
+}
+
+/// One phase of a longer algorithm, spanning [from, to] of its progress: the phase's own fraction f is
+/// reported as from + (to - from) * f (exactly `to` when f = 1), so phases run one after the other stay
+/// monotone and the last one, ending at to = 1, ends the algorithm's progress at exactly 1. Empty when
+/// `progress` is; `progress` must outlive the result.
+inline progress_callback progress_phase(const progress_callback& progress, double from, double to)
+{
+    if (!progress) return {};
+    return [&progress, from, to](double f) { return progress(f >= 1.0 ? to : from + (to - from) * f); };
 }
 
 }  // namespace detail
@@ -47,14 +77,18 @@ inline int resolve_threads(int threads, const char* function)
 /// (0 = all cores). Blocks are fixed by `rows` and `block_rows` alone, never by the thread count, so a body
 /// that writes only its own rows gives identical results for any thread count. Blocks are handed out in
 /// order; the first exception thrown by a body is rethrown after all threads have stopped. If `progress`
-/// is set it is called from this thread between blocks (fraction of blocks done) and may cancel.
+/// is set it is called from this thread between blocks (fraction of blocks done, ending with 1, also for
+/// rows = 0) and may cancel: cancelled("<function>: cancelled") is thrown once running blocks finish.
 template <class Body>
 void parallel_for_rows(std::ptrdiff_t rows, std::ptrdiff_t block_rows, int threads, Body&& body,
                        const progress_callback& progress = {}, const char* function = "parallel_for_rows")
 {
     detail::require(block_rows >= 1, function, "block_rows", ">= 1", block_rows);
     threads = detail::resolve_threads(threads, function);
-    if (rows <= 0) return;
+    if (rows <= 0) {
+        detail::report(progress, 1.0, function);  // nothing to do is done
+        return;
+    }
     const std::ptrdiff_t blocks = (rows + block_rows - 1) / block_rows;
     const auto run_block = [&](std::ptrdiff_t b) {
         body(b * block_rows, std::min(rows, (b + 1) * block_rows));

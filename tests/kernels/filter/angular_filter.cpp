@@ -4,6 +4,7 @@
 #include <lidarfx/kernels/filter/angular_filter.hpp>
 
 #include "reference/angular_filter.hpp"
+#include "reference/progress.hpp"
 
 #include <cmath>
 #include <limits>
@@ -144,7 +145,8 @@ TEST_CASE("filter/angular_filter: matches the per-neighbour reference on random 
             const auto strided = reference::inner(big, 3, rows, cols);
             REQUIRE(strided.row_stride() > strided.cols());
             for (int threads : {1, 2, 3}) {
-                CHECK(same_cells(angular_filter(strided, cell, {.radius = radius, .threads = threads}), got));
+                const angular_filter_options opt{.radius_cells = radius, .run = {.threads = threads}};
+                CHECK(same_cells(angular_filter(strided, cell, opt), got));
             }
         }
     }
@@ -215,10 +217,25 @@ TEST_CASE("filter/angular_filter: accepts host rasters and writes into any outpu
     angular_filter(z, out, 1.0);
     CHECK(same_cells(out, a));
     raster<float> big(6, 9, -7.0f);
-    angular_filter(z, big.view().window(1, 2, 4, 5), 1.0, {.radius = 2, .threads = 2});
+    angular_filter(z, big.view().window(1, 2, 4, 5), 1.0, {.radius_cells = 2, .run = {.threads = 2}});
     CHECK(same_cells(raster<float>(big.view().window(1, 2, 4, 5)), a));
     CHECK(big(0, 0) == -7.0f);
     CHECK(big(5, 8) == -7.0f);
+}
+
+TEST_CASE("filter/angular_filter: progress is monotone and ends at 1; returning false cancels")
+{
+    std::mt19937 rng(8);
+    const auto z = reference::random_raster(rng, 300, 40, -5.0, 30.0, 0.05);  // five blocks of 64 rows
+    const auto want = angular_filter(z, 0.5);
+    for (int threads : {1, 2}) {
+        CAPTURE(threads);
+        const reference::progress_log log;
+        CHECK(same_cells(angular_filter(z, 0.5, {.run = {.threads = threads, .progress = log.callback()}}), want));
+        CHECK(log.monotone_to_one(threads == 1 ? 5 : 1));
+        const angular_filter_options stop{.run = {.threads = threads, .progress = reference::cancel_at_once()}};
+        CHECK_THROWS_WITH_AS(angular_filter(z, 0.5, stop), "angular_filter: cancelled", cancelled);
+    }
 }
 
 TEST_CASE("filter/angular_filter: rejects bad arguments with a clear message")
@@ -230,9 +247,9 @@ TEST_CASE("filter/angular_filter: rejects bad arguments with a clear message")
                          invalid_input);
     CHECK_THROWS_AS(angular_filter(z, std::nan("")), invalid_input);
     CHECK_THROWS_AS(angular_filter(z, std::numeric_limits<double>::infinity()), invalid_input);
-    CHECK_THROWS_WITH_AS(angular_filter(z, 1.0, 0), "angular_filter: radius must be >= 1 (got 0)", invalid_input);
-    CHECK_THROWS_WITH_AS(angular_filter(z, 1.0, {.threads = -1}), "angular_filter: threads must be >= 0 (got -1)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(angular_filter(z, 1.0, 0), "angular_filter: radius_cells must be >= 1 (got 0)", invalid_input);
+    CHECK_THROWS_WITH_AS(angular_filter(z, 1.0, {.run = {.threads = -1}}),
+                         "angular_filter: run.threads must be >= 0 (got -1)", invalid_input);
     raster<float> wrong(3, 4);
     CHECK_THROWS_WITH_AS(angular_filter(z, wrong, 1.0),
                          "angular_filter: z and out must have the same shape (got 3x3 and 3x4)", invalid_input);

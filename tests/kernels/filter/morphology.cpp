@@ -4,6 +4,7 @@
 #include <lidarfx/kernels/filter/morphology.hpp>
 
 #include "reference/morphology.hpp"
+#include "reference/progress.hpp"
 
 #include <array>
 #include <cstdint>
@@ -33,7 +34,7 @@ const char* name(op o)
 }
 
 template <class In>
-raster<std::uint8_t> run(op o, const In& m, const morph_options& opt)
+raster<std::uint8_t> run(op o, const In& m, const morphology_options& opt)
 {
     switch (o) {
         case op::dilate:
@@ -48,18 +49,18 @@ raster<std::uint8_t> run(op o, const In& m, const morph_options& opt)
 }
 
 template <class View>
-reference::mask brute(op o, const View& m, const morph_options& opt)
+reference::mask brute(op o, const View& m, const morphology_options& opt)
 {
-    const int h = opt.height == 0 ? opt.size : opt.height;
+    const int h = opt.height_cells == 0 ? opt.size_cells : opt.height_cells;
     switch (o) {
         case op::dilate:
-            return reference::dilate(m, opt.size, h);
+            return reference::dilate(m, opt.size_cells, h);
         case op::erode:
-            return reference::erode(m, opt.size, h);
+            return reference::erode(m, opt.size_cells, h);
         case op::open:
-            return reference::open(m, opt.size, h);
+            return reference::open(m, opt.size_cells, h);
         default:
-            return reference::close(m, opt.size, h);
+            return reference::close(m, opt.size_cells, h);
     }
 }
 
@@ -87,13 +88,13 @@ TEST_CASE("filter/morph_open: the design's plain spellings compile")
     const auto m = reference::random_mask(rng, 20, 30, 0.6);
     const raster_view<const std::uint8_t> v = m;
     CHECK(morph_open(v, 5) == morph_open(m, 5));
-    CHECK(morph_close(v, 3) == morph_close(m, morph_options{.size = 3}));
+    CHECK(morph_close(v, 3) == morph_close(m, morphology_options{.size_cells = 3}));
     CHECK(morph_dilate(v, 1) == morph_dilate(m, 1));
     CHECK(morph_erode(v, 7) == morph_erode(m, 7));
     raster<std::uint8_t> out(20, 30);
-    morph_open(v, out, {.size = 5});
+    morph_open(v, out, {.size_cells = 5});
     CHECK(out == morph_open(v, 5));
-    morph_open(m, out.view(), {.size = 3, .height = 5});
+    morph_open(m, out.view(), {.size_cells = 3, .height_cells = 5});
     CHECK(out == reference::open(m, 3, 5));
 }
 
@@ -107,7 +108,7 @@ TEST_CASE("filter/morph_dilate: hand-checked cases, with the border clipped")
 
     reference::mask corner(4, 4);
     corner(0, 0) = 9;  // nonzero counts as 1; output is 0/1
-    const auto dc = morph_dilate(corner, morph_options{.size = 3, .height = 5});
+    const auto dc = morph_dilate(corner, morphology_options{.size_cells = 3, .height_cells = 5});
     const reference::mask expected_corner = [] {
         reference::mask e(4, 4);
         for (std::ptrdiff_t r = 0; r <= 2; ++r)
@@ -150,7 +151,7 @@ TEST_CASE("filter/morphology: all four operations match the brute-force window m
             for (const auto& e : elements) {
                 // The brute force costs cells * window: on the largest raster test a rotating subset.
                 if (s.rows * s.cols > 10000 && (trial++ % 4) != 0) continue;
-                const morph_options opt{.size = e[0], .height = e[1]};
+                const morphology_options opt{.size_cells = e[0], .height_cells = e[1]};
                 for (op o : all_ops) {
                     INFO(name(o) << " " << s.rows << "x" << s.cols << " density " << density << " size " << e[0]
                                  << " height " << e[1]);
@@ -171,11 +172,11 @@ TEST_CASE("filter/morphology: wide windows place single cells and single holes e
             dot(2, at) = 1;
             hole(2, at) = 0;
             for (int size : {63, 65, 127, 129, 151}) {
-                const morph_options opt{.size = size, .height = 3};
+                const morphology_options opt{.size_cells = size, .height_cells = 3};
                 INFO(cols << " columns, cell " << at << ", size " << size);
                 CHECK(morph_dilate(dot, opt) == reference::dilate(dot, size, 3));
                 CHECK(morph_erode(hole, opt) == reference::erode(hole, size, 3));
-                const morph_options tall{.size = 3, .height = size};
+                const morphology_options tall{.size_cells = 3, .height_cells = size};
                 const auto column = reference::mask(raster_view<const std::uint8_t>(dot.data(), cols, 5));
                 CHECK(morph_dilate(column, tall) == reference::dilate(column, 3, size));
             }
@@ -188,7 +189,7 @@ TEST_CASE("filter/morphology: all-0, all-1 and checkerboard masks")
     for (const auto& shape : std::vector<std::array<std::ptrdiff_t, 2>>{{1, 1}, {7, 13}, {63, 127}, {64, 65}}) {
         const std::ptrdiff_t rows = shape[0], cols = shape[1];
         for (int size : {1, 3, 25}) {
-            const morph_options opt{.size = size};
+            const morphology_options opt{.size_cells = size};
             const reference::mask zeros(rows, cols, 0), ones(rows, cols, 1);
             for (op o : all_ops) {
                 INFO(name(o) << " " << rows << "x" << cols << " size " << size);
@@ -209,7 +210,7 @@ TEST_CASE("filter/morphology: strided sub-views give the contiguous result")
     for (int trial = 0; trial < 12; ++trial) {
         const std::ptrdiff_t rows = 1 + trial * 11, cols = 1 + trial * 13;
         const auto m = reference::random_mask(rng, rows, cols, 0.5);
-        const morph_options opt{.size = 1 + 2 * (trial % 4), .height = trial % 3 == 0 ? 0 : 3};
+        const morphology_options opt{.size_cells = 1 + 2 * (trial % 4), .height_cells = trial % 3 == 0 ? 0 : 3};
         for (std::uint8_t fill : {std::uint8_t{0}, std::uint8_t{1}}) {  // cells around the view must not leak in
             const auto e = reference::embed(m, 3, 2 + trial % 5, fill);
             REQUIRE(e.view.row_stride() > e.view.cols());
@@ -226,16 +227,38 @@ TEST_CASE("filter/morphology: results are identical for 1, 2 and 3 threads")
     std::mt19937 rng(99);
     const auto m = reference::random_mask(rng, 301, 263, 0.5);
     for (const auto& e : std::vector<std::array<int, 2>>{{5, 0}, {25, 0}, {3, 9}}) {
-        const morph_options one{.size = e[0], .height = e[1], .threads = 1};
+        const morphology_options one{.size_cells = e[0], .height_cells = e[1], .run = {.threads = 1}};
         for (op o : all_ops) {
             const auto expected = run(o, m, one);
             CHECK(expected == brute(o, m, one));
             for (int threads : {2, 3}) {
                 INFO(name(o) << " size " << e[0] << " height " << e[1] << " threads " << threads);
-                CHECK(run(o, m, morph_options{.size = e[0], .height = e[1], .threads = threads}) == expected);
+                const morphology_options opt{.size_cells = e[0], .height_cells = e[1], .run = {.threads = threads}};
+                CHECK(run(o, m, opt) == expected);
             }
         }
     }
+}
+
+TEST_CASE("filter/morphology: progress is monotone and ends at 1; returning false cancels")
+{
+    std::mt19937 rng(41);
+    const auto m = reference::random_mask(rng, 700, 90, 0.5);  // three strips of rows
+    for (op o : all_ops) {
+        for (int threads : {1, 2}) {
+            INFO(name(o) << " threads " << threads);
+            const reference::progress_log log;
+            const auto out = run(o, m, {.size_cells = 5, .run = {.threads = threads, .progress = log.callback()}});
+            CHECK(log.monotone_to_one(threads == 1 ? 3 : 1));  // with helpers, the caller may run few strips
+            CHECK(out == run(o, m, {.size_cells = 5}));
+            CHECK_THROWS_WITH_AS(
+                run(o, m, {.size_cells = 5, .run = {.threads = threads, .progress = reference::cancel_at_once()}}),
+                (std::string("morph_") + name(o) + ": cancelled").c_str(), cancelled);
+        }
+    }
+    const reference::progress_log empty;  // nothing to do is done at once
+    morph_open(reference::mask(0, 4), morphology_options{.run = {.progress = empty.callback()}});
+    CHECK(empty.monotone_to_one());
 }
 
 TEST_CASE("filter/morphology: opening and closing are (anti-)extensive, idempotent and dual")
@@ -244,7 +267,7 @@ TEST_CASE("filter/morphology: opening and closing are (anti-)extensive, idempote
     for (int trial = 0; trial < 20; ++trial) {
         const auto m = reference::complement(reference::complement(
             reference::random_mask(rng, 20 + trial, 70 - trial, 0.2 + 0.03 * trial)));  // 0/1 values
-        const morph_options opt{.size = 1 + 2 * (trial % 5), .height = trial % 2 == 0 ? 0 : 5};
+        const morphology_options opt{.size_cells = 1 + 2 * (trial % 5), .height_cells = trial % 2 == 0 ? 0 : 5};
         INFO("trial " << trial);
         const auto opened = morph_open(m, opt), closed = morph_close(m, opt);
         CHECK(is_subset(opened, m));
@@ -265,16 +288,16 @@ TEST_CASE("filter/morph_open: the output may be the input; other value types and
     std::mt19937 rng(3);
     auto m = reference::random_mask(rng, 70, 90, 0.7);
     const auto expected = morph_open(m, 5);
-    morph_open(m, m, {.size = 5});
+    morph_open(m, m, {.size_cells = 5});
     CHECK(m == expected);
     // Tall enough for several strips of rows, each reading rows of the next: in place still works.
     // (Dilation, not opening or closing: those are idempotent, so mixing in already processed rows would
     // not show.)
     const auto tall_input = reference::random_mask(rng, 700, 40, 0.05);
-    const auto tall_expected = morph_dilate(tall_input, morph_options{.size = 3, .height = 9});
+    const auto tall_expected = morph_dilate(tall_input, morphology_options{.size_cells = 3, .height_cells = 9});
     for (int threads : {1, 2}) {
         auto tall = tall_input;
-        morph_dilate(tall, tall.view(), {.size = 3, .height = 9, .threads = threads});
+        morph_dilate(tall, tall.view(), {.size_cells = 3, .height_cells = 9, .run = {.threads = threads}});
         CHECK(tall == tall_expected);
     }
 
@@ -284,42 +307,22 @@ TEST_CASE("filter/morph_open: the output may be the input; other value types and
     CHECK(morph_close(f, 3) == morph_close(expected, 3));
 
     const computed_mask host;
-    CHECK(morph_dilate(host, morph_options{.size = 3}) == reference::dilate(host, 3, 3));
-}
-
-TEST_CASE("filter/morphology: bit packing, SIMD and portable, keeps every cell")
-{
-    std::mt19937 rng(13);
-    std::uniform_int_distribution<int> byte(0, 255), coin(0, 2);
-    for (std::ptrdiff_t cols : {1, 63, 64, 65, 200}) {
-        std::vector<std::uint8_t> cells(static_cast<std::size_t>(cols));
-        for (auto& v : cells) v = coin(rng) == 0 ? 0 : static_cast<std::uint8_t>(byte(rng));  // 0 and any nonzero
-        std::vector<detail::mask_word> bits(static_cast<std::size_t>(detail::mask_words(cols)));
-        detail::pack_mask_row(cells.data(), cols, bits.data());
-        for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(((bits[c / 64] >> (c % 64)) & 1U) == (cells[c] != 0 ? 1U : 0U));
-        for (std::ptrdiff_t c = cols; c < 64 * detail::mask_words(cols); ++c)
-            CHECK(((bits[c / 64] >> (c % 64)) & 1U) == 0U);
-        for (std::ptrdiff_t c = 0; c + 64 <= cols; c += 64)
-            CHECK(detail::pack64_portable(cells.data() + c) == bits[c / 64]);
-        std::vector<std::uint8_t> back(static_cast<std::size_t>(cols));
-        detail::unpack_mask_row(bits.data(), cols, back.data());
-        for (std::ptrdiff_t c = 0; c < cols; ++c) CHECK(back[c] == (cells[c] != 0 ? 1 : 0));
-    }
+    CHECK(morph_dilate(host, morphology_options{.size_cells = 3}) == reference::dilate(host, 3, 3));
 }
 
 TEST_CASE("filter/morphology: bad input throws invalid_input naming the argument")
 {
     const reference::mask m(4, 5, 1);
-    CHECK_THROWS_WITH_AS(morph_open(m, 4), "morph_open: size must be odd and >= 1 (got 4)", invalid_input);
-    CHECK_THROWS_WITH_AS(morph_close(m, 0), "morph_close: size must be odd and >= 1 (got 0)", invalid_input);
-    CHECK_THROWS_WITH_AS(morph_dilate(m, -3), "morph_dilate: size must be odd and >= 1 (got -3)", invalid_input);
-    CHECK_THROWS_WITH_AS(morph_erode(m, morph_options{.size = 3, .height = 2}),
-                         "morph_erode: height must be 0 (square) or odd and >= 1 (got 2)", invalid_input);
-    CHECK_THROWS_WITH_AS(morph_erode(m, morph_options{.size = 3, .height = -1}),
-                         "morph_erode: height must be 0 (square) or odd and >= 1 (got -1)", invalid_input);
-    CHECK_THROWS_WITH_AS(morph_open(m, morph_options{.size = 3, .threads = -1}),
-                         "morph_open: threads must be >= 0 (got -1)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_open(m, 4), "morph_open: size_cells must be odd and >= 1 (got 4)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_close(m, 0), "morph_close: size_cells must be odd and >= 1 (got 0)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_dilate(m, -3), "morph_dilate: size_cells must be odd and >= 1 (got -3)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_erode(m, morphology_options{.size_cells = 3, .height_cells = 2}),
+                         "morph_erode: height_cells must be 0 (square) or odd and >= 1 (got 2)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_erode(m, morphology_options{.size_cells = 3, .height_cells = -1}),
+                         "morph_erode: height_cells must be 0 (square) or odd and >= 1 (got -1)", invalid_input);
+    CHECK_THROWS_WITH_AS(morph_open(m, morphology_options{.size_cells = 3, .run = {.threads = -1}}),
+                         "morph_open: run.threads must be >= 0 (got -1)", invalid_input);
     raster<std::uint8_t> wrong(5, 4);
-    CHECK_THROWS_WITH_AS(morph_close(m, wrong, {.size = 3}),
+    CHECK_THROWS_WITH_AS(morph_close(m, wrong, {.size_cells = 3}),
                          "morph_close: m and out must have the same shape (got 4x5 and 5x4)", invalid_input);
 }

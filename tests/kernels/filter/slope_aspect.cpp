@@ -4,6 +4,7 @@
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
 
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
+#include "reference/progress.hpp"
 #include "reference/slope_aspect.hpp"
 
 #include <cmath>
@@ -188,7 +189,8 @@ TEST_CASE("filter/slope_aspect: matches the reference on random rasters, strided
             const auto big = reference::with_margin(z, 2, 1.0e6f);
             const auto strided = reference::inner(big, 2, rows, cols);
             for (int threads : {1, 2, 3}) {
-                CHECK(identical(slope_aspect(strided, cell, {.flat_slope_deg = flat_deg, .threads = threads}), got));
+                const slope_aspect_options opt{.flat_slope_deg = flat_deg, .run = {.threads = threads}};
+                CHECK(identical(slope_aspect(strided, cell, opt), got));
             }
         }
     }
@@ -253,6 +255,21 @@ TEST_CASE("filter/slope_aspect: turning the raster a quarter turn turns the aspe
     }
 }
 
+TEST_CASE("filter/slope_aspect: progress is monotone and ends at 1; returning false cancels")
+{
+    std::mt19937 rng(9);
+    const auto z = reference::random_raster(rng, 300, 40, -5.0, 30.0, 0.05);  // five blocks of 64 rows
+    const auto want = slope_aspect(z, 0.5);
+    for (int threads : {1, 2}) {
+        CAPTURE(threads);
+        const reference::progress_log log;
+        CHECK(identical(slope_aspect(z, 0.5, {.run = {.threads = threads, .progress = log.callback()}}), want));
+        CHECK(log.monotone_to_one(threads == 1 ? 5 : 1));
+        const slope_aspect_options stop{.run = {.threads = threads, .progress = reference::cancel_at_once()}};
+        CHECK_THROWS_WITH_AS(slope_aspect(z, 0.5, stop), "slope_aspect: cancelled", cancelled);
+    }
+}
+
 TEST_CASE("filter/slope_aspect: into any outputs; bad arguments throw with a clear message")
 {
     const auto z = plane(6, 7, 1.0, 0.5, -0.25);
@@ -269,8 +286,8 @@ TEST_CASE("filter/slope_aspect: into any outputs; bad arguments throw with a cle
                          "slope_aspect: flat_slope_deg must be in [0, 90) (got 90)", invalid_input);
     CHECK_THROWS_AS(slope_aspect(z, 1.0, {.flat_slope_deg = -1.0}), invalid_input);
     CHECK_THROWS_AS(slope_aspect(z, 1.0, {.flat_slope_deg = std::nan("")}), invalid_input);
-    CHECK_THROWS_WITH_AS(slope_aspect(z, 1.0, {.threads = -2}), "slope_aspect: threads must be >= 0 (got -2)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(slope_aspect(z, 1.0, {.run = {.threads = -2}}),
+                         "slope_aspect: run.threads must be >= 0 (got -2)", invalid_input);
     raster<float> small(6, 6);
     CHECK_THROWS_WITH_AS(slope_aspect(z, small, aspect, flat, 1.0),
                          "slope_aspect: z and slope_deg must have the same shape (got 6x7 and 6x6)", invalid_input);

@@ -4,6 +4,7 @@
 #include <lidarfx/kernels/filter/vegetation_mask.hpp>
 
 #include "reference/morphology.hpp"
+#include "reference/progress.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -47,9 +48,9 @@ TEST_CASE("raster/vegetation_mask: strictly more than height_m; NaN is no vegeta
     hi(0, 3) = 10.5f;
     hi(0, 4) = 30.0f;
     lo(0, 4) = nan_f;
-    const auto m = vegetation_mask(lo, hi, {.closing_size = 1});
+    const auto m = vegetation_mask(lo, hi, {.closing_size_cells = 1});
     CHECK(m == mask_of(1, 5, {1, 0, 0, 0, 0}));
-    CHECK(vegetation_mask(lo, hi, {.height_m = 0.4, .closing_size = 1}) == mask_of(1, 5, {1, 1, 0, 1, 0}));
+    CHECK(vegetation_mask(lo, hi, {.height_m = 0.4, .closing_size_cells = 1}) == mask_of(1, 5, {1, 1, 0, 1, 0}));
 }
 
 TEST_CASE("raster/vegetation_mask: the closing fills gaps inside a canopy and keeps the border clipped")
@@ -60,12 +61,12 @@ TEST_CASE("raster/vegetation_mask: the closing fills gaps inside a canopy and ke
                                     1, 1, 1, 0, 0,
                                     0, 0, 0, 0, 0,
                                     0, 0, 0, 0, 1});
-    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size = 3}) == mask_of(5, 5, {1, 1, 1, 0, 0,
+    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 3}) == mask_of(5, 5, {1, 1, 1, 0, 0,
                                                                                    1, 1, 1, 0, 0,
                                                                                    1, 1, 1, 0, 0,
                                                                                    0, 0, 0, 0, 0,
                                                                                    0, 0, 0, 0, 1}));
-    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size = 1}) == mask_of(5, 5, {1, 1, 1, 0, 0,
+    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 1}) == mask_of(5, 5, {1, 1, 1, 0, 0,
                                                                                    1, 0, 1, 0, 0,
                                                                                    1, 1, 1, 0, 0,
                                                                                    0, 0, 0, 0, 0,
@@ -105,15 +106,16 @@ TEST_CASE("raster/vegetation_mask: equals threshold then brute-force closing on 
             hi.data()[i] = lo.data()[i] + spread(rng);
         }
         const auto lo_w = lo.view().window(2, 3, 27, 33), hi_w = hi.view().window(1, 5, 27, 33);  // strided
-        const vegetation_options opt{.height_m = 1.5 + 0.25 * (trial % 3), .closing_size = 1 + 2 * (trial % 4),
-                                     .threads = 1 + trial % 3};
+        const vegetation_mask_options opt{.height_m = 1.5 + 0.25 * (trial % 3),
+                                          .closing_size_cells = 1 + 2 * (trial % 4),
+                                          .run = {.threads = 1 + trial % 3}};
         reference::mask threshold(27, 33);
         for (std::ptrdiff_t r = 0; r < 27; ++r)
             for (std::ptrdiff_t c = 0; c < 33; ++c)
                 threshold(r, c) = static_cast<std::uint8_t>(static_cast<double>(hi_w(r, c)) - lo_w(r, c) > opt.height_m);
         CAPTURE(seed);
         CAPTURE(trial);
-        const auto expected = reference::close(threshold.view(), opt.closing_size, opt.closing_size);
+        const auto expected = reference::close(threshold.view(), opt.closing_size_cells, opt.closing_size_cells);
         CHECK(vegetation_mask(lo_w, hi_w, opt) == expected);
         CHECK(vegetation_mask(raster<float>(lo_w), raster<double>(hi_w), opt) == expected);
 
@@ -121,6 +123,32 @@ TEST_CASE("raster/vegetation_mask: equals threshold then brute-force closing on 
         vegetation_mask(lo_w, hi_w, target.view().window(1, 2, 27, 33), opt);
         CHECK(raster<std::uint8_t>(target.view().window(1, 2, 27, 33)) == expected);
         CHECK(target(0, 2) == 7);
+    }
+}
+
+TEST_CASE("raster/vegetation_mask: progress is monotone and ends at 1; returning false cancels")
+{
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> ground(50.0f, 60.0f), spread(0.0f, 4.0f);
+    raster<float> lo(300, 50), hi(300, 50);  // five blocks of 64 rows for the threshold, two strips for the closing
+    for (std::ptrdiff_t i = 0; i < lo.size(); ++i) {
+        lo.data()[i] = ground(rng);
+        hi.data()[i] = lo.data()[i] + spread(rng);
+    }
+    for (int closing : {1, 5}) {
+        const auto want = vegetation_mask(lo, hi, {.closing_size_cells = closing});
+        for (int threads : {1, 2}) {
+            CAPTURE(closing);
+            CAPTURE(threads);
+            const reference::progress_log log;
+            const vegetation_mask_options opt{.closing_size_cells = closing,
+                                              .run = {.threads = threads, .progress = log.callback()}};
+            CHECK(vegetation_mask(lo, hi, opt) == want);
+            CHECK(log.monotone_to_one(threads == 1 ? 5 : 1));
+            const vegetation_mask_options stop{.closing_size_cells = closing,
+                                               .run = {.threads = threads, .progress = reference::cancel_at_once()}};
+            CHECK_THROWS_WITH_AS(vegetation_mask(lo, hi, stop), "vegetation_mask: cancelled", cancelled);
+        }
     }
 }
 
@@ -135,10 +163,10 @@ TEST_CASE("raster/vegetation_mask: bad arguments throw invalid_input")
     CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.height_m = -1.0}), "vegetation_mask: height_m must be finite and >= 0 (got -1)",
                          invalid_input);
     CHECK_THROWS_AS(vegetation_mask(a, a, {.height_m = std::nan("")}), invalid_input);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.closing_size = 4}),
-                         "vegetation_mask: closing_size must be odd and >= 1 (got 4)", invalid_input);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.closing_size = -3}),
-                         "vegetation_mask: closing_size must be odd and >= 1 (got -3)", invalid_input);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.threads = -1}), "vegetation_mask: threads must be >= 0 (got -1)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.closing_size_cells = 4}),
+                         "vegetation_mask: closing_size_cells must be odd and >= 1 (got 4)", invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.closing_size_cells = -3}),
+                         "vegetation_mask: closing_size_cells must be odd and >= 1 (got -3)", invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.run = {.threads = -1}}),
+                         "vegetation_mask: run.threads must be >= 0 (got -1)", invalid_input);
 }

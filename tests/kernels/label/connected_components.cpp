@@ -5,6 +5,7 @@
 
 #include "reference/components.hpp"
 #include "reference/morphology.hpp"
+#include "reference/progress.hpp"
 
 #include <algorithm>
 #include <array>
@@ -141,7 +142,8 @@ TEST_CASE("label/connected_components: results are identical for 1, 2 and 3 thre
             const auto expected = reference::flood_label(m, c);
             for (int threads : {1, 2, 3}) {
                 INFO(m.rows() << "x" << m.cols() << " " << name(c) << " threads " << threads);
-                check_equal(connected_components(m, components_options{.conn = c, .threads = threads}), expected);
+                const connected_components_options opt{.conn = c, .run = {.threads = threads}};
+                check_equal(connected_components(m, opt), expected);
             }
         }
     }
@@ -229,7 +231,7 @@ TEST_CASE("label/component_bounds: inclusive boxes per label, background include
 }
 // clang-format on
 
-TEST_CASE("label/remove_small_components: drops exactly the components under min_cells")
+TEST_CASE("label/remove_small_components: keeps exactly the components of at least min_cells")
 {
     std::mt19937 rng(47);
     for (int trial = 0; trial < 12; ++trial) {
@@ -247,7 +249,7 @@ TEST_CASE("label/remove_small_components: drops exactly the components under min
 }
 
 // clang-format off: the small rasters below are laid out as grids
-TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cells")
+TEST_CASE("label/fill_holes: fills enclosed background of at most max_hole_cells")
 {
     const auto ring = from_rows({{0, 0, 0, 0, 0, 0, 0},
                                  {0, 1, 1, 1, 1, 1, 0},
@@ -256,19 +258,20 @@ TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cel
                                  {0, 0, 0, 0, 1, 1, 0}});
     // Eight-connected foreground: holes are four-connected, so the 1-cell and the 4-cell holes are both
     // enclosed (the 4-cell one only through diagonal links of its wall).
-    CHECK(fill_holes(ring, 2) == from_rows({{0, 0, 0, 0, 0, 0, 0},
+    CHECK(fill_holes(ring, 1) == from_rows({{0, 0, 0, 0, 0, 0, 0},
                                             {0, 1, 1, 1, 1, 1, 0},
                                             {0, 1, 1, 1, 0, 0, 1},
                                             {0, 1, 1, 1, 0, 0, 1},
                                             {0, 0, 0, 0, 1, 1, 0}}));
-    CHECK(fill_holes(ring, 4) == fill_holes(ring, 2));  // "fewer than": a 4-cell hole needs max_hole_cells 5
-    CHECK(fill_holes(ring, 5) == from_rows({{0, 0, 0, 0, 0, 0, 0},
+    CHECK(fill_holes(ring, 0) == ring);                 // inclusive: no hole has at most 0 cells
+    CHECK(fill_holes(ring, 3) == fill_holes(ring, 1));  // inclusive: the 4-cell hole needs max_hole_cells 4
+    CHECK(fill_holes(ring, 4) == from_rows({{0, 0, 0, 0, 0, 0, 0},
                                             {0, 1, 1, 1, 1, 1, 0},
                                             {0, 1, 1, 1, 1, 1, 1},
                                             {0, 1, 1, 1, 1, 1, 1},
                                             {0, 0, 0, 0, 1, 1, 0}}));
     // Four-connected foreground: background is eight-connected and the 4-cell hole leaks out diagonally.
-    CHECK(fill_holes(ring, 100, connectivity::four) == fill_holes(ring, 2));
+    CHECK(fill_holes(ring, 100, connectivity::four) == fill_holes(ring, 1));
     CHECK(fill_holes(reference::mask(3, 3, 0), 100) == reference::mask(3, 3, 0));  // touches the border
     CHECK(fill_holes(reference::mask(0, 3), 100).rows() == 0);
 
@@ -277,7 +280,7 @@ TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cel
         const auto m = reference::random_mask(rng, 30 + trial, 41, 0.6);
         const auto c = trial % 2 == 0 ? connectivity::eight : connectivity::four;
         const auto holes_conn = c == connectivity::eight ? connectivity::four : connectivity::eight;
-        const std::size_t max_cells = static_cast<std::size_t>(1 + trial);
+        const std::size_t max_cells = static_cast<std::size_t>(trial);
         const auto background = reference::complement(m);
         const auto ref = reference::flood_label(background, holes_conn);
         std::vector<bool> on_border(ref.sizes.size(), false);
@@ -288,7 +291,7 @@ TEST_CASE("label/fill_holes: fills enclosed background smaller than max_hole_cel
         const auto filled = fill_holes(m, max_cells, c);
         for (std::ptrdiff_t i = 0; i < m.size(); ++i) {
             const auto l = static_cast<std::size_t>(ref.labels.data()[i]);
-            const bool fill = l != 0 && !on_border[l] && ref.sizes[l] < max_cells;
+            const bool fill = l != 0 && !on_border[l] && ref.sizes[l] <= max_cells;
             REQUIRE(filled.data()[i] == ((m.data()[i] != 0 || fill) ? 1 : 0));
         }
     }
@@ -301,7 +304,7 @@ TEST_CASE("label/connected_components: the into form writes labels into a caller
     const auto m = reference::random_mask(rng, 300, 77, 0.5);
     raster<std::int32_t> big(302, 90, -7);
     const auto window = big.view().window(1, 5, 300, 77);
-    const auto sizes = connected_components(m, window, {.conn = connectivity::four, .threads = 2});
+    const auto sizes = connected_components(m, window, {.conn = connectivity::four, .run = {.threads = 2}});
     const auto expected = reference::flood_label(m, connectivity::four);
     CHECK(sizes == expected.sizes);
     CHECK(raster<std::int32_t>(window) == expected.labels);
@@ -311,11 +314,29 @@ TEST_CASE("label/connected_components: the into form writes labels into a caller
     CHECK(big(1, 82) == -7);
 }
 
+TEST_CASE("label/connected_components: progress is monotone and ends at 1; returning false cancels")
+{
+    std::mt19937 rng(61);
+    const auto m = reference::random_mask(rng, 900, 70, 0.5);  // four bands of 256 rows, two passes over them
+    const auto want = connected_components(m);
+    for (int threads : {1, 2}) {
+        CAPTURE(threads);
+        const reference::progress_log log;
+        check_equal(connected_components(m, {.run = {.threads = threads, .progress = log.callback()}}), want);
+        CHECK(log.monotone_to_one(threads == 1 ? 8 : 2));
+        const connected_components_options stop{.run = {.threads = threads, .progress = reference::cancel_at_once()}};
+        CHECK_THROWS_WITH_AS(connected_components(m, stop), "connected_components: cancelled", cancelled);
+    }
+    const reference::progress_log empty;  // nothing to do is done at once
+    connected_components(reference::mask(0, 5), {.run = {.progress = empty.callback()}});
+    CHECK(empty.monotone_to_one());
+}
+
 TEST_CASE("label/connected_components: bad input throws invalid_input naming the argument")
 {
     const reference::mask m(3, 3, 1);
-    CHECK_THROWS_WITH_AS(connected_components(m, components_options{.threads = -2}),
-                         "connected_components: threads must be >= 0 (got -2)", invalid_input);
+    CHECK_THROWS_WITH_AS(connected_components(m, connected_components_options{.run = {.threads = -2}}),
+                         "connected_components: run.threads must be >= 0 (got -2)", invalid_input);
     raster<std::int32_t> labels(2, 3);
     CHECK_THROWS_WITH_AS(connected_components(m, labels),
                          "connected_components: m and labels must have the same shape (got 3x3 and 2x3)",

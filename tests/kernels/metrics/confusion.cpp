@@ -34,12 +34,16 @@ TEST_CASE("metrics/confusion_counts: counts and scores on a hand-checked case")
 TEST_CASE("metrics/confusion_counts: empty truth and bad input")
 {
     raster<std::uint8_t> zero(3, 3);
-    const auto c = confusion_counts(zero, zero);
+    const auto c = confusion_counts(zero, zero, 1.0);
     CHECK(c.accuracy() == 1.0);
     CHECK(c.sensitivity() == 1.0);
     CHECK(c.iou() == 1.0);
-    CHECK_THROWS_WITH_AS(confusion_counts(zero, raster<std::uint8_t>(3, 2)),
+    CHECK_THROWS_WITH_AS(confusion_counts(zero, raster<std::uint8_t>(3, 2), 1.0),
                          "confusion_counts: predicted and truth must have the same shape (got 3x3 and 3x2)",
                          invalid_input);
-    CHECK_THROWS_AS(confusion_counts(zero, zero, 0.0), invalid_input);
+    CHECK_THROWS_WITH_AS(confusion_counts(zero, zero, 0.0), "confusion_counts: cell_m must be finite and > 0 (got 0)",
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(confusion_counts(zero, zero, 1.0, raster<std::uint8_t>(2, 3)),
+                         "confusion_counts: predicted and valid must have the same shape (got 3x3 and 2x3)",
+                         invalid_input);
 }

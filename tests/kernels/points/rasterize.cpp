@@ -3,6 +3,7 @@
 
 #include <lidarfx/kernels/points/rasterize.hpp>
 
+#include "reference/progress.hpp"
 #include "reference/rasterize.hpp"
 
 #include <algorithm>
@@ -164,7 +165,8 @@ TEST_CASE("raster/rasterize: any chunking, merge order or thread count gives bit
         for (std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1} << 20}) {
             CAPTURE(threads);
             CAPTURE(chunk);
-            CHECK(reference::same_bits(rasterize(cloud, g, {.threads = threads, .chunk_points = chunk}), expected));
+            const rasterize_options opt{.chunk_points = chunk, .run = {.threads = threads}};
+            CHECK(reference::same_bits(rasterize(cloud, g, opt), expected));
         }
     }
 
@@ -215,7 +217,7 @@ TEST_CASE("raster/rasterize: soa_cloud, aos_cloud and a host type give the same 
     const auto expected = reference::rasterize(pts.soa(), g);
     CHECK(reference::same_bits(rasterize(pts.soa(), g), expected));
     CHECK(reference::same_bits(rasterize(aos_view, g), expected));
-    CHECK(reference::same_bits(rasterize(host, g, {.threads = 2, .chunk_points = 300}), expected));
+    CHECK(reference::same_bits(rasterize(host, g, {.chunk_points = 300, .run = {.threads = 2}}), expected));
 }
 
 TEST_CASE("raster/rasterize: clouds without intensity or returns read 0 and single returns")
@@ -234,7 +236,7 @@ TEST_CASE("raster/rasterize: an empty cloud rasterizes to all dropout")
 {
     const grid g{0.0, 0.0, 1.0, 3, 4};
     const std::vector<double> none;
-    const auto out = rasterize(soa_cloud<>(none, none, none), g, {.threads = 3});
+    const auto out = rasterize(soa_cloud<>(none, none, none), g, {.run = {.threads = 3}});
     CHECK(out.points_used + out.points_outside + out.points_nan == 0);
     for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
@@ -276,24 +278,27 @@ TEST_CASE("raster/rasterize: z beyond the float range saturates")
     CHECK(out.points_used == 3);
 }
 
-TEST_CASE("raster/rasterize: progress is reported and can cancel")
+TEST_CASE("raster/rasterize: progress is monotone and ends at 1; returning false cancels")
 {
     std::mt19937 rng(9);
     const grid g{0.0, 0.0, 1.0, 8, 8};
     const auto pts = random_cloud(rng, g, 1000);
+    const auto want = rasterize(pts.soa(), g);
     for (int threads : {1, 2}) {
-        std::vector<double> seen;
-        rasterize(pts.soa(), g, {.threads = threads, .chunk_points = 100, .progress = [&](double f) {
-                                     seen.push_back(f);
-                                     return true;
-                                 }});
-        REQUIRE_FALSE(seen.empty());
-        CHECK(seen.back() == 1.0);
-        CHECK(std::is_sorted(seen.begin(), seen.end()));
-        CHECK_THROWS_WITH_AS(rasterize(pts.soa(), g, {.threads = threads, .chunk_points = 100,
-                                                      .progress = [](double) { return false; }}),
-                             "rasterize: cancelled", cancelled);
+        CAPTURE(threads);
+        const reference::progress_log log;
+        const rasterize_options opt{.chunk_points = 100, .run = {.threads = threads, .progress = log.callback()}};
+        const auto got = rasterize(pts.soa(), g, opt);
+        CHECK(reference::same_bits(got, want));
+        CHECK(log.monotone_to_one(threads == 1 ? 10 : 1));  // one report per chunk of 100 points
+        const rasterize_options stop{.chunk_points = 100,
+                                     .run = {.threads = threads, .progress = reference::cancel_at_once()}};
+        CHECK_THROWS_WITH_AS(rasterize(pts.soa(), g, stop), "rasterize: cancelled", cancelled);
     }
+    const std::vector<double> none;  // no point: done at once
+    const reference::progress_log empty;
+    rasterize(soa_cloud<>(none, none, none), g, {.run = {.progress = empty.callback()}});
+    CHECK(empty.monotone_to_one());
 }
 
 TEST_CASE("raster/rasterize: bad arguments throw invalid_input")
@@ -306,8 +311,8 @@ TEST_CASE("raster/rasterize: bad arguments throw invalid_input")
                          invalid_input);
     CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, 1, 1}, {.chunk_points = 0}),
                          "rasterize: chunk_points must be >= 1 (got 0)", invalid_input);
-    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, 1, 1}, {.threads = -1}),
-                         "rasterize: threads must be >= 0 (got -1)", invalid_input);
+    CHECK_THROWS_WITH_AS(rasterize(cloud, grid{0, 0, 1.0, 1, 1}, {.run = {.threads = -1}}),
+                         "rasterize: run.threads must be >= 0 (got -1)", invalid_input);
 
     raster_accumulator a(grid{0, 0, 1.0, 2, 2});
     CHECK_THROWS_WITH_AS(a.merge(raster_accumulator(grid{0, 0, 1.0, 2, 3})),

@@ -18,7 +18,7 @@ namespace {
 
 struct scene_run {
     synth::scene scene;
-    point_rasters rasters;
+    rasterize_result rasters;
     waterbody_result result;
     confusion score;
 };

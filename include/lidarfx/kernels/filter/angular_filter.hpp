@@ -23,8 +23,8 @@ namespace lidarfx {
 
 /// Settings of angular_filter.
 struct angular_filter_options {
-    int radius = 2;   ///< window half-size in cells: the window is (2*radius+1)^2 cells; >= 1 (2 = "two tiers")
-    int threads = 1;  ///< worker threads; 0 = all cores; >= 0. Results do not depend on it
+    int radius_cells = 2;  ///< window half-size, cells: the window is (2*radius_cells+1)^2; >= 1 (2 = "two tiers")
+    execution run = {};    ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
 namespace detail {
@@ -136,18 +136,19 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
 inline void check_angular_filter(double cell_m, const angular_filter_options& opt)
 {
     require_positive(cell_m, "angular_filter", "cell_m");
-    require(opt.radius >= 1, "angular_filter", "radius", ">= 1", opt.radius);
-    require(opt.threads >= 0, "angular_filter", "threads", ">= 0", opt.threads);
+    require(opt.radius_cells >= 1, "angular_filter", "radius_cells", ">= 1", opt.radius_cells);
+    check_execution(opt.run, "angular_filter");
 }
 
 }  // namespace detail
 
 /// Angular filter (into form): out(p) = max over neighbours q of atan(|z(q) - z(p)| / (cell_m * |p - q|)),
-/// q ranging over the (2*radius+1)^2 window around p clipped at the raster border (Acharjee et al. 2015,
-/// the dissertation's "two tiers" for radius 2). Degrees in [0, 90]: 0 on flat ground, near 90 at walls.
-/// NaN neighbours are skipped, a NaN centre gives NaN, a cell with no valid neighbour gives 0. z in metres.
-/// O(rows * cols * radius^2), one atan per cell. @throws invalid_input if the shapes differ, cell_m is not
-/// finite and > 0, radius < 1, threads < 0, or out overlaps z.
+/// q ranging over the (2*radius_cells+1)^2 window around p clipped at the raster border (Acharjee et al.
+/// 2015, the dissertation's "two tiers" for radius 2). Degrees in [0, 90]: 0 on flat ground, near 90 at
+/// walls. NaN neighbours are skipped, a NaN centre gives NaN, a cell with no valid neighbour gives 0. z in
+/// metres. O(rows * cols * radius_cells^2), one atan per cell; progress between blocks of 64 rows.
+/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, radius_cells < 1,
+/// run.threads < 0, or out overlaps z; cancelled if run.progress returns false.
 template <raster_input In, class Out>
 requires raster_output_of<Out, float>
 void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_options& opt = {})
@@ -158,13 +159,14 @@ void angular_filter(const In& z, Out&& out, double cell_m, const angular_filter_
         detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
             detail::require(!detail::overlaps(zv, o), "angular_filter", "out must not overlap z");
             // No neighbour lies further than the raster's extent: a larger radius changes nothing but the cost.
-            const int radius = static_cast<int>(std::min<std::ptrdiff_t>(opt.radius, std::max(zv.rows(), zv.cols())));
+            const int radius =
+                static_cast<int>(std::min<std::ptrdiff_t>(opt.radius_cells, std::max(zv.rows(), zv.cols())));
             parallel_for_rows(
-                o.rows(), 64, opt.threads,
+                o.rows(), 64, opt.run.threads,
                 [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
                     detail::angular_filter_rows(zv, o, cell_m, radius, r0, r1);
                 },
-                {}, "angular_filter");
+                opt.run.progress, "angular_filter");
         });
     });
 }
@@ -178,12 +180,12 @@ raster<float> angular_filter(const In& z, double cell_m, const angular_filter_op
     return out;
 }
 
-/// Angular filter (returning form) over a (2*radius+1)^2 window, on the caller's thread.
-/// Degrees in [0, 90]; NaN centre gives NaN. @throws invalid_input for cell_m <= 0 or radius < 1.
+/// Angular filter (returning form) over a (2*radius_cells+1)^2 window, on the caller's thread.
+/// Degrees in [0, 90]; NaN centre gives NaN. @throws invalid_input for cell_m <= 0 or radius_cells < 1.
 template <raster_input In>
-raster<float> angular_filter(const In& z, double cell_m, int radius = 2)
+raster<float> angular_filter(const In& z, double cell_m, int radius_cells = 2)
 {
-    return angular_filter(z, cell_m, angular_filter_options{.radius = radius});
+    return angular_filter(z, cell_m, angular_filter_options{.radius_cells = radius_cells});
 }
 
 }  // namespace lidarfx

@@ -6,121 +6,27 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
-#include <functional>
 #include <initializer_list>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "lidarfx/core/bit_mask.hpp"
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
-#if defined(__SSE2__) || defined(__AVX2__)
-#include <immintrin.h>
-#endif
-
 namespace lidarfx {
 
 /// Structuring element and execution of the binary morphology functions.
-struct morph_options {
-    int size = 5;     ///< width of the rectangle in cells (columns); odd, >= 1. Default 5.
-    int height = 0;   ///< height of the rectangle in cells (rows); odd, >= 1, or 0 for a square (= size)
-    int threads = 1;  ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+struct morphology_options {
+    int size_cells = 5;    ///< width of the rectangle in cells (columns); odd, >= 1. Default 5.
+    int height_cells = 0;  ///< height of the rectangle in cells (rows); odd, >= 1, or 0 for a square (= size_cells)
+    execution run = {};    ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
 namespace detail {
-
-using mask_word = std::uint64_t;
-
-/// Number of 64-bit words holding `cols` bits.
-constexpr std::ptrdiff_t mask_words(std::ptrdiff_t cols) noexcept
-{
-    return (cols + 63) / 64;
-}
-
-/// Bits of 64 one-byte cells (bit j = cell j is nonzero), without SIMD: 8 cells at a time, flag the
-/// nonzero bytes in their low bit, then gather the 8 flags into the top byte with one multiplication
-/// (no two partial products share a bit).
-template <class T>
-mask_word pack64_portable(const T* src) noexcept
-{
-    static_assert(sizeof(T) == 1);
-    mask_word bits = 0;
-    for (int q = 0; q < 8; ++q) {
-        std::uint64_t v;
-        std::memcpy(&v, src + 8 * q, 8);
-        const std::uint64_t low7 = 0x7f7f7f7f7f7f7f7fULL;
-        const std::uint64_t flags = ((((v & low7) + low7) | v) >> 7) & 0x0101010101010101ULL;
-        bits |= ((flags * 0x0102040810204080ULL) >> 56) << (8 * q);
-    }
-    return bits;
-}
-
-/// Packs a row of `cols` cells into bits (bit j of word w = cell 64w + j is nonzero); bits past `cols`
-/// in the last word are 0.
-template <class T>
-void pack_mask_row(const T* src, std::ptrdiff_t cols, mask_word* dst) noexcept
-{
-    std::ptrdiff_t c = 0, w = 0;
-    if constexpr (sizeof(T) == 1 && std::is_integral_v<T>) {
-        for (; c + 64 <= cols; c += 64, ++w) {
-#if defined(__AVX2__)
-            const __m256i zero = _mm256_setzero_si256();
-            const auto lo = static_cast<std::uint32_t>(_mm256_movemask_epi8(
-                _mm256_cmpeq_epi8(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c)), zero)));
-            const auto hi = static_cast<std::uint32_t>(_mm256_movemask_epi8(
-                _mm256_cmpeq_epi8(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + c + 32)), zero)));
-            dst[w] = ~(mask_word{lo} | (mask_word{hi} << 32));
-#elif defined(__SSE2__)
-            const __m128i zero = _mm_setzero_si128();
-            mask_word zeros = 0;
-            for (int q = 0; q < 4; ++q) {
-                const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + c + 16 * q));
-                zeros |= mask_word{static_cast<std::uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, zero)))} << (16 * q);
-            }
-            dst[w] = ~zeros;
-#else
-            dst[w] = pack64_portable(src + c);
-#endif
-        }
-    }
-    for (; c < cols; c += 64, ++w) {
-        mask_word bits = 0;
-        const std::ptrdiff_t n = std::min<std::ptrdiff_t>(64, cols - c);
-        for (std::ptrdiff_t j = 0; j < n; ++j) bits |= mask_word{src[c + j] != T{}} << j;
-        dst[w] = bits;
-    }
-}
-
-/// Writes the first `cols` bits of `src` as 0/1 bytes.
-inline void unpack_mask_row(const mask_word* src, std::ptrdiff_t cols, std::uint8_t* dst) noexcept
-{
-    std::ptrdiff_t c = 0;
-#if defined(__AVX2__)
-    // 32 bits -> 32 bytes: byte i takes source byte i/8, keeps bit i%8, and becomes 0 or 1.
-    const __m256i spread = _mm256_setr_epi8(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1,  //
-                                            2, 2, 2, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3);
-    const __m256i select = _mm256_set1_epi64x(static_cast<long long>(0x8040201008040201ULL));
-    const __m256i one = _mm256_set1_epi8(1);
-    for (; c + 32 <= cols; c += 32) {
-        const auto bits = static_cast<int>(static_cast<std::uint32_t>(src[c / 64] >> (c % 64)));
-        __m256i v = _mm256_shuffle_epi8(_mm256_set1_epi32(bits), spread);
-        v = _mm256_and_si256(_mm256_cmpeq_epi8(_mm256_and_si256(v, select), select), one);
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + c), v);
-    }
-#endif
-    // Portable: replicate 8 bits into 8 bytes, keep bit i in byte i, and turn each nonzero byte into 1.
-    for (; c + 8 <= cols; c += 8) {
-        const std::uint64_t byte = (src[c / 64] >> (c % 64)) & 0xffU;
-        const std::uint64_t kept = (byte * 0x0101010101010101ULL) & 0x8040201008040201ULL;
-        const std::uint64_t v = ((kept + 0x7f7f7f7f7f7f7f7fULL) >> 7) & 0x0101010101010101ULL;
-        std::memcpy(dst + c, &v, 8);
-    }
-    for (; c < cols; ++c) dst[c] = static_cast<std::uint8_t>((src[c / 64] >> (c % 64)) & 1U);
-}
 
 /// Dilation combines with OR (neutral 0, the value of cells outside the raster), erosion with AND
 /// (neutral 1): padding with the neutral element is exactly "cells outside are ignored".
@@ -132,12 +38,6 @@ struct morph_and {
     static constexpr mask_word neutral = ~mask_word{0};
     static constexpr mask_word apply(mask_word a, mask_word b) noexcept { return a & b; }
 };
-
-/// 64 bits of `a` starting at bit 64 * q + s (0 <= s < 64); reads a[q] and a[q + 1].
-inline mask_word bits_from(const mask_word* a, std::ptrdiff_t q, int s) noexcept
-{
-    return (a[q] >> s) | ((a[q + 1] << 1) << (63 - s));  // the split shift is 0 for s = 0, never UB
-}
 
 /// Horizontal pass on one row: out bit c = Op over in bits [c - k, c + k] clipped to [0, cols).
 /// Doubling: a_L(x) = Op over [x, x + L) is built in place for L = 1, 2, 4, ... up to the largest power
@@ -176,20 +76,6 @@ void morph_row(const mask_word* in, mask_word* out, std::ptrdiff_t cols, std::pt
     const mask_word* ar = a + right / 64;
     for (std::ptrdiff_t i = 0; i < words; ++i) out[i] = Op::apply(bits_from(al, i, sl), bits_from(ar, i, sr));
 }
-
-/// Bit rows of a mask: `rows` rows of `words` words each, contiguous.
-struct bit_rows {
-    std::ptrdiff_t rows = 0, words = 0;
-    std::vector<mask_word> bits;
-    void resize(std::ptrdiff_t r, std::ptrdiff_t w)
-    {
-        rows = r;
-        words = w;
-        bits.resize(static_cast<std::size_t>(r * w));
-    }
-    mask_word* row(std::ptrdiff_t r) noexcept { return bits.data() + r * words; }
-    const mask_word* row(std::ptrdiff_t r) const noexcept { return bits.data() + r * words; }
-};
 
 /// Vertical pass (van Herk / Gil-Werman) over the rows of `in`, rows outside it being neutral: padded
 /// rows p (= row p - k of `in`) are cut into blocks of 2k + 1; `prefix` = Op from the block start to p,
@@ -234,18 +120,18 @@ enum class morph_step { dilate, erode };
 /// output bit is a function of the input alone, so results never depend on strips or threads.
 /// `out` may alias `in` only when the whole raster is one strip (see morph_into).
 template <class T>
-void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const morph_options& opt,
+void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const morphology_options& opt,
                std::initializer_list<morph_step> steps, std::ptrdiff_t strip_rows, const char* function)
 {
     const std::ptrdiff_t rows = in.rows(), cols = in.cols(), words = mask_words(cols);
-    const int height = opt.height == 0 ? opt.size : opt.height;
+    const int height = opt.height_cells == 0 ? opt.size_cells : opt.height_cells;
     // Windows reaching past the whole raster clip to it: cap the radii (keeps scratch small).
-    const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.size / 2, std::max<std::ptrdiff_t>(cols - 1, 0));
+    const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.size_cells / 2, std::max<std::ptrdiff_t>(cols - 1, 0));
     const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(height / 2, std::max<std::ptrdiff_t>(rows - 1, 0));
     const auto depth = static_cast<std::ptrdiff_t>(steps.size());
 
     parallel_for_rows(
-        rows, strip_rows, opt.threads,
+        rows, strip_rows, opt.run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             const auto first_row = [&](std::ptrdiff_t j) { return std::max<std::ptrdiff_t>(0, r0 - (depth - j) * ky); };
             const auto end_row = [&](std::ptrdiff_t j) { return std::min(rows, r1 + (depth - j) * ky); };
@@ -297,55 +183,53 @@ void morph_run(raster_view<const T> in, raster_view<std::uint8_t> out, const mor
                 if (j < depth) std::swap(h, next);
             }
         },
-        {}, function);
+        opt.run.progress, function);
 }
 
 /// Rows per strip: small enough for cache-resident scratch and for load balance, large enough that
 /// the rows recomputed around each strip (`ky` per step on each side) stay a small share.
-inline std::ptrdiff_t morph_strip_rows(std::ptrdiff_t rows, const morph_options& opt, std::size_t steps)
+inline std::ptrdiff_t morph_strip_rows(std::ptrdiff_t rows, const morphology_options& opt, std::size_t steps)
 {
-    const int height = opt.height == 0 ? opt.size : opt.height;
+    const int height = opt.height_cells == 0 ? opt.size_cells : opt.height_cells;
     const std::ptrdiff_t halo = static_cast<std::ptrdiff_t>(steps) * (height / 2);
     return std::min(std::max<std::ptrdiff_t>(rows, 1), std::max<std::ptrdiff_t>(256, 8 * halo));
 }
 
 /// Validates the arguments shared by the four morphology functions.
 template <class A, class B>
-void morph_check(const A& in, const B& out, const morph_options& opt, const char* function)
+void morph_check(const A& in, const B& out, const morphology_options& opt, const char* function)
 {
-    require(opt.size >= 1 && opt.size % 2 == 1, function, "size", "odd and >= 1", opt.size);
-    require(opt.height == 0 || (opt.height >= 1 && opt.height % 2 == 1), function, "height",
-            "0 (square) or odd and >= 1", opt.height);
+    require(opt.size_cells >= 1 && opt.size_cells % 2 == 1, function, "size_cells", "odd and >= 1", opt.size_cells);
+    require(opt.height_cells == 0 || (opt.height_cells >= 1 && opt.height_cells % 2 == 1), function, "height_cells",
+            "0 (square) or odd and >= 1", opt.height_cells);
     require_same_shape(in, out, function, "m", "out");
-    resolve_threads(opt.threads, function);
+    check_execution(opt.run, function);
 }
 
 /// Into form shared by the four functions: validation, then the bit-packed pipeline.
 template <raster_input In, class Out>
-void morph_into(const In& m, Out&& out, const morph_options& opt, std::initializer_list<morph_step> steps,
+void morph_into(const In& m, Out&& out, const morphology_options& opt, std::initializer_list<morph_step> steps,
                 const char* function)
 {
     static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = 1)");
     morph_check(m, out, opt, function);
-    if (m.rows() == 0 || m.cols() == 0) return;
+    if (m.rows() == 0 || m.cols() == 0) {
+        report(opt.run.progress, 1.0, function);
+        return;
+    }
     const readable<In> in(m);
     std::ptrdiff_t strip = morph_strip_rows(m.rows(), opt, steps.size());
     write_through<std::uint8_t>(std::forward<Out>(out), [&](raster_view<std::uint8_t> o) {
         // A strip reads input rows beyond its own: if `out` shares memory with `m`, one strip (all rows)
         // reads everything before writing anything.
-        const auto* in_begin = reinterpret_cast<const unsigned char*>(in.view().data());
-        const auto* in_end =
-            reinterpret_cast<const unsigned char*>(in.view().row(in.view().rows() - 1) + in.view().cols());
-        const auto* out_begin = reinterpret_cast<const unsigned char*>(o.data());
-        const auto* out_end = reinterpret_cast<const unsigned char*>(o.row(o.rows() - 1) + o.cols());
-        if (std::less<>{}(out_begin, in_end) && std::less<>{}(in_begin, out_end)) strip = m.rows();
+        if (overlaps(in.view(), o)) strip = m.rows();
         morph_run(in.view(), o, opt, steps, strip, function);
     });
 }
 
 /// Returning form shared by the four functions.
 template <raster_input In>
-raster<std::uint8_t> morph_new(const In& m, const morph_options& opt, std::initializer_list<morph_step> steps,
+raster<std::uint8_t> morph_new(const In& m, const morphology_options& opt, std::initializer_list<morph_step> steps,
                                const char* function)
 {
     raster<std::uint8_t> out(m.rows(), m.cols(), uninitialized);  // every cell is written
@@ -355,15 +239,15 @@ raster<std::uint8_t> morph_new(const In& m, const morph_options& opt, std::initi
 
 }  // namespace detail
 
-/// Binary dilation: out(r, c) = 1 if any mask cell in the size x height rectangle centred on (r, c) is
-/// nonzero, else 0. The rectangle is clipped at the raster border (cells outside are ignored), so an
-/// all-zero mask stays all zero. Bit-packed 64-cell words: O(rows * cols / 64 * log(size)) plus one
-/// pass to pack and one to unpack; `out` may be `m` itself.
-/// @throws invalid_input if size or height is even or < 1 (height 0 = square), threads < 0, or the
-/// shapes of m and out differ.
+/// Binary dilation: out(r, c) = 1 if any mask cell in the size_cells x height_cells rectangle centred on
+/// (r, c) is nonzero, else 0. The rectangle is clipped at the raster border (cells outside are ignored), so
+/// an all-zero mask stays all zero. Bit-packed 64-cell words: O(rows * cols / 64 * log(size_cells)) plus one
+/// pass to pack and one to unpack; `out` may be `m` itself. Progress is reported between strips of rows.
+/// @throws invalid_input if size_cells or height_cells is even or < 1 (height_cells 0 = square),
+/// run.threads < 0, or the shapes of m and out differ; cancelled if run.progress returns false.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::uint8_t>
-void morph_dilate(const In& m, Out&& out, const morph_options& opt = {})
+void morph_dilate(const In& m, Out&& out, const morphology_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate}, "morph_dilate");
 }
@@ -374,7 +258,7 @@ void morph_dilate(const In& m, Out&& out, const morph_options& opt = {})
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::uint8_t>
-void morph_erode(const In& m, Out&& out, const morph_options& opt = {})
+void morph_erode(const In& m, Out&& out, const morphology_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode}, "morph_erode");
 }
@@ -385,7 +269,7 @@ void morph_erode(const In& m, Out&& out, const morph_options& opt = {})
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::uint8_t>
-void morph_open(const In& m, Out&& out, const morph_options& opt = {})
+void morph_open(const In& m, Out&& out, const morphology_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode, detail::morph_step::dilate},
                        "morph_open");
@@ -396,55 +280,56 @@ void morph_open(const In& m, Out&& out, const morph_options& opt = {})
 /// @throws invalid_input as morph_dilate.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::uint8_t>
-void morph_close(const In& m, Out&& out, const morph_options& opt = {})
+void morph_close(const In& m, Out&& out, const morphology_options& opt = {})
 {
     detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate, detail::morph_step::erode},
                        "morph_close");
 }
 
-/// Returning forms: a new 0/1 raster of m's shape. The `int size` overloads use a size x size square.
+/// Returning forms: a new 0/1 raster of m's shape. The `int size_cells` overloads use a square of that
+/// side on the caller's thread (DESIGN section 2's morph_open(m, 5)).
 template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, const morph_options& opt)
+raster<std::uint8_t> morph_dilate(const In& m, const morphology_options& opt)
 {
     return detail::morph_new(m, opt, {detail::morph_step::dilate}, "morph_dilate");
 }
 template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, int size)
+raster<std::uint8_t> morph_dilate(const In& m, int size_cells)
 {
-    return morph_dilate(m, morph_options{.size = size});
+    return morph_dilate(m, morphology_options{.size_cells = size_cells});
 }
 
 template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, const morph_options& opt)
+raster<std::uint8_t> morph_erode(const In& m, const morphology_options& opt)
 {
     return detail::morph_new(m, opt, {detail::morph_step::erode}, "morph_erode");
 }
 template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, int size)
+raster<std::uint8_t> morph_erode(const In& m, int size_cells)
 {
-    return morph_erode(m, morph_options{.size = size});
+    return morph_erode(m, morphology_options{.size_cells = size_cells});
 }
 
 template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, const morph_options& opt)
+raster<std::uint8_t> morph_open(const In& m, const morphology_options& opt)
 {
     return detail::morph_new(m, opt, {detail::morph_step::erode, detail::morph_step::dilate}, "morph_open");
 }
 template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, int size)
+raster<std::uint8_t> morph_open(const In& m, int size_cells)
 {
-    return morph_open(m, morph_options{.size = size});
+    return morph_open(m, morphology_options{.size_cells = size_cells});
 }
 
 template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, const morph_options& opt)
+raster<std::uint8_t> morph_close(const In& m, const morphology_options& opt)
 {
     return detail::morph_new(m, opt, {detail::morph_step::dilate, detail::morph_step::erode}, "morph_close");
 }
 template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, int size)
+raster<std::uint8_t> morph_close(const In& m, int size_cells)
 {
-    return morph_close(m, morph_options{.size = size});
+    return morph_close(m, morphology_options{.size_cells = size_cells});
 }
 
 }  // namespace lidarfx

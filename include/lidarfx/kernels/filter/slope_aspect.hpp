@@ -21,7 +21,7 @@ namespace lidarfx {
 /// Settings of slope_aspect.
 struct slope_aspect_options {
     double flat_slope_deg = 0.0;  ///< cells with slope <= this (degrees, [0, 90)) are flat: aspect NaN, flat = 1
-    int threads = 1;              ///< worker threads; 0 = all cores; >= 0. Results do not depend on it
+    execution run = {};           ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
 /// Slope, aspect and flat mask of a surface, each with the input's shape.
@@ -183,9 +183,9 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
 /// [0, 360), NaN on flat cells (slope <= flat_slope_deg, flat = 1). At borders and next to NaN cells no cell is
 /// invented: each row (column) pair of the window uses its centred difference, else a one-sided one, else drops
 /// out of the 1-2-1 mean, so planes come out exact everywhere. A NaN centre, or an axis with no difference at all
-/// (a 1-row raster), gives NaN slope and aspect and flat = 0. O(rows * cols).
+/// (a 1-row raster), gives NaN slope and aspect and flat = 0. O(rows * cols); progress between blocks of 64 rows.
 /// @throws invalid_input if shapes differ, cell_m is not finite and > 0, flat_slope_deg is outside [0, 90),
-/// threads < 0, or an output overlaps z or another output.
+/// run.threads < 0, or an output overlaps z or another output; cancelled if run.progress returns false.
 template <raster_input In, class SlopeOut, class AspectOut, class FlatOut>
 requires raster_output_of<SlopeOut, float> && raster_output_of<AspectOut, float> &&
     raster_output_of<FlatOut, std::uint8_t>
@@ -196,7 +196,7 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(opt.flat_slope_deg >= 0.0 && opt.flat_slope_deg < 90.0, fn, "flat_slope_deg", "in [0, 90)",
                     opt.flat_slope_deg);
-    detail::require(opt.threads >= 0, fn, "threads", ">= 0", opt.threads);
+    detail::check_execution(opt.run, fn);
     detail::require_same_shape(z, slope_deg, fn, "z", "slope_deg");
     detail::require_same_shape(z, aspect_deg, fn, "z", "aspect_deg");
     detail::require_same_shape(z, flat, fn, "z", "flat");
@@ -208,11 +208,11 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
                                         !detail::overlaps(s, a) && !detail::overlaps(s, f) && !detail::overlaps(a, f),
                                     fn, "outputs must not overlap z or each other");
                     parallel_for_rows(
-                        zv.rows(), 64, opt.threads,
+                        zv.rows(), 64, opt.run.threads,
                         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
                             detail::slope_aspect_rows(zv, s, a, f, cell_m, opt.flat_slope_deg, r0, r1);
                         },
-                        {}, fn);
+                        opt.run.progress, fn);
                 });
             });
         });

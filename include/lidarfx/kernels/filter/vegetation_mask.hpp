@@ -16,53 +16,65 @@
 namespace lidarfx {
 
 /// Settings of vegetation_mask.
-struct vegetation_options {
-    double height_m = 2.0;  ///< vegetation where max_z - min_z > height_m, metres; finite, >= 0. Default 2 m.
-    int closing_size = 5;   ///< side of the square closing the mask, cells; odd, >= 1 (1 = no closing). Default 5.
-    int threads = 1;        ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+struct vegetation_mask_options {
+    double height_m = 2.0;        ///< vegetation where max_z - min_z > height_m (strictly), metres; finite, >= 0
+    int closing_size_cells = 5;   ///< side of the square closing the mask, cells; odd, >= 1 (1 = no closing)
+    execution run = {};           ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// Vegetation mask of a survey (dissertation 2.3.1): 1 where the vertical spread of a cell's points,
 /// max_z - min_z, exceeds height_m (canopy above ground), 0 elsewhere and where either raster is NaN
-/// (no return); then a morphological closing by a closing_size square (morph_close, clipped at the
-/// border) joins the scattered cells of one canopy. Heights in metres. O(cells).
+/// (no return); then a morphological closing by a closing_size_cells square (morph_close, clipped at the
+/// border) joins the scattered cells of one canopy. Heights in metres. O(cells); progress is reported
+/// between blocks of rows of the threshold (first 20 %) and of the closing.
 /// @throws invalid_input if the shapes of min_z, max_z and out differ, height_m is negative or not
-/// finite, closing_size is even or < 1, or threads < 0.
+/// finite, closing_size_cells is even or < 1, or run.threads < 0; cancelled if run.progress returns false.
 template <raster_input MinZ, raster_input MaxZ, class Out>
     requires raster_output_of<Out, std::uint8_t> && std::is_arithmetic_v<typename MinZ::value_type> &&
              std::is_arithmetic_v<typename MaxZ::value_type>
-void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vegetation_options& opt = {})
+void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vegetation_mask_options& opt = {})
 {
     constexpr const char* function = "vegetation_mask";
     detail::require_same_shape(min_z, max_z, function, "min_z", "max_z");
     detail::require_same_shape(min_z, out, function, "min_z", "out");
     detail::require(opt.height_m >= 0 && opt.height_m <= 1.0e300, function, "height_m", "finite and >= 0",
                     opt.height_m);
-    detail::require(opt.closing_size >= 1 && opt.closing_size % 2 == 1, function, "closing_size", "odd and >= 1",
-                    opt.closing_size);
-    detail::resolve_threads(opt.threads, function);
+    detail::require(opt.closing_size_cells >= 1 && opt.closing_size_cells % 2 == 1, function, "closing_size_cells",
+                    "odd and >= 1", opt.closing_size_cells);
+    detail::check_execution(opt.run, function);
     const detail::readable<MinZ> lo(min_z);
     const detail::readable<MaxZ> hi(max_z);
     detail::write_through<std::uint8_t>(std::forward<Out>(out), [&](raster_view<std::uint8_t> o) {
         const auto a = lo.view();
         const auto b = hi.view();
-        parallel_for_rows(o.rows(), 64, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const bool close = opt.closing_size_cells > 1;
+        // The threshold goes to scratch when a closing follows: closing in place would run as one strip
+        // (morph_* reads every row before writing when out is m), with neither threads nor progress.
+        raster<std::uint8_t> spread_mask = close ? raster<std::uint8_t>(o.rows(), o.cols(), uninitialized)
+                                                 : raster<std::uint8_t>();
+        const raster_view<std::uint8_t> t = close ? spread_mask.view() : o;
+        parallel_for_rows(o.rows(), 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             for (std::ptrdiff_t r = r0; r < r1; ++r) {
                 for (std::ptrdiff_t c = 0; c < o.cols(); ++c) {
                     // A NaN on either side makes the comparison false: no return, no vegetation.
                     const double spread = static_cast<double>(b(r, c)) - static_cast<double>(a(r, c));
-                    o(r, c) = static_cast<std::uint8_t>(spread > opt.height_m);
+                    t(r, c) = static_cast<std::uint8_t>(spread > opt.height_m);
                 }
             }
-        }, {}, function);
-        if (opt.closing_size > 1) morph_close(o, o, morph_options{.size = opt.closing_size, .threads = opt.threads});
+        }, detail::progress_phase(opt.run.progress, 0.0, close ? 0.2 : 1.0), function);
+        if (close) {  // morph_close under this function's name (for a cancellation's message)
+            const morphology_options closing{
+                .size_cells = opt.closing_size_cells,
+                .run = {.threads = opt.run.threads, .progress = detail::progress_phase(opt.run.progress, 0.2, 1.0)}};
+            detail::morph_into(t, o, closing, {detail::morph_step::dilate, detail::morph_step::erode}, function);
+        }
     });
 }
 
 /// Returning form of vegetation_mask: a new 0/1 raster of min_z's shape.
 template <raster_input MinZ, raster_input MaxZ>
     requires std::is_arithmetic_v<typename MinZ::value_type> && std::is_arithmetic_v<typename MaxZ::value_type>
-raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_options& opt = {})
+raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_mask_options& opt = {})
 {
     raster<std::uint8_t> out(min_z.rows(), min_z.cols());
     vegetation_mask(min_z, max_z, out, opt);

@@ -17,23 +17,22 @@
 
 namespace lidarfx {
 
-/// Settings of idw_fill.
-struct idw_options {
+/// Settings of idw_fill (the cell size is an argument of idw_fill, cell_m).
+struct idw_fill_options {
     int k = 8;              ///< data cells averaged per hole, >= 1
     double radius_m = 0;    ///< search radius, metres between cell centres (inclusive, 1e-9 cell slack); 0 = unlimited
     double power = 1.0;     ///< weight exponent: w = 1 / d^power (1 = dissertation eq. 3); finite, > 0
-    double cell_m = 1.0;    ///< cell size, metres; finite, > 0
-    int threads = 1;        ///< worker threads; 0 = all cores; >= 0. Never changes the result.
+    execution run = {};     ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// What idw_fill did to the holes (NaN cells) of its input.
-struct idw_counts {
+struct idw_fill_counts {
     std::size_t filled_cells = 0;    ///< NaN cells given a value
     std::size_t unfilled_cells = 0;  ///< NaN cells with no data cell within radius_m (left NaN)
 };
 
 /// Result of the returning form of idw_fill.
-struct idw_result {
+struct idw_fill_result {
     raster<float> filled;            ///< input with its holes filled; same shape
     std::size_t filled_cells = 0;    ///< NaN cells given a value
     std::size_t unfilled_cells = 0;  ///< NaN cells with no data cell within radius_m (left NaN)
@@ -129,7 +128,7 @@ struct idw_index {
     raster<std::int32_t> next_in_row, next_in_col, first_ring;
 
     template <class T>
-    idw_index(raster_view<const T> z, int threads)
+    idw_index(raster_view<const T> z, int threads, const progress_callback& progress = {})
         : next_in_row(z.rows(), z.cols()), next_in_col(z.rows(), z.cols()), first_ring(z.rows(), z.cols())
     {
         const std::ptrdiff_t rows = z.rows(), cols = z.cols();
@@ -143,7 +142,7 @@ struct idw_index {
                     next[c] = at;
                 }
             }
-        }, {}, "idw_fill");
+        }, progress, "idw_fill");
         for (std::ptrdiff_t r = rows - 1; r >= 0; --r) {
             const T* in = z.row(r);
             std::int32_t* next = next_in_col.row(r);
@@ -233,17 +232,19 @@ void idw_search(raster_view<const T> z, const idw_index& index, std::ptrdiff_t r
     }
 }
 
+/// Fills `out` from `z`. Progress: the search index is the first 5 %, the holes (blocks of 8 rows) the rest.
 template <class T>
-idw_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, const idw_options& opt)
+idw_fill_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, double cell_m,
+                              const idw_fill_options& opt)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-    const std::int64_t reach_d2 = idw_reach_d2(opt.radius_m, opt.cell_m, rows, cols);
-    const idw_index index(z, opt.threads);
+    const std::int64_t reach_d2 = idw_reach_d2(opt.radius_m, cell_m, rows, cols);
+    const idw_index index(z, opt.run.threads, progress_phase(opt.run.progress, 0.0, 0.05));
     constexpr std::ptrdiff_t block = 8;
-    std::vector<idw_counts> per_block(static_cast<std::size_t>((rows + block - 1) / block));
-    parallel_for_rows(rows, block, opt.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    std::vector<idw_fill_counts> per_block(static_cast<std::size_t>((rows + block - 1) / block));
+    parallel_for_rows(rows, block, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         idw_best best(static_cast<std::size_t>(opt.k));
-        idw_counts& counts = per_block[static_cast<std::size_t>(r0 / block)];
+        idw_fill_counts& counts = per_block[static_cast<std::size_t>(r0 / block)];
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const T* in = z.row(r);
             float* o = out.row(r);
@@ -257,14 +258,14 @@ idw_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, const i
                     o[c] = std::numeric_limits<float>::quiet_NaN();
                     ++counts.unfilled_cells;
                 } else {
-                    o[c] = idw_mean(best.items(), opt.cell_m, opt.power);
+                    o[c] = idw_mean(best.items(), cell_m, opt.power);
                     ++counts.filled_cells;
                 }
             }
         }
-    }, {}, "idw_fill");
-    idw_counts total;
-    for (const idw_counts& b : per_block) {
+    }, progress_phase(opt.run.progress, 0.05, 1.0), "idw_fill");
+    idw_fill_counts total;
+    for (const idw_fill_counts& b : per_block) {
         total.filled_cells += b.filled_cells;
         total.unfilled_cells += b.unfilled_cells;
     }
@@ -283,14 +284,14 @@ bool has_finite_cell(raster_view<const T> z) noexcept
     return false;
 }
 
-inline void validate_idw(const idw_options& opt)
+inline void validate_idw(double cell_m, const idw_fill_options& opt)
 {
     require(opt.k >= 1, "idw_fill", "k", ">= 1", opt.k);
     require(opt.radius_m >= 0 && opt.radius_m <= 1.0e300, "idw_fill", "radius_m", "finite and >= 0 (0 = unlimited)",
             opt.radius_m);
     require_positive(opt.power, "idw_fill", "power");
-    require_positive(opt.cell_m, "idw_fill", "cell_m");
-    resolve_threads(opt.threads, "idw_fill");
+    require_positive(cell_m, "idw_fill", "cell_m");
+    check_execution(opt.run, "idw_fill");
 }
 
 template <class In>
@@ -305,36 +306,40 @@ void validate_idw_extent(const In& z)
 
 /// Fills the NaN cells (holes) of an elevation raster by inverse distance weighting of the k nearest data
 /// (finite) cells, dissertation eq. 3: z = sum(w_i z_i) / sum(w_i), w_i = 1 / d_i^power, d_i the distance
-/// between cell centres in metres (cells x cell_m). The neighbours are a brute force's: data cells within
-/// radius_m sorted by (distance, row, col), first k. Data cells are copied; infinite cells are copied but
-/// never used; holes with nothing in reach stay NaN (unfilled). Same bits for any thread count; `out` must
-/// not overlap `z`. Ring search skipping empty rings and runs of holes: per hole O(rings searched + cells
-/// offered), plus a 12-byte-per-cell index. Details in docs/rasters.md.
-/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, threads < 0, or z has
-/// no finite cell ("idw_fill: z has no finite cell to interpolate from").
+/// between cell centres in metres (cells x cell_m, the cell size of z). The neighbours are a brute force's:
+/// data cells within radius_m sorted by (distance, row, col), first k. Data cells are copied; infinite cells
+/// are copied but never used; holes with nothing in reach stay NaN (unfilled). Same bits for any thread
+/// count; `out` must not overlap `z`. Ring search skipping empty rings and runs of holes: per hole
+/// O(rings searched + cells offered), plus a 12-byte-per-cell index. Details in docs/rasters.md.
+/// @throws invalid_input if shapes differ, k < 1, power or cell_m <= 0, radius_m < 0, run.threads < 0, out
+/// overlaps z, or z has no finite cell ("idw_fill: z has no finite cell to interpolate from"); cancelled if
+/// run.progress returns false.
 template <raster_input In, class Out>
     requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type>
-idw_counts idw_fill(const In& z, Out&& out, const idw_options& opt = {})
+idw_fill_counts idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_options& opt = {})
 {
-    detail::validate_idw(opt);
+    detail::validate_idw(cell_m, opt);
     detail::require_same_shape(z, out, "idw_fill", "z", "out");
     detail::validate_idw_extent(z);
     const detail::readable<In> in(z);
     detail::require(detail::has_finite_cell(in.view()), "idw_fill", "z has no finite cell to interpolate from");
-    idw_counts counts;
+    idw_fill_counts counts;
     detail::write_through<float>(std::forward<Out>(out), [&](raster_view<float> o) {
-        counts = detail::idw_fill_view(in.view(), o, opt);
+        // Filled holes written into z would become data for the holes after them.
+        detail::require(!detail::overlaps(in.view(), o), "idw_fill", "out must not overlap z");
+        counts = detail::idw_fill_view(in.view(), o, cell_m, opt);
     });
     return counts;
 }
 
-/// Returning form of idw_fill: a new raster<float> with the holes of `z` filled, and the counts.
+/// Returning form of idw_fill: a new raster<float> with the holes of `z` (cells of cell_m metres) filled,
+/// and the counts.
 template <raster_input In>
     requires std::is_floating_point_v<typename In::value_type>
-idw_result idw_fill(const In& z, const idw_options& opt = {})
+idw_fill_result idw_fill(const In& z, double cell_m, const idw_fill_options& opt = {})
 {
-    idw_result result{raster<float>(z.rows(), z.cols()), 0, 0};
-    const idw_counts counts = idw_fill(z, result.filled, opt);
+    idw_fill_result result{raster<float>(z.rows(), z.cols()), 0, 0};
+    const idw_fill_counts counts = idw_fill(z, result.filled, cell_m, opt);
     result.filled_cells = counts.filled_cells;
     result.unfilled_cells = counts.unfilled_cells;
     return result;

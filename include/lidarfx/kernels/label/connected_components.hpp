@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include "lidarfx/core/bit_mask.hpp"
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
-#include "lidarfx/kernels/filter/morphology.hpp"  // detail::pack_mask_row
 
 namespace lidarfx {
 
@@ -37,11 +37,10 @@ struct components {
 };
 
 /// Settings of connected_components.
-struct components_options {
+struct connected_components_options {
     connectivity conn = connectivity::eight;  ///< neighbourhood of foreground cells; default eight
-    int threads = 1;                          ///< worker threads; 0 = all cores; >= 0. Results do not depend on it.
+    execution run = {};                       ///< threads, progress, cancellation (core/parallel.hpp); same result
 };
-
 
 namespace detail {
 
@@ -289,11 +288,14 @@ void label_band(raster_view<const T> m, std::ptrdiff_t r0, std::ptrdiff_t r1, st
 /// Labels `m` into `labels` (same shape) and returns sizes (see components).
 template <class T>
 std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<std::int32_t> labels,
-                                          const components_options& opt, const char* function)
+                                          const connected_components_options& opt, const char* function)
 {
     const std::ptrdiff_t rows = m.rows(), cols = m.cols(), words = mask_words(cols);
     std::vector<std::size_t> sizes(1, static_cast<std::size_t>(rows * cols));
-    if (rows == 0 || cols == 0) return sizes;
+    if (rows == 0 || cols == 0) {
+        report(opt.run.progress, 1.0, function);
+        return sizes;
+    }
     const std::int32_t reach = opt.conn == connectivity::eight ? 1 : 0;
 
     // Bands of rows are labelled independently (in parallel), then joined along their shared edges.
@@ -301,12 +303,13 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
     constexpr std::ptrdiff_t band_rows = 256;
     const std::ptrdiff_t band_count = (rows + band_rows - 1) / band_rows;
     std::vector<label_band_state> bands(static_cast<std::size_t>(band_count));
+    // Progress: the first pass (packing and linking) costs about as much as the second (writing labels).
     parallel_for_rows(
-        rows, band_rows, opt.threads,
+        rows, band_rows, opt.run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             label_band(m, r0, r1, reach, bands[static_cast<std::size_t>(r0 / band_rows)], labels);
         },
-        {}, function);
+        progress_phase(opt.run.progress, 0.0, 0.5), function);
 
     // One global forest: band b's node ids are offset by the nodes of the bands above it.
     std::vector<std::size_t> offset(bands.size() + 1, 0);
@@ -353,7 +356,7 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
 
     // Second pass: each run's band-local node becomes the final label final_label[offset[b] + node + 1].
     parallel_for_rows(
-        rows, band_rows, opt.threads,
+        rows, band_rows, opt.run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             const std::size_t b = static_cast<std::size_t>(r0 / band_rows);
             const std::int32_t* table = final_label.data() + offset[b] + 1;
@@ -367,7 +370,7 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
                     labels.row(r));
             }
         },
-        {}, function);
+        progress_phase(opt.run.progress, 0.5, 1.0), function);
     return sizes;
 }
 
@@ -378,17 +381,17 @@ std::vector<std::size_t> label_components(raster_view<const T> m, raster_view<st
 /// sizes (sizes[label] = cells, sizes[0] = background cells).
 /// Method: run-based two-pass union-find: runs of each row are linked to touching runs of the row
 /// above (bands of rows in parallel, then joined along their edges), provisional labels are written,
-/// and a second pass maps them to final labels. Identical for any thread count.
-/// O(rows * cols) time; O(number of runs) extra memory.
-/// @throws invalid_input if the shapes differ, threads < 0, m is wider than 2^24 columns, or the mask
-/// has more runs than int32 labels can number.
+/// and a second pass maps them to final labels. Identical for any thread count; progress is reported
+/// between bands of rows. O(rows * cols) time; O(number of runs) extra memory.
+/// @throws invalid_input if the shapes differ, run.threads < 0, m is wider than 2^24 columns, or the mask
+/// has more runs than int32 labels can number; cancelled if run.progress returns false.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::int32_t> std::vector<std::size_t> connected_components(
-    const In& m, Out&& labels, const components_options& opt = {})
+    const In& m, Out&& labels, const connected_components_options& opt = {})
 {
     static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = foreground)");
     constexpr const char* function = "connected_components";
-    detail::resolve_threads(opt.threads, function);
+    detail::check_execution(opt.run, function);
     detail::require_same_shape(m, labels, function, "m", "labels");
     // Run nodes of a band of 256 rows are numbered in int32.
     detail::require(m.cols() <= (std::ptrdiff_t{1} << 24), function, "m", "at most 2^24 columns wide", m.cols());
@@ -402,7 +405,7 @@ requires raster_output_of<Out, std::int32_t> std::vector<std::size_t> connected_
 
 /// Returning form: labels and sizes of the components of m (see the into form above).
 template <raster_input In>
-components connected_components(const In& m, const components_options& opt)
+components connected_components(const In& m, const connected_components_options& opt)
 {
     components result{raster<std::int32_t>(m.rows(), m.cols(), uninitialized), {}};  // every cell is written
     result.sizes = connected_components(m, result.labels, opt);
@@ -413,7 +416,7 @@ components connected_components(const In& m, const components_options& opt)
 template <raster_input In>
 components connected_components(const In& m, connectivity c = connectivity::eight)
 {
-    return connected_components(m, components_options{.conn = c});
+    return connected_components(m, connected_components_options{.conn = c});
 }
 
 /// Renumbers the components by decreasing size: label 1 becomes the largest; equal sizes keep their
@@ -463,8 +466,8 @@ inline std::vector<cell_box> component_bounds(const components& comps)
     return boxes;
 }
 
-/// The mask (as 0/1) without its components of fewer than `min_cells` cells, under connectivity `c`.
-/// min_cells 0 or 1 keeps every component. O(rows * cols).
+/// The mask (as 0/1) keeping only its components of at least `min_cells` cells (inclusive), under
+/// connectivity `c`. min_cells 0 or 1 keeps every component. O(rows * cols).
 template <raster_input In>
 raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells, connectivity c = connectivity::eight)
 {
@@ -481,8 +484,8 @@ raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells,
 /// The mask (as 0/1) with its small holes filled. A hole is a connected component of background cells
 /// that touches no raster edge; background is connected with the complement of `c` (four when the
 /// foreground uses eight, and the reverse), so that holes and objects never cross each other. Holes of
-/// fewer than `max_hole_cells` cells become 1; larger holes and background reaching the border stay 0.
-/// O(rows * cols).
+/// at most `max_hole_cells` cells become 1 (inclusive: 0 fills nothing); larger holes and background
+/// reaching the border stay 0. O(rows * cols).
 template <raster_input In>
 raster<std::uint8_t> fill_holes(const In& m, std::size_t max_hole_cells, connectivity c = connectivity::eight)
 {
@@ -501,7 +504,7 @@ raster<std::uint8_t> fill_holes(const In& m, std::size_t max_hole_cells, connect
     const components holes =
         connected_components(background, c == connectivity::eight ? connectivity::four : connectivity::eight);
     std::vector<std::uint8_t> fill(holes.sizes.size(), 0);
-    for (std::size_t l = 1; l < fill.size(); ++l) fill[l] = holes.sizes[l] < max_hole_cells ? 1 : 0;
+    for (std::size_t l = 1; l < fill.size(); ++l) fill[l] = holes.sizes[l] <= max_hole_cells ? 1 : 0;
     const auto unfill_edge = [&](std::ptrdiff_t r, std::ptrdiff_t col) {
         fill[static_cast<std::size_t>(holes.labels(r, col))] = 0;
     };

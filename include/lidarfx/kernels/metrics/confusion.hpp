@@ -11,11 +11,11 @@
 
 namespace lidarfx {
 
-/// Confusion counts (cells) and the scores derived from them; areas in m² when a cell size is given.
+/// Confusion counts (cells) and the scores derived from them; areas in m² from the cell size.
 struct confusion {
     std::size_t true_positive = 0, false_positive = 0, true_negative = 0, false_negative = 0;
     std::size_t ignored = 0;     ///< cells excluded by the `valid` mask
-    double cell_area_m2 = 1.0;   ///< area of one cell
+    double cell_area_m2 = 1.0;   ///< area of one cell, m² (cell_m² in confusion_counts)
 
     std::size_t total() const noexcept { return true_positive + false_positive + true_negative + false_negative; }
     /// (TP + TN) / all; 0 when there is no cell.
@@ -38,10 +38,10 @@ private:
 };
 
 /// Counts predicted vs truth cell by cell (nonzero = positive). Cells where `valid` is 0 are skipped and
-/// counted in `ignored` (pass an empty view to use every cell). cell_m sets cell_area_m2 = cell_m².
-/// O(cells). @throws invalid_input on shape mismatch or cell_m <= 0.
+/// counted in `ignored` (pass an empty view, the default, to use every cell). cell_m, the cell size in
+/// metres, sets cell_area_m2 = cell_m². O(cells). @throws invalid_input on shape mismatch or cell_m <= 0.
 template <raster_input Pred, raster_input Truth>
-confusion confusion_counts(const Pred& predicted, const Truth& truth, double cell_m = 1.0,
+confusion confusion_counts(const Pred& predicted, const Truth& truth, double cell_m,
                            raster_view<const std::uint8_t> valid = {})
 {
     detail::require_same_shape(predicted, truth, "confusion_counts", "predicted", "truth");

@@ -22,13 +22,12 @@ namespace lidarfx {
 
 /// Settings of rasterize.
 struct rasterize_options {
-    int threads = 1;                      ///< worker threads; 0 = all cores; >= 0. Never changes the result.
     std::size_t chunk_points = 1 << 20;   ///< points per work unit (progress step and parallel split); >= 1
-    progress_callback progress = {};      ///< optional progress / cancellation, called from the caller's thread
+    execution run = {};                   ///< threads, progress, cancellation (core/parallel.hpp); same result
 };
 
 /// The per-cell rasters of a point cloud, all on the grid `g`, plus what happened to the points.
-struct point_rasters {
+struct rasterize_result {
     grid g;                                 ///< georeferencing shared by every raster below
     raster<float> min_z, max_z;             ///< lowest / highest z in the cell, metres; NaN where no point
     raster<float> mean_intensity;           ///< mean intensity of the cell's points; 0 where no point (dropout)
@@ -158,9 +157,9 @@ public:
     }
 
     /// The rasters of every point added so far (the accumulator is unchanged). O(cells).
-    point_rasters finish() const
+    rasterize_result finish() const
     {
-        point_rasters out = unfinished();
+        rasterize_result out = unfinished();
         finish_rows(out, 0, g_.rows);
         return out;
     }
@@ -186,7 +185,7 @@ private:
     }
 
     /// The result with its counters set and rasters allocated; finish_rows fills them.
-    point_rasters unfinished() const
+    rasterize_result unfinished() const
     {
         const auto rows = g_.rows, cols = g_.cols;
         return {g_,
@@ -202,7 +201,7 @@ private:
     }
 
     /// Writes every cell of rows [r0, r1) of `out` (branch-free: empty cells get NaN, 0 and dropout 1).
-    void finish_rows(point_rasters& out, std::ptrdiff_t r0, std::ptrdiff_t r1) const
+    void finish_rows(rasterize_result& out, std::ptrdiff_t r0, std::ptrdiff_t r1) const
     {
         constexpr float nan = std::numeric_limits<float>::quiet_NaN();
         const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
@@ -252,8 +251,8 @@ struct accumulator_access {
     {
         into.merge_counters(from);
     }
-    static point_rasters unfinished(const raster_accumulator& acc) { return acc.unfinished(); }
-    static void finish_rows(const raster_accumulator& acc, point_rasters& out, std::ptrdiff_t r0, std::ptrdiff_t r1)
+    static rasterize_result unfinished(const raster_accumulator& acc) { return acc.unfinished(); }
+    static void finish_rows(const raster_accumulator& acc, rasterize_result& out, std::ptrdiff_t r0, std::ptrdiff_t r1)
     {
         acc.finish_rows(out, r0, r1);
     }
@@ -267,14 +266,16 @@ struct accumulator_access {
 /// counted, never written. Intensities are rounded to multiples of 2^-16 (clamped to +-2^24, NaN as 0) and
 /// summed as 64-bit integers, exact for LAS intensities: any chunking, order or thread count gives the
 /// same bits. O(points + cells); 24 bytes per cell per worker thread. Details in docs/rasters.md.
-/// @throws invalid_input on an invalid grid, chunk_points == 0 or threads < 0; cancelled if progress says so.
+/// Progress is reported after each chunk of chunk_points points (and once more after merging, with threads).
+/// @throws invalid_input on an invalid grid, chunk_points == 0 or run.threads < 0; cancelled if run.progress
+/// returns false.
 template <point_cloud C>
-point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& opt = {})
+rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_options& opt = {})
 {
     constexpr const char* function = "rasterize";
     g.validate(function);
     detail::require(opt.chunk_points >= 1, function, "chunk_points", ">= 1", opt.chunk_points);
-    const int threads = detail::resolve_threads(opt.threads, function);
+    const int threads = detail::resolve_threads(opt.run.threads, function, "run.threads");
     const auto n = static_cast<std::size_t>(cloud.size());
     const std::size_t chunks = std::max<std::size_t>(1, (n + opt.chunk_points - 1) / opt.chunk_points);
     const auto chunk_range = [&](std::size_t k) {
@@ -287,7 +288,7 @@ point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& 
         for (std::size_t k = 0; k < chunks; ++k) {
             const auto [first, last] = chunk_range(k);
             total.add(cloud, first, last);
-            detail::report(opt.progress, static_cast<double>(k + 1) / static_cast<double>(chunks), function);
+            detail::report(opt.run.progress, static_cast<double>(k + 1) / static_cast<double>(chunks), function);
         }
         return total.finish();
     }
@@ -308,7 +309,7 @@ point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& 
             const auto finished = done.fetch_add(1) + 1;
             if (std::this_thread::get_id() == caller) {
                 try {
-                    detail::report(opt.progress, static_cast<double>(finished) / static_cast<double>(chunks + 1),
+                    detail::report(opt.run.progress, static_cast<double>(finished) / static_cast<double>(chunks + 1),
                                    function);
                 } catch (...) {
                     stop = true;
@@ -321,18 +322,18 @@ point_rasters rasterize(const C& cloud, const grid& g, const rasterize_options& 
     // Merge and finish by row bands in parallel: each band folds every part in worker order.
     using access = detail::accumulator_access;
     for (const auto& part : parts) access::merge_counters(total, part);
-    point_rasters out = access::unfinished(total);
+    rasterize_result out = access::unfinished(total);
     const std::ptrdiff_t band = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
     parallel_for_rows(g.rows, band, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         for (const auto& part : parts) access::merge_rows(total, part, r0, r1);
         access::finish_rows(total, out, r0, r1);
     }, {}, function);
-    detail::report(opt.progress, 1.0, function);
+    detail::report(opt.run.progress, 1.0, function);
     return out;
 }
 
 /// Bounding box of the points of `cloud` whose x, y and z are all finite (others are ignored); pass it to
-/// snapped_grid(bounds, cell) for the usual survey grid. O(points).
+/// snapped_grid(bounds, cell_m) for the usual survey grid. O(points).
 /// @throws invalid_input if no point has finite x, y and z (an empty cloud included).
 template <point_cloud C>
 bounds bounds_of(const C& cloud)

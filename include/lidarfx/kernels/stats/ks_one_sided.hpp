@@ -32,7 +32,7 @@ enum class ks_critical {
 };
 
 /// Settings of ks_one_sided.
-struct ks_options {
+struct ks_one_sided_options {
     double alpha = 0.05;                                  ///< significance level, in (0, 1)
     ks_critical critical = ks_critical::documents_table;  ///< how c(alpha) is chosen
 };
@@ -119,13 +119,13 @@ private:
 
 namespace detail {
 
-inline void check_ks_options(const ks_options& opt)
+inline void check_ks_options(const ks_one_sided_options& opt)
 {
     require(opt.alpha > 0 && opt.alpha < 1, "ks_one_sided", "alpha", "in (0, 1)", opt.alpha);
 }
 
 /// c(alpha) for the chosen critical-value convention.
-inline double ks_coefficient(const ks_options& opt) noexcept
+inline double ks_coefficient(const ks_one_sided_options& opt) noexcept
 {
     if (opt.critical == ks_critical::one_sided) return std::sqrt(-std::log(opt.alpha) / 2);
     constexpr std::pair<double, double> table[] = {{0.10, 1.22}, {0.05, 1.36},  {0.025, 1.48},
@@ -136,7 +136,7 @@ inline double ks_coefficient(const ks_options& opt) noexcept
     return std::sqrt(-std::log(opt.alpha / 2) / 2);
 }
 
-inline ks_result ks_finish(double d, std::uint64_t n, std::uint64_t m, const ks_options& opt) noexcept
+inline ks_result ks_finish(double d, std::uint64_t n, std::uint64_t m, const ks_one_sided_options& opt) noexcept
 {
     const auto nn = static_cast<double>(n), mm = static_cast<double>(m);
     const double critical = ks_coefficient(opt) * std::sqrt((nn + mm) / (nn * mm));
@@ -238,7 +238,7 @@ std::vector<std::uint32_t> ks_sorted_keys(const std::vector<T>& values)
 }
 
 template <class A, class B>
-ks_result ks_sorted_path(const A& previous, const B& current, const ks_options& opt)
+ks_result ks_sorted_path(const A& previous, const B& current, const ks_one_sided_options& opt)
 {
     using VA = std::ranges::range_value_t<A>;
     using VB = std::ranges::range_value_t<B>;
@@ -261,7 +261,7 @@ ks_result ks_sorted_path(const A& previous, const B& current, const ks_options& 
 
 /// Integer types of at most 16 bits: histograms of every representable value, O(n + m + 2^bits).
 template <class A, class B>
-ks_result ks_histogram_path(const A& previous, const B& current, const ks_options& opt)
+ks_result ks_histogram_path(const A& previous, const B& current, const ks_one_sided_options& opt)
 {
     using VA = std::ranges::range_value_t<A>;
     using VB = std::ranges::range_value_t<B>;
@@ -295,7 +295,7 @@ inline constexpr bool ks_small_integer = std::is_integral_v<V> && sizeof(V) <= 2
 /// 32-bit integers are radix-sorted, O(n + m); other types sort copies, O((n + m) log(n + m)).
 /// @throws invalid_input if alpha is outside (0, 1) or a sample has no non-NaN value.
 template <ks_sample Previous, ks_sample Current>
-ks_result ks_one_sided(const Previous& previous, const Current& current, const ks_options& opt)
+ks_result ks_one_sided(const Previous& previous, const Current& current, const ks_one_sided_options& opt)
 {
     detail::check_ks_options(opt);
     using VA = std::ranges::range_value_t<Previous>;
@@ -318,13 +318,14 @@ ks_result ks_one_sided(const Previous& previous, const Current& current, const k
 template <ks_sample Previous, ks_sample Current>
 ks_result ks_one_sided(const Previous& previous, const Current& current, double alpha = 0.05)
 {
-    return ks_one_sided(previous, current, ks_options{.alpha = alpha});
+    return ks_one_sided(previous, current, ks_one_sided_options{.alpha = alpha});
 }
 
 /// ks_one_sided on two histograms of the same max_value, O(bins): the test a region-growing caller runs after
 /// each step without re-reading its samples. @throws invalid_input if max_values differ, a histogram is
 /// empty, or alpha is outside (0, 1).
-inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, const ks_options& opt)
+inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current,
+                              const ks_one_sided_options& opt)
 {
     detail::check_ks_options(opt);
     detail::require(previous.max_value() == current.max_value(), "ks_one_sided",
@@ -340,7 +341,7 @@ inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& 
 /// ks_one_sided on two histograms with only the significance level set.
 inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, double alpha = 0.05)
 {
-    return ks_one_sided(previous, current, ks_options{.alpha = alpha});
+    return ks_one_sided(previous, current, ks_one_sided_options{.alpha = alpha});
 }
 
 }  // namespace lidarfx

@@ -33,7 +33,7 @@ struct grow_options {
     double theta_start_deg = 2.0;        ///< first angular threshold θ_0, degrees, >= 0
     double theta_step_deg = 1.0;         ///< increment of θ per step, degrees, > 0
     double theta_max_deg = 30.0;         ///< last threshold, degrees, >= theta_start_deg, <= 90
-    ks_options ks = {};                  ///< one-sided KS test between consecutive regions (α, critical value)
+    ks_one_sided_options ks = {};        ///< one-sided KS test between consecutive regions (α, critical value)
     std::size_t min_ks_samples = 30;     ///< steps are accepted untested until the reference sample has this
                                          ///< many intensity values (a seed of dropouts has none)
     ks_sample_mode sample = ks_sample_mode::increment;  ///< what each step's sample holds (cumulative =

@@ -228,8 +228,10 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
 template <raster_input Mask>
 components water_seeds(const Mask& dropout, int opening_size = 5, std::size_t min_cells = 100, int threads = 1)
 {
-    const auto opened = morph_open(dropout, morph_options{.size = opening_size, .threads = threads});
-    auto seeds = connected_components(opened, components_options{.conn = connectivity::eight, .threads = threads});
+    const auto opened =
+        morph_open(dropout, morphology_options{.size_cells = opening_size, .run = {.threads = threads}});
+    auto seeds = connected_components(
+        opened, connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
     rank_by_size(seeds);
     // Ranked by size: the seeds to keep are the labels 1..kept.
     std::size_t kept = 0;
@@ -559,9 +561,9 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
 
     // 1. Vegetation.
     res.vegetation = vegetation_mask(in.min_z, in.max_z,
-                                     vegetation_options{.height_m = opt.vegetation_height_m,
-                                                        .closing_size = opt.vegetation_closing_size,
-                                                        .threads = opt.threads});
+                                     vegetation_mask_options{.height_m = opt.vegetation_height_m,
+                                                             .closing_size_cells = opt.vegetation_closing_size,
+                                                             .run = {.threads = opt.threads}});
     if (opt.vegetation_from_multiple_returns && !in.multiple_returns.empty()) {
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             const std::uint8_t* multiple = in.multiple_returns.row(r);
@@ -574,9 +576,9 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
 
     // 2. Angular filter of the minimum elevation (into the growing field; moved to the result at the end).
     water_field field;
-    const angular_filter_options af{.radius = opt.angular_radius, .threads = opt.threads};
+    const angular_filter_options af{.radius_cells = opt.angular_radius, .run = {.threads = opt.threads}};
     if (opt.angular_on == angular_input::idw_filled) {
-        const auto filled = idw_fill(in.min_z, idw_options{.cell_m = cell_m, .threads = opt.threads});
+        const auto filled = idw_fill(in.min_z, cell_m, idw_fill_options{.run = {.threads = opt.threads}});
         field.angle_deg = angular_filter(filled.filled, cell_m, af);
     } else {
         field.angle_deg = angular_filter(in.min_z, cell_m, af);
@@ -700,7 +702,7 @@ inline waterbody_result extract_waterbodies(const water_rasters& in, double cell
 }
 
 /// Convenience overload on the output of rasterize().
-inline waterbody_result extract_waterbodies(const point_rasters& pr, const waterbody_options& opt = {})
+inline waterbody_result extract_waterbodies(const rasterize_result& pr, const waterbody_options& opt = {})
 {
     return extract_waterbodies(water_rasters{pr.min_z, pr.max_z, pr.mean_intensity, pr.dropout,
                                              pr.multiple_returns, pr.count},
