@@ -4,6 +4,7 @@
 #pragma once
 
 // core: types, errors, execution
+#include "lidarfx/core/bit_mask.hpp"
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
