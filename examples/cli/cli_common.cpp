@@ -269,7 +269,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         const double fits = round_cell_up(std::sqrt(area / static_cast<double>(total)));
         std::ostringstream why;
         why << total << " points over " << extent.str() << " give " << std::setprecision(2) << points_per_cell
-            << " points per " << cell_m << " m cell: over 99 % of the cells would be empty. Use --cell " << fits
+            << " points per " << std::setprecision(6) << cell_m
+            << " m cell: over 99 % of the cells would be empty. Use --cell " << fits
             << " or more (about one point per cell), --crop to where the points are, or --force";
         throw usage_error(why.str());
     }

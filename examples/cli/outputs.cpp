@@ -26,13 +26,71 @@ raster<float> as_float(raster_view<const T> m)
     return out;
 }
 
-/// Elevation with dropout holes filled, for shaded pictures only.
-raster<float> picture_elevation(const rasterize_result& pr)
+/// Pictures are made from rasters of at most this many cells on the long side: block reductions of the
+/// survey's grid (factor 1 on grids up to this size), so that a picture costs little on any grid.
+constexpr std::ptrdiff_t picture_max_side = 2048;
+
+std::ptrdiff_t picture_factor(const grid& g)
 {
+    const std::ptrdiff_t side = std::max(g.rows, g.cols);
+    return std::max<std::ptrdiff_t>(1, (side + picture_max_side - 1) / picture_max_side);
+}
+
+/// Blocks of f x f cells reduced to one: `reduce(values of the block's cells)`; f = 1 copies.
+template <class T, class Reduce>
+raster<T> block_reduce(raster_view<const T> v, std::ptrdiff_t f, Reduce reduce)
+{
+    if (f == 1) return raster<T>(v);
+    raster<T> out((v.rows() + f - 1) / f, (v.cols() + f - 1) / f);
+    std::vector<T> block;
+    for (std::ptrdiff_t r = 0; r < out.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < out.cols(); ++c) {
+            block.clear();
+            for (std::ptrdiff_t rr = r * f; rr < std::min(v.rows(), (r + 1) * f); ++rr)
+                for (std::ptrdiff_t cc = c * f; cc < std::min(v.cols(), (c + 1) * f); ++cc) block.push_back(v(rr, cc));
+            out(r, c) = reduce(block);
+        }
+    }
+    return out;
+}
+
+/// Lowest finite value of a block (NaN when none).
+float finite_min(const std::vector<float>& block)
+{
+    float m = NAN;
+    for (const float x : block)
+        if (std::isfinite(x) && !(x >= m)) m = x;
+    return m;
+}
+
+/// Mean of the finite values of a block (NaN when none).
+float finite_mean(const std::vector<float>& block)
+{
+    double sum = 0;
+    int n = 0;
+    for (const float x : block)
+        if (std::isfinite(x)) sum += x, ++n;
+    return n ? static_cast<float>(sum / n) : NAN;
+}
+
+/// 1 when at least half of a block's cells are set.
+std::uint8_t mostly_set(const std::vector<std::uint8_t>& block)
+{
+    std::size_t set = 0;
+    for (const auto x : block) set += x != 0;
+    return 2 * set >= block.size();
+}
+
+/// Elevation with dropout holes filled, for shaded pictures only: the picture grid's lowest returns, holes
+/// filled by IDW from the nearest cells within 64 picture cells (farther holes stay NaN and shade flat).
+raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
+{
+    auto z = block_reduce<float>(pr.min_z, f, finite_min);
     bool any = false;
-    for (const auto v : pr.min_z) any |= std::isfinite(v);
-    if (!any) return pr.min_z;
-    return idw_fill(pr.min_z, pr.g.cell, idw_fill_options{.k = 4}).filled;
+    for (const auto v : z) any |= std::isfinite(v);
+    if (!any) return z;
+    const double cell = pr.g.cell * static_cast<double>(f);
+    return idw_fill(z, cell, idw_fill_options{.k = 4, .radius_m = 64 * cell, .run = {.threads = 0}}).filled;
 }
 
 }  // namespace
@@ -82,10 +140,11 @@ void write_point_rasters(io::output_folder& dir, const survey& s)
     const auto png = [&](const std::string& name, const io::rgb_image& img) {
         dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
     };
-    png("min_z.png", io::colorize(pr.min_z));
-    png("mean_intensity.png", io::colorize(pr.mean_intensity));
-    const auto grey = io::hillshade(picture_elevation(pr), pr.g.cell);
-    png("dropout.png", io::overlay_mask(grey, pr.dropout, {255, 40, 40}, 0.8));
+    const auto f = picture_factor(pr.g);
+    png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min)));
+    png("mean_intensity.png", io::colorize(block_reduce<float>(pr.mean_intensity, f, finite_mean)));
+    const auto grey = io::hillshade(picture_elevation(pr, f), pr.g.cell * static_cast<double>(f));
+    png("dropout.png", io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
 }
 
 void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_result& w)
@@ -114,8 +173,10 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_
     write_raster(dir, "water", water, g, s.crs_wkt, s.epsg);
     write_raster(dir, "waterbody_labels", labels, g, s.crs_wkt, s.epsg);
 
-    const auto grey = io::hillshade(picture_elevation(pr), g.cell);
-    const auto overlay = io::overlay_mask(grey, w.water, {30, 110, 255}, 0.65);
+    const auto f = picture_factor(g);
+    const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
+    const auto overlay =
+        io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
     dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
 
     std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
