@@ -261,7 +261,7 @@ inline scene lake_scene(const scene_options& options = {})
     for (std::size_t j = 0; j < 2; ++j) {
         const auto& lake = site.lakes[j];
         double lowest = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 72; ++a) {
+        for (int a = 0; a < 72; ++a) {  // every 5 degrees
             const double theta = a * (std::numbers::pi / 36), c = std::cos(theta), s = std::sin(theta);
             const double r0 = lake.radius_toward(c, s);
             for (double d = 0; d <= internal::lake_site::bank_m; d += 5.0)
