@@ -8,6 +8,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/las_class.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/point_cloud.hpp"
 #include "lidarfx/core/raster.hpp"

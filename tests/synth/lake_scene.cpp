@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 #include <vector>
 
@@ -108,7 +109,7 @@ TEST_CASE("synth/lake_scene: islands over 200 m^2 are land in both masks, smalle
     const auto& t = lake().truth;
     int large = 0, small = 0;
     for (const auto& [x, y, radius, area] : t.islands) {
-        CHECK(area == doctest::Approx(3.141592653589793 * radius * radius));
+        CHECK(area == doctest::Approx(std::numbers::pi * radius * radius));
         const auto centre = t.g.cell_of(x, y);
         REQUIRE(centre);
         CHECK(t.water(centre->row, centre->col) == 0);

@@ -52,8 +52,7 @@ TEST_CASE("synth/scan_square: density is even at the scale of 10 m blocks; strip
     scan_square(size, 0.1, 3, {}, [&](const pulse& p) {
         max_angle = std::max(max_angle, std::abs(p.scan_angle_deg));
         const double centre = (std::floor(p.x / 400) + 0.5) * 400;
-        max_error =
-            std::max(max_error, std::abs(p.scan_angle_deg - std::atan((p.x - centre) / 1000) * 57.29577951308232));
+        max_error = std::max(max_error, std::abs(p.scan_angle_deg - rad_to_deg(std::atan((p.x - centre) / 1000))));
     });
     CHECK(max_error < 1e-9);
     CHECK(max_angle == doctest::Approx(11.31).epsilon(0.01));

@@ -106,7 +106,7 @@ bool same_bits(const raster<T>& a, const raster<T>& b)
            std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(T)) == 0;
 }
 
-inline bool same_planes(const std::vector<roof_plane>& a, const std::vector<roof_plane>& b)
+inline bool same_planes(const std::vector<roof_plane_truth>& a, const std::vector<roof_plane_truth>& b)
 {
     if (a.size() != b.size()) return false;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -147,9 +147,8 @@ inline plane_fit fit_plane(const std::vector<std::array<double, 3>>& pts)
     }
     const double det = sxx * syy - sxy * sxy;
     const double b = (sxz * syy - syz * sxy) / det, c = (syz * sxx - sxz * sxy) / det;
-    constexpr double deg = 57.29577951308232;
-    fit.tilt_deg = std::atan(std::hypot(b, c)) * deg;
-    fit.azimuth_deg = std::fmod(std::atan2(-b, -c) * deg + 360.0, 360.0);
+    fit.tilt_deg = rad_to_deg(std::atan(std::hypot(b, c)));
+    fit.azimuth_deg = std::fmod(rad_to_deg(std::atan2(-b, -c)) + 360.0, 360.0);
     return fit;
 }
 

@@ -93,8 +93,7 @@ TEST_CASE("synth/town_scene: roof points lie on the stated planes (tilt and azim
     for (std::size_t k = 0; k < t.roof_planes.size(); ++k) {
         if (on_plane[k].size() < 20) {
             // Only small faces (hip ends of narrow houses) may lack 20 points well inside them.
-            const double horizontal =
-                t.roof_planes[k].area_m2 * std::cos(t.roof_planes[k].tilt_deg / 57.29577951308232);
+            const double horizontal = t.roof_planes[k].area_m2 * std::cos(deg_to_rad(t.roof_planes[k].tilt_deg));
             large_unchecked += horizontal > 30.0;
             continue;
         }
@@ -114,7 +113,7 @@ TEST_CASE("synth/town_scene: roof points lie on the stated planes (tilt and azim
 TEST_CASE("synth/town_scene: flat, shed, gable and hip roofs; rotations by 15-degree steps and arbitrary")
 {
     const auto& t = town().truth;
-    std::vector<std::vector<roof_plane>> by_building(t.footprints.size());
+    std::vector<std::vector<roof_plane_truth>> by_building(t.footprints.size());
     for (const auto& p : t.roof_planes) by_building[static_cast<std::size_t>(p.building_id - 1)].push_back(p);
     std::size_t flat = 0, shed = 0, gable = 0, hip = 0, stepped = 0, arbitrary = 0;
     for (const auto& planes : by_building) {
@@ -150,7 +149,7 @@ TEST_CASE("synth/town_scene: sloped areas match the counted faces; walls 3-15 m;
     for (std::size_t k = 0; k < t.roof_planes.size(); ++k) {
         const auto& p = t.roof_planes[k];
         const double horizontal = cells_of[k] * t.g.cell * t.g.cell;
-        const double expected = p.area_m2 * std::cos(p.tilt_deg / 57.29577951308232);
+        const double expected = p.area_m2 * std::cos(deg_to_rad(p.tilt_deg));
         // Counting 0.5 m cell centres: error about half a cell along the perimeter (< 10 % + 4 m^2 here).
         area_off += std::abs(horizontal - expected) > 0.1 * expected + 4.0;
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 using namespace lidarfx::synth;
+namespace las_class = lidarfx::las_class;
 
 TEST_CASE("synth/tree: crown surface from the top at the stem down to the crown's middle at its rim")
 {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 using namespace lidarfx::synth;
 
@@ -31,7 +32,7 @@ TEST_CASE("synth/lake_outline: radius matches the harmonic series and stays with
         CHECK(hi <= lake.mean_radius_m * (1 + irregularity) + 1e-9);
         CHECK(hi <= lake.max_radius() + 1e-9);
         // Shore distance: r - R(theta) along any ray, negative inside.
-        const double theta = r.uniform(0, 6.283185307179586), c = std::cos(theta), s = std::sin(theta);
+        const double theta = r.uniform(0, 2 * std::numbers::pi), c = std::cos(theta), s = std::sin(theta);
         const double radius = lake.radius_toward(c, s);
         CHECK(lake.shore_distance(lake.x + (radius - 3) * c, lake.y + (radius - 3) * s) == doctest::Approx(-3));
         CHECK(lake.shore_distance(lake.x + (radius + 5) * c, lake.y + (radius + 5) * s) == doctest::Approx(5));
@@ -66,12 +67,12 @@ TEST_CASE("synth/river_channel: centre line, slope, width range, level and offse
     CHECK(ch.offset(x, y - 10) < 0);
 }
 
-TEST_CASE("synth/island: dome from the rim to the top, nothing outside")
+TEST_CASE("synth/island_truth: dome from the rim to the top, nothing outside")
 {
-    const island isl{10, 20, 8, 2.5};
-    CHECK(isl.area_m2() == doctest::Approx(3.141592653589793 * 64));
-    CHECK(isl.height_above_water(10, 20) == doctest::Approx(island::shore_rise_m + 2.5));
-    CHECK(isl.height_above_water(18, 20) == doctest::Approx(island::shore_rise_m));
+    const island_truth isl{10, 20, 8, 2.5};
+    CHECK(isl.area_m2() == doctest::Approx(std::numbers::pi * 64));
+    CHECK(isl.height_above_water(10, 20) == doctest::Approx(island_truth::shore_rise_m + 2.5));
+    CHECK(isl.height_above_water(18, 20) == doctest::Approx(island_truth::shore_rise_m));
     CHECK(isl.height_above_water(18.01, 20) < 0);
     CHECK(isl.height_above_water(14, 20) > isl.height_above_water(16, 20));
 }

@@ -28,3 +28,19 @@ inline float atan_deg(float x) noexcept
 }
 
 }  // namespace lidarfx::detail
+
+namespace lidarfx {
+
+/// Degrees to radians: deg * (pi / 180), the constant rounded once (pi from <numbers>).
+constexpr double deg_to_rad(double deg) noexcept
+{
+    return deg * (std::numbers::pi / 180);
+}
+
+/// Radians to degrees: rad * (180 / pi), the constant rounded once (pi from <numbers>).
+constexpr double rad_to_deg(double rad) noexcept
+{
+    return rad * (180 / std::numbers::pi);
+}
+
+}  // namespace lidarfx

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "lidarfx/synth/random.hpp"
 
@@ -36,7 +37,7 @@ inline double gradient_noise(double x, double y, std::uint64_t seed) noexcept
     const double n01 = corner(ix, iy + 1, dx, dy - 1.0), n11 = corner(ix + 1, iy + 1, dx - 1.0, dy - 1.0);
     const double u = fade(dx), v = fade(dy);
     const double bottom = n00 + u * (n10 - n00), top = n01 + u * (n11 - n01);
-    return 1.4142135623730951 * (bottom + v * (top - bottom));
+    return std::numbers::sqrt2 * (bottom + v * (top - bottom));
 }
 
 /// A smooth random field over the plane, in metres: the fractal sum of `octaves` gradient noises, octave k

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// point_set: an owning struct-of-arrays point cloud (the points of a synthetic scene) and its LAS classes.
+// point_set: an owning struct-of-arrays point cloud (the points of a synthetic scene).
 #pragma once
 
 #include <algorithm>
@@ -8,19 +8,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "lidarfx/core/las_class.hpp"
 #include "lidarfx/core/point_cloud.hpp"
 
 namespace lidarfx::synth {
 
-/// ASPRS LAS classification codes used by the synthetic scenes (points and the `surface` truth raster).
-namespace las_class {
-inline constexpr std::uint8_t ground = 2, low_vegetation = 3, high_vegetation = 5, building = 6, water = 9,
-                              road_surface = 11, bridge_deck = 17;
-}
-
 /// Owning struct-of-arrays point cloud: coordinates in metres, LAS-style attributes. All vectors have
 /// size() elements; point i is (x[i], y[i], z[i]) with intensity[i], return_number[i] (1-based) of
-/// number_of_returns[i], and classification[i] (las_class codes).
+/// number_of_returns[i], and classification[i] (lidarfx::las_class codes).
 struct point_set {
     std::vector<double> x, y, z;
     std::vector<std::uint16_t> intensity;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/las_class.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/synth/bucket_index.hpp"
 #include "lidarfx/synth/noise.hpp"
@@ -29,17 +30,18 @@ inline constexpr double island_fill_area_m2 = 200.0;
 
 /// The truth of a synthetic scene, sampled at the centres of the cells of `g`.
 struct scene_truth {
-    grid g;                               ///< truth grid: x0 = 0, y0 = size rounded up to whole cells
-    raster<std::uint8_t> water;           ///< 1 = water surface (islands of any size are 0; water under a
-                                          ///< bridge deck is 1)
-    raster<std::uint8_t> water_filled;    ///< water plus islands smaller than island_fill_area_m2
-    raster<std::int32_t> building_id;     ///< footprint holding the cell centre, 1-based; 0 = none
-    raster<std::int32_t> roof_plane_id;   ///< 1 + index into roof_planes of the face above the centre; 0 = none
-    raster<float> ground_z;               ///< bare-earth elevation (water level on water), metres
-    raster<float> water_z;                ///< water surface elevation on water cells, NaN elsewhere
-    raster<std::uint8_t> surface;         ///< las_class of the topmost surface above the cell centre
-    std::vector<roof_plane> roof_planes;  ///< every roof face, grouped by building in id order
-    std::vector<std::vector<std::array<double, 2>>> footprints;  ///< per building id-1: closed clockwise ring
+    grid g;                                     ///< truth grid: x0 = 0, y0 = size rounded up to whole cells
+    raster<std::uint8_t> water;                 ///< 1 = water surface (islands of any size are 0; water under a
+                                                ///< bridge deck is 1)
+    raster<std::uint8_t> water_filled;          ///< water plus islands smaller than island_fill_area_m2
+    raster<std::int32_t> building_id;           ///< footprint holding the cell centre, 1-based; 0 = none
+    raster<std::int32_t> roof_plane_id;         ///< 1 + index into roof_planes of the face above the centre; 0 = none
+    raster<float> ground_z;                     ///< bare-earth elevation (water level on water), metres
+    raster<float> water_z;                      ///< water surface elevation on water cells, NaN elsewhere
+    raster<std::uint8_t> surface;               ///< las_class of the topmost surface above the cell centre
+    std::vector<roof_plane_truth> roof_planes;  ///< every roof face, grouped by building in id order
+    std::vector<std::vector<std::array<double, 2>>> footprints;  ///< per building id-1: closed counter-clockwise
+                                                                 ///< ring (GeoJSON exterior)
     std::vector<std::array<double, 4>> islands;                  ///< (x, y, radius_m, area_m2) of each island
 };
 
@@ -58,7 +60,7 @@ struct site_sample {
     double intensity = 100;                  ///< mean intensity of the land cover (unused on water)
 };
 
-namespace detail {
+namespace internal {
 
 /// A synthetic world: `site(x, y)` gives the site_sample at a point (terrain, water, roads); trees,
 /// buildings and bridge decks stand on top.
@@ -69,7 +71,7 @@ struct world {
     Site site;
     int water_bodies = 0;
     std::vector<tree> trees;
-    std::vector<building> buildings;
+    std::vector<building_truth> buildings;
     std::vector<bridge_deck> bridges;
     std::vector<std::array<double, 4>> islands;
     water_returns water;
@@ -86,7 +88,7 @@ struct top_hit {
 /// Finds the object a pulse meets first: bridge decks, then roofs, then the tallest crown.
 class top_finder {
 public:
-    top_finder(double size_m, const std::vector<tree>& trees, const std::vector<building>& buildings,
+    top_finder(double size_m, const std::vector<tree>& trees, const std::vector<building_truth>& buildings,
                const std::vector<bridge_deck>& bridges)
         : trees_(trees),
           buildings_(buildings),
@@ -129,7 +131,7 @@ public:
 
 private:
     const std::vector<tree>& trees_;
-    const std::vector<building>& buildings_;
+    const std::vector<building_truth>& buildings_;
     const std::vector<bridge_deck>& bridges_;
     bucket_index tree_index_, building_index_;
 };
@@ -263,5 +265,5 @@ scene_truth render_truth(const world<Site>& w, double cell_m)
     return t;
 }
 
-}  // namespace detail
+}  // namespace internal
 }  // namespace lidarfx::synth

@@ -6,11 +6,14 @@
 #include <cmath>
 #include <limits>
 
+#include "lidarfx/core/fast_math.hpp"
+
 namespace lidarfx::synth {
 
-/// A straight strip: centre line through (x, y) heading `azimuth_deg` (clockwise from north), `width_m`
-/// wide, reaching `half_length_m` either way from (x, y) (infinite by default).
-struct strip {
+/// A straight strip of road (or of a bridge deck): centre line through (x, y) heading `azimuth_deg`
+/// (clockwise from north), `width_m` wide, reaching `half_length_m` either way from (x, y) (infinite by
+/// default).
+struct road_strip {
     double x = 0, y = 0;     ///< a point on the centre line (its middle), metres
     double azimuth_deg = 0;  ///< heading of the centre line, clockwise from north
     double width_m = 7;      ///< full width, metres
@@ -19,7 +22,7 @@ struct strip {
     /// (along, across) coordinates of (px, py): along the heading from (x, y), and across to its right.
     std::array<double, 2> local(double px, double py) const noexcept
     {
-        const double a = azimuth_deg * 0.017453292519943295, dx = px - x, dy = py - y;
+        const double a = deg_to_rad(azimuth_deg), dx = px - x, dy = py - y;
         const double s = std::sin(a), c = std::cos(a);
         return {dx * s + dy * c, dx * c - dy * s};
     }
@@ -27,7 +30,7 @@ struct strip {
     /// World point at local (along, across).
     std::array<double, 2> world(double along, double across) const noexcept
     {
-        const double a = azimuth_deg * 0.017453292519943295;
+        const double a = deg_to_rad(azimuth_deg);
         const double s = std::sin(a), c = std::cos(a);
         return {x + along * s + across * c, y + along * c - across * s};
     }
@@ -46,7 +49,7 @@ struct strip {
 /// A flat bridge deck: a strip at elevation `z` (top surface, metres). Pulses over it return from the deck
 /// and never reach the ground or water below.
 struct bridge_deck {
-    strip span;             ///< plan of the deck
+    road_strip span;        ///< plan of the deck
     double z = 0;           ///< deck surface elevation, metres
     double intensity = 80;  ///< mean intensity of the deck surface
 };

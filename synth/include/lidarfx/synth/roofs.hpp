@@ -7,31 +7,35 @@
 #include <cstdint>
 #include <vector>
 
+#include "lidarfx/core/fast_math.hpp"
+
 namespace lidarfx::synth {
 
 /// One planar roof face of a building, as recorded in the scene truth.
-struct roof_plane {
+struct roof_plane_truth {
     std::int32_t building_id = 0;  ///< id of the building (1-based, as in the building_id raster)
     double tilt_deg = 0;           ///< 0 horizontal .. 90 vertical
     double azimuth_deg = 0;        ///< down-slope direction, clockwise from north, [0, 360); 0 when tilt is 0
     double area_m2 = 0;            ///< sloped (true) area = horizontal area / cos(tilt), m^2
 };
 
-/// Roof shapes. Gable ridges and hip ridges run along the footprint's long axis; a hip roof has the same
-/// tilt on its four faces, so its ridge is length - width long (a pyramid on a square).
-enum class roof_kind { flat, shed, gable, hip };
+/// Roof shapes of the synthetic buildings. Gable ridges and hip ridges run along the footprint's long
+/// axis; a hip roof has the same tilt on its four faces, so its ridge is length - width long (a pyramid
+/// on a square).
+enum class roof_kind_truth { flat, shed, gable, hip };
 
-/// A building: a length x width rectangle (length >= width) centred at (x, y) whose long axis points to
-/// `axis_azimuth_deg` (clockwise from north), walls up to `eave_z` (absolute elevation), and a roof.
+/// A synthetic building, as built and as stated in the truth: a length x width rectangle (length >=
+/// width) centred at (x, y) whose long axis points to `axis_azimuth_deg` (clockwise from north), walls up
+/// to `eave_z` (absolute elevation), and a roof.
 /// Local axes: u along the long axis, v = u turned 90 degrees clockwise; faces are numbered in the order
 /// of planes(): gable 0 faces +v and 1 faces -v; hip adds 2 facing +u and 3 facing -u; a shed faces
 /// `shed_facing` (0 +v, 1 -v, 2 +u, 3 -u).
-struct building {
+struct building_truth {
     std::int32_t id = 1;  ///< 1-based id
     double x = 0, y = 0;  ///< footprint centre, metres
     double length_m = 12, width_m = 8;
     double axis_azimuth_deg = 0;  ///< direction of the long axis, clockwise from north
-    roof_kind kind = roof_kind::gable;
+    roof_kind_truth kind = roof_kind_truth::gable;
     double tilt_deg = 30;   ///< roof tilt of every face (ignored for flat roofs)
     int shed_facing = 0;    ///< facing of a shed roof, 0..3 (see above)
     double eave_z = 10;     ///< elevation of the eaves (top of the walls), metres
@@ -40,7 +44,7 @@ struct building {
     /// Local coordinates (along u, along v) of world point (px, py).
     std::array<double, 2> local(double px, double py) const noexcept
     {
-        const double a = axis_azimuth_deg * 0.017453292519943295;
+        const double a = deg_to_rad(axis_azimuth_deg);
         const double su = std::sin(a), cu = std::cos(a), dx = px - x, dy = py - y;
         return {dx * su + dy * cu, dx * cu - dy * su};
     }
@@ -63,19 +67,19 @@ struct building {
     roof_hit roof_at(double px, double py) const noexcept
     {
         const auto [pu, pv] = local(px, py);
-        const double slope = std::tan(tilt_deg * 0.017453292519943295);
+        const double slope = std::tan(deg_to_rad(tilt_deg));
         const double to_long_edge = 0.5 * width_m - std::abs(pv), to_short_edge = 0.5 * length_m - std::abs(pu);
         switch (kind) {
-            case roof_kind::flat:
+            case roof_kind_truth::flat:
                 return {eave_z, 0};
-            case roof_kind::shed: {
+            case roof_kind_truth::shed: {
                 const double along = shed_facing == 0 ? pv : shed_facing == 1 ? -pv : shed_facing == 2 ? pu : -pu;
                 const double half = shed_facing < 2 ? 0.5 * width_m : 0.5 * length_m;
                 return {eave_z + slope * (half - along), 0};
             }
-            case roof_kind::gable:
+            case roof_kind_truth::gable:
                 return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
-            case roof_kind::hip:
+            case roof_kind_truth::hip:
                 if (to_long_edge <= to_short_edge) return {eave_z + slope * to_long_edge, pv >= 0 ? 0 : 1};
                 return {eave_z + slope * to_short_edge, pu >= 0 ? 2 : 3};
         }
@@ -83,22 +87,22 @@ struct building {
     }
 
     /// The roof faces with tilt, facing azimuth and sloped area, in face order.
-    std::vector<roof_plane> planes() const
+    std::vector<roof_plane_truth> planes() const
     {
-        const double cos_tilt = std::cos(tilt_deg * 0.017453292519943295);
+        const double cos_tilt = std::cos(deg_to_rad(tilt_deg));
         const auto facing = [&](double offset) { return std::fmod(axis_azimuth_deg + offset + 720.0, 360.0); };
         const double l = length_m, w = width_m;
         switch (kind) {
-            case roof_kind::flat:
+            case roof_kind_truth::flat:
                 return {{id, 0.0, 0.0, l * w}};
-            case roof_kind::shed: {
+            case roof_kind_truth::shed: {
                 static constexpr double offsets[] = {90, 270, 0, 180};
                 return {{id, tilt_deg, facing(offsets[shed_facing]), l * w / cos_tilt}};
             }
-            case roof_kind::gable:
+            case roof_kind_truth::gable:
                 return {{id, tilt_deg, facing(90), 0.5 * l * w / cos_tilt},
                         {id, tilt_deg, facing(270), 0.5 * l * w / cos_tilt}};
-            case roof_kind::hip: {
+            case roof_kind_truth::hip: {
                 const double side = 0.25 * (2 * l - w) * w / cos_tilt, end = 0.25 * w * w / cos_tilt;
                 return {{id, tilt_deg, facing(90), side},
                         {id, tilt_deg, facing(270), side},
@@ -109,19 +113,19 @@ struct building {
         return {};
     }
 
-    /// Footprint as a closed clockwise ring (x, y), first corner repeated at the end (Boost.Geometry's
-    /// default polygon orientation).
+    /// Footprint as a closed counter-clockwise ring of (x, y), x east and y north, first corner repeated
+    /// at the end: the exterior ring of a GeoJSON (RFC 7946) polygon, the library's one orientation.
     std::vector<std::array<double, 2>> footprint() const
     {
-        const double a = axis_azimuth_deg * 0.017453292519943295;
+        const double a = deg_to_rad(axis_azimuth_deg);
         const std::array<double, 2> u{0.5 * length_m * std::sin(a), 0.5 * length_m * std::cos(a)};
         const std::array<double, 2> v{0.5 * width_m * std::cos(a), -0.5 * width_m * std::sin(a)};
-        // With the long axis north, +u+v, -u+v, -u-v, +u-v are NE, SE, SW, NW: clockwise, and a rotation
-        // keeps the orientation.
+        // With the long axis north, +u+v, +u-v, -u-v, -u+v are NE, NW, SW, SE: counter-clockwise, and a
+        // rotation keeps the orientation.
         std::vector<std::array<double, 2>> ring{{x + u[0] + v[0], y + u[1] + v[1]},
-                                                {x - u[0] + v[0], y - u[1] + v[1]},
+                                                {x + u[0] - v[0], y + u[1] - v[1]},
                                                 {x - u[0] - v[0], y - u[1] - v[1]},
-                                                {x + u[0] - v[0], y + u[1] - v[1]}};
+                                                {x - u[0] + v[0], y - u[1] + v[1]}};
         ring.push_back(ring.front());
         return ring;
     }

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/synth/random.hpp"
 
 namespace lidarfx::synth {
@@ -46,7 +47,7 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
     lidarfx::detail::require(pattern.along_jitter >= 0 && pattern.along_jitter <= 0.15, fn, "along_jitter",
                              "in [0, 0.15]", pattern.along_jitter);
 
-    const double swath = 2.0 * pattern.flying_height_m * std::tan(pattern.max_scan_angle_deg * 0.017453292519943295);
+    const double swath = 2.0 * pattern.flying_height_m * std::tan(deg_to_rad(pattern.max_scan_angle_deg));
     const auto strips = static_cast<long long>(std::max(1.0, std::ceil(size_m / swath - 1e-9)));
     const double strip_width = size_m / static_cast<double>(strips);
     const double spacing = 1.0 / std::sqrt(density_per_m2);
@@ -54,7 +55,6 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
     const auto per_line = static_cast<long long>(std::max(1.0, std::round(strip_width / spacing)));
     const double along = size_m / static_cast<double>(lines);
     const double across = strip_width / static_cast<double>(per_line);
-    constexpr double degrees = 57.29577951308232;
 
     rng random(seed, 0x5CA9);
     for (long long s = 0; s < strips; ++s) {
@@ -71,7 +71,7 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
                 const double x =
                     x_left + (static_cast<double>(j) + 0.5 + pattern.across_jitter * random.triangular()) * across;
                 const double y = (static_cast<double>(line) + dy + pattern.along_jitter * random.triangular()) * along;
-                emit(pulse{x, y, std::atan((x - x_flight) / pattern.flying_height_m) * degrees});
+                emit(pulse{x, y, rad_to_deg(std::atan((x - x_flight) / pattern.flying_height_m))});
             }
         }
     }

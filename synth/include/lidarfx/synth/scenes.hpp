@@ -7,9 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/las_class.hpp"
 #include "lidarfx/synth/noise.hpp"
 #include "lidarfx/synth/point_set.hpp"
 #include "lidarfx/synth/random.hpp"
@@ -29,7 +32,7 @@ struct scene_options {
     double truth_cell_m = 2.0;    ///< cell of the truth rasters, metres, > 0
 };
 
-namespace detail {
+namespace internal {
 
 inline void validate(const scene_options& o, const char* fn)
 {
@@ -94,8 +97,8 @@ struct lake_site : ground_fields {
     double coves_m = 5.0;               ///< amplitude of the small-scale shoreline wiggle, metres
     std::array<lake_outline, 2> lakes;  ///< the lake (0) and the pond (1)
     std::array<double, 2> levels{};     ///< water level of each
-    std::vector<island> islands;        ///< all in lake 0
-    strip road;
+    std::vector<island_truth> islands;  ///< all in lake 0
+    road_strip road;
     static constexpr double bank_m = 50;  ///< width of the band where the terrain bends to a bank
 
     double terrain(double x, double y) const { return base_z + relief_m * relief(x, y); }
@@ -149,7 +152,7 @@ struct lake_site : ground_fields {
 struct river_site : ground_fields {
     double size_m = 640;
     river_channel channel;
-    strip road;  ///< infinite road through the bridge; along = 0 at the deck centre
+    road_strip road;  ///< infinite road through the bridge; along = 0 at the deck centre
     double deck_half_length_m = 30;
     double deck_z = 0;
     static constexpr double ramp_slope = 0.06, embankment_slope = 0.5;
@@ -186,7 +189,7 @@ struct river_site : ground_fields {
 /// Town scene ground: gently undulating, with a grid of roads.
 struct town_site : ground_fields {
     double base_z = 50, relief_m = 2.0;
-    std::vector<strip> roads;
+    std::vector<road_strip> roads;
 
     double terrain(double x, double y) const { return base_z + relief_m * relief(x, y); }
 
@@ -231,7 +234,7 @@ std::vector<tree> site_trees(const world<Site>& w, rng& random, double spacing_m
                          [&](double x, double y) { return w.site(x, y).z; });
 }
 
-}  // namespace detail
+}  // namespace internal
 
 /// Lake scene: rolling terrain (about 30 m of relief over 640 m) with one large irregular lake (mean
 /// radius 0.22 size) and a pond (0.06 size), flat water below banks that rise 0.3 m at the shoreline and
@@ -245,7 +248,7 @@ std::vector<tree> site_trees(const world<Site>& w, rng& random, double spacing_m
 /// would exceed 1e9 pulses or 2.5e8 truth cells.
 inline scene lake_scene(const scene_options& options = {})
 {
-    auto w = detail::new_world<detail::lake_site>(options, "lake_scene", 0x1A4E, 320.0);
+    auto w = internal::new_world<internal::lake_site>(options, "lake_scene", 0x1A4E, 320.0);
     const double S = w.size_m;
     rng random(w.seed, 10);
     auto& site = w.site;
@@ -258,25 +261,25 @@ inline scene lake_scene(const scene_options& options = {})
     for (std::size_t j = 0; j < 2; ++j) {
         const auto& lake = site.lakes[j];
         double lowest = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 72; ++a) {
-            const double theta = a * 0.08726646259971647, c = std::cos(theta), s = std::sin(theta);
+        for (int a = 0; a < 72; ++a) {  // every 5 degrees
+            const double theta = a * (std::numbers::pi / 36), c = std::cos(theta), s = std::sin(theta);
             const double r0 = lake.radius_toward(c, s);
-            for (double d = 0; d <= detail::lake_site::bank_m; d += 5.0)
+            for (double d = 0; d <= internal::lake_site::bank_m; d += 5.0)
                 lowest = std::min(lowest, site.terrain(lake.x + (r0 + d) * c, lake.y + (r0 + d) * s));
         }
         site.levels[j] = lowest - 1.0;
     }
-    site.road = strip{0.0, S * 0.06, 90.0 + 2.0 * random.triangular(), 7.0};
+    site.road = road_strip{0.0, S * 0.06, 90.0 + 2.0 * random.triangular(), 7.0};
 
     const auto place_islands = [&](int count, double min_area, double max_area, double min_h, double max_h) {
         const auto& lake = site.lakes[0];
         for (int k = 0; k < count; ++k) {
             for (int attempt = 0; attempt < 300; ++attempt) {
-                const double area = random.uniform(min_area, max_area), r = std::sqrt(area / 3.141592653589793);
+                const double area = random.uniform(min_area, max_area), r = std::sqrt(area / std::numbers::pi);
                 const double x = lake.x + random.uniform(-1.0, 1.0) * lake.max_radius();
                 const double y = lake.y + random.uniform(-1.0, 1.0) * lake.max_radius();
                 if (lake.shore_distance(x, y) > -(r + 12.0)) continue;
-                const bool clear = std::all_of(site.islands.begin(), site.islands.end(), [&](const island& o) {
+                const bool clear = std::all_of(site.islands.begin(), site.islands.end(), [&](const island_truth& o) {
                     return std::hypot(o.x - x, o.y - y) > o.radius_m + r + 12.0;
                 });
                 if (!clear) continue;
@@ -291,17 +294,17 @@ inline scene lake_scene(const scene_options& options = {})
     w.water_bodies = 2;
 
     rng tree_random(w.seed, 11);
-    w.trees = detail::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
+    w.trees = internal::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
         for (const auto& isl : site.islands) {
             const double rho = std::hypot(x - isl.x, y - isl.y);
             if (rho < isl.radius_m + rc + 1.5)
                 return isl.area_m2() >= island_fill_area_m2 && rho + rc + 1.0 <= isl.radius_m ? 0.35 : 0.0;
         }
         const auto shores = site.shores(x, y);
-        return detail::bank_trees{}.probability(std::min(shores[0], shores[1]), site.road.edge_distance(x, y), rc,
-                                                site.woods(x, y));
+        return internal::bank_trees{}.probability(std::min(shores[0], shores[1]), site.road.edge_distance(x, y), rc,
+                                                  site.woods(x, y));
     });
-    return detail::render(w, options);
+    return internal::render(w, options);
 }
 
 /// River scene: a river 15-40 m wide meandering west to east, its level falling 1.5 m per 640 m, in a
@@ -312,7 +315,7 @@ inline scene lake_scene(const scene_options& options = {})
 /// @throws invalid_input as lake_scene.
 inline scene river_scene(const scene_options& options = {})
 {
-    auto w = detail::new_world<detail::river_site>(options, "river_scene", 0x71FE, 260.0);
+    auto w = internal::new_world<internal::river_site>(options, "river_scene", 0x71FE, 260.0);
     const double S = w.size_m;
     rng random(w.seed, 10);
     auto& site = w.site;
@@ -333,7 +336,7 @@ inline scene river_scene(const scene_options& options = {})
     for (double x = 0.45 * S; x <= 0.75 * S; x += 0.5) {
         if (std::abs(ch.centre_slope(x)) < std::abs(ch.centre_slope(xb))) xb = x;
     }
-    strip axis{xb, ch.centre_y(xb), std::atan2(-ch.centre_slope(xb), 1.0) * 57.29577951308232, 7.0};
+    road_strip axis{xb, ch.centre_y(xb), rad_to_deg(std::atan2(-ch.centre_slope(xb), 1.0)), 7.0};
     const auto last_water = [&](double direction) {
         double last = 0;
         for (double t = 0; t < 0.5 * S && t < last + 20.0; t += 0.5) {
@@ -344,20 +347,20 @@ inline scene river_scene(const scene_options& options = {})
     };
     const double ahead = last_water(1.0) + 12.0, behind = last_water(-1.0) + 12.0;
     const auto centre = axis.world(0.5 * (ahead - behind), 0.0);
-    site.road = strip{centre[0], centre[1], axis.azimuth_deg, 7.0};
+    site.road = road_strip{centre[0], centre[1], axis.azimuth_deg, 7.0};
     site.deck_half_length_m = 0.5 * (ahead + behind);
     site.deck_z = ch.level(xb) + random.uniform(5.5, 7.5);
-    w.bridges.push_back({strip{centre[0], centre[1], axis.azimuth_deg, 8.0, site.deck_half_length_m}, site.deck_z,
+    w.bridges.push_back({road_strip{centre[0], centre[1], axis.azimuth_deg, 8.0, site.deck_half_length_m}, site.deck_z,
                          random.uniform(60.0, 100.0)});
 
     rng tree_random(w.seed, 11);
-    w.trees = detail::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
+    w.trees = internal::site_trees(w, tree_random, 7.0, tree_size{}, [&](double x, double y, double rc) {
         // Wider clearance from the road: its embankments.
-        const detail::bank_trees rules{.bank_m = 25, .woods_above = 0.25, .in_woods = 0.6, .road_gap_m = 10};
+        const internal::bank_trees rules{.bank_m = 25, .woods_above = 0.25, .in_woods = 0.6, .road_gap_m = 10};
         return rules.probability(std::abs(ch.offset(x, y)) - 0.5 * ch.width(x), site.road.edge_distance(x, y), rc,
                                  site.woods(x, y));
     });
-    return detail::render(w, options);
+    return internal::render(w, options);
 }
 
 /// Town scene: gently undulating ground (about 2 m of relief) with a grid of 10 m roads every ~160 m,
@@ -369,15 +372,15 @@ inline scene river_scene(const scene_options& options = {})
 /// @throws invalid_input as lake_scene.
 inline scene town_scene(const scene_options& options = {})
 {
-    auto w = detail::new_world<detail::town_site>(options, "town_scene", 0x70AB, 300.0);
+    auto w = internal::new_world<internal::town_site>(options, "town_scene", 0x70AB, 300.0);
     const double S = w.size_m;
     rng random(w.seed, 10);
     auto& site = w.site;
     const int road_count = std::max(1, static_cast<int>(std::lround(S / 160.0)));
     for (int k = 0; k < road_count; ++k) {
         const double p = (k + 0.5) * S / road_count;
-        site.roads.push_back(strip{p, 0.5 * S, 0.0, 10.0});
-        site.roads.push_back(strip{0.5 * S, p, 90.0, 10.0});
+        site.roads.push_back(road_strip{p, 0.5 * S, 0.0, 10.0});
+        site.roads.push_back(road_strip{0.5 * S, p, 90.0, 10.0});
     }
     const auto road_clearance = [&](double x, double y) {
         double nearest = std::numeric_limits<double>::infinity();
@@ -389,7 +392,7 @@ inline scene town_scene(const scene_options& options = {})
     const auto first_kind = static_cast<std::size_t>(random.below(4));
     for (int attempt = 0; attempt < 400 * std::max(1, target) && static_cast<int>(w.buildings.size()) < target;
          ++attempt) {
-        building b;
+        building_truth b;
         b.width_m = random.uniform(8.0, 16.0);
         b.length_m = std::min(32.0, b.width_m * random.uniform(1.0, 2.0));
         b.axis_azimuth_deg = random.chance(0.5) ? 15.0 * random.between(0, 11) : random.uniform(0.0, 180.0);
@@ -397,16 +400,16 @@ inline scene town_scene(const scene_options& options = {})
         const double kind = w.buildings.size() < 4
                                 ? (static_cast<double>((first_kind + w.buildings.size()) % 4) + 0.5) / 4.0
                                 : random.uniform();
-        b.kind = kind < 0.2    ? roof_kind::flat
-                 : kind < 0.4  ? roof_kind::shed
-                 : kind < 0.75 ? roof_kind::gable
-                               : roof_kind::hip;
-        b.tilt_deg = b.kind == roof_kind::flat    ? 0.0
-                     : b.kind == roof_kind::shed  ? random.uniform(5.0, 25.0)
-                     : b.kind == roof_kind::gable ? random.uniform(20.0, 45.0)
-                                                  : random.uniform(20.0, 40.0);
+        b.kind = kind < 0.2    ? roof_kind_truth::flat
+                 : kind < 0.4  ? roof_kind_truth::shed
+                 : kind < 0.75 ? roof_kind_truth::gable
+                               : roof_kind_truth::hip;
+        b.tilt_deg = b.kind == roof_kind_truth::flat    ? 0.0
+                     : b.kind == roof_kind_truth::shed  ? random.uniform(5.0, 25.0)
+                     : b.kind == roof_kind_truth::gable ? random.uniform(20.0, 45.0)
+                                                        : random.uniform(20.0, 40.0);
         b.shed_facing = random.between(0, 3);
-        const double wall = b.kind == roof_kind::flat ? random.uniform(3.0, 15.0) : random.uniform(3.0, 9.0);
+        const double wall = b.kind == roof_kind_truth::flat ? random.uniform(3.0, 15.0) : random.uniform(3.0, 9.0);
         b.intensity = random.uniform(40.0, 110.0);
         // Houses front onto the streets: set back 4-12 m from the edge of a random road.
         const double r = b.bounding_radius();
@@ -417,7 +420,7 @@ inline scene town_scene(const scene_options& options = {})
         b.y = spot[1];
         if (b.x < r + 4 || b.y < r + 4 || b.x > S - r - 4 || b.y > S - r - 4) continue;
         if (road_clearance(b.x, b.y) < r + 4) continue;
-        const bool clear = std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building& o) {
+        const bool clear = std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building_truth& o) {
             return std::hypot(o.x - b.x, o.y - b.y) > o.bounding_radius() + r + 4;
         });
         if (!clear) continue;
@@ -429,7 +432,7 @@ inline scene town_scene(const scene_options& options = {})
     // Trees never overhang roofs or roads, so every roof point belongs to its roof.
     const auto tree_fits = [&](double x, double y, double rc) {
         if (x < 0 || y < 0 || x > S || y > S || road_clearance(x, y) < rc + 1.0) return false;
-        return std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building& o) {
+        return std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building_truth& o) {
             return std::hypot(o.x - x, o.y - y) > o.bounding_radius() + rc + 1.0;
         });
     };
@@ -439,7 +442,7 @@ inline scene town_scene(const scene_options& options = {})
         const int count = tree_random.chance(0.4) ? tree_random.between(1, 3) : 0;
         for (int k = 0; k < count; ++k) {
             tree t;
-            const double angle = tree_random.uniform(0.0, 6.283185307179586);
+            const double angle = tree_random.uniform(0.0, 2 * std::numbers::pi);
             t.crown_radius_m = tree_random.uniform(sizes.min_radius_m, sizes.max_radius_m);
             const double distance = b.bounding_radius() + t.crown_radius_m + tree_random.uniform(1.5, 6.0);
             t.x = b.x + distance * std::sin(angle);
@@ -452,10 +455,10 @@ inline scene town_scene(const scene_options& options = {})
             w.trees.push_back(t);
         }
     }
-    const auto park = detail::site_trees(
+    const auto park = internal::site_trees(
         w, tree_random, 9.0, sizes, [&](double x, double y, double rc) { return tree_fits(x, y, rc) ? 0.03 : 0.0; });
     w.trees.insert(w.trees.end(), park.begin(), park.end());
-    return detail::render(w, options);
+    return internal::render(w, options);
 }
 
 }  // namespace lidarfx::synth

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "lidarfx/core/las_class.hpp"
 #include "lidarfx/synth/point_set.hpp"
 #include "lidarfx/synth/random.hpp"
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "lidarfx/synth/random.hpp"
 
@@ -86,7 +87,7 @@ struct river_channel {
     double level_west_z = 50;                 ///< water level at x = 0, metres
     double level_drop_per_m = 1.5 / 640;      ///< fall of the water level per metre eastwards
 
-    static constexpr double two_pi = 6.283185307179586;
+    static constexpr double two_pi = 2 * std::numbers::pi;
 
     /// Northing of the centre line at easting x.
     double centre_y(double x) const noexcept
@@ -126,15 +127,15 @@ struct river_channel {
     }
 };
 
-/// A round island (or rock) in a lake: a dome rising from `shore_rise_m` above the water at its rim to
-/// shore_rise_m + height_m at its centre.
-struct island {
+/// A synthetic round island (or rock) in a lake: a dome rising from `shore_rise_m` above the water at its
+/// rim to shore_rise_m + height_m at its centre.
+struct island_truth {
     double x = 0, y = 0;   ///< centre, metres
     double radius_m = 10;  ///< radius, metres
     double height_m = 2;   ///< dome height above the rim, metres
     static constexpr double shore_rise_m = 0.25;
 
-    double area_m2() const noexcept { return 3.141592653589793 * radius_m * radius_m; }
+    double area_m2() const noexcept { return std::numbers::pi * radius_m * radius_m; }
 
     /// Height above the water level at (px, py), or a negative number off the island.
     double height_above_water(double px, double py) const noexcept
