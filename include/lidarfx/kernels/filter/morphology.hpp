@@ -237,99 +237,61 @@ raster<std::uint8_t> morph_new(const In& m, const morphology_options& opt, std::
     return out;
 }
 
+/// The four operations share one definition: each public name below is an object of this type (as the
+/// std::ranges algorithms are), callable in the into form and in both returning forms.
+template <morph_step... Steps>
+struct morphology_operation {
+    const char* function;
+
+    /// Into form: writes `out`, of m's shape (`out` may be `m` itself).
+    template <raster_input In, class Out>
+    requires raster_output_of<Out, std::uint8_t>
+    void operator()(const In& m, Out&& out, const morphology_options& opt = {}) const
+    {
+        morph_into(m, std::forward<Out>(out), opt, {Steps...}, function);
+    }
+
+    /// Returning form: a new 0/1 raster of m's shape.
+    template <raster_input In>
+    raster<std::uint8_t> operator()(const In& m, const morphology_options& opt) const
+    {
+        return morph_new(m, opt, {Steps...}, function);
+    }
+
+    /// Returning form with a size_cells x size_cells square on the caller's thread (DESIGN section 2's
+    /// morph_open(m, 5)).
+    template <raster_input In>
+    raster<std::uint8_t> operator()(const In& m, int size_cells) const
+    {
+        return morph_new(m, morphology_options{.size_cells = size_cells}, {Steps...}, function);
+    }
+};
+
 }  // namespace detail
 
 /// Binary dilation: out(r, c) = 1 if any mask cell in the size_cells x height_cells rectangle centred on
 /// (r, c) is nonzero, else 0. The rectangle is clipped at the raster border (cells outside are ignored), so
 /// an all-zero mask stays all zero. Bit-packed 64-cell words: O(rows * cols / 64 * log(size_cells)) plus one
 /// pass to pack and one to unpack; `out` may be `m` itself. Progress is reported between strips of rows.
+/// Forms: morph_dilate(m, out, opt = {}), morph_dilate(m, opt) and morph_dilate(m, size_cells) -> raster.
 /// @throws invalid_input if size_cells or height_cells is even or < 1 (height_cells 0 = square),
 /// run.threads < 0, or the shapes of m and out differ; cancelled if run.progress returns false.
-template <raster_input In, class Out>
-requires raster_output_of<Out, std::uint8_t>
-void morph_dilate(const In& m, Out&& out, const morphology_options& opt = {})
-{
-    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate}, "morph_dilate");
-}
+inline constexpr detail::morphology_operation<detail::morph_step::dilate> morph_dilate{"morph_dilate"};
 
-/// Binary erosion: out(r, c) = 1 if every mask cell of the size x height rectangle centred on (r, c)
-/// that lies inside the raster is nonzero, else 0. Clipped at the border (an all-one mask stays all
-/// one). Cost as morph_dilate; `out` may be `m`.
-/// @throws invalid_input as morph_dilate.
-template <raster_input In, class Out>
-requires raster_output_of<Out, std::uint8_t>
-void morph_erode(const In& m, Out&& out, const morphology_options& opt = {})
-{
-    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode}, "morph_erode");
-}
+/// Binary erosion: out(r, c) = 1 if every mask cell of the size_cells x height_cells rectangle centred on
+/// (r, c) that lies inside the raster is nonzero, else 0. Clipped at the border (an all-one mask stays all
+/// one). Forms and cost as morph_dilate. @throws as morph_dilate.
+inline constexpr detail::morphology_operation<detail::morph_step::erode> morph_erode{"morph_erode"};
 
 /// Binary opening: dilate(erode(m)) with the same clipped rectangle. Removes features that the
 /// rectangle does not fit in (isolated dropout cells, thin lines); anti-extensive and idempotent.
-/// Cost as two dilations, with one pack and one unpack; `out` may be `m`.
-/// @throws invalid_input as morph_dilate.
-template <raster_input In, class Out>
-requires raster_output_of<Out, std::uint8_t>
-void morph_open(const In& m, Out&& out, const morphology_options& opt = {})
-{
-    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::erode, detail::morph_step::dilate},
-                       "morph_open");
-}
+/// Forms as morph_dilate; cost as two dilations, with one pack and one unpack. @throws as morph_dilate.
+inline constexpr detail::morphology_operation<detail::morph_step::erode, detail::morph_step::dilate> morph_open{
+    "morph_open"};
 
 /// Binary closing: erode(dilate(m)) with the same clipped rectangle. Fills gaps and holes narrower than
-/// the rectangle; extensive and idempotent. Cost as morph_open; `out` may be `m`.
-/// @throws invalid_input as morph_dilate.
-template <raster_input In, class Out>
-requires raster_output_of<Out, std::uint8_t>
-void morph_close(const In& m, Out&& out, const morphology_options& opt = {})
-{
-    detail::morph_into(m, std::forward<Out>(out), opt, {detail::morph_step::dilate, detail::morph_step::erode},
-                       "morph_close");
-}
-
-/// Returning forms: a new 0/1 raster of m's shape. The `int size_cells` overloads use a square of that
-/// side on the caller's thread (DESIGN section 2's morph_open(m, 5)).
-template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, const morphology_options& opt)
-{
-    return detail::morph_new(m, opt, {detail::morph_step::dilate}, "morph_dilate");
-}
-template <raster_input In>
-raster<std::uint8_t> morph_dilate(const In& m, int size_cells)
-{
-    return morph_dilate(m, morphology_options{.size_cells = size_cells});
-}
-
-template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, const morphology_options& opt)
-{
-    return detail::morph_new(m, opt, {detail::morph_step::erode}, "morph_erode");
-}
-template <raster_input In>
-raster<std::uint8_t> morph_erode(const In& m, int size_cells)
-{
-    return morph_erode(m, morphology_options{.size_cells = size_cells});
-}
-
-template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, const morphology_options& opt)
-{
-    return detail::morph_new(m, opt, {detail::morph_step::erode, detail::morph_step::dilate}, "morph_open");
-}
-template <raster_input In>
-raster<std::uint8_t> morph_open(const In& m, int size_cells)
-{
-    return morph_open(m, morphology_options{.size_cells = size_cells});
-}
-
-template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, const morphology_options& opt)
-{
-    return detail::morph_new(m, opt, {detail::morph_step::dilate, detail::morph_step::erode}, "morph_close");
-}
-template <raster_input In>
-raster<std::uint8_t> morph_close(const In& m, int size_cells)
-{
-    return morph_close(m, morphology_options{.size_cells = size_cells});
-}
+/// the rectangle; extensive and idempotent. Forms and cost as morph_open. @throws as morph_dilate.
+inline constexpr detail::morphology_operation<detail::morph_step::dilate, detail::morph_step::erode> morph_close{
+    "morph_close"};
 
 }  // namespace lidarfx
