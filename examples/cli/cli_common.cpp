@@ -7,6 +7,7 @@
 #include <future>
 #include <iostream>
 #include <limits>
+#include <array>
 #include <memory>
 #include <cerrno>
 #include <cstring>
@@ -195,6 +196,70 @@ double round_cell_up(double cell_m)
     return 10 * decade;
 }
 
+/// Points far from all the others (one point 200 km away) would stretch the grid over empty space. A first
+/// pass counts the points in 256 x 256 bins over the header bounds; the bins that hold all but the outermost
+/// 1e-4 of the points along each axis, widened by 5 %, form the core box. When points outside it make the
+/// grid more than twice the core's area, the run is refused (usage_error) naming their count, where they
+/// are and the --crop that keeps the rest.
+void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total)
+{
+    constexpr int bins = 256;
+    const double bw = std::max(box.xmax - box.xmin, 1e-9) / bins, bh = std::max(box.ymax - box.ymin, 1e-9) / bins;
+    std::vector<std::uint64_t> count(static_cast<std::size_t>(bins) * bins, 0);
+    const auto bin = [](double v, double lo, double w) {
+        return std::clamp(static_cast<int>(std::floor((v - lo) / w)), 0, bins - 1);
+    };
+    io::las_points chunk;
+    for (const auto& p : paths) {
+        io::las_reader r(p);
+        while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
+            for (std::size_t i = 0; i < n; ++i) {
+                if (!std::isfinite(chunk.x[i]) || !std::isfinite(chunk.y[i])) continue;
+                ++count[static_cast<std::size_t>(bin(chunk.y[i], box.ymin, bh)) * bins + bin(chunk.x[i], box.xmin, bw)];
+            }
+        }
+    }
+    std::vector<std::uint64_t> column(bins, 0), row(bins, 0);
+    for (int j = 0; j < bins; ++j)
+        for (int i = 0; i < bins; ++i) column[i] += count[static_cast<std::size_t>(j) * bins + i], row[j] += count[static_cast<std::size_t>(j) * bins + i];
+    const auto core = [&](const std::vector<std::uint64_t>& h) {
+        const double tail = 1e-4 * static_cast<double>(total);
+        int lo = 0, hi = bins - 1;
+        for (double seen = 0; lo < bins - 1 && seen + static_cast<double>(h[lo]) <= tail; ++lo) seen += static_cast<double>(h[lo]);
+        for (double seen = 0; hi > lo && seen + static_cast<double>(h[hi]) <= tail; --hi) seen += static_cast<double>(h[hi]);
+        return std::pair{lo, hi};
+    };
+    const auto [c0, c1] = core(column);
+    const auto [r0, r1] = core(row);
+    bounds kept{box.xmin + c0 * bw, box.ymin + r0 * bh, box.xmin + (c1 + 1) * bw, box.ymin + (r1 + 1) * bh};
+    const double mx = 0.05 * (kept.xmax - kept.xmin), my = 0.05 * (kept.ymax - kept.ymin);
+    kept = {std::max(box.xmin, kept.xmin - mx), std::max(box.ymin, kept.ymin - my), std::min(box.xmax, kept.xmax + mx),
+            std::min(box.ymax, kept.ymax + my)};
+    const double full = std::max(box.xmax - box.xmin, bw) * std::max(box.ymax - box.ymin, bh);
+    const double inner = std::max(kept.xmax - kept.xmin, bw) * std::max(kept.ymax - kept.ymin, bh);
+    if (full <= 2 * inner) return;
+    std::uint64_t outside = 0;
+    std::array<double, 2> where{};
+    std::uint64_t most = 0;
+    for (int j = 0; j < bins; ++j) {
+        for (int i = 0; i < bins; ++i) {
+            const auto n = count[static_cast<std::size_t>(j) * bins + i];
+            const double x = box.xmin + (i + 0.5) * bw, y = box.ymin + (j + 0.5) * bh;
+            if (n == 0 || (x >= kept.xmin && x <= kept.xmax && y >= kept.ymin && y <= kept.ymax)) continue;
+            outside += n;
+            if (n > most) most = n, where = {x, y};
+        }
+    }
+    if (outside == 0) return;
+    std::ostringstream why;
+    why << std::fixed << std::setprecision(0) << outside << " of " << total
+        << " points lie far from the rest (the most near x " << where[0] << ", y " << where[1]
+        << ") and would stretch the grid from " << kept.xmax - kept.xmin << " m x " << kept.ymax - kept.ymin
+        << " m to " << box.xmax - box.xmin << " m x " << box.ymax - box.ymin << " m. Use --crop " << kept.xmin << ','
+        << kept.ymin << ',' << kept.xmax << ',' << kept.ymax << " to keep the rest, or --force to keep them";
+    throw usage_error(why.str());
+}
+
 }  // namespace
 
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
@@ -242,6 +307,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         box.ymax = std::max(box.ymax, h.max[1]);
     }
     if (total == 0) throw std::runtime_error("the input files hold no point");
+    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total);
     if (opt.crop) {
         const bounds& c = *opt.crop;
         box = {std::max(box.xmin, c.xmin), std::max(box.ymin, c.ymin), std::min(box.xmax, c.xmax), std::min(box.ymax, c.ymax)};

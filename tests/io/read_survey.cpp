@@ -156,3 +156,25 @@ TEST_CASE("io/read_survey: rasters do not depend on --threads")
     CHECK(io_test::same_cells(a.rasters.max_z, b.rasters.max_z));
     CHECK(a.rasters.count == b.rasters.count);
 }
+
+TEST_CASE("io/read_survey: a point far from the rest is reported with the crop that keeps the others")
+{
+    io_test::temp_dir dir;
+    const auto path = dir.file("outlier.las");
+    auto p = grid_points(100);
+    p.x.push_back(700000.0);  // 200 km east of a 100 m survey
+    p.y.push_back(4000050.0);
+    p.z.push_back(12.0);
+    write_las(path, p);
+    const auto why = error_of([&] { cli::read_survey({path}, quiet(1.0)); });
+    CHECK(contains(why, "1 of 10001 points lie far from the rest (the most near x 699"));
+    CHECK(contains(why, "Use --crop 500000,"));
+    // Forced, the point is kept: the grid then spans 200 km, which the memory budget refuses.
+    auto forced = quiet(1.0);
+    forced.force = true;
+    forced.memory_budget_bytes = std::uint64_t{1} << 30;
+    CHECK(contains(error_of([&] { cli::read_survey({path}, forced); }), "over the memory budget"));
+    // The survey alone raises nothing.
+    write_las(dir.file("alone.las"), grid_points(100));
+    CHECK(cli::read_survey({dir.file("alone.las")}, quiet(1.0)).rasters.points_used == 10000);
+}
