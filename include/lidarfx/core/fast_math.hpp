@@ -2,9 +2,20 @@
 // fast_math: branch-free elementary functions that let kernel loops vectorize.
 #pragma once
 
+#include <cstddef>
 #include <numbers>
 
 namespace lidarfx::detail {
+
+/// Polynomial c[0] x^(N-1) + c[1] x^(N-2) + ... + c[N-1] by Horner's scheme, p = p * x + c[i]; the loop is
+/// unrolled, so kernel loops that call it still vectorize.
+template <class T, std::size_t N>
+constexpr T horner(T x, const T (&c)[N]) noexcept
+{
+    T p = c[0];
+    for (std::size_t i = 1; i < N; ++i) p = p * x + c[i];
+    return p;
+}
 
 /// atan(x) in degrees for x >= 0 in float arithmetic (+inf gives 90, NaN gives NaN), branch-free so that loops
 /// calling it vectorize 16 lanes wide. t = min(x, 1/x) in [0, 1], atan(t) = t P(t^2) with P a degree-8
@@ -14,15 +25,9 @@ inline float atan_deg(float x) noexcept
     const bool above = x > 1.0f;
     const float t = above ? 1.0f / x : x;
     const float s = t * t;
-    float p = 0.0029035008046776056f;
-    p = p * s - 0.01628280244767666f;
-    p = p * s + 0.04303903877735138f;
-    p = p * s - 0.07533648610115051f;
-    p = p * s + 0.10654664784669876f;
-    p = p * s - 0.14207130670547485f;
-    p = p * s + 0.19993053376674652f;
-    p = p * s - 0.3333309292793274f;
-    p = p * s + 1.0f;
+    const float p = horner(s, {0.0029035008046776056f, -0.01628280244767666f, 0.04303903877735138f,
+                               -0.07533648610115051f, 0.10654664784669876f, -0.14207130670547485f,
+                               0.19993053376674652f, -0.3333309292793274f, 1.0f});
     const float a = t * p * static_cast<float>(180 / std::numbers::pi);
     return above ? 90.0f - a : a;
 }

@@ -65,15 +65,9 @@ inline double horn_axis(const double (&behind)[3], const double (&middle)[3], co
 /// it may set errno, so compilers keep a branch around it and do not vectorize the loop that calls it.
 inline double sqrt_one_plus(double u) noexcept
 {
-    double p = -0.0008042263089434315;
-    p = p * u + 0.00459414209851032;
-    p = p * u - 0.01260423201756121;
-    p = p * u + 0.023689821194072577;
-    p = p * u - 0.03799556422631248;
-    p = p * u + 0.06231838140092247;
-    p = p * u - 0.12498423749403109;
-    p = p * u + 0.49999947070359657;
-    return p * u + 1.0000000029092297;
+    return horner(u, {-0.0008042263089434315, 0.00459414209851032, -0.01260423201756121, 0.023689821194072577,
+                      -0.03799556422631248, 0.06231838140092247, -0.12498423749403109, 0.49999947070359657,
+                      1.0000000029092297});
 }
 
 /// Slope, aspect and flat flag of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
