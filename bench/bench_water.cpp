@@ -9,7 +9,7 @@
 
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "io/las.hpp"
 #include "io/las_writer.hpp"
@@ -59,7 +59,7 @@ const lidarfx::point_rasters& rasters_4096()
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();
-    const lidarfx::waterbody_options opt{.threads = static_cast<int>(state.range(0))};
+    const lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
     std::size_t bodies = 0;
     for (auto _ : state) {
         const auto w = lidarfx::extract_waterbodies(pr, opt);
@@ -108,7 +108,7 @@ void bm_las_to_waterbodies(benchmark::State& state)
             acc.add(chunk.cloud());
             points += n;
         }
-        const auto w = lidarfx::extract_waterbodies(acc.finish(), {.threads = threads});
+        const auto w = lidarfx::extract_waterbodies(acc.finish(), {.run = {.threads = threads}});
         benchmark::DoNotOptimize(w.labels.data());
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points));

@@ -42,8 +42,8 @@ int run_water(const std::vector<std::string>& args)
                                      "bridge-span"},
                                     {"help", "force", "one-sided"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
-    lidarfx::waterbody_options opt;
-    opt.threads = a.integer("threads", 0);
+    lidarfx::extract_waterbodies_options opt;
+    opt.run.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
     const int min_seed = a.integer("min-seed-cells", 100);
     if (min_seed < 1) throw std::invalid_argument("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
@@ -57,7 +57,7 @@ int run_water(const std::vector<std::string>& args)
     opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
     opt.check_inputs = !a.has("force");
-    opt.progress = lidarfx::cli::progress_bar("waterbodies");
+    opt.run.progress = lidarfx::cli::progress_bar("waterbodies");
 
     const std::filesystem::path out = a.text("out", "");
     const auto s = lidarfx::cli::read_survey(a.positional(), a.number("cell", 2.0), true);
