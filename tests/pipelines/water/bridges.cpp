@@ -113,6 +113,29 @@ TEST_CASE("water/join_across_bridges: the span is in metres and inclusive, the t
     CHECK(join_across_bridges(labels, flat, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.25}) == 0);
 }
 
+TEST_CASE("water/join_across_bridges: without levels it takes water_levels' medians")
+{
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int trial = 0; trial < 20; ++trial) {
+        raster<std::int32_t> labels(25, 30);
+        raster<float> z(25, 30);
+        for (std::ptrdiff_t r = 0; r < 25; ++r)
+            for (std::ptrdiff_t c = 0; c < 30; ++c) {
+                labels(r, c) = u(rng) < 0.35f ? 0 : 1 + static_cast<std::int32_t>((c / 6) % 4);
+                z(r, c) = u(rng) < 0.3f ? NAN : 10.0f + (labels(r, c) ? 0.5f * u(rng) : 6.0f * u(rng));
+            }
+        auto given = labels, derived = labels;
+        const auto n = join_across_bridges(given, z, water_levels(labels, z), 2.0, {.max_span_m = 8});
+        CHECK(join_across_bridges(derived, z, 2.0, {.max_span_m = 8}) == n);
+        CHECK(derived == given);
+    }
+    raster<std::int32_t> negative(2, 2, 0);
+    negative(1, 1) = -3;
+    CHECK_THROWS_WITH_AS(join_across_bridges(negative, raster<float>(2, 2, 1.0f), 1.0),
+                         "join_across_bridges: labels must be >= 0 (got -3)", invalid_input);
+}
+
 TEST_CASE("water/join_across_bridges: strided views give the result of contiguous rasters")
 {
     std::mt19937 rng(12);

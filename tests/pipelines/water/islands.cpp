@@ -6,7 +6,9 @@
 #include "reference/islands.hpp"
 #include "water_test_rasters.hpp"
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 using namespace lidarfx;
 
@@ -67,13 +69,49 @@ TEST_CASE("water/fill_small_islands: equals a whole-raster search for holes on r
         const std::size_t max_hole = 1 + rng() % 12;
         // Cells of 0.5 m: max_hole cells are max_hole / 4 m².
         auto fast = labels, slow = labels;
-        fill_small_islands(fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole),
-                                       .run = {.threads = 1 + trial % 3}});
+        const auto n = fill_small_islands(fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole),
+                                                      .run = {.threads = 1 + trial % 3}});
         reference::fill_small_islands(slow, max_hole);
         CHECK(fast == slow);
         filled_scenes += !(fast == labels);
+        // Both ways of finding holes (per body, or all at once) give the same labels and count.
+        std::vector<cell_box> boxes(4, cell_box{rows, cols, -1, -1});
+        cell_box all{rows, cols, -1, -1};
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (labels(r, c) > 0) {
+                    boxes[static_cast<std::size_t>(labels(r, c))].extend(r, c);
+                    all.extend(r, c);
+                }
+        if (all.empty()) continue;
+        auto per_body = labels, at_once = labels;
+        CHECK(detail::fill_holes_per_body(per_body, max_hole, boxes, 1) == n);
+        const cell_box grown{std::max<std::ptrdiff_t>(0, all.row_min - 1), std::max<std::ptrdiff_t>(0, all.col_min - 1),
+                             std::min(rows - 1, all.row_max + 1), std::min(cols - 1, all.col_max + 1)};
+        CHECK(detail::fill_holes_at_once(at_once, max_hole, grown, 2) == n);
+        CHECK(per_body == slow);
+        CHECK(at_once == slow);
     }
     CHECK(filled_scenes > 40);
+}
+
+TEST_CASE("water/fill_small_islands: nested ring bodies, each with a small hole")
+{
+    // Concentric square rings of bodies 1..5; the innermost encloses 3 x 3 land cells. The boxes nest, so
+    // they cover more than the raster and the holes are found in one labelling of the land. The land
+    // between two rings touches both and stays.
+    raster<std::int32_t> labels(23, 23, 0);
+    for (std::int32_t k = 1; k <= 5; ++k) {
+        const std::ptrdiff_t lo = 2 * k - 1, hi = 23 - 2 * k;
+        for (std::ptrdiff_t i = lo; i <= hi; ++i) labels(lo, i) = labels(hi, i) = labels(i, lo) = labels(i, hi) = k;
+    }
+    labels(5, 11) = 0;  // a one-cell gap in ring 3, between rings 2 and 4: next to three bodies, stays land
+    auto slow = labels;
+    reference::fill_small_islands(slow, 10);
+    CHECK(fill_small_islands(labels, 1.0, {.island_min_area_m2 = 10.0}) == 9);
+    CHECK(labels == slow);
+    CHECK(labels(11, 11) == 5);  // the centre, inside ring 5
+    CHECK(labels(5, 11) == 0);
 }
 
 TEST_CASE("water/fill_small_islands: strided views give the result of contiguous rasters")

@@ -39,54 +39,48 @@ inline void validate(const join_across_bridges_options& o, const char* fn)
     require(o.water_tolerance_m >= 0, fn, "water_tolerance_m", ">= 0", o.water_tolerance_m);
 }
 
-}  // namespace detail
-
-/// Water level of every body of a label raster: level[l] = median of the finite min z (metres) of the cells
-/// labelled l (the element at position n / 2 of their n sorted values), for l = 1 .. the largest label;
-/// NaN for a label without such cells and for level[0] (land). O(cells + body cells).
-/// @throws invalid_input if the shapes differ or a label is negative.
-inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z)
+/// water_levels, with errors naming `fn`.
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
+                                        const char* fn)
 {
-    constexpr const char* fn = "water_levels";
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    const auto [bottom, top] = detail::label_range(labels);
-    detail::require(bottom >= 0, fn, "labels", ">= 0", bottom);
-    std::vector<std::vector<float>> heights(static_cast<std::size_t>(top) + 1);
+    std::vector<std::vector<float>> heights(1);
+    std::int32_t lowest = 0;
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
         const std::int32_t* label = labels.row(r);
         const float* z = min_z.row(r);
-        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c)
-            if (label[c] > 0 && std::isfinite(z[c])) heights[static_cast<std::size_t>(label[c])].push_back(z[c]);
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+            const std::int32_t l = label[c];
+            lowest = std::min(lowest, l);
+            if (l <= 0) continue;
+            if (static_cast<std::size_t>(l) >= heights.size()) heights.resize(static_cast<std::size_t>(l) + 1);
+            if (std::isfinite(z[c])) heights[static_cast<std::size_t>(l)].push_back(z[c]);
+        }
     }
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     std::vector<double> level(heights.size(), NAN);
     for (std::size_t l = 1; l < heights.size(); ++l) level[l] = detail::median(heights[l]);
     return level;
 }
 
-/// Joins waterbodies across bridges: a land cell (label 0) lying on a straight run (row, column or
-/// diagonal) of n land cells, n·cell_m <= max_span_m, whose two ends touch bodies a != b with
-/// |level[a] − level[b]| <= level_tolerance_m, becomes water when its min z is NaN (no return), at least
-/// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
-/// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in several directions takes the label of the
-/// first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every label of a
-/// merged group becomes its smallest). Every decision reads the labels as given. Elevations in metres.
-/// One row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined
-/// when a water cell of another body closes it. O(cells + cells of examined runs).
-/// Returns the number of bridged cells.
-/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or a
-/// label without an entry in `level`.
-inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z,
-                                       std::span<const double> level, double cell_m,
-                                       const join_across_bridges_options& opt = {})
+}  // namespace detail
+
+/// Water level of every body of a label raster: level[l] = median of the finite min z (metres) of the cells
+/// labelled l (the element at position n / 2 of their n sorted values), for l = 1 .. the largest label;
+/// NaN for a label without such cells and for level[0] (land). O(cells + largest label) time and memory.
+/// @throws invalid_input if the shapes differ or a label is negative.
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z)
 {
-    constexpr const char* fn = "join_across_bridges";
-    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    detail::require_positive(cell_m, fn, "cell_m");
-    detail::validate(opt, fn);
+    return detail::water_levels(labels, min_z, "water_levels");
+}
+
+namespace detail {
+
+/// The bridge sweep of join_across_bridges on validated arguments (labels in [0, level.size())).
+inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<const float> min_z,
+                                std::span<const double> level, double cell_m, const join_across_bridges_options& opt)
+{
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    const auto [bottom, top] = detail::label_range(labels);
-    detail::require(bottom >= 0, fn, "labels", ">= 0", bottom);
-    detail::require(top == 0 || static_cast<std::size_t>(top) < level.size(), fn, "labels", "< level.size()", top);
     const int span_cells = static_cast<int>(std::floor(opt.max_span_m / cell_m));
     if (span_cells <= 0) return 0;
     std::vector<std::int32_t> parent(level.size());
@@ -158,6 +152,49 @@ inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_
         }
     }
     return count;
+}
+
+
+}  // namespace detail
+
+/// Joins waterbodies across bridges: a land cell (label 0) lying on a straight run (row, column or
+/// diagonal) of n land cells, n·cell_m <= max_span_m, whose two ends touch bodies a != b with
+/// |level[a] − level[b]| <= level_tolerance_m, becomes water when its min z is NaN (no return), at least
+/// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
+/// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in
+/// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every label of a
+/// merged group becomes its smallest). Every decision reads the labels as given. Elevations in metres.
+/// One row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined
+/// when a water cell of another body closes it. O(cells + cells of examined runs).
+/// Returns the number of bridged cells.
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or a
+/// label without an entry in `level`.
+inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z,
+                                       std::span<const double> level, double cell_m,
+                                       const join_across_bridges_options& opt = {})
+{
+    constexpr const char* fn = "join_across_bridges";
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    const auto [bottom, top] = detail::label_range(labels);
+    detail::require(bottom >= 0, fn, "labels", ">= 0", bottom);
+    detail::require(top == 0 || static_cast<std::size_t>(top) < level.size(), fn, "labels", "< level.size()", top);
+    return detail::bridge_sweep(labels, min_z, level, cell_m, opt);
+}
+
+/// join_across_bridges with each body's level from water_levels(labels, min_z).
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range or a negative label.
+inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z, double cell_m,
+                                       const join_across_bridges_options& opt = {})
+{
+    constexpr const char* fn = "join_across_bridges";
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    // One level per label up to the largest; negative labels are refused.
+    const auto level = detail::water_levels(labels, min_z, fn);
+    return detail::bridge_sweep(labels, min_z, level, cell_m, opt);
 }
 
 }  // namespace lidarfx

@@ -122,9 +122,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
 
     extract_waterbodies_result res;
     res.diagnostics = assess_water_inputs(in, cell_m, {.min_points_per_cell = opt.min_points_per_cell});
-    res.labels = raster<std::int32_t>(rows, cols, 0);
     res.water = raster<std::uint8_t>(rows, cols, 0);
-    if (opt.check_inputs && !res.diagnostics.usable()) return res;
+    if (opt.check_inputs && !res.diagnostics.usable()) {
+        res.labels = raster<std::int32_t>(rows, cols, 0);
+        return res;
+    }
     res.ran = true;
     detail::report(opt.run.progress, 0.0, fn);
 
@@ -157,7 +159,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     auto& bodies = grown.bodies;
 
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
-        join_across_bridges(res.labels, in.min_z, water_levels(res.labels, in.min_z), cell_m,
+        join_across_bridges(res.labels, in.min_z, cell_m,
                             {.max_span_m = opt.bridge_max_span_m, .level_tolerance_m = opt.bridge_level_tolerance_m,
                              .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m});
     }
