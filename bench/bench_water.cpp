@@ -1,18 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
-// Waterbody extraction: the whole pipeline from rasters to labels on a 4096 x 4096 scene, and from a LAS
-// file to labels (read, rasterize, extract).
+// Waterbody extraction: the whole pipeline from rasters to labels on a 4096 x 4096 scene, its steps one by
+// one on the same scene (the island step next to its whole-raster reference), and from a LAS file to labels
+// (read, rasterize, extract).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <vector>
 
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "io/las.hpp"
 #include "io/las_writer.hpp"
+#include "reference/islands.hpp"
 
 namespace {
 
@@ -59,7 +63,7 @@ const lidarfx::rasterize_result& rasters_4096()
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();
-    const lidarfx::waterbody_options opt{.threads = static_cast<int>(state.range(0))};
+    const lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
     std::size_t bodies = 0;
     for (auto _ : state) {
         const auto w = lidarfx::extract_waterbodies(pr, opt);
@@ -70,6 +74,80 @@ void bm_extract_waterbodies_4096(benchmark::State& state)
     state.counters["bodies"] = static_cast<double>(bodies);
 }
 BENCHMARK(bm_extract_waterbodies_4096)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// Labels of the 4096 x 4096 scene as they reach a step: after growing (no bridges, no islands) or after
+/// bridging (no islands).
+const lidarfx::raster<std::int32_t>& labels_4096(bool bridged)
+{
+    static std::map<bool, lidarfx::raster<std::int32_t>> cache;
+    auto it = cache.find(bridged);
+    if (it == cache.end()) {
+        lidarfx::extract_waterbodies_options o{.island_min_area_m2 = 0, .run = {.threads = 0}};
+        if (!bridged) o.bridge_max_span_m = 0;
+        it = cache.emplace(bridged, lidarfx::extract_waterbodies(rasters_4096(), o).labels).first;
+    }
+    return it->second;
+}
+
+void bm_water_step_4096(benchmark::State& state)
+{
+    const auto& pr = rasters_4096();
+    const auto in = lidarfx::to_water_rasters(pr);
+    const double cell = pr.g.cell;
+    const int threads = static_cast<int>(state.range(1));
+    const lidarfx::execution run{.threads = threads};
+    for (auto _ : state) {
+        switch (state.range(0)) {
+        case 0: benchmark::DoNotOptimize(lidarfx::assess_water_inputs(in, cell).dropout_fraction); break;
+        case 1: benchmark::DoNotOptimize(lidarfx::water_vegetation(in, {.run = run}).data()); break;
+        case 2: benchmark::DoNotOptimize(lidarfx::water_angles(in, cell, {.run = run}).data()); break;
+        case 3: benchmark::DoNotOptimize(lidarfx::water_seeds(pr.dropout, {.run = run}).labels.data()); break;
+        case 4: benchmark::DoNotOptimize(lidarfx::intensity_bins(pr.mean_intensity, pr.dropout).bin.data()); break;
+        case 5: {
+            state.PauseTiming();
+            auto labels = labels_4096(false);
+            state.ResumeTiming();
+            lidarfx::join_across_bridges(labels, pr.min_z, lidarfx::water_levels(labels, pr.min_z), cell);
+            benchmark::DoNotOptimize(labels.data());
+            break;
+        }
+        case 6: {
+            state.PauseTiming();
+            auto labels = labels_4096(true);
+            state.ResumeTiming();
+            benchmark::DoNotOptimize(lidarfx::fill_small_islands(labels, cell, {.run = run}));
+            break;
+        }
+        case 7: {
+            state.PauseTiming();
+            auto labels = labels_4096(true);
+            state.ResumeTiming();
+            reference::fill_small_islands(labels, static_cast<std::size_t>(std::ceil(200.0 / (cell * cell))));
+            benchmark::DoNotOptimize(labels.data());
+            break;
+        }
+        case 8: {
+            state.PauseTiming();
+            auto labels = labels_4096(true);
+            std::vector<lidarfx::waterbody> bodies;
+            state.ResumeTiming();
+            lidarfx::measure_waterbodies(labels, bodies, in, cell);
+            benchmark::DoNotOptimize(bodies.data());
+            break;
+        }
+        }
+    }
+    static const char* const names[] = {"assess_water_inputs", "water_vegetation", "water_angles",
+                                        "water_seeds", "intensity_bins", "join_across_bridges",
+                                        "fill_small_islands", "reference::fill_small_islands", "measure_waterbodies"};
+    state.SetLabel(names[state.range(0)]);
+    state.SetItemsProcessed(state.iterations() * pr.g.size());
+}
+BENCHMARK(bm_water_step_4096)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {1}})
+    ->ArgsProduct({{1, 2, 3, 6}, {0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// A LAS file of the 2048 m lake scene (8.4 million points), written once.
 const std::string& lake_las()
@@ -108,7 +186,7 @@ void bm_las_to_waterbodies(benchmark::State& state)
             acc.add(chunk.cloud());
             points += n;
         }
-        const auto w = lidarfx::extract_waterbodies(acc.finish(), {.threads = threads});
+        const auto w = lidarfx::extract_waterbodies(acc.finish(), {.run = {.threads = threads}});
         benchmark::DoNotOptimize(w.labels.data());
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(points));

@@ -9,13 +9,13 @@
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 namespace {
 
 struct configuration {
     std::string name;
-    std::function<void(lidarfx::waterbody_options&)> set;
+    std::function<void(lidarfx::extract_waterbodies_options&)> set;
 };
 
 }  // namespace
@@ -23,31 +23,31 @@ struct configuration {
 int main()
 {
     using namespace lidarfx;
-    const auto dissertation = [](waterbody_options& o) {
+    const auto dissertation = [](extract_waterbodies_options& o) {
         o.grow.sample = ks_sample_mode::cumulative;
         o.level_tolerance_m = 0;
         o.bridge_max_span_m = 0;
     };
     const std::vector<configuration> rows{
         {"dissertation schedule (cumulative KS, IDW angles, no refinement, no bridges)",
-         [&](waterbody_options& o) {
+         [&](extract_waterbodies_options& o) {
              dissertation(o);
              o.angular_on = angular_input::idw_filled;
              o.dropouts_join_any_threshold = false;
          }},
         {"+ dropouts join at any theta, angles from returns only", dissertation},
         {"+ level refinement",
-         [](waterbody_options& o) {
+         [](extract_waterbodies_options& o) {
              o.grow.sample = ks_sample_mode::cumulative;
              o.bridge_max_span_m = 0;
          }},
         {"increment KS, no refinement",
-         [](waterbody_options& o) {
+         [](extract_waterbodies_options& o) {
              o.level_tolerance_m = 0;
              o.bridge_max_span_m = 0;
          }},
-        {"increment KS + refinement, no bridges", [](waterbody_options& o) { o.bridge_max_span_m = 0; }},
-        {"lidarfx defaults", [](waterbody_options&) {}},
+        {"increment KS + refinement, no bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }},
+        {"lidarfx defaults", [](extract_waterbodies_options&) {}},
     };
     std::vector<synth::scene> lakes, rivers;
     std::vector<rasterize_result> lake_rasters, river_rasters;
@@ -61,7 +61,7 @@ int main()
     }
     std::printf("| configuration | lake acc / sens / spec / IoU %% | river acc / sens / spec / IoU %% |\n|---|---|---|\n");
     for (const auto& row : rows) {
-        waterbody_options o;
+        extract_waterbodies_options o;
         row.set(o);
         std::printf("| %s |", row.name.c_str());
         for (int which = 0; which < 2; ++which) {

@@ -10,7 +10,7 @@
 #include <lidarfx/lidarfx.hpp>
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "cli_common.hpp"
 #include "command.hpp"
@@ -44,9 +44,8 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     s.rasters = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.run = {.threads = threads}});
     s.points = sc.points.size();
     s.files = 1;
-    lidarfx::waterbody_options opt;
-    opt.threads = threads;
-    opt.progress = lidarfx::cli::progress_bar("waterbodies");
+    lidarfx::extract_waterbodies_options opt;
+    opt.run = {.threads = threads, .progress = lidarfx::cli::progress_bar("waterbodies")};
     const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     lidarfx::cli::print_survey(s);
@@ -113,7 +112,7 @@ int run_demo(const std::vector<std::string>& args)
         const auto s = lidarfx::cli::read_survey({survey_file.string()}, options);
         lidarfx::cli::print_survey(s);
         lidarfx::cli::write_point_rasters(dir, s);
-        const auto w = lidarfx::extract_waterbodies(s.rasters, {.threads = threads});
+        const auto w = lidarfx::extract_waterbodies(s.rasters, {.run = {.threads = threads}});
         lidarfx::cli::print_diagnostics(w.diagnostics);
         if (w.ran) {
             lidarfx::cli::print_waterbodies(w, 5);

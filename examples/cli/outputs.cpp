@@ -147,7 +147,7 @@ void write_point_rasters(io::output_folder& dir, const survey& s)
     png("dropout.png", io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
 }
 
-void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_result& w)
+void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w)
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
@@ -203,11 +203,11 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_
 
 void print_diagnostics(const water_diagnostics& d)
 {
-    for (const auto& p : d.problems) std::cout << "  problem: " << p << '\n';
-    for (const auto& p : d.warnings) std::cout << "  note: " << p << '\n';
+    for (const auto& p : d.messages(water_severity::problem)) std::cout << "  problem: " << p << '\n';
+    for (const auto& p : d.messages(water_severity::warning)) std::cout << "  note: " << p << '\n';
 }
 
-void print_waterbodies(const waterbody_result& w, std::size_t max_rows)
+void print_waterbodies(const extract_waterbodies_result& w, std::size_t max_rows)
 {
     double area = 0;
     for (const auto& b : w.bodies) area += b.area_m2;

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "cli_common.hpp"
 
@@ -22,12 +22,12 @@ std::vector<std::string> waterbody_file_names();
 
 /// water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land, 1..n by decreasing area),
 /// GeoTIFF twins, water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
-void write_waterbodies(io::output_folder& dir, const survey& s, const waterbody_result& w);
+void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w);
 
 /// Prints the diagnostics of the inputs: problems and warnings.
 void print_diagnostics(const water_diagnostics& d);
 
 /// Prints a table of the waterbodies found.
-void print_waterbodies(const waterbody_result& w, std::size_t max_rows = 10);
+void print_waterbodies(const extract_waterbodies_result& w, std::size_t max_rows = 10);
 
 }  // namespace lidarfx::cli

@@ -44,8 +44,8 @@ int run_water(const std::vector<std::string>& args)
                                      "bridge-span", "memory", "crop"},
                                     {"help", "force", "one-sided"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
-    lidarfx::waterbody_options opt;
-    opt.threads = a.integer("threads", 0);
+    lidarfx::extract_waterbodies_options opt;
+    opt.run.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
     const int min_seed = a.integer("min-seed-cells", 100);
     if (min_seed < 1) throw std::invalid_argument("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
@@ -59,7 +59,7 @@ int run_water(const std::vector<std::string>& args)
     opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
     opt.check_inputs = !a.has("force");
-    opt.progress = lidarfx::cli::progress_bar("waterbodies");
+    opt.run.progress = lidarfx::cli::progress_bar("waterbodies");
 
     // Per cell: the survey rasters (42 B while reading) and the method's rasters (labels, angles, masks, bins).
     const auto survey_options = lidarfx::cli::survey_options_from(a, 120);

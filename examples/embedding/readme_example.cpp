@@ -29,8 +29,9 @@ int main()
     const auto seeds = lidarfx::morph_open(pr.dropout, 5);                            // 5x5, bit-packed
     const auto blobs = lidarfx::connected_components(seeds, lidarfx::connectivity::eight);
 
-    const auto water = lidarfx::extract_waterbodies(pr, {.threads = 0});              // the whole method
-    if (!water.ran) for (const auto& why : water.diagnostics.problems) report(why);   // data cannot support it
+    const auto water = lidarfx::extract_waterbodies(pr, {.run = {.threads = 0}});     // the whole method
+    for (const auto& issue : water.diagnostics.issues)                                // coded, with values
+        if (issue.severity == lidarfx::water_severity::problem) report(issue.message());  // why it cannot run
     for (const auto& body : water.bodies) use(body.label, body.area_m2, body.water_level_m);
     // --- end of the README's lines ---
 

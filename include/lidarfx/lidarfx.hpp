@@ -27,5 +27,16 @@
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
+#include "lidarfx/pipelines/water/assess_water_inputs.hpp"
+#include "lidarfx/pipelines/water/bridges.hpp"
+#include "lidarfx/pipelines/water/extract_waterbodies.hpp"
+#include "lidarfx/pipelines/water/grow_waterbodies.hpp"
 #include "lidarfx/pipelines/water/grow_waterbody.hpp"
-#include "lidarfx/pipelines/water/waterbodies.hpp"
+#include "lidarfx/pipelines/water/intensity_bins.hpp"
+#include "lidarfx/pipelines/water/islands.hpp"
+#include "lidarfx/pipelines/water/level_refinement.hpp"
+#include "lidarfx/pipelines/water/measure_waterbodies.hpp"
+#include "lidarfx/pipelines/water/water_angles.hpp"
+#include "lidarfx/pipelines/water/water_rasters.hpp"
+#include "lidarfx/pipelines/water/water_seeds.hpp"
+#include "lidarfx/pipelines/water/water_vegetation.hpp"

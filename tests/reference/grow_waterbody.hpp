@@ -52,7 +52,7 @@ inline std::vector<std::uint8_t> region_at(const lidarfx::water_field& f, const 
 /// one-sided KS test between the intensity samples of consecutive regions (cells with a bin >= 0), stop at
 /// the first rejection and keep the previous region. Returns the membership of the final region.
 inline std::vector<std::uint8_t> grow(const lidarfx::water_field& f, const std::vector<std::ptrdiff_t>& seed,
-                                      const lidarfx::grow_options& o)
+                                      const lidarfx::grow_waterbody_options& o)
 {
     std::vector<std::uint8_t> previous(static_cast<std::size_t>(f.angle_deg.size()), 0);
     std::vector<double> previous_sample;

@@ -39,7 +39,7 @@ water_field random_field(std::mt19937& rng, std::ptrdiff_t rows, std::ptrdiff_t 
     return f;
 }
 
-std::vector<std::uint8_t> membership(const grown_region& g, std::ptrdiff_t n)
+std::vector<std::uint8_t> membership(const grow_waterbody_result& g, std::ptrdiff_t n)
 {
     std::vector<std::uint8_t> m(static_cast<std::size_t>(n), 0);
     for (auto i : g.cells) {
@@ -59,7 +59,7 @@ TEST_CASE("water/grow_waterbody: one bucket-queue flood equals a BFS per thresho
         CAPTURE(trial);
         const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 60), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 70);
         const auto f = random_field(rng, rows, cols, 2 + static_cast<int>(rng() % 200));
-        grow_options o;
+        grow_waterbody_options o;
         o.theta_start_deg = static_cast<double>(rng() % 4);
         o.theta_step_deg = 0.5 + static_cast<double>(rng() % 4) * 0.75;
         o.theta_max_deg = o.theta_start_deg + static_cast<double>(rng() % 40);
@@ -102,7 +102,7 @@ TEST_CASE("water/grow_waterbody: hand-checked flood stops before the land")
         f.angle_deg(0, c) = c < 20 ? 1.0f : 5.0f;
         f.intensity_bin(0, c) = c < 20 ? 0 : 9;
     }
-    grow_options o{.theta_start_deg = 2, .theta_step_deg = 1, .theta_max_deg = 10, .min_ks_samples = 1};
+    grow_waterbody_options o{.theta_start_deg = 2, .theta_step_deg = 1, .theta_max_deg = 10, .min_ks_samples = 1};
     raster<std::int32_t> visited(1, 40, 0);
     const std::vector<std::ptrdiff_t> seed{0};
     const auto g = grow_waterbody(f, seed, o, visited, 7);
@@ -131,7 +131,7 @@ TEST_CASE("water/grow_waterbody: bad options and fields are refused")
                          "grow_waterbody: theta_max_deg must be >= theta_start_deg and <= 90 (got 3)", invalid_input);
     CHECK_THROWS_WITH_AS(grow_waterbody(f, seed, {.theta_step_deg = 0}, visited, 1),
                          "grow_waterbody: theta_step_deg must be in (0, 90] (got 0)", invalid_input);
-    grow_options bad_alpha;
+    grow_waterbody_options bad_alpha;
     bad_alpha.ks.alpha = 1.5;
     CHECK_THROWS_AS(grow_waterbody(f, seed, bad_alpha, visited, 1), invalid_input);
     const std::vector<std::ptrdiff_t> outside{4};

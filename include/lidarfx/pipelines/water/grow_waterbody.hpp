@@ -29,7 +29,7 @@ enum class ks_sample_mode {
 };
 
 /// Threshold schedule and stopping rule of the growing step (dissertation §2.3.3, DESIGN.md §5).
-struct grow_options {
+struct grow_waterbody_options {
     double theta_start_deg = 2.0;        ///< first angular threshold θ_0, degrees, >= 0
     double theta_step_deg = 1.0;         ///< increment of θ per step, degrees, > 0
     double theta_max_deg = 30.0;         ///< last threshold, degrees, >= theta_start_deg, <= 90
@@ -41,7 +41,7 @@ struct grow_options {
 };
 
 /// Result of growing one seed.
-struct grown_region {
+struct grow_waterbody_result {
     std::vector<std::ptrdiff_t> cells;   ///< linear cell indices r * cols + c, in the order they joined
     int steps_accepted = -1;             ///< last accepted step k (θ_k = θ_0 + k·Δθ); -1 when nothing joined
     double theta_deg = NAN;              ///< θ of the last accepted step
@@ -50,7 +50,7 @@ struct grown_region {
 
 namespace detail {
 
-inline void validate(const grow_options& o, const char* function)
+inline void validate(const grow_waterbody_options& o, const char* function)
 {
     require(o.theta_start_deg >= 0 && o.theta_start_deg <= 90, function, "theta_start_deg", "in [0, 90]",
             o.theta_start_deg);
@@ -62,12 +62,12 @@ inline void validate(const grow_options& o, const char* function)
 }
 
 /// θ_k, computed the same way everywhere so that step membership is exact.
-inline double theta_of_step(const grow_options& o, int k) noexcept
+inline double theta_of_step(const grow_waterbody_options& o, int k) noexcept
 {
     return o.theta_start_deg + static_cast<double>(k) * o.theta_step_deg;
 }
 
-inline int last_step(const grow_options& o) noexcept
+inline int last_step(const grow_waterbody_options& o) noexcept
 {
     int k = static_cast<int>(std::floor((o.theta_max_deg - o.theta_start_deg) / o.theta_step_deg));
     while (k > 0 && theta_of_step(o, k) > o.theta_max_deg) --k;
@@ -76,7 +76,7 @@ inline int last_step(const grow_options& o) noexcept
 }
 
 /// Smallest step k with angle <= θ_k (NaN: 0); last + 1 when the angle exceeds θ_max.
-inline int step_of_angle(const grow_options& o, float angle, int last) noexcept
+inline int step_of_angle(const grow_waterbody_options& o, float angle, int last) noexcept
 {
     if (std::isnan(angle)) return 0;
     const double a = angle;
@@ -99,8 +99,9 @@ inline int step_of_angle(const grow_options& o, float angle, int last) noexcept
 /// histogram per step. O(cells reached + steps * bins). `visited` is scratch of the field's shape whose
 /// cells must differ from `stamp` on entry (pass a fresh stamp per call to reuse it without clearing).
 /// @throws invalid_input on a field of mismatched shapes, bins < 1, or options out of range.
-inline grown_region grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
-                                   const grow_options& opt, raster<std::int32_t>& visited, std::int32_t stamp)
+inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
+                                            const grow_waterbody_options& opt, raster<std::int32_t>& visited,
+                                            std::int32_t stamp)
 {
     constexpr const char* fn = "grow_waterbody";
     detail::validate(opt, fn);
@@ -129,7 +130,7 @@ inline grown_region grow_waterbody(const water_field& field, std::span<const std
         push(i, 0);
     }
 
-    grown_region out;
+    grow_waterbody_result out;
     const auto max_bin = static_cast<std::uint32_t>(field.bins - 1);
     ks_histogram previous(max_bin), current(max_bin), added(max_bin);
     const bool increment = opt.sample == ks_sample_mode::increment;

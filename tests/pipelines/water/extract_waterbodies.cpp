@@ -5,9 +5,10 @@
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/waterbodies.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 
 #include "io/las.hpp"
@@ -19,11 +20,11 @@ namespace {
 struct scene_run {
     synth::scene scene;
     rasterize_result rasters;
-    waterbody_result result;
+    extract_waterbodies_result result;
     confusion score;
 };
 
-scene_run run(synth::scene sc, const waterbody_options& opt = {})
+scene_run run(synth::scene sc, const extract_waterbodies_options& opt = {})
 {
     scene_run out{std::move(sc), {}, {}, {}};
     out.rasters = rasterize(out.scene.points.cloud(), out.scene.truth.g);
@@ -96,10 +97,43 @@ TEST_CASE("water/extract_waterbodies: same result for any thread count")
     so.size_m = 300;
     const auto sc = synth::lake_scene(so);
     const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
-    const auto one = extract_waterbodies(pr, {.threads = 1});
-    const auto three = extract_waterbodies(pr, {.threads = 3});
+    const auto one = extract_waterbodies(pr, {.run = {.threads = 1}});
+    const auto three = extract_waterbodies(pr, {.run = {.threads = 3}});
     CHECK(one.labels == three.labels);
     CHECK(one.bodies.size() == three.bodies.size());
+    // Angles hold NaN (dropouts join at any θ): compared bit for bit.
+    CHECK(std::memcmp(one.angle_deg.data(), three.angle_deg.data(),
+                      static_cast<std::size_t>(one.angle_deg.size()) * sizeof(float)) == 0);
+}
+
+TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public steps' outputs under its options")
+{
+    synth::scene_options so;
+    so.size_m = 300;
+    const auto sc = synth::river_scene(so);
+    const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
+    const auto in = to_water_rasters(pr);
+    extract_waterbodies_options o;
+    o.vegetation_height_m = 3.0;
+    o.vegetation_closing_size_cells = 3;
+    o.angular_radius_cells = 3;
+    o.seed_opening_size_cells = 3;
+    o.min_seed_cells = 50;
+    o.angular_on = angular_input::idw_filled;
+    o.dropouts_join_any_threshold = false;
+    const auto w = extract_waterbodies(pr, o);
+    REQUIRE(w.ran);
+    CHECK(w.vegetation == water_vegetation(in, {.height_m = 3.0, .closing_size_cells = 3}));
+    const auto angles = water_angles(in, pr.g.cell, {.radius_cells = 3, .input = angular_input::idw_filled,
+                                                     .dropouts_join_any_threshold = false});
+    CHECK(std::memcmp(w.angle_deg.data(), angles.data(), static_cast<std::size_t>(angles.size()) * sizeof(float)) == 0);
+    const auto seeds = water_seeds(pr.dropout, {.opening_size_cells = 3, .min_cells = 50});
+    CHECK(w.seeds == seeds.labels);
+    CHECK(w.seeds_found == seeds.count());
+    CHECK(w.seeds_grown >= 1);
+    CHECK(w.seeds_grown <= w.seeds_found);
+    // The water mask is the label raster's foreground.
+    for (std::ptrdiff_t i = 0; i < w.water.size(); ++i) REQUIRE((w.water.data()[i] != 0) == (w.labels.data()[i] > 0));
 }
 
 TEST_CASE("water/extract_waterbodies: data without intensity or density is refused with the reason")
@@ -116,14 +150,17 @@ TEST_CASE("water/extract_waterbodies: data without intensity or density is refus
     CHECK_FALSE(w.ran);
     CHECK_FALSE(w.diagnostics.usable());
     CHECK_FALSE(w.diagnostics.has_intensity);
-    REQUIRE(w.diagnostics.problems.size() == 2);
-    CHECK(w.diagnostics.problems[0].find("intensity") != std::string::npos);
-    CHECK(w.diagnostics.problems[1].find("points per 2.0 m cell") != std::string::npos);
+    const auto problems = w.diagnostics.messages(water_severity::problem);
+    REQUIRE(problems.size() == 2);
+    CHECK(w.diagnostics.issues[0].kind == water_issue_kind::intensity_constant);
+    CHECK(w.diagnostics.issues[1].kind == water_issue_kind::density_too_low);
+    CHECK(problems[0].find("intensity") != std::string::npos);
+    CHECK(problems[1].find("points per 2.0 m cell") != std::string::npos);
     CHECK(w.diagnostics.suggested_cell_m > 2.0);
     CHECK(w.bodies.empty());
     for (const auto v : w.water) REQUIRE(v == 0);
     // Forcing the run is possible, and the diagnostics still travel with the result.
-    waterbody_options forced;
+    extract_waterbodies_options forced;
     forced.check_inputs = false;
     const auto f = extract_waterbodies(pr, forced);
     CHECK(f.ran);
@@ -139,7 +176,7 @@ TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")
                          invalid_input);
     CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 0.0),
                          "extract_waterbodies: cell_m must be finite and > 0 (got 0)", invalid_input);
-    waterbody_options o;
+    extract_waterbodies_options o;
     o.grow.ks.alpha = 1.0;
     CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
                          "extract_waterbodies: ks.alpha must be in (0, 1) (got 1)", invalid_input);
@@ -150,8 +187,13 @@ TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")
                          "extract_waterbodies: theta_max_deg must be >= theta_start_deg and <= 90 (got 5)",
                          invalid_input);
     o = {};
-    o.seed_opening_size = 4;
-    CHECK_THROWS_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o), invalid_input);
+    o.seed_opening_size_cells = 4;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
+                         "extract_waterbodies: seed_opening_size_cells must be odd and >= 1 (got 4)", invalid_input);
+    o = {};
+    o.run.threads = -1;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
+                         "extract_waterbodies: run.threads must be >= 0 (got -1)", invalid_input);
 }
 
 TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; returning false cancels")
@@ -161,8 +203,8 @@ TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; return
     const auto sc = synth::lake_scene(so);
     const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
     std::vector<double> seen;
-    waterbody_options o;
-    o.progress = [&](double f) {
+    extract_waterbodies_options o;
+    o.run.progress = [&](double f) {
         seen.push_back(f);
         return true;
     };
@@ -173,6 +215,6 @@ TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; return
     CHECK(std::is_sorted(seen.begin(), seen.end()));
     CHECK_FALSE(w.bodies.empty());
 
-    o.progress = [](double f) { return f < 0.5; };
+    o.run.progress = [](double f) { return f < 0.5; };
     CHECK_THROWS_WITH_AS(extract_waterbodies(pr, o), "extract_waterbodies: cancelled", cancelled);
 }

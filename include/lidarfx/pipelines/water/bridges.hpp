@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: Apache-2.0
+// join_across_bridges: waterbodies at one level on both sides of a bridge become one body.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <span>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/water/water_rasters.hpp"
+
+namespace lidarfx {
+
+/// Options of join_across_bridges.
+struct join_across_bridges_options {
+    double max_span_m = 30.0;         ///< longest land run bridged: runs of n cells with n·cell_m <= max_span_m
+                                      ///< (n <= floor(max_span_m / cell_m)), metres; >= 0, 0 disables. Default 30.
+    double level_tolerance_m = 1.0;   ///< the water levels of the two bodies differ by at most this, metres;
+                                      ///< >= 0. Default 1 m.
+    double min_clearance_m = 2.0;     ///< a deck cell's min z stands at least this above both levels, metres;
+                                      ///< >= 0. Default 2 m.
+    double water_tolerance_m = 0.15;  ///< a cell whose min z lies between the lower level − this and the higher
+                                      ///< level + this is water seen past the deck's edge, metres; >= 0. Default
+                                      ///< 0.15 m (extract_waterbodies passes its level_tolerance_m).
+};
+
+namespace detail {
+
+inline void validate(const join_across_bridges_options& o, const char* fn)
+{
+    require(o.max_span_m >= 0, fn, "max_span_m", ">= 0", o.max_span_m);
+    require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
+    require(o.min_clearance_m >= 0, fn, "min_clearance_m", ">= 0", o.min_clearance_m);
+    require(o.water_tolerance_m >= 0, fn, "water_tolerance_m", ">= 0", o.water_tolerance_m);
+}
+
+/// water_levels, with errors naming `fn`.
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
+                                        const char* fn)
+{
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    std::vector<std::vector<float>> heights(1);
+    std::int32_t lowest = 0;
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
+        const std::int32_t* label = labels.row(r);
+        const float* z = min_z.row(r);
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+            const std::int32_t l = label[c];
+            lowest = std::min(lowest, l);
+            if (l <= 0) continue;
+            if (static_cast<std::size_t>(l) >= heights.size()) heights.resize(static_cast<std::size_t>(l) + 1);
+            if (std::isfinite(z[c])) heights[static_cast<std::size_t>(l)].push_back(z[c]);
+        }
+    }
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    std::vector<double> level(heights.size(), NAN);
+    for (std::size_t l = 1; l < heights.size(); ++l) level[l] = detail::median(heights[l]);
+    return level;
+}
+
+}  // namespace detail
+
+/// Water level of every body of a label raster: level[l] = median of the finite min z (metres) of the cells
+/// labelled l (the element at position n / 2 of their n sorted values), for l = 1 .. the largest label;
+/// NaN for a label without such cells and for level[0] (land). O(cells + largest label) time and memory.
+/// @throws invalid_input if the shapes differ or a label is negative.
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z)
+{
+    return detail::water_levels(labels, min_z, "water_levels");
+}
+
+namespace detail {
+
+/// The bridge sweep of join_across_bridges on validated arguments (labels in [0, level.size())).
+inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<const float> min_z,
+                                std::span<const double> level, double cell_m, const join_across_bridges_options& opt)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    const int span_cells = static_cast<int>(std::floor(opt.max_span_m / cell_m));
+    if (span_cells <= 0) return 0;
+    std::vector<std::int32_t> parent(level.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto find = [&](std::int32_t x) {
+        while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)];
+        return x;
+    };
+    const auto bridge_ok = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t a, std::int32_t b) {
+        const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
+        if (!(std::abs(la - lb) <= opt.level_tolerance_m)) return false;
+        const float z = min_z(r, c);
+        if (!std::isfinite(z)) return true;
+        const double above = static_cast<double>(z) - std::max(la, lb);
+        const double below = std::min(la, lb) - static_cast<double>(z);
+        return above >= opt.min_clearance_m || (above <= opt.water_tolerance_m && below <= opt.water_tolerance_m);
+    };
+    // Last water cell on each line: its row (for rows: its column) and label; -1 = none yet.
+    struct last_water { std::ptrdiff_t at = -1; std::int32_t label = 0; };
+    std::vector<last_water> down(static_cast<std::size_t>(cols)), diag(static_cast<std::size_t>(rows + cols)),
+        anti(static_cast<std::size_t>(rows + cols));
+    // Bridged cells are recorded and written after the pass, so every decision reads the original labels.
+    struct bridged_cell { std::ptrdiff_t cell; int direction; std::int32_t label; };
+    std::vector<bridged_cell> bridged;
+    const auto close_run = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r,
+                               std::ptrdiff_t c, int dr, int dc, int direction) {
+        const std::ptrdiff_t gap = at - lw.at - 1;
+        if (lw.at >= 0 && lw.label != l && gap >= 1 && gap <= span_cells) {
+            bool any = false;
+            for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
+                const std::ptrdiff_t rr = r - k * dr, cc = c - k * dc;
+                if (!bridge_ok(rr, cc, lw.label, l)) continue;
+                bridged.push_back({rr * cols + cc, direction, std::min(lw.label, l)});
+                any = true;
+            }
+            const auto ra = find(lw.label), rb = find(l);
+            if (any && ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+        }
+        lw = {at, l};
+    };
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        last_water across;
+        const std::int32_t* row = labels.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const std::int32_t l = row[c];
+            if (l == 0) continue;
+            close_run(across, c, l, r, c, 0, 1, 0);
+            close_run(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
+            close_run(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
+            close_run(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
+        }
+    }
+    std::sort(bridged.begin(), bridged.end(), [](const bridged_cell& a, const bridged_cell& b) {
+        return a.cell != b.cell ? a.cell < b.cell : a.direction < b.direction;
+    });
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < bridged.size(); ++k) {
+        if (k > 0 && bridged[k].cell == bridged[k - 1].cell) continue;
+        labels(bridged[k].cell / cols, bridged[k].cell % cols) = bridged[k].label;
+        ++count;
+    }
+    bool merged = false;
+    for (std::size_t b = 0; b < parent.size(); ++b) merged |= parent[b] != static_cast<std::int32_t>(b);
+    if (merged) {
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            std::int32_t* row = labels.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (row[c] > 0) row[c] = find(row[c]);
+        }
+    }
+    return count;
+}
+
+
+}  // namespace detail
+
+/// Joins waterbodies across bridges: a land cell (label 0) lying on a straight run (row, column or
+/// diagonal) of n land cells, n·cell_m <= max_span_m, whose two ends touch bodies a != b with
+/// |level[a] − level[b]| <= level_tolerance_m, becomes water when its min z is NaN (no return), at least
+/// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
+/// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in
+/// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every label of a
+/// merged group becomes its smallest). Every decision reads the labels as given. Elevations in metres.
+/// One row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined
+/// when a water cell of another body closes it. O(cells + cells of examined runs).
+/// Returns the number of bridged cells.
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or a
+/// label without an entry in `level`.
+inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z,
+                                       std::span<const double> level, double cell_m,
+                                       const join_across_bridges_options& opt = {})
+{
+    constexpr const char* fn = "join_across_bridges";
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    const auto [bottom, top] = detail::label_range(labels);
+    detail::require(bottom >= 0, fn, "labels", ">= 0", bottom);
+    detail::require(top == 0 || static_cast<std::size_t>(top) < level.size(), fn, "labels", "< level.size()", top);
+    return detail::bridge_sweep(labels, min_z, level, cell_m, opt);
+}
+
+/// join_across_bridges with each body's level from water_levels(labels, min_z).
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range or a negative label.
+inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z, double cell_m,
+                                       const join_across_bridges_options& opt = {})
+{
+    constexpr const char* fn = "join_across_bridges";
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    // One level per label up to the largest; negative labels are refused.
+    const auto level = detail::water_levels(labels, min_z, fn);
+    return detail::bridge_sweep(labels, min_z, level, cell_m, opt);
+}
+
+}  // namespace lidarfx

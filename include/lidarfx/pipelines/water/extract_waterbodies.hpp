@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: Apache-2.0
+// extract_waterbodies: waterbody maps from the rasters of an airborne LiDAR survey (dissertation ch. 2).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/points/rasterize.hpp"
+#include "lidarfx/pipelines/water/assess_water_inputs.hpp"
+#include "lidarfx/pipelines/water/bridges.hpp"
+#include "lidarfx/pipelines/water/grow_waterbodies.hpp"
+#include "lidarfx/pipelines/water/grow_waterbody.hpp"
+#include "lidarfx/pipelines/water/intensity_bins.hpp"
+#include "lidarfx/pipelines/water/islands.hpp"
+#include "lidarfx/pipelines/water/level_refinement.hpp"
+#include "lidarfx/pipelines/water/measure_waterbodies.hpp"
+#include "lidarfx/pipelines/water/water_angles.hpp"
+#include "lidarfx/pipelines/water/water_rasters.hpp"
+#include "lidarfx/pipelines/water/water_seeds.hpp"
+#include "lidarfx/pipelines/water/water_vegetation.hpp"
+
+namespace lidarfx {
+
+/// Options of extract_waterbodies; defaults follow the dissertation where it gives a value. Each group
+/// is passed to one step (see that step's options for the details).
+struct extract_waterbodies_options {
+    double vegetation_height_m = 2.0;      ///< water_vegetation: max z − min z above this is vegetation, metres
+    int vegetation_closing_size_cells = 5; ///< water_vegetation: closing of the vegetation mask, cells (odd)
+    bool vegetation_from_multiple_returns = true;  ///< water_vegetation: multiple-return cells are vegetation too
+    int angular_radius_cells = 2;          ///< water_angles: angular filter window radius, cells ("two tiers")
+    angular_input angular_on = angular_input::returns_only;  ///< water_angles: elevation read by the filter
+    bool dropouts_join_any_threshold = true;  ///< water_angles: dropout cells join a region at any θ (their
+                                              ///< angle is unknown); false = the dissertation's literal behaviour
+    int seed_opening_size_cells = 5;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
+    std::size_t min_seed_cells = 100;      ///< water_seeds: smallest seed component kept, cells (>= it is kept)
+    grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
+    double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
+                                           ///< nearest, ties to even), > 0
+    double level_tolerance_m = 0.15;       ///< join_level_cells: land cells next to a body whose min z is within
+                                           ///< this of the adjacent water level join it; 0 disables. Also
+                                           ///< join_across_bridges' water_tolerance_m
+    double level_max_rise_m = 0.5;         ///< join_level_cells: ... and whose highest return is at most this
+                                           ///< above that level (a cell mostly on the bank is not water), metres
+    int level_join_depth_cells = 2;        ///< join_level_cells: how far (cells) from the grown region it reaches
+    double island_min_area_m2 = 200.0;     ///< fill_small_islands: holes in a body at least this large stay
+                                           ///< land; smaller ones become water, m²
+    double bridge_max_span_m = 30.0;       ///< join_across_bridges: gaps up to this long between two bodies at
+                                           ///< one water level are bridged (decks become water, bodies merge),
+                                           ///< metres; 0 disables
+    double bridge_level_tolerance_m = 1.0; ///< join_across_bridges: water levels on both sides differ by at most this
+    double bridge_min_clearance_m = 2.0;   ///< join_across_bridges: a deck cell's lowest return stands at least
+                                           ///< this high above the water on both sides, metres
+    double min_points_per_cell = 2.0;      ///< assess_water_inputs: below this mean density the inputs are refused
+    bool check_inputs = true;              ///< refuse inputs that cannot support the method (see diagnostics)
+    execution run = {};                    ///< threads of the raster kernels (0 = all cores; same result for any
+                                           ///< count); progress over seeds, returning false cancels
+};
+
+/// Result of extract_waterbodies, with the intermediate rasters for inspection.
+struct extract_waterbodies_result {
+    raster<std::int32_t> labels;           ///< 0 land, 1..n waterbodies by decreasing area
+    raster<std::uint8_t> water;            ///< 1 water, 0 land
+    std::vector<waterbody> bodies;         ///< bodies[i].label == i + 1
+    water_diagnostics diagnostics;
+    raster<std::uint8_t> vegetation;       ///< vegetation mask used
+    raster<float> angle_deg;               ///< angular filter output as growing saw it (NaN: joins at any θ)
+    raster<std::int32_t> seeds;            ///< seed components, 1 = largest
+    std::size_t seeds_found = 0, seeds_grown = 0;
+    bool ran = false;                      ///< false when check_inputs refused the data
+};
+
+namespace detail {
+
+inline void validate(const extract_waterbodies_options& o, double cell_m, const char* fn)
+{
+    require_positive(cell_m, fn, "cell_m");
+    require(o.vegetation_height_m > 0, fn, "vegetation_height_m", "> 0", o.vegetation_height_m);
+    require(o.vegetation_closing_size_cells >= 1 && o.vegetation_closing_size_cells % 2 == 1, fn,
+            "vegetation_closing_size_cells", "odd and >= 1", o.vegetation_closing_size_cells);
+    require(o.angular_radius_cells >= 1, fn, "angular_radius_cells", ">= 1", o.angular_radius_cells);
+    require(o.seed_opening_size_cells >= 1 && o.seed_opening_size_cells % 2 == 1, fn, "seed_opening_size_cells",
+            "odd and >= 1", o.seed_opening_size_cells);
+    require(o.min_seed_cells >= 1, fn, "min_seed_cells", ">= 1", o.min_seed_cells);
+    require_positive(o.intensity_resolution, fn, "intensity_resolution");
+    require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
+    require(o.level_max_rise_m >= 0, fn, "level_max_rise_m", ">= 0", o.level_max_rise_m);
+    require(o.level_join_depth_cells >= 0, fn, "level_join_depth_cells", ">= 0", o.level_join_depth_cells);
+    require(o.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", o.island_min_area_m2);
+    require(o.bridge_max_span_m >= 0, fn, "bridge_max_span_m", ">= 0", o.bridge_max_span_m);
+    require(o.bridge_min_clearance_m >= 0, fn, "bridge_min_clearance_m", ">= 0", o.bridge_min_clearance_m);
+    require(o.bridge_level_tolerance_m >= 0, fn, "bridge_level_tolerance_m", ">= 0", o.bridge_level_tolerance_m);
+    require(o.min_points_per_cell >= 0, fn, "min_points_per_cell", ">= 0", o.min_points_per_cell);
+    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+    validate(o.grow, fn);
+}
+
+}  // namespace detail
+
+/// Extracts waterbodies from the rasters of a survey (dissertation ch. 2, with DESIGN.md §5's refinements),
+/// as a composition of the public steps: assess_water_inputs, water_vegetation, intensity_bins,
+/// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
+/// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
+/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). When check_inputs is set and assess_water_inputs()
+/// reports problems, nothing is extracted (ran = false) and the diagnostics say why. cell_m in metres.
+/// O(cells · angular radius + sum over seeds of cells reached). Progress: 0, then per seed, then 1.
+/// @throws invalid_input on rasters of different shapes, cell_m <= 0 or options out of range; cancelled.
+inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, double cell_m,
+                                                      const extract_waterbodies_options& opt = {})
+{
+    constexpr const char* fn = "extract_waterbodies";
+    detail::validate(in, fn);
+    detail::validate(opt, cell_m, fn);
+    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
+    const execution kernels{.threads = opt.run.threads};  // steps run silently; progress is reported per seed
+
+    extract_waterbodies_result res;
+    res.diagnostics = assess_water_inputs(in, cell_m, {.min_points_per_cell = opt.min_points_per_cell});
+    res.water = raster<std::uint8_t>(rows, cols, 0);
+    if (opt.check_inputs && !res.diagnostics.usable()) {
+        res.labels = raster<std::int32_t>(rows, cols, 0);
+        return res;
+    }
+    res.ran = true;
+    detail::report(opt.run.progress, 0.0, fn);
+
+    res.vegetation = water_vegetation(in, {.height_m = opt.vegetation_height_m,
+                                           .closing_size_cells = opt.vegetation_closing_size_cells,
+                                           .from_multiple_returns = opt.vegetation_from_multiple_returns,
+                                           .run = kernels});
+    auto bins = intensity_bins(in.mean_intensity, in.dropout, {.resolution = opt.intensity_resolution});
+    water_field field{water_angles(in, cell_m, {.radius_cells = opt.angular_radius_cells, .input = opt.angular_on,
+                                                .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
+                                                .run = kernels}),
+                      raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins};
+    for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
+    auto seeds = water_seeds(in.dropout, {.opening_size_cells = opt.seed_opening_size_cells,
+                                          .min_cells = opt.min_seed_cells, .run = kernels});
+    // Growing is the first 0.9 of the run's progress; cancelling there throws in this function's name.
+    const progress_callback seed_progress = [&](double f) {
+        detail::report(opt.run.progress, 0.9 * f, fn);
+        return true;
+    };
+    auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z,
+                                  {.grow = opt.grow,
+                                   .level = {.tolerance_m = opt.level_tolerance_m, .max_rise_m = opt.level_max_rise_m,
+                                             .depth_cells = opt.level_join_depth_cells},
+                                   .run = {.progress = seed_progress}});
+    res.seeds_found = seeds.count();
+    res.seeds = std::move(seeds.labels);
+    res.labels = std::move(grown.labels);
+    res.seeds_grown = grown.seeds_grown;
+    auto& bodies = grown.bodies;
+
+    if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
+        join_across_bridges(res.labels, in.min_z, cell_m,
+                            {.max_span_m = opt.bridge_max_span_m, .level_tolerance_m = opt.bridge_level_tolerance_m,
+                             .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m});
+    }
+    fill_small_islands(res.labels, cell_m, {.island_min_area_m2 = opt.island_min_area_m2, .run = kernels});
+    measure_waterbodies(res.labels, bodies, in, cell_m);
+    res.bodies = std::move(bodies);
+    for (std::ptrdiff_t i = 0; i < res.water.size(); ++i) res.water.data()[i] = res.labels.data()[i] > 0;
+    res.angle_deg = std::move(field.angle_deg);
+    detail::report(opt.run.progress, 1.0, fn);
+    return res;
+}
+
+/// extract_waterbodies on the output of rasterize(), at its grid's cell size.
+inline extract_waterbodies_result extract_waterbodies(const rasterize_result& pr, const extract_waterbodies_options& opt = {})
+{
+    return extract_waterbodies(to_water_rasters(pr), pr.g.cell, opt);
+}
+
+}  // namespace lidarfx

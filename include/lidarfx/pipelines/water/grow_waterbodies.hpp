@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: Apache-2.0
+// grow_waterbodies: every seed grown in turn, largest first, each body refined to its water level.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
+#include "lidarfx/pipelines/water/grow_waterbody.hpp"
+#include "lidarfx/pipelines/water/level_refinement.hpp"
+#include "lidarfx/pipelines/water/measure_waterbodies.hpp"
+#include "lidarfx/pipelines/water/water_seeds.hpp"
+
+namespace lidarfx {
+
+/// Options of grow_waterbodies.
+struct grow_waterbodies_options {
+    grow_waterbody_options grow = {};     ///< θ schedule and KS stop of each flood
+    join_level_cells_options level = {};  ///< narrow-water refinement of each grown region
+    execution run = {};                   ///< progress per seed (fraction of seeds done); threads are not used:
+                                          ///< seeds grow one after another (the order decides who owns a cell)
+};
+
+/// Bodies grown from the seeds, in growth order.
+struct grow_waterbodies_result {
+    raster<std::int32_t> labels;    ///< 0 land, k + 1 for bodies[k]
+    std::vector<waterbody> bodies;  ///< growth records: seed, theta_deg, stopped_by_ks (measure_waterbodies
+                                    ///< numbers and measures them)
+    std::size_t seeds_grown = 0;    ///< seeds that gave a body (== bodies.size())
+};
+
+/// Grows the seeds into waterbodies (dissertation 2.3.3), largest seed first (seed label 1 first): a seed
+/// with a cell inside an accepted body is skipped; otherwise grow_waterbody floods from its cells, and a
+/// non-empty region is extended by join_level_cells (min_z, max_z in metres) and accepted as the next body;
+/// its cells stop being eligible in `field` for the seeds that follow. `field` must have the shape of the
+/// seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). Progress: the
+/// fraction of seeds done, 0 before the first, 1 at the end.
+/// @throws invalid_input on shapes that differ or options out of range; cancelled.
+inline grow_waterbodies_result grow_waterbodies(water_field& field, const components& seeds,
+                                                raster_view<const float> min_z, raster_view<const float> max_z,
+                                                const grow_waterbodies_options& opt = {})
+{
+    constexpr const char* fn = "grow_waterbodies";
+    detail::require_same_shape(field.eligible, seeds.labels, fn, "field.eligible", "seeds.labels");
+    detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
+    detail::validate(opt.grow, fn);
+    detail::validate(opt.level, fn);
+    const auto seed_lists = seed_cells(seeds);
+    const std::size_t n = seed_lists.size() - 1;
+    grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
+    // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
+    // marks the cells it visits with its own negative stamp; the marks are cleared at the end.
+    std::int32_t stamp = 0;
+    for (std::size_t s = 1; s <= n; ++s) {
+        detail::report(opt.run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
+        const auto& cells = seed_lists[s];
+        if (std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return out.labels.data()[i] > 0; })) continue;
+        auto region = grow_waterbody(field, cells, opt.grow, out.labels, --stamp);
+        if (region.cells.empty()) continue;
+        join_level_cells(region.cells, min_z, max_z, field.eligible, out.labels, --stamp, opt.level);
+        const auto label = static_cast<std::int32_t>(out.bodies.size() + 1);
+        for (const auto i : region.cells) {
+            out.labels.data()[i] = label;
+            field.eligible.data()[i] = 0;
+        }
+        auto& body = out.bodies.emplace_back();
+        body.label = label;
+        body.seed = static_cast<std::int32_t>(s);
+        body.theta_deg = region.theta_deg;
+        body.stopped_by_ks = region.stopped_by_ks;
+    }
+    for (auto& l : out.labels) l = std::max(l, 0);
+    out.seeds_grown = out.bodies.size();
+    detail::report(opt.run.progress, 1.0, fn);
+    return out;
+}
+
+}  // namespace lidarfx

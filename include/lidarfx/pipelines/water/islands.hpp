@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: Apache-2.0
+// fill_small_islands: small land holes inside one waterbody become part of it; islands stay land.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
+
+namespace lidarfx {
+
+/// Options of fill_small_islands.
+struct fill_small_islands_options {
+    double island_min_area_m2 = 200.0;  ///< holes of at least this area stay land (islands), smaller ones
+                                        ///< become water, m²; >= 0, 0 keeps every hole. Default 200 m².
+    execution run = {};                 ///< threads of the labelling (same result for any count), progress
+};
+
+namespace detail {
+
+inline void validate(const fill_small_islands_options& o, const char* fn)
+{
+    require(o.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", o.island_min_area_m2);
+    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+}
+
+}  // namespace detail
+
+namespace detail {
+
+/// Holes of the bodies of `labels` (all labels in 1..bodies) by one pass per body over the body's
+/// bounding box grown by one cell: the cells of other labels or land there, 4-connected
+/// (connected_components), form parts; a part touching no edge of the box (so not the raster's border),
+/// holding only land and fewer than max_hole_cells cells is a hole of that body. Bodies are handled in
+/// label order and their fills are written at once (a filled hole lies inside its body, so it is no
+/// other body's hole). O(sum of the grown boxes' areas). Returns the cells filled.
+inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::size_t max_hole_cells,
+                                       const std::vector<cell_box>& boxes, int threads)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    std::size_t filled = 0;
+    raster<std::uint8_t> other;
+    for (std::size_t body = 1; body < boxes.size(); ++body) {
+        const auto& b = boxes[body];
+        if (b.empty()) continue;
+        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b.row_min - 1), c0 = std::max<std::ptrdiff_t>(0, b.col_min - 1);
+        const std::ptrdiff_t r1 = std::min(rows - 1, b.row_max + 1), c1 = std::min(cols - 1, b.col_max + 1);
+        const std::ptrdiff_t nr = r1 - r0 + 1, nc = c1 - c0 + 1;
+        if (nr < 3 || nc < 3) continue;
+        const auto box = labels.window(r0, c0, nr, nc);
+        const auto l = static_cast<std::int32_t>(body);
+        other = raster<std::uint8_t>(nr, nc, uninitialized);
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c) other(r, c) = box(r, c) != l;
+        const auto parts = connected_components(other, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
+        std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
+        fill[0] = 0;
+        for (std::size_t k = 1; k < parts.sizes.size(); ++k)
+            if (parts.sizes[k] >= max_hole_cells) fill[k] = 0;
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                const auto k = static_cast<std::size_t>(parts.labels(r, c));
+                if (k == 0 || !fill[k]) continue;
+                if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || box(r, c) != 0) fill[k] = 0;
+            }
+        for (std::ptrdiff_t r = 0; r < nr; ++r)
+            for (std::ptrdiff_t c = 0; c < nc; ++c)
+                if (fill[static_cast<std::size_t>(parts.labels(r, c))]) {
+                    box(r, c) = l;
+                    ++filled;
+                }
+    }
+    return filled;
+}
+
+/// Holes of the bodies of `labels` by one labelling of the land inside `bounds` (the bounding box of all
+/// bodies grown by one cell): 4-connected land parts (connected_components) on the edge of that box or of
+/// max_hole_cells cells or more are dropped (where the box's edge is not the raster's border, it is land
+/// reaching the border outside the box); one pass finds each remaining part's neighbour bodies, and a part
+/// next to exactly one body becomes it. O(area of bounds). Returns the cells filled.
+inline std::size_t fill_holes_at_once(raster_view<std::int32_t> labels, std::size_t max_hole_cells, cell_box bounds,
+                                      int threads)
+{
+    const std::ptrdiff_t nr = bounds.rows(), nc = bounds.cols();
+    const auto box = labels.window(bounds.row_min, bounds.col_min, nr, nc);
+    raster<std::uint8_t> land(nr, nc, uninitialized);
+    for (std::ptrdiff_t r = 0; r < nr; ++r) {
+        const std::int32_t* in = box.row(r);
+        std::uint8_t* out = land.row(r);
+        for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] == 0;
+    }
+    const auto parts = connected_components(land, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
+    // owner[k]: the body around part k while it may be a hole; 0 = none seen yet, -1 = not a hole (too
+    // large, on the box's edge, or next to two bodies).
+    std::vector<std::int32_t> owner(parts.sizes.size(), 0);
+    owner[0] = -1;
+    for (std::size_t k = 1; k < parts.sizes.size(); ++k)
+        if (parts.sizes[k] >= max_hole_cells) owner[k] = -1;
+    for (std::ptrdiff_t c = 0; c < nc; ++c)
+        owner[static_cast<std::size_t>(parts.labels(0, c))] = owner[static_cast<std::size_t>(parts.labels(nr - 1, c))] = -1;
+    for (std::ptrdiff_t r = 0; r < nr; ++r)
+        owner[static_cast<std::size_t>(parts.labels(r, 0))] = owner[static_cast<std::size_t>(parts.labels(r, nc - 1))] = -1;
+    const auto meet = [](std::int32_t& o, std::int32_t l) {
+        if (l > 0 && o >= 0) o = o == 0 || o == l ? l : -1;
+    };
+    for (std::ptrdiff_t r = 1; r < nr - 1; ++r) {
+        const std::int32_t* part = parts.labels.row(r);
+        for (std::ptrdiff_t c = 1; c < nc - 1; ++c) {
+            auto& o = owner[static_cast<std::size_t>(part[c])];
+            if (o < 0) continue;
+            meet(o, box(r - 1, c));
+            meet(o, box(r + 1, c));
+            meet(o, box(r, c - 1));
+            meet(o, box(r, c + 1));
+        }
+    }
+    std::size_t filled = 0;
+    for (std::ptrdiff_t r = 1; r < nr - 1; ++r) {
+        const std::int32_t* part = parts.labels.row(r);
+        std::int32_t* out = box.row(r);
+        for (std::ptrdiff_t c = 1; c < nc - 1; ++c) {
+            const auto o = owner[static_cast<std::size_t>(part[c])];
+            if (o <= 0) continue;
+            out[c] = o;
+            ++filled;
+        }
+    }
+    return filled;
+}
+
+}  // namespace detail
+
+/// Fills the small holes of waterbodies. A hole is a 4-connected component of land cells (label 0) that
+/// touches no raster edge and whose 4-neighbours all carry one body's label; it becomes part of that body
+/// when its area, cells · cell_m², is below island_min_area_m2 (it holds fewer than
+/// ceil(island_min_area_m2 / cell_m²) cells). Land next to two bodies, or reaching the border, stays land.
+/// Built on the label kernels (connected_components, 4-connected) in one of two ways with the same result:
+/// per body, over the body's bounding box grown by one cell, while the boxes' areas add up to at most the
+/// raster's cells (the usual case, and the least memory: a few compact bodies); otherwise in one labelling
+/// of the land inside the box of all bodies, so that nested boxes never cost more than O(cells).
+/// O(cells). Progress: 0 on entry, 1 when done. Returns the number of cells filled.
+/// @throws invalid_input on cell_m <= 0, options out of range, negative labels; cancelled.
+inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double cell_m,
+                                      const fill_small_islands_options& opt = {})
+{
+    constexpr const char* fn = "fill_small_islands";
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    // Pass 1: the labels' range and the bounding box of all bodies (every hole lies inside it).
+    cell_box all{rows, cols, -1, -1};
+    std::int32_t lowest = 0, highest = 0;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* row = labels.row(r);
+        std::ptrdiff_t first = cols, last = -1;
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            lowest = std::min(lowest, row[c]);
+            highest = std::max(highest, row[c]);
+            if (row[c] > 0) {
+                first = std::min(first, c);
+                last = c;
+            }
+        }
+        if (last < 0) continue;
+        all = {std::min(all.row_min, r), std::min(all.col_min, first), r, std::max(all.col_max, last)};
+    }
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    detail::report(opt.run.progress, 0.0, fn);
+    // Clamped so that any area converts; no raster holds 2^60 cells.
+    const auto max_hole_cells =
+        static_cast<std::size_t>(std::min(std::ceil(opt.island_min_area_m2 / (cell_m * cell_m)), 0x1p60));
+    std::size_t filled = 0;
+    if (max_hole_cells > 0 && !all.empty()) {
+        // Pass 2, when the labels are few enough to keep a box each: the boxes, and what they cover.
+        std::vector<cell_box> boxes;
+        std::ptrdiff_t covered = rows * cols + 1;
+        if (highest <= rows * cols / 8) {
+            boxes.assign(static_cast<std::size_t>(highest) + 1, cell_box{rows, cols, -1, -1});
+            for (std::ptrdiff_t r = all.row_min; r <= all.row_max; ++r) {
+                const std::int32_t* row = labels.row(r);
+                for (std::ptrdiff_t c = all.col_min; c <= all.col_max; ++c) {
+                    if (row[c] <= 0) continue;
+                    auto& b = boxes[static_cast<std::size_t>(row[c])];
+                    b = {std::min(b.row_min, r), std::min(b.col_min, c), r, std::max(b.col_max, c)};
+                }
+            }
+            covered = 0;
+            for (const auto& b : boxes)
+                if (!b.empty()) covered += (b.rows() + 2) * (b.cols() + 2);
+        }
+        if (covered <= rows * cols) {
+            filled = detail::fill_holes_per_body(labels, max_hole_cells, boxes, opt.run.threads);
+        } else {
+            const cell_box grown{std::max<std::ptrdiff_t>(0, all.row_min - 1), std::max<std::ptrdiff_t>(0, all.col_min - 1),
+                                 std::min(rows - 1, all.row_max + 1), std::min(cols - 1, all.col_max + 1)};
+            filled = detail::fill_holes_at_once(labels, max_hole_cells, grown, opt.run.threads);
+        }
+    }
+    detail::report(opt.run.progress, 1.0, fn);
+    return filled;
+}
+
+}  // namespace lidarfx

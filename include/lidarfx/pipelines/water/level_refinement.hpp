@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: Apache-2.0
+// join_level_cells: the narrow-water refinement; cells at a grown region's water level join it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Options of join_level_cells.
+struct join_level_cells_options {
+    double tolerance_m = 0.15;  ///< a cell's min z lies within this of the level it is reached from,
+                                ///< |min z - level| <= tolerance_m, metres; >= 0, 0 disables. Default 0.15 m.
+    double max_rise_m = 0.5;    ///< and its max z at most this above that level, max z - level <= max_rise_m
+                                ///< (a cell mostly on the bank is not water), metres; >= 0. Default 0.5 m.
+    int depth_cells = 2;        ///< steps (8-neighbourhood) from the region the refinement reaches, cells;
+                                ///< >= 0, 0 disables. Default 2.
+};
+
+namespace detail {
+
+inline void validate(const join_level_cells_options& o, const char* fn)
+{
+    require(o.tolerance_m >= 0, fn, "tolerance_m", ">= 0", o.tolerance_m);
+    require(o.max_rise_m >= 0, fn, "max_rise_m", ">= 0", o.max_rise_m);
+    require(o.depth_cells >= 0, fn, "depth_cells", ">= 0", o.depth_cells);
+}
+
+}  // namespace detail
+
+/// Narrow-water refinement (DESIGN.md §5): a breadth-first walk from the region's edge cells with a return
+/// adds every eligible cell within depth_cells steps (8-neighbourhood) whose returns all lie at the water
+/// level, that is |min z − L| <= tolerance_m and max z − L <= max_rise_m, where L is the min z of the region
+/// edge cell the walk started from (kept along the walk). Cells without a return (NaN min z) never join.
+/// Joined cells are appended to `region` (linear indices r * cols + c) in the order they join. `visited`
+/// is scratch of the same shape whose cells must differ from `stamp` on entry; region cells and joined
+/// cells are set to `stamp`. Elevations in metres. O(region + cells joined).
+/// @throws invalid_input on rasters of different shapes, region cells outside them, options out of range.
+inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<const float> min_z,
+                             raster_view<const float> max_z, const raster<std::uint8_t>& eligible,
+                             raster<std::int32_t>& visited, std::int32_t stamp,
+                             const join_level_cells_options& opt = {})
+{
+    constexpr const char* fn = "join_level_cells";
+    detail::require_same_shape(min_z, max_z, fn, "min_z", "max_z");
+    detail::require_same_shape(min_z, eligible, fn, "min_z", "eligible");
+    detail::require_same_shape(min_z, visited, fn, "min_z", "visited");
+    detail::validate(opt, fn);
+    const std::ptrdiff_t rows = eligible.rows(), cols = eligible.cols();
+    for (const auto i : region) detail::require(i >= 0 && i < rows * cols, fn, "region cell index", "inside the rasters", i);
+    if (opt.tolerance_m <= 0 || opt.depth_cells <= 0) return;
+    struct entry { std::ptrdiff_t cell; float level; int depth; };
+    std::vector<entry> frontier;
+    std::int32_t* seen = visited.data();
+    for (const auto i : region) seen[i] = stamp;
+    // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
+    const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
+            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                if (seen[rr * cols + cc] != stamp) return true;
+        return false;
+    };
+    for (const auto i : region) {
+        const std::ptrdiff_t r = i / cols, c = i % cols;
+        const float z = min_z(r, c);
+        if (std::isfinite(z) && on_edge(r, c)) frontier.push_back({i, z, 0});
+    }
+    for (std::size_t q = 0; q < frontier.size(); ++q) {
+        const entry e = frontier[q];
+        if (e.depth >= opt.depth_cells) continue;
+        const std::ptrdiff_t r = e.cell / cols, c = e.cell % cols;
+        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                const std::ptrdiff_t j = rr * cols + cc;
+                if (seen[j] == stamp || !eligible.data()[j]) continue;
+                // The whole cell must lie at the water level: a shore cell holding water and bank returns
+                // has its lowest return on the water but its highest on the bank.
+                const float lo = min_z(rr, cc), hi = max_z(rr, cc);
+                if (!std::isfinite(lo) || std::abs(static_cast<double>(lo) - e.level) > opt.tolerance_m ||
+                    !(static_cast<double>(hi) - e.level <= opt.max_rise_m)) {
+                    continue;
+                }
+                seen[j] = stamp;
+                region.push_back(j);
+                frontier.push_back({j, e.level, e.depth + 1});
+            }
+        }
+    }
+}
+
+}  // namespace lidarfx

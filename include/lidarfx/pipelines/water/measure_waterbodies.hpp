@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: Apache-2.0
+// measure_waterbodies: number the bodies of a label raster by decreasing area and describe each one.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/water/water_rasters.hpp"
+
+namespace lidarfx {
+
+/// One extracted waterbody.
+struct waterbody {
+    std::int32_t label = 0;                ///< 1..n by decreasing area
+    std::size_t cells = 0;
+    double area_m2 = 0;
+    cell_box box;                          ///< bounding box, cells (inclusive)
+    std::int32_t seed = 0;                 ///< rank of the seed it grew from (1 = largest seed)
+    double theta_deg = NAN;                ///< angular threshold reached when growth stopped
+    bool stopped_by_ks = false;            ///< false: θ_max reached without a KS rejection
+    double mean_intensity = NAN;           ///< mean intensity of its cells with returns (NaN if none)
+    double water_level_m = NAN;            ///< median min z of its cells with returns, metres (NaN if none)
+    double dropout_fraction = 0;           ///< share of its cells without returns
+};
+
+/// Numbers the bodies of `labels` by decreasing area and measures them. On entry, label l > 0 marks body l
+/// and bodies[l - 1] holds what is known of it (seed, theta_deg, stopped_by_ks; bodies grows with default
+/// entries up to the largest label). On return, labels are 1..n by decreasing cell count (equal counts keep
+/// the order of the old labels), labels without cells are gone, and bodies[i] describes label i + 1:
+/// cells, area_m2 = cells · cell_m², bounding box, and over its cells with returns (dropout == 0) the mean
+/// intensity, the water level (median of the finite min z, metres: the element at position n / 2 of the n
+/// sorted values) and the dropout share. O(cells + n log n).
+/// @throws invalid_input on rasters of different shapes, cell_m <= 0 or negative labels.
+inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<waterbody>& bodies,
+                                const water_rasters& in, double cell_m)
+{
+    constexpr const char* fn = "measure_waterbodies";
+    detail::validate(in, fn);
+    detail::require_same_shape(labels, in.min_z, fn, "labels", "min_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    std::vector<std::size_t> size(bodies.size() + 1, 0);
+    std::int32_t lowest = 0;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* label = labels.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const std::int32_t l = label[c];
+            lowest = std::min(lowest, l);
+            if (l < 0) continue;
+            if (static_cast<std::size_t>(l) >= size.size()) size.resize(static_cast<std::size_t>(l) + 1, 0);
+            ++size[static_cast<std::size_t>(l)];
+        }
+    }
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    if (bodies.size() + 1 < size.size()) bodies.resize(size.size() - 1);
+    std::vector<std::int32_t> order;
+    for (std::size_t b = 1; b < size.size(); ++b)
+        if (size[b] > 0) order.push_back(static_cast<std::int32_t>(b));
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) {
+        return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)];
+    });
+    std::vector<std::int32_t> relabel(size.size(), 0);
+    for (std::size_t k = 0; k < order.size(); ++k) relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+
+    // One row-major pass gathers every body's extent, intensity and the heights for its water level.
+    std::vector<waterbody> out(order.size());
+    std::vector<double> intensity(order.size(), 0.0);
+    std::vector<std::size_t> with_returns(order.size(), 0);
+    std::vector<std::vector<float>> heights(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        auto& b = out[k];
+        const auto& known = bodies[static_cast<std::size_t>(order[k] - 1)];
+        b.label = static_cast<std::int32_t>(k + 1);
+        b.seed = known.seed;
+        b.theta_deg = known.theta_deg;
+        b.stopped_by_ks = known.stopped_by_ks;
+        b.box.row_min = rows;
+        b.box.col_min = cols;
+    }
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        std::int32_t* label = labels.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto l = label[c] = relabel[static_cast<std::size_t>(label[c])];
+            if (l <= 0) continue;
+            const auto k = static_cast<std::size_t>(l - 1);
+            auto& b = out[k];
+            ++b.cells;
+            b.box.row_min = std::min(b.box.row_min, r);
+            b.box.row_max = r;
+            b.box.col_min = std::min(b.box.col_min, c);
+            b.box.col_max = std::max(b.box.col_max, c);
+            if (in.dropout(r, c)) continue;
+            intensity[k] += in.mean_intensity(r, c);
+            ++with_returns[k];
+            if (const float z = in.min_z(r, c); std::isfinite(z)) heights[k].push_back(z);
+        }
+    }
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        auto& b = out[k];
+        b.area_m2 = static_cast<double>(b.cells) * cell_m * cell_m;
+        b.mean_intensity = with_returns[k] ? intensity[k] / static_cast<double>(with_returns[k]) : NAN;
+        b.dropout_fraction = b.cells ? 1.0 - static_cast<double>(with_returns[k]) / static_cast<double>(b.cells) : 0.0;
+        b.water_level_m = detail::median(heights[k]);
+    }
+    bodies = std::move(out);
+}
+
+}  // namespace lidarfx

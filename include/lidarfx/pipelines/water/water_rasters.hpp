@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+// water_rasters: the survey rasters every waterbody step reads, and their validation.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/points/rasterize.hpp"
+
+namespace lidarfx {
+
+/// The rasters of a survey that the waterbody steps read, all of one shape on one grid (see rasterize()).
+/// Views: the caller keeps the rasters alive while a step runs.
+struct water_rasters {
+    raster_view<const float> min_z;                          ///< lowest return, metres; NaN = no return
+    raster_view<const float> max_z;                          ///< highest return, metres; NaN = no return
+    raster_view<const float> mean_intensity;                 ///< mean return intensity; ignored where dropout
+    raster_view<const std::uint8_t> dropout;                 ///< 1 = no return in the cell
+    raster_view<const std::uint8_t> multiple_returns = {};   ///< optional: 1 = a pulse with several returns
+    raster_view<const std::uint32_t> count = {};             ///< optional: points per cell (density checks)
+};
+
+/// Views of the output of rasterize() (all six rasters); `pr` must outlive the result.
+inline water_rasters to_water_rasters(const rasterize_result& pr) noexcept
+{
+    return water_rasters{pr.min_z, pr.max_z, pr.mean_intensity, pr.dropout, pr.multiple_returns, pr.count};
+}
+
+namespace detail {
+
+/// Refuses rasters of different shapes (the optional ones only when given) and empty rasters.
+inline void validate(const water_rasters& in, const char* fn)
+{
+    require_same_shape(in.min_z, in.max_z, fn, "min_z", "max_z");
+    require_same_shape(in.min_z, in.mean_intensity, fn, "min_z", "mean_intensity");
+    require_same_shape(in.min_z, in.dropout, fn, "min_z", "dropout");
+    if (!in.multiple_returns.empty())
+        require_same_shape(in.min_z, in.multiple_returns, fn, "min_z", "multiple_returns");
+    if (!in.count.empty()) require_same_shape(in.min_z, in.count, fn, "min_z", "count");
+    require(!in.min_z.empty(), fn, "the rasters are empty (0 cells)");
+}
+
+/// min(0, smallest label) and max(0, largest label) of a label raster. O(cells).
+inline std::pair<std::int32_t, std::int32_t> label_range(raster_view<const std::int32_t> labels) noexcept
+{
+    std::int32_t lo = 0, hi = 0;
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
+        const std::int32_t* row = labels.row(r);
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+            lo = std::min(lo, row[c]);
+            hi = std::max(hi, row[c]);
+        }
+    }
+    return {lo, hi};
+}
+
+/// Median of `values` (reordered; NaN when empty): the element at position size / 2 of the sorted values.
+inline double median(std::vector<float>& values)
+{
+    if (values.empty()) return NAN;
+    const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), mid, values.end());
+    return *mid;
+}
+
+}  // namespace detail
+
+}  // namespace lidarfx

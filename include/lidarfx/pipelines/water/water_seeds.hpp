@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: Apache-2.0
+// water_seeds: where waterbodies start growing, from the dropout mask (cells without returns).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/filter/morphology.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
+
+namespace lidarfx {
+
+/// Options of water_seeds.
+struct water_seeds_options {
+    int opening_size_cells = 5;    ///< side of the square opening the dropout mask, cells; odd, >= 1. Default 5.
+    std::size_t min_cells = 100;   ///< seeds keep components of at least this many cells; >= 1. Default 100.
+    execution run = {};            ///< threads of the kernels (same result for any count), progress
+};
+
+namespace detail {
+
+inline void validate(const water_seeds_options& o, const char* fn)
+{
+    require(o.opening_size_cells >= 1 && o.opening_size_cells % 2 == 1, fn, "opening_size_cells", "odd and >= 1",
+            o.opening_size_cells);
+    require(o.min_cells >= 1, fn, "min_cells", ">= 1", o.min_cells);
+    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+}
+
+}  // namespace detail
+
+/// Seeds of waterbodies (dissertation 2.3.2): the dropout mask opened by an opening_size_cells square
+/// (morph_open; removes dropouts narrower than the square, as on land), its 8-connected components of at
+/// least min_cells cells, ranked by size: label 1 = largest, ties in raster-scan order of their first
+/// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
+/// O(cells). Progress: 0 on entry, 1 when done.
+/// @throws invalid_input on options out of range; cancelled when progress returns false.
+template <raster_input Mask>
+components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
+{
+    constexpr const char* fn = "water_seeds";
+    detail::validate(opt, fn);
+    detail::report(opt.run.progress, 0.0, fn);
+    const int threads = opt.run.threads;
+    const auto opened = morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
+    auto seeds = connected_components(opened, connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
+    rank_by_size(seeds);
+    // Ranked by size: the seeds to keep are the labels 1..kept.
+    std::size_t kept = 0;
+    while (kept + 1 < seeds.sizes.size() && seeds.sizes[kept + 1] >= opt.min_cells) ++kept;
+    for (auto& l : seeds.labels) {
+        if (static_cast<std::size_t>(l) > kept) {
+            seeds.sizes[0] += 1;
+            l = 0;
+        }
+    }
+    seeds.sizes.resize(kept + 1);
+    detail::report(opt.run.progress, 1.0, fn);
+    return seeds;
+}
+
+/// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
+/// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
+inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& seeds)
+{
+    std::vector<std::vector<std::ptrdiff_t>> out(seeds.count() + 1);
+    const auto& labels = seeds.labels;
+    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
+        const auto l = labels.data()[i];
+        if (l > 0) out[static_cast<std::size_t>(l)].push_back(i);
+    }
+    return out;
+}
+
+}  // namespace lidarfx

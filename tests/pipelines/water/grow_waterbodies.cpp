@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/pipelines/water/grow_waterbodies.hpp>
+
+#include "water_test_rasters.hpp"
+
+using namespace lidarfx;
+
+namespace {
+
+// 5 x 12: lake A (columns 0-4, 10 m) and lake B (columns 6-11, 10.5 m) with angles of 0, split by a steep
+// bank (column 5, 12 m, 40° > θ_max) whose cell (2, 5) lies at lake A's level. One intensity everywhere, so
+// no KS test rejects. Seeds: 1 and 2 in lake A, 3 in lake B, 4 on a vegetation cell of lake B.
+struct two_lakes {
+    water_field field;
+    raster<float> min_z{5, 12, 10.0f}, max_z{5, 12, 10.0f};
+    components seeds{raster<std::int32_t>(5, 12, 0), {}};
+
+    two_lakes()
+    {
+        field.angle_deg = raster<float>(5, 12, 0.0f);
+        field.eligible = raster<std::uint8_t>(5, 12, 1);
+        field.intensity_bin = raster<std::int32_t>(5, 12, 0);
+        field.bins = 1;
+        for (std::ptrdiff_t r = 0; r < 5; ++r) {
+            field.angle_deg(r, 5) = 40.0f;
+            min_z(r, 5) = max_z(r, 5) = 12.0f;
+        }
+        for (std::ptrdiff_t r = 0; r < 5; ++r)
+            for (std::ptrdiff_t c = 6; c < 12; ++c) min_z(r, c) = max_z(r, c) = 10.5f;
+        min_z(2, 5) = 10.0f;
+        max_z(2, 5) = 10.25f;
+        field.eligible(4, 10) = 0;
+        seeds.labels(0, 0) = seeds.labels(0, 1) = seeds.labels(1, 0) = seeds.labels(1, 1) = 1;
+        seeds.labels(3, 3) = seeds.labels(4, 3) = 2;
+        seeds.labels(2, 8) = 3;
+        seeds.labels(4, 10) = 4;
+        seeds.sizes = {60 - 8, 4, 2, 1, 1};
+    }
+};
+
+}  // namespace
+
+TEST_CASE("water/grow_waterbodies: seeds grow in order, a seed inside a body is skipped, bodies refine")
+{
+    two_lakes s;
+    const auto g = grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z);
+    REQUIRE(g.bodies.size() == 2);
+    CHECK(g.seeds_grown == 2);
+    CHECK(g.bodies[0].label == 1);
+    CHECK(g.bodies[0].seed == 1);
+    CHECK(g.bodies[1].label == 2);
+    CHECK(g.bodies[1].seed == 3);  // seed 2 lies in body 1; seed 4 is vegetation and grows nothing
+    for (const auto& b : g.bodies) {
+        CHECK(b.theta_deg == 30.0);  // steps without growth are accepted up to θ_max
+        CHECK_FALSE(b.stopped_by_ks);
+    }
+    for (std::ptrdiff_t r = 0; r < 5; ++r)
+        for (std::ptrdiff_t c = 0; c < 12; ++c) {
+            CAPTURE(r);
+            CAPTURE(c);
+            const std::int32_t expected = c < 5 ? 1 : c > 5 ? (r == 4 && c == 10 ? 0 : 2) : (r == 2 ? 1 : 0);
+            CHECK(g.labels(r, c) == expected);
+            // Body cells are no longer eligible.
+            CHECK(s.field.eligible(r, c) == (expected == 0 && !(r == 4 && c == 10)));
+        }
+}
+
+TEST_CASE("water/grow_waterbodies: the refinement options reach the bodies")
+{
+    two_lakes s;
+    const auto g = grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.level = {.depth_cells = 0}});
+    CHECK(g.labels(2, 5) == 0);
+    two_lakes t;
+    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {.level = {.max_rise_m = 0.125}});
+    CHECK(h.labels(2, 5) == 0);  // its highest return rises 0.25 m above the water
+    two_lakes u;
+    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {.grow = {.theta_max_deg = 45.0}});
+    CHECK(k.bodies.size() == 1);  // 40° banks join at θ 45°: one body over both lakes
+    CHECK(k.labels(0, 11) == 1);
+}
+
+TEST_CASE("water/grow_waterbodies: no seed, no body")
+{
+    two_lakes s;
+    const components none{raster<std::int32_t>(5, 12, 0), {60}};
+    const auto g = grow_waterbodies(s.field, none, s.min_z, s.max_z);
+    CHECK(g.bodies.empty());
+    CHECK(g.labels == raster<std::int32_t>(5, 12, 0));
+}
+
+TEST_CASE("water/grow_waterbodies: progress is monotone and ends at 1; returning false cancels")
+{
+    water_test::check_progress_and_cancel(
+        [&](const execution& run) {
+            two_lakes s;
+            return grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.run = run});
+        },
+        "grow_waterbodies");
+}
+
+TEST_CASE("water/grow_waterbodies: bad arguments are refused")
+{
+    two_lakes s;
+    const components small{raster<std::int32_t>(4, 12, 0), {48}};
+    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, small, s.min_z, s.max_z),
+                         "grow_waterbodies: field.eligible and seeds.labels must have the same shape (got 5x12 and 4x12)",
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.level = {.tolerance_m = -1}}),
+                         "grow_waterbodies: tolerance_m must be >= 0 (got -1)", invalid_input);
+}
