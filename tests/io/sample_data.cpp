@@ -6,6 +6,9 @@
 
 #include "io/las.hpp"
 
+#include <lidarfx/kernels/points/rasterize.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -85,4 +88,48 @@ TEST_CASE("io/sample_data: Haystack_Rock.las has the documented points, bounds a
     CHECK(cloud.x(123) == p.x[123]);
     CHECK(cloud.z(21931) == p.z[21931]);
     CHECK(cloud.number_of_returns(5) == 1);
+}
+
+TEST_CASE("io/sample_data: Haystack_Rock.las cannot support waterbody extraction, and the library says why")
+{
+    const auto pts = io::read_las(sample_path("Haystack_Rock.las"));
+    const grid g = snapped_grid(bounds_of(pts.cloud()), 2.0);
+    const auto pr = rasterize(pts.cloud(), g);
+    const auto w = extract_waterbodies(pr);
+    CHECK_FALSE(w.ran);
+    CHECK_FALSE(w.diagnostics.usable());
+    CHECK_FALSE(w.diagnostics.has_intensity);
+    const auto problems = w.diagnostics.messages(water_severity::problem);
+    REQUIRE(problems.size() == 2);
+    CHECK(w.diagnostics.issues[0].kind == water_issue_kind::intensity_constant);
+    CHECK(w.diagnostics.issues[1].kind == water_issue_kind::density_too_low);
+    CHECK(problems[0].find("intensity") != std::string::npos);
+    CHECK(problems[1].find("points per 2.0 m cell") != std::string::npos);
+    CHECK(w.diagnostics.suggested_cell_m > 2.0);
+    CHECK(w.bodies.empty());
+    for (const auto v : w.water) REQUIRE(v == 0);
+    // Forcing the run is possible, and the diagnostics still travel with the result.
+    extract_waterbodies_options forced;
+    forced.check_inputs = false;
+    const auto f = extract_waterbodies(pr, forced);
+    CHECK(f.ran);
+    CHECK_FALSE(f.diagnostics.usable());
+}
+
+TEST_CASE("io/sample_data: Haystack_Rock.las lacks intensity and density, in codes and values")
+{
+    const auto pts = io::read_las(sample_path("Haystack_Rock.las"));
+    const auto pr = rasterize(pts.cloud(), snapped_grid(bounds_of(pts.cloud()), 2.0));
+    const auto d = assess_water_inputs(pr);
+    REQUIRE(d.issues.size() == 3);
+    CHECK(d.issues[0].kind == water_issue_kind::intensity_constant);
+    CHECK(d.issues[0].intensity == 0.0);
+    CHECK(d.issues[1].kind == water_issue_kind::density_too_low);
+    CHECK(d.issues[1].cell_m == 2.0);
+    CHECK(d.issues[1].points_per_m2 == doctest::Approx(0.17).epsilon(0.05));  // docs/waterbodies.md: 0.17
+    CHECK(d.issues[1].suggested_cell_m == 3.5);
+    CHECK(d.issues[2].kind == water_issue_kind::no_multiple_returns);
+    CHECK(d.issues[2].severity == water_severity::warning);
+    CHECK(d.issues[1].message().find("points per 2.0 m cell") != std::string::npos);
+    CHECK(d.issues[1].message().find("use a cell of at least 3.5 m") != std::string::npos);
 }

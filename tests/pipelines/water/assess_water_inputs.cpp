@@ -5,11 +5,9 @@
 #include <lidarfx/pipelines/water/assess_water_inputs.hpp>
 
 #include <cmath>
-#include <filesystem>
 #include <set>
 #include <string>
 
-#include "io/las.hpp"
 #include "water_test_rasters.hpp"
 
 using namespace lidarfx;
@@ -189,27 +187,4 @@ TEST_CASE("water/assess_water_inputs: bad arguments are refused")
                          invalid_input);
     CHECK_THROWS_WITH_AS(assess_water_inputs(s.view(), 1.0, {.min_points_per_cell = -1}),
                          "assess_water_inputs: min_points_per_cell must be >= 0 (got -1)", invalid_input);
-}
-
-TEST_CASE("water/assess_water_inputs: the sample survey lacks intensity and density, in codes and values")
-{
-    const std::filesystem::path path = std::filesystem::path(LIDARFX_DATA_DIR) / "Haystack_Rock.las";
-    if (!std::filesystem::exists(path)) {
-        MESSAGE("sample data not found: " << path.string());
-        return;
-    }
-    const auto pts = io::read_las(path.string());
-    const auto pr = rasterize(pts.cloud(), snapped_grid(bounds_of(pts.cloud()), 2.0));
-    const auto d = assess_water_inputs(pr);
-    REQUIRE(d.issues.size() == 3);
-    CHECK(d.issues[0].kind == water_issue_kind::intensity_constant);
-    CHECK(d.issues[0].intensity == 0.0);
-    CHECK(d.issues[1].kind == water_issue_kind::density_too_low);
-    CHECK(d.issues[1].cell_m == 2.0);
-    CHECK(d.issues[1].points_per_m2 == doctest::Approx(0.17).epsilon(0.05));  // docs/waterbodies.md: 0.17
-    CHECK(d.issues[1].suggested_cell_m == 3.5);
-    CHECK(d.issues[2].kind == water_issue_kind::no_multiple_returns);
-    CHECK(d.issues[2].severity == water_severity::warning);
-    CHECK(d.issues[1].message().find("points per 2.0 m cell") != std::string::npos);
-    CHECK(d.issues[1].message().find("use a cell of at least 3.5 m") != std::string::npos);
 }

@@ -9,9 +9,8 @@
 
 #include <algorithm>
 #include <cstring>
-#include <filesystem>
+#include <limits>
 
-#include "io/las.hpp"
 
 using namespace lidarfx;
 
@@ -136,35 +135,26 @@ TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public st
     for (std::ptrdiff_t i = 0; i < w.water.size(); ++i) REQUIRE((w.water.data()[i] != 0) == (w.labels.data()[i] > 0));
 }
 
-TEST_CASE("water/extract_waterbodies: data without intensity or density is refused with the reason")
+TEST_CASE("water/extract_waterbodies: huge or infinite island areas and bridge spans are exact, never overflow")
 {
-    const std::filesystem::path path = std::filesystem::path(LIDARFX_DATA_DIR) / "Haystack_Rock.las";
-    if (!std::filesystem::exists(path)) {
-        MESSAGE("sample data not found: " << path.string());
-        return;
-    }
-    const auto pts = io::read_las(path.string());
-    const grid g = snapped_grid(bounds_of(pts.cloud()), 2.0);
-    const auto pr = rasterize(pts.cloud(), g);
-    const auto w = extract_waterbodies(pr);
-    CHECK_FALSE(w.ran);
-    CHECK_FALSE(w.diagnostics.usable());
-    CHECK_FALSE(w.diagnostics.has_intensity);
-    const auto problems = w.diagnostics.messages(water_severity::problem);
-    REQUIRE(problems.size() == 2);
-    CHECK(w.diagnostics.issues[0].kind == water_issue_kind::intensity_constant);
-    CHECK(w.diagnostics.issues[1].kind == water_issue_kind::density_too_low);
-    CHECK(problems[0].find("intensity") != std::string::npos);
-    CHECK(problems[1].find("points per 2.0 m cell") != std::string::npos);
-    CHECK(w.diagnostics.suggested_cell_m > 2.0);
-    CHECK(w.bodies.empty());
-    for (const auto v : w.water) REQUIRE(v == 0);
-    // Forcing the run is possible, and the diagnostics still travel with the result.
-    extract_waterbodies_options forced;
-    forced.check_inputs = false;
-    const auto f = extract_waterbodies(pr, forced);
-    CHECK(f.ran);
-    CHECK_FALSE(f.diagnostics.usable());
+    synth::scene_options so;
+    so.size_m = 300;
+    const auto sc = synth::river_scene(so);
+    const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
+    const double cell = pr.g.cell;
+    const double whole_raster_m2 = static_cast<double>(pr.g.size()) * cell * cell;
+    const double longest_run_m = static_cast<double>(pr.g.rows + pr.g.cols) * cell;
+    const auto with = [&](double island_m2, double span_m) {
+        extract_waterbodies_options o;
+        o.island_min_area_m2 = island_m2;
+        o.bridge_max_span_m = span_m;
+        return extract_waterbodies(pr, o).labels;
+    };
+    const auto reference = with(whole_raster_m2, longest_run_m);
+    for (const double island : {1e20, std::numeric_limits<double>::infinity()})
+        for (const double span : {1e10, std::numeric_limits<double>::infinity()}) CHECK(with(island, span) == reference);
+    CHECK_THROWS_AS(with(std::numeric_limits<double>::quiet_NaN(), 30.0), invalid_input);
+    CHECK_THROWS_AS(with(200.0, std::numeric_limits<double>::quiet_NaN()), invalid_input);
 }
 
 TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")

@@ -81,7 +81,9 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
                                 std::span<const double> level, double cell_m, const join_across_bridges_options& opt)
 {
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    const int span_cells = static_cast<int>(std::floor(opt.max_span_m / cell_m));
+    // No straight run of cells is longer than rows + cols: clamping there keeps huge or infinite spans exact.
+    const int span_cells = static_cast<int>(
+        std::min(std::floor(opt.max_span_m / cell_m), static_cast<double>(std::min<std::ptrdiff_t>(rows + cols, 1 << 30))));
     if (span_cells <= 0) return 0;
     std::vector<std::int32_t> parent(level.size());
     std::iota(parent.begin(), parent.end(), 0);

@@ -97,7 +97,7 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     require(o.bridge_min_clearance_m >= 0, fn, "bridge_min_clearance_m", ">= 0", o.bridge_min_clearance_m);
     require(o.bridge_level_tolerance_m >= 0, fn, "bridge_level_tolerance_m", ">= 0", o.bridge_level_tolerance_m);
     require(o.min_points_per_cell >= 0, fn, "min_points_per_cell", ">= 0", o.min_points_per_cell);
-    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+    check_execution(o.run, fn);
     validate(o.grow, fn);
 }
 

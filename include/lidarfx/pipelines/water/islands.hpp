@@ -26,16 +26,6 @@ struct fill_small_islands_options {
 
 namespace detail {
 
-inline void validate(const fill_small_islands_options& o, const char* fn)
-{
-    require(o.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", o.island_min_area_m2);
-    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
-}
-
-}  // namespace detail
-
-namespace detail {
-
 /// Holes of the bodies of `labels` (all labels in 1..bodies) by one pass per body over the body's
 /// bounding box grown by one cell: the cells of other labels or land there, 4-connected
 /// (connected_components), form parts; a part touching no edge of the box (so not the raster's border),
@@ -153,7 +143,8 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
 {
     constexpr const char* fn = "fill_small_islands";
     detail::require_positive(cell_m, fn, "cell_m");
-    detail::validate(opt, fn);
+    detail::require(opt.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", opt.island_min_area_m2);
+    detail::check_execution(opt.run, fn);
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     // Pass 1: the labels' range and the bounding box of all bodies (every hole lies inside it).
     cell_box all{rows, cols, -1, -1};

@@ -33,16 +33,6 @@ struct water_angles_options {
     execution run = {};                           ///< threads of the kernels (same result for any count), progress
 };
 
-namespace detail {
-
-inline void validate(const water_angles_options& o, const char* fn)
-{
-    require(o.radius_cells >= 1, fn, "radius_cells", ">= 1", o.radius_cells);
-    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
-}
-
-}  // namespace detail
-
 /// Angles for region growing: angular_filter of min z (DESIGN.md §4: per cell the largest
 /// atan(|Δz| / distance) over the (2·radius_cells + 1)² window, degrees in [0, 90], NaN neighbours skipped,
 /// NaN centre gives NaN), read on the returns only or on min z filled by idw_fill; then dropout cells get
@@ -56,7 +46,8 @@ inline raster<float> water_angles(const water_rasters& in, double cell_m, const 
     constexpr const char* fn = "water_angles";
     detail::validate(in, fn);
     detail::require_positive(cell_m, fn, "cell_m");
-    detail::validate(opt, fn);
+    detail::require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
+    detail::check_execution(opt.run, fn);
     detail::report(opt.run.progress, 0.0, fn);
     const int threads = opt.run.threads;
     const angular_filter_options af{.radius_cells = opt.radius_cells, .run = {.threads = threads}};

@@ -28,7 +28,7 @@ inline void validate(const water_seeds_options& o, const char* fn)
     require(o.opening_size_cells >= 1 && o.opening_size_cells % 2 == 1, fn, "opening_size_cells", "odd and >= 1",
             o.opening_size_cells);
     require(o.min_cells >= 1, fn, "min_cells", ">= 1", o.min_cells);
-    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+    check_execution(o.run, fn);
 }
 
 }  // namespace detail

@@ -30,7 +30,7 @@ inline void validate(const water_vegetation_options& o, const char* fn)
     require(o.height_m > 0, fn, "height_m", "> 0", o.height_m);
     require(o.closing_size_cells >= 1 && o.closing_size_cells % 2 == 1, fn, "closing_size_cells", "odd and >= 1",
             o.closing_size_cells);
-    require(o.run.threads >= 0, fn, "run.threads", ">= 0", o.run.threads);
+    check_execution(o.run, fn);
 }
 
 }  // namespace detail
