@@ -144,6 +144,15 @@ TEST_CASE("core/grid: snapped_grid refuses what it cannot represent, naming the 
     CHECK_THROWS_AS(snapped_grid({0, 0, 1, 1}, std::numeric_limits<double>::denorm_min()), invalid_input);
     CHECK_THROWS_WITH_AS(snapped_grid({2, 0, 1, 1}, 1.0),
                          "snapped_grid: bounds must be finite with min <= max (got bounds (2, 0, 1, 1))", invalid_input);
+    const double top = std::numeric_limits<double>::max();
+    CHECK_THROWS_WITH_AS(snapped_grid({-top, 0, -top, 0}, 1e300),
+                         "snapped_grid: bounds (-1.7976931348623157e+308, 0, -1.7976931348623157e+308, 0) at cell_m "
+                         "1.0000000000000001e+300 give a grid beyond the double range",
+                         invalid_input);
+    CHECK_THROWS_AS(snapped_grid({-1e308, 0, 1e308, 0}, 1e300), invalid_input);   // xmax - x0 overflows
+    const grid vast = snapped_grid({-1e303, -1e303, 1e303, 1e303}, 1e300);
+    CHECK(vast.rows == 2000);
+    CHECK(vast.cell_of(1e303, -1e303) == cell_index{1999, 1999});
     // At the limit: exactly 2^20 x 2^20 cells is a grid; the smallest cell of these bounds is accepted.
     const grid edge = snapped_grid({0, 0, 1048576, 1048576}, 1.0);
     CHECK(edge.rows == 1048576);

@@ -185,8 +185,9 @@ inline cell_index offset_of(const grid& a, const grid& b)
 /// edge rule at grid). A maximum on a lattice line therefore closes the last cell instead of opening an
 /// empty one; no rounding can leave a point of b a hair outside. O(1).
 /// @throws invalid_input if cell_m is not finite and > 0; b is not finite with min <= max; cell_m is below
-/// 2^-36 of the largest |coordinate| of b (lattice lines would lie less than 2^16 doubles apart); or the
-/// grid would exceed max_raster_cells (2^40). Messages name the bounds and cell_m.
+/// 2^-36 of the largest |coordinate| of b (lattice lines would lie less than 2^16 doubles apart); the
+/// grid would exceed max_raster_cells (2^40); or its corners or span lie beyond the double range (b near
+/// +-DBL_MAX). Messages name the bounds and cell_m. A grid it returns passes grid::validate.
 inline grid snapped_grid(const bounds& b, double cell_m)
 {
     constexpr const char* function = "snapped_grid";
@@ -208,12 +209,18 @@ inline grid snapped_grid(const bounds& b, double cell_m)
     else if ((ky - 1) * cell_m >= b.ymax) ky -= 1;
     grid g{kx * cell_m, ky * cell_m, cell_m, 0, 0};
     const cell_coords far = g.to_cell_coords(b.xmax, b.ymin);
+    // Only bounds within a cell of the largest double, or spanning more than it, fail this: their corners or
+    // their distance to the far edge do not exist in double.
+    const auto beyond = [&] { return detail::concat(box(), " at cell_m ", cell_m, " give a grid beyond the double range"); };
+    detail::require(std::isfinite(g.x0) && std::isfinite(g.y0) && std::isfinite(far.col) && std::isfinite(far.row),
+                    function, beyond());
     const double cols = std::max(1.0, std::ceil(far.col)), rows = std::max(1.0, std::ceil(far.row));
     detail::require(rows * cols <= static_cast<double>(max_raster_cells), function,
                     detail::concat(box(), " at cell_m ", cell_m, " need ", rows, " x ", cols,
                                    " cells, more than 2^40"));
     g.rows = static_cast<std::ptrdiff_t>(rows);
     g.cols = static_cast<std::ptrdiff_t>(cols);
+    detail::require(std::isfinite(g.x1()) && std::isfinite(g.y1()), function, beyond());
     return g;
 }
 
