@@ -16,7 +16,8 @@
 namespace reference {
 
 /// Per-point reference of lidarfx::rasterize for clouds whose intensities are integers (so a plain double
-/// sum is exact): min/max of the z of each cell, mean = sum / count, flags from number_of_returns.
+/// sum is exact): min/max of the z of each cell (-0 taken as +0), mean = sum / count, flags from
+/// number_of_returns.
 template <lidarfx::point_cloud C>
 lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
 {
@@ -37,7 +38,7 @@ lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
             continue;
         }
         const auto k = static_cast<std::size_t>(at->row * g.cols + at->col);
-        z[k].push_back(zi);
+        z[k].push_back(zi + 0.0);   // -0 counts as +0
         intensity[k].push_back(lidarfx::intensity_of(cloud, i));
         if (lidarfx::number_of_returns_of(cloud, i) > 1) multiple[k] = 1;
         ++out.points_used;

@@ -280,6 +280,24 @@ TEST_CASE("raster/rasterize: z beyond the float range saturates")
     CHECK(out.points_used == 3);
 }
 
+TEST_CASE("raster/rasterize: -0 and +0 in one cell give +0 whatever their order, chunking or threads")
+{
+    const grid g{0.0, 1.0, 1.0, 1, 2};
+    const std::vector<double> x{0.5, 0.5, 0.5, 1.5}, y{0.5, 0.5, 0.5, 0.5};
+    for (const std::vector<double>& z : {std::vector<double>{-0.0, 0.0, 1.0, -0.0}, std::vector<double>{0.0, -0.0, 1.0, -0.0}}) {
+        for (std::size_t chunk : {std::size_t{1}, std::size_t{2}, std::size_t{4}}) {
+            for (int threads : {1, 2}) {
+                const auto out = rasterize(soa_cloud<>(x, y, z), g, {.chunk_points = chunk, .run = {.threads = threads}});
+                CHECK_FALSE(std::signbit(out.min_z(0, 0)));
+                CHECK(out.min_z(0, 0) == 0.0f);
+                CHECK(out.max_z(0, 0) == 1.0f);
+                CHECK_FALSE(std::signbit(out.min_z(0, 1)));   // a lone -0 is stored as +0 too
+                CHECK_FALSE(std::signbit(out.max_z(0, 1)));
+            }
+        }
+    }
+}
+
 TEST_CASE("raster/rasterize: progress is monotone and ends at 1; returning false cancels")
 {
     std::mt19937 rng(9);

@@ -66,6 +66,15 @@ inline std::uint64_t intensity_fixed(double v) noexcept
 
 struct accumulator_access;
 
+/// z as the accumulator keeps it: saturated to the float range and rounded to float, -0 as +0. Storing the
+/// float of the extreme equals taking the extreme of the floats (both steps are monotonic), and without
+/// the sign of zero min/max cannot depend on which of -0 and +0 came first.
+inline float stored_z(double z) noexcept
+{
+    constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
+    return static_cast<float>(std::clamp(z, -float_max, float_max) + 0.0);
+}
+
 /// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
 inline void prefetch([[maybe_unused]] const void* p) noexcept
 {
@@ -257,7 +266,6 @@ private:
     /// Both forms bin in two passes per block of points: locate the cells (and prefetch them), then update
     /// them, so that the cache misses of randomly ordered points overlap instead of stalling one by one.
     static constexpr std::size_t block = 256;
-    static constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
 
     template <point_cloud C>
     void add_dense(const C& cloud, std::size_t first, std::size_t last)
@@ -276,9 +284,7 @@ private:
                     at[j] = nan_point;
                     continue;
                 }
-                // float(min(z)) == min(float(z)): saturating and rounding are monotonic, so storing floats
-                // loses no order.
-                zs[j] = static_cast<float>(std::clamp(z, -float_max, float_max));
+                zs[j] = detail::stored_z(z);
                 const auto cell = g.cell_of(x, y);
                 at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
                 if (cell) detail::prefetch(cells + at[j]);
@@ -316,7 +322,7 @@ private:
                     ++nan;
                     continue;
                 }
-                zs[j] = static_cast<float>(std::clamp(z, -float_max, float_max));
+                zs[j] = detail::stored_z(z);
                 const auto cell = g.cell_of(x, y);
                 if (!cell) {
                     ++outside;
