@@ -66,13 +66,14 @@ inline std::uint64_t intensity_fixed(double v) noexcept
 
 struct accumulator_access;
 
-/// z as the accumulator keeps it: saturated to the float range and rounded to float, -0 as +0. Storing the
-/// float of the extreme equals taking the extreme of the floats (both steps are monotonic), and without
-/// the sign of zero min/max cannot depend on which of -0 and +0 came first.
+/// z as the accumulator keeps it: saturated to the float range and rounded to float, a zero (-0, or a tiny
+/// negative z that rounds to -0) as +0. Storing the float of the extreme equals taking the extreme of the
+/// floats (both steps are monotonic), and without the sign of zero min/max cannot depend on which of two
+/// zeros came first.
 inline float stored_z(double z) noexcept
 {
     constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
-    return static_cast<float>(std::clamp(z, -float_max, float_max) + 0.0);
+    return static_cast<float>(std::clamp(z, -float_max, float_max)) + 0.0f;
 }
 
 /// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
