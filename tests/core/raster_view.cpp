@@ -5,6 +5,7 @@
 #include <lidarfx/core/raster_view.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <type_traits>
@@ -114,6 +115,50 @@ TEST_CASE("core/raster_view: strides and windows address the right cells")
                          invalid_input);
     CHECK_THROWS_AS(raster_view<int>(nullptr, 2, 2), invalid_input);
     CHECK_NOTHROW(raster_view<int>(nullptr, 0, 0));
+}
+
+TEST_CASE("core/raster: sizes above max_raster_cells (2^40) are refused before anything is allocated")
+{
+    static_assert(max_raster_cells == std::int64_t{1} << 40);
+    const std::ptrdiff_t big = std::ptrdiff_t{1} << 32, most = std::numeric_limits<std::ptrdiff_t>::max();
+    CHECK_THROWS_WITH_AS(raster<float>(big, big), "raster: rows x cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
+                         invalid_input);
+    CHECK_THROWS_AS(raster<float>(big, big, uninitialized), invalid_input);
+    CHECK_THROWS_AS(raster<std::uint8_t>(most, most), invalid_input);   // rows * cols would overflow
+    CHECK_THROWS_AS(raster<std::uint8_t>(2, most), invalid_input);
+    // One extent alone is bounded too: an empty raster cannot carry an extent past the limit.
+    CHECK_THROWS_WITH_AS(raster<float>(0, (std::ptrdiff_t{1} << 40) + 1),
+                         "raster: rows x cols must be <= 2^40 cells (got 0 x 1099511627777)", invalid_input);
+    CHECK_NOTHROW(raster<float>(std::ptrdiff_t{1} << 40, 0));
+    CHECK(raster<float>(std::ptrdiff_t{1} << 40, 0).empty());
+    CHECK_NOTHROW(raster<float>(1, 1));
+    CHECK_NOTHROW(raster<float>(0, 0));
+}
+
+TEST_CASE("core/raster_view: sizes and strides that overflow are refused; the limit itself is accepted")
+{
+    std::uint8_t cell = 0;
+    const std::ptrdiff_t m = std::ptrdiff_t{1} << 20, most = std::numeric_limits<std::ptrdiff_t>::max();
+    // Views never touch memory on construction: a view of exactly 2^40 cells is fine, one more column is not.
+    CHECK(raster_view<std::uint8_t>(&cell, m, m).size() == max_raster_cells);
+    CHECK_THROWS_WITH_AS(raster_view<std::uint8_t>(&cell, m, m + 1),
+                         "raster_view: rows x cols must be <= 2^40 cells (got 1048576 x 1048577)", invalid_input);
+    CHECK_THROWS_AS(raster_view<std::uint8_t>(&cell, most, most, most), invalid_input);
+    // Few cells, but a stride that addresses more bytes than a pointer can span.
+    double d = 0;
+    CHECK_THROWS_WITH_AS(raster_view<double>(&d, 3, 1, most / 4),
+                         "raster_view: (rows - 1) * row_stride + cols cells must fit in the address space (got 3 rows, "
+                         "row_stride 2305843009213693951)",
+                         invalid_input);
+    CHECK_NOTHROW(raster_view<double>(&d, 1, 1, most / 4));   // one row: the stride is never applied
+    CHECK_NOTHROW(raster_view<double>(nullptr, 0, 5));
+    CHECK_NOTHROW(raster_view<double>(nullptr, 5, 0));
+    // Windows whose end would overflow are refused, not wrapped around.
+    const raster_view<double> v(&d, 1, 1);
+    CHECK_THROWS_AS(v.window(1, 0, most, 1), invalid_input);
+    CHECK_THROWS_AS(v.window(0, 1, 1, most), invalid_input);
+    CHECK_THROWS_AS(v.window(most, 0, 1, 1), invalid_input);
+    CHECK(v.window(1, 1, 0, 0).empty());
 }
 
 TEST_CASE("core/raster_view: views of a raster share its cells; const views read them")

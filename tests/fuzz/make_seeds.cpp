@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // Writes the seed corpus of the LAS fuzz target: small writer outputs for every point format and version,
-// and the head of a real file (header, VLRs, a few points, counts patched) when one is given.
+// two files for the grid path (points on the corners and edges of decimal bounds; header bounds near 2^48
+// around one point, as a crafted file has them), and the head of a real file (header, VLRs, a few points,
+// counts patched) when one is given.
 // Usage: make_seeds <out_dir> [real.las]
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -54,6 +57,38 @@ int main(int argc, char** argv)
             save(out / ("writer_f" + std::to_string(format) + "_v1" + std::to_string(version) + ".las"),
                  lidarfx::io::encode_las(p, opt));
         }
+    }
+    {
+        // Bounds 1000..1010 x 2000..2010 with points on every corner and edge: for most cell sizes the far
+        // edges fall on or a hair off the lattice.
+        lidarfx::io::las_points p;
+        p.resize(12, false);
+        const double xs[] = {1000, 1010, 1000, 1010, 1003.37, 1010, 1000, 1005.5, 1007.01, 1010, 1001, 1009.99};
+        const double ys[] = {2000, 2010, 2010, 2000, 2000, 2004.41, 2007.7, 2010, 2005, 2009.99, 2000.01, 2002};
+        for (std::size_t i = 0; i < 12; ++i) {
+            p.x[i] = xs[i];
+            p.y[i] = ys[i];
+            p.z[i] = 10.0 + static_cast<double>(i);
+            p.intensity[i] = static_cast<std::uint16_t>(100 * i);
+            p.return_number[i] = 1;
+            p.number_of_returns[i] = static_cast<std::uint8_t>(1 + i % 2);
+        }
+        save(out / "grid_edges.las", lidarfx::io::encode_las(p, {.version_minor = 2, .point_format = 0,
+                                                                  .scale = {0.01, 0.01, 0.01},
+                                                                  .offset = std::array<double, 3>{0, 0, 0}}));
+        // One point; the header claims bounds from 0 to 2^48 (a grid that cannot exist at any usual cell).
+        lidarfx::io::las_points one;
+        one.resize(1, true);
+        one.x[0] = 12.5;
+        one.y[0] = 7.25;
+        one.return_number[0] = one.number_of_returns[0] = 1;
+        std::vector<std::uint8_t> bytes = lidarfx::io::encode_las(one, {.version_minor = 4, .point_format = 6});
+        const double far = 281474976710656.0, zero = 0.0;
+        for (int k = 0; k < 2; ++k) {
+            std::memcpy(bytes.data() + 179 + 16 * k, &far, 8);    // max x, max y
+            std::memcpy(bytes.data() + 187 + 16 * k, &zero, 8);   // min x, min y
+        }
+        save(out / "grid_huge_bounds.las", bytes);
     }
     if (argc > 2) {
         std::ifstream in(argv[2], std::ios::binary);

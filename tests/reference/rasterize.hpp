@@ -16,7 +16,8 @@
 namespace reference {
 
 /// Per-point reference of lidarfx::rasterize for clouds whose intensities are integers (so a plain double
-/// sum is exact): min/max of the z of each cell, mean = sum / count, flags from number_of_returns.
+/// sum is exact): min/max of the z of each cell (a zero extreme as +0), mean = sum / count, flags from
+/// number_of_returns.
 template <lidarfx::point_cloud C>
 lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
 {
@@ -55,8 +56,9 @@ lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
             if (z[k].empty()) continue;
             double sum = 0;
             for (double v : intensity[k]) sum += v;
-            out.min_z(r, c) = static_cast<float>(*std::min_element(z[k].begin(), z[k].end()));
-            out.max_z(r, c) = static_cast<float>(*std::max_element(z[k].begin(), z[k].end()));
+            // A zero extreme is +0, whatever the sign of the zeros (or of tiny z that round to zero) was.
+            out.min_z(r, c) = static_cast<float>(*std::min_element(z[k].begin(), z[k].end())) + 0.0f;
+            out.max_z(r, c) = static_cast<float>(*std::max_element(z[k].begin(), z[k].end())) + 0.0f;
             out.mean_intensity(r, c) = static_cast<float>(sum / static_cast<double>(z[k].size()));
             out.count(r, c) = static_cast<std::uint32_t>(z[k].size());
             out.dropout(r, c) = 0;

@@ -35,8 +35,8 @@ struct raster_allocator {
 
     T* allocate(std::size_t n)
     {
-        const std::size_t bytes = n * sizeof(T);
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+        const std::size_t bytes = n * sizeof(T);
         if (bytes < 2 * huge) return std::allocator<T>().allocate(n);
         const std::size_t rounded = (bytes + huge - 1) / huge * huge;
         void* p = std::aligned_alloc(huge, rounded);
@@ -82,17 +82,17 @@ public:
 
     raster() = default;
 
-    /// rows x cols cells, each set to `fill`. @throws invalid_input if rows or cols < 0.
+    /// rows x cols cells, each set to `fill`. @throws invalid_input if rows or cols < 0 or rows x cols exceeds
+    /// max_raster_cells (core/raster_view.hpp); std::bad_alloc if the memory is not there.
     raster(std::ptrdiff_t rows, std::ptrdiff_t cols, T fill = T{})
-        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")),
-          cells_(static_cast<std::size_t>(rows * cols), fill) {}
+        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")), cells_(cell_count(rows, cols), fill) {}
 
     /// rows x cols cells left default-initialized (indeterminate for arithmetic T): for outputs that are
-    /// written in full before being read, which saves zeroing a large block. @throws invalid_input if < 0.
+    /// written in full before being read, which saves zeroing a large block. @throws as the filling form.
     raster(std::ptrdiff_t rows, std::ptrdiff_t cols, uninitialized_t)
         : rows_(checked(rows, "rows")), cols_(checked(cols, "cols"))
     {
-        cells_.resize(static_cast<std::size_t>(rows * cols));
+        cells_.resize(cell_count(rows, cols));
     }
 
     /// Deep copy of any raster-like input.
@@ -148,6 +148,11 @@ private:
     {
         detail::require(n >= 0, "raster", name, ">= 0", n);
         return n;
+    }
+    static std::size_t cell_count(std::ptrdiff_t rows, std::ptrdiff_t cols)
+    {
+        detail::require_raster_cells(rows, cols, "raster", "rows x cols");
+        return static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
     }
 
     std::ptrdiff_t rows_ = 0, cols_ = 0;

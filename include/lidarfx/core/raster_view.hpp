@@ -2,13 +2,49 @@
 // raster_view: a non-owning, row-strided 2-D view of cells in caller memory, and the raster concepts.
 #pragma once
 
+#include <algorithm>
 #include <concepts>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string_view>
 #include <type_traits>
 
 #include "lidarfx/core/error.hpp"
 
 namespace lidarfx {
+
+/// The most cells a raster, a raster_view or a grid may have: 2^40 (1.1e12 cells, 4 TiB of floats). Their
+/// constructors (and grid::validate) refuse more with invalid_input, and each extent alone is bounded by it
+/// too (an empty 0 x 2^41 raster is refused), so `rows * cols`, every cell offset and every byte count fit
+/// in 64-bit integers with room to spare.
+inline constexpr std::int64_t max_raster_cells = std::int64_t{1} << 40;
+
+namespace detail {
+
+/// True if rows, cols >= 0 and max(rows, 1) * max(cols, 1) <= max_raster_cells (and <= PTRDIFF_MAX on
+/// 32-bit targets), computed without overflow.
+constexpr bool fits_raster_cells(std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept
+{
+    constexpr auto most = static_cast<std::uint64_t>(
+        std::min<std::int64_t>(max_raster_cells, std::numeric_limits<std::ptrdiff_t>::max()));
+    if (rows < 0 || cols < 0) return false;
+    const auto r = std::max<std::uint64_t>(static_cast<std::uint64_t>(rows), 1);
+    const auto c = std::max<std::uint64_t>(static_cast<std::uint64_t>(cols), 1);
+    return r <= most && c <= most / r;
+}
+
+/// Throws invalid_input "<function>: <what> must be <= 2^40 cells (got <rows> x <cols>)" unless
+/// fits_raster_cells(rows, cols); `what` names the extents, e.g. "rows x cols".
+constexpr void require_raster_cells(std::ptrdiff_t rows, std::ptrdiff_t cols, std::string_view function,
+                                    std::string_view what)
+{
+    if (!fits_raster_cells(rows, cols)) {
+        throw invalid_input(concat(function, ": ", what, " must be <= 2^40 cells (got ", rows, " x ", cols, ")"));
+    }
+}
+
+}  // namespace detail
 
 /// Anything with rows(), cols() and (r, c) indexing yielding its value_type: algorithms accept it.
 template <class V>
@@ -46,13 +82,23 @@ public:
     constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols)
         : raster_view(data, rows, cols, cols) {}
 
-    /// View with an explicit row stride in elements; requires rows, cols >= 0 and row_stride >= cols.
+    /// View with an explicit row stride in elements. @throws invalid_input unless rows, cols >= 0,
+    /// rows x cols <= max_raster_cells, row_stride >= cols, the cells addressed ((rows - 1) * row_stride + cols
+    /// elements of T) fit in PTRDIFF_MAX bytes, and data is not null for a non-empty view.
     constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t row_stride)
         : data_(data), rows_(rows), cols_(cols), stride_(row_stride)
     {
         detail::require(rows >= 0 && cols >= 0, "raster_view", "rows and cols must be >= 0");
+        detail::require_raster_cells(rows, cols, "raster_view", "rows x cols");
         detail::require(row_stride >= cols, "raster_view", "row_stride", ">= cols", row_stride);
-        detail::require(data != nullptr || rows * cols == 0, "raster_view", "data must not be null for a non-empty view");
+        if (rows > 0 && cols > 0) {
+            constexpr std::ptrdiff_t most = std::numeric_limits<std::ptrdiff_t>::max() / static_cast<std::ptrdiff_t>(sizeof(T));
+            detail::require(rows - 1 <= (most - cols) / row_stride, "raster_view",
+                            detail::concat("(rows - 1) * row_stride + cols cells must fit in the address space (got ",
+                                           rows, " rows, row_stride ", row_stride, ")"));
+        }
+        detail::require(data != nullptr || rows == 0 || cols == 0, "raster_view",
+                        "data must not be null for a non-empty view");
     }
 
     /// Converts a mutable view to a read-only one.
@@ -86,11 +132,11 @@ public:
     /// @throws invalid_input if the window does not lie inside the view.
     constexpr raster_view window(std::ptrdiff_t r0, std::ptrdiff_t c0, std::ptrdiff_t nr, std::ptrdiff_t nc) const
     {
-        if (r0 < 0 || c0 < 0 || nr < 0 || nc < 0 || r0 + nr > rows_ || c0 + nc > cols_) {
+        if (r0 < 0 || c0 < 0 || nr < 0 || nc < 0 || r0 > rows_ || c0 > cols_ || nr > rows_ - r0 || nc > cols_ - c0) {
             throw invalid_input(detail::concat("raster_view::window: window (", r0, ", ", c0, ") of ", nr, "x",
                                                nc, " does not fit in a ", rows_, "x", cols_, " view"));
         }
-        return raster_view(nr * nc == 0 ? data_ : data_ + r0 * stride_ + c0, nr, nc, stride_);
+        return raster_view(nr == 0 || nc == 0 ? data_ : data_ + r0 * stride_ + c0, nr, nc, stride_);
     }
 
     /// Read-only copy of this handle.

@@ -12,6 +12,8 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <set>
+#include <span>
 #include <vector>
 
 using namespace lidarfx;
@@ -278,6 +280,27 @@ TEST_CASE("raster/rasterize: z beyond the float range saturates")
     CHECK(out.points_used == 3);
 }
 
+TEST_CASE("raster/rasterize: zeros of both signs in one cell give +0 whatever their order, chunking or threads")
+{
+    const grid g{0.0, 1.0, 1.0, 1, 2};
+    const std::vector<double> x{0.5, 0.5, 0.5, 1.5}, y{0.5, 0.5, 0.5, 0.5};
+    // Tiny z round to a float zero of their sign (the LAS fuzzer found -1e-236 and +1e-239 in one cell).
+    for (const std::vector<double>& z :
+         {std::vector<double>{-0.0, 0.0, 1.0, -0.0}, std::vector<double>{0.0, -0.0, 1.0, -0.0},
+          std::vector<double>{-1e-236, 1e-239, 1.0, -1e-300}, std::vector<double>{1e-239, -1e-236, 1.0, -1e-300}}) {
+        for (std::size_t chunk : {std::size_t{1}, std::size_t{2}, std::size_t{4}}) {
+            for (int threads : {1, 2}) {
+                const auto out = rasterize(soa_cloud<>(x, y, z), g, {.chunk_points = chunk, .run = {.threads = threads}});
+                CHECK_FALSE(std::signbit(out.min_z(0, 0)));
+                CHECK(out.min_z(0, 0) == 0.0f);
+                CHECK(out.max_z(0, 0) == 1.0f);
+                CHECK_FALSE(std::signbit(out.min_z(0, 1)));   // a lone -0 is stored as +0 too
+                CHECK_FALSE(std::signbit(out.max_z(0, 1)));
+            }
+        }
+    }
+}
+
 TEST_CASE("raster/rasterize: progress is monotone and ends at 1; returning false cancels")
 {
     std::mt19937 rng(9);
@@ -320,6 +343,141 @@ TEST_CASE("raster/rasterize: bad arguments throw invalid_input")
     CHECK_THROWS_WITH_AS(a.add(cloud, 0, 2), "raster_accumulator::add: range [first, last) must lie in [0, 1] (got [0, 2))",
                          invalid_input);
     CHECK_THROWS_AS(raster_accumulator(grid{0, 0, -1.0, 2, 2}), invalid_input);
+}
+
+TEST_CASE("raster/raster_accumulator: grids whose size would overflow are refused, naming the sizes")
+{
+    const std::ptrdiff_t big = std::ptrdiff_t{1} << 32;
+    CHECK_THROWS_WITH_AS(raster_accumulator(grid{0, 0, 1.0, big, big}),
+                         "raster_accumulator: grid.rows x grid.cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
+                         invalid_input);
+    const std::vector<double> v{1.0};
+    CHECK_THROWS_WITH_AS(rasterize(soa_cloud<>(v, v, v), grid{0, 0, 1.0, big, big}),
+                         "rasterize: grid.rows x grid.cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
+                         invalid_input);
+    // Header bounds near 2^48 (a crafted LAS file) never reach the accumulator: snapped_grid refuses them.
+    const double far = std::ldexp(1.0, 48);
+    CHECK_THROWS_AS(raster_accumulator(snapped_grid({far - 1e9, far - 1e9, far, far}, 1.0)), invalid_input);
+    // A large grid costs nothing until a point arrives but its tile directory (8 bytes per 1024 cells:
+    // 8 MiB for these 2^30 cells).
+    raster_accumulator huge(grid{0, 0, 1.0, std::ptrdiff_t{1} << 15, std::ptrdiff_t{1} << 15});
+    CHECK(huge.allocated_cells() == 0);
+    const std::vector<double> x{5.5, 30000.5}, y{-5.5, -20000.5}, z{1.0, 2.0};
+    huge.add(soa_cloud<>(x, y, z));
+    CHECK(huge.points_used() == 2);
+    CHECK(huge.allocated_cells() == 2 * 1024);
+}
+
+TEST_CASE("raster/raster_accumulator: tiny and thin grids (1 cell, none, one row, one column)")
+{
+    std::mt19937 rng(13);
+    for (const grid& g : {grid{0, 0, 1.0, 0, 0}, grid{0, 0, 1.0, 0, 5}, grid{0, 0, 1.0, 5, 0}, grid{3, 4, 0.5, 1, 1},
+                          grid{0, 0, 1.0, 1, 5000}, grid{0, 0, 1.0, 5000, 1}, grid{0, 0, 1.0, 3, 70}}) {
+        CAPTURE(g.rows);
+        CAPTURE(g.cols);
+        const auto pts = random_cloud(rng, g, 300);
+        const auto expected = reference::rasterize(pts.soa(), g);
+        raster_accumulator a(g);
+        a.add(pts.soa(), 0, 100);
+        raster_accumulator b(g);
+        b.add(pts.soa(), 100, 300);
+        a.merge(b);
+        CHECK(reference::same_bits(a.finish(), expected));
+        CHECK(reference::same_bits(rasterize(pts.soa(), g, {.chunk_points = 37, .run = {.threads = 2}}), expected));
+        CHECK(a.finish().count.size() == g.size());
+    }
+}
+
+TEST_CASE("raster/raster_accumulator: memory follows the occupied cells of a sparse survey")
+{
+    // 300 points over 2.5 km x 2.5 km at 1 m: 6.25 M cells in 6241 tiles, of which at most 300 are held.
+    const grid g{500000.0, 4200000.0, 1.0, 2500, 2500};
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    columns pts;
+    for (int i = 0; i < 300; ++i) pts.push(g.x0 + u(rng) * 2500, g.y0 - u(rng) * 2500, 100 * u(rng), 7, 1);
+    raster_accumulator acc(g);
+    acc.add(pts.soa());
+    CHECK(acc.allocated_cells() <= 300 * 1024);   // stayed sparse: 7 MB of statistics, not 150 MB
+    const auto out = acc.finish();
+    CHECK(out.points_used == 300);
+    std::uint64_t counted = 0, wet = 0;
+    for (std::ptrdiff_t i = 0; i < out.count.size(); ++i) {
+        counted += out.count.data()[i];
+        wet += out.dropout.data()[i] == 0;
+    }
+    CHECK(counted == 300);
+    std::set<std::ptrdiff_t> occupied;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const auto at = g.cell_of(pts.x[i], pts.y[i]);
+        REQUIRE(at);
+        occupied.insert(at->row * g.cols + at->col);
+        CHECK(out.count(at->row, at->col) >= 1);
+        CHECK(out.min_z(at->row, at->col) <= static_cast<float>(pts.z[i]));
+        CHECK(out.mean_intensity(at->row, at->col) == 7.0f);
+    }
+    CHECK(wet == occupied.size());   // every other cell is written as an empty (dropout) cell
+    // The same through rasterize, on one and two threads, and through a copy.
+    CHECK(reference::same_bits(rasterize(pts.soa(), g), out));
+    CHECK(reference::same_bits(rasterize(pts.soa(), g, {.chunk_points = 300, .run = {.threads = 2}}), out));
+    const raster_accumulator copy = acc;
+    CHECK(copy.allocated_cells() == acc.allocated_cells());
+    CHECK(reference::same_bits(copy.finish(), out));
+}
+
+TEST_CASE("raster/raster_accumulator: sparse and dense accumulators merge to the same bits in any mix")
+{
+    // 300 x 500 cells = 160 tiles. Pieces of a few points stay sparse; a piece with more points than cells
+    // turns dense. Every mix of merges must give the reference's bits.
+    const unsigned seed = 4242;
+    std::mt19937 rng(seed);
+    const grid g{1000.0, 5000.0, 0.5, 300, 500};
+    const auto pts = random_cloud(rng, g, 200000);
+    const auto cloud = pts.soa();
+    const auto expected = reference::rasterize(cloud, g);
+    for (int trial = 0; trial < 6; ++trial) {
+        CAPTURE(seed);
+        CAPTURE(trial);
+        // Cuts: a few tiny pieces (sparse), the rest in one or two big ones (dense).
+        std::vector<std::size_t> cuts{0, 7, 40, 41, 300, 2000, pts.size()};
+        if (trial % 2) cuts.push_back(151000 + static_cast<std::size_t>(trial) * 1000);
+        std::sort(cuts.begin(), cuts.end());
+        std::vector<raster_accumulator> parts;
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+            parts.emplace_back(g);
+            parts.back().add(cloud, cuts[k], cuts[k + 1]);
+        }
+        // A dense accumulator holds exactly the grid's cells; tiles come in multiples of 1024.
+        const auto is_dense = [&](const raster_accumulator& p) { return p.allocated_cells() == static_cast<std::size_t>(g.size()); };
+        std::size_t dense = 0, sparse = 0;
+        for (const auto& p : parts) (is_dense(p) ? dense : sparse) += 1;
+        CHECK(dense >= 1);
+        CHECK(sparse >= 3);
+        std::shuffle(parts.begin(), parts.end(), rng);
+        raster_accumulator all = parts[0];
+        for (std::size_t k = 1; k < parts.size(); ++k) all.merge(parts[k]);
+        CHECK(reference::same_bits(all.finish(), expected));
+        // Sparse into sparse only (the tiny pieces), then into the dense rest.
+        raster_accumulator small(g);
+        for (const auto& p : parts) {
+            if (!is_dense(p)) small.merge(p);
+        }
+        for (const auto& p : parts) {
+            if (is_dense(p)) small.merge(p);
+        }
+        CHECK(reference::same_bits(small.finish(), expected));
+    }
+    // rasterize: fewer points than cells starts sparse (workers may turn dense), more starts dense.
+    for (std::size_t n : {std::size_t{5000}, std::size_t{200000}}) {
+        for (int threads : {1, 2, 3}) {
+            CAPTURE(n);
+            CAPTURE(threads);
+            const auto part = soa_cloud<>(std::span(pts.x).first(n), std::span(pts.y).first(n), std::span(pts.z).first(n),
+                                          std::span(pts.intensity).first(n), {}, std::span(pts.number_of_returns).first(n));
+            const auto want = reference::rasterize(part, g);
+            CHECK(reference::same_bits(rasterize(part, g, {.chunk_points = 1500, .run = {.threads = threads}}), want));
+        }
+    }
 }
 
 TEST_CASE("raster/bounds_of: box of the finite points, fits snapped_grid")

@@ -8,7 +8,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <thread>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -64,6 +66,16 @@ inline std::uint64_t intensity_fixed(double v) noexcept
 
 struct accumulator_access;
 
+/// z as the accumulator keeps it: saturated to the float range and rounded to float, a zero (-0, or a tiny
+/// negative z that rounds to -0) as +0. Storing the float of the extreme equals taking the extreme of the
+/// floats (both steps are monotonic), and without the sign of zero min/max cannot depend on which of two
+/// zeros came first.
+inline float stored_z(double z) noexcept
+{
+    constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
+    return static_cast<float>(std::clamp(z, -float_max, float_max)) + 0.0f;
+}
+
 /// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
 inline void prefetch([[maybe_unused]] const void* p) noexcept
 {
@@ -78,15 +90,53 @@ inline void prefetch([[maybe_unused]] const void* p) noexcept
 /// partial accumulators built elsewhere (other threads, other files of a tile), then finish(): every
 /// sequence of add/merge over the same points gives bit-identical rasters, because min/max are
 /// order-free and intensities are summed as exact integers (see rasterize for the conventions).
-/// Memory: 24 bytes per grid cell.
+///
+/// Memory follows the data. The statistics (24 bytes per cell) start in tiles of 32 x 32 cells (24 KiB;
+/// 1024 x 1 or 1 x 1024 on grids narrower than 32 cells), allocated when a point first falls in one, under
+/// a directory of 8 bytes per tile of the grid: 1,000 points over 5000 x 5000 cells hold at most 1,000
+/// tiles (24 MB) instead of 600 MB. Once as many points were added as the grid has cells, or half the
+/// tiles are held, the accumulator turns dense (one row-major array of every cell, the faster layout for
+/// dense data; then 24 bytes per cell, no more than 24 bytes per point added or twice the tiles held).
+/// The layout never changes a result.
 class raster_accumulator {
 public:
-    /// Empty statistics on `g`. @throws invalid_input if g is invalid (see grid::validate).
+    /// Empty statistics on `g`; allocates only the tile directory (8 bytes per 1024 cells).
+    /// @throws invalid_input if g is invalid (see grid::validate: more than 2^40 cells included).
     explicit raster_accumulator(const grid& g) : g_(g)
     {
         g.validate("raster_accumulator");
-        cells_.resize(static_cast<std::size_t>(g.size()));
+        const auto bits = [](std::ptrdiff_t n) {   // ceil(log2(n)), at most tile_bits
+            int k = 0;
+            while (k < tile_bits && (std::ptrdiff_t{1} << k) < n) ++k;
+            return k;
+        };
+        // Square tiles, unless the grid is thinner than a tile: then the tile stretches along the grid.
+        row_bits_ = std::min(tile_bits / 2, bits(g.rows));
+        col_bits_ = std::min(tile_bits - row_bits_, bits(g.cols));
+        row_bits_ = std::min(tile_bits - col_bits_, bits(g.rows));
+        tile_rows_ = (g.rows + (std::ptrdiff_t{1} << row_bits_) - 1) >> row_bits_;
+        tile_cols_ = (g.cols + (std::ptrdiff_t{1} << col_bits_) - 1) >> col_bits_;
+        tiles_.resize(static_cast<std::size_t>(tile_rows_ * tile_cols_));
     }
+
+    raster_accumulator(const raster_accumulator& other)
+        : g_(other.g_), row_bits_(other.row_bits_), col_bits_(other.col_bits_), tile_rows_(other.tile_rows_),
+          tile_cols_(other.tile_cols_), tiles_(other.tiles_.size()), held_tiles_(other.held_tiles_),
+          dense_(other.dense_), is_dense_(other.is_dense_), points_used_(other.points_used_),
+          points_outside_(other.points_outside_), points_nan_(other.points_nan_)
+    {
+        for (std::size_t t = 0; t < tiles_.size(); ++t) {
+            if (other.tiles_[t]) tiles_[t] = copy_tile(other.tiles_[t].get());
+        }
+    }
+    raster_accumulator(raster_accumulator&&) noexcept = default;
+    raster_accumulator& operator=(const raster_accumulator& other)
+    {
+        if (this != &other) *this = raster_accumulator(other);
+        return *this;
+    }
+    raster_accumulator& operator=(raster_accumulator&&) noexcept = default;
+    ~raster_accumulator() = default;
 
     /// Adds every point of `cloud`.
     template <point_cloud C>
@@ -95,68 +145,45 @@ public:
         add(cloud, 0, static_cast<std::size_t>(cloud.size()));
     }
 
-    /// Adds points [first, last) of `cloud`. O(last - first).
-    /// @throws invalid_input unless first <= last <= cloud.size().
+    /// Adds points [first, last) of `cloud`. O(last - first), plus 24 KiB for each tile touched first (and
+    /// O(cells) once, when the accumulator turns dense).
+    /// @throws invalid_input unless first <= last <= cloud.size(); std::bad_alloc if storage cannot be
+    /// allocated (points of the block of 256 at hand are then lost).
     template <point_cloud C>
     void add(const C& cloud, std::size_t first, std::size_t last)
     {
         const auto n = static_cast<std::size_t>(cloud.size());
         detail::require(first <= last && last <= n, "raster_accumulator::add",
                         detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))"));
-        // Two passes per block of points: locate the cells (and prefetch them), then update them, so that
-        // the cache misses of randomly ordered points overlap instead of stalling one by one.
-        constexpr std::size_t block = 256;
-        constexpr std::ptrdiff_t outside_cell = -1, nan_point = -2;
-        constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
-        std::ptrdiff_t at[block];
-        float zs[block];
-        const grid g = g_;
-        detail::cell_stats* cells = cells_.data();
-        std::size_t used = 0, outside = 0, nan = 0;
-        for (std::size_t base = first; base < last; base += block) {
-            const std::size_t m = std::min(block, last - base);
-            for (std::size_t j = 0; j < m; ++j) {
-                const double x = cloud.x(base + j), y = cloud.y(base + j), z = cloud.z(base + j);
-                if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
-                    at[j] = nan_point;
-                    continue;
-                }
-                // float(min(z)) == min(float(z)): saturating and rounding are monotonic, so storing floats
-                // loses no order.
-                zs[j] = static_cast<float>(std::clamp(z, -float_max, float_max));
-                const auto cell = g.cell_of(x, y);
-                at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
-                if (cell) detail::prefetch(cells + at[j]);
+        // Sparse: in steps, so that the switch to the dense layout comes soon after it is due.
+        constexpr std::size_t sparse_step = std::size_t{1} << 16;
+        for (std::size_t base = first; base < last;) {
+            if (!is_dense_ && dense_is_due()) make_dense();
+            if (is_dense_) {
+                add_dense(cloud, base, last);
+                return;
             }
-            for (std::size_t j = 0; j < m; ++j) {
-                if (at[j] < 0) {
-                    ++(at[j] == nan_point ? nan : outside);
-                    continue;
-                }
-                detail::cell_stats& s = cells[at[j]];
-                s.min_z = std::min(s.min_z, zs[j]);
-                s.max_z = std::max(s.max_z, zs[j]);
-                ++s.count;
-                s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, base + j));
-                s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, base + j) > 1);
-                ++used;
-            }
+            const std::size_t end = base + std::min(sparse_step, last - base);
+            add_sparse(cloud, base, end);
+            base = end;
         }
-        points_used_ += used;
-        points_outside_ += outside;
-        points_nan_ += nan;
     }
 
     /// Adds the statistics of `other` (same grid), as if its points had been added here.
-    /// O(cells). @throws invalid_input if other.grid differs from this grid.
+    /// O(tiles of the grid + cells other holds). @throws invalid_input if other.grid differs from this
+    /// grid; std::bad_alloc if storage cannot be allocated (this accumulator is then partly merged).
     void merge(const raster_accumulator& other)
     {
         require_same_grid(other, "raster_accumulator::merge");
-        merge_rows(other, 0, g_.rows);
+        if (other.is_dense_ && !is_dense_) make_dense();
+        if (other.is_dense_) merge_dense_rows(other, 0, g_.rows);
+        else held_tiles_ += merge_tiles(other, 0, tile_rows_);
         merge_counters(other);
+        if (!is_dense_ && dense_is_due()) make_dense();
     }
 
-    /// The rasters of every point added so far (the accumulator is unchanged). O(cells).
+    /// The rasters of every point added so far (the accumulator is unchanged). O(cells): every cell of the
+    /// six rasters is written once; cells no point fell in are written as empty cells in runs.
     rasterize_result finish() const
     {
         rasterize_result out = unfinished();
@@ -168,9 +195,167 @@ public:
     std::size_t points_used() const noexcept { return points_used_; }
     std::size_t points_outside() const noexcept { return points_outside_; }
     std::size_t points_nan() const noexcept { return points_nan_; }
+    /// Cells of statistics held: every cell of the grid once dense, else 1024 (fewer on grids under 1024
+    /// cells) per tile a point fell in.
+    std::size_t allocated_cells() const noexcept { return is_dense_ ? dense_.size() : held_tiles_ * tile_cells(); }
 
 private:
     friend struct detail::accumulator_access;
+    using tile_ptr = std::unique_ptr<detail::cell_stats[]>;
+    static constexpr int tile_bits = 10;   // a tile holds 2^10 cells: 32 x 32, or 1024 x 1 on a thin grid
+
+    static void fold(detail::cell_stats& s, const detail::cell_stats& o) noexcept
+    {
+        s.min_z = std::min(s.min_z, o.min_z);
+        s.max_z = std::max(s.max_z, o.max_z);
+        s.count += o.count;
+        s.multiple |= o.multiple;
+        s.intensity_sum += o.intensity_sum;
+    }
+
+    std::size_t tile_cells() const noexcept { return std::size_t{1} << (row_bits_ + col_bits_); }
+    std::ptrdiff_t tile_height() const noexcept { return std::ptrdiff_t{1} << row_bits_; }
+    bool dense_is_due() const noexcept
+    {
+        return points_used_ >= static_cast<std::size_t>(g_.size()) || 2 * held_tiles_ >= tiles_.size();
+    }
+
+    tile_ptr copy_tile(const detail::cell_stats* from) const
+    {
+        tile_ptr t(new detail::cell_stats[tile_cells()]);
+        std::copy(from, from + tile_cells(), t.get());
+        return t;
+    }
+
+    /// Allocates tile t (empty statistics) on the first point that falls in it.
+#if defined(__GNUC__) || defined(__clang__)
+    __attribute__((noinline))
+#endif
+    detail::cell_stats* new_tile(std::size_t t)
+    {
+        tiles_[t] = std::make_unique<detail::cell_stats[]>(tile_cells());
+        ++held_tiles_;
+        return tiles_[t].get();
+    }
+
+    /// Folds tile t (of this grid's tile layout) into the dense array.
+    void fold_tile_into_dense(std::size_t t, const detail::cell_stats* tile) noexcept
+    {
+        const std::ptrdiff_t r0 = static_cast<std::ptrdiff_t>(t) / tile_cols_ << row_bits_;
+        const std::ptrdiff_t c0 = static_cast<std::ptrdiff_t>(t) % tile_cols_ << col_bits_;
+        const std::ptrdiff_t nr = std::min(tile_height(), g_.rows - r0);
+        const std::ptrdiff_t nc = std::min(std::ptrdiff_t{1} << col_bits_, g_.cols - c0);
+        for (std::ptrdiff_t i = 0; i < nr; ++i) {
+            detail::cell_stats* to = dense_.data() + (r0 + i) * g_.cols + c0;
+            const detail::cell_stats* from = tile + (i << col_bits_);
+            for (std::ptrdiff_t j = 0; j < nc; ++j) fold(to[j], from[j]);
+        }
+    }
+
+    /// Moves every tile into one row-major array of all cells and drops the tiles. O(cells).
+    void make_dense()
+    {
+        dense_.resize(static_cast<std::size_t>(g_.size()));
+        for (std::size_t t = 0; t < tiles_.size(); ++t) {
+            if (tiles_[t]) fold_tile_into_dense(t, tiles_[t].get());
+        }
+        std::vector<tile_ptr>().swap(tiles_);
+        held_tiles_ = 0;
+        is_dense_ = true;
+    }
+
+    /// Both forms bin in two passes per block of points: locate the cells (and prefetch them), then update
+    /// them, so that the cache misses of randomly ordered points overlap instead of stalling one by one.
+    static constexpr std::size_t block = 256;
+
+    template <point_cloud C>
+    void add_dense(const C& cloud, std::size_t first, std::size_t last)
+    {
+        constexpr std::ptrdiff_t outside_cell = -1, nan_point = -2;
+        std::ptrdiff_t at[block];
+        float zs[block];
+        const grid g = g_;
+        detail::cell_stats* cells = dense_.data();
+        std::size_t used = 0, outside = 0, nan = 0;
+        for (std::size_t base = first; base < last; base += block) {
+            const std::size_t m = std::min(block, last - base);
+            for (std::size_t j = 0; j < m; ++j) {
+                const double x = cloud.x(base + j), y = cloud.y(base + j), z = cloud.z(base + j);
+                if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+                    at[j] = nan_point;
+                    continue;
+                }
+                zs[j] = detail::stored_z(z);
+                const auto cell = g.cell_of(x, y);
+                at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
+                if (cell) detail::prefetch(cells + at[j]);
+            }
+            for (std::size_t j = 0; j < m; ++j) {
+                if (at[j] < 0) {
+                    ++(at[j] == nan_point ? nan : outside);
+                    continue;
+                }
+                update(cells[at[j]], zs[j], cloud, base + j);
+                ++used;
+            }
+        }
+        points_used_ += used;
+        points_outside_ += outside;
+        points_nan_ += nan;
+    }
+
+    template <point_cloud C>
+    void add_sparse(const C& cloud, std::size_t first, std::size_t last)
+    {
+        detail::cell_stats* at[block];
+        float zs[block];
+        const grid g = g_;
+        const int row_bits = row_bits_, col_bits = col_bits_;
+        const std::ptrdiff_t tile_cols = tile_cols_, mask_r = (std::ptrdiff_t{1} << row_bits) - 1,
+                             mask_c = (std::ptrdiff_t{1} << col_bits) - 1;
+        std::size_t used = 0, outside = 0, nan = 0;
+        for (std::size_t base = first; base < last; base += block) {
+            const std::size_t m = std::min(block, last - base);
+            for (std::size_t j = 0; j < m; ++j) {
+                at[j] = nullptr;
+                const double x = cloud.x(base + j), y = cloud.y(base + j), z = cloud.z(base + j);
+                if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+                    ++nan;
+                    continue;
+                }
+                zs[j] = detail::stored_z(z);
+                const auto cell = g.cell_of(x, y);
+                if (!cell) {
+                    ++outside;
+                    continue;
+                }
+                const std::ptrdiff_t r = cell->row, c = cell->col;
+                const auto t = static_cast<std::size_t>((r >> row_bits) * tile_cols + (c >> col_bits));
+                detail::cell_stats* tile = tiles_[t].get();
+                if (!tile) [[unlikely]] tile = new_tile(t);
+                at[j] = tile + (((r & mask_r) << col_bits) | (c & mask_c));
+                detail::prefetch(at[j]);
+            }
+            for (std::size_t j = 0; j < m; ++j) {
+                if (!at[j]) continue;
+                update(*at[j], zs[j], cloud, base + j);
+                ++used;
+            }
+        }
+        points_used_ += used;
+        points_outside_ += outside;
+        points_nan_ += nan;
+    }
+
+    template <point_cloud C>
+    static void update(detail::cell_stats& s, float z, const C& cloud, std::size_t i)
+    {
+        s.min_z = std::min(s.min_z, z);
+        s.max_z = std::max(s.max_z, z);
+        ++s.count;
+        s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, i));
+        s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, i) > 1);
+    }
 
     void require_same_grid(const raster_accumulator& other, const char* function) const
     {
@@ -184,29 +369,64 @@ private:
         points_nan_ += other.points_nan_;
     }
 
-    /// The result with its counters set and rasters allocated; finish_rows fills them.
+    /// Folds rows [r0, r1) of the dense `other` into this dense accumulator.
+    void merge_dense_rows(const raster_accumulator& other, std::ptrdiff_t r0, std::ptrdiff_t r1) noexcept
+    {
+        const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
+        for (std::size_t i = begin; i < end; ++i) fold(dense_[i], other.dense_[i]);
+    }
+
+    /// Folds the tiles of tile rows [tr0, tr1) of the sparse `other` into this accumulator: into the dense
+    /// array, onto a tile both hold, or as a copy (taken, when `other` is not const) of a tile only other
+    /// holds. Returns the number of tiles this accumulator newly holds (held_tiles_ is left to the caller).
+    template <class Other>
+    std::size_t merge_tiles(Other& other, std::ptrdiff_t tr0, std::ptrdiff_t tr1)
+    {
+        constexpr bool take = !std::is_const_v<Other>;
+        const std::size_t n = tile_cells();
+        std::size_t added = 0;
+        for (auto t = static_cast<std::size_t>(tr0 * tile_cols_); t < static_cast<std::size_t>(tr1 * tile_cols_); ++t) {
+            auto& theirs = other.tiles_[t];
+            if (!theirs) continue;
+            if (is_dense_) {
+                fold_tile_into_dense(t, theirs.get());
+                continue;
+            }
+            tile_ptr& mine = tiles_[t];
+            if (!mine) {
+                if constexpr (take) mine = std::move(theirs);
+                else mine = copy_tile(theirs.get());
+                ++added;
+                continue;
+            }
+            for (std::size_t i = 0; i < n; ++i) fold(mine[i], theirs[i]);
+        }
+        return added;
+    }
+
+    /// The result with its counters set and rasters allocated (not initialized); finish_rows fills them.
     rasterize_result unfinished() const
     {
         const auto rows = g_.rows, cols = g_.cols;
         return {g_,
-                raster<float>(rows, cols),
-                raster<float>(rows, cols),
-                raster<float>(rows, cols),
-                raster<std::uint32_t>(rows, cols),
-                raster<std::uint8_t>(rows, cols),
-                raster<std::uint8_t>(rows, cols),
+                raster<float>(rows, cols, uninitialized),
+                raster<float>(rows, cols, uninitialized),
+                raster<float>(rows, cols, uninitialized),
+                raster<std::uint32_t>(rows, cols, uninitialized),
+                raster<std::uint8_t>(rows, cols, uninitialized),
+                raster<std::uint8_t>(rows, cols, uninitialized),
                 points_used_,
                 points_outside_,
                 points_nan_};
     }
 
-    /// Writes every cell of rows [r0, r1) of `out` (branch-free: empty cells get NaN, 0 and dropout 1).
-    void finish_rows(rasterize_result& out, std::ptrdiff_t r0, std::ptrdiff_t r1) const
+    /// Writes cells [i0, i0 + n) of `out` from `cells` (branch-free: empty cells get NaN, 0 and dropout 1).
+    static void finish_cells(rasterize_result& out, std::size_t i0, std::size_t n, const detail::cell_stats* cells) noexcept
     {
         constexpr float nan = std::numeric_limits<float>::quiet_NaN();
-        const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
-        for (std::size_t i = begin; i < end; ++i) {
-            const detail::cell_stats& s = cells_[i];
+        for (std::size_t j = 0; j < n; ++j) {
+            const detail::cell_stats& s = cells[j];
+            const std::size_t i = i0 + j;
             const bool any = s.count != 0;
             const double sum = static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
             out.min_z.data()[i] = any ? s.min_z : nan;
@@ -218,35 +438,74 @@ private:
         }
     }
 
-    /// Folds the cell statistics of rows [r0, r1) of `other` into this one (point counters untouched).
-    void merge_rows(const raster_accumulator& other, std::ptrdiff_t r0, std::ptrdiff_t r1)
+    /// Writes every cell of rows [r0, r1) of `out`.
+    void finish_rows(rasterize_result& out, std::ptrdiff_t r0, std::ptrdiff_t r1) const
     {
-        const auto begin = static_cast<std::size_t>(r0 * g_.cols), end = static_cast<std::size_t>(r1 * g_.cols);
-        for (std::size_t i = begin; i < end; ++i) {
-            detail::cell_stats& s = cells_[i];
-            const detail::cell_stats& o = other.cells_[i];
-            s.min_z = std::min(s.min_z, o.min_z);
-            s.max_z = std::max(s.max_z, o.max_z);
-            s.count += o.count;
-            s.multiple |= o.multiple;
-            s.intensity_sum += o.intensity_sum;
+        const std::ptrdiff_t cols = g_.cols;
+        if (is_dense_) {
+            const auto begin = static_cast<std::size_t>(r0 * cols);
+            finish_cells(out, begin, static_cast<std::size_t>((r1 - r0) * cols), dense_.data() + begin);
+            return;
+        }
+        constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const std::ptrdiff_t tr = r >> row_bits_, in_tile = (r & (tile_height() - 1)) << col_bits_;
+            const tile_ptr* row_tiles = tiles_.data() + tr * tile_cols_;
+            for (std::ptrdiff_t tc = 0; tc < tile_cols_;) {
+                // A tile, or the run of tiles nobody touched up to the next held one.
+                std::ptrdiff_t end = tc + 1;
+                if (!row_tiles[tc]) {
+                    while (end < tile_cols_ && !row_tiles[end]) ++end;
+                }
+                const std::ptrdiff_t c0 = tc << col_bits_, c1 = std::min(cols, end << col_bits_);
+                const auto i0 = static_cast<std::size_t>(r * cols + c0);
+                const auto k = static_cast<std::size_t>(c1 - c0);
+                if (row_tiles[tc]) {
+                    finish_cells(out, i0, k, row_tiles[tc].get() + in_tile);
+                } else {
+                    std::fill_n(out.min_z.data() + i0, k, nan);
+                    std::fill_n(out.max_z.data() + i0, k, nan);
+                    std::fill_n(out.mean_intensity.data() + i0, k, 0.0f);
+                    std::fill_n(out.count.data() + i0, k, 0u);
+                    std::fill_n(out.dropout.data() + i0, k, std::uint8_t{1});
+                    std::fill_n(out.multiple_returns.data() + i0, k, std::uint8_t{0});
+                }
+                tc = end;
+            }
         }
     }
 
     grid g_;
-    std::vector<detail::cell_stats> cells_;
+    int row_bits_ = 0, col_bits_ = 0;          // a tile is 2^row_bits_ x 2^col_bits_ cells, row-major
+    std::ptrdiff_t tile_rows_ = 0, tile_cols_ = 0;
+    std::vector<tile_ptr> tiles_;              // tile (tr, tc) at tr * tile_cols_ + tc; null until touched
+    std::size_t held_tiles_ = 0;               // non-null tiles
+    std::vector<detail::cell_stats> dense_;    // every cell, row-major, once is_dense_
+    bool is_dense_ = false;
     std::size_t points_used_ = 0, points_outside_ = 0, points_nan_ = 0;
 };
 
 namespace detail {
 
-/// rasterize merges per-thread accumulators by row bands in parallel, then adds their point counters.
+/// What rasterize needs beyond the public interface: start dense when the points outnumber the cells,
+/// and merge per-thread accumulators by bands of whole tile rows in parallel.
 struct accumulator_access {
-    static void merge_rows(raster_accumulator& into, const raster_accumulator& from, std::ptrdiff_t r0,
-                           std::ptrdiff_t r1)
+    static void make_dense(raster_accumulator& acc) { if (!acc.is_dense_) acc.make_dense(); }
+    static bool is_dense(const raster_accumulator& acc) noexcept { return acc.is_dense_; }
+    static std::ptrdiff_t tile_height(const raster_accumulator& acc) noexcept { return acc.tile_height(); }
+    /// Folds rows [r0, r1) of `from` into `into` (dense unless both are sparse), taking the tiles only
+    /// `from` holds; r0 and r1 start tile rows (or r1 ends the grid). Returns the tiles `into` newly holds,
+    /// to be added with add_held once the parallel bands are done.
+    static std::size_t take_rows(raster_accumulator& into, raster_accumulator& from, std::ptrdiff_t r0, std::ptrdiff_t r1)
     {
-        into.merge_rows(from, r0, r1);
+        if (from.is_dense_) {
+            into.merge_dense_rows(from, r0, r1);
+            return 0;
+        }
+        const std::ptrdiff_t h = into.tile_height();
+        return into.merge_tiles(from, r0 / h, (r1 + h - 1) / h);
     }
+    static void add_held(raster_accumulator& acc, std::size_t tiles) noexcept { acc.held_tiles_ += tiles; }
     static void merge_counters(raster_accumulator& into, const raster_accumulator& from)
     {
         into.merge_counters(from);
@@ -265,7 +524,9 @@ struct accumulator_access {
 /// go to grid::cell_of (far east/south edge -> last column/row); outside and NaN/infinite points are
 /// counted, never written. Intensities are rounded to multiples of 2^-16 (clamped to +-2^24, NaN as 0) and
 /// summed as 64-bit integers, exact for LAS intensities: any chunking, order or thread count gives the
-/// same bits. O(points + cells); 24 bytes per cell per worker thread. Details in docs/rasters.md.
+/// same bits. O(points + cells). Memory: the result's 18 bytes per cell, and per worker thread the
+/// statistics of raster_accumulator (24 KiB per tile of 32 x 32 cells holding a point, 24 bytes per cell
+/// when the points outnumber the cells). Details in docs/rasters.md.
 /// Progress is reported after each chunk of chunk_points points (and once more after merging, with threads).
 /// @throws invalid_input on an invalid grid, chunk_points == 0 or run.threads < 0; cancelled if run.progress
 /// returns false.
@@ -283,7 +544,9 @@ rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_option
     };
     const auto workers = static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(threads), chunks));
 
+    using access = detail::accumulator_access;
     raster_accumulator total(g);
+    if (n >= static_cast<std::size_t>(g.size())) access::make_dense(total);   // dense data: the dense layout at once
     if (workers == 1) {
         for (std::size_t k = 0; k < chunks; ++k) {
             const auto [first, last] = chunk_range(k);
@@ -296,7 +559,7 @@ rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_option
     // One block per worker, each with its own accumulator; the workers pull chunks in turn, so a thread
     // that the system slows down takes fewer (which accumulator got which chunk never matters). The
     // caller's thread reports progress (and may cancel) after each of its chunks.
-    std::vector<raster_accumulator> parts(workers - 1, raster_accumulator(g));
+    std::vector<raster_accumulator> parts(workers - 1, total);   // empty, in total's layout
     std::atomic<std::size_t> next{0}, done{0};
     std::atomic<bool> stop{false};
     const auto caller = std::this_thread::get_id();
@@ -319,15 +582,22 @@ rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_option
         }
     }, {}, function);
 
-    // Merge and finish by row bands in parallel: each band folds every part in worker order.
-    using access = detail::accumulator_access;
-    for (const auto& part : parts) access::merge_counters(total, part);
+    // Merge and finish by bands of whole tile rows in parallel: each band folds every part in worker order,
+    // taking the tiles that only a part holds. Dense parts make the total dense first.
+    for (const auto& part : parts) {
+        access::merge_counters(total, part);
+        if (access::is_dense(part)) access::make_dense(total);
+    }
     rasterize_result out = access::unfinished(total);
-    const std::ptrdiff_t band = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
+    const std::ptrdiff_t h = access::tile_height(total);
+    const std::ptrdiff_t rows_wanted = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
+    const std::ptrdiff_t band = (rows_wanted + h - 1) / h * h;
+    std::vector<std::size_t> taken(static_cast<std::size_t>((g.rows + band - 1) / band), 0);
     parallel_for_rows(g.rows, band, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        for (const auto& part : parts) access::merge_rows(total, part, r0, r1);
+        for (auto& part : parts) taken[static_cast<std::size_t>(r0 / band)] += access::take_rows(total, part, r0, r1);
         access::finish_rows(total, out, r0, r1);
     }, {}, function);
+    for (const std::size_t t : taken) access::add_held(total, t);
     detail::report(opt.run.progress, 1.0, function);
     return out;
 }
