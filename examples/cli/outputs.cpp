@@ -82,13 +82,15 @@ std::uint8_t mostly_set(const std::vector<std::uint8_t>& block)
 }
 
 /// Elevation with dropout holes filled, for shaded pictures only: the picture grid's lowest returns, holes
-/// filled by IDW from the nearest cells within 64 picture cells (farther holes stay NaN and shade flat).
+/// filled by IDW from the nearest cells within 64 picture cells (farther holes stay NaN and shade flat). A
+/// sparse survey (under a quarter of the picture's cells with returns) is shaded as it is: filling it would
+/// cost more than the rest of the run and show nothing real.
 raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
 {
     auto z = block_reduce<float>(pr.min_z, f, finite_min);
-    bool any = false;
-    for (const auto v : z) any |= std::isfinite(v);
-    if (!any) return z;
+    std::ptrdiff_t with_returns = 0;
+    for (const auto v : z) with_returns += std::isfinite(v);
+    if (4 * with_returns < z.size()) return z;
     const double cell = pr.g.cell * static_cast<double>(f);
     return idw_fill(z, cell, idw_fill_options{.k = 4, .radius_m = 64 * cell, .run = {.threads = 0}}).filled;
 }

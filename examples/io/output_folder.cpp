@@ -2,6 +2,9 @@
 #include "io/output_folder.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <future>
+#include <thread>
 #include <array>
 #include <cerrno>
 #include <cstdint>
@@ -87,6 +90,11 @@ public:
     void add(const unsigned char* data, std::size_t n)
     {
         bytes_ += n;
+        while (used_ == 0 && n >= 64) {  // whole blocks straight from the input
+            compress(data);
+            data += 64;
+            n -= 64;
+        }
         while (n > 0) {
             const std::size_t take = std::min(n, std::size_t{64} - used_);
             std::memcpy(block_.data() + used_, data, take);
@@ -94,7 +102,7 @@ public:
             data += take;
             n -= take;
             if (used_ == 64) {
-                compress();
+                compress(block_.data());
                 used_ = 0;
             }
         }
@@ -122,7 +130,7 @@ public:
 private:
     static std::uint32_t rotr(std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); }
 
-    void compress()
+    void compress(const unsigned char* block)
     {
         static constexpr std::array<std::uint32_t, 64> k{
             0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5,
@@ -133,10 +141,10 @@ private:
             0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819, 0xd6990624, 0xf40e3585, 0x106aa070,
             0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
             0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
-        std::array<std::uint32_t, 64> w{};
+        std::array<std::uint32_t, 64> w;  // every word is written below
         for (int i = 0; i < 16; ++i) {
-            w[i] = (std::uint32_t{block_[4 * i]} << 24) | (std::uint32_t{block_[4 * i + 1]} << 16) |
-                   (std::uint32_t{block_[4 * i + 2]} << 8) | std::uint32_t{block_[4 * i + 3]};
+            w[i] = (std::uint32_t{block[4 * i]} << 24) | (std::uint32_t{block[4 * i + 1]} << 16) |
+                   (std::uint32_t{block[4 * i + 2]} << 8) | std::uint32_t{block[4 * i + 3]};
         }
         for (int i = 16; i < 64; ++i) {
             const std::uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
@@ -272,13 +280,26 @@ void output_folder::commit(const std::string& command)
         check_name(p.name);
         sync_path(p.temporary, false);
     }
+    // Checksums of the files on all cores (hashing reads back everything the run wrote).
+    std::vector<std::string> digests(pending_.size());
+    {
+        std::atomic<std::size_t> next{0};
+        const auto worker = [&] {
+            for (std::size_t i; (i = next.fetch_add(1)) < pending_.size();) digests[i] = sha256_of_file(pending_[i].temporary);
+        };
+        const std::size_t helpers = std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), pending_.size());
+        std::vector<std::future<void>> running;
+        for (std::size_t t = 1; t < helpers; ++t) running.push_back(std::async(std::launch::async, worker));
+        worker();
+        for (auto& r : running) r.get();  // rethrows a reader's error
+    }
     std::ostringstream manifest;
     manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": \"" << json_escaped(command) << "\",\n  \"files\": [";
     for (std::size_t i = 0; i < pending_.size(); ++i) {
         const auto& p = pending_[i];
         manifest << (i ? ",\n" : "\n") << "    {\"name\": \"" << json_escaped(p.name)
                  << "\", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \""
-                 << sha256_of_file(p.temporary) << "\"}";
+                 << digests[i] << "\"}";
     }
     manifest << "\n  ]\n}\n";
     check_name(manifest_name);

@@ -4,6 +4,9 @@
 #include "io/ascii_grid.hpp"
 
 #include <bit>
+#include <charconv>
+#include <string>
+#include <vector>
 #include <cmath>
 #include <random>
 
@@ -118,4 +121,31 @@ TEST_CASE("io/write_ascii_grid: checks the shape and the grid")
                          "write_ascii_grid: raster must not be empty", invalid_input);
     CHECK(runtime_error_of([&] { write_ascii_grid(dir.file("no/a.asc"), v, {0, 0, 1, 2, 3}); }) ==
           dir.file("no/a.asc") + ": cannot open for writing");
+}
+
+TEST_CASE("io/write_ascii_grid: every value is written as std::to_chars writes it (whole numbers, -0, 1e5, NaN)")
+{
+    // The writer has fast paths for whole numbers and NaN; their text must be the shortest round trip that
+    // to_chars gives, across the places where fixed and scientific forms trade places.
+    std::vector<float> values{0.0f, -0.0f, 1.0f, -1.0f, 7.0f, 99999.0f, -99999.0f, 100000.0f, 123456.0f, 1e6f,
+                              20000.0f, 0.5f, -2.25f, 1e-7f, 3.4e38f, NAN, 65535.0f, 16777216.0f, -100000.0f};
+    std::mt19937 rng(5);
+    for (int i = 0; i < 200; ++i) values.push_back(static_cast<float>(static_cast<int>(rng() % 400001) - 200000));
+    raster<float> r(1, static_cast<std::ptrdiff_t>(values.size()));
+    for (std::size_t i = 0; i < values.size(); ++i) r(0, static_cast<std::ptrdiff_t>(i)) = values[i];
+    io_test::temp_dir dir;
+    const auto path = dir.file("values.asc");
+    write_ascii_grid(path, r, grid{0.0, 1.0, 1.0, 1, r.cols()});
+    const auto bytes = io_test::read_bytes(path);
+    const std::string text(bytes.begin(), bytes.end());
+    std::string expected;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        char buf[64];
+        const float v = std::isnan(values[i]) ? -9999.0f : values[i];
+        const auto end = std::isnan(values[i]) ? std::to_chars(buf, buf + sizeof buf, -9999.0)
+                                               : std::to_chars(buf, buf + sizeof buf, v);
+        expected += (i ? " " : "") + std::string(buf, end.ptr);
+    }
+    const auto last_line = text.substr(text.rfind('\n', text.size() - 2) + 1);
+    CHECK(last_line == expected + "\n");
 }
