@@ -22,23 +22,16 @@ concept point_cloud = requires(const C& c, std::size_t i) {
     { c.z(i) } -> std::convertible_to<double>;
 };
 
-/// Optional attributes, detected at compile time and never required by point_cloud itself.
+/// Optional attributes, detected at compile time and never required by point_cloud itself: each reads as
+/// a number for every point index (intensity as double; return number, number of returns, class as int).
 template <class C>
-concept has_intensity = point_cloud<C> && requires(const C& c, std::size_t i) {
-    { c.intensity(i) } -> std::convertible_to<double>;
-};
+concept has_intensity = point_cloud<C> && requires(const C& c, std::size_t i) { double(c.intensity(i)); };
 template <class C>
-concept has_return_number = point_cloud<C> && requires(const C& c, std::size_t i) {
-    { c.return_number(i) } -> std::convertible_to<int>;
-};
+concept has_return_number = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.return_number(i)); };
 template <class C>
-concept has_number_of_returns = point_cloud<C> && requires(const C& c, std::size_t i) {
-    { c.number_of_returns(i) } -> std::convertible_to<int>;
-};
+concept has_number_of_returns = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.number_of_returns(i)); };
 template <class C>
-concept has_classification = point_cloud<C> && requires(const C& c, std::size_t i) {
-    { c.classification(i) } -> std::convertible_to<int>;
-};
+concept has_classification = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.classification(i)); };
 
 /// Struct-of-arrays cloud over caller spans (no copy). x, y, z are required and of equal length; each
 /// optional span is either empty (attribute absent: intensity 0, return 1 of 1, class 0) or of that length.
@@ -84,6 +77,11 @@ private:
 /// Placeholder projection for an attribute an aos_cloud does not have.
 struct no_attribute {};
 
+namespace detail {
+template <class A>
+concept given_attribute = !std::is_same_v<A, no_attribute>;  // an aos_cloud projection that was passed
+}  // namespace detail
+
 /// Array-of-structs cloud: reads attributes of P through projections (member pointers or callables),
 /// without copying. Attributes given as no_attribute are absent (and not detected by the concepts).
 template <class P, class X, class Y, class Z, class I = no_attribute, class R = no_attribute,
@@ -99,20 +97,16 @@ public:
     double x(std::size_t i) const { return static_cast<double>(std::invoke(x_, pts_[i])); }
     double y(std::size_t i) const { return static_cast<double>(std::invoke(y_, pts_[i])); }
     double z(std::size_t i) const { return static_cast<double>(std::invoke(z_, pts_[i])); }
-    double intensity(std::size_t i) const
-        requires(!std::is_same_v<I, no_attribute>)
-    { return static_cast<double>(std::invoke(i_, pts_[i])); }
-    int return_number(std::size_t i) const
-        requires(!std::is_same_v<R, no_attribute>)
-    { return static_cast<int>(std::invoke(r_, pts_[i])); }
-    int number_of_returns(std::size_t i) const
-        requires(!std::is_same_v<N, no_attribute>)
-    { return static_cast<int>(std::invoke(n_, pts_[i])); }
-    int classification(std::size_t i) const
-        requires(!std::is_same_v<K, no_attribute>)
-    { return static_cast<int>(std::invoke(k_, pts_[i])); }
+    // Optional attributes exist only when a projection for them was given.
+    double intensity(std::size_t i) const requires detail::given_attribute<I> { return read<double>(i_, i); }
+    int return_number(std::size_t i) const requires detail::given_attribute<R> { return read<int>(r_, i); }
+    int number_of_returns(std::size_t i) const requires detail::given_attribute<N> { return read<int>(n_, i); }
+    int classification(std::size_t i) const requires detail::given_attribute<K> { return read<int>(k_, i); }
 
 private:
+    template <class T, class Projection>
+    T read(const Projection& p, std::size_t i) const { return static_cast<T>(std::invoke(p, pts_[i])); }
+
     std::span<const P> pts_;
     [[no_unique_address]] X x_;
     [[no_unique_address]] Y y_;
