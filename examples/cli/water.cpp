@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // lidarfx water: waterbody maps from LAS files (dissertation ch. 2 with lidarfx's refinements).
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <filesystem>
@@ -48,7 +50,9 @@ int run_water(const std::vector<std::string>& args)
     opt.run.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
     const int min_seed = a.integer("min-seed-cells", 100);
-    if (min_seed < 1) throw std::invalid_argument("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
+    if (min_seed < 1) {
+        throw lidarfx::cli::usage_error("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
+    }
     opt.min_seed_cells = static_cast<std::size_t>(min_seed);
     opt.grow.theta_start_deg = a.number("theta-start", opt.grow.theta_start_deg);
     opt.grow.theta_step_deg = a.number("theta-step", opt.grow.theta_step_deg);
@@ -60,6 +64,26 @@ int run_water(const std::vector<std::string>& args)
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
     opt.check_inputs = !a.has("force");
     opt.run.progress = lidarfx::cli::progress_bar("waterbodies");
+    // Each flag is checked under its own name before any work (the library would name its option instead).
+    const auto need = [](bool ok, const char* flag, const char* rule, double value) {
+        if (!ok) {
+            std::ostringstream why;
+            why << "--" << flag << " must be " << rule << " (got " << value << ")";
+            throw lidarfx::cli::usage_error(why.str());
+        }
+    };
+    const auto& g = opt.grow;
+    need(opt.vegetation_height_m > 0 && std::isfinite(opt.vegetation_height_m), "veg-height", "a finite number > 0",
+         opt.vegetation_height_m);
+    need(g.theta_start_deg >= 0 && g.theta_start_deg <= 90, "theta-start", "in [0, 90] degrees", g.theta_start_deg);
+    need(g.theta_step_deg > 0 && g.theta_step_deg <= 90, "theta-step", "in (0, 90] degrees", g.theta_step_deg);
+    need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max",
+         "in [--theta-start, 90] degrees", g.theta_max_deg);
+    need(g.ks.alpha > 0 && g.ks.alpha < 1, "alpha", "in (0, 1)", g.ks.alpha);
+    need(opt.level_tolerance_m >= 0 && std::isfinite(opt.level_tolerance_m), "level-tolerance",
+         "a finite number >= 0 (metres)", opt.level_tolerance_m);
+    need(opt.island_min_area_m2 >= 0, "island-min-area", ">= 0 (m2; inf keeps every island)", opt.island_min_area_m2);
+    need(opt.bridge_max_span_m >= 0, "bridge-span", ">= 0 (metres; 0 disables)", opt.bridge_max_span_m);
 
     // Per cell: the survey rasters (42 B while reading) and the method's rasters (labels, angles, masks, bins).
     const auto survey_options = lidarfx::cli::survey_options_from(a, 120);

@@ -14,7 +14,12 @@ set(cases
     "1|is the same file as|give each file once|rasterize^${DATA}^${WORK_DIR}/link.las^--out^${out}"
     "1|option --cell is given more than once|--cell|rasterize^${DATA}^--cell^2^--cell^3^--out^${out}"
     "1|unknown option -v|options are --name|rasterize^-v^${DATA}^--out^${out}"
-    "1|cannot open|no-such.las|rasterize^--out^${out}^--^${WORK_DIR}/no-such.las")
+    "1|cannot open|no-such.las|rasterize^--out^${out}^--^${WORK_DIR}/no-such.las"
+    "2|--veg-height must be a finite number > 0|(got -1)|water^${DATA}^--veg-height^-1^--out^${out}"
+    "2|--theta-max must be in [--theta-start, 90] degrees|(got 1)|water^${DATA}^--theta-start^5^--theta-max^1^--out^${out}"
+    "2|--alpha must be in (0, 1)|(got 2)|water^${DATA}^--alpha^2^--out^${out}"
+    "2|--island-min-area must be >= 0|(got nan)|water^${DATA}^--island-min-area^nan^--out^${out}"
+    "1|exists and is not a folder|${DATA}|demo^--size^100^--out^${DATA}")
 foreach(case IN LISTS cases)
     string(REPLACE "|" ";" parts "${case}")
     list(POP_FRONT parts code phrase phrase2)
