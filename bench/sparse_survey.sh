@@ -17,8 +17,9 @@ run() {
     local rc=0
     /usr/bin/time -f "%e %M" -o "$work/time" "$build/lidarfx" rasterize "$work/sparse.las" --cell 1 "$@" \
         --out "$work/out_$label" >"$work/log_$label" 2>&1 || rc=$?
-    read -r seconds kib <"$work/time"
-    printf '%-8s exit %d  %6.2f s  %7.1f MB peak\n' "$label" "$rc" "$seconds" "$(echo "$kib / 1024" | bc -l)"
+    read -r seconds kib < <(tail -n 1 "$work/time")  # GNU time puts "Command exited..." first on failure
+    awk -v l="$label" -v rc="$rc" -v s="$seconds" -v k="$kib" \
+        'BEGIN { printf "%-8s exit %d  %6.2f s  %7.1f MB peak\n", l, rc, s, k / 1024 }'
     grep -m1 -E "Use --cell|error" "$work/log_$label" || true
 }
 run refused
