@@ -144,7 +144,8 @@ TEST_CASE("io/write_ascii_grid: every value is written as std::to_chars writes i
         const float v = std::isnan(values[i]) ? -9999.0f : values[i];
         const auto end = std::isnan(values[i]) ? std::to_chars(buf, buf + sizeof buf, -9999.0)
                                                : std::to_chars(buf, buf + sizeof buf, v);
-        expected += (i ? " " : "") + std::string(buf, end.ptr);
+        if (i) expected += ' ';
+        expected.append(buf, end.ptr);
     }
     const auto last_line = text.substr(text.rfind('\n', text.size() - 2) + 1);
     CHECK(last_line == expected + "\n");
