@@ -294,6 +294,12 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         if (s.files == 0) {
             s.crs_wkt = h.wkt;
             s.epsg = h.epsg();
+            if (!io::crs_understood(s.crs_wkt)) {  // an odd record must not fail the run after the work is done
+                std::cerr << "lidarfx: warning: " << p << ": its WKT coordinate system cannot be read; outputs "
+                          << (s.epsg ? "use its EPSG code " + std::to_string(s.epsg) : std::string("carry no CRS"))
+                          << '\n';
+                s.crs_wkt.clear();
+            }
         } else if (h.epsg() != s.epsg) {
             std::cerr << "lidarfx: warning: " << p << " has EPSG " << h.epsg() << ", the first file " << s.epsg
                       << "; coordinates are used as they are\n";

@@ -148,7 +148,21 @@ geotiff_raster read_geotiff(const std::string& path)
     return out;
 }
 
+bool crs_understood(const std::string& crs) noexcept
+{
+    try {
+        register_drivers();
+        const quiet_gdal quiet;
+        crs_to_wkt(crs);
+        return true;
+    } catch (...) {
+        return false;
+    }
+}
+
 #else
+
+bool crs_understood(const std::string&) noexcept { return true; }
 
 namespace {
 

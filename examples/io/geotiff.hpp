@@ -15,6 +15,9 @@ inline constexpr double geotiff_nodata = -9999.0;
 /// True when GeoTIFF support was compiled in (GDAL found by CMake).
 bool geotiff_available() noexcept;
 
+/// True when write_geotiff understands `crs` ("" included); always true without GDAL (no GeoTIFF is written).
+bool crs_understood(const std::string& crs) noexcept;
+
 /// Writes `values` on `g` as a single-band float32 GeoTIFF (DEFLATE-compressed, tiled): geotransform
 /// lidarfx::to_gdal(g) (north-up, square cells), NaN cells as NoData -9999. `crs` names the coordinate
 /// system: "EPSG:3645", a bare code "3645", any WKT or PROJ string GDAL understands, or "" for none.

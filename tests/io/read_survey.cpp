@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "cli/cli_common.hpp"
+#include "io/geotiff.hpp"
 #include "io/las_writer.hpp"
 
 #include <cmath>
@@ -177,4 +178,18 @@ TEST_CASE("io/read_survey: a point far from the rest is reported with the crop t
     // The survey alone raises nothing.
     write_las(dir.file("alone.las"), grid_points(100));
     CHECK(cli::read_survey({dir.file("alone.las")}, quiet(1.0)).rasters.points_used == 10000);
+}
+
+TEST_CASE("io/read_survey: a WKT record nobody can read is dropped with a warning instead of failing the run")
+{
+    io_test::temp_dir dir;
+    const auto path = dir.file("odd_crs.las");
+    write_las(path, grid_points(10), {.version_minor = 4, .point_format = 6, .wkt = "NOT A COORDINATE SYSTEM["});
+    const auto s = cli::read_survey({path}, quiet(1.0));
+    CHECK(s.rasters.points_used == 100);
+    if (geotiff_available()) {
+        CHECK(s.crs_wkt.empty());  // GDAL cannot read it: the outputs go without a CRS
+    } else {
+        CHECK(s.crs_wkt == "NOT A COORDINATE SYSTEM[");  // nothing would read it: kept as found
+    }
 }
