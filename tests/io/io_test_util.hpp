@@ -72,6 +72,18 @@ std::string runtime_error_of(F&& f)
     return "<no error>";
 }
 
+/// The message of any std::exception `f` throws, or "<no error>" when it returns normally.
+template <class F>
+std::string error_of(F&& f)
+{
+    try {
+        f();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
+
 /// True when a and b have the same shape and cells: NaN where the other is NaN, identical bits elsewhere.
 inline bool same_cells(lidarfx::raster_view<const float> a, lidarfx::raster_view<const float> b)
 {

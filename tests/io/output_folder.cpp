@@ -30,16 +30,6 @@ void write_text(output_folder& out, const std::string& name, const std::string& 
     out.write(name, [&](const std::string& path) { write_file(path, text); });
 }
 
-std::string message_of(const std::function<void()>& f)
-{
-    try {
-        f();
-    } catch (const std::runtime_error& e) {
-        return e.what();
-    }
-    return "";
-}
-
 /// Names in `dir`, hidden ones included.
 std::vector<std::string> entries(const std::filesystem::path& dir)
 {
@@ -116,7 +106,7 @@ TEST_CASE("io/output_folder: a symlink at an output name is neither followed nor
     write_file(victim, std::string("precious survey"));
     std::filesystem::create_symlink(victim, dir / "waterbodies.csv");
     output_folder out(dir);
-    const auto why = message_of([&] { out.check_name("waterbodies.csv"); });
+    const auto why = io_test::runtime_error_of([&] { out.check_name("waterbodies.csv"); });
     CHECK(contains(why, "waterbodies.csv: is a symbolic link; refusing to write through or replace it"));
     CHECK_THROWS_AS(write_text(out, "waterbodies.csv", "label,area"), std::runtime_error);
     CHECK(text_of(victim) == "precious survey");
@@ -131,7 +121,7 @@ TEST_CASE("io/output_folder: an output never replaces an input of the run, whate
     write_file((dir / "water.asc").string(), std::string("an input that happens to be called water.asc"));
     std::filesystem::create_hard_link(dir / "water.asc", tmp.file("input.las"));
     output_folder out(dir, {tmp.file("input.las")});
-    const auto why = message_of([&] { out.check_name("water.asc"); });
+    const auto why = io_test::runtime_error_of([&] { out.check_name("water.asc"); });
     CHECK(contains(why, "water.asc: is an input of this run"));
     CHECK_THROWS_AS(write_text(out, "water.asc", "1 0 1"), std::runtime_error);
     CHECK(text_of(dir / "water.asc") == "an input that happens to be called water.asc");
@@ -144,7 +134,7 @@ TEST_CASE("io/output_folder: a second run into a locked folder fails at once and
     {
         output_folder first(dir);
         write_text(first, "a.txt", "first");
-        const auto why = message_of([&] { output_folder second(dir); });
+        const auto why = io_test::runtime_error_of([&] { output_folder second(dir); });
         CHECK(contains(why, "another lidarfx run is writing into this folder"));
         first.commit();
     }
@@ -166,9 +156,9 @@ TEST_CASE("io/output_folder: leftovers of killed runs are removed; bad names are
     CHECK_THROWS_AS(write_text(out, "../escape.txt", "x"), std::runtime_error);
     CHECK_THROWS_AS(write_text(out, "", "x"), std::runtime_error);
     write_text(out, "once.txt", "x");
-    CHECK(contains(message_of([&] { write_text(out, "once.txt", "y"); }), "written twice"));
+    CHECK(contains(io_test::runtime_error_of([&] { write_text(out, "once.txt", "y"); }), "written twice"));
     std::filesystem::create_directories(dir / "sub");
-    CHECK(contains(message_of([&] { out.check_name("sub"); }), "not a regular file"));
+    CHECK(contains(io_test::runtime_error_of([&] { out.check_name("sub"); }), "not a regular file"));
     write_file((dir / "plain.txt").string(), std::string("a file"));
-    CHECK(contains(message_of([&] { output_folder bad(dir / "plain.txt"); }), "plain.txt: exists and is not a folder"));
+    CHECK(contains(io_test::runtime_error_of([&] { output_folder bad(dir / "plain.txt"); }), "plain.txt: exists and is not a folder"));
 }
