@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "io/file_output.hpp"
+#include "io/tables.hpp"
 
 namespace lidarfx::io {
 
@@ -64,24 +65,6 @@ void sync_path(const std::filesystem::path& path, bool directory)
     const bool ok = ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: the file system cannot sync (e.g. some tmpfs)
     ::close(fd);
     if (!ok) throw failure(path, "flushing to disk failed: " + errno_text());
-}
-
-std::string json_escaped(const std::string& s)
-{
-    std::string out;
-    for (const char ch : s) {
-        if (ch == '"' || ch == '\\') {
-            out += '\\';
-            out += ch;
-        } else if (static_cast<unsigned char>(ch) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(ch)));
-            out += buf;
-        } else {
-            out += ch;
-        }
-    }
-    return out;
 }
 
 /// SHA-256 (FIPS 180-4), streaming.
@@ -294,11 +277,11 @@ void output_folder::commit(const std::string& command)
         for (auto& r : running) r.get();  // rethrows a reader's error
     }
     std::ostringstream manifest;
-    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": \"" << json_escaped(command) << "\",\n  \"files\": [";
+    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": " << json_string(command) << ",\n  \"files\": [";
     for (std::size_t i = 0; i < pending_.size(); ++i) {
         const auto& p = pending_[i];
-        manifest << (i ? ",\n" : "\n") << "    {\"name\": \"" << json_escaped(p.name)
-                 << "\", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \""
+        manifest << (i ? ",\n" : "\n") << "    {\"name\": " << json_string(p.name)
+                 << ", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \""
                  << digests[i] << "\"}";
     }
     manifest << "\n  ]\n}\n";
