@@ -46,14 +46,16 @@ std::size_t count_holes(const std::vector<lidarfx::label_polygons>& polys)
     return n;
 }
 
-void bm_polygonize(benchmark::State& state)
+/// Times `outline` (polygonize or the quadratic baseline) on a holed n x n raster.
+template <class Outline>
+void time_outlines(benchmark::State& state, Outline outline)
 {
     const auto n = state.range(0);
     const auto labels = holed_bands(n, state.range(1), 7);
     const lidarfx::grid g{0.0, static_cast<double>(n), 1.0, n, n};
     std::size_t holes = 0;
     for (auto _ : state) {
-        const auto polys = lidarfx::polygonize(labels.view(), g);
+        const auto polys = outline(labels.view(), g);
         holes = count_holes(polys);
         benchmark::DoNotOptimize(polys.data());
     }
@@ -61,20 +63,16 @@ void bm_polygonize(benchmark::State& state)
     state.counters["holes"] = static_cast<double>(holes);
 }
 
+void bm_polygonize(benchmark::State& state)
+{
+    time_outlines(state, [](const auto& labels, const lidarfx::grid& g) { return lidarfx::polygonize(labels, g); });
+}
+
 /// Baseline: the first implementation (even-odd test of each hole against the exteriors of its label).
 void bm_polygonize_quadratic(benchmark::State& state)
 {
-    const auto n = state.range(0);
-    const auto labels = holed_bands(n, state.range(1), 7);
-    const lidarfx::grid g{0.0, static_cast<double>(n), 1.0, n, n};
-    std::size_t holes = 0;
-    for (auto _ : state) {
-        const auto polys = reference::polygonize_quadratic(labels.view(), g);
-        holes = count_holes(polys);
-        benchmark::DoNotOptimize(polys.data());
-    }
-    state.SetItemsProcessed(state.iterations() * n * n);
-    state.counters["holes"] = static_cast<double>(holes);
+    time_outlines(state,
+                  [](const auto& labels, const lidarfx::grid& g) { return reference::polygonize_quadratic(labels, g); });
 }
 
 }  // namespace

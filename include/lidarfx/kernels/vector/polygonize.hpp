@@ -110,7 +110,7 @@ std::vector<label_polygons> polygonize(const Labels& labels, const grid& g, cons
         std::vector<std::array<double, 2>> w;
         w.reserve(corners.size());
         for (const auto& p : corners) {
-            w.push_back({g.x0 + static_cast<double>(p[1]) * g.cell, g.y0 - static_cast<double>(p[0]) * g.cell});
+            w.push_back(g.to_world(static_cast<double>(p[0]), static_cast<double>(p[1])));
         }
         return w;
     };
