@@ -72,6 +72,8 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option);
 /// The rasters of one or more LAS files on one grid snapped to multiples of the cell size.
 struct survey {
     rasterize_result rasters;
+    raster<std::uint8_t> scan_covered;  ///< cells a scan line crossed between two returns (scan_coverage);
+                                        ///< empty when no file has GPS times
     std::string crs_wkt;         ///< WKT of the first file, if it has one
     int epsg = 0;                ///< horizontal EPSG code of the first file (0 = unknown)
     std::size_t points = 0;      ///< points read
@@ -87,6 +89,10 @@ struct survey {
 /// file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
+
+/// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
+/// inside the area flown. hull_radius_m <= 0 gives every cell as inside.
+raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads);
 
 /// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `out`.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
