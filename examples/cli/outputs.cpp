@@ -154,7 +154,9 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
     survey_waterbodies found{footprint_of(s, hull_radius_m, opt.run.threads), {}};
     std::size_t flown = 0, crossed = 0;
     for (const auto v : found.footprint) flown += v;
-    for (const auto v : s.scan_covered) crossed += v;
+    if (!s.scan_covered.empty())
+        for (std::ptrdiff_t i = 0; i < s.scan_covered.size(); ++i)
+            crossed += s.scan_covered.data()[i] && s.rasters.dropout.data()[i];
     const auto cells = static_cast<double>(std::max<std::ptrdiff_t>(1, found.footprint.size()));
     std::cout << "footprint: " << std::fixed << std::setprecision(1) << 100.0 * static_cast<double>(flown) / cells
               << " % of the grid was flown (" << 100.0 * static_cast<double>(crossed) / cells
