@@ -95,6 +95,14 @@ raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
     return idw_fill(z, cell, idw_fill_options{.k = 4, .radius_m = 64 * cell, .run = {.threads = 0}}).filled;
 }
 
+/// What the manifest says about units: heights and areas in metres, places in the survey's CRS.
+std::string units_note(const survey& s)
+{
+    const std::string where = s.crs.source.empty() ? std::string("coordinates as read (no CRS: taken as metres)")
+                                                   : "the CRS of the input, " + s.crs.describe();
+    return "cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and polygons in " + where;
+}
+
 }  // namespace
 
 void print_survey(const survey& s)
@@ -139,6 +147,7 @@ void write_point_rasters(io::output_folder& dir, const survey& s)
 {
     const auto& pr = s.rasters;
     const grid g = to_crs_units(pr.g, s);   // georeferenced in the files' CRS; heights stay in metres
+    dir.set_units_note(units_note(s));
     write_raster(dir, "min_z", pr.min_z, g, s.crs_wkt, s.epsg);
     write_raster(dir, "max_z", pr.max_z, g, s.crs_wkt, s.epsg);
     write_raster(dir, "mean_intensity", pr.mean_intensity, g, s.crs_wkt, s.epsg);
@@ -178,6 +187,7 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
         }
     }
     const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
+    dir.set_units_note(units_note(s));
     write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg);
     write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg);
 

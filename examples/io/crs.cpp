@@ -587,6 +587,10 @@ std::string survey_crs::for_outputs() const
 std::string survey_crs::describe() const
 {
     std::string what = epsg != 0 ? "EPSG:" + std::to_string(epsg) : !source.empty() ? "a user-defined CRS" : "no CRS";
+    if (epsg == 0 && !wkt.empty()) {   // the CRS's name, as its WKT gives it: KEYWORD["name", ...
+        const auto open = wkt.find("[\""), close = open == std::string::npos ? open : wkt.find('"', open + 2);
+        if (close != std::string::npos && close > open + 2) what = wkt.substr(open + 2, close - open - 2);
+    }
     return what + " (" + (geographic ? std::string("degrees") : horizontal_unit) + ")";
 }
 

@@ -30,7 +30,8 @@ struct survey_crs {
 
     /// The CRS as write_geotiff takes it: the WKT, else "EPSG:n", else "".
     std::string for_outputs() const;
-    /// A short description for messages: "EPSG:2994 (foot)", "user-defined CRS (US survey foot)", "no CRS".
+    /// A short description for messages: "EPSG:2994 (foot)", the name in the WKT when no code names it
+    /// ("NAD83 / Mississippi West (US survey foot)"), "a user-defined CRS (foot)", "no CRS (metre)".
     std::string describe() const;
 };
 
