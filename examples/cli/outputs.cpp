@@ -95,17 +95,29 @@ raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
     return idw_fill(z, cell, idw_fill_options{.k = 4, .radius_m = 64 * cell, .run = {.threads = 0}}).filled;
 }
 
+/// What the manifest says about units: heights and areas in metres, places in the survey's CRS.
+std::string units_note(const survey& s)
+{
+    const std::string where = s.crs.source.empty() ? std::string("coordinates as read (no CRS: taken as metres)")
+                                                   : "the CRS of the input, " + s.crs.describe();
+    return "cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and polygons in " + where;
+}
+
 }  // namespace
 
 void print_survey(const survey& s)
 {
     const auto& g = s.rasters.g;
+    const grid in_crs = to_crs_units(g, s);
     const double area = static_cast<double>(g.size()) * g.cell * g.cell;
     std::cout << "survey: " << s.files << " file(s), " << s.points << " points; grid " << g.rows << " x " << g.cols
-              << " cells of " << g.cell << " m from (" << std::fixed << std::setprecision(2) << g.x0 << ", " << g.y0
-              << ")" << std::defaultfloat << "; " << std::setprecision(3) << static_cast<double>(s.points) / area
-              << " points/m2";
+              << " cells of " << g.cell << " m from (" << std::fixed << std::setprecision(2) << in_crs.x0 << ", "
+              << in_crs.y0 << ")" << std::defaultfloat << "; " << std::setprecision(3)
+              << static_cast<double>(s.points) / area << " points/m2";
     if (s.epsg) std::cout << "; EPSG:" << s.epsg;
+    if (s.crs.horizontal_unit_m != 1 || s.crs.vertical_unit_m != 1) {
+        std::cout << "; read in " << s.crs.horizontal_unit << " (z " << s.crs.vertical_unit << "), converted to metres";
+    }
     std::cout << '\n';
     if (s.rasters.points_nan) {
         std::cout << "  " << s.rasters.points_nan << " points with NaN or infinite coordinates ignored\n";
@@ -134,11 +146,13 @@ std::vector<std::string> waterbody_file_names()
 void write_point_rasters(io::output_folder& dir, const survey& s)
 {
     const auto& pr = s.rasters;
-    write_raster(dir, "min_z", pr.min_z, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "max_z", pr.max_z, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "mean_intensity", pr.mean_intensity, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "count", as_float<std::uint32_t>(pr.count), pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), pr.g, s.crs_wkt, s.epsg);
+    const grid g = to_crs_units(pr.g, s);   // georeferenced in the files' CRS; heights stay in metres
+    dir.set_units_note(units_note(s));
+    write_raster(dir, "min_z", pr.min_z, g, s.crs_wkt, s.epsg);
+    write_raster(dir, "max_z", pr.max_z, g, s.crs_wkt, s.epsg);
+    write_raster(dir, "mean_intensity", pr.mean_intensity, g, s.crs_wkt, s.epsg);
+    write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg);
+    write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), g, s.crs_wkt, s.epsg);
     const auto png = [&](const std::string& name, const io::rgb_image& img) {
         dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
     };
@@ -196,8 +210,10 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
             water(r, c) = data ? 0.0f : NAN;
         }
     }
-    write_raster(dir, "water", water, g, s.crs_wkt, s.epsg);
-    write_raster(dir, "waterbody_labels", labels, g, s.crs_wkt, s.epsg);
+    const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
+    dir.set_units_note(units_note(s));
+    write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg);
+    write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg);
 
     const auto f = picture_factor(g);
     const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
@@ -210,14 +226,14 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
                                     "dropout_fraction"};
     std::vector<std::vector<io::table_value>> rows;
     for (const auto& b : w.bodies) {
-        const bounds box = g.extent(b.box);
+        const bounds box = in_crs.extent(b.box);
         rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg, b.stopped_by_ks,
                         b.mean_intensity, b.water_level_m, b.dropout_fraction});
     }
     dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
 
     std::vector<io::geojson_feature> features;
-    for (const auto& lp : polygonize(w.labels, g)) {
+    for (const auto& lp : polygonize(w.labels, in_crs)) {
         const auto& b = w.bodies[static_cast<std::size_t>(lp.label - 1)];
         for (const auto& poly : lp.polygons) {
             features.push_back({poly.rings, {{"label", b.label}, {"area_m2", b.area_m2},

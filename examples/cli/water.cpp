@@ -20,7 +20,9 @@ constexpr const char* usage =
     "Extracts waterbodies: writes water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land,\n"
     "1..n by decreasing area), GeoTIFF twins when built with GDAL, water_overlay.png, waterbodies.csv and\n"
     "waterbodies.geojson. Inputs that cannot support the method (no intensity, too few points per cell)\n"
-    "are refused with the reason and exit code 3; --force runs anyway.\n"
+    "are refused with the reason and exit code 3; --force runs anyway. Lengths, heights and areas are metres\n"
+    "whatever the files' unit (feet are converted); maps and polygons are in the files' CRS. Files in degrees\n"
+    "(a geographic CRS) are refused (exit code 2): reproject them first.\n"
     "options (defaults in brackets):\n"
     "  --cell M              cell size, metres [2]\n"
     "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
@@ -37,7 +39,7 @@ constexpr const char* usage =
     "  --hull-radius M       survey footprint: empty space that a disc of this radius reaches from outside\n"
     "                        was not flown (no data, never water), metres, 0 = off [25]\n"
     "  --memory SIZE         refuse grids whose estimate exceeds SIZE (4GiB, 512MiB) [half the memory]\n"
-    "  --crop X0,Y0,X1,Y1    only points inside this box, metres of the file's CRS\n"
+    "  --crop X0,Y0,X1,Y1    only points inside this box, in the units of the files' CRS\n"
     "  --force               run even when the inputs cannot support the method\n";
 
 int run_water(const std::vector<std::string>& args)

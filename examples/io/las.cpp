@@ -348,10 +348,23 @@ void las_reader::parse()
 
     for (const las_vlr& v : h.vlrs) {
         if (v.user_id == "laszip encoded" && v.record_id == 22204) fail(path_, laz_message());
-        if (v.user_id != "LASF_Projection" || (v.record_id != 34735 && v.record_id != 2112)) continue;
+        if (v.user_id != "LASF_Projection" ||
+            (v.record_id != 34735 && v.record_id != 34736 && v.record_id != 34737 && v.record_id != 2112)) {
+            continue;
+        }
         const std::uint8_t* data = bytes_at(v.data_offset, static_cast<std::size_t>(v.data_size));
         if (v.record_id == 2112) {
             h.wkt = fixed_string(data, static_cast<std::size_t>(v.data_size));
+            h.has_wkt_record = true;
+            continue;
+        }
+        if (v.record_id == 34736) {   // GeoDoubleParams: the doubles GeoKeys point into (a partial one is dropped)
+            h.geo_doubles.resize(static_cast<std::size_t>(v.data_size / 8));
+            for (std::size_t k = 0; k < h.geo_doubles.size(); ++k) h.geo_doubles[k] = load<double>(data + 8 * k);
+            continue;
+        }
+        if (v.record_id == 34737) {   // GeoAsciiParams: kept byte for byte, since keys index into it
+            h.geo_ascii.assign(reinterpret_cast<const char*>(data), static_cast<std::size_t>(v.data_size));
             continue;
         }
         // GeoKeyDirectory: a header {version, revision, minor, key count} then 4 x u16 per key.

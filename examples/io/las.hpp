@@ -70,10 +70,13 @@ struct las_header {
 
     // Coordinate reference system, kept as metadata (nothing is reprojected).
     std::vector<las_geo_key> geo_keys;        ///< GeoKeyDirectory entries, empty when absent
+    std::vector<double> geo_doubles;          ///< GeoDoubleParams (34736) the keys point into, empty when absent
+    std::string geo_ascii;                    ///< GeoAsciiParams (34737) as stored ('|'-ended fields, NULs kept)
     int epsg_projected = 0;                   ///< ProjectedCSTypeGeoKey (3072); 0 = absent or user-defined
     int epsg_geographic = 0;                  ///< GeographicTypeGeoKey (2048); 0 = absent or user-defined
     int epsg_vertical = 0;                    ///< VerticalCSTypeGeoKey (4096); 0 = absent or user-defined
     std::string wkt;                          ///< OGC coordinate system WKT (record 2112), empty when absent
+    bool has_wkt_record = false;              ///< a WKT record (2112) is present, even an empty one
 
     bool has_gps_time() const noexcept { return las_format_has_gps_time(point_format); }
     /// The horizontal EPSG code: projected when known, else geographic, else 0.

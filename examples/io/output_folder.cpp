@@ -277,7 +277,9 @@ void output_folder::commit(const std::string& command)
         for (auto& r : running) r.get();  // rethrows a reader's error
     }
     std::ostringstream manifest;
-    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": " << json_string(command) << ",\n  \"files\": [";
+    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": " << json_string(command) << ",\n";
+    if (!units_.empty()) manifest << "  \"units\": " << json_string(units_) << ",\n";
+    manifest << "  \"files\": [";
     for (std::size_t i = 0; i < pending_.size(); ++i) {
         const auto& p = pending_[i];
         manifest << (i ? ",\n" : "\n") << "    {\"name\": " << json_string(p.name)

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lidarfx::io {
@@ -39,6 +40,9 @@ public:
     /// final name in commit(). Writing a name twice in one run is an error.
     void write(const std::string& name, const std::function<void(const std::string& temporary_path)>& writer);
 
+    /// A sentence on the units of the outputs, recorded in manifest.json as "units" (the last one set).
+    void set_units_note(std::string note) { units_ = std::move(note); }
+
     /// Moves every written file to its final name and writes manifest.json. `command` is recorded in it.
     void commit(const std::string& command = "");
 
@@ -56,6 +60,7 @@ private:
     int lock_fd_ = -1;
     bool created_ = false;  // the folder did not exist before this run
     bool committed_ = false;
+    std::string units_;
 };
 
 /// SHA-256 of a file's bytes as 64 lower-case hex digits. @throws std::runtime_error naming the file.
