@@ -102,7 +102,6 @@ laz_vlr parse_laz_vlr(std::span<const std::uint8_t> payload, int point_format, s
         fail(name, "LAZ from LASzip " + version + " (point-wise, unchunked compressor 1) is not supported; "
                    "recompress it with a current laszip or pdal");
     }
-    if (v.compressor == 3) fail(name, "LAZ compressor 3 (layered, point formats 6–10) is not supported yet");
     if (v.compressor != 2 && v.compressor != 3) {
         fail(name, "LAZ compressor " + std::to_string(v.compressor) + " is not supported (2 and 3 are)");
     }
@@ -235,7 +234,10 @@ laz_chunk_decoder::laz_chunk_decoder(const laz_vlr& vlr, std::uint16_t record_le
         case laz_item_type::gpstime11: m.items.push_back(std::make_unique<laz::gpstime11_v2>(m.dec)); break;
         case laz_item_type::rgb12: m.items.push_back(std::make_unique<laz::rgb12_v2>(m.dec)); break;
         case laz_item_type::byte: m.items.push_back(std::make_unique<laz::bytes_v2>(m.dec, it.size)); break;
-        default: break;
+        case laz_item_type::point14: m.layers.push_back(std::make_unique<laz::point14_v3>()); break;
+        case laz_item_type::rgb14: m.layers.push_back(std::make_unique<laz::rgb14_v3>(false)); break;
+        case laz_item_type::rgbnir14: m.layers.push_back(std::make_unique<laz::rgb14_v3>(true)); break;
+        case laz_item_type::byte14: m.layers.push_back(std::make_unique<laz::bytes14_v3>(it.size)); break;
         }
     }
 }
@@ -276,11 +278,13 @@ void laz_chunk_decoder::decode(std::span<const std::uint8_t> bytes, std::uint64_
     for (auto& layer : m.layers) {
         if (!layer->read_sizes(p, end)) fail(what, "the chunk ends inside its table of layer sizes");
     }
+    std::uint32_t context = 0;
     for (std::size_t k = 0; k < m.layers.size(); ++k) {
-        if (!m.layers[k]->init(records + m.offsets[k], p, end)) fail(what, "a layer of the chunk runs past its end");
+        if (!m.layers[k]->init(records + m.offsets[k], p, end, context)) {
+            fail(what, "a layer of the chunk runs past its end");
+        }
     }
     std::uint8_t* rec = records + stride;
-    std::uint32_t context = 0;
     for (std::uint64_t i = 1; i < point_count; ++i, rec += stride) {
         for (std::size_t k = 0; k < m.layers.size(); ++k) m.layers[k]->decode(rec + m.offsets[k], context);
     }

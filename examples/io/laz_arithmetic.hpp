@@ -39,7 +39,8 @@ class symbol_model {
 public:
     static constexpr std::uint32_t length_shift = 15, max_count = 1u << length_shift;
 
-    explicit symbol_model(std::uint32_t symbols = 2) { init(symbols); }
+    symbol_model() { init(2); }
+    explicit symbol_model(std::uint32_t symbols) { init(symbols); }
 
     void init(std::uint32_t symbols)
     {
