@@ -67,7 +67,7 @@ std::uint16_t item_size(laz_item_type type)
 
 // A valid stream never makes the decoder read past its chunk; allow the few bytes of look-ahead an
 // encoder's final flush may leave out.
-constexpr std::size_t overrun_slack = 4;
+constexpr std::size_t overrun_slack = 0;
 
 }  // namespace
 

@@ -255,17 +255,21 @@ public:
             corr_min_ = INT32_MIN;
         }
         k_ = 0;
-        bits_.assign(contexts, symbol_model(corr_bits_ + 1));
+        // Models are made on first use (as fresh ones), so restarting a chunk costs little.
+        bits_.resize(contexts);
+        bits_ready_.assign(contexts, 0);
         corrector_0_ = bit_model{};
-        corrector_.clear();
-        corrector_.reserve(corr_bits_ + 1);
-        corrector_.emplace_back(2);   // unused slot: k = 0 uses the bit model
-        for (std::uint32_t i = 1; i <= corr_bits_; ++i) corrector_.emplace_back(1u << (i <= bits_high_ ? i : bits_high_));
+        corrector_.resize(corr_bits_ + 1);
+        corrector_ready_.assign(corr_bits_ + 1, 0);
     }
 
     /// Decodes pred + correction in context `context` (< contexts), wrapped into the coder's range.
     std::int32_t decompress(decoder& dec, std::int32_t pred, std::uint32_t context = 0) noexcept
     {
+        if (!bits_ready_[context]) {
+            bits_[context].init(corr_bits_ + 1);
+            bits_ready_[context] = 1;
+        }
         const std::uint32_t real = static_cast<std::uint32_t>(pred) + static_cast<std::uint32_t>(corrector(dec, bits_[context]));
         if (corr_range_ == 0) return static_cast<std::int32_t>(real);
         // Fold into [0, range) as the encoder did (pred and correction lie within one range of it).
@@ -282,6 +286,10 @@ private:
     std::int32_t corrector(decoder& dec, symbol_model& m) noexcept
     {
         k_ = dec.decode_symbol(m);
+        if (k_ != 0 && k_ < 32 && !corrector_ready_[k_]) {
+            corrector_[k_].init(1u << (k_ <= bits_high_ ? k_ : bits_high_));
+            corrector_ready_[k_] = 1;
+        }
         if (k_ == 0) return static_cast<std::int32_t>(dec.decode_bit(corrector_0_));
         if (k_ >= 32) return corr_min_;
         std::uint32_t c;
@@ -301,6 +309,7 @@ private:
     std::vector<symbol_model> bits_;
     bit_model corrector_0_;
     std::vector<symbol_model> corrector_;
+    std::vector<std::uint8_t> bits_ready_, corrector_ready_;
 };
 
 }  // namespace lidarfx::io::laz

@@ -342,8 +342,8 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
     {
         // The LASzip bits of the format id say "compressed"; without the laszip VLR nothing can decode it.
         for (const auto& base : {v12, v14}) {
-            for (const std::uint8_t bit : {0x80, 0x40}) {
-                CHECK(contains(error_for(dir, mutated(base, [bit](auto& b) { b[104] |= bit; })),
+            for (const std::uint8_t bit : {std::uint8_t{0x80}, std::uint8_t{0x40}}) {
+                CHECK(contains(error_for(dir, mutated(base, [bit](auto& b) { b[104] = static_cast<std::uint8_t>(b[104] | bit); })),
                                "the point format says LAZ (compressed) but the file has no laszip VLR"));
             }
         }
