@@ -453,7 +453,7 @@ void las_reader::set_threads(int threads)
     threads_ = threads;
 }
 
-void las_reader::read_laz(std::size_t n, const record_sink& sink)
+void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink)
 {
     const las_header& h = header_;
     laz_state& z = *laz_;
@@ -468,9 +468,10 @@ void las_reader::read_laz(std::size_t n, const record_sink& sink)
     };
     std::vector<std::uint8_t> next_cache;
     const bool file = file_.is_open();
+    std::size_t first = c0;   // of the batch at hand
     const auto body = [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
         for (std::ptrdiff_t b = b0; b < b1; ++b) {
-            const std::size_t c = c0 + static_cast<std::size_t>(b);
+            const std::size_t c = first + static_cast<std::size_t>(b);
             if (c == z.cached) {
                 take_points(c, z.cached_records.data());
                 continue;
@@ -488,14 +489,21 @@ void las_reader::read_laz(std::size_t n, const record_sink& sink)
                 data = bytes_at(k.offset, bytes);
             }
             std::vector<std::uint8_t>& records = c == c1 ? next_cache : w->records;
-            records.resize(static_cast<std::size_t>(k.point_count) * stride);
-            w->decoder.decode({data, bytes}, k.point_count, records.data(),
+            w->decoder.decode({data, bytes}, k.point_count, records,
                               path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
             take_points(c, records.data());
             z.give(std::move(w));
         }
     };
-    lidarfx::parallel_for_rows(static_cast<std::ptrdiff_t>(c1 - c0 + 1), 1, threads_, body);
+    // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
+    // before its claimed count is allocated), and each batch runs in parallel.
+    const int threads = lidarfx::detail::resolve_threads(threads_, "las_reader");
+    const std::size_t batch = threads == 1 ? 1 : 2 * static_cast<std::size_t>(threads);
+    for (; first <= c1; first += batch) {
+        const std::size_t last = std::min(c1, first + batch - 1);
+        grow(static_cast<std::size_t>(std::min(end, z.chunks[last].first_point + z.chunks[last].point_count) - begin));
+        lidarfx::parallel_for_rows(static_cast<std::ptrdiff_t>(last - first + 1), 1, threads, body);
+    }
     if (z.cached != c1) {
         z.cached_records.swap(next_cache);
         z.cached = c1;
@@ -508,13 +516,13 @@ std::size_t las_reader::read_records(std::vector<std::uint8_t>& records, std::si
     const las_header& h = header_;
     const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max_points, h.point_count - next_));
     const std::size_t stride = h.point_record_length;
-    records.resize(n * stride);
+    records.resize(laz_ ? 0 : n * stride);
     if (n == 0) return 0;
     const auto copy = [&](const std::uint8_t* from, std::size_t count, std::size_t at) {
         std::memcpy(records.data() + at * stride, from, count * stride);
     };
     if (laz_) {
-        read_laz(n, copy);
+        read_laz(n, [&](std::size_t points) { records.resize(points * stride); }, copy);
     } else {
         copy(bytes_at(h.offset_to_point_data + next_ * stride, n * stride), n, 0);
         next_ += n;
@@ -535,13 +543,15 @@ std::size_t las_reader::read(las_points& chunk, std::size_t max_points)
 {
     const las_header& h = header_;
     const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max_points, h.point_count - next_));
-    chunk.resize(n, h.has_gps_time());
+    chunk.resize(laz_ ? 0 : n, h.has_gps_time());
     if (n == 0) return 0;
     if (laz_) {
         const decoder convert = decoder_for(h.point_format);
-        read_laz(n, [&](const std::uint8_t* records, std::size_t count, std::size_t at) {
-            convert(records, count, h.point_record_length, h, chunk, at);
-        });
+        read_laz(
+            n, [&](std::size_t points) { chunk.resize(points, h.has_gps_time()); },
+            [&](const std::uint8_t* records, std::size_t count, std::size_t at) {
+                convert(records, count, h.point_record_length, h, chunk, at);
+            });
         return n;
     }
     const std::size_t stride = h.point_record_length;

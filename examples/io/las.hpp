@@ -159,10 +159,11 @@ private:
     const std::uint8_t* bytes_at(std::uint64_t offset, std::size_t size);
     void parse();
     void open_laz();
-    /// Decodes points [position, position + n) of a LAZ file; sink(records, count, index) receives them
-    /// chunk by chunk (index counts from the position), possibly from several threads at once.
+    /// Decodes points [position, position + n) of a LAZ file in batches of chunks: grow(m) before each
+    /// batch (m = points up to its end), then sink(records, count, index) for every chunk of it (index
+    /// counts from the position), possibly from several threads at once.
     using record_sink = std::function<void(const std::uint8_t*, std::size_t, std::size_t)>;
-    void read_laz(std::size_t n, const record_sink& sink);
+    void read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink);
 
     std::string path_;
     std::ifstream file_;                       // used when reading a file

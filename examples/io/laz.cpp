@@ -246,50 +246,61 @@ laz_chunk_decoder::laz_chunk_decoder(laz_chunk_decoder&&) noexcept = default;
 laz_chunk_decoder& laz_chunk_decoder::operator=(laz_chunk_decoder&&) noexcept = default;
 laz_chunk_decoder::~laz_chunk_decoder() = default;
 
-void laz_chunk_decoder::decode(std::span<const std::uint8_t> bytes, std::uint64_t point_count, std::uint8_t* records,
-                               const std::string& what)
+void laz_chunk_decoder::decode(std::span<const std::uint8_t> bytes, std::uint64_t point_count,
+                               std::vector<std::uint8_t>& records, const std::string& what)
 {
     impl& m = *impl_;
     const std::size_t stride = m.record_length;
+    records.clear();
     if (point_count == 0) return;
     if (bytes.size() < stride) fail(what, "the chunk's " + std::to_string(bytes.size()) + " bytes end inside its first point");
-    std::memcpy(records, bytes.data(), stride);
+    records.resize(stride);
+    std::memcpy(records.data(), bytes.data(), stride);
     const std::uint8_t* const end = bytes.data() + bytes.size();
-    if (!m.layered) {
-        for (std::size_t k = 0; k < m.items.size(); ++k) m.items[k]->init(records + m.offsets[k]);
-        if (point_count == 1) return;
-        m.dec.init(bytes.data() + stride, end);
-        std::uint8_t* rec = records + stride;
-        for (std::uint64_t i = 1; i < point_count; ++i, rec += stride) {
-            for (std::size_t k = 0; k < m.items.size(); ++k) m.items[k]->decode(rec + m.offsets[k]);
-        }
-        if (m.dec.overrun() > overrun_slack) fail(what, "the compressed data ends early (corrupt or truncated)");
-        return;
-    }
-    // Layered: the point count, every item's layer sizes, then the layers, each with its own decoder.
-    const std::uint8_t* p = bytes.data() + stride;
-    if (end - p < 4) fail(what, "the chunk ends before its point count");
-    const std::uint32_t count = load<std::uint32_t>(p);
-    p += 4;
-    if (count != point_count) {
-        fail(what, "the chunk holds " + std::to_string(count) + " points, its chunk table entry " +
-                       std::to_string(point_count));
-    }
-    for (auto& layer : m.layers) {
-        if (!layer->read_sizes(p, end)) fail(what, "the chunk ends inside its table of layer sizes");
-    }
     std::uint32_t context = 0;
-    for (std::size_t k = 0; k < m.layers.size(); ++k) {
-        if (!m.layers[k]->init(records + m.offsets[k], p, end, context)) {
-            fail(what, "a layer of the chunk runs past its end");
+    if (!m.layered) {
+        for (std::size_t k = 0; k < m.items.size(); ++k) m.items[k]->init(records.data() + m.offsets[k]);
+        if (point_count > 1) m.dec.init(bytes.data() + stride, end);
+    } else {
+        // Layered: the point count, every item's layer sizes, then the layers, each with its own decoder.
+        const std::uint8_t* p = bytes.data() + stride;
+        if (end - p < 4) fail(what, "the chunk ends before its point count");
+        const std::uint32_t count = load<std::uint32_t>(p);
+        p += 4;
+        if (count != point_count) {
+            fail(what, "the chunk holds " + std::to_string(count) + " points, its chunk table entry " +
+                           std::to_string(point_count));
+        }
+        for (auto& layer : m.layers) {
+            if (!layer->read_sizes(p, end)) fail(what, "the chunk ends inside its table of layer sizes");
+        }
+        for (std::size_t k = 0; k < m.layers.size(); ++k) {
+            if (!m.layers[k]->init(records.data() + m.offsets[k], p, end, context)) {
+                fail(what, "a layer of the chunk runs past its end");
+            }
         }
     }
-    std::uint8_t* rec = records + stride;
-    for (std::uint64_t i = 1; i < point_count; ++i, rec += stride) {
-        for (std::size_t k = 0; k < m.layers.size(); ++k) m.layers[k]->decode(rec + m.offsets[k], context);
-    }
-    for (auto& layer : m.layers) {
-        if (layer->overrun() > overrun_slack) fail(what, "a compressed layer ends early (corrupt or truncated)");
+    // Decode in steps, checking after each that no decoder ran past its bytes: the buffer grows with the
+    // points actually decoded, and a corrupt chunk stops early instead of decoding its claimed count.
+    constexpr std::uint64_t step = 1 << 16;
+    for (std::uint64_t done = 1; done < point_count;) {
+        const std::uint64_t upto = std::min(point_count, done + step);
+        records.resize(static_cast<std::size_t>(upto) * stride);
+        std::uint8_t* rec = records.data() + done * stride;
+        for (std::uint64_t i = done; i < upto; ++i, rec += stride) {
+            if (!m.layered) {
+                for (std::size_t k = 0; k < m.items.size(); ++k) m.items[k]->decode(rec + m.offsets[k]);
+            } else {
+                for (std::size_t k = 0; k < m.layers.size(); ++k) m.layers[k]->decode(rec + m.offsets[k], context);
+            }
+        }
+        done = upto;
+        std::size_t overrun = m.layered ? 0 : m.dec.overrun();
+        for (auto& layer : m.layers) overrun = std::max(overrun, layer->overrun());
+        if (overrun > overrun_slack) {
+            fail(what, "the compressed data ends early, after " + std::to_string(done) + " of " +
+                           std::to_string(point_count) + " points (corrupt or truncated)");
+        }
     }
 }
 

@@ -76,10 +76,11 @@ public:
     laz_chunk_decoder& operator=(laz_chunk_decoder&&) noexcept;
     ~laz_chunk_decoder();
 
-    /// Decodes the `point_count` points of the chunk held in `bytes` into `records` (point_count records
-    /// of record_length bytes, one after the other). O(point_count).
+    /// Decodes the `point_count` points of the chunk held in `bytes` into `records` (resized to
+    /// point_count records of record_length bytes, one after the other; it grows as points are decoded,
+    /// so a corrupt count fails before it is allocated). O(point_count).
     /// @throws std::runtime_error "<what>: ..." when the chunk's data is corrupt or ends early.
-    void decode(std::span<const std::uint8_t> bytes, std::uint64_t point_count, std::uint8_t* records,
+    void decode(std::span<const std::uint8_t> bytes, std::uint64_t point_count, std::vector<std::uint8_t>& records,
                 const std::string& what);
 
 private:
