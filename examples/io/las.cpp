@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <mutex>
 #include <stdexcept>
@@ -469,8 +470,9 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     std::vector<std::uint8_t> next_cache;
     const bool file = file_.is_open();
     std::size_t first = c0;   // of the batch at hand
+    std::vector<std::exception_ptr> errors;   // per chunk of the batch
     const auto body = [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
-        for (std::ptrdiff_t b = b0; b < b1; ++b) {
+        for (std::ptrdiff_t b = b0; b < b1; ++b) try {
             const std::size_t c = first + static_cast<std::size_t>(b);
             if (c == z.cached) {
                 take_points(c, z.cached_records.data());
@@ -493,6 +495,8 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
                               path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
             take_points(c, records.data());
             z.give(std::move(w));
+        } catch (...) {
+            errors[static_cast<std::size_t>(b)] = std::current_exception();
         }
     };
     // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
@@ -502,7 +506,12 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     for (; first <= c1; first += batch) {
         const std::size_t last = std::min(c1, first + batch - 1);
         grow(static_cast<std::size_t>(std::min(end, z.chunks[last].first_point + z.chunks[last].point_count) - begin));
+        errors.assign(last - first + 1, nullptr);
         lidarfx::parallel_for_rows(static_cast<std::ptrdiff_t>(last - first + 1), 1, threads, body);
+        // The first failing chunk in file order, whatever the thread count (all of the batch ran).
+        for (const auto& e : errors) {
+            if (e) std::rethrow_exception(e);
+        }
     }
     if (z.cached != c1) {
         z.cached_records.swap(next_cache);
