@@ -393,6 +393,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             if (!reader) {
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
+                reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
             }
             dst.file = file - 1;
             if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) {
