@@ -2,6 +2,9 @@
 #include "cli_common.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <thread>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <future>
@@ -148,9 +151,50 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option)
     return static_cast<std::uint64_t>(bytes);
 }
 
+output_formats output_formats_from(const arguments& a)
+{
+    if (!a.has("formats")) return {};
+    output_formats f{false, false, false};
+    const std::string text = a.text("formats", "");
+    std::istringstream in(text);
+    for (std::string name; std::getline(in, name, ',');) {
+        if (name == "asc") f.asc = true;
+        else if (name == "tif") f.tif = true;
+        else if (name == "png") f.png = true;
+        else throw usage_error("--formats takes a comma-separated list of asc, tif and png (got '" + text + "')");
+    }
+    if (!f.asc && !f.tif && !f.png) throw usage_error("--formats names no format (got '" + text + "')");
+    if (f.tif && !io::geotiff_available())
+        throw usage_error("--formats tif needs GeoTIFF support, and this lidarfx was built without GDAL; use asc");
+    return f;
+}
+
+void run_jobs(const std::vector<std::function<void()>>& jobs, int threads)
+{
+    const auto n = static_cast<std::size_t>(detail::resolve_threads(threads, "run_jobs"));
+    std::vector<std::exception_ptr> errors(jobs.size());
+    std::atomic<std::size_t> next{0};
+    const auto worker = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) {
+            try {
+                jobs[i]();
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        }
+    };
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < std::min(n, jobs.size()); ++t) helpers.emplace_back(worker);
+    worker();
+    for (auto& h : helpers) h.join();
+    for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+}
+
 survey_options survey_options_from(const arguments& a, double bytes_per_cell)
 {
     survey_options o;
+    o.formats = output_formats_from(a);
     o.bytes_per_cell = bytes_per_cell;
     o.cell_m = a.number("cell", o.cell_m);
     if (!(o.cell_m > 0) || !std::isfinite(o.cell_m)) {
@@ -475,19 +519,20 @@ grid to_crs_units(const grid& g, const survey& s)
 }
 
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
-                  const std::string& crs_wkt, int epsg)
+                  const std::string& crs_wkt, int epsg, const output_formats& formats)
 {
-    out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
-    if (io::geotiff_available()) {
+    if (formats.asc) out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
+    if (formats.tif && io::geotiff_available()) {
         const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
         out.write(name + ".tif", [&](const std::string& path) { io::write_geotiff(path, values, g, crs); });
     }
 }
 
-std::vector<std::string> raster_file_names(const std::string& name)
+std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats)
 {
-    std::vector<std::string> names{name + ".asc"};
-    if (io::geotiff_available()) names.push_back(name + ".tif");
+    std::vector<std::string> names;
+    if (formats.asc) names.push_back(name + ".asc");
+    if (formats.tif && io::geotiff_available()) names.push_back(name + ".tif");
     return names;
 }
 

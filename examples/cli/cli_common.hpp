@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <cstdint>
@@ -51,6 +52,11 @@ struct usage_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The file formats a command writes: ESRI ASCII grids, GeoTIFF (only when built with GDAL), PNG pictures.
+struct output_formats {
+    bool asc = true, tif = true, png = true;
+};
+
 /// How read_survey reads and what it refuses; survey_options_from() fills it from --cell, --threads,
 /// --memory, --crop and --force.
 struct survey_options {
@@ -61,7 +67,16 @@ struct survey_options {
     double bytes_per_cell = 64;              ///< what the command keeps per grid cell (its memory estimate)
     std::optional<bounds> crop;              ///< keep the points inside, build the grid over it (units of the CRS)
     bool force = false;                      ///< run even when the cell is far too small for the point density
+    output_formats formats;                  ///< what the command writes (--formats)
 };
+
+/// --formats asc,tif,png (any non-empty subset, default all). @throws usage_error on an unknown name, or
+/// tif asked for explicitly in a build without GDAL.
+output_formats output_formats_from(const arguments& a);
+
+/// Runs every job once on up to `threads` threads (0 = all cores); after all have stopped, rethrows the
+/// first exception any job threw (in job order).
+void run_jobs(const std::vector<std::function<void()>>& jobs, int threads);
 
 /// --cell (default 2), --threads (default 0), --memory (bytes: 4GiB, 512MiB, 2G, 1e9), --crop
 /// xmin,ymin,xmax,ymax and --force of `a`, validated; `bytes_per_cell` is the command's estimate.
@@ -105,12 +120,12 @@ raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int thr
 /// heights stay in metres.
 grid to_crs_units(const grid& g, const survey& s);
 
-/// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `out`.
+/// Writes `name`.asc and `name`.tif (when GDAL is available) of a float raster into `out`, as `formats` asks.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
-                  const std::string& crs_wkt, int epsg);
+                  const std::string& crs_wkt, int epsg, const output_formats& formats = {});
 
 /// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
-std::vector<std::string> raster_file_names(const std::string& name);
+std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats = {});
 
 /// "lidarfx <command> <args...>", for manifests.
 std::string command_line(const std::string& command, const std::vector<std::string>& args);

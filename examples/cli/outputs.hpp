@@ -15,11 +15,12 @@ namespace lidarfx::cli {
 void print_survey(const survey& s);
 
 /// min_z, max_z, mean_intensity, count, dropout (.asc/.tif) and PNG quicklooks of the survey rasters.
-void write_point_rasters(io::output_folder& dir, const survey& s);
+/// `formats` says which files; the files are written on up to `threads` threads (0 = all cores).
+void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats = {}, int threads = 0);
 
 /// The names write_point_rasters and write_waterbodies give their files (checked before long work).
-std::vector<std::string> point_raster_file_names();
-std::vector<std::string> waterbody_file_names();
+std::vector<std::string> point_raster_file_names(const output_formats& formats = {});
+std::vector<std::string> waterbody_file_names(const output_formats& formats = {});
 
 /// Waterbodies of a survey found inside its footprint, and that footprint.
 struct survey_waterbodies {
@@ -36,7 +37,7 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
 /// water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
 /// `footprint`: 1 = inside the area flown (footprint_of).
 void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
-                       raster_view<const std::uint8_t> footprint);
+                       raster_view<const std::uint8_t> footprint, const output_formats& formats = {});
 
 /// Prints the diagnostics of the inputs: problems and warnings.
 void print_diagnostics(const water_diagnostics& d);

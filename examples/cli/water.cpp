@@ -47,7 +47,7 @@ int run_water(const std::vector<std::string>& args)
     const lidarfx::cli::arguments a(args,
                                     {"cell", "out", "threads", "veg-height", "min-seed-cells", "theta-start",
                                      "theta-step", "theta-max", "alpha", "level-tolerance", "island-min-area",
-                                     "bridge-span", "hull-radius", "memory", "crop"},
+                                     "bridge-span", "hull-radius", "memory", "crop", "formats"},
                                     {"help", "force", "one-sided"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     lidarfx::extract_waterbodies_options opt;
@@ -96,7 +96,7 @@ int run_water(const std::vector<std::string>& args)
     // the footprint's (two padded distance transforms).
     const auto survey_options = lidarfx::cli::survey_options_from(a, 128);
     lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
-    for (const auto& name : lidarfx::cli::waterbody_file_names()) out.check_name(name);
+    for (const auto& name : lidarfx::cli::waterbody_file_names(survey_options.formats)) out.check_name(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), survey_options);
     lidarfx::cli::print_survey(s);
     const auto found = lidarfx::cli::find_waterbodies(s, opt, hull_radius_m);
@@ -108,7 +108,7 @@ int run_water(const std::vector<std::string>& args)
         return 3;
     }
     lidarfx::cli::print_waterbodies(w);
-    lidarfx::cli::write_waterbodies(out, s, w, found.footprint);
+    lidarfx::cli::write_waterbodies(out, s, w, found.footprint, survey_options.formats);
     lidarfx::cli::commit_and_report(out, lidarfx::cli::command_line("water", args));
     return 0;
 }

@@ -241,15 +241,18 @@ void output_folder::check_name(const std::string& name) const
 void output_folder::write(const std::string& name,
                           const std::function<void(const std::string& temporary_path)>& writer)
 {
-    if (committed_) throw failure(dir_ / name, "written after the run was committed");
-    check_name(name);
-    if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) {
-        throw failure(dir_ / name, "written twice in one run");
-    }
     const auto temporary = dir_ / temporary_name(name);
-    std::error_code ec;
-    std::filesystem::remove(temporary, ec);  // never write through whatever stands at the temporary name
-    pending_.push_back({name, temporary});
+    {
+        const std::lock_guard lock(mutex_);
+        if (committed_) throw failure(dir_ / name, "written after the run was committed");
+        check_name(name);
+        if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) {
+            throw failure(dir_ / name, "written twice in one run");
+        }
+        std::error_code ec;
+        std::filesystem::remove(temporary, ec);  // never write through whatever stands at the temporary name
+        pending_.push_back({name, temporary});
+    }
     writer(temporary.string());
     struct stat st {};
     if (!entry_at(temporary, st) || !S_ISREG(st.st_mode)) throw failure(dir_ / name, "the writer produced no file");

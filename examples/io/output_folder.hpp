@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,7 +38,8 @@ public:
     void check_name(const std::string& name) const;
 
     /// Writes the output `name` by calling `writer` with a temporary path in the folder; the file takes its
-    /// final name in commit(). Writing a name twice in one run is an error.
+    /// final name in commit(). Writing a name twice in one run is an error. Several threads may write
+    /// different names at once (the writers run concurrently; the bookkeeping is serialised).
     void write(const std::string& name, const std::function<void(const std::string& temporary_path)>& writer);
 
     /// A sentence on the units of the outputs, recorded in manifest.json as "units" (the last one set).
@@ -57,6 +59,7 @@ private:
     std::filesystem::path dir_;
     std::vector<std::filesystem::path> inputs_;
     std::vector<pending> pending_;
+    mutable std::mutex mutex_;   // guards pending_ while writers run on several threads
     int lock_fd_ = -1;
     bool created_ = false;  // the folder did not exist before this run
     bool committed_ = false;
