@@ -9,6 +9,7 @@
 #include <limits>
 #include <array>
 #include <memory>
+#include <optional>
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -18,6 +19,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <stdexcept>
+
+#include <lidarfx/kernels/filter/survey_footprint.hpp>
+#include <lidarfx/kernels/points/scan_coverage.hpp>
 
 #include "io/ascii_grid.hpp"
 #include "io/geotiff.hpp"
@@ -392,6 +396,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             if (!reader) {
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
+                reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
             }
             dst.file = file - 1;
             if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) {
@@ -408,9 +413,18 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         }
     };
     std::uint64_t done = 0;
+    // Scan lines in file order, when the files carry GPS times (a new file starts a new sweep).
+    std::optional<scan_coverage> scans;
+    std::size_t scan_file = paths.size();
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
+        if (!c.points.gps_time.empty()) {
+            if (!scans) scans.emplace(g);
+            if (c.file != scan_file) scans->end_sweep();
+            scan_file = c.file;
+            scans->add(c.points.x, c.points.y, c.points.gps_time);
+        }
         if (const std::size_t outside = acc.points_outside() - outside_before; outside > 0 && !opt.crop) {
             throw std::runtime_error(paths[c.file] + ": " + std::to_string(outside) +
                                      " points lie outside the bounds its LAS header declares; fix the header "
@@ -433,12 +447,24 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         }
     }
     s.rasters = acc.finish();
+    if (scans) s.scan_covered = scans->take();
     s.points = done;
     if (s.rasters.points_used == 0) {
         throw std::runtime_error("no point of the input has finite coordinates (" + std::to_string(s.rasters.points_nan) +
                                  " points with NaN or infinite x, y or z): nothing to rasterize");
     }
     return s;
+}
+
+raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads)
+{
+    const auto& pr = s.rasters;
+    if (hull_radius_m <= 0) return raster<std::uint8_t>(pr.g.rows, pr.g.cols, 1);
+    raster<std::uint8_t> covered(pr.g.rows, pr.g.cols, uninitialized);
+    const bool scans = !s.scan_covered.empty();
+    for (std::ptrdiff_t i = 0; i < covered.size(); ++i)
+        covered.data()[i] = !pr.dropout.data()[i] || (scans && s.scan_covered.data()[i]);
+    return survey_footprint(covered, pr.g.cell, {.hull_radius_m = hull_radius_m, .run = {.threads = threads}});
 }
 
 grid to_crs_units(const grid& g, const survey& s)

@@ -75,6 +75,8 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option);
 /// grid, heights and areas in metres); to_crs_units() gives the grid back in the CRS's units for outputs.
 struct survey {
     rasterize_result rasters;
+    raster<std::uint8_t> scan_covered;  ///< cells a scan line crossed between two returns (scan_coverage);
+                                        ///< empty when no file has GPS times
     io::survey_crs crs;          ///< CRS and units of the first file (every file has the same units)
     std::string crs_wkt;         ///< the CRS of the first file as WKT, empty when none (crs.wkt)
     int epsg = 0;                ///< horizontal EPSG code of the first file (0 = none or user-defined)
@@ -93,6 +95,10 @@ struct survey {
 /// file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
+
+/// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
+/// inside the area flown. hull_radius_m <= 0 gives every cell as inside.
+raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads);
 
 /// `g` (in metres, as read_survey builds it) in the units of the survey's CRS: origin and cell size divided by
 /// the horizontal unit, so that outputs land where the files' CRS places them. Cell values are not touched:

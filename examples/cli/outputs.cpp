@@ -163,14 +163,38 @@ void write_point_rasters(io::output_folder& dir, const survey& s)
     png("dropout.png", io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
 }
 
-void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w)
+survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_options& opt, double hull_radius_m)
+{
+    survey_waterbodies found{footprint_of(s, hull_radius_m, opt.run.threads), {}};
+    std::size_t flown = 0, crossed = 0;
+    for (const auto v : found.footprint) flown += v;
+    if (!s.scan_covered.empty())
+        for (std::ptrdiff_t i = 0; i < s.scan_covered.size(); ++i)
+            crossed += s.scan_covered.data()[i] && s.rasters.dropout.data()[i];
+    const auto cells = static_cast<double>(std::max<std::ptrdiff_t>(1, found.footprint.size()));
+    std::cout << "footprint: " << std::fixed << std::setprecision(1) << 100.0 * static_cast<double>(flown) / cells
+              << " % of the grid was flown (" << 100.0 * static_cast<double>(crossed) / cells
+              << " % crossed by scan lines without a return); outside is no data\n" << std::defaultfloat;
+    auto inputs = to_water_rasters(s.rasters);
+    inputs.footprint = found.footprint;
+    found.result = extract_waterbodies(inputs, s.rasters.g.cell, opt);
+    return found;
+}
+
+void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
+                       raster_view<const std::uint8_t> footprint)
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
-    // No data: cells without any return within 2 cells that are not water (outside the survey, data gaps).
+    // No data: cells outside the footprint (nothing flown), and cells without any return within 2 cells that
+    // are not water (data gaps).
     raster<float> water(g.rows, g.cols), labels(g.rows, g.cols);
     for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+            if (!footprint(r, c)) {
+                water(r, c) = labels(r, c) = NAN;
+                continue;
+            }
             labels(r, c) = static_cast<float>(w.labels(r, c));
             if (w.water(r, c)) {
                 water(r, c) = 1.0f;

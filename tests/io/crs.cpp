@@ -366,7 +366,8 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
     CHECK(sf.rasters.g.rows == sm.rasters.g.rows);
     CHECK(sf.rasters.g.cols == sm.rasters.g.cols);
     extract_waterbodies_options opt;
-    const auto wm = extract_waterbodies(sm.rasters, opt), wf = extract_waterbodies(sf.rasters, opt);
+    const auto fm = cli::find_waterbodies(sm, opt), ff = cli::find_waterbodies(sf, opt);
+    const auto &wm = fm.result, &wf = ff.result;
     REQUIRE(wm.ran);
     REQUIRE(wf.ran);
     REQUIRE(!wm.bodies.empty());
@@ -378,7 +379,7 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
     }
     // The files written: the CSV in m2 and m, the maps on the feet grid.
     io::output_folder folder(dir.file("out_ft"));
-    cli::write_waterbodies(folder, sf, wf);
+    cli::write_waterbodies(folder, sf, wf, ff.footprint);
     folder.commit("test");
     grid g;
     read_ascii_grid(dir.file("out_ft/water.asc"), g);
