@@ -341,10 +341,13 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     std::uint64_t total = 0;
     std::vector<std::string> warned;   // each warning once, however many files give it
+    std::optional<io::las_header> previous;
+    io::survey_crs crs;
     for (const auto& p : paths) {
         io::las_reader r(p);
         const auto& h = r.header();
-        const io::survey_crs crs = io::crs_of(h);
+        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of(h);   // tiles share their CRS
+        previous = h;
         for (const auto& w : crs.warnings) {
             if (std::find(warned.begin(), warned.end(), w) != warned.end()) continue;
             warned.push_back(w);

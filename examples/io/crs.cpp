@@ -569,6 +569,13 @@ found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c)
 
 }  // namespace
 
+bool same_crs_records(const las_header& a, const las_header& b)
+{
+    const auto wkt_flag = [](const las_header& h) { return h.version_minor >= 4 && (h.global_encoding & 16) != 0; };
+    return a.geo_keys == b.geo_keys && a.geo_doubles == b.geo_doubles && a.geo_ascii == b.geo_ascii &&
+           a.wkt == b.wkt && a.has_wkt_record == b.has_wkt_record && wkt_flag(a) == wkt_flag(b);
+}
+
 bool crs_gdal_available() noexcept
 {
 #ifdef LIDARFX_HAVE_GDAL

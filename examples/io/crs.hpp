@@ -47,6 +47,11 @@ struct survey_crs {
 /// Never throws for bad CRS data: what cannot be read is a warning.
 survey_crs crs_of(const las_header& h, bool use_gdal = true);
 
+/// True when a and b hold the same CRS records (GeoKeys, their parameters, WKT, the WKT flag), so that
+/// crs_of gives the same answer for both: tiles of one survey need to be interpreted once (GDAL's search
+/// for a matching EPSG code takes a quarter of a second).
+bool same_crs_records(const las_header& a, const las_header& b);
+
 /// True when crs_of can use GDAL (lidarfx_io built with it).
 bool crs_gdal_available() noexcept;
 

@@ -34,6 +34,7 @@ bool las_format_has_gps_time(int point_format) noexcept;
 /// value is stored in `value` itself), count, and value or index.
 struct las_geo_key {
     std::uint16_t id = 0, location = 0, count = 0, value = 0;
+    friend bool operator==(const las_geo_key&, const las_geo_key&) = default;
 };
 
 /// A variable-length record (VLR) or, in LAS 1.4, an extended one (EVLR): its identity and where its
