@@ -1,0 +1,169 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Helper of bench/peers/pdal_rasterize.sh: the PDAL pipeline on lidarfx's grid, and the cell-for-cell
+comparison of lidarfx's min_z / max_z / count GeoTIFFs with the bands of PDAL's writers.gdal output.
+
+    pdal_compare.py pipeline LIDARFX_DIR IN.las OUT.tif THREADS   -> pipeline JSON on stdout
+    pdal_compare.py compare  LIDARFX_DIR IN.las PDAL.tif          -> table of differing cells; exit 1 if a
+                                                                      difference is not the edge rule's
+
+The grids are made equal: PDAL gets origin_x = x0, origin_y = y0 - rows * cell, width = cols and
+height = rows of lidarfx's min_z.tif. Two binning rules remain (docs/conventions.md, "One edge rule"):
+lidarfx puts a point on an interior horizontal lattice line into the cell south of it, PDAL into the
+cell north of it (PDAL counts rows from its south-west origin); and a point on the grid's east or north
+border belongs to lidarfx's last column / first row but lies outside PDAL's grid of the same size (PDAL
+drops it). The comparison bins the file's points by both rules in NumPy; a cell whose points differ
+between the rules is "explained by the edge rule"; any other differing cell is a real mismatch.
+Run with Debian's /usr/bin/python3 (python3-gdal, numpy).
+"""
+import json
+import sys
+
+import numpy as np
+from osgeo import gdal
+
+gdal.UseExceptions()
+
+
+def lidarfx_grid(lidarfx_dir):
+    """(x0, y0, cell, rows, cols) of lidarfx's min_z.tif (north-up, square cells)."""
+    ds = gdal.Open(f"{lidarfx_dir}/min_z.tif")
+    x0, cell, _, y0, _, neg_cell = ds.GetGeoTransform()
+    if cell != -neg_cell:
+        sys.exit(f"{lidarfx_dir}/min_z.tif: cells are not square ({cell} x {-neg_cell})")
+    return x0, y0, cell, ds.RasterYSize, ds.RasterXSize
+
+
+def pdal_origin_y(grid):
+    """PDAL's south-west origin y for lidarfx's grid, as the double PDAL parses from its repr."""
+    x0, y0, cell, rows, cols = grid
+    return float(repr(y0 - rows * cell))
+
+
+def pipeline(lidarfx_dir, las, out_tif, threads):
+    """readers.las -> writers.gdal (binmode, min/max/count/mean, float32, DEFLATE tiled) on lidarfx's grid,
+    with the same GeoTIFF creation options as lidarfx (examples/io/geotiff.cpp)."""
+    grid = lidarfx_grid(lidarfx_dir)
+    x0, y0, cell, rows, cols = grid
+    return {"pipeline": [
+        {"type": "readers.las", "filename": las, "threads": int(threads)},
+        {"type": "writers.gdal", "filename": out_tif, "resolution": cell, "binmode": True,
+         "output_type": "min,max,count,mean", "data_type": "float", "nodata": -9999,
+         "origin_x": x0, "origin_y": pdal_origin_y(grid), "width": cols, "height": rows,
+         "gdalopts": "COMPRESS=DEFLATE,PREDICTOR=3,TILED=YES,BIGTIFF=IF_SAFER"},
+    ]}
+
+
+def las_xy(path):
+    """World x, y (float64, X * scale + offset as both programs compute them) of every point of a LAS file."""
+    with open(path, "rb") as f:
+        head = f.read(375)
+    if head[:4] != b"LASF":
+        sys.exit(f"{path}: not a LAS file")
+    minor = head[25]
+    offset_to_points = int(np.frombuffer(head, "<u4", 1, 96)[0])
+    record_length = int(np.frombuffer(head, "<u2", 1, 105)[0])
+    count = int(np.frombuffer(head, "<u4", 1, 107)[0])
+    if minor >= 4 and count == 0:
+        count = int(np.frombuffer(head, "<u8", 1, 247)[0])
+    scale = np.frombuffer(head, "<f8", 3, 131)
+    offset = np.frombuffer(head, "<f8", 3, 155)
+    record = np.dtype({"names": ["X", "Y"], "formats": ["<i4", "<i4"], "offsets": [0, 4],
+                       "itemsize": record_length})
+    points = np.memmap(path, record, "r", offset_to_points, (count,))
+    x = points["X"].astype(np.float64) * scale[0] + offset[0]
+    y = points["Y"].astype(np.float64) * scale[1] + offset[1]
+    return x, y
+
+
+def bin_both_ways(x, y, grid, origin_y):
+    """Flat cell index of every point by lidarfx's rule (grid::cell_of) and by PDAL's (floor from the
+    south-west origin, half-open grid), -1 where the point is outside; row 0 is the north row in both."""
+    x0, y0, cell, rows, cols = grid
+    fc, fr = (x - x0) / cell, (y0 - y) / cell
+    inside = (fc >= 0) & (fr >= 0) & (fc <= cols) & (fr <= rows)
+    c = np.minimum(np.floor(fc), cols - 1).astype(np.int64)
+    r = np.minimum(np.floor(fr), rows - 1).astype(np.int64)
+    ours = np.where(inside, r * cols + c, -1)
+    i = np.floor((x - x0) / cell).astype(np.int64)
+    j = np.floor((y - origin_y) / cell).astype(np.int64)
+    inside = (i >= 0) & (j >= 0) & (i < cols) & (j < rows)
+    theirs = np.where(inside, (rows - 1 - j) * cols + i, -1)
+    return ours, theirs
+
+
+def read_band(path, band=1):
+    """Band as float64 with its no-data value as NaN."""
+    ds = gdal.Open(path)  # kept alive while its band is read
+    b = ds.GetRasterBand(band)
+    v = b.ReadAsArray().astype(np.float64)
+    nodata = b.GetNoDataValue()
+    if nodata is not None:
+        v[v == np.float32(nodata)] = np.nan
+    return v
+
+
+def pdal_bands(path):
+    """{band description: band number} of PDAL's writers.gdal output (min, max, mean, count)."""
+    ds = gdal.Open(path)
+    return {ds.GetRasterBand(k).GetDescription(): k for k in range(1, ds.RasterCount + 1)}
+
+
+def compare(lidarfx_dir, las, pdal_tif):
+    grid = lidarfx_grid(lidarfx_dir)
+    x0, y0, cell, rows, cols = grid
+    x, y = las_xy(las)
+    ours, theirs = bin_both_ways(x, y, grid, pdal_origin_y(grid))
+    moved = ours != theirs
+    affected = np.zeros(rows * cols, bool)
+    affected[ours[moved & (ours >= 0)]] = True
+    affected[theirs[moved & (theirs >= 0)]] = True
+    affected = affected.reshape(rows, cols)
+    print(f"grid {rows} x {cols} cells of {cell:g} at ({x0:.17g}, {y0:.17g}); {len(x)} points")
+    print(f"edge rule: {np.count_nonzero(moved & (theirs >= 0))} points on interior horizontal lattice lines "
+          f"(lidarfx: cell south, PDAL: cell north), {np.count_nonzero(theirs < 0)} on the east/north border "
+          f"(outside PDAL's grid); {np.count_nonzero(affected)} cells touched")
+
+    bands = pdal_bands(pdal_tif)
+    ds = gdal.Open(pdal_tif)
+    if (ds.RasterYSize, ds.RasterXSize) != (rows, cols):
+        sys.exit(f"{pdal_tif}: PDAL's grid is not {rows} x {cols}")
+    print(f"{'raster':8s} {'cells differing':>15s} {'by edge rule':>13s} {'unexplained':>12s} "
+          f"{'max |diff| unexpl.':>19s} {'max |diff| all':>15s} {'data one side':>14s}")
+    unexplained_total = 0
+    for ours_name, theirs_name in (("min_z", "min"), ("max_z", "max"), ("count", "count")):
+        a = read_band(f"{lidarfx_dir}/{ours_name}.tif")
+        b = read_band(pdal_tif, bands[theirs_name])
+        if theirs_name == "count":  # an empty cell: 0 or no data, depending on the writer
+            a, b = np.nan_to_num(a), np.nan_to_num(b)
+        both = ~np.isnan(a) & ~np.isnan(b)
+        differ = ~((a == b) | (np.isnan(a) & np.isnan(b)))
+        unexplained = differ & ~affected
+        gap = np.abs(a - b)
+        largest_unexplained = np.max(gap[both & unexplained], initial=0.0)
+        largest = np.max(gap[both & differ], initial=0.0)
+        one_side = np.count_nonzero(np.isnan(a) != np.isnan(b))
+        unexplained_total += np.count_nonzero(unexplained)
+        print(f"{ours_name:8s} {np.count_nonzero(differ):15d} {np.count_nonzero(differ & affected):13d} "
+              f"{np.count_nonzero(unexplained):12d} {largest_unexplained:19.6g} {largest:15.6g} {one_side:14d}")
+        if theirs_name == "count":
+            # Each side against NumPy binning by its own rule: the rules are what the two programs do.
+            for name, index, counts in (("lidarfx", ours, a), ("PDAL", theirs, b)):
+                own = np.bincount(index[index >= 0], minlength=rows * cols).reshape(rows, cols)
+                print(f"         {name} count vs NumPy binning by {name}'s rule: "
+                      f"{np.count_nonzero(own != counts)} cells differ")
+    print("rasters equal up to the edge rule" if unexplained_total == 0
+          else f"MISMATCH: {unexplained_total} differing cells the edge rule does not explain")
+    return 0 if unexplained_total == 0 else 1
+
+
+def main(argv):
+    if len(argv) == 6 and argv[1] == "pipeline":
+        print(json.dumps(pipeline(*argv[2:]), indent=2))
+        return 0
+    if len(argv) == 5 and argv[1] == "compare":
+        return compare(*argv[2:])
+    sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
