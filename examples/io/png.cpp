@@ -11,6 +11,10 @@
 
 #include "io/file_output.hpp"
 
+#ifdef LIDARFX_HAVE_ZLIB
+#include <zlib.h>
+#endif
+
 namespace lidarfx::io {
 
 namespace {
@@ -46,7 +50,65 @@ void put_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], std::span<
     put_u32_be(out, crc32(std::span<const std::uint8_t>(out).subspan(type_at)));
 }
 
+/// Byte i of a scanline under PNG filter `type` (0 none, 1 Sub, 2 Up); `up` is the previous row or null.
+std::uint8_t filtered(int type, const std::uint8_t* row, const std::uint8_t* up, std::size_t i, std::size_t bpp)
+{
+    switch (type) {
+    case 1: return static_cast<std::uint8_t>(row[i] - (i >= bpp ? row[i - bpp] : 0));
+    case 2: return static_cast<std::uint8_t>(row[i] - (up ? up[i] : 0));
+    default: return row[i];
+    }
+}
+
+/// zlib stream of stored (uncompressed) deflate blocks of <= 65535 bytes: header, blocks, Adler-32.
+std::vector<std::uint8_t> zlib_stored(const std::vector<std::uint8_t>& raw)
+{
+    constexpr std::size_t max_block = 65535;
+    std::vector<std::uint8_t> z;
+    z.reserve(raw.size() + raw.size() / max_block * 5 + 16);
+    z.push_back(0x78);
+    z.push_back(0x01);   // (0x78 * 256 + 0x01) % 31 == 0
+    for (std::size_t at = 0; at < raw.size();) {
+        const std::size_t n = std::min(max_block, raw.size() - at);
+        const bool last = at + n == raw.size();
+        z.push_back(last ? 1 : 0);   // BFINAL, BTYPE 00 (stored); the rest of the byte pads to a boundary
+        z.push_back(static_cast<std::uint8_t>(n));
+        z.push_back(static_cast<std::uint8_t>(n >> 8));
+        z.push_back(static_cast<std::uint8_t>(~n));
+        z.push_back(static_cast<std::uint8_t>(~n >> 8));
+        z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(at), raw.begin() + static_cast<std::ptrdiff_t>(at + n));
+        at += n;
+    }
+    put_u32_be(z, adler32(raw));
+    return z;
+}
+
+/// zlib stream of `raw` compressed by zlib at level 6 (needs LIDARFX_HAVE_ZLIB).
+std::vector<std::uint8_t> zlib_deflate(const std::vector<std::uint8_t>& raw)
+{
+#ifdef LIDARFX_HAVE_ZLIB
+    uLongf size = compressBound(static_cast<uLong>(raw.size()));
+    std::vector<std::uint8_t> z(size);
+    if (compress2(z.data(), &size, raw.data(), static_cast<uLong>(raw.size()), 6) != Z_OK) {
+        throw std::runtime_error("encode_png: zlib could not compress the image");
+    }
+    z.resize(size);
+    return z;
+#else
+    return zlib_stored(raw);
+#endif
+}
+
 }  // namespace
+
+bool deflate_available() noexcept
+{
+#ifdef LIDARFX_HAVE_ZLIB
+    return true;
+#else
+    return false;
+#endif
+}
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) noexcept
 {
@@ -84,33 +146,35 @@ std::vector<std::uint8_t> encode_png(std::ptrdiff_t width, std::ptrdiff_t height
     detail::require(row_stride >= row_bytes, fn, "row_stride", ">= width * channels", row_stride);
     detail::require(pixels != nullptr, fn, "pixels must not be null");
 
-    // Scanlines, each led by its filter type (0 = none).
+    // Scanlines, each led by its filter type: 0 (none) without zlib; with zlib, per row the one of none,
+    // Sub and Up whose bytes have the smallest sum as signed values (the usual heuristic), then DEFLATE.
     const std::size_t line = static_cast<std::size_t>(row_bytes) + 1;
     std::vector<std::uint8_t> raw(line * static_cast<std::size_t>(height));
+    const auto bpp = static_cast<std::size_t>(channels);
     for (std::ptrdiff_t r = 0; r < height; ++r) {
         std::uint8_t* dst = raw.data() + static_cast<std::size_t>(r) * line;
+        const std::uint8_t* row = pixels + r * row_stride;
         dst[0] = 0;
-        std::copy_n(pixels + r * row_stride, row_bytes, dst + 1);
+        std::copy_n(row, row_bytes, dst + 1);
+        if (!deflate_available()) continue;
+        const std::uint8_t* up = r > 0 ? pixels + (r - 1) * row_stride : nullptr;
+        const auto cost = [&](int type) {
+            std::uint64_t sum = 0;
+            for (std::size_t i = 0; i < static_cast<std::size_t>(row_bytes); ++i) {
+                const std::uint8_t v = filtered(type, row, up, i, bpp);
+                sum += v < 128 ? v : 256u - v;
+            }
+            return sum;
+        };
+        int best = 0;
+        std::uint64_t best_cost = cost(0);
+        for (const int type : {1, 2}) {
+            if (const auto c = cost(type); c < best_cost) best = type, best_cost = c;
+        }
+        dst[0] = static_cast<std::uint8_t>(best);
+        for (std::size_t i = 0; i < static_cast<std::size_t>(row_bytes); ++i) dst[1 + i] = filtered(best, row, up, i, bpp);
     }
-
-    // zlib stream: header (deflate, 32 KiB window, no dictionary), stored blocks of <= 65535 bytes, Adler-32.
-    constexpr std::size_t max_block = 65535;
-    std::vector<std::uint8_t> z;
-    z.reserve(raw.size() + raw.size() / max_block * 5 + 16);
-    z.push_back(0x78);
-    z.push_back(0x01);   // (0x78 * 256 + 0x01) % 31 == 0
-    for (std::size_t at = 0; at < raw.size();) {
-        const std::size_t n = std::min(max_block, raw.size() - at);
-        const bool last = at + n == raw.size();
-        z.push_back(last ? 1 : 0);   // BFINAL, BTYPE 00 (stored); the rest of the byte pads to a boundary
-        z.push_back(static_cast<std::uint8_t>(n));
-        z.push_back(static_cast<std::uint8_t>(n >> 8));
-        z.push_back(static_cast<std::uint8_t>(~n));
-        z.push_back(static_cast<std::uint8_t>(~n >> 8));
-        z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(at), raw.begin() + static_cast<std::ptrdiff_t>(at + n));
-        at += n;
-    }
-    put_u32_be(z, adler32(raw));
+    const std::vector<std::uint8_t> z = deflate_available() ? zlib_deflate(raw) : zlib_stored(raw);
 
     std::vector<std::uint8_t> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     std::vector<std::uint8_t> ihdr;

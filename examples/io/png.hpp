@@ -26,9 +26,13 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0) 
 /// result b * 65536 + a; pass the previous result as `adler` to continue. O(n).
 std::uint32_t adler32(std::span<const std::uint8_t> bytes, std::uint32_t adler = 1) noexcept;
 
+/// True when PNGs are DEFLATE-compressed (lidarfx_io built with zlib, LIDARFX_HAVE_ZLIB).
+bool deflate_available() noexcept;
+
 /// The bytes of a PNG file of `height` rows of `width` pixels with `channels` 8-bit samples each
-/// (1 = gray, 3 = RGB), read from `pixels` with rows `row_stride` bytes apart. Filter 0 on every row,
-/// zlib stream of stored (uncompressed) deflate blocks, so the file is about the raw pixel size.
+/// (1 = gray, 3 = RGB), read from `pixels` with rows `row_stride` bytes apart. With zlib
+/// (deflate_available()): per row the filter (none, Sub or Up) with the smallest sum of signed bytes, then
+/// DEFLATE level 6. Without: filter 0 and stored deflate blocks (about the raw pixel size).
 /// @throws invalid_input on a zero or too large size, channels not 1 or 3, or row_stride < width * channels.
 std::vector<std::uint8_t> encode_png(std::ptrdiff_t width, std::ptrdiff_t height, int channels,
                                      const std::uint8_t* pixels, std::ptrdiff_t row_stride);

@@ -6,6 +6,10 @@
 #include <lidarfx/core/raster.hpp>
 
 #include <random>
+
+#ifdef LIDARFX_HAVE_ZLIB
+#include <zlib.h>
+#endif
 #include <string_view>
 
 #include "io_test_util.hpp"
@@ -42,7 +46,7 @@ std::uint32_t be32(const std::uint8_t* p)
     return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
 }
 
-/// What a PNG decoder limited to stored deflate blocks sees in a file; every structural check is a CHECK.
+/// What a PNG decoder sees in a file (zlib inflates compressed data); every structural check is a CHECK.
 struct decoded_png {
     std::uint32_t width = 0, height = 0;
     int colour_type = -1;
@@ -80,35 +84,53 @@ decoded_png decode_png(const std::vector<std::uint8_t>& f)
         at += 12 + length;
     }
     CHECK(order == std::vector<std::string>{"IHDR", "IDAT", "IEND"});
-    // zlib: header, stored blocks, Adler-32 of the inflated bytes.
+    // zlib: header, then stored blocks (read here) or compressed ones (inflated by zlib), Adler-32.
     REQUIRE(z.size() >= 6);
     CHECK((z[0] & 0x0F) == 8);
     CHECK((z[0] * 256 + z[1]) % 31 == 0);
     CHECK((z[1] & 0x20) == 0);   // no preset dictionary
-    std::vector<std::uint8_t> raw;
-    std::size_t at = 2;
-    for (bool final = false; !final;) {
-        REQUIRE(at + 5 <= z.size());
-        final = (z[at] & 1) != 0;
-        CHECK(((z[at] >> 1) & 3) == 0);   // stored
-        const std::uint32_t len = z[at + 1] | z[at + 2] << 8;
-        const std::uint32_t nlen = z[at + 3] | z[at + 4] << 8;
-        CHECK(len == (~nlen & 0xFFFFu));
-        REQUIRE(at + 5 + len <= z.size());
-        raw.insert(raw.end(), z.begin() + static_cast<std::ptrdiff_t>(at + 5),
-                   z.begin() + static_cast<std::ptrdiff_t>(at + 5 + len));
-        at += 5 + len;
-    }
-    REQUIRE(at + 4 == z.size());
-    CHECK(be32(&z[at]) == adler32_plain(raw));
-    // Scanlines: a filter byte (0) and width * channels samples.
     const std::size_t channels = out.colour_type == 2 ? 3 : 1;
     const std::size_t line = 1 + out.width * channels;
+    std::vector<std::uint8_t> raw;
+    if (!deflate_available()) {
+        std::size_t at = 2;
+        for (bool final = false; !final;) {
+            REQUIRE(at + 5 <= z.size());
+            final = (z[at] & 1) != 0;
+            CHECK(((z[at] >> 1) & 3) == 0);   // stored
+            const std::uint32_t len = z[at + 1] | z[at + 2] << 8;
+            const std::uint32_t nlen = z[at + 3] | z[at + 4] << 8;
+            CHECK(len == (~nlen & 0xFFFFu));
+            REQUIRE(at + 5 + len <= z.size());
+            raw.insert(raw.end(), z.begin() + static_cast<std::ptrdiff_t>(at + 5),
+                       z.begin() + static_cast<std::ptrdiff_t>(at + 5 + len));
+            at += 5 + len;
+        }
+        REQUIRE(at + 4 == z.size());
+        CHECK(be32(&z[at]) == adler32_plain(raw));
+    } else {
+#ifdef LIDARFX_HAVE_ZLIB
+        uLongf size = static_cast<uLongf>(line * out.height);
+        raw.resize(size);
+        REQUIRE(uncompress(raw.data(), &size, z.data(), static_cast<uLong>(z.size())) == Z_OK);
+        raw.resize(size);
+        CHECK(be32(&z[z.size() - 4]) == adler32_plain(raw));
+#endif
+    }
+    // Scanlines: a filter byte (0 none, 1 Sub, 2 Up) and width * channels samples, unfiltered here.
     REQUIRE(raw.size() == line * out.height);
+    std::vector<std::uint8_t> previous(line - 1, 0);
     for (std::size_t r = 0; r < out.height; ++r) {
-        CHECK(raw[r * line] == 0);
-        out.pixels.insert(out.pixels.end(), raw.begin() + static_cast<std::ptrdiff_t>(r * line + 1),
-                          raw.begin() + static_cast<std::ptrdiff_t>((r + 1) * line));
+        const std::uint8_t type = raw[r * line];
+        CHECK(type <= 2);
+        std::vector<std::uint8_t> row(raw.begin() + static_cast<std::ptrdiff_t>(r * line + 1),
+                                      raw.begin() + static_cast<std::ptrdiff_t>((r + 1) * line));
+        for (std::size_t i = 0; i < row.size(); ++i) {
+            if (type == 1 && i >= channels) row[i] = static_cast<std::uint8_t>(row[i] + row[i - channels]);
+            if (type == 2) row[i] = static_cast<std::uint8_t>(row[i] + previous[i]);
+        }
+        out.pixels.insert(out.pixels.end(), row.begin(), row.end());
+        previous = row;
     }
     return out;
 }
@@ -186,4 +208,18 @@ TEST_CASE("io/write_png_rgb: the file decodes back to the pixels; sizes are chec
                          invalid_input);
     CHECK(io_test::runtime_error_of([&] { write_png_rgb(dir.file("none/x.png"), w, h, rgb); }) ==
           dir.file("none/x.png") + ": cannot open for writing");
+}
+
+TEST_CASE("io/encode_png: with zlib a smooth picture takes a small fraction of its raw size")
+{
+    if (!deflate_available()) {
+        MESSAGE("built without zlib: PNGs are stored uncompressed");
+        return;
+    }
+    raster<std::uint8_t> ramp(300, 400);
+    for (std::ptrdiff_t r = 0; r < 300; ++r)
+        for (std::ptrdiff_t c = 0; c < 400; ++c) ramp(r, c) = static_cast<std::uint8_t>((r + c) / 3);
+    const auto png = encode_png(400, 300, 1, ramp.data(), 400);
+    CHECK(png.size() < 300 * 400 / 20);
+    CHECK(decode_png(png).pixels == std::vector<std::uint8_t>(ramp.begin(), ramp.end()));
 }
