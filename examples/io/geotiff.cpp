@@ -102,12 +102,19 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     if (!wkt.empty()) ok = ok && GDALSetProjection(ds.get(), wkt.c_str()) == CE_None;
     GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
     ok = ok && GDALSetRasterNoDataValue(band, geotiff_nodata) == CE_None;
-    std::vector<float> row(static_cast<std::size_t>(g.cols));
-    for (std::ptrdiff_t r = 0; ok && r < g.rows; ++r) {
-        const float* src = values.row(r);
-        for (std::size_t c = 0; c < row.size(); ++c) row[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
-        ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r), static_cast<int>(g.cols), 1, row.data(),
-                          static_cast<int>(g.cols), 1, GDT_Float32, 0, 0) == CE_None;
+    // One strip of tiles at a time (256 rows, the tile height): each tile is compressed once, when full.
+    constexpr std::ptrdiff_t strip_rows = 256;
+    const auto cols = static_cast<std::size_t>(g.cols);
+    std::vector<float> strip(cols * static_cast<std::size_t>(std::min(strip_rows, g.rows)));
+    for (std::ptrdiff_t r0 = 0; ok && r0 < g.rows; r0 += strip_rows) {
+        const std::ptrdiff_t n = std::min(strip_rows, g.rows - r0);
+        for (std::ptrdiff_t r = 0; r < n; ++r) {
+            const float* src = values.row(r0 + r);
+            float* dst = strip.data() + static_cast<std::size_t>(r) * cols;
+            for (std::size_t c = 0; c < cols; ++c) dst[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
+        }
+        ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r0), static_cast<int>(g.cols), static_cast<int>(n),
+                          strip.data(), static_cast<int>(g.cols), static_cast<int>(n), GDT_Float32, 0, 0) == CE_None;
     }
     if (!ok) throw std::runtime_error(path + ": writing the GeoTIFF failed" + gdal_message());
     ds.reset();   // flushes and closes
