@@ -93,7 +93,7 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     const std::string wkt = crs_to_wkt(crs_wkt_or_epsg);
     GDALDriverH driver = GDALGetDriverByName("GTiff");
     if (driver == nullptr) throw std::runtime_error(path + ": GDAL has no GTiff driver");
-    const char* options[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", "TILED=YES", "BIGTIFF=IF_SAFER", nullptr};
+    const char* options[] = {"COMPRESS=DEFLATE", "ZLEVEL=1", "PREDICTOR=3", "TILED=YES", "BIGTIFF=IF_SAFER", nullptr};
     dataset ds(GDALCreate(driver, path.c_str(), static_cast<int>(g.cols), static_cast<int>(g.rows), 1, GDT_Float32,
                           const_cast<char**>(options)));
     if (!ds) throw std::runtime_error(path + ": cannot create GeoTIFF" + gdal_message());
