@@ -14,7 +14,7 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx rasterize IN.las [MORE.las ...] --cell METRES --out DIR [--threads N] [--memory SIZE]\n"
+    "usage: lidarfx rasterize IN.las|IN.laz [MORE ...] --cell METRES --out DIR [--threads N] [--memory SIZE]\n"
     "                         [--crop XMIN,YMIN,XMAX,YMAX] [--formats asc,tif,png] [--force]\n"
     "Writes min_z, max_z, mean_intensity, count and dropout as ESRI ASCII grids (.asc; GeoTIFF .tif too\n"
     "when built with GDAL) on a grid aligned to multiples of the cell size (no data = -9999), and PNG\n"

@@ -16,7 +16,7 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx water IN.las [MORE.las ...] --cell METRES --out DIR [options]\n"
+    "usage: lidarfx water IN.las|IN.laz [MORE ...] --cell METRES --out DIR [options]\n"
     "Extracts waterbodies: writes water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land,\n"
     "1..n by decreasing area), GeoTIFF twins when built with GDAL, water_overlay.png, waterbodies.csv and\n"
     "waterbodies.geojson. Inputs that cannot support the method (no intensity, too few points per cell)\n"

@@ -10,6 +10,7 @@
 #include "io/geotiff.hpp"
 #include "io/las_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -443,5 +444,58 @@ TEST_CASE("io/crs_of: PDAL's test surveys (optional: LIDARFX_PDAL_DATA)")
     if (const auto c = crs("1.2-empty-geotiff-vlrs.las")) {
         CHECK(c->for_outputs().empty());
         CHECK(c->horizontal_unit_m == 1.0);
+    }
+}
+
+TEST_CASE("io/water: a survey in feet clipped to a circle - water in m2 and m, none outside the footprint")
+{
+    // The lake scene cut to a circle of 180 m (the tile's corners were never flown), written in international
+    // feet with its pulses' GPS times (format 1, acquisition order), as lidarfx water reads a real survey.
+    io_test::temp_dir dir;
+    const auto scene = synth::lake_scene({.seed = 5, .size_m = 400});
+    const double cx = 200.0, cy = 200.0, radius_m = 180.0;
+    las_points f;
+    const auto& p = scene.points;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (std::hypot(p.x[i] - cx, p.y[i] - cy) > radius_m) continue;
+        f.x.push_back(p.x[i] / international_foot_m);
+        f.y.push_back(p.y[i] / international_foot_m);
+        f.z.push_back(p.z[i] / international_foot_m);
+        f.intensity.push_back(p.intensity[i]);
+        f.return_number.push_back(p.return_number[i]);
+        f.number_of_returns.push_back(p.number_of_returns[i]);
+        f.classification.push_back(p.classification[i]);
+        f.gps_time.push_back(p.gps_time[i]);
+    }
+    const auto path = dir.file("circle_ft.las");
+    write_las(path, f, {.point_format = 1, .scale = {0.001, 0.001, 0.001},
+                        .geo_keys = {key(1024, 1), key(3072, 32633), key(3076, 9002), key(4099, 9002)}});
+    const auto s = cli::read_survey({path}, quiet(2.0));
+    REQUIRE(!s.scan_covered.empty());  // the GPS times were read and the scan lines followed
+    const auto found = cli::find_waterbodies(s, {});
+    REQUIRE(found.result.ran);
+    REQUIRE(!found.result.bodies.empty());
+    const auto& g = s.rasters.g;   // metres
+    std::size_t outside = 0, water_cells = 0;
+    for (std::ptrdiff_t r = 0; r < g.rows; ++r)
+        for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+            const auto [x, y] = g.center(r, c);
+            const bool beyond = std::hypot(x - cx, y - cy) > radius_m + g.cell;
+            water_cells += found.result.water(r, c);
+            outside += beyond && found.result.water(r, c);
+            if (beyond && std::hypot(x - cx, y - cy) > radius_m + 60.0) CHECK(found.footprint(r, c) == 0);
+        }
+    CHECK(outside == 0);
+    // Areas in m2: the bodies' areas add up to the water cells times the cell area in m2 (2 m cells).
+    double area = 0;
+    for (const auto& b : found.result.bodies) area += b.area_m2;
+    CHECK(area == doctest::Approx(4.0 * static_cast<double>(water_cells)));
+    // Levels in m: each body's level lies within the range of the scene's water surfaces (metres, not feet).
+    float lo = INFINITY, hi = -INFINITY;
+    for (const float z : scene.truth.water_z)
+        if (std::isfinite(z)) lo = std::min(lo, z), hi = std::max(hi, z);
+    for (const auto& b : found.result.bodies) {
+        CHECK(b.water_level_m >= lo - 0.5);
+        CHECK(b.water_level_m <= hi + 0.5);
     }
 }
