@@ -155,16 +155,7 @@ const std::string& lake_las()
     static const std::string path = [] {
         const auto p = (std::filesystem::temp_directory_path() / "lidarfx_bench_lake2048.las").string();
         const auto& sc = lake(2048);
-        lidarfx::io::las_points pts;
-        pts.x = sc.points.x;
-        pts.y = sc.points.y;
-        pts.z = sc.points.z;
-        pts.intensity = sc.points.intensity;
-        pts.return_number = sc.points.return_number;
-        pts.number_of_returns = sc.points.number_of_returns;
-        pts.classification = sc.points.classification;
-        pts.classification_flags.assign(pts.size(), 0);
-        pts.scan_angle_deg.assign(pts.size(), 0.0f);
+        const auto pts = lidarfx::io::las_points_from(sc.points);
         lidarfx::io::write_las(p, pts, {.point_format = 0});
         return p;
     }();

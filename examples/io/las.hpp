@@ -109,6 +109,26 @@ struct las_points {
     soa_cloud<> cloud() const;
 };
 
+/// A las_points holding the fields of any struct-of-arrays point set with vectors x, y, z, intensity,
+/// return_number, number_of_returns, classification and gps_time (a synthetic scene's points, say), with
+/// no flags and nadir scan angles. O(points).
+template <class PointSet>
+las_points las_points_from(const PointSet& p)
+{
+    las_points out;
+    out.x = p.x;
+    out.y = p.y;
+    out.z = p.z;
+    out.intensity = p.intensity;
+    out.return_number = p.return_number;
+    out.number_of_returns = p.number_of_returns;
+    out.classification = p.classification;
+    out.classification_flags.assign(out.size(), 0);
+    out.scan_angle_deg.assign(out.size(), 0.0f);
+    out.gps_time = p.gps_time;
+    return out;
+}
+
 /// Reads a LAS 1.0–1.4 file (point formats 0–10) or a LAZ file (LASzip, formats 0–3 and 6–8) in chunks:
 ///     las_reader r(path); r.header(); las_points chunk; while (r.read(chunk, 1 << 20)) { ... }
 /// The constructor reads and validates the header and (E)VLRs: signature, version, header size, format

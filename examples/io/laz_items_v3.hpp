@@ -57,6 +57,35 @@ struct layer {
     }
 };
 
+/// Reads the size of every layer in order; false when the chunk header is too short.
+template <class Layers>
+bool read_layer_sizes(Layers& layers, const std::uint8_t*& p, const std::uint8_t* end) noexcept
+{
+    for (auto& l : layers) {
+        if (!l.read_size(p, end)) return false;
+    }
+    return true;
+}
+
+/// Starts every layer's decoder on its bytes, in order; false when the chunk is too short.
+template <class Layers>
+bool start_layers(Layers& layers, const std::uint8_t*& p, const std::uint8_t* end) noexcept
+{
+    for (auto& l : layers) {
+        if (!l.start(p, end)) return false;
+    }
+    return true;
+}
+
+/// The largest overrun of the layers.
+template <class Layers>
+std::size_t layers_overrun(const Layers& layers) noexcept
+{
+    std::size_t n = 0;
+    for (const auto& l : layers) n = std::max(n, l.overrun());
+    return n;
+}
+
 /// Symbol models made on first use in a chunk (most of the 64 class or flag contexts never occur).
 class lazy_models {
 public:
@@ -103,18 +132,13 @@ class point14_v3 final : public layered_item_decoder {
 public:
     bool read_sizes(const std::uint8_t*& p, const std::uint8_t* end) override
     {
-        for (auto& l : layers_) {
-            if (!l.read_size(p, end)) return false;
-        }
-        return true;
+        return read_layer_sizes(layers_, p, end);
     }
 
     bool init(const std::uint8_t* first, const std::uint8_t*& p, const std::uint8_t* end,
               std::uint32_t& context) override
     {
-        for (auto& l : layers_) {
-            if (!l.start(p, end)) return false;
-        }
+        if (!start_layers(layers_, p, end)) return false;
         for (auto& c : contexts_) c.used = false;
         current_ = channel(first);
         context = current_;
@@ -208,12 +232,7 @@ public:
         std::memcpy(item, last, 30);
     }
 
-    std::size_t overrun() const override
-    {
-        std::size_t n = 0;
-        for (const auto& l : layers_) n = std::max(n, l.overrun());
-        return n;
-    }
+    std::size_t overrun() const override { return layers_overrun(layers_); }
 
 private:
     struct channel_state {
@@ -458,17 +477,12 @@ public:
     }
     bool read_sizes(const std::uint8_t*& p, const std::uint8_t* end) override
     {
-        for (auto& l : layers_) {
-            if (!l.read_size(p, end)) return false;
-        }
-        return true;
+        return read_layer_sizes(layers_, p, end);
     }
     bool init(const std::uint8_t* first, const std::uint8_t*& p, const std::uint8_t* end,
               std::uint32_t& context) override
     {
-        for (auto& l : layers_) {
-            if (!l.start(p, end)) return false;
-        }
+        if (!start_layers(layers_, p, end)) return false;
         for (auto& c : contexts_) c.used = false;
         current_ = context & 3;
         start(contexts_[current_], first);
@@ -492,12 +506,7 @@ public:
             item[i] = last[i];
         }
     }
-    std::size_t overrun() const override
-    {
-        std::size_t n = 0;
-        for (const auto& l : layers_) n = std::max(n, l.overrun());
-        return n;
-    }
+    std::size_t overrun() const override { return layers_overrun(layers_); }
 
 private:
     struct channel_state {

@@ -19,25 +19,7 @@ set(cases
     "2|--theta-max must be in [--theta-start, 90] degrees|(got 1)|water^${DATA}^--theta-start^5^--theta-max^1^--out^${out}"
     "2|--alpha must be in (0, 1)|(got 2)|water^${DATA}^--alpha^2^--out^${out}"
     "2|--island-min-area must be >= 0|(got nan)|water^${DATA}^--island-min-area^nan^--out^${out}"
+    "2|--formats takes a comma-separated list|tiff|rasterize^${DATA}^--formats^tiff^--out^${out}"
+    "2|--hull-radius must be a finite number >= 0|(got -5)|water^${DATA}^--hull-radius^-5^--out^${out}"
     "1|exists and is not a folder|${DATA}|demo^--size^100^--out^${DATA}")
-foreach(case IN LISTS cases)
-    string(REPLACE "|" ";" parts "${case}")
-    list(POP_FRONT parts code phrase phrase2)
-    string(REGEX REPLACE "^[^|]*\\|[^|]*\\|[^|]*\\|" "" args "${case}")
-    string(REPLACE "^" ";" args "${args}")
-    execute_process(COMMAND "${LIDARFX}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
-    string(REGEX REPLACE "[ \t\r\n]+" " " said "${stdout}${stderr}")
-    if(NOT rc EQUAL code)
-        message(FATAL_ERROR "lidarfx ${args}: expected exit code ${code}, got ${rc}\n${said}")
-    endif()
-    foreach(p IN ITEMS "${phrase}" "${phrase2}")
-        string(FIND "${said}" "${p}" at)
-        if(at EQUAL -1)
-            message(FATAL_ERROR "lidarfx ${args}: the message does not say '${p}':\n${said}")
-        endif()
-    endforeach()
-    if(EXISTS "${out}")
-        message(FATAL_ERROR "lidarfx ${args}: a refused run left ${out} behind")
-    endif()
-    message(STATUS "refused (${rc}): ${phrase}")
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -4,21 +4,9 @@
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 set(out "${WORK_DIR}/out")
-foreach(command IN ITEMS rasterize water)
-    execute_process(COMMAND "${LIDARFX}" ${command} "${DATA}" --cell 2 --out "${out}"
-        RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr)
-    string(REGEX REPLACE "[ \t\r\n]+" " " said "${stdout}${stderr}")
-    if(NOT rc EQUAL 2)
-        message(FATAL_ERROR "lidarfx ${command} on degrees: expected exit code 2, got ${rc}\n${said}")
-    endif()
-    foreach(p IN ITEMS "longitude and latitude in degrees" "EPSG:4326" "Reproject" "filters.reprojection")
-        string(FIND "${said}" "${p}" at)
-        if(at EQUAL -1)
-            message(FATAL_ERROR "lidarfx ${command} on degrees: the message does not say '${p}':\n${said}")
-        endif()
-    endforeach()
-    if(EXISTS "${out}")
-        message(FATAL_ERROR "lidarfx ${command} on degrees: the refused run left ${out} behind")
-    endif()
-    message(STATUS "${command} refused degrees (${rc})")
-endforeach()
+set(cases
+    "2|longitude and latitude in degrees|EPSG:4326|rasterize^${DATA}^--cell^2^--out^${out}"
+    "2|Reproject|filters.reprojection|rasterize^${DATA}^--cell^2^--out^${out}"
+    "2|longitude and latitude in degrees|EPSG:4326|water^${DATA}^--cell^2^--out^${out}"
+    "2|Reproject|filters.reprojection|water^${DATA}^--cell^2^--out^${out}")
+include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -347,14 +347,7 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
     // millimetre and milli-foot quanta): the waterbodies must agree in m2 and m.
     io_test::temp_dir dir;
     const auto scene = synth::lake_scene({.seed = 3, .size_m = 400});
-    las_points m;
-    m.x = scene.points.x;
-    m.y = scene.points.y;
-    m.z = scene.points.z;
-    m.intensity = scene.points.intensity;
-    m.return_number = scene.points.return_number;
-    m.number_of_returns = scene.points.number_of_returns;
-    m.classification = scene.points.classification;
+    const las_points m = las_points_from(scene.points);
     las_points f = m;
     for (auto* v : {&f.x, &f.y, &f.z})
         for (double& value : *v) value /= international_foot_m;
