@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // LAS reading speed: lidarfx::io::las_reader (block reads, fixed-offset decode) against a naive
-// record-by-record reader, on files written by las_writer (warm in the page cache after the first pass).
+// record-by-record reader, on files written by las_writer (warm in the page cache after the first pass);
+// LAZ decoding speed on 1 and 2 threads, on PDAL's autzen_trim.laz (format 3) and lone-star.copc.laz
+// (format 6) when LIDARFX_PDAL_DATA names PDAL's test/data folder, else on the committed fixtures.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -115,8 +118,38 @@ void bm_las_write(benchmark::State& state)
     std::filesystem::remove(path);
 }
 
+/// The LAZ file of benchmark argument `which` (0: point formats 0–3, 1: formats 6–8).
+std::string laz_file(int which)
+{
+    const char* pdal = std::getenv("LIDARFX_PDAL_DATA");
+    const std::string big = which == 0 ? "laz/autzen_trim.laz" : "copc/lone-star.copc.laz";
+    if (pdal != nullptr && std::filesystem::exists(std::string(pdal) + "/" + big)) return std::string(pdal) + "/" + big;
+    const auto fixtures = std::filesystem::path(__FILE__).parent_path().parent_path() / "tests" / "data";
+    return (fixtures / (which == 0 ? "simple.laz" : "1.2-with-color.copc.laz")).string();
+}
+
+/// LAZ decoding into las_points (all fields), read in chunks of 2^20 points on range(1) threads.
+void bm_laz_read(benchmark::State& state)
+{
+    const std::string path = laz_file(static_cast<int>(state.range(0)));
+    const int threads = static_cast<int>(state.range(1));
+    lidarfx::io::las_points chunk;
+    std::uint64_t n = 0;
+    for (auto _ : state) {
+        lidarfx::io::las_reader r(path);
+        r.set_threads(threads);
+        n = 0;
+        while (const std::size_t k = r.read(chunk, 1 << 20)) n += k;
+        benchmark::DoNotOptimize(chunk.x.data());
+    }
+    state.SetLabel(std::filesystem::path(path).filename().string());
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(std::filesystem::file_size(path)));
+}
+
 }  // namespace
 
+BENCHMARK(bm_laz_read)->ArgsProduct({{0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bm_las_read)->ArgsProduct({{0, 1, 6}, {5'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bm_las_read_naive)->ArgsProduct({{0}, {5'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bm_las_write)->ArgsProduct({{0, 6}, {2'000'000}})->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the LAS reader (tests/fuzz/las_fuzz.cpp) with libFuzzer + AddressSanitizer + UBSan for a bounded time.
+# Fuzzes the LAS and LAZ reader (tests/fuzz/las_fuzz.cpp) with libFuzzer + AddressSanitizer + UBSan for a bounded time.
 # Usage: scripts/fuzz.sh [seconds]   (default 60). Exits non-zero when the fuzzer finds a crash; the
 # crashing input is then left in build/fuzz/ (crash-*), replay it with: build/fuzz/las_fuzz <file>.
-# Seeds: writer outputs for every point format and the head of ../shared/data/Haystack_Rock.las.
+# Seeds: writer outputs for every point format, the head of ../shared/data/Haystack_Rock.las and the LAZ
+# fixtures of tests/data (formats 3 and 7).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -27,7 +28,7 @@ if [[ -z "$cxx" ]] || ! fuzzer_works; then
 fi
 
 flags=(-std=c++20 -g -O1 -Iinclude -Iexamples -fno-omit-frame-pointer)
-io_sources=(examples/io/las.cpp examples/io/las_writer.cpp)
+io_sources=(examples/io/las.cpp examples/io/laz.cpp examples/io/las_writer.cpp)
 "$cxx" "${flags[@]}" -fsanitize=address,undefined "${io_sources[@]}" tests/fuzz/make_seeds.cpp -o "$out/make_seeds"
 "$cxx" "${flags[@]}" -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     "${io_sources[@]}" tests/fuzz/las_fuzz.cpp -o "$out/las_fuzz"
@@ -35,8 +36,9 @@ io_sources=(examples/io/las.cpp examples/io/las_writer.cpp)
 real=()
 [[ -f "$data/Haystack_Rock.las" ]] && real=("$data/Haystack_Rock.las")
 "$out/make_seeds" "$out/seeds" "${real[@]}"
+cp tests/data/*.laz "$out/seeds/"
 
 echo "fuzz.sh: running las_fuzz for ${seconds}s on $(ls "$out/seeds" | wc -l) seeds" >&2
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
-    "$out/las_fuzz" -max_total_time="$seconds" -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
+    "$out/las_fuzz" -max_total_time="$seconds" -max_len=40000 -timeout=10 -rss_limit_mb=2048 \
     -print_final_stats=1 -artifact_prefix="$out/" "$out/corpus" "$out/seeds"

@@ -2,6 +2,9 @@
 #include "cli_common.hpp"
 
 #include <algorithm>
+#include <exception>
+#include <thread>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <future>
@@ -9,6 +12,7 @@
 #include <limits>
 #include <array>
 #include <memory>
+#include <optional>
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -18,6 +22,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <stdexcept>
+
+#include <lidarfx/kernels/filter/survey_footprint.hpp>
+#include <lidarfx/kernels/points/scan_coverage.hpp>
 
 #include "io/ascii_grid.hpp"
 #include "io/geotiff.hpp"
@@ -144,9 +151,50 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option)
     return static_cast<std::uint64_t>(bytes);
 }
 
+output_formats output_formats_from(const arguments& a)
+{
+    if (!a.has("formats")) return {};
+    output_formats f{false, false, false};
+    const std::string text = a.text("formats", "");
+    std::istringstream in(text);
+    for (std::string name; std::getline(in, name, ',');) {
+        if (name == "asc") f.asc = true;
+        else if (name == "tif") f.tif = true;
+        else if (name == "png") f.png = true;
+        else throw usage_error("--formats takes a comma-separated list of asc, tif and png (got '" + text + "')");
+    }
+    if (!f.asc && !f.tif && !f.png) throw usage_error("--formats names no format (got '" + text + "')");
+    if (f.tif && !io::geotiff_available())
+        throw usage_error("--formats tif needs GeoTIFF support, and this lidarfx was built without GDAL; use asc");
+    return f;
+}
+
+void run_jobs(const std::vector<std::function<void()>>& jobs, int threads)
+{
+    const auto n = static_cast<std::size_t>(detail::resolve_threads(threads, "run_jobs"));
+    std::vector<std::exception_ptr> errors(jobs.size());
+    std::atomic<std::size_t> next{0};
+    const auto worker = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < jobs.size();) {
+            try {
+                jobs[i]();
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        }
+    };
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < std::min(n, jobs.size()); ++t) helpers.emplace_back(worker);
+    worker();
+    for (auto& h : helpers) h.join();
+    for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+}
+
 survey_options survey_options_from(const arguments& a, double bytes_per_cell)
 {
     survey_options o;
+    o.formats = output_formats_from(a);
     o.bytes_per_cell = bytes_per_cell;
     o.cell_m = a.number("cell", o.cell_m);
     if (!(o.cell_m > 0) || !std::isfinite(o.cell_m)) {
@@ -201,7 +249,7 @@ double round_cell_up(double cell_m)
 /// 1e-4 of the points along each axis, widened by 5 %, form the core box. When points outside it make the
 /// grid more than twice the core's area, the run is refused (usage_error) naming their count, where they
 /// are and the --crop that keeps the rest.
-void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total)
+void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total, double unit_m)
 {
     constexpr int bins = 256;
     const double bw = std::max(box.xmax - box.xmin, 1e-9) / bins, bh = std::max(box.ymax - box.ymin, 1e-9) / bins;
@@ -214,8 +262,9 @@ void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, s
         io::las_reader r(p);
         while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
             for (std::size_t i = 0; i < n; ++i) {
-                if (!std::isfinite(chunk.x[i]) || !std::isfinite(chunk.y[i])) continue;
-                ++count[static_cast<std::size_t>(bin(chunk.y[i], box.ymin, bh)) * bins + bin(chunk.x[i], box.xmin, bw)];
+                const double x = chunk.x[i] * unit_m, y = chunk.y[i] * unit_m;
+                if (!std::isfinite(x) || !std::isfinite(y)) continue;
+                ++count[static_cast<std::size_t>(bin(y, box.ymin, bh)) * bins + bin(x, box.xmin, bw)];
             }
         }
     }
@@ -251,12 +300,15 @@ void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, s
         }
     }
     if (outside == 0) return;
+    // Places are given in the CRS's units (as --crop takes them), sizes in metres.
+    const double u = unit_m;
     std::ostringstream why;
     why << std::fixed << std::setprecision(0) << outside << " of " << total
-        << " points lie far from the rest (the most near x " << where[0] << ", y " << where[1]
+        << " points lie far from the rest (the most near x " << where[0] / u << ", y " << where[1] / u
         << ") and would stretch the grid from " << kept.xmax - kept.xmin << " m x " << kept.ymax - kept.ymin
-        << " m to " << box.xmax - box.xmin << " m x " << box.ymax - box.ymin << " m. Use --crop " << kept.xmin << ','
-        << kept.ymin << ',' << kept.xmax << ',' << kept.ymax << " to keep the rest, or --force to keep them";
+        << " m to " << box.xmax - box.xmin << " m x " << box.ymax - box.ymin << " m. Use --crop " << kept.xmin / u
+        << ',' << kept.ymin / u << ',' << kept.xmax / u << ',' << kept.ymax / u
+        << " to keep the rest, or --force to keep them";
     throw usage_error(why.str());
 }
 
@@ -288,21 +340,43 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     bounds box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     std::uint64_t total = 0;
+    std::vector<std::string> warned;   // each warning once, however many files give it
+    std::optional<io::las_header> previous;
+    io::survey_crs crs;
     for (const auto& p : paths) {
         io::las_reader r(p);
         const auto& h = r.header();
+        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of(h);   // tiles share their CRS
+        previous = h;
+        for (const auto& w : crs.warnings) {
+            if (std::find(warned.begin(), warned.end(), w) != warned.end()) continue;
+            warned.push_back(w);
+            std::cerr << "lidarfx: warning: " << p << ": " << w << '\n';
+        }
+        if (crs.geographic) {
+            throw usage_error(p + ": x and y are longitude and latitude in degrees (" + crs.describe() +
+                              "), but cells, heights and areas are measured in metres. Reproject the file to a "
+                              "projected CRS first, e.g. pdal translate IN.las OUT.las reprojection "
+                              "--filters.reprojection.out_srs=EPSG:<the UTM zone's code>, or las2las -target_utm auto");
+        }
         if (s.files == 0) {
-            s.crs_wkt = h.wkt;
-            s.epsg = h.epsg();
+            s.crs = crs;
+            s.crs_wkt = crs.wkt;
+            s.epsg = crs.epsg;
             if (!io::crs_understood(s.crs_wkt)) {  // an odd record must not fail the run after the work is done
-                std::cerr << "lidarfx: warning: " << p << ": its WKT coordinate system cannot be read; outputs "
+                std::cerr << "lidarfx: warning: " << p << ": its coordinate system cannot be written; outputs "
                           << (s.epsg ? "use its EPSG code " + std::to_string(s.epsg) : std::string("carry no CRS"))
                           << '\n';
                 s.crs_wkt.clear();
             }
-        } else if (h.epsg() != s.epsg) {
-            std::cerr << "lidarfx: warning: " << p << " has EPSG " << h.epsg() << ", the first file " << s.epsg
-                      << "; coordinates are used as they are\n";
+        } else if (crs.horizontal_unit_m != s.crs.horizontal_unit_m || crs.vertical_unit_m != s.crs.vertical_unit_m) {
+            throw usage_error(p + " is in " + crs.describe() + " with z in " + crs.vertical_unit + ", but " + paths[0] +
+                              " in " + s.crs.describe() + " with z in " + s.crs.vertical_unit +
+                              ": reproject the files to one CRS first (pdal translate with filters.reprojection, or "
+                              "las2las)");
+        } else if (crs.epsg != s.crs.epsg || crs.wkt != s.crs.wkt) {
+            std::cerr << "lidarfx: warning: " << p << " is in " << crs.describe() << ", the first file in "
+                      << s.crs.describe() << "; coordinates are used as they are and outputs carry the first CRS\n";
         }
         ++s.files;
         total += h.point_count;
@@ -313,9 +387,13 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         box.ymax = std::max(box.ymax, h.max[1]);
     }
     if (total == 0) throw std::runtime_error("the input files hold no point");
-    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total);
+    // From here on, everything is in metres (a product of doubles is monotone, so bounds still hold the points).
+    const double unit_xy = s.crs.horizontal_unit_m, unit_z = s.crs.vertical_unit_m;
+    box = {box.xmin * unit_xy, box.ymin * unit_xy, box.xmax * unit_xy, box.ymax * unit_xy};
+    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total, unit_xy);
     if (opt.crop) {
-        const bounds& c = *opt.crop;
+        const bounds c{opt.crop->xmin * unit_xy, opt.crop->ymin * unit_xy, opt.crop->xmax * unit_xy,
+                       opt.crop->ymax * unit_xy};
         box = {std::max(box.xmin, c.xmin), std::max(box.ymin, c.ymin), std::min(box.xmax, c.xmax), std::min(box.ymax, c.ymax)};
         if (!(box.xmin <= box.xmax && box.ymin <= box.ymax)) throw usage_error("--crop does not overlap the survey");
     }
@@ -362,16 +440,35 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             if (!reader) {
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
+                reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
             }
             dst.file = file - 1;
-            if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) return n;
+            if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) {
+                if (unit_xy != 1) {
+                    for (double& x : dst.points.x) x *= unit_xy;
+                    for (double& y : dst.points.y) y *= unit_xy;
+                }
+                if (unit_z != 1) {
+                    for (double& z : dst.points.z) z *= unit_z;
+                }
+                return n;
+            }
             reader.reset();
         }
     };
     std::uint64_t done = 0;
+    // Scan lines in file order, when the files carry GPS times (a new file starts a new sweep).
+    std::optional<scan_coverage> scans;
+    std::size_t scan_file = paths.size();
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
+        if (!c.points.gps_time.empty()) {
+            if (!scans) scans.emplace(g);
+            if (c.file != scan_file) scans->end_sweep();
+            scan_file = c.file;
+            scans->add(c.points.x, c.points.y, c.points.gps_time);
+        }
         if (const std::size_t outside = acc.points_outside() - outside_before; outside > 0 && !opt.crop) {
             throw std::runtime_error(paths[c.file] + ": " + std::to_string(outside) +
                                      " points lie outside the bounds its LAS header declares; fix the header "
@@ -394,6 +491,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         }
     }
     s.rasters = acc.finish();
+    if (scans) s.scan_covered = scans->take();
     s.points = done;
     if (s.rasters.points_used == 0) {
         throw std::runtime_error("no point of the input has finite coordinates (" + std::to_string(s.rasters.points_nan) +
@@ -402,20 +500,42 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     return s;
 }
 
-void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
-                  const std::string& crs_wkt, int epsg)
+raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads)
 {
-    out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
-    if (io::geotiff_available()) {
+    const auto& pr = s.rasters;
+    if (hull_radius_m <= 0) return raster<std::uint8_t>(pr.g.rows, pr.g.cols, 1);
+    raster<std::uint8_t> covered(pr.g.rows, pr.g.cols, uninitialized);
+    const bool scans = !s.scan_covered.empty();
+    for (std::ptrdiff_t i = 0; i < covered.size(); ++i)
+        covered.data()[i] = !pr.dropout.data()[i] || (scans && s.scan_covered.data()[i]);
+    return survey_footprint(covered, pr.g.cell, {.hull_radius_m = hull_radius_m, .run = {.threads = threads}});
+}
+
+grid to_crs_units(const grid& g, const survey& s)
+{
+    grid out = g;
+    const double u = s.crs.horizontal_unit_m;
+    out.x0 = g.x0 / u;
+    out.y0 = g.y0 / u;
+    out.cell = g.cell / u;
+    return out;
+}
+
+void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
+                  const std::string& crs_wkt, int epsg, const output_formats& formats)
+{
+    if (formats.asc) out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
+    if (formats.tif && io::geotiff_available()) {
         const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
         out.write(name + ".tif", [&](const std::string& path) { io::write_geotiff(path, values, g, crs); });
     }
 }
 
-std::vector<std::string> raster_file_names(const std::string& name)
+std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats)
 {
-    std::vector<std::string> names{name + ".asc"};
-    if (io::geotiff_available()) names.push_back(name + ".tif");
+    std::vector<std::string> names;
+    if (formats.asc) names.push_back(name + ".asc");
+    if (formats.tif && io::geotiff_available()) names.push_back(name + ".tif");
     return names;
 }
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <lidarfx/core/parallel.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 
+#include "io/crs.hpp"
 #include "io/output_folder.hpp"
 
 namespace lidarfx::cli {
@@ -50,17 +52,31 @@ struct usage_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// The file formats a command writes: ESRI ASCII grids, GeoTIFF (only when built with GDAL), PNG pictures.
+struct output_formats {
+    bool asc = true, tif = true, png = true;
+};
+
 /// How read_survey reads and what it refuses; survey_options_from() fills it from --cell, --threads,
 /// --memory, --crop and --force.
 struct survey_options {
-    double cell_m = 2.0;                     ///< cell size, metres of the file's CRS
+    double cell_m = 2.0;                     ///< cell size, metres (whatever the unit of the files' CRS)
     int threads = 0;                         ///< 0 = all cores
     bool show_progress = true;
     std::uint64_t memory_budget_bytes = 0;   ///< 0: half the physical memory
     double bytes_per_cell = 64;              ///< what the command keeps per grid cell (its memory estimate)
-    std::optional<bounds> crop;              ///< keep the points inside, build the grid over it
+    std::optional<bounds> crop;              ///< keep the points inside, build the grid over it (units of the CRS)
     bool force = false;                      ///< run even when the cell is far too small for the point density
+    output_formats formats;                  ///< what the command writes (--formats)
 };
+
+/// --formats asc,tif,png (any non-empty subset, default all). @throws usage_error on an unknown name, or
+/// tif asked for explicitly in a build without GDAL.
+output_formats output_formats_from(const arguments& a);
+
+/// Runs every job once on up to `threads` threads (0 = all cores); after all have stopped, rethrows the
+/// first exception any job threw (in job order).
+void run_jobs(const std::vector<std::function<void()>>& jobs, int threads);
 
 /// --cell (default 2), --threads (default 0), --memory (bytes: 4GiB, 512MiB, 2G, 1e9), --crop
 /// xmin,ymin,xmax,ymax and --force of `a`, validated; `bytes_per_cell` is the command's estimate.
@@ -69,18 +85,25 @@ survey_options survey_options_from(const arguments& a, double bytes_per_cell);
 /// "4GiB", "512 MiB", "2G", "1.5e9" → bytes. @throws usage_error naming `option`.
 std::uint64_t parse_bytes(const std::string& text, const std::string& option);
 
-/// The rasters of one or more LAS files on one grid snapped to multiples of the cell size.
+/// The rasters of one or more LAS files on one grid snapped to multiples of the cell size. Everything is in
+/// metres: x, y and z of the points were multiplied by their CRS's units on reading (a survey in feet gives a
+/// grid, heights and areas in metres); to_crs_units() gives the grid back in the CRS's units for outputs.
 struct survey {
     rasterize_result rasters;
-    std::string crs_wkt;         ///< WKT of the first file, if it has one
-    int epsg = 0;                ///< horizontal EPSG code of the first file (0 = unknown)
+    raster<std::uint8_t> scan_covered;  ///< cells a scan line crossed between two returns (scan_coverage);
+                                        ///< empty when no file has GPS times
+    io::survey_crs crs;          ///< CRS and units of the first file (every file has the same units)
+    std::string crs_wkt;         ///< the CRS of the first file as WKT, empty when none (crs.wkt)
+    int epsg = 0;                ///< horizontal EPSG code of the first file (0 = none or user-defined)
     std::size_t points = 0;      ///< points read
     std::size_t files = 0;
 };
 
 /// Reads every point of `paths` in chunks and rasterizes them on the snapped grid covering the union of
 /// the files' header bounds (or the crop box); points outside those bounds (a header that lies) are reported
-/// as an error naming the file. Before reading any point it refuses (usage_error, exit code 2) a grid whose
+/// as an error naming the file. Coordinates are converted to metres by the units of each file's CRS (io::crs_of,
+/// whose warnings are printed once each); files in different units, or in degrees (a geographic CRS, where
+/// cells and distances in metres mean nothing), are refused with a usage_error suggesting a reprojection. Before reading any point it refuses (usage_error, exit code 2) a grid whose
 /// memory estimate (cells x bytes_per_cell) exceeds the budget, and, unless `force`, a cell so small that
 /// 99 % of the cells would be empty at the survey's mean density; both messages name a cell size that fits.
 /// With `threads` != 1 the next chunk is read while the current one is rasterized; the chunks are added in
@@ -88,12 +111,21 @@ struct survey {
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
 
-/// Writes `name`.asc (and `name`.tif when GDAL is available) of a float raster into `out`.
+/// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
+/// inside the area flown. hull_radius_m <= 0 gives every cell as inside.
+raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads);
+
+/// `g` (in metres, as read_survey builds it) in the units of the survey's CRS: origin and cell size divided by
+/// the horizontal unit, so that outputs land where the files' CRS places them. Cell values are not touched:
+/// heights stay in metres.
+grid to_crs_units(const grid& g, const survey& s);
+
+/// Writes `name`.asc and `name`.tif (when GDAL is available) of a float raster into `out`, as `formats` asks.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
-                  const std::string& crs_wkt, int epsg);
+                  const std::string& crs_wkt, int epsg, const output_formats& formats = {});
 
 /// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
-std::vector<std::string> raster_file_names(const std::string& name);
+std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats = {});
 
 /// "lidarfx <command> <args...>", for manifests.
 std::string command_line(const std::string& command, const std::vector<std::string>& args);

@@ -42,26 +42,30 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     const auto t0 = std::chrono::steady_clock::now();
     lidarfx::cli::survey s;
     s.rasters = lidarfx::rasterize(sc.points.cloud(), sc.truth.g, {.run = {.threads = threads}});
+    lidarfx::scan_coverage scans(sc.truth.g);  // the scene's pulses come in scan order, with their times
+    scans.add(sc.points.x, sc.points.y, sc.points.gps_time);
+    s.scan_covered = scans.take();
     s.points = sc.points.size();
     s.files = 1;
     lidarfx::extract_waterbodies_options opt;
     opt.run = {.threads = threads, .progress = lidarfx::cli::progress_bar("waterbodies")};
-    const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
+    const auto found = lidarfx::cli::find_waterbodies(s, opt);
+    const auto& w = found.result;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     lidarfx::cli::print_survey(s);
     lidarfx::cli::print_diagnostics(w.diagnostics);
     lidarfx::cli::print_waterbodies(w, 5);
     lidarfx::cli::write_point_rasters(folder, s);
-    lidarfx::cli::write_waterbodies(folder, s, w);
+    lidarfx::cli::write_waterbodies(folder, s, w, found.footprint);
     const auto score = lidarfx::confusion_counts(w.water, sc.truth.water_filled, sc.truth.g.cell);
     // Agreement picture: true water blue, water found on land red, water missed yellow, land grey.
     lidarfx::io::rgb_image agreement;
     agreement.width = sc.truth.g.cols;
     agreement.height = sc.truth.g.rows;
     for (std::ptrdiff_t i = 0; i < w.water.size(); ++i) {
-        const bool found = w.water.data()[i] != 0, truth = sc.truth.water_filled.data()[i] != 0;
-        const std::array<std::uint8_t, 3> color = found && truth ? std::array<std::uint8_t, 3>{40, 110, 255}
-                                                  : found        ? std::array<std::uint8_t, 3>{230, 30, 30}
+        const bool detected = w.water.data()[i] != 0, truth = sc.truth.water_filled.data()[i] != 0;
+        const std::array<std::uint8_t, 3> color = detected && truth ? std::array<std::uint8_t, 3>{40, 110, 255}
+                                                  : detected        ? std::array<std::uint8_t, 3>{230, 30, 30}
                                                   : truth        ? std::array<std::uint8_t, 3>{250, 210, 0}
                                                                  : std::array<std::uint8_t, 3>{200, 200, 200};
         agreement.rgb.insert(agreement.rgb.end(), color.begin(), color.end());
@@ -108,15 +112,16 @@ int run_demo(const std::vector<std::string>& args)
         lidarfx::cli::survey_options options;
         options.threads = threads;
         options.show_progress = false;
-        options.bytes_per_cell = 120;
+        options.bytes_per_cell = 128;
         const auto s = lidarfx::cli::read_survey({survey_file.string()}, options);
         lidarfx::cli::print_survey(s);
         lidarfx::cli::write_point_rasters(dir, s);
-        const auto w = lidarfx::extract_waterbodies(s.rasters, {.run = {.threads = threads}});
+        const auto found = lidarfx::cli::find_waterbodies(s, {.run = {.threads = threads}});
+        const auto& w = found.result;
         lidarfx::cli::print_diagnostics(w.diagnostics);
         if (w.ran) {
             lidarfx::cli::print_waterbodies(w, 5);
-            lidarfx::cli::write_waterbodies(dir, s, w);
+            lidarfx::cli::write_waterbodies(dir, s, w, found.footprint);
         } else {
             std::cout << "waterbody extraction refused on these data (no map written)\n";
         }

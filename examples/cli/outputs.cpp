@@ -2,11 +2,11 @@
 #include "outputs.hpp"
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 
 #include <lidarfx/kernels/vector/polygonize.hpp>
-#include <lidarfx/kernels/interpolate/idw_fill.hpp>
 
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
@@ -81,18 +81,48 @@ std::uint8_t mostly_set(const std::vector<std::uint8_t>& block)
     return 2 * set >= block.size();
 }
 
-/// Elevation with dropout holes filled, for shaded pictures only: the picture grid's lowest returns, holes
-/// filled by IDW from the nearest cells within 64 picture cells (farther holes stay NaN and shade flat). A
+/// `z` with its NaN holes filled coarse to fine (pull-push): each coarser level holds the mean of the finite
+/// cells of 2 x 2 blocks of the finer one, and a hole takes the value of its block at the first level
+/// where that is finite. O(cells); for pictures only (the fill is blocky, never an interpolation).
+raster<float> fill_holes_pull_push(raster<float> z)
+{
+    if (z.rows() <= 1 && z.cols() <= 1) return z;
+    raster<float> coarse((z.rows() + 1) / 2, (z.cols() + 1) / 2);
+    for (std::ptrdiff_t r = 0; r < coarse.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < coarse.cols(); ++c) {
+            double sum = 0;
+            int n = 0;
+            for (std::ptrdiff_t rr = 2 * r; rr < std::min(z.rows(), 2 * r + 2); ++rr)
+                for (std::ptrdiff_t cc = 2 * c; cc < std::min(z.cols(), 2 * c + 2); ++cc)
+                    if (std::isfinite(z(rr, cc))) sum += z(rr, cc), ++n;
+            coarse(r, c) = n ? static_cast<float>(sum / n) : NAN;
+        }
+    coarse = fill_holes_pull_push(std::move(coarse));
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c)
+            if (!std::isfinite(z(r, c))) z(r, c) = coarse(r / 2, c / 2);
+    return z;
+}
+
+/// Elevation with dropout holes filled, for shaded pictures only: the picture grid's lowest returns (a block
+/// reduction of the survey's grid, at most picture_max_side cells a side), holes filled coarse to fine. A
 /// sparse survey (under a quarter of the picture's cells with returns) is shaded as it is: filling it would
-/// cost more than the rest of the run and show nothing real.
+/// show nothing real.
 raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
 {
     auto z = block_reduce<float>(pr.min_z, f, finite_min);
     std::ptrdiff_t with_returns = 0;
     for (const auto v : z) with_returns += std::isfinite(v);
     if (4 * with_returns < z.size()) return z;
-    const double cell = pr.g.cell * static_cast<double>(f);
-    return idw_fill(z, cell, idw_fill_options{.k = 4, .radius_m = 64 * cell, .run = {.threads = 0}}).filled;
+    return fill_holes_pull_push(std::move(z));
+}
+
+/// What the manifest says about units: heights and areas in metres, places in the survey's CRS.
+std::string units_note(const survey& s)
+{
+    const std::string where = s.crs.source.empty() ? std::string("coordinates as read (no CRS: taken as metres)")
+                                                   : "the CRS of the input, " + s.crs.describe();
+    return "cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and polygons in " + where;
 }
 
 }  // namespace
@@ -100,12 +130,16 @@ raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
 void print_survey(const survey& s)
 {
     const auto& g = s.rasters.g;
+    const grid in_crs = to_crs_units(g, s);
     const double area = static_cast<double>(g.size()) * g.cell * g.cell;
     std::cout << "survey: " << s.files << " file(s), " << s.points << " points; grid " << g.rows << " x " << g.cols
-              << " cells of " << g.cell << " m from (" << std::fixed << std::setprecision(2) << g.x0 << ", " << g.y0
-              << ")" << std::defaultfloat << "; " << std::setprecision(3) << static_cast<double>(s.points) / area
-              << " points/m2";
+              << " cells of " << g.cell << " m from (" << std::fixed << std::setprecision(2) << in_crs.x0 << ", "
+              << in_crs.y0 << ")" << std::defaultfloat << "; " << std::setprecision(3)
+              << static_cast<double>(s.points) / area << " points/m2";
     if (s.epsg) std::cout << "; EPSG:" << s.epsg;
+    if (s.crs.horizontal_unit_m != 1 || s.crs.vertical_unit_m != 1) {
+        std::cout << "; read in " << s.crs.horizontal_unit << " (z " << s.crs.vertical_unit << "), converted to metres";
+    }
     std::cout << '\n';
     if (s.rasters.points_nan) {
         std::cout << "  " << s.rasters.points_nan << " points with NaN or infinite coordinates ignored\n";
@@ -113,50 +147,91 @@ void print_survey(const survey& s)
     if (s.rasters.points_outside) std::cout << "  " << s.rasters.points_outside << " points outside --crop ignored\n";
 }
 
-std::vector<std::string> point_raster_file_names()
+std::vector<std::string> point_raster_file_names(const output_formats& formats)
 {
-    std::vector<std::string> names{"min_z.png", "mean_intensity.png", "dropout.png"};
+    std::vector<std::string> names;
+    if (formats.png) names = {"min_z.png", "mean_intensity.png", "dropout.png"};
     for (const char* r : {"min_z", "max_z", "mean_intensity", "count", "dropout"}) {
-        for (auto& n : raster_file_names(r)) names.push_back(std::move(n));
+        for (auto& n : raster_file_names(r, formats)) names.push_back(std::move(n));
     }
     return names;
 }
 
-std::vector<std::string> waterbody_file_names()
+std::vector<std::string> waterbody_file_names(const output_formats& formats)
 {
-    std::vector<std::string> names{"water_overlay.png", "waterbodies.csv", "waterbodies.geojson"};
+    std::vector<std::string> names{"waterbodies.csv", "waterbodies.geojson"};
+    if (formats.png) names.push_back("water_overlay.png");
     for (const char* r : {"water", "waterbody_labels"}) {
-        for (auto& n : raster_file_names(r)) names.push_back(std::move(n));
+        for (auto& n : raster_file_names(r, formats)) names.push_back(std::move(n));
     }
     return names;
 }
 
-void write_point_rasters(io::output_folder& dir, const survey& s)
+void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats, int threads)
 {
     const auto& pr = s.rasters;
-    write_raster(dir, "min_z", pr.min_z, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "max_z", pr.max_z, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "mean_intensity", pr.mean_intensity, pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "count", as_float<std::uint32_t>(pr.count), pr.g, s.crs_wkt, s.epsg);
-    write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), pr.g, s.crs_wkt, s.epsg);
-    const auto png = [&](const std::string& name, const io::rgb_image& img) {
-        dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
+    const grid g = to_crs_units(pr.g, s);   // georeferenced in the files' CRS; heights stay in metres
+    dir.set_units_note(units_note(s));
+    // Every file is one job; the jobs run side by side (each writer is single-threaded).
+    std::vector<std::function<void()>> jobs;
+    const auto grid_file = [&](const char* name, const raster_view<const float>& values) {
+        jobs.emplace_back([&, name, values] { write_raster(dir, name, values, g, s.crs_wkt, s.epsg, formats); });
     };
-    const auto f = picture_factor(pr.g);
-    png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min)));
-    png("mean_intensity.png", io::colorize(block_reduce<float>(pr.mean_intensity, f, finite_mean)));
-    const auto grey = io::hillshade(picture_elevation(pr, f), pr.g.cell * static_cast<double>(f));
-    png("dropout.png", io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
+    grid_file("min_z", pr.min_z);
+    grid_file("max_z", pr.max_z);
+    grid_file("mean_intensity", pr.mean_intensity);
+    jobs.emplace_back([&] { write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg, formats); });
+    jobs.emplace_back([&] { write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), g, s.crs_wkt, s.epsg, formats); });
+    if (formats.png) {
+        const auto png = [&](const std::string& name, const io::rgb_image& img) {
+            dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
+        };
+        const auto f = picture_factor(pr.g);
+        jobs.emplace_back([&, png, f] { png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min))); });
+        jobs.emplace_back([&, png, f] {
+            png("mean_intensity.png", io::colorize(block_reduce<float>(pr.mean_intensity, f, finite_mean)));
+        });
+        jobs.emplace_back([&, png, f] {
+            const auto grey = io::hillshade(picture_elevation(pr, f), pr.g.cell * static_cast<double>(f));
+            png("dropout.png",
+                io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
+        });
+    }
+    run_jobs(jobs, threads);
 }
 
-void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w)
+survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_options& opt, double hull_radius_m)
+{
+    survey_waterbodies found{footprint_of(s, hull_radius_m, opt.run.threads), {}};
+    std::size_t flown = 0, crossed = 0;
+    for (const auto v : found.footprint) flown += v;
+    if (!s.scan_covered.empty())
+        for (std::ptrdiff_t i = 0; i < s.scan_covered.size(); ++i)
+            crossed += s.scan_covered.data()[i] && s.rasters.dropout.data()[i];
+    const auto cells = static_cast<double>(std::max<std::ptrdiff_t>(1, found.footprint.size()));
+    std::cout << "footprint: " << std::fixed << std::setprecision(1) << 100.0 * static_cast<double>(flown) / cells
+              << " % of the grid was flown (" << 100.0 * static_cast<double>(crossed) / cells
+              << " % crossed by scan lines without a return); outside is no data\n" << std::defaultfloat;
+    auto inputs = to_water_rasters(s.rasters);
+    inputs.footprint = found.footprint;
+    found.result = extract_waterbodies(inputs, s.rasters.g.cell, opt);
+    return found;
+}
+
+void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
+                       raster_view<const std::uint8_t> footprint, const output_formats& formats)
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
-    // No data: cells without any return within 2 cells that are not water (outside the survey, data gaps).
+    // No data: cells outside the footprint (nothing flown), and cells without any return within 2 cells that
+    // are not water (data gaps).
     raster<float> water(g.rows, g.cols), labels(g.rows, g.cols);
     for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+            if (!footprint(r, c)) {
+                water(r, c) = labels(r, c) = NAN;
+                continue;
+            }
             labels(r, c) = static_cast<float>(w.labels(r, c));
             if (w.water(r, c)) {
                 water(r, c) = 1.0f;
@@ -172,28 +247,32 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
             water(r, c) = data ? 0.0f : NAN;
         }
     }
-    write_raster(dir, "water", water, g, s.crs_wkt, s.epsg);
-    write_raster(dir, "waterbody_labels", labels, g, s.crs_wkt, s.epsg);
+    const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
+    dir.set_units_note(units_note(s));
+    write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg, formats);
+    write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats);
 
-    const auto f = picture_factor(g);
-    const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
-    const auto overlay =
-        io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
-    dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
+    if (formats.png) {
+        const auto f = picture_factor(g);
+        const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
+        const auto overlay =
+            io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
+        dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
+    }
 
     std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
                                     "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
                                     "dropout_fraction"};
     std::vector<std::vector<io::table_value>> rows;
     for (const auto& b : w.bodies) {
-        const bounds box = g.extent(b.box);
+        const bounds box = in_crs.extent(b.box);
         rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg, b.stopped_by_ks,
                         b.mean_intensity, b.water_level_m, b.dropout_fraction});
     }
     dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
 
     std::vector<io::geojson_feature> features;
-    for (const auto& lp : polygonize(w.labels, g)) {
+    for (const auto& lp : polygonize(w.labels, in_crs)) {
         const auto& b = w.bodies[static_cast<std::size_t>(lp.label - 1)];
         for (const auto& poly : lp.polygons) {
             features.push_back({poly.rings, {{"label", b.label}, {"area_m2", b.area_m2},

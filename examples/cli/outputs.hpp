@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include <lidarfx/kernels/filter/survey_footprint.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "cli_common.hpp"
@@ -14,15 +15,29 @@ namespace lidarfx::cli {
 void print_survey(const survey& s);
 
 /// min_z, max_z, mean_intensity, count, dropout (.asc/.tif) and PNG quicklooks of the survey rasters.
-void write_point_rasters(io::output_folder& dir, const survey& s);
+/// `formats` says which files; the files are written on up to `threads` threads (0 = all cores).
+void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats = {}, int threads = 0);
 
 /// The names write_point_rasters and write_waterbodies give their files (checked before long work).
-std::vector<std::string> point_raster_file_names();
-std::vector<std::string> waterbody_file_names();
+std::vector<std::string> point_raster_file_names(const output_formats& formats = {});
+std::vector<std::string> waterbody_file_names(const output_formats& formats = {});
 
-/// water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land, 1..n by decreasing area),
-/// GeoTIFF twins, water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
-void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w);
+/// Waterbodies of a survey found inside its footprint, and that footprint.
+struct survey_waterbodies {
+    raster<std::uint8_t> footprint;      ///< 1 = inside the area flown (footprint_of)
+    extract_waterbodies_result result;
+};
+
+/// extract_waterbodies on the survey's rasters, limited to footprint_of(s, hull_radius_m, opt.run.threads).
+survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_options& opt,
+                                    double hull_radius_m = survey_footprint_options{}.hull_radius_m);
+
+/// water.asc (1 water, 0 land, -9999 no data: outside the footprint, or no return within 2 cells),
+/// waterbody_labels.asc (0 land, 1..n by decreasing area, -9999 outside the footprint), GeoTIFF twins,
+/// water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
+/// `footprint`: 1 = inside the area flown (footprint_of).
+void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
+                       raster_view<const std::uint8_t> footprint, const output_formats& formats = {});
 
 /// Prints the diagnostics of the inputs: problems and warnings.
 void print_diagnostics(const water_diagnostics& d);

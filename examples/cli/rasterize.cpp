@@ -15,26 +15,28 @@ namespace {
 
 constexpr const char* usage =
     "usage: lidarfx rasterize IN.las [MORE.las ...] --cell METRES --out DIR [--threads N] [--memory SIZE]\n"
-    "                         [--crop XMIN,YMIN,XMAX,YMAX] [--force]\n"
+    "                         [--crop XMIN,YMIN,XMAX,YMAX] [--formats asc,tif,png] [--force]\n"
     "Writes min_z, max_z, mean_intensity, count and dropout as ESRI ASCII grids (.asc; GeoTIFF .tif too\n"
     "when built with GDAL) on a grid aligned to multiples of the cell size (no data = -9999), and PNG\n"
     "quicklooks. Default cell: 2 m. --threads N: 0 = all cores (default), 1 = read and rasterize on one\n"
     "thread; the rasters are the same for every N. A grid over the memory budget (--memory, default half the\n"
     "physical memory) or a cell far too small for the point density is refused at once (exit code 2) with a\n"
     "cell size that fits; --force runs a too-small cell anyway. Outputs appear complete or not at all, with\n"
-    "DIR/manifest.json (sizes, SHA-256) written last; one run per folder at a time.\n";
+    "DIR/manifest.json (sizes, SHA-256) written last; one run per folder at a time. --cell is metres and\n"
+    "heights are written in metres whatever the files' unit (feet are converted); the grids are georeferenced\n"
+    "in the files' CRS (--crop in its units). Files in degrees (a geographic CRS) are refused: reproject first.\n";
 
 int run_rasterize(const std::vector<std::string>& args)
 {
-    const lidarfx::cli::arguments a(args, {"cell", "out", "threads", "memory", "crop"}, {"help", "force"});
+    const lidarfx::cli::arguments a(args, {"cell", "out", "threads", "memory", "crop", "formats"}, {"help", "force"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     // Per cell: the accumulator (24 B), the rasters (18 B) and the writers' float copies and pictures.
     const auto options = lidarfx::cli::survey_options_from(a, 56);
     lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
-    for (const auto& name : lidarfx::cli::point_raster_file_names()) out.check_name(name);
+    for (const auto& name : lidarfx::cli::point_raster_file_names(options.formats)) out.check_name(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), options);
     lidarfx::cli::print_survey(s);
-    lidarfx::cli::write_point_rasters(out, s);
+    lidarfx::cli::write_point_rasters(out, s, options.formats, options.threads);
     lidarfx::cli::commit_and_report(out, lidarfx::cli::command_line("rasterize", args));
     return 0;
 }

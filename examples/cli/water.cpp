@@ -20,7 +20,9 @@ constexpr const char* usage =
     "Extracts waterbodies: writes water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land,\n"
     "1..n by decreasing area), GeoTIFF twins when built with GDAL, water_overlay.png, waterbodies.csv and\n"
     "waterbodies.geojson. Inputs that cannot support the method (no intensity, too few points per cell)\n"
-    "are refused with the reason and exit code 3; --force runs anyway.\n"
+    "are refused with the reason and exit code 3; --force runs anyway. Lengths, heights and areas are metres\n"
+    "whatever the files' unit (feet are converted); maps and polygons are in the files' CRS. Files in degrees\n"
+    "(a geographic CRS) are refused (exit code 2): reproject them first.\n"
     "options (defaults in brackets):\n"
     "  --cell M              cell size, metres [2]\n"
     "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
@@ -34,8 +36,10 @@ constexpr const char* usage =
     "  --level-tolerance M   narrow-water refinement tolerance, metres, 0 = off [0.15]\n"
     "  --island-min-area A   islands at least this large stay land, m2 [200]\n"
     "  --bridge-span M       bridge gaps up to this long, metres, 0 = off [30]\n"
+    "  --hull-radius M       survey footprint: empty space that a disc of this radius reaches from outside\n"
+    "                        was not flown (no data, never water), metres, 0 = off [25]\n"
     "  --memory SIZE         refuse grids whose estimate exceeds SIZE (4GiB, 512MiB) [half the memory]\n"
-    "  --crop X0,Y0,X1,Y1    only points inside this box, metres of the file's CRS\n"
+    "  --crop X0,Y0,X1,Y1    only points inside this box, in the units of the files' CRS\n"
     "  --force               run even when the inputs cannot support the method\n";
 
 int run_water(const std::vector<std::string>& args)
@@ -43,7 +47,7 @@ int run_water(const std::vector<std::string>& args)
     const lidarfx::cli::arguments a(args,
                                     {"cell", "out", "threads", "veg-height", "min-seed-cells", "theta-start",
                                      "theta-step", "theta-max", "alpha", "level-tolerance", "island-min-area",
-                                     "bridge-span", "memory", "crop"},
+                                     "bridge-span", "hull-radius", "memory", "crop", "formats"},
                                     {"help", "force", "one-sided"});
     if (const auto code = lidarfx::cli::stop_for_usage(a, usage, true)) return *code;
     lidarfx::extract_waterbodies_options opt;
@@ -62,6 +66,7 @@ int run_water(const std::vector<std::string>& args)
     opt.level_tolerance_m = a.number("level-tolerance", opt.level_tolerance_m);
     opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
+    const double hull_radius_m = a.number("hull-radius", lidarfx::survey_footprint_options{}.hull_radius_m);
     opt.check_inputs = !a.has("force");
     opt.run.progress = lidarfx::cli::progress_bar("waterbodies");
     // Each flag is checked under its own name before any work (the library would name its option instead).
@@ -84,14 +89,18 @@ int run_water(const std::vector<std::string>& args)
          "a finite number >= 0 (metres)", opt.level_tolerance_m);
     need(opt.island_min_area_m2 >= 0, "island-min-area", ">= 0 (m2; inf keeps every island)", opt.island_min_area_m2);
     need(opt.bridge_max_span_m >= 0, "bridge-span", ">= 0 (metres; 0 disables)", opt.bridge_max_span_m);
+    need(hull_radius_m >= 0 && std::isfinite(hull_radius_m), "hull-radius", "a finite number >= 0 (metres; 0 disables)",
+         hull_radius_m);
 
-    // Per cell: the survey rasters (42 B while reading) and the method's rasters (labels, angles, masks, bins).
-    const auto survey_options = lidarfx::cli::survey_options_from(a, 120);
+    // Per cell: the survey rasters (43 B while reading), the method's rasters (labels, angles, masks, bins) and
+    // the footprint's (two padded distance transforms).
+    const auto survey_options = lidarfx::cli::survey_options_from(a, 128);
     lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
-    for (const auto& name : lidarfx::cli::waterbody_file_names()) out.check_name(name);
+    for (const auto& name : lidarfx::cli::waterbody_file_names(survey_options.formats)) out.check_name(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), survey_options);
     lidarfx::cli::print_survey(s);
-    const auto w = lidarfx::extract_waterbodies(s.rasters, opt);
+    const auto found = lidarfx::cli::find_waterbodies(s, opt, hull_radius_m);
+    const auto& w = found.result;
     lidarfx::cli::print_diagnostics(w.diagnostics);
     if (!w.ran) {
         std::cerr << "lidarfx water: these data cannot support waterbody extraction (see above); no map was "
@@ -99,7 +108,7 @@ int run_water(const std::vector<std::string>& args)
         return 3;
     }
     lidarfx::cli::print_waterbodies(w);
-    lidarfx::cli::write_waterbodies(out, s, w);
+    lidarfx::cli::write_waterbodies(out, s, w, found.footprint, survey_options.formats);
     lidarfx::cli::commit_and_report(out, lidarfx::cli::command_line("water", args));
     return 0;
 }

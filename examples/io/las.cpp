@@ -2,15 +2,18 @@
 #include "io/las.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
 
 #include <lidarfx/core/error.hpp>
+#include <lidarfx/core/parallel.hpp>
 
 #include "io/las_format.hpp"
+#include "io/laz.hpp"
 
 namespace lidarfx::io {
 
@@ -28,18 +31,6 @@ std::string fixed_string(const std::uint8_t* p, std::size_t n)
     std::size_t len = 0;
     while (len < n && p[len] != 0) ++len;
     return std::string(reinterpret_cast<const char*>(p), len);
-}
-
-bool has_laz_extension(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return ext == ".laz";
-}
-
-std::string laz_message()
-{
-    return "LAZ (compressed) is not supported; decompress with laszip/pdal first";
 }
 
 /// Decodes `n` records of `stride` bytes at `p` into `out` from index `at`. Field offsets are fixed per
@@ -203,8 +194,6 @@ void las_reader::parse()
     }
     const std::uint8_t* p = head.data();
     if (std::memcmp(p, "LASF", 4) != 0) fail(path_, "not a LAS file (the signature is not 'LASF')");
-    const bool compressed_bits = head_size > 104 && (p[104] & 0xC0) != 0;
-    if (compressed_bits || has_laz_extension(path_)) fail(path_, laz_message());
     if (head_size < header_size_10) {
         fail(path_, "truncated header: the file has " + std::to_string(file_size_) +
                         " bytes, a LAS header at least " + std::to_string(header_size_10));
@@ -225,7 +214,9 @@ void las_reader::parse()
     h.header_size = load<std::uint16_t>(p + 94);
     h.offset_to_point_data = load<std::uint32_t>(p + 96);
     h.vlr_count = load<std::uint32_t>(p + 100);
-    h.point_format = p[104];
+    // LASzip marks compressed point data with bit 7 (older writers bit 6) of the format id.
+    h.point_format = p[104] & 0x3F;
+    h.compressed = (p[104] & 0xC0) != 0;
     h.point_record_length = load<std::uint16_t>(p + 105);
 
     const std::uint16_t min_header = header_size_for(h.version_minor);
@@ -278,9 +269,9 @@ void las_reader::parse()
         if (any) h.points_by_return = by_return;
     }
 
-    // The point records must lie inside the file.
+    // The point records must lie inside the file (LAZ: checked against the chunk table).
     const std::uint64_t room = file_size_ - h.offset_to_point_data;
-    if (h.point_count > room / h.point_record_length) {
+    if (!h.compressed && h.point_count > room / h.point_record_length) {
         fail(path_, "truncated: the header declares " + std::to_string(h.point_count) + " points of " +
                         std::to_string(h.point_record_length) + " bytes from byte " +
                         std::to_string(h.offset_to_point_data) + " but the file has " +
@@ -332,7 +323,8 @@ void las_reader::parse()
         h.vlrs.push_back(std::move(v));
     }
     if (h.evlr_count > 0) {
-        const std::uint64_t points_end = h.offset_to_point_data + h.point_count * h.point_record_length;
+        const std::uint64_t points_end =
+            h.offset_to_point_data + (h.compressed ? 0 : h.point_count * h.point_record_length);
         if (h.evlr_offset < points_end) {
             fail(path_, "start of the first EVLR (byte " + std::to_string(h.evlr_offset) +
                             ") lies inside the header or the point data (which ends at byte " +
@@ -347,11 +339,23 @@ void las_reader::parse()
     }
 
     for (const las_vlr& v : h.vlrs) {
-        if (v.user_id == "laszip encoded" && v.record_id == 22204) fail(path_, laz_message());
-        if (v.user_id != "LASF_Projection" || (v.record_id != 34735 && v.record_id != 2112)) continue;
+        if (v.user_id != "LASF_Projection" ||
+            (v.record_id != 34735 && v.record_id != 34736 && v.record_id != 34737 && v.record_id != 2112)) {
+            continue;
+        }
         const std::uint8_t* data = bytes_at(v.data_offset, static_cast<std::size_t>(v.data_size));
         if (v.record_id == 2112) {
             h.wkt = fixed_string(data, static_cast<std::size_t>(v.data_size));
+            h.has_wkt_record = true;
+            continue;
+        }
+        if (v.record_id == 34736) {   // GeoDoubleParams: the doubles GeoKeys point into (a partial one is dropped)
+            h.geo_doubles.resize(static_cast<std::size_t>(v.data_size / 8));
+            for (std::size_t k = 0; k < h.geo_doubles.size(); ++k) h.geo_doubles[k] = load<double>(data + 8 * k);
+            continue;
+        }
+        if (v.record_id == 34737) {   // GeoAsciiParams: kept byte for byte, since keys index into it
+            h.geo_ascii.assign(reinterpret_cast<const char*>(data), static_cast<std::size_t>(v.data_size));
             continue;
         }
         // GeoKeyDirectory: a header {version, revision, minor, key count} then 4 x u16 per key.
@@ -376,6 +380,176 @@ void las_reader::parse()
             else if (key.id == 4096) h.epsg_vertical = code;
         }
     }
+    if (h.compressed) open_laz();
+}
+
+struct las_reader::laz_state {
+    laz_vlr vlr;
+    std::vector<laz_chunk> chunks;
+    std::mutex file_mutex;   // guards the file stream when worker threads fetch chunks
+    /// What one thread needs to decode a chunk; kept in a pool so decoders are reused across reads.
+    struct worker {
+        laz_chunk_decoder decoder;
+        std::vector<std::uint8_t> compressed, records;
+    };
+    std::mutex pool_mutex;
+    std::vector<std::unique_ptr<worker>> pool;
+    // The last chunk decoded (a read that ends inside a chunk continues there without decoding it again).
+    std::size_t cached = SIZE_MAX;
+    std::vector<std::uint8_t> cached_records;
+
+    std::unique_ptr<worker> take(std::uint16_t record_length)
+    {
+        std::lock_guard lock(pool_mutex);
+        if (pool.empty()) return std::make_unique<worker>(worker{laz_chunk_decoder(vlr, record_length), {}, {}});
+        auto w = std::move(pool.back());
+        pool.pop_back();
+        return w;
+    }
+    void give(std::unique_ptr<worker> w)
+    {
+        std::lock_guard lock(pool_mutex);
+        pool.push_back(std::move(w));
+    }
+    /// Index of the chunk holding point `index` (< point count).
+    std::size_t chunk_of(std::uint64_t index) const
+    {
+        const auto it = std::upper_bound(chunks.begin(), chunks.end(), index,
+                                         [](std::uint64_t i, const laz_chunk& c) { return i < c.first_point; });
+        return static_cast<std::size_t>(it - chunks.begin()) - 1;
+    }
+};
+
+void las_reader::open_laz()
+{
+    const las_header& h = header_;
+    const las_vlr* found = nullptr;
+    for (const las_vlr& v : h.vlrs) {
+        if (v.user_id == "laszip encoded" && v.record_id == 22204) found = &v;
+    }
+    if (!found) {
+        fail(path_, "the point format says LAZ (compressed) but the file has no laszip VLR (user id 'laszip "
+                    "encoded', record 22204)");
+    }
+    laz_ = std::make_unique<laz_state>();
+    {
+        const std::uint8_t* data = bytes_at(found->data_offset, static_cast<std::size_t>(found->data_size));
+        laz_->vlr = parse_laz_vlr({data, static_cast<std::size_t>(found->data_size)}, h.point_format,
+                                  h.point_record_length, path_);
+    }
+    // The point data starts with the 64-bit offset of the chunk table; -1 (a writer that could not seek
+    // back) means the offset is in the last 8 bytes of the file.
+    const std::uint64_t first_chunk = std::uint64_t{h.offset_to_point_data} + 8;
+    std::int64_t table = load<std::int64_t>(bytes_at(h.offset_to_point_data, 8));
+    if (table == -1) {
+        if (file_size_ < first_chunk + 8) fail(path_, "truncated LAZ file: no chunk table offset at its end");
+        table = load<std::int64_t>(bytes_at(file_size_ - 8, 8));
+    }
+    if (table < 0 || static_cast<std::uint64_t>(table) < first_chunk ||
+        static_cast<std::uint64_t>(table) > file_size_ - 8) {
+        fail(path_, "the LAZ chunk table offset " + std::to_string(table) + " lies outside the point data (bytes " +
+                        std::to_string(first_chunk) + " to " + std::to_string(file_size_) +
+                        "); is the file truncated?");
+    }
+    const auto table_offset = static_cast<std::uint64_t>(table);
+    // The compressed table takes at most a few bytes per chunk; there are at most `room / record` chunks.
+    const std::uint64_t max_chunks = (table_offset - first_chunk) / h.point_record_length;
+    const std::uint64_t table_bytes = std::min<std::uint64_t>(file_size_ - table_offset, 16 + 24 * max_chunks);
+    const std::uint8_t* t = bytes_at(table_offset, static_cast<std::size_t>(table_bytes));
+    const std::vector<std::uint8_t> copy(t, t + table_bytes);
+    laz_->chunks = parse_laz_chunk_table(copy, laz_->vlr, first_chunk, table_offset, h.point_count,
+                                         h.point_record_length, path_);
+}
+
+void las_reader::set_threads(int threads)
+{
+    if (threads < 0) fail(path_, "set_threads: threads must be >= 0 (got " + std::to_string(threads) + ")");
+    threads_ = threads;
+}
+
+void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink)
+{
+    const las_header& h = header_;
+    laz_state& z = *laz_;
+    const std::size_t stride = h.point_record_length;
+    const std::uint64_t begin = next_, end = next_ + n;
+    const std::size_t c0 = z.chunk_of(begin), c1 = z.chunk_of(end - 1);
+    // Converts the part of chunk c inside [begin, end) from its decoded records into `chunk`.
+    const auto take_points = [&](std::size_t c, const std::uint8_t* records) {
+        const laz_chunk& k = z.chunks[c];
+        const std::uint64_t lo = std::max(begin, k.first_point), hi = std::min(end, k.first_point + k.point_count);
+        sink(records + (lo - k.first_point) * stride, static_cast<std::size_t>(hi - lo), static_cast<std::size_t>(lo - begin));
+    };
+    std::vector<std::uint8_t> next_cache;
+    const bool file = file_.is_open();
+    std::size_t first = c0;   // of the batch at hand
+    std::vector<std::exception_ptr> errors;   // per chunk of the batch
+    const auto body = [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
+        for (std::ptrdiff_t b = b0; b < b1; ++b) try {
+            const std::size_t c = first + static_cast<std::size_t>(b);
+            if (c == z.cached) {
+                take_points(c, z.cached_records.data());
+                continue;
+            }
+            const laz_chunk& k = z.chunks[c];
+            auto w = z.take(h.point_record_length);
+            const auto bytes = static_cast<std::size_t>(k.byte_count);
+            const std::uint8_t* data;
+            if (file) {
+                std::lock_guard lock(z.file_mutex);
+                const std::uint8_t* p = bytes_at(k.offset, bytes);
+                w->compressed.assign(p, p + bytes);
+                data = w->compressed.data();
+            } else {
+                data = bytes_at(k.offset, bytes);
+            }
+            std::vector<std::uint8_t>& records = c == c1 ? next_cache : w->records;
+            w->decoder.decode({data, bytes}, k.point_count, records,
+                              path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
+            take_points(c, records.data());
+            z.give(std::move(w));
+        } catch (...) {
+            errors[static_cast<std::size_t>(b)] = std::current_exception();
+        }
+    };
+    // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
+    // before its claimed count is allocated), and each batch runs in parallel.
+    const int threads = lidarfx::detail::resolve_threads(threads_, "las_reader");
+    const std::size_t batch = threads == 1 ? 1 : 2 * static_cast<std::size_t>(threads);
+    for (; first <= c1; first += batch) {
+        const std::size_t last = std::min(c1, first + batch - 1);
+        grow(static_cast<std::size_t>(std::min(end, z.chunks[last].first_point + z.chunks[last].point_count) - begin));
+        errors.assign(last - first + 1, nullptr);
+        lidarfx::parallel_for_rows(static_cast<std::ptrdiff_t>(last - first + 1), 1, threads, body);
+        // The first failing chunk in file order, whatever the thread count (all of the batch ran).
+        for (const auto& e : errors) {
+            if (e) std::rethrow_exception(e);
+        }
+    }
+    if (z.cached != c1) {
+        z.cached_records.swap(next_cache);
+        z.cached = c1;
+    }
+    next_ = end;
+}
+
+std::size_t las_reader::read_records(std::vector<std::uint8_t>& records, std::size_t max_points)
+{
+    const las_header& h = header_;
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max_points, h.point_count - next_));
+    const std::size_t stride = h.point_record_length;
+    records.resize(laz_ ? 0 : n * stride);
+    if (n == 0) return 0;
+    const auto copy = [&](const std::uint8_t* from, std::size_t count, std::size_t at) {
+        std::memcpy(records.data() + at * stride, from, count * stride);
+    };
+    if (laz_) {
+        read_laz(n, [&](std::size_t points) { records.resize(points * stride); }, copy);
+    } else {
+        copy(bytes_at(h.offset_to_point_data + next_ * stride, n * stride), n, 0);
+        next_ += n;
+    }
+    return n;
 }
 
 void las_reader::seek(std::uint64_t index)
@@ -391,7 +565,17 @@ std::size_t las_reader::read(las_points& chunk, std::size_t max_points)
 {
     const las_header& h = header_;
     const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(max_points, h.point_count - next_));
-    chunk.resize(n, h.has_gps_time());
+    chunk.resize(laz_ ? 0 : n, h.has_gps_time());
+    if (n == 0) return 0;
+    if (laz_) {
+        const decoder convert = decoder_for(h.point_format);
+        read_laz(
+            n, [&](std::size_t points) { chunk.resize(points, h.has_gps_time()); },
+            [&](const std::uint8_t* records, std::size_t count, std::size_t at) {
+                convert(records, count, h.point_record_length, h, chunk, at);
+            });
+        return n;
+    }
     const std::size_t stride = h.point_record_length;
     const std::size_t block_points = std::max<std::size_t>(1, block_bytes / stride);
     const decoder decode_block = decoder_for(h.point_format);

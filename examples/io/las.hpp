@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// LAS 1.0–1.4 reader (uncompressed, point formats 0–10): validated header, CRS metadata, chunked reads.
+// LAS 1.0–1.4 reader (point formats 0–10, and LAZ-compressed formats 0–3 and 6–8): validated header, CRS
+// metadata, chunked reads.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,6 +34,7 @@ bool las_format_has_gps_time(int point_format) noexcept;
 /// value is stored in `value` itself), count, and value or index.
 struct las_geo_key {
     std::uint16_t id = 0, location = 0, count = 0, value = 0;
+    friend bool operator==(const las_geo_key&, const las_geo_key&) = default;
 };
 
 /// A variable-length record (VLR) or, in LAS 1.4, an extended one (EVLR): its identity and where its
@@ -57,7 +61,8 @@ struct las_header {
     std::uint16_t header_size = 0;            ///< bytes; >= 227 (1.0–1.2), 235 (1.3), 375 (1.4)
     std::uint32_t offset_to_point_data = 0;   ///< bytes from the file start to the first point record
     std::uint32_t vlr_count = 0;
-    int point_format = 0;                     ///< 0..10
+    int point_format = 0;                     ///< 0..10 (the compression bits of LAZ removed)
+    bool compressed = false;                  ///< LAZ: point data compressed by LASzip
     std::uint16_t point_record_length = 0;    ///< bytes per record, >= las_min_record_length(point_format)
     std::uint64_t point_count = 0;
     std::array<std::uint64_t, 15> points_by_return{};
@@ -70,10 +75,13 @@ struct las_header {
 
     // Coordinate reference system, kept as metadata (nothing is reprojected).
     std::vector<las_geo_key> geo_keys;        ///< GeoKeyDirectory entries, empty when absent
+    std::vector<double> geo_doubles;          ///< GeoDoubleParams (34736) the keys point into, empty when absent
+    std::string geo_ascii;                    ///< GeoAsciiParams (34737) as stored ('|'-ended fields, NULs kept)
     int epsg_projected = 0;                   ///< ProjectedCSTypeGeoKey (3072); 0 = absent or user-defined
     int epsg_geographic = 0;                  ///< GeographicTypeGeoKey (2048); 0 = absent or user-defined
     int epsg_vertical = 0;                    ///< VerticalCSTypeGeoKey (4096); 0 = absent or user-defined
     std::string wkt;                          ///< OGC coordinate system WKT (record 2112), empty when absent
+    bool has_wkt_record = false;              ///< a WKT record (2112) is present, even an empty one
 
     bool has_gps_time() const noexcept { return las_format_has_gps_time(point_format); }
     /// The horizontal EPSG code: projected when known, else geographic, else 0.
@@ -101,14 +109,16 @@ struct las_points {
     soa_cloud<> cloud() const;
 };
 
-/// Reads an uncompressed LAS 1.0–1.4 file (point formats 0–10) in chunks:
+/// Reads a LAS 1.0–1.4 file (point formats 0–10) or a LAZ file (LASzip, formats 0–3 and 6–8) in chunks:
 ///     las_reader r(path); r.header(); las_points chunk; while (r.read(chunk, 1 << 20)) { ... }
 /// The constructor reads and validates the header and (E)VLRs: signature, version, header size, format
-/// id, record length, point-data offset, counts against the file size, VLR extents, GeoKeys. Reads then
-/// decode large blocks (one read call each) with fixed field offsets per format, O(points).
+/// id, record length, point-data offset, counts against the file size, VLR extents, GeoKeys; for LAZ the
+/// laszip VLR and the chunk table. Reads then decode large blocks (one read call each) with fixed field
+/// offsets per format, O(points); LAZ chunks are decoded one at a time (memory of one chunk) or, with
+/// set_threads(), several chunks of one read in parallel, with identical results.
 /// Every error is a std::runtime_error whose message starts with the file path (or the buffer's name):
-/// "<path>: LAZ (compressed) is not supported; decompress with laszip/pdal first", "<path>: not a LAS
-/// file ...", "<path>: truncated ...", and so on for each inconsistent header field.
+/// "<path>: not a LAS file ...", "<path>: truncated ...", "<path>: LAZ chunk 3 of 9: the compressed data
+/// ends early ...", and so on for each inconsistent header field.
 class las_reader {
 public:
     /// Opens and validates `path`. @throws std::runtime_error naming the file.
@@ -137,12 +147,27 @@ public:
     /// read) and returns that count; 0 at the end. @throws std::runtime_error on I/O failure.
     std::size_t read(las_points& chunk, std::size_t max_points);
 
+    /// Reads up to `max_points` point records, as stored in an uncompressed LAS file (LAZ decoded), from the
+    /// current position into `records` (resized to count * point_record_length bytes); returns the count.
+    std::size_t read_records(std::vector<std::uint8_t>& records, std::size_t max_points);
+
     /// Reads every point of the file (from the start, whatever the position; the position ends at the end).
     las_points read_all();
 
+    /// Threads that decode the LAZ chunks of one read() (1 by default, 0 = all cores); results do not
+    /// depend on it. No effect on uncompressed files. @throws std::runtime_error if threads < 0.
+    void set_threads(int threads);
+
 private:
+    struct laz_state;
     const std::uint8_t* bytes_at(std::uint64_t offset, std::size_t size);
     void parse();
+    void open_laz();
+    /// Decodes points [position, position + n) of a LAZ file in batches of chunks: grow(m) before each
+    /// batch (m = points up to its end), then sink(records, count, index) for every chunk of it (index
+    /// counts from the position), possibly from several threads at once.
+    using record_sink = std::function<void(const std::uint8_t*, std::size_t, std::size_t)>;
+    void read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink);
 
     std::string path_;
     std::ifstream file_;                       // used when reading a file
@@ -152,6 +177,8 @@ private:
     std::vector<std::uint8_t> buffer_;
     las_header header_;
     std::uint64_t next_ = 0;
+    std::unique_ptr<laz_state> laz_;           // LAZ only: chunk table, decoders, the last chunk decoded
+    int threads_ = 1;
 };
 
 /// Reads every point of a LAS file. @throws std::runtime_error naming the file.

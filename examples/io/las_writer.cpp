@@ -45,15 +45,18 @@ std::vector<std::uint8_t> geo_key_directory(const las_write_options& o)
     const auto key = [&](int id, int value) {
         keys.push_back({static_cast<std::uint16_t>(id), 0, 1, static_cast<std::uint16_t>(value)});
     };
-    key(1024, o.epsg_projected > 0 ? 1 : 2);          // GTModelTypeGeoKey: projected / geographic
-    if (o.epsg_geographic > 0) key(2048, o.epsg_geographic);
-    if (o.epsg_projected > 0) {
-        key(3072, o.epsg_projected);
-        key(3076, 9001);                              // ProjLinearUnitsGeoKey: metre
-    }
-    if (o.epsg_vertical > 0) {
-        key(4096, o.epsg_vertical);
-        key(4099, 9001);                              // VerticalUnitsGeoKey: metre
+    for (const las_geo_key& k : o.geo_keys) keys.push_back({k.id, k.location, k.count, k.value});
+    if (keys.empty()) {
+        key(1024, o.epsg_projected > 0 ? 1 : 2);      // GTModelTypeGeoKey: projected / geographic
+        if (o.epsg_geographic > 0) key(2048, o.epsg_geographic);
+        if (o.epsg_projected > 0) {
+            key(3072, o.epsg_projected);
+            key(3076, 9001);                          // ProjLinearUnitsGeoKey: metre
+        }
+        if (o.epsg_vertical > 0) {
+            key(4096, o.epsg_vertical);
+            key(4099, 9001);                          // VerticalUnitsGeoKey: metre
+        }
     }
     std::vector<std::uint8_t> out(8 + 8 * keys.size());
     const std::array<std::uint16_t, 4> head{1, 1, 0, static_cast<std::uint16_t>(keys.size())};
@@ -66,10 +69,20 @@ std::vector<std::uint8_t> geo_key_directory(const las_write_options& o)
 std::vector<std::vector<std::uint8_t>> vlrs_for(const las_write_options& o)
 {
     std::vector<std::vector<std::uint8_t>> out;
-    if (o.epsg_projected > 0 || o.epsg_geographic > 0 || o.epsg_vertical > 0) {
+    if (o.epsg_projected > 0 || o.epsg_geographic > 0 || o.epsg_vertical > 0 || !o.geo_keys.empty()) {
         out.push_back(vlr("LASF_Projection", 34735, "GeoKeyDirectoryTag", geo_key_directory(o)));
     }
-    if (!o.wkt.empty()) {
+    if (!o.geo_doubles.empty()) {
+        std::vector<std::uint8_t> doubles(8 * o.geo_doubles.size());
+        for (std::size_t k = 0; k < o.geo_doubles.size(); ++k) store(doubles.data() + 8 * k, o.geo_doubles[k]);
+        out.push_back(vlr("LASF_Projection", 34736, "GeoDoubleParamsTag", doubles));
+    }
+    if (!o.geo_ascii.empty()) {
+        std::vector<std::uint8_t> text(o.geo_ascii.begin(), o.geo_ascii.end());
+        text.push_back(0);
+        out.push_back(vlr("LASF_Projection", 34737, "GeoAsciiParamsTag", text));
+    }
+    if (!o.wkt.empty() || o.empty_wkt_record) {
         std::vector<std::uint8_t> text(o.wkt.begin(), o.wkt.end());
         text.push_back(0);
         out.push_back(vlr("LASF_Projection", 2112, "OGC WKT coordinate system", text));
@@ -95,6 +108,8 @@ void validate(const las_write_options& o)
         detail::require(code >= 0 && code < 32767, fn, "EPSG codes", "in 0..32766", code);
     }
     detail::require(o.wkt.size() < 65535 - 1, fn, "wkt", "shorter than 65534 bytes", o.wkt.size());
+    detail::require(o.geo_keys.size() < 8000 && o.geo_doubles.size() < 8000 && o.geo_ascii.size() < 65534, fn,
+                    "geo_keys, geo_doubles and geo_ascii must fit in VLRs");
 }
 
 template <class V>

@@ -26,6 +26,12 @@ struct las_write_options {
     int epsg_geographic = 0;          ///< > 0: GeographicTypeGeoKey (2048)
     int epsg_vertical = 0;            ///< > 0: VerticalCSTypeGeoKey (4096), metres
     std::string wkt{};                ///< non-empty: an OGC WKT VLR (2112); LAS 1.4 also sets global encoding bit 4
+    bool empty_wkt_record = false;    ///< with an empty `wkt`: write an empty WKT record (as careless writers do)
+    /// Non-empty: the GeoKeyDirectory entries written as they are (instead of the keys of the EPSG codes above),
+    /// with GeoDoubleParams (34736) and GeoAsciiParams (34737) VLRs when those are non-empty.
+    std::vector<las_geo_key> geo_keys{};
+    std::vector<double> geo_doubles{};
+    std::string geo_ascii{};          ///< '|'-ended fields; a NUL is appended
     std::string system_identifier = "lidarfx";
     std::string generating_software = "lidarfx las_writer";
 };

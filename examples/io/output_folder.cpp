@@ -241,15 +241,18 @@ void output_folder::check_name(const std::string& name) const
 void output_folder::write(const std::string& name,
                           const std::function<void(const std::string& temporary_path)>& writer)
 {
-    if (committed_) throw failure(dir_ / name, "written after the run was committed");
-    check_name(name);
-    if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) {
-        throw failure(dir_ / name, "written twice in one run");
-    }
     const auto temporary = dir_ / temporary_name(name);
-    std::error_code ec;
-    std::filesystem::remove(temporary, ec);  // never write through whatever stands at the temporary name
-    pending_.push_back({name, temporary});
+    {
+        const std::lock_guard lock(mutex_);
+        if (committed_) throw failure(dir_ / name, "written after the run was committed");
+        check_name(name);
+        if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) {
+            throw failure(dir_ / name, "written twice in one run");
+        }
+        std::error_code ec;
+        std::filesystem::remove(temporary, ec);  // never write through whatever stands at the temporary name
+        pending_.push_back({name, temporary});
+    }
     writer(temporary.string());
     struct stat st {};
     if (!entry_at(temporary, st) || !S_ISREG(st.st_mode)) throw failure(dir_ / name, "the writer produced no file");
@@ -277,7 +280,9 @@ void output_folder::commit(const std::string& command)
         for (auto& r : running) r.get();  // rethrows a reader's error
     }
     std::ostringstream manifest;
-    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": " << json_string(command) << ",\n  \"files\": [";
+    manifest << "{\n  \"program\": \"lidarfx\",\n  \"command\": " << json_string(command) << ",\n";
+    if (!units_.empty()) manifest << "  \"units\": " << json_string(units_) << ",\n";
+    manifest << "  \"files\": [";
     for (std::size_t i = 0; i < pending_.size(); ++i) {
         const auto& p = pending_[i];
         manifest << (i ? ",\n" : "\n") << "    {\"name\": " << json_string(p.name)

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lidarfx::io {
@@ -36,8 +38,12 @@ public:
     void check_name(const std::string& name) const;
 
     /// Writes the output `name` by calling `writer` with a temporary path in the folder; the file takes its
-    /// final name in commit(). Writing a name twice in one run is an error.
+    /// final name in commit(). Writing a name twice in one run is an error. Several threads may write
+    /// different names at once (the writers run concurrently; the bookkeeping is serialised).
     void write(const std::string& name, const std::function<void(const std::string& temporary_path)>& writer);
+
+    /// A sentence on the units of the outputs, recorded in manifest.json as "units" (the last one set).
+    void set_units_note(std::string note) { units_ = std::move(note); }
 
     /// Moves every written file to its final name and writes manifest.json. `command` is recorded in it.
     void commit(const std::string& command = "");
@@ -53,9 +59,11 @@ private:
     std::filesystem::path dir_;
     std::vector<std::filesystem::path> inputs_;
     std::vector<pending> pending_;
+    mutable std::mutex mutex_;   // guards pending_ while writers run on several threads
     int lock_fd_ = -1;
     bool created_ = false;  // the folder did not exist before this run
     bool committed_ = false;
+    std::string units_;
 };
 
 /// SHA-256 of a file's bytes as 64 lower-case hex digits. @throws std::runtime_error naming the file.

@@ -16,13 +16,16 @@
 
 // kernels: single-purpose algorithms
 #include "lidarfx/kernels/filter/angular_filter.hpp"
+#include "lidarfx/kernels/filter/distance_transform.hpp"
 #include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/filter/slope_aspect.hpp"
+#include "lidarfx/kernels/filter/survey_footprint.hpp"
 #include "lidarfx/kernels/filter/vegetation_mask.hpp"
 #include "lidarfx/kernels/interpolate/idw_fill.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/metrics/confusion.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
+#include "lidarfx/kernels/points/scan_coverage.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 

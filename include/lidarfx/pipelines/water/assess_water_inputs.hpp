@@ -121,7 +121,7 @@ inline std::string water_issue::message() const
 
 /// Checks whether the rasters can support the waterbody method: intensity that varies between cells with
 /// returns (the KS stop compares intensity distributions), point density (needs `count`): mean points per
-/// cell p = points / cells against min_points_per_cell, with suggested cell ceil(2·sqrt(min / (points per
+/// cell p = points / cells (cells inside the footprint when one is given) against min_points_per_cell, with suggested cell ceil(2·sqrt(min / (points per
 /// m²))) / 2 m (at least cell_m), and multiple returns (vegetation). Blocking findings are problems, the
 /// others warnings. O(cells).
 /// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, min_points_per_cell < 0.
@@ -134,7 +134,7 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
     detail::validate(opt, fn);
     water_diagnostics d;
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    std::uint64_t points = 0, dropouts = 0;
+    std::uint64_t points = 0, dropouts = 0, inside = 0;
     float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::uint8_t* dropout = in.dropout.row(r);
@@ -144,6 +144,8 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
             for (std::ptrdiff_t c = 0; c < cols; ++c) points += count[c];
         }
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (!detail::inside_footprint(in, r, c)) continue;  // no data: neither a dropout nor a cell of the survey
+            ++inside;
             dropouts += dropout[c] != 0;
             // NaN compares false, so it changes neither bound.
             const float v = dropout[c] ? lo : mean[c];
@@ -155,7 +157,7 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
             for (std::ptrdiff_t c = 0; c < cols; ++c) d.has_multiple_returns |= multiple[c] && !dropout[c];
         }
     }
-    const double cells = static_cast<double>(rows * cols);
+    const double cells = static_cast<double>(std::max<std::uint64_t>(inside, 1));
     d.dropout_fraction = static_cast<double>(dropouts) / cells;
     d.has_intensity = hi > lo;
     if (!d.has_intensity) {

@@ -107,7 +107,9 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
 /// as a composition of the public steps: assess_water_inputs, water_vegetation, intensity_bins,
 /// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
 /// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
-/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). When check_inputs is set and assess_water_inputs()
+/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). With in.footprint, cells
+/// outside it are no data: they neither seed nor join a body (survey_footprint tells them apart).
+/// When check_inputs is set and assess_water_inputs()
 /// reports problems, nothing is extracted (ran = false) and the diagnostics say why. cell_m in metres.
 /// O(cells · angular radius + sum over seeds of cells reached). Progress: 0, then per seed, then 1.
 /// @throws invalid_input on rasters of different shapes, cell_m <= 0 or options out of range; cancelled.
@@ -140,8 +142,21 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                                                 .run = kernels}),
                       raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins};
     for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
-    auto seeds = water_seeds(in.dropout, {.opening_size_cells = opt.seed_opening_size_cells,
-                                          .min_cells = opt.min_seed_cells, .run = kernels});
+    // Outside the footprint nothing was flown: no seed starts there and no body grows there.
+    raster<std::uint8_t> dropout_inside;
+    if (!in.footprint.empty()) {
+        dropout_inside = raster<std::uint8_t>(rows, cols, uninitialized);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool inside = in.footprint(r, c) != 0;
+                dropout_inside.view()(r, c) = in.dropout(r, c) != 0 && inside;
+                field.eligible.view()(r, c) = field.eligible.view()(r, c) && inside;
+            }
+        }
+    }
+    auto seeds = water_seeds(in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside),
+                             {.opening_size_cells = opt.seed_opening_size_cells, .min_cells = opt.min_seed_cells,
+                              .run = kernels});
     // Growing is the first 0.9 of the run's progress; cancelling there throws in this function's name.
     const progress_callback seed_progress = [&](double f) {
         detail::report(opt.run.progress, 0.9 * f, fn);
@@ -164,6 +179,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                              .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m});
     }
     fill_small_islands(res.labels, cell_m, {.island_min_area_m2 = opt.island_min_area_m2, .run = kernels});
+    if (!in.footprint.empty()) {  // neither a bridge nor a filled hole reaches beyond what was flown
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (!in.footprint(r, c)) res.labels.view()(r, c) = 0;
+    }
     measure_waterbodies(res.labels, bodies, in, cell_m);
     res.bodies = std::move(bodies);
     for (std::ptrdiff_t i = 0; i < res.water.size(); ++i) res.water.data()[i] = res.labels.data()[i] > 0;

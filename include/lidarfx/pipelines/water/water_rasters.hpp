@@ -24,6 +24,9 @@ struct water_rasters {
     raster_view<const std::uint8_t> dropout;                 ///< 1 = no return in the cell
     raster_view<const std::uint8_t> multiple_returns = {};   ///< optional: 1 = a pulse with several returns
     raster_view<const std::uint32_t> count = {};             ///< optional: points per cell (density checks)
+    raster_view<const std::uint8_t> footprint = {};          ///< optional: 1 = inside the surveyed area (see
+                                                             ///< survey_footprint); cells outside are no
+                                                             ///< data, never dropouts. Empty = all inside
 };
 
 /// Views of the output of rasterize() (all six rasters); `pr` must outlive the result.
@@ -43,7 +46,14 @@ inline void validate(const water_rasters& in, const char* fn)
     if (!in.multiple_returns.empty())
         require_same_shape(in.min_z, in.multiple_returns, fn, "min_z", "multiple_returns");
     if (!in.count.empty()) require_same_shape(in.min_z, in.count, fn, "min_z", "count");
+    if (!in.footprint.empty()) require_same_shape(in.min_z, in.footprint, fn, "min_z", "footprint");
     require(!in.min_z.empty(), fn, "the rasters are empty (0 cells)");
+}
+
+/// True when cell (r, c) lies inside the survey's footprint (always when no footprint is given).
+inline bool inside_footprint(const water_rasters& in, std::ptrdiff_t r, std::ptrdiff_t c) noexcept
+{
+    return in.footprint.empty() || in.footprint(r, c) != 0;
 }
 
 /// min(0, smallest label) and max(0, largest label) of a label raster. O(cells).

@@ -20,6 +20,8 @@ struct point_set {
     std::vector<double> x, y, z;
     std::vector<std::uint16_t> intensity;
     std::vector<std::uint8_t> return_number, number_of_returns, classification;
+    std::vector<double> gps_time;   ///< seconds since the survey began: the time of the pulse (scan order)
+    double pulse_time_s = 0;        ///< the time push() stamps on the points it appends
 
     /// Number of points.
     std::size_t size() const noexcept { return x.size(); }
@@ -35,10 +37,10 @@ struct point_set {
     void reserve(std::size_t n)
     {
         x.reserve(n), y.reserve(n), z.reserve(n), intensity.reserve(n);
-        return_number.reserve(n), number_of_returns.reserve(n), classification.reserve(n);
+        return_number.reserve(n), number_of_returns.reserve(n), classification.reserve(n), gps_time.reserve(n);
     }
 
-    /// Appends a point; the intensity is rounded and clamped to [1, 65535].
+    /// Appends a point with GPS time pulse_time_s; the intensity is rounded and clamped to [1, 65535].
     void push(double px, double py, double pz, double point_intensity, int return_no, int returns,
               std::uint8_t point_class)
     {
@@ -49,6 +51,7 @@ struct point_set {
         return_number.push_back(static_cast<std::uint8_t>(return_no));
         number_of_returns.push_back(static_cast<std::uint8_t>(returns));
         classification.push_back(point_class);
+        gps_time.push_back(pulse_time_s);
     }
 
     friend bool operator==(const point_set&, const point_set&) = default;

@@ -178,6 +178,7 @@ point_set render_points(const world<Site>& w, double density_per_m2)
     const auto noise = [&] { return 0.05 * random.triangular(); };  // +-5 cm, sd 2 cm
 
     scan_square(w.size_m, density_per_m2, hash64(w.seed, 0x5CA9), w.scan, [&](const pulse& p) {
+        points.pulse_time_s = p.time_s;
         const double speck =
             hash_unit(w.seed, speck_tag,
                       static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x / w.water.speck_cell_m))),

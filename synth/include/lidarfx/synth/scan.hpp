@@ -18,12 +18,15 @@ struct scan_pattern {
     double max_scan_angle_deg = 15;  ///< half field of view, degrees, in (0, 60]; sets the strip width
     double across_jitter = 0.35;     ///< across-track jitter, fraction of the pulse spacing, in [0, 0.45]
     double along_jitter = 0.15;      ///< along-track jitter, fraction of the line spacing, in [0, 0.15]
+    double pulse_rate_hz = 200000;   ///< pulses per second (sets the pulses' times), > 0
+    double strip_turn_s = 60;        ///< time between the last pulse of a strip and the first of the next, s
 };
 
 /// One laser pulse: footprint centre and the scan angle it was fired at.
 struct pulse {
     double x = 0, y = 0;        ///< footprint, metres
     double scan_angle_deg = 0;  ///< off-nadir angle, degrees; > 0 east of the flight line
+    double time_s = 0;          ///< when it was fired: pulse index / pulse_rate_hz + strip_turn_s per strip, seconds
 };
 
 /// Fires `size_m^2 * density_per_m2` pulses (rounded to whole lines and pulses) over [0, size_m]^2 and
@@ -31,7 +34,8 @@ struct pulse {
 /// the swath 2 H tan(max angle); strips alternate north- and southbound. Each strip is scanned in lines
 /// perpendicular to the flight, spacing 1/sqrt(density) both ways; a line drifts forward as it is scanned
 /// (the aircraft moves) and every pulse is jittered, so local density varies as on real surveys while the
-/// mean is exact. Scan angle = atan(across-track offset / H). Deterministic from `seed`.
+/// mean is exact. Scan angle = atan(across-track offset / H); pulses are fired in the order emitted, at
+/// pulse_rate_hz, with strip_turn_s between strips. Deterministic from `seed`.
 /// O(pulses). @throws invalid_input on size_m or density_per_m2 <= 0, or options out of range.
 template <class Emit>
 void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const scan_pattern& pattern, Emit&& emit)
@@ -44,6 +48,8 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
                              "max_scan_angle_deg", "in (0, 60]", pattern.max_scan_angle_deg);
     lidarfx::detail::require(pattern.across_jitter >= 0 && pattern.across_jitter <= 0.45, fn, "across_jitter",
                              "in [0, 0.45]", pattern.across_jitter);
+    lidarfx::detail::require_positive(pattern.pulse_rate_hz, fn, "pulse_rate_hz");
+    lidarfx::detail::require(pattern.strip_turn_s >= 0, fn, "strip_turn_s", ">= 0", pattern.strip_turn_s);
     lidarfx::detail::require(pattern.along_jitter >= 0 && pattern.along_jitter <= 0.15, fn, "along_jitter",
                              "in [0, 0.15]", pattern.along_jitter);
 
@@ -57,6 +63,7 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
     const double across = strip_width / static_cast<double>(per_line);
 
     rng random(seed, 0x5CA9);
+    long long fired = 0;
     for (long long s = 0; s < strips; ++s) {
         const double x_left = static_cast<double>(s) * strip_width;
         const double x_flight = x_left + 0.5 * strip_width;
@@ -71,7 +78,9 @@ void scan_square(double size_m, double density_per_m2, std::uint64_t seed, const
                 const double x =
                     x_left + (static_cast<double>(j) + 0.5 + pattern.across_jitter * random.triangular()) * across;
                 const double y = (static_cast<double>(line) + dy + pattern.along_jitter * random.triangular()) * along;
-                emit(pulse{x, y, rad_to_deg(std::atan((x - x_flight) / pattern.flying_height_m))});
+                const double time = static_cast<double>(fired++) / pattern.pulse_rate_hz +
+                                    static_cast<double>(s) * pattern.strip_turn_s;
+                emit(pulse{x, y, rad_to_deg(std::atan((x - x_flight) / pattern.flying_height_m)), time});
             }
         }
     }
