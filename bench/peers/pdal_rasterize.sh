@@ -12,7 +12,7 @@
 #   IN.las    a path, or a name under $LIDARFX_PDAL_DATA or $LIDARFX_PDAL_DATA/las (PDAL's test/data, e.g.
 #             autzen_trim.las); default: a generated survey of $POINTS points (13.2 M) uniform over
 #             $SIDE x $SIDE metres (7,800 m: 3,900 x 3,900 cells at 2 m) by bench/make_sparse_las
-#   CELL      cell size in the file's units, default 2
+#   CELL      cell size in metres (lidarfx --cell), default 2
 # Environment: BUILD (default build/bench), THREADS (default all cores: lidarfx --threads, readers.las
 #   threads), REPEAT (default 3), PDAL (the pdal program; default from PATH, else /opt/pdal/bin/pdal),
 #   PYTHON (default /usr/bin/python3, which has python3-gdal and numpy).
@@ -88,11 +88,15 @@ print(min(r["times"]), r["user"] + r["system"])' "$work/hf.json"
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; vector extensions:" \
      "$(grep -m1 -o -w -E 'avx512f|avx2|sse4_2' /proc/cpuinfo | sort -u | xargs)"
 echo "file: $input ($(du -h "$input" | cut -f1)), cell $cell, threads $threads; $pdal ($pdal_version)"
-cat "$input" >/dev/null  # both programs read from the page cache
+# An untimed run of each first: it warms the page cache, and lidarfx's grid and log set PDAL's grid and
+# unit conversion (pdal_compare.py).
+"${lidarfx_cmd[@]}" >"$work/lidarfx.log" 2>&1 || { cat "$work/lidarfx.log" >&2; exit 1; }
+"$python" "$compare_py" pipeline "$work/lidarfx" "$work/lidarfx.log" "$cell" "$input" "$work/pdal.tif" "$threads" \
+    >"$work/pipeline.json"
+"${pdal_cmd[@]}" >"$work/pdal.log" 2>&1 || { cat "$work/pdal.log" >&2; exit 1; }
 
 prepare="rm -rf '$work/lidarfx'"
 t_lidarfx="$(best_of "${lidarfx_cmd[@]}")"
-"$python" "$compare_py" pipeline "$work/lidarfx" "$input" "$work/pdal.tif" "$threads" >"$work/pipeline.json"
 prepare="rm -f '$work/pdal.tif'"
 t_pdal="$(best_of "${pdal_cmd[@]}")"
 
@@ -105,4 +109,6 @@ awk -v a="$wall_lidarfx" -v ca="$cpu_lidarfx" -v b="$wall_pdal" -v cb="$cpu_pdal
     printf "%-32s %8s %8s   (best of %d)\n", "", "wall s", "CPU s", n
     printf "%-32s %8.2f %8.2f\n%-32s %8.2f %8.2f\n", "lidarfx rasterize", a, ca, "pdal readers.las->writers.gdal", b, cb
     printf "ratio PDAL / lidarfx: wall %.2f, CPU %.2f (> 1: lidarfx is faster)\n", b / a, cb / ca }'
-"$python" "$compare_py" compare "$work/lidarfx" "$input" "$work/pdal.tif"
+grep -m1 '^survey:' "$work/lidarfx.log" || true
+grep -q filters.assign "$work/pipeline.json" && echo "PDAL converts to metres as lidarfx does (filters.assign)"
+"$python" "$compare_py" compare "$work/lidarfx" "$work/lidarfx.log" "$cell" "$input" "$work/pdal.tif"
