@@ -5,7 +5,9 @@
 # best wall and CPU time of each (hyperfine if installed, else GNU time; best of $REPEAT), the ratio
 # PDAL / lidarfx (> 1: lidarfx is faster) and the CPU's vector extensions, and compares lidarfx's min_z,
 # max_z and count GeoTIFFs with PDAL's bands cell for cell (bench/peers/pdal_compare.py: differing cells,
-# how many the documented edge rule explains, largest difference). Skips with a message when pdal is absent.
+# how many the documented edge rule explains, largest difference; exit 1 when a difference is not the edge
+# rule's). PDAL writes with lidarfx's GeoTIFF creation options and, for a file in feet, gets lidarfx's
+# conversion to metres first (filters.assign). Skips with a message when pdal is absent.
 #
 # Usage: bash bench/peers/pdal_rasterize.sh [IN.las] [CELL]    (after `cmake --preset bench &&
 #        cmake --build --preset bench --target lidarfx_cli make_sparse_las`)
@@ -15,7 +17,8 @@
 #   CELL      cell size in metres (lidarfx --cell), default 2
 # Environment: BUILD (default build/bench), THREADS (default all cores: lidarfx --threads, readers.las
 #   threads), REPEAT (default 3), PDAL (the pdal program; default from PATH, else /opt/pdal/bin/pdal),
-#   PYTHON (default /usr/bin/python3, which has python3-gdal and numpy).
+#   PYTHON (default /usr/bin/python3, which has python3-gdal and numpy), LIDARFX_ARGS (more lidarfx options,
+#   e.g. --force; not --crop, which PDAL would not get).
 # PDAL's pipeline runs on one thread whatever THREADS says (readers.las uses threads only for LAZ).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -38,7 +41,7 @@ if ! pdal_says="$("$pdal" --version 2>&1)"; then
     echo "pdal_rasterize: skipped: $pdal does not run: $(echo "$pdal_says" | head -n 1)"
     exit 0
 fi
-pdal_version="$(echo "$pdal_says" | grep -o -E 'pdal [0-9][^ ]*' | head -n 1)"
+pdal_version="$(echo "$pdal_says" | grep -o -E 'pdal [0-9][^ ]*' | head -n 1 || true)"
 if ! "$python" -c 'import numpy; from osgeo import gdal' 2>/dev/null; then
     echo "pdal_rasterize: skipped: $python lacks numpy or GDAL's bindings (apt-get install python3-gdal)"
     exit 0
@@ -64,7 +67,9 @@ input="$(realpath "$input")"
 formats=()
 lidarfx_help="$("$lidarfx" rasterize --help 2>&1 || true)"
 [[ "$lidarfx_help" == *--formats* ]] && formats=(--formats tif)
-lidarfx_cmd=("$lidarfx" rasterize "$input" --cell "$cell" --threads "$threads" "${formats[@]}" --out "$work/lidarfx")
+read -r -a extra <<<"${LIDARFX_ARGS:-}"
+lidarfx_cmd=("$lidarfx" rasterize "$input" --cell "$cell" --threads "$threads" "${formats[@]}" "${extra[@]}"
+             --out "$work/lidarfx")
 pdal_cmd=("$pdal" pipeline "$work/pipeline.json")
 
 # "WALL CPU": the best wall time and the best CPU time (user + system) in seconds of "$@" over $repeat runs
