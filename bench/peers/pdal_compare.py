@@ -2,20 +2,28 @@
 """Helper of bench/peers/pdal_rasterize.sh: the PDAL pipeline on lidarfx's grid, and the cell-for-cell
 comparison of lidarfx's min_z / max_z / count GeoTIFFs with the bands of PDAL's writers.gdal output.
 
-    pdal_compare.py pipeline LIDARFX_DIR IN.las OUT.tif THREADS   -> pipeline JSON on stdout
-    pdal_compare.py compare  LIDARFX_DIR IN.las PDAL.tif          -> table of differing cells; exit 1 if a
-                                                                      difference is not the edge rule's
+    pdal_compare.py pipeline LIDARFX_DIR LIDARFX_LOG CELL IN.las OUT.tif THREADS  -> pipeline JSON on stdout
+    pdal_compare.py compare  LIDARFX_DIR LIDARFX_LOG CELL IN.las PDAL.tif         -> table of differing cells;
+                                                                                     exit 1 if a difference
+                                                                                     is not the edge rule's
+LIDARFX_DIR holds the outputs of `lidarfx rasterize IN.las --cell CELL`, LIDARFX_LOG its standard output.
 
-The grids are made equal: PDAL gets origin_x = x0, origin_y = y0 - rows * cell, width = cols and
-height = rows of lidarfx's min_z.tif. Two binning rules remain (docs/conventions.md, "One edge rule"):
-lidarfx puts a point on an interior horizontal lattice line into the cell south of it, PDAL into the
-cell north of it (PDAL counts rows from its south-west origin); and a point on the grid's east or north
-border belongs to lidarfx's last column / first row but lies outside PDAL's grid of the same size (PDAL
-drops it). The comparison bins the file's points by both rules in NumPy; a cell whose points differ
-between the rules is "explained by the edge rule"; any other differing cell is a real mismatch.
-Run with Debian's /usr/bin/python3 (python3-gdal, numpy).
+Same coordinates: lidarfx works in metres (x, y and z of a file in feet are multiplied by the metres per
+unit, then binned on a grid of CELL-metre cells); for such a file PDAL gets the same products first
+(filters.assign X = X * u, Y = Y * u, Z = Z * u_z), so both bin and write the same doubles. The unit comes
+from lidarfx's grid (CELL over its GeoTIFF's pixel size, snapped to the unit it names) and its log line
+"read in <unit> (z <unit>), converted to metres".
+
+Same grid: PDAL gets origin_x = x0, origin_y = y0 - rows * cell, width = cols and height = rows of lidarfx's
+grid. Two binning rules remain (docs/conventions.md, "One edge rule"): lidarfx puts a point on an interior
+horizontal lattice line into the cell south of it, PDAL into the cell north of it (PDAL counts rows from its
+south-west origin); and a point on the grid's east or north border belongs to lidarfx's last column / first
+row but lies outside PDAL's grid of the same size (PDAL drops it). The comparison bins the file's points by
+both rules in NumPy; a cell whose points differ between the rules is "explained by the edge rule"; any
+other differing cell is a real mismatch. Run with Debian's /usr/bin/python3 (python3-gdal, numpy).
 """
 import json
+import re
 import sys
 
 import numpy as np
@@ -24,13 +32,50 @@ from osgeo import gdal
 gdal.UseExceptions()
 
 
-def lidarfx_grid(lidarfx_dir):
-    """(x0, y0, cell, rows, cols) of lidarfx's min_z.tif (north-up, square cells)."""
+# Metres per unit, by the names lidarfx prints (examples/io/crs.cpp).
+UNITS = {"metre": 1.0, "foot": 0.3048, "US survey foot": 1200.0 / 3937.0, "Clarke's foot": 0.3047972654,
+         "fathom": 1.8288, "nautical mile": 1852.0, "kilometre": 1000.0}
+
+
+def unit_m(name):
+    """Metres per unit named `name` (a UNITS key or "unit of <m> m")."""
+    if name in UNITS:
+        return UNITS[name]
+    match = re.fullmatch(r"unit of (\S+) m", name)
+    if not match:
+        sys.exit(f"unknown unit '{name}' in lidarfx's log")
+    return float(match.group(1))
+
+
+def survey_units(lidarfx_dir, log, cell_m):
+    """(metres per x/y unit, metres per z unit) lidarfx applied: the horizontal one from the grid (CELL
+    metres over the GeoTIFF's pixel size), snapped to the unit the log names; 1, 1 when nothing was converted."""
+    text = open(log, errors="replace").read()
+    match = re.search(r"read in (.+?) \(z (.+?)\), converted to metres", text)
+    if not match:
+        return 1.0, 1.0
+    ratio = cell_m / gdal.Open(f"{lidarfx_dir}/min_z.tif").GetGeoTransform()[1]
+    u_xy, u_z = unit_m(match.group(1)), unit_m(match.group(2))
+    if abs(ratio - u_xy) > 1e-9 * u_xy:
+        sys.exit(f"{lidarfx_dir}/min_z.tif: pixel size {cell_m / ratio} is not {cell_m} m in {match.group(1)}")
+    return u_xy, u_z
+
+
+def lidarfx_grid(lidarfx_dir, cell_m, u_xy):
+    """lidarfx's grid in metres, (x0, y0, cell, rows, cols), from min_z.tif (in the file's units): corners
+    on multiples k * cell_m as snapped_grid computes them."""
     ds = gdal.Open(f"{lidarfx_dir}/min_z.tif")
     x0, cell, _, y0, _, neg_cell = ds.GetGeoTransform()
     if cell != -neg_cell:
         sys.exit(f"{lidarfx_dir}/min_z.tif: cells are not square ({cell} x {-neg_cell})")
-    return x0, y0, cell, ds.RasterYSize, ds.RasterXSize
+    if u_xy == 1.0:
+        if cell != cell_m:
+            sys.exit(f"{lidarfx_dir}/min_z.tif: pixel size {cell}, not the {cell_m} asked for")
+        return x0, y0, cell, ds.RasterYSize, ds.RasterXSize
+    x0_m, y0_m = round(x0 * u_xy / cell_m) * cell_m, round(y0 * u_xy / cell_m) * cell_m
+    if (x0_m / u_xy, y0_m / u_xy) != (x0, y0):  # to_crs_units (examples/cli/cli_common.cpp) divides
+        sys.exit(f"{lidarfx_dir}/min_z.tif: corner ({x0!r}, {y0!r}) is not on the {cell_m} m lattice")
+    return x0_m, y0_m, cell_m, ds.RasterYSize, ds.RasterXSize
 
 
 def pdal_origin_y(grid):
@@ -39,22 +84,26 @@ def pdal_origin_y(grid):
     return float(repr(y0 - rows * cell))
 
 
-def pipeline(lidarfx_dir, las, out_tif, threads):
-    """readers.las -> writers.gdal (binmode, min/max/count/mean, float32, DEFLATE tiled) on lidarfx's grid,
-    with the same GeoTIFF creation options as lidarfx (examples/io/geotiff.cpp)."""
-    grid = lidarfx_grid(lidarfx_dir)
+def pipeline(lidarfx_dir, log, cell_m, las, out_tif, threads):
+    """readers.las [-> filters.assign to metres] -> writers.gdal (binmode, min/max/count/mean, float32,
+    DEFLATE tiled, the same creation options as lidarfx's examples/io/geotiff.cpp) on lidarfx's grid."""
+    u_xy, u_z = survey_units(lidarfx_dir, log, float(cell_m))
+    grid = lidarfx_grid(lidarfx_dir, float(cell_m), u_xy)
     x0, y0, cell, rows, cols = grid
-    return {"pipeline": [
-        {"type": "readers.las", "filename": las, "threads": int(threads)},
-        {"type": "writers.gdal", "filename": out_tif, "resolution": cell, "binmode": True,
-         "output_type": "min,max,count,mean", "data_type": "float", "nodata": -9999,
-         "origin_x": x0, "origin_y": pdal_origin_y(grid), "width": cols, "height": rows,
-         "gdalopts": "COMPRESS=DEFLATE,PREDICTOR=3,TILED=YES,BIGTIFF=IF_SAFER"},
-    ]}
+    stages = [{"type": "readers.las", "filename": las, "threads": int(threads)}]
+    if (u_xy, u_z) != (1.0, 1.0):
+        stages.append({"type": "filters.assign",
+                       "value": [f"X = X * {u_xy!r}", f"Y = Y * {u_xy!r}", f"Z = Z * {u_z!r}"]})
+    stages.append({"type": "writers.gdal", "filename": out_tif, "resolution": cell, "binmode": True,
+                   "output_type": "min,max,count,mean", "data_type": "float", "nodata": -9999,
+                   "origin_x": x0, "origin_y": pdal_origin_y(grid), "width": cols, "height": rows,
+                   "gdalopts": "COMPRESS=DEFLATE,PREDICTOR=3,TILED=YES,BIGTIFF=IF_SAFER"})
+    return {"pipeline": stages}
 
 
-def las_xy(path):
-    """World x, y (float64, X * scale + offset as both programs compute them) of every point of a LAS file."""
+def las_xy(path, u_xy):
+    """World x, y in metres (float64: (X * scale + offset) * u_xy as both programs compute them) of every
+    point of a LAS file."""
     with open(path, "rb") as f:
         head = f.read(375)
     if head[:4] != b"LASF":
@@ -72,6 +121,9 @@ def las_xy(path):
     points = np.memmap(path, record, "r", offset_to_points, (count,))
     x = points["X"].astype(np.float64) * scale[0] + offset[0]
     y = points["Y"].astype(np.float64) * scale[1] + offset[1]
+    if u_xy != 1.0:
+        x *= u_xy
+        y *= u_xy
     return x, y
 
 
@@ -108,17 +160,19 @@ def pdal_bands(path):
     return {ds.GetRasterBand(k).GetDescription(): k for k in range(1, ds.RasterCount + 1)}
 
 
-def compare(lidarfx_dir, las, pdal_tif):
-    grid = lidarfx_grid(lidarfx_dir)
+def compare(lidarfx_dir, log, cell_m, las, pdal_tif):
+    u_xy, u_z = survey_units(lidarfx_dir, log, float(cell_m))
+    grid = lidarfx_grid(lidarfx_dir, float(cell_m), u_xy)
     x0, y0, cell, rows, cols = grid
-    x, y = las_xy(las)
+    x, y = las_xy(las, u_xy)
     ours, theirs = bin_both_ways(x, y, grid, pdal_origin_y(grid))
     moved = ours != theirs
     affected = np.zeros(rows * cols, bool)
     affected[ours[moved & (ours >= 0)]] = True
     affected[theirs[moved & (theirs >= 0)]] = True
     affected = affected.reshape(rows, cols)
-    print(f"grid {rows} x {cols} cells of {cell:g} at ({x0:.17g}, {y0:.17g}); {len(x)} points")
+    print(f"grid {rows} x {cols} cells of {cell:g} at ({x0:.17g}, {y0:.17g}); {len(x)} points"
+          + ("" if (u_xy, u_z) == (1.0, 1.0) else f"; x, y times {u_xy!r}, z times {u_z!r} (metres) on both sides"))
     print(f"edge rule: {np.count_nonzero(moved & (theirs >= 0))} points on interior horizontal lattice lines "
           f"(lidarfx: cell south, PDAL: cell north), {np.count_nonzero(theirs < 0)} on the east/north border "
           f"(outside PDAL's grid); {np.count_nonzero(affected)} cells touched")
@@ -157,10 +211,10 @@ def compare(lidarfx_dir, las, pdal_tif):
 
 
 def main(argv):
-    if len(argv) == 6 and argv[1] == "pipeline":
+    if len(argv) == 8 and argv[1] == "pipeline":
         print(json.dumps(pipeline(*argv[2:]), indent=2))
         return 0
-    if len(argv) == 5 and argv[1] == "compare":
+    if len(argv) == 7 and argv[1] == "compare":
         return compare(*argv[2:])
     sys.exit(__doc__)
 
