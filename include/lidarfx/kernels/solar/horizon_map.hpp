@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
@@ -36,7 +37,7 @@ struct hull_point {
     double t, z;  // position along the walk (m) and height (m)
 };
 
-/// One step of the horizon sweep: the horizon angle (degrees, >= 0) at (t, z) over the points of `hull`
+/// One step of the horizon sweep: the tangent of the horizon angle (>= 0) at (t, z) over the points of `hull`
 /// (the upper convex hull of the profile behind, t increasing), then (t, z) joins the hull. Hull points
 /// that fall on or below the chord from their predecessor to (t, z) can be the highest angle neither from
 /// here nor from any later point, so they are dropped; the last one kept is the tangent point. Amortized O(1).
@@ -50,12 +51,16 @@ inline float horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double 
             break;
         }
     }
-    float angle = 0.0f;
-    if (n >= 1 && hull[n - 1].z > z) {
-        angle = static_cast<float>(std::atan((hull[n - 1].z - z) / (t - hull[n - 1].t)) * (180.0 / std::numbers::pi));
-    }
+    float tangent = 0.0f;
+    if (n >= 1 && hull[n - 1].z > z) tangent = static_cast<float>((hull[n - 1].z - z) / (t - hull[n - 1].t));
     hull[n++] = {t, z};
-    return angle;
+    return tangent;
+}
+
+/// Tangents to degrees over o[c0, c1): a separate loop, so the arctangent vectorizes (NaN stays NaN).
+inline void tangents_to_degrees(float* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
+{
+    for (std::ptrdiff_t c = c0; c < c1; ++c) o[c] = atan_deg(o[c]);
 }
 
 /// Steep lines [k0, k1): a sweep over rows in walk order with one hull per line (cache-friendly reads).
@@ -83,31 +88,41 @@ inline void horizon_steep_block(raster_view<const float> z, raster_view<float> o
             o[c] = horizon_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
                                 (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
         }
+        tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
 }
 
-/// Shallow lines [k0, k1): each walked on its own along its columns.
+/// Shallow lines [k0, k1): a sweep over rows and, within a row, over the lines' columns in walk order (as in
+/// raylines_shadow), one hull per line.
 inline void horizon_shallow_block(raster_view<const float> z, raster_view<float> out, const ray_lines& l,
-                                  double cell_m, std::ptrdiff_t k0, std::ptrdiff_t k1)
+                                  double cell_m, const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0,
+                                  std::ptrdiff_t k1)
 {
-    std::vector<hull_point> hull(static_cast<std::size_t>(z.cols()));
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
+    std::vector<hull_point> hulls(static_cast<std::size_t>(lines * cols));
+    std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(lines), 0);
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
     const bool fwd = l.forward();
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (std::ptrdiff_t k = k0; k < k1; ++k) {
-        const auto [i0, i1] = l.span(k);
-        std::ptrdiff_t n = 0;
-        for (std::ptrdiff_t j = i0; j < i1; ++j) {
-            const std::ptrdiff_t c = fwd ? j : i0 + i1 - 1 - j;
-            const std::ptrdiff_t r = k + l.shift(c);
-            const float h = z(r, c);
-            if (h != h) {
-                out(r, c) = nan;
+    const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back()));
+    const std::ptrdiff_t hi = std::min(rows, k1 + std::max(sh.front(), sh.back()));
+    for (std::ptrdiff_t i = lo; i < hi; ++i) {
+        const std::ptrdiff_t r = l.rows_forward() ? i : lo + hi - 1 - i;
+        const auto [c0, c1] = l.columns(sh, r, k0, k1);
+        const float* zr = z.row(r);
+        float* o = out.row(r);
+        const double tr = (static_cast<double>(r) + 0.5) * b;
+        for (std::ptrdiff_t j = c0; j < c1; ++j) {
+            const std::ptrdiff_t c = fwd ? j : c0 + c1 - 1 - j;
+            if (zr[c] != zr[c]) {
+                o[c] = nan;
                 continue;
             }
-            const double t = (static_cast<double>(c) + 0.5) * a + (static_cast<double>(r) + 0.5) * b;
-            out(r, c) = horizon_step(hull.data(), n, t, static_cast<double>(h));
+            const std::ptrdiff_t line = r - sh[static_cast<std::size_t>(c)] - k0;
+            o[c] = horizon_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
+                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
         }
+        tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
 }
 
@@ -116,6 +131,7 @@ inline void horizon_map_view(raster_view<const float> z, raster_view<float> out,
 {
     const ray_lines l = make_ray_lines(azimuth_deg, z.rows(), z.cols());
     const std::ptrdiff_t first = l.first_line();
+    const std::vector<std::ptrdiff_t> sh = l.shifts();
     // Blocks of lines fixed by the input; each line is swept by one thread, so any split gives the same bits.
     parallel_for_rows(
         l.count(), 64, opt.run.threads,
@@ -123,7 +139,7 @@ inline void horizon_map_view(raster_view<const float> z, raster_view<float> out,
             if (l.steep) {
                 horizon_steep_block(z, out, l, cell_m, first + b0, first + b1);
             } else {
-                horizon_shallow_block(z, out, l, cell_m, first + b0, first + b1);
+                horizon_shallow_block(z, out, l, cell_m, sh, first + b0, first + b1);
             }
         },
         opt.run.progress, fn);

@@ -13,10 +13,12 @@
 // the projection of the cell centre on the walk direction (metres); t grows strictly along every line.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <vector>
 
 namespace lidarfx::detail {
 
@@ -62,26 +64,32 @@ struct ray_lines {
         const std::ptrdiff_t a = shift(0), b = shift(major() - 1);
         return minor() + (a > b ? a - b : b - a);
     }
-    /// The major indices [first, last) at which line k is inside the raster (0 <= k + shift(i) < minor()).
-    std::array<std::ptrdiff_t, 2> span(std::ptrdiff_t k) const noexcept
+    /// shift(i) for every major index i.
+    std::vector<std::ptrdiff_t> shifts() const
     {
-        // shift is monotone in i, so the inside indices are one interval: find its ends by bisection.
-        const auto first_true = [&](auto pred) {
-            std::ptrdiff_t lo = 0, hi = major();
-            while (lo < hi) {
-                const std::ptrdiff_t mid = lo + (hi - lo) / 2;
-                if (pred(mid)) hi = mid; else lo = mid + 1;
-            }
-            return lo;
-        };
-        const std::ptrdiff_t m = minor();
-        if (slope >= 0) {
-            return {first_true([&](std::ptrdiff_t i) { return k + shift(i) >= 0; }),
-                    first_true([&](std::ptrdiff_t i) { return k + shift(i) >= m; })};
-        }
-        return {first_true([&](std::ptrdiff_t i) { return k + shift(i) < m; }),
-                first_true([&](std::ptrdiff_t i) { return k + shift(i) < 0; })};
+        std::vector<std::ptrdiff_t> s(static_cast<std::size_t>(major()));
+        for (std::ptrdiff_t i = 0; i < major(); ++i) s[static_cast<std::size_t>(i)] = shift(i);
+        return s;
     }
+    /// Shallow lines: the columns [first, last) of row r that belong to lines [k0, k1), i.e. with
+    /// r - k1 < shift(c) <= r - k0; one interval because shift is monotone. `sh` = shifts().
+    std::array<std::ptrdiff_t, 2> columns(const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t r, std::ptrdiff_t k0,
+                                          std::ptrdiff_t k1) const
+    {
+        const auto first_true = [&](auto pred) {
+            return static_cast<std::ptrdiff_t>(std::partition_point(sh.begin(), sh.end(), [&](std::ptrdiff_t v) {
+                                                   return !pred(v);
+                                               }) - sh.begin());
+        };
+        if (slope >= 0) {
+            return {first_true([&](std::ptrdiff_t v) { return v > r - k1; }),
+                    first_true([&](std::ptrdiff_t v) { return v > r - k0; })};
+        }
+        return {first_true([&](std::ptrdiff_t v) { return v <= r - k0; }),
+                first_true([&](std::ptrdiff_t v) { return v <= r - k1; })};
+    }
+    /// Rows are swept in this order so that every line's cells come in walk order: increasing if true.
+    bool rows_forward() const noexcept { return drow >= 0; }
 };
 
 inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept

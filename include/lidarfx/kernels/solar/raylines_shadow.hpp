@@ -71,22 +71,31 @@ inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint
     }
 }
 
-/// Shallow lines [k0, k1): each walked on its own along its columns (mostly along a row of memory).
+/// Shallow lines [k0, k1): a sweep over rows (in the order of the walk's row direction) and, within a row, over
+/// the columns of these lines in walk order; a line crosses a row in a run of adjacent columns, so every line
+/// still meets its cells in walk order.
 inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::uint8_t> out, const ray_lines& l,
-                                 const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
+                                 const shadow_lifts& lift, const std::vector<std::ptrdiff_t>& sh,
+                                 std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
+    std::vector<double> limit(static_cast<std::size_t>(k1 - k0), -std::numeric_limits<double>::infinity());
+    const std::ptrdiff_t rows = z.rows();
     const bool fwd = l.forward();
-    for (std::ptrdiff_t k = k0; k < k1; ++k) {
-        const auto [i0, i1] = l.span(k);
-        double m = -std::numeric_limits<double>::infinity();
-        for (std::ptrdiff_t j = i0; j < i1; ++j) {
-            const std::ptrdiff_t c = fwd ? j : i0 + i1 - 1 - j;
-            const std::ptrdiff_t r = k + l.shift(c);
-            const float h = z(r, c);
-            const double key = static_cast<double>(h) + (lift.col_lift[static_cast<std::size_t>(c)] +
-                                                         lift.row_lift[static_cast<std::size_t>(r)]);
+    // Rows that hold a cell of these lines: r = k + shift(c) for k in [k0, k1).
+    const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back()));
+    const std::ptrdiff_t hi = std::min(rows, k1 + std::max(sh.front(), sh.back()));
+    for (std::ptrdiff_t i = lo; i < hi; ++i) {
+        const std::ptrdiff_t r = l.rows_forward() ? i : lo + hi - 1 - i;
+        const auto [c0, c1] = l.columns(sh, r, k0, k1);
+        const float* zr = z.row(r);
+        std::uint8_t* o = out.row(r);
+        const double rl = lift.row_lift[static_cast<std::size_t>(r)];
+        for (std::ptrdiff_t j = c0; j < c1; ++j) {
+            const std::ptrdiff_t c = fwd ? j : c0 + c1 - 1 - j;
+            double& m = limit[static_cast<std::size_t>(r - sh[static_cast<std::size_t>(c)] - k0)];
+            const double key = static_cast<double>(zr[c]) + (lift.col_lift[static_cast<std::size_t>(c)] + rl);
             const std::uint8_t v = m > key ? 0 : 1;
-            out(r, c) = h != h ? nan_cell : v;
+            o[c] = zr[c] != zr[c] ? nan_cell : v;
             m = key > m ? key : m;
         }
     }
@@ -112,15 +121,16 @@ inline void raylines_shadow_view(raster_view<const float> z, raster_view<std::ui
     const ray_lines l = make_ray_lines(sun_azimuth_deg, rows, cols);
     const shadow_lifts lift = make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
     const std::ptrdiff_t first = l.first_line();
+    const std::vector<std::ptrdiff_t> sh = l.shifts();
     // Blocks of lines fixed by the input; each line is walked by one thread, so any split gives the same bits.
-    const std::ptrdiff_t block = l.steep ? 512 : 64;
+    const std::ptrdiff_t block = 512;
     parallel_for_rows(
         l.count(), block, opt.run.threads,
         [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
             if (l.steep) {
                 shadow_steep_block(z, out, l, lift, opt.nan_cell, first + b0, first + b1);
             } else {
-                shadow_shallow_block(z, out, l, lift, opt.nan_cell, first + b0, first + b1);
+                shadow_shallow_block(z, out, l, lift, sh, opt.nan_cell, first + b0, first + b1);
             }
         },
         opt.run.progress, fn);
