@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// Benchmarks of the shadow and horizon kernels (kernels/solar/raylines_shadow.hpp, horizon_map.hpp) on a box
+// Benchmarks of the shadow, horizon and sky view kernels (kernels/solar/raylines_shadow.hpp, horizon_map.hpp,
+// sky_view_factor.hpp) on a box
 // town: 1 m cells, buildings 8..30 m on a side and 3..25 m tall over noisy ground. Azimuths 180 (rays along
 // columns), 135 (diagonal) and 250 (mostly along rows) cover both sweep shapes.
 #include <benchmark/benchmark.h>
 
 #include <lidarfx/kernels/solar/horizon_map.hpp>
 #include <lidarfx/kernels/solar/raylines_shadow.hpp>
+#include <lidarfx/kernels/solar/sky_view_factor.hpp>
 
 #include "reference/solar.hpp"
 
@@ -99,6 +101,30 @@ BENCHMARK(bm_horizon_map_reference)
     ->ArgNames({"n", "azimuth"})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+// Arguments: side n, method (0 source share, 1 cosine-weighted), threads (0 = all cores). 72 azimuths.
+void bm_sky_view_factor(benchmark::State& state)
+{
+    const auto n = state.range(0);
+    const auto& z = town(n);
+    lidarfx::raster<float> svf(n, n);
+    const lidarfx::sky_view_factor_options opt{
+        .method = state.range(1) == 0 ? lidarfx::sky_view_factor_method::source_share
+                                      : lidarfx::sky_view_factor_method::cosine_weighted,
+        .run = {.threads = static_cast<int>(state.range(2))}};
+    for (auto _ : state) {
+        lidarfx::sky_view_factor(z, svf, 1.0, opt);
+        benchmark::DoNotOptimize(svf.data());
+        benchmark::ClobberMemory();
+    }
+    state.SetItemsProcessed(state.iterations() * n * n);
+}
+BENCHMARK(bm_sky_view_factor)
+    ->ArgsProduct({{2048}, {0, 1}, {1, 0}})
+    ->ArgNames({"n", "method", "threads"})
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 

@@ -29,6 +29,7 @@
 #include "lidarfx/kernels/solar/horizon_map.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 

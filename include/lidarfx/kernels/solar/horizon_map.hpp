@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -41,7 +42,7 @@ struct hull_point {
 /// (the upper convex hull of the profile behind, t increasing), then (t, z) joins the hull. Hull points
 /// that fall on or below the chord from their predecessor to (t, z) can be the highest angle neither from
 /// here nor from any later point, so they are dropped; the last one kept is the tangent point. Amortized O(1).
-inline float horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double z) noexcept
+inline double horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double z) noexcept
 {
     while (n >= 2) {
         const hull_point a = hull[n - 2], b = hull[n - 1];
@@ -51,33 +52,38 @@ inline float horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double 
             break;
         }
     }
-    float tangent = 0.0f;
-    if (n >= 1 && hull[n - 1].z > z) tangent = static_cast<float>((hull[n - 1].z - z) / (t - hull[n - 1].t));
+    double tangent = 0.0;
+    if (n >= 1 && hull[n - 1].z > z) tangent = (hull[n - 1].z - z) / (t - hull[n - 1].t);
     hull[n++] = {t, z};
     return tangent;
 }
 
 /// Tangents to degrees over o[c0, c1): a separate loop, so the arctangent vectorizes (NaN stays NaN).
-inline void tangents_to_degrees(float* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
+/// For double outputs (tangents kept for sky_view_factor) nothing is converted.
+template <class T>
+void tangents_to_degrees(T* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
 {
-    for (std::ptrdiff_t c = c0; c < c1; ++c) o[c] = atan_deg(o[c]);
+    if constexpr (std::is_same_v<T, float>) {
+        for (std::ptrdiff_t c = c0; c < c1; ++c) o[c] = atan_deg(o[c]);
+    }
 }
 
 /// Steep lines [k0, k1): a sweep over rows in walk order with one hull per line (cache-friendly reads).
-inline void horizon_steep_block(raster_view<const float> z, raster_view<float> out, const ray_lines& l, double cell_m,
+template <class T>
+void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l, double cell_m,
                                 std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
     std::vector<hull_point> hulls(static_cast<std::size_t>(lines * rows));
     std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(lines), 0);
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
-    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const T nan = std::numeric_limits<T>::quiet_NaN();
     for (std::ptrdiff_t i = 0; i < rows; ++i) {
         const std::ptrdiff_t r = l.forward() ? i : rows - 1 - i;
         const std::ptrdiff_t s = l.shift(r);
         const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, k0 + s), c1 = std::min(cols, k1 + s);
         const float* zr = z.row(r);
-        float* o = out.row(r);
+        T* o = out.row(r);
         const double tr = (static_cast<double>(r) + 0.5) * b;
         for (std::ptrdiff_t c = c0; c < c1; ++c) {
             if (zr[c] != zr[c]) {
@@ -85,8 +91,8 @@ inline void horizon_steep_block(raster_view<const float> z, raster_view<float> o
                 continue;
             }
             const std::ptrdiff_t line = c - s - k0;
-            o[c] = horizon_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
-                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
+            o[c] = static_cast<T>(horizon_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
+                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
@@ -94,7 +100,8 @@ inline void horizon_steep_block(raster_view<const float> z, raster_view<float> o
 
 /// Shallow lines [k0, k1): a sweep over rows and, within a row, over the lines' columns in walk order (as in
 /// raylines_shadow), one hull per line.
-inline void horizon_shallow_block(raster_view<const float> z, raster_view<float> out, const ray_lines& l,
+template <class T>
+void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l,
                                   double cell_m, const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0,
                                   std::ptrdiff_t k1)
 {
@@ -103,14 +110,14 @@ inline void horizon_shallow_block(raster_view<const float> z, raster_view<float>
     std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(lines), 0);
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
     const bool fwd = l.forward();
-    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const T nan = std::numeric_limits<T>::quiet_NaN();
     const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back()));
     const std::ptrdiff_t hi = std::min(rows, k1 + std::max(sh.front(), sh.back()));
     for (std::ptrdiff_t i = lo; i < hi; ++i) {
         const std::ptrdiff_t r = l.rows_forward() ? i : lo + hi - 1 - i;
         const auto [c0, c1] = l.columns(sh, r, k0, k1);
         const float* zr = z.row(r);
-        float* o = out.row(r);
+        T* o = out.row(r);
         const double tr = (static_cast<double>(r) + 0.5) * b;
         for (std::ptrdiff_t j = c0; j < c1; ++j) {
             const std::ptrdiff_t c = fwd ? j : c0 + c1 - 1 - j;
@@ -119,14 +126,16 @@ inline void horizon_shallow_block(raster_view<const float> z, raster_view<float>
                 continue;
             }
             const std::ptrdiff_t line = r - sh[static_cast<std::size_t>(c)] - k0;
-            o[c] = horizon_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
-                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
+            o[c] = static_cast<T>(horizon_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
+                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
 }
 
-inline void horizon_map_view(raster_view<const float> z, raster_view<float> out, double cell_m, double azimuth_deg,
+/// Horizon angles in degrees (T = float) or horizon tangents (T = double) of every cell towards azimuth_deg.
+template <class T>
+void horizon_map_view(raster_view<const float> z, raster_view<T> out, double cell_m, double azimuth_deg,
                              const horizon_map_options& opt, const char* fn)
 {
     const ray_lines l = make_ray_lines(azimuth_deg, z.rows(), z.cols());
