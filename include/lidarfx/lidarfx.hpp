@@ -26,6 +26,10 @@
 #include "lidarfx/kernels/metrics/confusion.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/kernels/points/scan_coverage.hpp"
+#include "lidarfx/kernels/solar/horizon_map.hpp"
+#include "lidarfx/kernels/solar/ray_lines.hpp"
+#include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
