@@ -26,6 +26,8 @@
 #include "lidarfx/kernels/metrics/confusion.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/kernels/points/scan_coverage.hpp"
+#include "lidarfx/kernels/solar/spa_tables.hpp"
+#include "lidarfx/kernels/solar/sun_position.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
