@@ -72,7 +72,7 @@ TEST_CASE("solar/sun_position: SPA reproduces its published example within 0.000
 TEST_CASE("solar/sun_position: SPA's intermediate Julian day and sub-second times")
 {
     // SPA's example: JD = 2452930.312847 (table A5.1).
-    CHECK(detail::days_since_j2000(utc(2003, 10, 17, 19, 30, 30)) + 2451545.0 ==
+    CHECK(detail::spa_days_since_j2000(utc(2003, 10, 17, 19, 30, 30)) + 2451545.0 ==
           doctest::Approx(2452930.312847).epsilon(1e-12));
     // Half a second later moves the sun by half a second of hour angle (0.0021 deg), no more.
     const auto t = chr::sys_time<chr::milliseconds>{utc(2003, 10, 17, 19, 30, 30)} + chr::milliseconds{500};
@@ -184,10 +184,10 @@ TEST_CASE("solar/sun_position: refraction lifts the sun, more with denser air an
     // Bennett's refraction at 40 deg elevation is about 1.2 arcmin at sea level, less at 820 mbar.
     CHECK(with - without > 0.01);
     CHECK(with - without < 0.02);
-    CHECK(detail::refraction_deg(0.0, 1010.0, 10.0) > 0.45);  // about 0.5 deg at the horizon
-    CHECK(detail::refraction_deg(0.0, 1010.0, 10.0) < 0.6);
-    CHECK(detail::refraction_deg(0.0, 500.0, 10.0) < detail::refraction_deg(0.0, 1010.0, 10.0));
-    CHECK(detail::refraction_deg(-2.0, 1010.0, 10.0) == 0.0);  // the whole disc below the horizon
+    CHECK(detail::spa_refraction_deg(0.0, 1010.0, 10.0) > 0.45);  // about 0.5 deg at the horizon
+    CHECK(detail::spa_refraction_deg(0.0, 1010.0, 10.0) < 0.6);
+    CHECK(detail::spa_refraction_deg(0.0, 500.0, 10.0) < detail::spa_refraction_deg(0.0, 1010.0, 10.0));
+    CHECK(detail::spa_refraction_deg(-2.0, 1010.0, 10.0) == 0.0);  // the whole disc below the horizon
 }
 
 TEST_CASE("solar/sun_position: bad inputs are refused, naming the argument")
