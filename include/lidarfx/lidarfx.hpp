@@ -30,6 +30,8 @@
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
+#include "lidarfx/kernels/solar/spa_tables.hpp"
+#include "lidarfx/kernels/solar/sun_position.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
