@@ -69,10 +69,26 @@ TEST_CASE("solar/sun_position: SPA reproduces its published example within 0.000
     CHECK(p.elevation_deg == doctest::Approx(90.0 - p.zenith_deg).epsilon(1e-15));
 }
 
+TEST_CASE("solar/sun_position: SPA's Earth position in its example matches the published intermediates")
+{
+    // Table A5.1 of Reda & Andreas: L = 24.0182616917 deg, B = -0.0001011219 deg, R = 0.9965422974 AU. The terms
+    // of L0, B0 and R0 are at least 1e-7 rad (6e-6 deg) or 1e-7 AU, so a mistyped one would almost surely move
+    // these sums by more than 1e-9 deg or 1e-10 AU; terms of the higher series are scaled by JME^k (JME = 0.0004).
+    const double jde_days = detail::spa_days_since_j2000(utc(2003, 10, 17, 19, 30, 30)) + 67.0 / 86400.0;
+    const double jme = jde_days / 365250.0;
+    const double l_deg =
+        detail::spa_limit_degrees(detail::spa_deg_per_rad * detail::spa_series(detail::spa_longitude, jme));
+    const double b_deg = detail::spa_deg_per_rad * detail::spa_series(detail::spa_latitude, jme);
+    const double r_au = detail::spa_series(detail::spa_radius, jme);
+    CHECK(std::fabs(l_deg - 24.0182616917) < 1e-9);
+    CHECK(std::fabs(b_deg - -0.0001011219) < 1e-9);
+    CHECK(std::fabs(r_au - 0.9965422974) < 1e-10);
+}
+
 TEST_CASE("solar/sun_position: SPA's intermediate Julian day and sub-second times")
 {
     // SPA's example: JD = 2452930.312847 (table A5.1).
-    CHECK(detail::days_since_j2000(utc(2003, 10, 17, 19, 30, 30)) + 2451545.0 ==
+    CHECK(detail::spa_days_since_j2000(utc(2003, 10, 17, 19, 30, 30)) + 2451545.0 ==
           doctest::Approx(2452930.312847).epsilon(1e-12));
     // Half a second later moves the sun by half a second of hour angle (0.0021 deg), no more.
     const auto t = chr::sys_time<chr::milliseconds>{utc(2003, 10, 17, 19, 30, 30)} + chr::milliseconds{500};
@@ -184,10 +200,10 @@ TEST_CASE("solar/sun_position: refraction lifts the sun, more with denser air an
     // Bennett's refraction at 40 deg elevation is about 1.2 arcmin at sea level, less at 820 mbar.
     CHECK(with - without > 0.01);
     CHECK(with - without < 0.02);
-    CHECK(detail::refraction_deg(0.0, 1010.0, 10.0) > 0.45);  // about 0.5 deg at the horizon
-    CHECK(detail::refraction_deg(0.0, 1010.0, 10.0) < 0.6);
-    CHECK(detail::refraction_deg(0.0, 500.0, 10.0) < detail::refraction_deg(0.0, 1010.0, 10.0));
-    CHECK(detail::refraction_deg(-2.0, 1010.0, 10.0) == 0.0);  // the whole disc below the horizon
+    CHECK(detail::spa_refraction_deg(0.0, 1010.0, 10.0) > 0.45);  // about 0.5 deg at the horizon
+    CHECK(detail::spa_refraction_deg(0.0, 1010.0, 10.0) < 0.6);
+    CHECK(detail::spa_refraction_deg(0.0, 500.0, 10.0) < detail::spa_refraction_deg(0.0, 1010.0, 10.0));
+    CHECK(detail::spa_refraction_deg(-2.0, 1010.0, 10.0) == 0.0);  // the whole disc below the horizon
 }
 
 TEST_CASE("solar/sun_position: bad inputs are refused, naming the argument")

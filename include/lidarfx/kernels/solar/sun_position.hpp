@@ -38,11 +38,11 @@ struct sun_position_result {
 
 namespace detail {
 
-inline constexpr double deg_per_rad = 180.0 / std::numbers::pi;
-inline constexpr double rad_per_deg = std::numbers::pi / 180.0;
+inline constexpr double spa_deg_per_rad = 180.0 / std::numbers::pi;
+inline constexpr double spa_rad_per_deg = std::numbers::pi / 180.0;
 
 /// x reduced to [0, 360).
-inline double limit_degrees(double x) noexcept
+inline double spa_limit_degrees(double x) noexcept
 {
     x = std::fmod(x, 360.0);
     if (x < 0) x += 360.0;
@@ -52,7 +52,7 @@ inline double limit_degrees(double x) noexcept
 /// Days since JD 2451545.0 (2000-01-01 12:00 UTC) of a UTC time; Julian days on the UTC scale, as SPA's
 /// JD (its Delta UT1 taken as 0, below a second).
 template <class Duration>
-double days_since_j2000(std::chrono::sys_time<Duration> time_utc) noexcept
+double spa_days_since_j2000(std::chrono::sys_time<Duration> time_utc) noexcept
 {
     namespace chr = std::chrono;
     constexpr chr::sys_seconds j2000 = chr::sys_days{chr::year{2000} / chr::January / 1} + chr::hours{12};
@@ -65,11 +65,11 @@ double days_since_j2000(std::chrono::sys_time<Duration> time_utc) noexcept
 /// Atmospheric refraction (degrees) at a true elevation of e0 degrees: SPA's equation 42 (Bennett's formula
 /// scaled by pressure and temperature), applied while the sun's upper limb may be above the horizon
 /// (e0 >= -(0.26667 + 0.5667) deg), 0 below.
-inline double refraction_deg(double e0, double pressure_mbar, double temperature_c) noexcept
+inline double spa_refraction_deg(double e0, double pressure_mbar, double temperature_c) noexcept
 {
     if (e0 < -(0.26667 + 0.5667)) return 0.0;
     return (pressure_mbar / 1010.0) * (283.0 / (273.0 + temperature_c)) * 1.02 /
-           (60.0 * std::tan(rad_per_deg * (e0 + 10.3 / (e0 + 5.11))));
+           (60.0 * std::tan(spa_rad_per_deg * (e0 + 10.3 / (e0 + 5.11))));
 }
 
 /// sum over k of jme^k * (sum of a cos(b + c jme) over the terms of series k) / 1e8: one of SPA's L, B, R.
@@ -93,7 +93,7 @@ inline double spa_cubic(double x, double a, double b, double c, double d) noexce
 
 /// Topocentric zenith and azimuth by SPA (Reda & Andreas 2008, section 3, steps 3.1-3.15): Earth's heliocentric
 /// position from the VSOP87 terms, nutation, aberration, apparent sidereal time, parallax for the observer's
-/// height, refraction. `days` as from days_since_j2000; angles in degrees, longitude east positive.
+/// height, refraction. `days` as from spa_days_since_j2000; angles in degrees, longitude east positive.
 inline sun_position_result sun_position_spa(double days, double latitude_deg, double longitude_deg,
                                             const sun_position_options& opt) noexcept
 {
@@ -101,10 +101,10 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
     const double jc = jd_days / 36525.0, jce = jde_days / 36525.0, jme = jce / 10.0;
 
     // 3.2 Earth's heliocentric longitude, latitude (degrees) and radius vector (AU); 3.3 geocentric.
-    const double l_deg = limit_degrees(deg_per_rad * spa_series(spa_longitude, jme));
-    const double b_deg = deg_per_rad * spa_series(spa_latitude, jme);
+    const double l_deg = spa_limit_degrees(spa_deg_per_rad * spa_series(spa_longitude, jme));
+    const double b_deg = spa_deg_per_rad * spa_series(spa_latitude, jme);
     const double r_au = spa_series(spa_radius, jme);
-    const double theta = limit_degrees(l_deg + 180.0), beta = -b_deg;
+    const double theta = spa_limit_degrees(l_deg + 180.0), beta = -b_deg;
 
     // 3.4 Nutation in longitude and obliquity from the Moon's and Sun's fundamental arguments (degrees).
     const double x[5] = {
@@ -118,7 +118,7 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
     for (const auto& t : spa_nutation) {
         double arg = 0.0;
         for (int j = 0; j < 5; ++j) arg += x[j] * t.y[j];
-        arg *= rad_per_deg;
+        arg *= spa_rad_per_deg;
         dpsi += (t.a + t.b * jce) * std::sin(arg);
         deps += (t.c + t.d * jce) * std::cos(arg);
     }
@@ -134,22 +134,22 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
 
     // 3.6-3.7 Aberration; apparent longitude. 3.8 Apparent sidereal time at Greenwich.
     const double lambda = theta + dpsi - 20.4898 / (3600.0 * r_au);
-    const double nu0 = limit_degrees(280.46061837 + 360.98564736629 * jd_days + 0.000387933 * jc * jc -
+    const double nu0 = spa_limit_degrees(280.46061837 + 360.98564736629 * jd_days + 0.000387933 * jc * jc -
                                      jc * jc * jc / 38710000.0);
-    const double nu = nu0 + dpsi * std::cos(rad_per_deg * eps);
+    const double nu = nu0 + dpsi * std::cos(spa_rad_per_deg * eps);
 
     // 3.9-3.10 Geocentric right ascension and declination.
-    const double lambda_r = rad_per_deg * lambda, eps_r = rad_per_deg * eps, beta_r = rad_per_deg * beta;
-    const double alpha = limit_degrees(deg_per_rad * std::atan2(std::sin(lambda_r) * std::cos(eps_r) -
+    const double lambda_r = spa_rad_per_deg * lambda, eps_r = spa_rad_per_deg * eps, beta_r = spa_rad_per_deg * beta;
+    const double alpha = spa_limit_degrees(spa_deg_per_rad * std::atan2(std::sin(lambda_r) * std::cos(eps_r) -
                                                                     std::tan(beta_r) * std::sin(eps_r),
                                                                 std::cos(lambda_r)));
     const double delta_r = std::asin(std::sin(beta_r) * std::cos(eps_r) +
                                      std::cos(beta_r) * std::sin(eps_r) * std::sin(lambda_r));
 
     // 3.11 Observer local hour angle. 3.12 Topocentric right ascension and declination (parallax).
-    const double h_r = rad_per_deg * limit_degrees(nu + longitude_deg - alpha);
-    const double phi_r = rad_per_deg * latitude_deg;
-    const double xi_r = rad_per_deg * 8.794 / (3600.0 * r_au);
+    const double h_r = spa_rad_per_deg * spa_limit_degrees(nu + longitude_deg - alpha);
+    const double phi_r = spa_rad_per_deg * latitude_deg;
+    const double xi_r = spa_rad_per_deg * 8.794 / (3600.0 * r_au);
     const double u_r = std::atan(0.99664719 * std::tan(phi_r));
     const double px = std::cos(u_r) + opt.elevation_m / 6378140.0 * std::cos(phi_r);
     const double py = 0.99664719 * std::sin(u_r) + opt.elevation_m / 6378140.0 * std::sin(phi_r);
@@ -159,12 +159,12 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
     const double ht_r = h_r - dalpha_r;  // 3.13 topocentric local hour angle
 
     // 3.14 Topocentric elevation, refraction, zenith. 3.15 Azimuth, from north clockwise.
-    const double e0 = deg_per_rad * std::asin(std::sin(phi_r) * std::sin(delta_t_r) +
+    const double e0 = spa_deg_per_rad * std::asin(std::sin(phi_r) * std::sin(delta_t_r) +
                                               std::cos(phi_r) * std::cos(delta_t_r) * std::cos(ht_r));
-    const double e = e0 + (opt.refraction ? refraction_deg(e0, opt.pressure_mbar, opt.temperature_c) : 0.0);
-    const double gamma = deg_per_rad * std::atan2(std::sin(ht_r), std::cos(ht_r) * std::sin(phi_r) -
+    const double e = e0 + (opt.refraction ? spa_refraction_deg(e0, opt.pressure_mbar, opt.temperature_c) : 0.0);
+    const double gamma = spa_deg_per_rad * std::atan2(std::sin(ht_r), std::cos(ht_r) * std::sin(phi_r) -
                                                                       std::tan(delta_t_r) * std::cos(phi_r));
-    return {limit_degrees(gamma + 180.0), e, 90.0 - e};
+    return {spa_limit_degrees(gamma + 180.0), e, 90.0 - e};
 }
 
 /// The dissertation's model (3.2.2, after PVEducation): day angle B = 360/365 (d - 81) with d the day of the
@@ -184,18 +184,18 @@ inline sun_position_result sun_position_simple(double days, double latitude_deg,
                             chr::days{static_cast<chr::days::rep>(local_day)}};
     const double d = static_cast<double>((day - chr::sys_days{chr::year_month_day{day}.year() / chr::January / 1})
                                              .count()) + 1.0;
-    const double b_r = rad_per_deg * 360.0 / 365.0 * (d - 81.0);
+    const double b_r = spa_rad_per_deg * 360.0 / 365.0 * (d - 81.0);
     const double eot_min = 9.87 * std::sin(2.0 * b_r) - 7.53 * std::cos(b_r) - 1.5 * std::sin(b_r);
-    const double decl_r = rad_per_deg * 23.45 * std::sin(b_r);
+    const double decl_r = spa_rad_per_deg * 23.45 * std::sin(b_r);
     const double lst_h = (local_days - local_day) * 24.0 + eot_min / 60.0;
-    const double h_r = rad_per_deg * 15.0 * (lst_h - 12.0);
-    const double phi_r = rad_per_deg * latitude_deg;
+    const double h_r = spa_rad_per_deg * 15.0 * (lst_h - 12.0);
+    const double phi_r = spa_rad_per_deg * latitude_deg;
     const double sin_e = std::sin(decl_r) * std::sin(phi_r) + std::cos(decl_r) * std::cos(phi_r) * std::cos(h_r);
-    const double e0 = deg_per_rad * std::asin(sin_e < -1.0 ? -1.0 : sin_e > 1.0 ? 1.0 : sin_e);
+    const double e0 = spa_deg_per_rad * std::asin(sin_e < -1.0 ? -1.0 : sin_e > 1.0 ? 1.0 : sin_e);
     const double east = -std::cos(decl_r) * std::sin(h_r);
     const double north = std::sin(decl_r) * std::cos(phi_r) - std::cos(decl_r) * std::sin(phi_r) * std::cos(h_r);
-    const double e = e0 + (opt.refraction ? refraction_deg(e0, opt.pressure_mbar, opt.temperature_c) : 0.0);
-    return {limit_degrees(deg_per_rad * std::atan2(east, north)), e, 90.0 - e};
+    const double e = e0 + (opt.refraction ? spa_refraction_deg(e0, opt.pressure_mbar, opt.temperature_c) : 0.0);
+    return {spa_limit_degrees(spa_deg_per_rad * std::atan2(east, north)), e, 90.0 - e};
 }
 
 }  // namespace detail
@@ -225,7 +225,7 @@ sun_position_result sun_position(std::chrono::sys_time<Duration> time_utc, doubl
                     "in [-273, 6000] deg C", opt.temperature_c);
     detail::require(opt.elevation_m >= -6500000.0 && opt.elevation_m <= 1.0e8, fn, "options.elevation_m",
                     "in [-6500000, 1e8] metres", opt.elevation_m);
-    const double days = detail::days_since_j2000(time_utc);
+    const double days = detail::spa_days_since_j2000(time_utc);
     // SPA's validity, years -2000..6000, as days from J2000 (365.25 days a year, a day's margin).
     detail::require(days >= -4000.0 * 365.25 && days <= 4000.0 * 365.25, fn, "time_utc",
                     "within the years -2000..6000 (days from 2000-01-01 12:00 UTC)", days);
