@@ -141,8 +141,8 @@ int run_solar(const std::vector<std::string>& args)
                                               {.month_utc_offset_h = zone_h,
                                                .run = {.threads = threads,
                                                        .progress = cli::progress_bar("irradiance")}});
-    std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of " << records.size() << "; GHI of the year "
-              << res.ghi_kwh_m2 << " kWh/m2\n";
+    std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
+              << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 
     cli::write_raster(out, "annual_kwh_m2", res.annual_kwh_m2.view(), g, crs_wkt, epsg, formats);
     cli::write_raster(out, "svf", res.sky_view_factor.view(), g, crs_wkt, epsg, formats);

@@ -92,7 +92,9 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
 
     tmy3_data out;
     std::string_view line;
-    if (!next_line(line)) fail("empty file: expected the TMY3 station line (id, name, state, zone, lat, lon, elevation)");
+    if (!next_line(line)) {
+        fail("empty file: expected the TMY3 station line (id, name, state, zone, lat, lon, elevation)");
+    }
     {
         const auto f = csv_fields(trim(line));
         if (f.size() < 7) fail("the station line needs 7 fields (id, name, state, zone, lat, lon, elevation), got " +

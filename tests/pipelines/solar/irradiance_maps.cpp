@@ -147,7 +147,9 @@ TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slop
     // An east-west ridge with 1:2 slopes: rows above row 20 face north, rows below face south.
     raster<float> z(41, 21);
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) z(r, c) = static_cast<float>(30.0 - 0.5 * static_cast<double>(std::abs(r - 20)));
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
+            z(r, c) = static_cast<float>(30.0 - 0.5 * static_cast<double>(std::abs(r - 20)));
+        }
     const auto sa = slope_aspect(z, 1.0);
     REQUIRE(sa.aspect_deg(10, 10) == doctest::Approx(0.0).epsilon(1e-6));
     REQUIRE(sa.aspect_deg(30, 10) == doctest::Approx(180.0));
@@ -204,6 +206,8 @@ TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name"
                          doctest::Contains("same shape"), invalid_input);
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.albedo = 1.5}), doctest::Contains("albedo"),
                          invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.svf_directions = 2}),
+                         doctest::Contains("irradiance_maps: svf_directions"), invalid_input);
     records[0].dni_w_m2 = -3.0;
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("records[0]"),
                          invalid_input);

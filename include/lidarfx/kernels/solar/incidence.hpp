@@ -43,7 +43,7 @@ inline enu_vector surface_normal_unchecked(double tilt_deg, double azimuth_deg) 
     return {std::sin(b) * std::sin(a), std::sin(b) * std::cos(a), std::cos(b)};
 }
 
-inline double dot(const enu_vector& u, const enu_vector& v) noexcept
+inline double enu_dot(const enu_vector& u, const enu_vector& v) noexcept
 {
     return u.east * v.east + u.north * v.north + u.up * v.up;
 }
@@ -79,7 +79,8 @@ inline enu_vector surface_normal(double tilt_deg, double surface_azimuth_deg)
 inline double cos_incidence(double sun_azimuth_deg, double sun_elevation_deg, double tilt_deg,
                             double surface_azimuth_deg)
 {
-    return detail::dot(sun_vector(sun_azimuth_deg, sun_elevation_deg), surface_normal(tilt_deg, surface_azimuth_deg));
+    return detail::enu_dot(sun_vector(sun_azimuth_deg, sun_elevation_deg),
+                           surface_normal(tilt_deg, surface_azimuth_deg));
 }
 
 /// Beam (direct) irradiance on a surface, W/m^2: DNI * max(0, cos theta) * lit, with dni_w_m2 the direct normal

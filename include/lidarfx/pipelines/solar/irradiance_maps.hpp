@@ -86,7 +86,8 @@ struct cell_surface {
 /// map equals ghi_kwh_m2 there. Records may come in any order; each goes to the month of its middle (in UTC +
 /// month_utc_offset_h). dsm heights and cell_m in metres; latitude/longitude in degrees (north, east). Cost per
 /// daylight record O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky view factor
-/// (svf_directions sweeps). Memory: two double and 14 float rasters. Results are the same for any thread count.
+/// (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell
+/// surfaces). Results are the same for any thread count.
 /// @throws invalid_input if cell_m is not finite and > 0, a record has a non-positive interval or a negative or
 /// non-finite irradiance, the surface rasters' shapes differ from the DSM's or only one is given, an option is
 /// out of range, or sun_position refuses the place or a time; cancelled if run.progress returns false.
@@ -98,6 +99,7 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
     constexpr const char* fn = "irradiance_maps";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::check_execution(opt.run, fn);
+    detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
     detail::require(opt.albedo >= 0.0 && opt.albedo <= 1.0, fn, "albedo", "in [0, 1]", opt.albedo);
     detail::require(opt.month_utc_offset_h >= -14.0 && opt.month_utc_offset_h <= 14.0, fn, "month_utc_offset_h",
                     "in [-14, 14] hours", opt.month_utc_offset_h);
@@ -132,7 +134,9 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         res.month_ghi_kwh_m2[static_cast<std::size_t>(m)] += kwh;
         res.ghi_kwh_m2 += kwh;
         const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
-        if (sun.elevation_deg > 0.0) by_month[static_cast<std::size_t>(m)].push_back({i, sun.azimuth_deg, sun.elevation_deg});
+        if (sun.elevation_deg > 0.0) {
+            by_month[static_cast<std::size_t>(m)].push_back({i, sun.azimuth_deg, sun.elevation_deg});
+        }
     }
 
     const std::ptrdiff_t rows = dsm.rows(), cols = dsm.cols();
@@ -168,7 +172,7 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         res.sun_up_records = total;
         const double svf_share = 0.1;  // share of the progress taken by the sky view factor
         res.sky_view_factor = raster<float>(rows, cols);
-        sky_view_factor(z, res.sky_view_factor,  cell_m,
+        sky_view_factor(z, res.sky_view_factor, cell_m,
                         {.method = opt.svf_method, .directions = opt.svf_directions,
                          .run = {.threads = opt.run.threads,
                                  .progress = detail::progress_phase(opt.run.progress, 0.0, svf_share)}});
@@ -203,22 +207,21 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
                         const std::size_t k0 = static_cast<std::size_t>(r * cols);
                         for (std::ptrdiff_t c = 0; c < cols; ++c) {
                             const std::size_t k = k0 + static_cast<std::size_t>(c);
-                            const double cos_t = detail::dot(sun, surf.normal[k]);
+                            const double cos_t = detail::enu_dot(sun, surf.normal[k]);
                             const double beam = l[c] == 1 && cos_t > 0.0 ? dni * cos_t : 0.0;
                             acc[c] += beam + dhi * static_cast<double>(svf[c]) * surf.sky[k] +
                                       reflected * surf.ground[k];
                         }
                     }
                 });
-                detail::report(opt.run.progress,
-                               svf_share + (1.0 - svf_share) * static_cast<double>(++done) / static_cast<double>(total + 1),
-                               fn);
+                const double fraction = static_cast<double>(++done) / static_cast<double>(total + 1);
+                detail::report(opt.run.progress, svf_share + (1.0 - svf_share) * fraction, fn);
             }
             res.month_kwh_m2[m] = raster<float>(rows, cols);
             for (std::ptrdiff_t r = 0; r < rows; ++r) {
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    const bool nodata = z(r, c) != z(r, c) || (tilted && surf.sky[static_cast<std::size_t>(r * cols + c)] !=
-                                                                      surf.sky[static_cast<std::size_t>(r * cols + c)]);
+                    const std::size_t k = static_cast<std::size_t>(r * cols + c);
+                    const bool nodata = z(r, c) != z(r, c) || (tilted && surf.sky[k] != surf.sky[k]);
                     annual(r, c) += month(r, c);
                     res.month_kwh_m2[m](r, c) = nodata ? nan_f : static_cast<float>(month(r, c));
                 }
