@@ -26,7 +26,10 @@
 #include "lidarfx/kernels/metrics/confusion.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/kernels/points/scan_coverage.hpp"
+#include "lidarfx/kernels/solar/clear_sky.hpp"
 #include "lidarfx/kernels/solar/horizon_map.hpp"
+#include "lidarfx/kernels/solar/incidence.hpp"
+#include "lidarfx/kernels/solar/irradiance_record.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
@@ -36,6 +39,7 @@
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
+#include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
 #include "lidarfx/pipelines/water/extract_waterbodies.hpp"

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: Apache-2.0
+// lidarfx solar: annual and monthly irradiation maps of a surface model (dissertation ch. 3).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <lidarfx/lidarfx.hpp>
+
+#include "cli_common.hpp"
+#include "command.hpp"
+#include "io/ascii_grid.hpp"
+#include "io/png.hpp"
+#include "io/quicklook.hpp"
+#include "io/tables.hpp"
+#include "io/tmy3.hpp"
+#include "outputs.hpp"
+
+namespace {
+
+constexpr const char* usage =
+    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc --out DIR [--tmy FILE.csv] [--lat DEG --lon DEG]\n"
+    "                     [--cell M] [--year Y] [--threads N] [--formats asc,tif,png]\n"
+    "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
+    "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
+    "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
+    "and summary.csv (per month: mean, min, max kWh/m2 of the map and the weather's GHI sum). From LAS files the\n"
+    "DSM is the highest return per cell, gaps filled by IDW. Weather: a TMY3 file (--tmy; its station gives the\n"
+    "latitude, longitude and time zone unless --lat/--lon are given); without --tmy, a cloudless year from the\n"
+    "clear-sky model (Haurwitz + Erbs) and --lat/--lon are required. The grid is taken as north-up in metres.\n"
+    "options (defaults in brackets):\n"
+    "  --cell M       cell size for LAS input, metres [1]\n"
+    "  --year Y       year of the clear-sky records (without --tmy) [2021]\n"
+    "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
+
+// Mean, min and max of the finite cells.
+struct map_stats {
+    double mean = std::numeric_limits<double>::quiet_NaN(), min = mean, max = mean;
+};
+
+map_stats stats_of(const lidarfx::raster<float>& m)
+{
+    map_stats s;
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::ptrdiff_t r = 0; r < m.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < m.cols(); ++c) {
+            const double v = m(r, c);
+            if (!std::isfinite(v)) continue;
+            s.min = n == 0 ? v : std::min(s.min, v);
+            s.max = n == 0 ? v : std::max(s.max, v);
+            sum += v;
+            ++n;
+        }
+    }
+    if (n > 0) s.mean = sum / static_cast<double>(n);
+    return s;
+}
+
+bool ends_with(const std::string& s, const std::string& tail)
+{
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+int run_solar(const std::vector<std::string>& args)
+{
+    namespace cli = lidarfx::cli;
+    const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats"},
+                           {"help", "force"});
+    if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
+    const int threads = a.integer("threads", 0);
+    if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
+    const cli::output_formats formats = cli::output_formats_from(a);
+
+    // Weather first: a bad file fails before the survey is read.
+    std::vector<lidarfx::irradiance_record> records;
+    double lat = a.number("lat", std::numeric_limits<double>::quiet_NaN());
+    double lon = a.number("lon", std::numeric_limits<double>::quiet_NaN());
+    double zone_h = 0.0;
+    if (a.has("tmy")) {
+        const auto tmy = lidarfx::io::read_tmy3(a.text("tmy", ""));
+        records = tmy.records;
+        zone_h = tmy.station.utc_offset_h;
+        if (!a.has("lat")) lat = tmy.station.latitude_deg;
+        if (!a.has("lon")) lon = tmy.station.longitude_deg;
+        std::cout << "weather: TMY3 " << tmy.station.id << " " << tmy.station.name << ", " << records.size()
+                  << " hours, UTC" << (zone_h >= 0 ? "+" : "") << zone_h << "\n";
+    }
+    if (!(lat >= -90.0 && lat <= 90.0)) throw cli::usage_error("--lat must be given, in [-90, 90] degrees");
+    if (!(lon >= -180.0 && lon <= 180.0)) throw cli::usage_error("--lon must be given, in [-180, 180] degrees");
+    if (!a.has("tmy")) {
+        const int year = a.integer("year", 2021);
+        if (year < 1900 || year > 2200) throw cli::usage_error("--year must be in [1900, 2200] (got " +
+                                                               std::to_string(year) + ")");
+        records = lidarfx::clear_sky_records(year, lat, lon);
+        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for " << year
+                  << "\n";
+    }
+
+    // The surface model.
+    const auto& inputs = a.positional();
+    lidarfx::raster<float> dsm;
+    lidarfx::grid g;
+    double cell_m = 0.0;
+    std::string crs_wkt;
+    int epsg = 0;
+    if (inputs.size() == 1 && ends_with(inputs[0], ".asc")) {
+        dsm = lidarfx::io::read_ascii_grid(inputs[0], g);
+        cell_m = g.cell;  // taken as metres
+    } else {
+        auto survey_options = cli::survey_options_from(a, 96);
+        if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
+        const auto s = cli::read_survey(inputs, survey_options);
+        cli::print_survey(s);
+        g = s.rasters.g;
+        cell_m = g.cell;  // read_survey works in metres
+        dsm = lidarfx::idw_fill(s.rasters.max_z, cell_m, {.run = {.threads = threads}}).filled;
+        g = cli::to_crs_units(g, s);
+        crs_wkt = s.crs_wkt;
+        epsg = s.epsg;
+    }
+
+    lidarfx::io::output_folder out(a.text("out", ""), {inputs.begin(), inputs.end()});
+    std::vector<std::string> names{"summary.csv"};
+    for (const std::string& n : cli::raster_file_names("annual_kwh_m2", formats)) names.push_back(n);
+    for (const std::string& n : cli::raster_file_names("svf", formats)) names.push_back(n);
+    for (int m = 1; m <= 12; ++m) {
+        char month[32];
+        std::snprintf(month, sizeof month, "month_%02d_kwh_m2", m);
+        for (const std::string& n : cli::raster_file_names(month, formats)) names.push_back(n);
+    }
+    if (formats.png) names.push_back("annual_kwh_m2.png");
+    for (const auto& n : names) out.check_name(n);
+
+    const auto res = lidarfx::irradiance_maps(dsm, cell_m, lat, lon, records,
+                                              {.month_utc_offset_h = zone_h,
+                                               .run = {.threads = threads,
+                                                       .progress = cli::progress_bar("irradiance")}});
+    std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
+              << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
+
+    cli::write_raster(out, "annual_kwh_m2", res.annual_kwh_m2.view(), g, crs_wkt, epsg, formats);
+    cli::write_raster(out, "svf", res.sky_view_factor.view(), g, crs_wkt, epsg, formats);
+    std::vector<std::vector<lidarfx::io::table_value>> rows;
+    for (int m = 0; m < 12; ++m) {
+        char name[32];
+        std::snprintf(name, sizeof name, "month_%02d_kwh_m2", m + 1);
+        cli::write_raster(out, name, res.month_kwh_m2[static_cast<std::size_t>(m)].view(), g, crs_wkt, epsg, formats);
+        const map_stats st = stats_of(res.month_kwh_m2[static_cast<std::size_t>(m)]);
+        rows.push_back({m + 1, st.mean, st.min, st.max, res.month_ghi_kwh_m2[static_cast<std::size_t>(m)]});
+    }
+    const map_stats year = stats_of(res.annual_kwh_m2);
+    rows.push_back({"year", year.mean, year.min, year.max, res.ghi_kwh_m2});
+    out.write("summary.csv", [&](const std::string& path) {
+        lidarfx::io::write_csv(path, {"month", "mean_kwh_m2", "min_kwh_m2", "max_kwh_m2", "ghi_kwh_m2"}, rows);
+    });
+    if (formats.png) {
+        out.write("annual_kwh_m2.png", [&](const std::string& path) {
+            lidarfx::io::write_png_rgb(path, lidarfx::io::colorize(res.annual_kwh_m2.view()));
+        });
+    }
+    std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
+              << " kWh/m2\n";
+    cli::commit_and_report(out, cli::command_line("solar", args));
+    return 0;
+}
+
+const lidarfx::cli::registration reg{"solar", "DSM or LAS files + TMY3 -> annual and monthly irradiation maps",
+                                     run_solar};
+
+}  // namespace

@@ -1,0 +1,242 @@
+// SPDX-License-Identifier: Apache-2.0
+// irradiance_maps: hourly weather records summed into annual and monthly irradiation maps of a surface model,
+// with cast shadows for the beam and the sky view factor for the diffuse part (dissertation 3.2.5, 3.3).
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/solar/incidence.hpp"
+#include "lidarfx/kernels/solar/irradiance_record.hpp"
+#include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/sky_view_factor.hpp"
+#include "lidarfx/kernels/solar/sun_position.hpp"
+
+namespace lidarfx {
+
+/// Settings of irradiance_maps.
+struct irradiance_maps_options {
+    /// Surface tilt of every cell, degrees from horizontal in [0, 180] (e.g. slope_aspect's slope_deg); empty (the
+    /// default) = every cell horizontal. Same shape as the DSM when given; NaN -> NaN output.
+    raster_view<const float> surface_tilt_deg = {};
+    /// Azimuth each cell faces, degrees clockwise from north (e.g. slope_aspect's aspect_deg); used with
+    /// surface_tilt_deg, which it must accompany; NaN (a flat cell's aspect) counts as 0.
+    raster_view<const float> surface_azimuth_deg = {};
+    sun_position_options sun = {};  ///< sun model (default NREL SPA with refraction at sea level)
+    sky_view_factor_method svf_method = sky_view_factor_method::source_share;  ///< the dissertation's by default
+    int svf_directions = 72;        ///< azimuths of the sky view factor sweep, >= 4
+    /// Ground reflectance (albedo) in [0, 1] for ground-reflected irradiance GHI * albedo * (1 - cos b) / 2 on
+    /// tilted cells; 0 (the default, the dissertation's) leaves it out. Horizontal cells never get any.
+    double albedo = 0.0;
+    /// Months are those of local standard time UTC + this many hours (TMY3's zone), in [-14, 14]; 0 = UTC months.
+    double month_utc_offset_h = 0.0;
+    execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
+};
+
+/// Irradiation maps of a surface model, kWh/m^2 per cell (NaN on NaN cells), with their ingredients.
+struct irradiance_maps_result {
+    raster<float> annual_kwh_m2;                  ///< sum over all records
+    std::array<raster<float>, 12> month_kwh_m2;   ///< [0] January ... [11] December; they sum to annual_kwh_m2
+    raster<float> sky_view_factor;                ///< the SVF used for the diffuse part, [0, 1]
+    double ghi_kwh_m2 = 0;                        ///< sum of GHI * interval over all records (open flat ground)
+    std::array<double, 12> month_ghi_kwh_m2 = {}; ///< the same per month
+    std::size_t sun_up_records = 0;               ///< records with the sun above the horizon at their middle
+};
+
+namespace detail {
+
+/// Month index 0..11 of a record: the month of its middle in UTC + offset_h.
+inline int record_month(const irradiance_record& rec, double offset_h)
+{
+    namespace chr = std::chrono;
+    const auto local = rec.middle_utc() + chr::seconds{static_cast<long long>(std::llround(offset_h * 3600.0))};
+    const chr::year_month_day ymd{chr::floor<chr::days>(local)};
+    return static_cast<int>(static_cast<unsigned>(ymd.month())) - 1;
+}
+
+/// Per-cell incidence terms of a tilted surface: normal vector, (1 + cos b) / 2 and (1 - cos b) / 2.
+struct cell_surface {
+    std::vector<enu_vector> normal;
+    std::vector<float> sky, ground;
+};
+
+}  // namespace detail
+
+/// Annual and monthly irradiation maps (kWh/m^2) of a surface model from irradiance records (dissertation 3.3).
+/// For every record with the sun above the horizon at the middle of its interval (sun_position with opt.sun,
+/// elevation e > 0), each cell gets, times the interval in hours / 1000:
+///   beam    = DNI * max(0, cos theta) * lit    (cos theta from cos_incidence; lit from raylines_shadow for that
+///                                               sun position: 1 lit, 0 shadow)
+///   diffuse = DHI * SVF * (1 + cos b) / 2      (isotropic sky; SVF = sky_view_factor of the DSM, computed once)
+///   ground  = GHI * albedo * (1 - cos b) / 2   (only when opt.albedo > 0)
+/// with b the cell's tilt (0 by default: horizontal, cos theta = sin e). Records with the sun down add nothing.
+/// On open horizontal ground a record adds DNI sin e + DHI, which is GHI for consistent records, so the annual
+/// map equals ghi_kwh_m2 there. Records may come in any order; each goes to the month of its middle (in UTC +
+/// month_utc_offset_h). dsm heights and cell_m in metres; latitude/longitude in degrees (north, east). Cost per
+/// daylight record O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky view factor
+/// (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell
+/// surfaces). Results are the same for any thread count.
+/// @throws invalid_input if cell_m is not finite and > 0, a record has a non-positive interval or a negative or
+/// non-finite irradiance, the surface rasters' shapes differ from the DSM's or only one is given, an option is
+/// out of range, or sun_position refuses the place or a time; cancelled if run.progress returns false.
+template <raster_input In>
+irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double latitude_deg, double longitude_deg,
+                                       std::span<const irradiance_record> records,
+                                       const irradiance_maps_options& opt = {})
+{
+    constexpr const char* fn = "irradiance_maps";
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::check_execution(opt.run, fn);
+    detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
+    detail::require(opt.albedo >= 0.0 && opt.albedo <= 1.0, fn, "albedo", "in [0, 1]", opt.albedo);
+    detail::require(opt.month_utc_offset_h >= -14.0 && opt.month_utc_offset_h <= 14.0, fn, "month_utc_offset_h",
+                    "in [-14, 14] hours", opt.month_utc_offset_h);
+    const bool tilted = opt.surface_tilt_deg.rows() > 0 || opt.surface_tilt_deg.cols() > 0;
+    const bool has_azimuth = opt.surface_azimuth_deg.rows() > 0 || opt.surface_azimuth_deg.cols() > 0;
+    detail::require(tilted == has_azimuth, fn,
+                    "surface_tilt_deg and surface_azimuth_deg must be given together (or neither, for horizontal)");
+    if (tilted) {
+        detail::require_same_shape(dsm, opt.surface_tilt_deg, fn, "dsm", "surface_tilt_deg");
+        detail::require_same_shape(dsm, opt.surface_azimuth_deg, fn, "dsm", "surface_azimuth_deg");
+    }
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        const irradiance_record& r = records[i];
+        const auto bad = [&](double v) { return !(v >= 0.0 && v <= 1.0e6); };
+        if (r.interval.count() <= 0 || bad(r.dni_w_m2) || bad(r.dhi_w_m2) || bad(r.ghi_w_m2)) {
+            throw invalid_input(detail::concat(fn, ": records[", i, "] must have interval > 0 and DNI, DHI, GHI in ",
+                                               "[0, 1e6] W/m^2 (got interval ", r.interval.count(), " s, DNI ",
+                                               r.dni_w_m2, ", DHI ", r.dhi_w_m2, ", GHI ", r.ghi_w_m2, ")"));
+        }
+    }
+    // Sun positions first: they validate the place and every time before any long work.
+    struct daylight {
+        std::size_t record;
+        double azimuth_deg, elevation_deg;
+    };
+    std::array<std::vector<daylight>, 12> by_month;
+    irradiance_maps_result res;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        const irradiance_record& r = records[i];
+        const int m = detail::record_month(r, opt.month_utc_offset_h);
+        const double kwh = r.ghi_w_m2 * (static_cast<double>(r.interval.count()) / 3600.0) / 1000.0;
+        res.month_ghi_kwh_m2[static_cast<std::size_t>(m)] += kwh;
+        res.ghi_kwh_m2 += kwh;
+        const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
+        if (sun.elevation_deg > 0.0) {
+            by_month[static_cast<std::size_t>(m)].push_back({i, sun.azimuth_deg, sun.elevation_deg});
+        }
+    }
+
+    const std::ptrdiff_t rows = dsm.rows(), cols = dsm.cols();
+    const std::size_t n = static_cast<std::size_t>(rows * cols);
+    // Per-cell surface terms (horizontal: normal up, sky factor 1, ground factor 0).
+    detail::cell_surface surf;
+    if (tilted) {
+        surf.normal.resize(n);
+        surf.sky.resize(n);
+        surf.ground.resize(n);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const double b = opt.surface_tilt_deg(r, c), a = opt.surface_azimuth_deg(r, c);
+                const std::size_t k = static_cast<std::size_t>(r * cols + c);
+                if (b != b) {
+                    const double nan = std::numeric_limits<double>::quiet_NaN();
+                    surf.normal[k] = {nan, nan, nan};
+                    surf.sky[k] = surf.ground[k] = std::numeric_limits<float>::quiet_NaN();
+                    continue;
+                }
+                detail::require(b >= 0.0 && b <= 180.0, fn, "surface_tilt_deg", "in [0, 180] degrees", b);
+                surf.normal[k] = detail::surface_normal_unchecked(b, a == a ? a : 0.0);
+                const double cb = std::cos(b * (std::numbers::pi / 180.0));
+                surf.sky[k] = static_cast<float>((1.0 + cb) / 2.0);
+                surf.ground[k] = static_cast<float>((1.0 - cb) / 2.0);
+            }
+        }
+    }
+
+    return detail::with_float_view(dsm, [&](raster_view<const float> z) {
+        std::size_t total = 0;
+        for (const auto& v : by_month) total += v.size();
+        res.sun_up_records = total;
+        const double svf_share = 0.1;  // share of the progress taken by the sky view factor
+        res.sky_view_factor = raster<float>(rows, cols);
+        sky_view_factor(z, res.sky_view_factor, cell_m,
+                        {.method = opt.svf_method, .directions = opt.svf_directions,
+                         .run = {.threads = opt.run.threads,
+                                 .progress = detail::progress_phase(opt.run.progress, 0.0, svf_share)}});
+
+        raster<double> annual(rows, cols, 0.0), month(rows, cols, 0.0);
+        raster<std::uint8_t> lit(rows, cols);
+        const float nan_f = std::numeric_limits<float>::quiet_NaN();
+        std::size_t done = 0;
+        for (std::size_t m = 0; m < 12; ++m) {
+            for (std::ptrdiff_t r = 0; r < rows; ++r)
+                for (std::ptrdiff_t c = 0; c < cols; ++c) month(r, c) = 0.0;
+            for (const daylight& d : by_month[m]) {
+                const irradiance_record& rec = records[d.record];
+                const double hours_k = static_cast<double>(rec.interval.count()) / 3600.0 / 1000.0;
+                raylines_shadow(z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
+                                {.nan_cell = 0, .run = {.threads = opt.run.threads}});
+                const enu_vector sun = detail::sun_vector_unchecked(d.azimuth_deg, d.elevation_deg);
+                const double beam_flat = rec.dni_w_m2 * (sun.up > 0.0 ? sun.up : 0.0) * hours_k;
+                const double dni = rec.dni_w_m2 * hours_k, dhi = rec.dhi_w_m2 * hours_k;
+                const double reflected = rec.ghi_w_m2 * opt.albedo * hours_k;
+                parallel_for_rows(rows, 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                        double* acc = month.view().row(r);
+                        const std::uint8_t* l = lit.view().row(r);
+                        const float* svf = res.sky_view_factor.view().row(r);
+                        if (!tilted) {
+                            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                                acc[c] += (l[c] == 1 ? beam_flat : 0.0) + dhi * static_cast<double>(svf[c]);
+                            }
+                            continue;
+                        }
+                        const std::size_t k0 = static_cast<std::size_t>(r * cols);
+                        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                            const std::size_t k = k0 + static_cast<std::size_t>(c);
+                            const double cos_t = detail::enu_dot(sun, surf.normal[k]);
+                            const double beam = l[c] == 1 && cos_t > 0.0 ? dni * cos_t : 0.0;
+                            acc[c] += beam + dhi * static_cast<double>(svf[c]) * surf.sky[k] +
+                                      reflected * surf.ground[k];
+                        }
+                    }
+                });
+                const double fraction = static_cast<double>(++done) / static_cast<double>(total + 1);
+                detail::report(opt.run.progress, svf_share + (1.0 - svf_share) * fraction, fn);
+            }
+            res.month_kwh_m2[m] = raster<float>(rows, cols);
+            for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const std::size_t k = static_cast<std::size_t>(r * cols + c);
+                    const bool nodata = z(r, c) != z(r, c) || (tilted && surf.sky[k] != surf.sky[k]);
+                    annual(r, c) += month(r, c);
+                    res.month_kwh_m2[m](r, c) = nodata ? nan_f : static_cast<float>(month(r, c));
+                }
+            }
+        }
+        res.annual_kwh_m2 = raster<float>(rows, cols);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const float m0 = res.month_kwh_m2[0](r, c);
+                res.annual_kwh_m2(r, c) = m0 != m0 ? nan_f : static_cast<float>(annual(r, c));
+            }
+        }
+        detail::report(opt.run.progress, 1.0, fn);
+        return std::move(res);
+    });
+}
+
+}  // namespace lidarfx

@@ -1,0 +1,240 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/kernels/filter/slope_aspect.hpp>
+#include <lidarfx/kernels/solar/clear_sky.hpp>
+#include <lidarfx/pipelines/solar/irradiance_maps.hpp>
+
+#include "reference/progress.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+using namespace lidarfx;
+
+namespace {
+
+// Golden, Colorado (SPA's example site) and Cape Town.
+constexpr double golden_lat = 39.742476, golden_lon = -105.1786;
+constexpr double cape_lat = -33.92, cape_lon = 18.42;
+
+// Every `step`-th day of a clear-sky year (the test stays fast; closure holds record by record).
+std::vector<irradiance_record> clear_days(double lat, double lon, int step)
+{
+    const auto all = clear_sky_records(2021, lat, lon);
+    std::vector<irradiance_record> out;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if ((i / 24) % static_cast<std::size_t>(step) == 0) out.push_back(all[i]);
+    }
+    return out;
+}
+
+bool same_bits(const raster<float>& a, const raster<float>& b)
+{
+    if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+    for (std::ptrdiff_t r = 0; r < a.rows(); ++r) {
+        if (std::memcmp(a.view().row(r), b.view().row(r), sizeof(float) * static_cast<std::size_t>(a.cols())) != 0) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// A 10 m high block on flat ground: rows 20..22, columns 15..25 of a 40 x 40 raster with 1 m cells.
+raster<float> block_scene()
+{
+    raster<float> z(40, 40, 0.0f);
+    for (std::ptrdiff_t r = 20; r <= 22; ++r)
+        for (std::ptrdiff_t c = 15; c <= 25; ++c) z(r, c) = 10.0f;
+    return z;
+}
+
+}  // namespace
+
+TEST_CASE("solar/irradiance_maps: on open flat ground the annual sum equals the year's GHI (energy closure)")
+{
+    // Clear-sky records have DNI sin e + DHI = GHI, with the sun at each interval's middle (as the maps take it).
+    const auto records = clear_sky_records(2021, golden_lat, golden_lon);
+    REQUIRE(records.size() == 8760);
+    const raster<float> flat(12, 9, 1600.0f);
+    const auto res = irradiance_maps(flat, 2.0, golden_lat, golden_lon, records);
+    // Haurwitz's cloudless year at 40 N: about 2,000 kWh/m^2 (TMY3 sites in the US get 1,200..2,300 with clouds).
+    CHECK(res.ghi_kwh_m2 > 1800.0);
+    CHECK(res.ghi_kwh_m2 < 2400.0);
+    CHECK(res.sun_up_records > 4300);
+    CHECK(res.sun_up_records < 4500);
+    for (std::ptrdiff_t r = 0; r < flat.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < flat.cols(); ++c) {
+            INFO("cell ", r, ", ", c);
+            CHECK(res.sky_view_factor(r, c) == 1.0f);
+            CHECK(std::fabs(res.annual_kwh_m2(r, c) / res.ghi_kwh_m2 - 1.0) < 0.01);
+            CHECK(std::fabs(res.annual_kwh_m2(r, c) / res.ghi_kwh_m2 - 1.0) < 1e-5);  // consistent records: exact
+        }
+    }
+    MESSAGE("clear-sky year at Golden: GHI ", res.ghi_kwh_m2, " kWh/m^2, flat open cell ", res.annual_kwh_m2(5, 5),
+            " kWh/m^2");
+}
+
+TEST_CASE("solar/irradiance_maps: the monthly maps sum to the annual map, and the monthly GHI to the year's")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 5);
+    const auto z = block_scene();
+    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    double ghi = 0.0;
+    for (int m = 0; m < 12; ++m) {
+        ghi += res.month_ghi_kwh_m2[static_cast<std::size_t>(m)];
+        CHECK(res.month_ghi_kwh_m2[static_cast<std::size_t>(m)] > 0.0);
+    }
+    CHECK(ghi == doctest::Approx(res.ghi_kwh_m2).epsilon(1e-12));
+    // June gets more than December in the north.
+    CHECK(res.month_kwh_m2[5](0, 0) > 2.0 * res.month_kwh_m2[11](0, 0));
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
+            double sum = 0.0;
+            for (const auto& m : res.month_kwh_m2) sum += m(r, c);
+            INFO("cell ", r, ", ", c);
+            CHECK(sum == doctest::Approx(res.annual_kwh_m2(r, c)).epsilon(1e-5));
+        }
+    }
+}
+
+TEST_CASE("solar/irradiance_maps: a cell in a block's shadow gets less than open ground, and less beam in winter")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 3);
+    const auto res = irradiance_maps(block_scene(), 1.0, golden_lat, golden_lon, records);
+    const double open = res.annual_kwh_m2(0, 0), north_of_block = res.annual_kwh_m2(18, 20);
+    const double south_of_block = res.annual_kwh_m2(24, 20);
+    MESSAGE("open ", open, ", just north of the block ", north_of_block, ", just south ", south_of_block, " kWh/m^2");
+    CHECK(north_of_block < 0.7 * open);
+    CHECK(south_of_block < open);                  // it sees less sky
+    CHECK(south_of_block > north_of_block);        // but keeps the midday sun
+    CHECK(res.month_kwh_m2[11](18, 20) < 0.5 * res.month_kwh_m2[11](0, 0));
+    // Open ground far from the block keeps (nearly) the whole sky and (nearly) all its sun.
+    CHECK(open > 0.95 * res.ghi_kwh_m2);
+    CHECK(open <= res.ghi_kwh_m2 * (1.0 + 1e-6));
+}
+
+TEST_CASE("solar/irradiance_maps: a vertical south wall gets more than a north wall in the north, and walls get "
+          "half the sky")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 5);
+    const raster<float> z(4, 6, 0.0f);
+    raster<float> tilt(4, 6, 90.0f), azimuth(4, 6, 180.0f);
+    for (std::ptrdiff_t r = 0; r < 4; ++r)
+        for (std::ptrdiff_t c = 3; c < 6; ++c) azimuth(r, c) = 0.0f;  // east half faces north
+    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
+                                     {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view()});
+    const double south = res.annual_kwh_m2(1, 1), north = res.annual_kwh_m2(1, 4);
+    MESSAGE("vertical walls at Golden: south ", south, ", north ", north, " kWh/m^2");
+    CHECK(south > 2.0 * north);
+    CHECK(north > 0.0);  // half the (open) sky, and the early and late summer sun
+    const auto flat = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    CHECK(south < flat.annual_kwh_m2(1, 1));
+    // Ground reflection adds to walls and only to walls.
+    const auto bright = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
+                                        {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
+                                         .albedo = 0.2});
+    CHECK(bright.annual_kwh_m2(1, 4) == doctest::Approx(north + 0.2 * 0.5 * res.ghi_kwh_m2).epsilon(1e-5));
+}
+
+TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slope gets more than a south-facing "
+          "one")
+{
+    // An east-west ridge with 1:2 slopes: rows above row 20 face north, rows below face south.
+    raster<float> z(41, 21);
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
+            z(r, c) = static_cast<float>(30.0 - 0.5 * static_cast<double>(std::abs(r - 20)));
+        }
+    const auto sa = slope_aspect(z, 1.0);
+    REQUIRE(sa.aspect_deg(10, 10) == doctest::Approx(0.0).epsilon(1e-6));
+    REQUIRE(sa.aspect_deg(30, 10) == doctest::Approx(180.0));
+    const irradiance_maps_options terrain{.surface_tilt_deg = sa.slope_deg.view(),
+                                          .surface_azimuth_deg = sa.aspect_deg.view()};
+    const auto cape = irradiance_maps(z, 1.0, cape_lat, cape_lon, clear_days(cape_lat, cape_lon, 5), terrain);
+    MESSAGE("Cape Town: north-facing slope ", cape.annual_kwh_m2(10, 10), ", south-facing ",
+            cape.annual_kwh_m2(30, 10), " kWh/m^2");
+    CHECK(cape.annual_kwh_m2(10, 10) > 1.1 * cape.annual_kwh_m2(30, 10));
+    // The same ridge in the north: the other way round.
+    const auto golden = irradiance_maps(z, 1.0, golden_lat, golden_lon, clear_days(golden_lat, golden_lon, 5), terrain);
+    CHECK(golden.annual_kwh_m2(30, 10) > 1.1 * golden.annual_kwh_m2(10, 10));
+}
+
+TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN cells; progress and cancellation")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 11);
+    raster<float> z = block_scene();
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) z(r, c) += static_cast<float>((r * 7 + c * 13) % 5) * 0.3f;
+    z(3, 4) = std::numeric_limits<float>::quiet_NaN();
+    const auto one = irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.threads = 1}});
+    for (int threads : {2, 3, 0}) {
+        INFO("threads ", threads);
+        const auto many = irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.threads = threads}});
+        CHECK(same_bits(one.annual_kwh_m2, many.annual_kwh_m2));
+        for (std::size_t m = 0; m < 12; ++m) CHECK(same_bits(one.month_kwh_m2[m], many.month_kwh_m2[m]));
+    }
+    CHECK(std::isnan(one.annual_kwh_m2(3, 4)));
+    CHECK(std::isnan(one.month_kwh_m2[6](3, 4)));
+    CHECK(std::isfinite(one.annual_kwh_m2(3, 5)));
+
+    reference::progress_log log;
+    irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.progress = log.callback()}});
+    CHECK(log.monotone_to_one(10));
+    CHECK_THROWS_AS(irradiance_maps(z, 0.5, golden_lat, golden_lon, records,
+                                    {.run = {.progress = reference::cancel_at_once()}}),
+                    cancelled);
+}
+
+TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name")
+{
+    const raster<float> z(5, 5, 0.0f), tilt(5, 5, 30.0f), small(4, 5, 0.0f);
+    std::vector<irradiance_record> records(1);
+    records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 6 / 21} + std::chrono::hours{18};
+    records[0].ghi_w_m2 = 500.0;
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 0.0, 40.0, -105.0, records), doctest::Contains("cell_m"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 95.0, -105.0, records), doctest::Contains("latitude_deg"),
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.surface_tilt_deg = tilt.view()}),
+                         doctest::Contains("surface_azimuth_deg"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records,
+                                         {.surface_tilt_deg = small.view(), .surface_azimuth_deg = small.view()}),
+                         doctest::Contains("same shape"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.albedo = 1.5}), doctest::Contains("albedo"),
+                         invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.svf_directions = 2}),
+                         doctest::Contains("irradiance_maps: svf_directions"), invalid_input);
+    records[0].dni_w_m2 = -3.0;
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("records[0]"),
+                         invalid_input);
+    records[0].dni_w_m2 = 0.0;
+    records[0].interval = std::chrono::seconds{0};
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("interval"),
+                         invalid_input);
+}
+
+TEST_CASE("solar/clear_sky: DNI sin e + DHI = GHI, zero at night, beam dominates a high sun")
+{
+    const irradiance_record high = clear_sky_irradiance(60.0, 172), low = clear_sky_irradiance(5.0, 172);
+    const double s60 = std::sin(60.0 * std::numbers::pi / 180.0), s5 = std::sin(5.0 * std::numbers::pi / 180.0);
+    CHECK(high.dni_w_m2 * s60 + high.dhi_w_m2 == doctest::Approx(high.ghi_w_m2).epsilon(1e-12));
+    CHECK(low.dni_w_m2 * s5 + low.dhi_w_m2 == doctest::Approx(low.ghi_w_m2).epsilon(1e-12));
+    CHECK(high.ghi_w_m2 == doctest::Approx(1098.0 * s60 * std::exp(-0.057 / s60)));
+    CHECK(high.dni_w_m2 > 700.0);
+    CHECK(high.dhi_w_m2 < 0.25 * high.ghi_w_m2);
+    CHECK(low.dhi_w_m2 > 0.25 * low.ghi_w_m2);
+    const irradiance_record night = clear_sky_irradiance(-3.0, 10);
+    CHECK(night.ghi_w_m2 == 0.0);
+    CHECK(night.dni_w_m2 == 0.0);
+    CHECK(night.dhi_w_m2 == 0.0);
+    const auto leap = clear_sky_records(2024, 0.0, 0.0);
+    CHECK(leap.size() == 8784);
+    CHECK(leap.front().start_utc == std::chrono::sys_days{std::chrono::year{2024} / 1 / 1});
+    CHECK(leap[1].start_utc - leap[0].start_utc == std::chrono::hours{1});
+    CHECK_THROWS_WITH_AS(clear_sky_records(2024, 0.0, 0.0, {.interval = std::chrono::seconds{7}}),
+                         doctest::Contains("interval"), invalid_input);
+}
