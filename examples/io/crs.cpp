@@ -448,7 +448,7 @@ std::vector<std::uint8_t> tiff_with_geokeys(const las_header& h)
         put32(at + 4, e.count);
         if (e.tag == 273) strip_entry = at + 8;
         if (e.bytes.size() <= 4) {
-            std::memcpy(out.data() + at + 8, e.bytes.data(), e.bytes.size());
+            if (!e.bytes.empty()) std::memcpy(out.data() + at + 8, e.bytes.data(), e.bytes.size());
         } else {
             if (out.size() % 2) out.push_back(0);   // values start on a word boundary
             put32(at + 8, static_cast<std::uint32_t>(out.size()));
