@@ -410,12 +410,12 @@ std::vector<std::uint8_t> tiff_with_geokeys(const las_header& h)
     };
     const auto shorts = [](std::uint16_t tag, const std::vector<std::uint16_t>& v) {
         entry e{tag, 3, static_cast<std::uint32_t>(v.size()), std::vector<std::uint8_t>(2 * v.size())};
-        std::memcpy(e.bytes.data(), v.data(), e.bytes.size());
+        if (!v.empty()) std::memcpy(e.bytes.data(), v.data(), e.bytes.size());
         return e;
     };
     const auto doubles = [](std::uint16_t tag, const std::vector<double>& v) {
         entry e{tag, 12, static_cast<std::uint32_t>(v.size()), std::vector<std::uint8_t>(8 * v.size())};
-        std::memcpy(e.bytes.data(), v.data(), e.bytes.size());
+        if (!v.empty()) std::memcpy(e.bytes.data(), v.data(), e.bytes.size());
         return e;
     };
     std::vector<std::uint16_t> directory{1, 1, 0, static_cast<std::uint16_t>(h.geo_keys.size())};
