@@ -116,7 +116,7 @@ TEST_CASE("solar/horizon_map: the same result for any thread count; progress and
     }
     reference::progress_log log;
     horizon_map(z, 1.0, 33.0, {.run = {.threads = 2, .progress = log.callback()}});
-    CHECK(log.monotone_to_one(2));
+    CHECK(log.monotone_to_one());  // with a helper thread the caller may report once
     CHECK_THROWS_AS(horizon_map(z, 1.0, 33.0, {.run = {.progress = reference::cancel_at_once()}}), cancelled);
 }
 

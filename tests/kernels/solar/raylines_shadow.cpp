@@ -213,7 +213,7 @@ TEST_CASE("solar/raylines_shadow: the same result for any thread count; progress
     }
     reference::progress_log log;
     raylines_shadow(z, 1.0, 70.0, 25.0, {.run = {.threads = 2, .progress = log.callback()}});
-    CHECK(log.monotone_to_one(2));
+    CHECK(log.monotone_to_one());  // with a helper thread the caller may report once
     CHECK_THROWS_AS(raylines_shadow(z, 1.0, 70.0, 25.0, {.run = {.progress = reference::cancel_at_once()}}), cancelled);
 }
 
