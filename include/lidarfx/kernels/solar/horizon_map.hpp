@@ -111,8 +111,7 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
     const bool fwd = l.forward();
     const T nan = std::numeric_limits<T>::quiet_NaN();
-    const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back()));
-    const std::ptrdiff_t hi = std::min(rows, k1 + std::max(sh.front(), sh.back()));
+    const auto [lo, hi] = ray_lines::rows_of(sh, k0, k1, rows);
     for (std::ptrdiff_t i = lo; i < hi; ++i) {
         const std::ptrdiff_t r = l.rows_forward() ? i : lo + hi - 1 - i;
         const auto [c0, c1] = l.columns(sh, r, k0, k1);

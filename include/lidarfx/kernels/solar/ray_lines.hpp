@@ -90,6 +90,13 @@ struct ray_lines {
     }
     /// Rows are swept in this order so that every line's cells come in walk order: increasing if true.
     bool rows_forward() const noexcept { return drow >= 0; }
+    /// The rows [first, last) of a raster of `rows` rows holding a cell of lines [k0, k1): r = k + shift(c).
+    static std::array<std::ptrdiff_t, 2> rows_of(const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0,
+                                                 std::ptrdiff_t k1, std::ptrdiff_t rows) noexcept
+    {
+        return {std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back())),
+                std::min(rows, k1 + std::max(sh.front(), sh.back()))};
+    }
 };
 
 inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept

@@ -81,9 +81,7 @@ inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::ui
     std::vector<double> limit(static_cast<std::size_t>(k1 - k0), -std::numeric_limits<double>::infinity());
     const std::ptrdiff_t rows = z.rows();
     const bool fwd = l.forward();
-    // Rows that hold a cell of these lines: r = k + shift(c) for k in [k0, k1).
-    const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, k0 + std::min(sh.front(), sh.back()));
-    const std::ptrdiff_t hi = std::min(rows, k1 + std::max(sh.front(), sh.back()));
+    const auto [lo, hi] = ray_lines::rows_of(sh, k0, k1, rows);
     for (std::ptrdiff_t i = lo; i < hi; ++i) {
         const std::ptrdiff_t r = l.rows_forward() ? i : lo + hi - 1 - i;
         const auto [c0, c1] = l.columns(sh, r, k0, k1);
