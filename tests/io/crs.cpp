@@ -387,7 +387,9 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
     const auto manifest = io_test::read_bytes(dir.file("out_ft/manifest.json"));
     const std::string text(manifest.begin(), manifest.end());
     CHECK(contains(text, "\"units\": \"cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and "
-                         "polygons in the CRS of the input, WGS 84 / UTM zone 33N (foot)"));
+                         "polygons in the CRS of the input, "));
+    // GDAL names the CRS; without it the description says what the keys give.
+    if (geotiff_available()) CHECK(contains(text, "WGS 84 / UTM zone 33N (foot)"));
 }
 
 TEST_CASE("io/crs_of: PDAL's test surveys (optional: LIDARFX_PDAL_DATA)")
