@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <string>
 
 using namespace lidarfx;
 using namespace lidarfx::io;
@@ -207,7 +208,7 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
     CHECK(pixel(one, 1, 2) == rgb{255, 255, 255});
 
     // Every digit is drawn from its own bitmap, pixel for pixel, at scale 1 and as blocks at scale 2.
-    std::set<std::vector<std::uint8_t>> pictures;
+    std::set<std::string> pictures;   // the bytes of each digit's picture
     for (char d = '0'; d <= '9'; ++d) {
         const std::string text(1, d);
         for (int scale : {1, 2}) {
@@ -219,7 +220,7 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
                     const bool on = (rows[static_cast<std::size_t>(r / scale)] >> (4 - c / scale)) & 1;
                     CHECK(pixel(img, r, c) == (on ? rgb{200, 100, 50} : rgb{0, 0, 0}));
                 }
-            if (scale == 1) pictures.insert(img.rgb);
+            if (scale == 1) pictures.insert(std::string(img.rgb.begin(), img.rgb.end()));
             rgb_image again{img.width, img.height, std::vector<std::uint8_t>(img.rgb.size(), 0)};
             draw_text(again, 0, 0, text, {200, 100, 50}, scale);
             CHECK(again.rgb == img.rgb);
