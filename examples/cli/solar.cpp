@@ -30,10 +30,11 @@ constexpr const char* usage =
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
-    "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of the map and the weather's GHI sum). From LAS files the\n"
-    "DSM is the highest return per cell, gaps filled by IDW. Weather: a TMY3 file (--tmy; its station gives the\n"
-    "latitude, longitude and time zone unless --lat/--lon are given); without --tmy, a cloudless year from the\n"
-    "clear-sky model (Haurwitz + Erbs) and --lat/--lon are required. The grid is taken as north-up in metres.\n"
+    "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
+    "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
+    "IDW. Weather: a TMY3 file (--tmy; its station gives the latitude, longitude and time zone unless --lat/--lon\n"
+    "are given); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs), and then --lat/--lon\n"
+    "are required. The grid is taken as north-up in metres.\n"
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
     "  --year Y       the year the records are placed in [2021]: the clear-sky year, or the year every TMY row\n"
@@ -132,7 +133,8 @@ int run_solar(const std::vector<std::string>& args)
     if (!(lon >= -180.0 && lon <= 180.0)) throw cli::usage_error("--lon must be given, in [-180, 180] degrees");
     if (!a.has("tmy")) {
         records = lidarfx::clear_sky_records(records_year, lat, lon);
-        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for " << records_year
+        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
+                  << records_year
                   << "\n";
     }
 

@@ -212,7 +212,8 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
     for (char d = '0'; d <= '9'; ++d) {
         const std::string text(1, d);
         for (int scale : {1, 2}) {
-            rgb_image img{5 * scale, 7 * scale, std::vector<std::uint8_t>(static_cast<std::size_t>(35 * scale * scale) * 3, 0)};
+            const auto bytes = static_cast<std::size_t>(35 * scale * scale) * 3;
+            rgb_image img{5 * scale, 7 * scale, std::vector<std::uint8_t>(bytes, 0)};
             draw_text(img, 0, 0, text, {200, 100, 50}, scale);
             const auto rows = glyph_rows(static_cast<char32_t>(d));
             for (std::ptrdiff_t r = 0; r < img.height; ++r)
