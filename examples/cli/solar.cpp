@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // lidarfx solar: annual and monthly irradiation maps of a surface model (dissertation ch. 3).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,17 +26,21 @@ namespace {
 
 constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc --out DIR [--tmy FILE.csv] [--lat DEG --lon DEG]\n"
-    "                     [--cell M] [--year Y] [--threads N] [--formats asc,tif,png]\n"
+    "                     [--cell M] [--year Y | --year-from-tmy] [--threads N] [--formats asc,tif,png]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
-    "and summary.csv (per month: mean, min, max kWh/m2 of the map and the weather's GHI sum). From LAS files the\n"
-    "DSM is the highest return per cell, gaps filled by IDW. Weather: a TMY3 file (--tmy; its station gives the\n"
-    "latitude, longitude and time zone unless --lat/--lon are given); without --tmy, a cloudless year from the\n"
-    "clear-sky model (Haurwitz + Erbs) and --lat/--lon are required. The grid is taken as north-up in metres.\n"
+    "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
+    "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
+    "IDW. Weather: a TMY3 file (--tmy; its station gives the latitude, longitude and time zone unless --lat/--lon\n"
+    "are given); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs), and then --lat/--lon\n"
+    "are required. The grid is taken as north-up in metres.\n"
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
-    "  --year Y       year of the clear-sky records (without --tmy) [2021]\n"
+    "  --year Y       the year the records are placed in [2021]: the clear-sky year, or the year every TMY row\n"
+    "                 is re-stamped to (same local month, day and hour), so the sun follows one calendar year\n"
+    "  --year-from-tmy  keep the TMY rows' own years (a TMY takes each month from a different year) instead\n"
+    "                 of re-stamping them; needs --tmy, excludes --year\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 // Mean, min and max of the finite cells.
@@ -62,6 +67,27 @@ map_stats stats_of(const lidarfx::raster<float>& m)
     return s;
 }
 
+// The records moved into `year`: each keeps its local (UTC + zone_h) month, day and time of day. A 29 February
+// cannot move into a common year: refused, naming the file and the ways out.
+std::vector<lidarfx::irradiance_record> restamp_year(std::vector<lidarfx::irradiance_record> records, int year,
+                                                     double zone_h, const std::string& file)
+{
+    namespace chr = std::chrono;
+    const chr::seconds zone{static_cast<long long>(std::lround(zone_h * 3600.0))};
+    for (auto& r : records) {
+        const chr::sys_seconds local = r.start_utc + zone;
+        const chr::sys_days day = chr::floor<chr::days>(local);
+        const chr::year_month_day ymd{day};
+        const chr::year_month_day moved{chr::year{year}, ymd.month(), ymd.day()};
+        if (!moved.ok()) {
+            throw lidarfx::cli::usage_error(file + " has a record on 29 February, which " + std::to_string(year) +
+                                            " does not have: give a leap --year or --year-from-tmy");
+        }
+        r.start_utc = chr::sys_days{moved} + (local - day) - zone;
+    }
+    return records;
+}
+
 bool ends_with(const std::string& s, const std::string& tail)
 {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
@@ -71,13 +97,19 @@ int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
     const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats"},
-                           {"help", "force"});
+                           {"help", "force", "year-from-tmy"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
     const cli::output_formats formats = cli::output_formats_from(a);
 
     // Weather first: a bad file fails before the survey is read.
+    const bool year_from_tmy = a.has("year-from-tmy");
+    if (year_from_tmy && !a.has("tmy")) throw cli::usage_error("--year-from-tmy needs --tmy FILE.csv");
+    if (year_from_tmy && a.has("year")) throw cli::usage_error("--year and --year-from-tmy exclude each other");
+    const int records_year = a.integer("year", 2021);
+    if (records_year < 1900 || records_year > 2200) throw cli::usage_error("--year must be in [1900, 2200] (got " +
+                                                           std::to_string(records_year) + ")");
     std::vector<lidarfx::irradiance_record> records;
     double lat = a.number("lat", std::numeric_limits<double>::quiet_NaN());
     double lon = a.number("lon", std::numeric_limits<double>::quiet_NaN());
@@ -89,16 +121,20 @@ int run_solar(const std::vector<std::string>& args)
         if (!a.has("lat")) lat = tmy.station.latitude_deg;
         if (!a.has("lon")) lon = tmy.station.longitude_deg;
         std::cout << "weather: TMY3 " << tmy.station.id << " " << tmy.station.name << ", " << records.size()
-                  << " hours, UTC" << (zone_h >= 0 ? "+" : "") << zone_h << "\n";
+                  << " hours, UTC" << (zone_h >= 0 ? "+" : "") << zone_h;
+        if (year_from_tmy) {
+            std::cout << ", the rows' own years\n";
+        } else {
+            records = restamp_year(records, records_year, zone_h, a.text("tmy", ""));
+            std::cout << ", re-stamped to " << records_year << "\n";
+        }
     }
     if (!(lat >= -90.0 && lat <= 90.0)) throw cli::usage_error("--lat must be given, in [-90, 90] degrees");
     if (!(lon >= -180.0 && lon <= 180.0)) throw cli::usage_error("--lon must be given, in [-180, 180] degrees");
     if (!a.has("tmy")) {
-        const int year = a.integer("year", 2021);
-        if (year < 1900 || year > 2200) throw cli::usage_error("--year must be in [1900, 2200] (got " +
-                                                               std::to_string(year) + ")");
-        records = lidarfx::clear_sky_records(year, lat, lon);
-        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for " << year
+        records = lidarfx::clear_sky_records(records_year, lat, lon);
+        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
+                  << records_year
                   << "\n";
     }
 
@@ -134,7 +170,10 @@ int run_solar(const std::vector<std::string>& args)
         std::snprintf(month, sizeof month, "month_%02d_kwh_m2", m);
         for (const std::string& n : cli::raster_file_names(month, formats)) names.push_back(n);
     }
-    if (formats.png) names.push_back("annual_kwh_m2.png");
+    if (formats.png) {
+        names.push_back("annual_kwh_m2.png");
+        names.push_back("svf.png");
+    }
     for (const auto& n : names) out.check_name(n);
 
     const auto res = lidarfx::irradiance_maps(dsm, cell_m, lat, lon, records,
@@ -160,9 +199,16 @@ int run_solar(const std::vector<std::string>& args)
         lidarfx::io::write_csv(path, {"month", "mean_kwh_m2", "min_kwh_m2", "max_kwh_m2", "ghi_kwh_m2"}, rows);
     });
     if (formats.png) {
-        out.write("annual_kwh_m2.png", [&](const std::string& path) {
-            lidarfx::io::write_png_rgb(path, lidarfx::io::colorize(res.annual_kwh_m2.view()));
-        });
+        const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const char* unit) {
+            const map_stats st = stats_of(m);
+            const double lo = std::isfinite(st.min) ? st.min : 0.0, hi = std::isfinite(st.max) ? st.max : 0.0;
+            out.write(name, [&](const std::string& path) {
+                lidarfx::io::write_png_rgb(
+                    path, lidarfx::io::with_legend(lidarfx::io::colorize(m.view(), lo, hi), lo, hi, unit));
+            });
+        };
+        legend_png("annual_kwh_m2.png", res.annual_kwh_m2, "kWh/m²");
+        legend_png("svf.png", res.sky_view_factor, "SVF");
     }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 #include <numbers>
 
@@ -184,6 +186,142 @@ rgb_image overlay_mask(raster_view<const std::uint8_t> grey, raster_view<const s
         }
     }
     return img;
+}
+
+std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept
+{
+    using g = std::array<std::uint8_t, 7>;
+    switch (ch) {
+    case U'0': return g{0b01110, 0b10001, 0b10011, 0b10101, 0b11001, 0b10001, 0b01110};
+    case U'1': return g{0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110};
+    case U'2': return g{0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b01000, 0b11111};
+    case U'3': return g{0b11111, 0b00010, 0b00100, 0b00010, 0b00001, 0b10001, 0b01110};
+    case U'4': return g{0b00010, 0b00110, 0b01010, 0b10010, 0b11111, 0b00010, 0b00010};
+    case U'5': return g{0b11111, 0b10000, 0b11110, 0b00001, 0b00001, 0b10001, 0b01110};
+    case U'6': return g{0b00110, 0b01000, 0b10000, 0b11110, 0b10001, 0b10001, 0b01110};
+    case U'7': return g{0b11111, 0b00001, 0b00010, 0b00100, 0b01000, 0b01000, 0b01000};
+    case U'8': return g{0b01110, 0b10001, 0b10001, 0b01110, 0b10001, 0b10001, 0b01110};
+    case U'9': return g{0b01110, 0b10001, 0b10001, 0b01111, 0b00001, 0b00010, 0b01100};
+    case U'.': return g{0, 0, 0, 0, 0, 0b01100, 0b01100};
+    case U'-': return g{0, 0, 0, 0b11111, 0, 0, 0};
+    case U'+': return g{0, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0};
+    case U'/': return g{0, 0b00001, 0b00010, 0b00100, 0b01000, 0b10000, 0};
+    case U'²': return g{0b01100, 0b10010, 0b00100, 0b01000, 0b11110, 0, 0};
+    case U'k': return g{0b10000, 0b10000, 0b10010, 0b10100, 0b11000, 0b10100, 0b10010};
+    case U'W': return g{0b10001, 0b10001, 0b10001, 0b10101, 0b10101, 0b10101, 0b01010};
+    case U'h': return g{0b10000, 0b10000, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
+    case U'm': return g{0, 0, 0b11010, 0b10101, 0b10101, 0b10001, 0b10001};
+    case U'S': return g{0b01111, 0b10000, 0b10000, 0b01110, 0b00001, 0b00001, 0b11110};
+    case U'V': return g{0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b01010, 0b00100};
+    case U'F': return g{0b11111, 0b10000, 0b10000, 0b11110, 0b10000, 0b10000, 0b10000};
+    case U'e': return g{0, 0, 0b01110, 0b10001, 0b11111, 0b10000, 0b01110};
+    case U'n': return g{0, 0, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
+    case U'o': return g{0, 0, 0b01110, 0b10001, 0b10001, 0b10001, 0b01110};
+    case U'a': return g{0, 0, 0b01110, 0b00001, 0b01111, 0b10001, 0b01111};
+    case U' ': return g{};
+    default: return g{0b11111, 0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b11111};
+    }
+}
+
+namespace {
+
+// The code points of UTF-8 `text` (1- and 2-byte sequences; longer ones become one unknown character each).
+std::vector<char32_t> code_points(std::string_view text)
+{
+    std::vector<char32_t> out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto b = static_cast<unsigned char>(text[i]);
+        if (b < 0x80) {
+            out.push_back(b);
+        } else if ((b & 0xE0) == 0xC0 && i + 1 < text.size()) {
+            out.push_back(static_cast<char32_t>(((b & 0x1F) << 6) | (static_cast<unsigned char>(text[i + 1]) & 0x3F)));
+            ++i;
+        } else {
+            out.push_back(0xFFFD);
+            while (i + 1 < text.size() && (static_cast<unsigned char>(text[i + 1]) & 0xC0) == 0x80) ++i;
+        }
+    }
+    return out;
+}
+
+std::string number_label(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
+constexpr std::array<std::uint8_t, 3> black{0, 0, 0};
+
+}  // namespace
+
+std::ptrdiff_t text_width_px(std::string_view text, int scale) noexcept
+{
+    const auto n = static_cast<std::ptrdiff_t>(code_points(text).size());
+    return n == 0 ? 0 : (6 * n - 1) * scale;
+}
+
+void draw_text(rgb_image& img, std::ptrdiff_t row, std::ptrdiff_t col, std::string_view text,
+               std::array<std::uint8_t, 3> color, int scale)
+{
+    detail::require(scale >= 1, "draw_text", "scale", ">= 1", scale);
+    std::ptrdiff_t x = col;
+    for (const char32_t ch : code_points(text)) {
+        const auto rows = glyph_rows(ch);
+        for (std::ptrdiff_t gr = 0; gr < 7; ++gr) {
+            for (std::ptrdiff_t gc = 0; gc < 5; ++gc) {
+                if (((rows[static_cast<std::size_t>(gr)] >> (4 - gc)) & 1) == 0) continue;
+                for (std::ptrdiff_t dr = 0; dr < scale; ++dr) {
+                    for (std::ptrdiff_t dc = 0; dc < scale; ++dc) {
+                        const std::ptrdiff_t r = row + gr * scale + dr, c = x + gc * scale + dc;
+                        if (r >= 0 && c >= 0 && r < img.height && c < img.width) put(img, r, c, color);
+                    }
+                }
+            }
+        }
+        x += 6 * scale;
+    }
+}
+
+int legend_scale(std::ptrdiff_t width) noexcept
+{
+    return static_cast<int>(std::clamp<std::ptrdiff_t>(width / 300, 1, 4));
+}
+
+std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept { return 26 * legend_scale(width); }
+
+rgb_image with_legend(const rgb_image& picture, double min, double max, std::string_view unit)
+{
+    constexpr const char* fn = "with_legend";
+    detail::require(picture.width > 0 && picture.height > 0 &&
+                        picture.rgb.size() == static_cast<std::size_t>(picture.width * picture.height * 3),
+                    fn, "picture must not be empty and hold width * height * 3 bytes");
+    detail::require(std::isfinite(min) && std::isfinite(max) && min <= max, fn,
+                    "min and max must be finite with min <= max");
+    const int s = legend_scale(picture.width);
+    const std::string lo = number_label(min), hi = number_label(max);
+    const std::ptrdiff_t margin = 4 * s, gap = 3 * s * 2;   // gap: between the labels and the unit
+    // The unit is centred: room for the longer label on both sides.
+    const std::ptrdiff_t label = std::max(text_width_px(lo, s), text_width_px(hi, s));
+    const std::ptrdiff_t needed = 2 * margin + 2 * label + text_width_px(unit, s) + 2 * gap;
+    const std::ptrdiff_t width = std::max(picture.width, needed);
+    const std::ptrdiff_t height = picture.height + legend_height_px(picture.width);
+    rgb_image out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width * height) * 3, 255)};
+    for (std::ptrdiff_t r = 0; r < picture.height; ++r) {
+        std::copy_n(picture.rgb.begin() + r * picture.width * 3, picture.width * 3, out.rgb.begin() + r * width * 3);
+    }
+    // Colour bar: 8 * s rows, from the left margin to the right margin.
+    const std::ptrdiff_t bar_top = picture.height + margin, bar_left = margin, bar_width = width - 2 * margin;
+    for (std::ptrdiff_t c = 0; c < bar_width; ++c) {
+        const double t = bar_width > 1 ? static_cast<double>(c) / static_cast<double>(bar_width - 1) : 0.5;
+        const auto rgb = ramp_color(t);
+        for (std::ptrdiff_t r = 0; r < 8 * s; ++r) put(out, bar_top + r, bar_left + c, rgb);
+    }
+    const std::ptrdiff_t text_top = bar_top + 8 * s + 3 * s;
+    draw_text(out, text_top, bar_left, lo, black, s);
+    draw_text(out, text_top, bar_left + bar_width - text_width_px(hi, s), hi, black, s);
+    draw_text(out, text_top, (width - text_width_px(unit, s)) / 2, unit, black, s);
+    return out;
 }
 
 }  // namespace lidarfx::io

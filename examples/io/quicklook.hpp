@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string_view>
 
 #include <lidarfx/core/raster.hpp>
 
@@ -44,5 +45,36 @@ rgb_image colorize_labels(raster_view<const std::int32_t> labels);
 /// color. O(cells). @throws invalid_input on different shapes, an empty raster or opacity outside [0, 1].
 rgb_image overlay_mask(raster_view<const std::uint8_t> grey, raster_view<const std::uint8_t> mask,
                        std::array<std::uint8_t, 3> color = {0, 120, 255}, double opacity = 0.6);
+
+/// Pixels of one glyph of the built-in 5x7 bitmap font (7 rows of 5 columns, bit 4 = left column). It covers
+/// the digits, ". - + /", the superscript "²" and the letters of the units and numbers the program writes
+/// ("kWh/m²", "SVF", "e", "n", "o", "a"); any other character is an empty box, space is blank.
+std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept;
+
+/// Width in pixels of `text` (UTF-8) drawn by draw_text at `scale`: 6 * scale per character (5 columns of
+/// the glyph + 1 of spacing), minus the last spacing; 0 for empty text.
+std::ptrdiff_t text_width_px(std::string_view text, int scale) noexcept;
+
+/// Draws `text` (UTF-8) with the built-in font into `img`, its top-left corner at (row, col), each font pixel
+/// a scale x scale block of `color`; pixels outside the picture are skipped. Deterministic: the same call gives
+/// the same bytes on every platform. @throws invalid_input if scale < 1.
+void draw_text(rgb_image& img, std::ptrdiff_t row, std::ptrdiff_t col, std::string_view text,
+               std::array<std::uint8_t, 3> color, int scale = 1);
+
+/// Font scale of the legend under a picture `width` pixels wide: clamp(width / 300, 1, 4), so the labels stay
+/// readable on large maps.
+int legend_scale(std::ptrdiff_t width) noexcept;
+
+/// Height in pixels of the legend strip under a picture `width` pixels wide: 26 * legend_scale(width)
+/// (margin 4, colour bar 8, gap 3, text 7, margin 4, all times the scale).
+std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept;
+
+/// `picture` with a legend strip below it on white: a colour bar running ramp_color(0) .. ramp_color(1) from
+/// left to right, `min` written under its left end, `max` right-aligned under its right end (printf "%.4g")
+/// and `unit` (UTF-8, e.g. "kWh/m²" or "SVF") centred between them, in black. The result is
+/// legend_height_px(width) rows taller; a picture too narrow for the labels is widened on the right with
+/// white. Pair it with colorize(values, min, max) so the bar matches the picture. O(pixels).
+/// @throws invalid_input if the picture is empty or min, max are not finite with min <= max.
+rgb_image with_legend(const rgb_image& picture, double min, double max, std::string_view unit);
 
 }  // namespace lidarfx::io

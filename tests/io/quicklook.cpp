@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <string>
 
 using namespace lidarfx;
 using namespace lidarfx::io;
@@ -190,4 +191,107 @@ TEST_CASE("io/overlay_mask: tints masked cells over the grey picture")
                          "overlay_mask: grey and mask must have the same shape (got 2x2 and 2x3)", invalid_input);
     CHECK_THROWS_WITH_AS(overlay_mask(grey, mask, {0, 0, 0}, 1.5), "overlay_mask: opacity must be in [0, 1] (got 1.5)",
                          invalid_input);
+}
+
+TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same bytes every time")
+{
+    // '1' has 10 lit font pixels: 1 + 2 + 1 + 1 + 1 + 1 + 3.
+    rgb_image one{8, 9, std::vector<std::uint8_t>(8 * 9 * 3, 255)};
+    draw_text(one, 1, 2, "1", {0, 0, 0});
+    int lit = 0;
+    for (std::ptrdiff_t r = 0; r < one.height; ++r)
+        for (std::ptrdiff_t c = 0; c < one.width; ++c) lit += pixel(one, r, c) == rgb{0, 0, 0};
+    CHECK(lit == 10);
+    CHECK(pixel(one, 1, 4) == rgb{0, 0, 0});        // top of the stem: glyph column 2, row 0
+    CHECK(pixel(one, 7, 3) == rgb{0, 0, 0});        // foot: glyph row 6, columns 1..3
+    CHECK(pixel(one, 7, 2) == rgb{255, 255, 255});
+    CHECK(pixel(one, 1, 2) == rgb{255, 255, 255});
+
+    // Every digit is drawn from its own bitmap, pixel for pixel, at scale 1 and as blocks at scale 2.
+    std::set<std::string> pictures;   // the bytes of each digit's picture
+    for (char d = '0'; d <= '9'; ++d) {
+        const std::string text(1, d);
+        for (int scale : {1, 2}) {
+            const auto bytes = static_cast<std::size_t>(35 * scale * scale) * 3;
+            rgb_image img{5 * scale, 7 * scale, std::vector<std::uint8_t>(bytes, 0)};
+            draw_text(img, 0, 0, text, {200, 100, 50}, scale);
+            const auto rows = glyph_rows(static_cast<char32_t>(d));
+            for (std::ptrdiff_t r = 0; r < img.height; ++r)
+                for (std::ptrdiff_t c = 0; c < img.width; ++c) {
+                    const bool on = (rows[static_cast<std::size_t>(r / scale)] >> (4 - c / scale)) & 1;
+                    CHECK(pixel(img, r, c) == (on ? rgb{200, 100, 50} : rgb{0, 0, 0}));
+                }
+            if (scale == 1) pictures.insert(std::string(img.rgb.begin(), img.rgb.end()));
+            rgb_image again{img.width, img.height, std::vector<std::uint8_t>(img.rgb.size(), 0)};
+            draw_text(again, 0, 0, text, {200, 100, 50}, scale);
+            CHECK(again.rgb == img.rgb);
+        }
+    }
+    CHECK(pictures.size() == 10);   // ten different digits
+
+    CHECK(text_width_px("", 1) == 0);
+    CHECK(text_width_px("12", 1) == 11);
+    CHECK(text_width_px("kWh/m²", 2) == (6 * 6 - 1) * 2);   // "²" is one character
+    CHECK(glyph_rows(U'²') != glyph_rows(U'2'));
+    CHECK(glyph_rows(U'#') == glyph_rows(U'@'));           // unknown characters: the same empty box
+    CHECK(glyph_rows(U'#') != glyph_rows(U' '));
+    rgb_image edge{3, 3, std::vector<std::uint8_t>(27, 0)};
+    draw_text(edge, -2, -2, "8", {9, 9, 9});                // partly outside: clipped, no crash
+    CHECK(pixel(edge, 0, 0) == rgb{0, 0, 0});               // glyph row 2 (10001), column 2: off
+    CHECK(pixel(edge, 1, 0) == rgb{9, 9, 9});               // glyph row 3 (01110), column 2: on
+    CHECK_THROWS_AS(draw_text(edge, 0, 0, "1", {0, 0, 0}, 0), invalid_input);
+}
+
+TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under the picture")
+{
+    const raster<float> values(40, 360, 5.0f);
+    const rgb_image picture = colorize(values, 0, 10);
+    const rgb_image img = with_legend(picture, 0, 1234.4, "kWh/m²");
+    CHECK(legend_scale(360) == 1);
+    CHECK(legend_scale(1024) == 3);
+    CHECK(legend_scale(5000) == 4);
+    CHECK(legend_height_px(360) == 26);
+    CHECK(img.width == 360);
+    REQUIRE(img.height == 40 + 26);
+    CHECK(std::equal(picture.rgb.begin(), picture.rgb.end(), img.rgb.begin()));   // picture unchanged on top
+
+    // The bar: rows 44..51, columns 4..355, from ramp_color(0) to ramp_color(1), luminance rising.
+    CHECK(pixel(img, 44, 4) == ramp_color(0));
+    CHECK(pixel(img, 51, 355) == ramp_color(1));
+    CHECK(pixel(img, 47, 180) == ramp_color(176.0 / 351.0));
+    CHECK(luma(pixel(img, 47, 300)) > luma(pixel(img, 47, 60)));
+    CHECK(pixel(img, 43, 100) == rgb{255, 255, 255});   // margin between picture and bar
+
+    // Text rows 55..61: black pixels where the labels are, white elsewhere.
+    const auto dark_in = [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
+        int n = 0;
+        for (std::ptrdiff_t r = 55; r < 62; ++r)
+            for (std::ptrdiff_t c = c0; c < c1; ++c) n += pixel(img, r, c) == rgb{0, 0, 0};
+        return n;
+    };
+    CHECK(dark_in(4, 9) > 0);                                  // "0" under the left end
+    CHECK(dark_in(356 - text_width_px("1234", 1), 356) > 0);   // "1234" (%.4g) right-aligned
+    const std::ptrdiff_t unit_w = text_width_px("kWh/m²", 1);
+    CHECK(dark_in((360 - unit_w) / 2, (360 + unit_w) / 2) > 0);  // the unit in the middle
+    CHECK(dark_in(100, 150) == 0);
+    // The labels come from the numbers: another max changes only the right label.
+    const rgb_image other = with_legend(picture, 0, 999, "kWh/m²");
+    int changed_left = 0, changed_right = 0;
+    for (std::ptrdiff_t r = 0; r < img.height; ++r)
+        for (std::ptrdiff_t c = 0; c < img.width; ++c)
+            if (pixel(img, r, c) != pixel(other, r, c)) ++(c >= 300 ? changed_right : changed_left);
+    CHECK(changed_left == 0);
+    CHECK(changed_right > 0);
+    CHECK(with_legend(picture, 0, 1234.4, "kWh/m²").rgb == img.rgb);   // deterministic
+
+    // Wide pictures get a bigger font; narrow ones are widened on the right with white.
+    const rgb_image wide = with_legend(colorize(raster<float>(10, 900, 1.0f), 0, 1), 0, 1, "SVF");
+    CHECK(wide.height == 10 + 26 * 3);
+    const rgb_image narrow = with_legend(colorize(raster<float>(3, 2, 1.0f), 0, 2), 0.25, 0.75, "SVF");
+    CHECK(narrow.height == 3 + 26);
+    CHECK(narrow.width >= 2 * 4 + 2 * text_width_px("0.75", 1) + text_width_px("SVF", 1));
+    CHECK(pixel(narrow, 1, 1) == ramp_color(0.5));
+    CHECK(pixel(narrow, 1, 2) == rgb{255, 255, 255});
+    CHECK_THROWS_AS(with_legend(picture, 2, 1, "SVF"), invalid_input);
+    CHECK_THROWS_AS(with_legend(rgb_image{}, 0, 1, "SVF"), invalid_input);
 }
