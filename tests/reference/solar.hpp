@@ -48,6 +48,25 @@ struct shadow_key {
     }
 };
 
+/// The per-cell frame both brute-force shadows share: NaN cells get nan_cell, a sun at or below the horizon
+/// shades every other cell, a sun at the zenith lights it, and otherwise the cell is shadow when
+/// shaded(r, col, kp) finds a blocker (kp = the cell's own shadow_key value). 1 lit, 0 shadow.
+template <class Shaded>
+lidarfx::raster<std::uint8_t> shadow_per_cell(lidarfx::raster_view<const float> z, double elevation_deg,
+                                              const shadow_key& key, std::uint8_t nan_cell, Shaded&& shaded)
+{
+    lidarfx::raster<std::uint8_t> out(z.rows(), z.cols(), 1);
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
+        for (std::ptrdiff_t col = 0; col < z.cols(); ++col) {
+            const float zp = z(r, col);
+            if (std::isnan(zp)) out(r, col) = nan_cell;
+            else if (elevation_deg <= 0) out(r, col) = 0;
+            else if (elevation_deg < 90 && shaded(r, col, key(zp, r, col))) out(r, col) = 0;
+        }
+    }
+    return out;
+}
+
 /// Shadow by a straight march: from each cell centre towards the sun, every cell the line passes through
 /// (Amanatides-Woo traversal) whose centre projects nearer the sun is tested: z_q + t_q tan e > z_p + t_p tan e
 /// means shadow. 1 lit, 0 shadow, nan_cell for NaN cells; NaN cells cast nothing. O(cells * length).
@@ -56,49 +75,31 @@ inline lidarfx::raster<std::uint8_t> shadow_ray_march(lidarfx::raster_view<const
                                                       std::uint8_t nan_cell = 255)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-    lidarfx::raster<std::uint8_t> out(rows, cols, 1);
     double s, c;
     sincos_deg(azimuth_deg, s, c);
     const double vx = s, vy = -c;  // towards the sun, in (column, row) units
-    const shadow_key key(azimuth_deg, elevation_deg, cell_m);
     const double inf = std::numeric_limits<double>::infinity();
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t col = 0; col < cols; ++col) {
-            const float zp = z(r, col);
-            if (std::isnan(zp)) {
-                out(r, col) = nan_cell;
-                continue;
+    const shadow_key key(azimuth_deg, elevation_deg, cell_m);
+    return shadow_per_cell(z, elevation_deg, key, nan_cell, [&](std::ptrdiff_t r, std::ptrdiff_t col, double kp) {
+        const double tp = (double(col) + 0.5) * -vx + (double(r) + 0.5) * -vy;  // along the walk direction
+        std::ptrdiff_t ix = col, iy = r;
+        const std::ptrdiff_t step_x = vx > 0 ? 1 : -1, step_y = vy > 0 ? 1 : -1;
+        double tmax_x = vx != 0 ? 0.5 / std::fabs(vx) : inf, tmax_y = vy != 0 ? 0.5 / std::fabs(vy) : inf;
+        const double dx = vx != 0 ? 1 / std::fabs(vx) : inf, dy = vy != 0 ? 1 / std::fabs(vy) : inf;
+        while (true) {
+            if (tmax_x < tmax_y) {
+                ix += step_x;
+                tmax_x += dx;
+            } else {
+                iy += step_y;
+                tmax_y += dy;
             }
-            if (elevation_deg <= 0) {
-                out(r, col) = 0;
-                continue;
-            }
-            if (elevation_deg >= 90) continue;
-            const double kp = key(zp, r, col);
-            const double tp = (double(col) + 0.5) * -vx + (double(r) + 0.5) * -vy;  // along the walk direction
-            std::ptrdiff_t ix = col, iy = r;
-            const std::ptrdiff_t step_x = vx > 0 ? 1 : -1, step_y = vy > 0 ? 1 : -1;
-            double tmax_x = vx != 0 ? 0.5 / std::fabs(vx) : inf, tmax_y = vy != 0 ? 0.5 / std::fabs(vy) : inf;
-            const double dx = vx != 0 ? 1 / std::fabs(vx) : inf, dy = vy != 0 ? 1 / std::fabs(vy) : inf;
-            while (true) {
-                if (tmax_x < tmax_y) {
-                    ix += step_x;
-                    tmax_x += dx;
-                } else {
-                    iy += step_y;
-                    tmax_y += dy;
-                }
-                if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) break;
-                const float zq = z(iy, ix);
-                const double tq = (double(ix) + 0.5) * -vx + (double(iy) + 0.5) * -vy;
-                if (!std::isnan(zq) && tq < tp && key(zq, iy, ix) > kp) {
-                    out(r, col) = 0;
-                    break;
-                }
-            }
+            if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) return false;
+            const float zq = z(iy, ix);
+            const double tq = (double(ix) + 0.5) * -vx + (double(iy) + 0.5) * -vy;
+            if (!std::isnan(zq) && tq < tp && key(zq, iy, ix) > kp) return true;
         }
-    }
-    return out;
+    });
 }
 
 /// Shadow by a straight march sampled once per row (steep sun azimuths, |cos A| >= |sin A|) or per column:
@@ -110,44 +111,26 @@ inline lidarfx::raster<std::uint8_t> shadow_sampled_march(lidarfx::raster_view<c
                                                           std::uint8_t nan_cell = 255)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-    lidarfx::raster<std::uint8_t> out(rows, cols, 1);
     double s, c;
     sincos_deg(azimuth_deg, s, c);
     const double vx = s, vy = -c;  // towards the sun, in (column, row) units
     const bool steep = std::fabs(vy) >= std::fabs(vx);
     const shadow_key key(azimuth_deg, elevation_deg, cell_m);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t col = 0; col < cols; ++col) {
-            const float zp = z(r, col);
-            if (std::isnan(zp)) {
-                out(r, col) = nan_cell;
-                continue;
+    return shadow_per_cell(z, elevation_deg, key, nan_cell, [&](std::ptrdiff_t r, std::ptrdiff_t col, double kp) {
+        for (std::ptrdiff_t j = 1;; ++j) {
+            std::ptrdiff_t iy, ix;
+            if (steep) {
+                iy = r + (vy > 0 ? j : -j);
+                ix = static_cast<std::ptrdiff_t>(std::floor(double(col) + 0.5 + double(j) * std::fabs(vx / vy) * (vx > 0 ? 1 : -1)));
+            } else {
+                ix = col + (vx > 0 ? j : -j);
+                iy = static_cast<std::ptrdiff_t>(std::floor(double(r) + 0.5 + double(j) * std::fabs(vy / vx) * (vy > 0 ? 1 : -1)));
             }
-            if (elevation_deg <= 0) {
-                out(r, col) = 0;
-                continue;
-            }
-            if (elevation_deg >= 90) continue;
-            const double kp = key(zp, r, col);
-            for (std::ptrdiff_t j = 1;; ++j) {
-                std::ptrdiff_t iy, ix;
-                if (steep) {
-                    iy = r + (vy > 0 ? j : -j);
-                    ix = static_cast<std::ptrdiff_t>(std::floor(double(col) + 0.5 + double(j) * std::fabs(vx / vy) * (vx > 0 ? 1 : -1)));
-                } else {
-                    ix = col + (vx > 0 ? j : -j);
-                    iy = static_cast<std::ptrdiff_t>(std::floor(double(r) + 0.5 + double(j) * std::fabs(vy / vx) * (vy > 0 ? 1 : -1)));
-                }
-                if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) break;
-                const float zq = z(iy, ix);
-                if (!std::isnan(zq) && key(zq, iy, ix) > kp) {
-                    out(r, col) = 0;
-                    break;
-                }
-            }
+            if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) return false;
+            const float zq = z(iy, ix);
+            if (!std::isnan(zq) && key(zq, iy, ix) > kp) return true;
         }
-    }
-    return out;
+    });
 }
 
 /// The cells of the ray line through (r, c) that come before it when walking away from `azimuth_deg`, by the
