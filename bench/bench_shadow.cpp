@@ -28,13 +28,16 @@ const lidarfx::raster<float>& town(std::ptrdiff_t n)
     return it->second;
 }
 
-// Arguments: side n, sun azimuth in degrees, threads (0 = all cores). Sun elevation 30 degrees.
+// Arguments: side n, sun azimuth in degrees, threads (0 = all cores), line families (line_phases; 4 is the
+// default, 1 the dissertation's single family). Sun elevation 30 degrees. Along the axes (180) and diagonals
+// (135) one family is exact and the only one swept.
 void bm_raylines_shadow(benchmark::State& state)
 {
     const auto n = state.range(0);
     const auto& z = town(n);
     lidarfx::raster<std::uint8_t> lit(n, n);
-    const lidarfx::raylines_shadow_options opt{.run = {.threads = static_cast<int>(state.range(2))}};
+    const lidarfx::raylines_shadow_options opt{.line_phases = static_cast<int>(state.range(3)),
+                                               .run = {.threads = static_cast<int>(state.range(2))}};
     for (auto _ : state) {
         lidarfx::raylines_shadow(z, lit, 1.0, static_cast<double>(state.range(1)), 30.0, opt);
         benchmark::DoNotOptimize(lit.data());
@@ -43,8 +46,8 @@ void bm_raylines_shadow(benchmark::State& state)
     state.SetItemsProcessed(state.iterations() * n * n);
 }
 BENCHMARK(bm_raylines_shadow)
-    ->ArgsProduct({{4096}, {180, 135, 250}, {1, 0}})
-    ->ArgNames({"n", "azimuth", "threads"})
+    ->ArgsProduct({{4096}, {180, 135, 250, 200}, {1, 0}, {4, 1}})
+    ->ArgNames({"n", "azimuth", "threads", "phases"})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -136,17 +136,23 @@ inline lidarfx::raster<std::uint8_t> shadow_sampled_march(lidarfx::raster_view<c
 /// The cells of the ray line through (r, c) that come before it when walking away from `azimuth_deg`, by the
 /// definition of kernels/solar/ray_lines.hpp: steep lines hold (i, k + round(i * dcol / drow)), shallow ones
 /// (k + round(i * drow / dcol), i), round(x) = floor(x + 0.5). Calls f(r', c') for each, nearest first.
+/// With phases = P > 1 the line through (r, c) is that of the family j nearest the cell's centre, rendered with
+/// floor(0.5 + j / P + i * slope): j = round(P (1 - frac(major * slope))) mod P.
 template <class F>
 void for_each_earlier_on_line(std::ptrdiff_t rows, std::ptrdiff_t cols, double azimuth_deg, std::ptrdiff_t r,
-                              std::ptrdiff_t c, F&& f)
+                              std::ptrdiff_t c, F&& f, int phases = 1)
 {
     double s, co;
     sincos_deg(azimuth_deg, s, co);
     const double dcol = -s, drow = co;
     const bool steep = std::fabs(drow) >= std::fabs(dcol);
     const double slope = steep ? dcol / drow : drow / dcol;
-    const auto rnd = [&](std::ptrdiff_t i) { return static_cast<std::ptrdiff_t>(std::floor(0.5 + double(i) * slope)); };
-    const std::ptrdiff_t major = steep ? r : c, k = (steep ? c : r) - rnd(major);
+    const std::ptrdiff_t major = steep ? r : c;
+    const double frac = double(major) * slope - std::floor(double(major) * slope);
+    const int family = static_cast<int>(std::floor(0.5 + phases * (1.0 - frac))) % phases;
+    const double phase = 0.5 + double(family) / phases;
+    const auto rnd = [&](std::ptrdiff_t i) { return static_cast<std::ptrdiff_t>(std::floor(phase + double(i) * slope)); };
+    const std::ptrdiff_t k = (steep ? c : r) - rnd(major);
     const std::ptrdiff_t back = (steep ? drow : dcol) > 0 ? -1 : 1;  // towards the azimuth
     for (std::ptrdiff_t i = major + back; i >= 0 && i < (steep ? rows : cols); i += back) {
         const std::ptrdiff_t m = k + rnd(i);
@@ -158,7 +164,7 @@ void for_each_earlier_on_line(std::ptrdiff_t rows, std::ptrdiff_t cols, double a
 /// Shadow on the kernel's own ray lines, by a direct search over every earlier cell of each cell's line.
 inline lidarfx::raster<std::uint8_t> shadow_on_lines(lidarfx::raster_view<const float> z, double cell_m,
                                                      double azimuth_deg, double elevation_deg,
-                                                     std::uint8_t nan_cell = 255)
+                                                     std::uint8_t nan_cell = 255, int phases = 4)
 {
     lidarfx::raster<std::uint8_t> out(z.rows(), z.cols(), 1);
     const shadow_key key(azimuth_deg, elevation_deg, cell_m);
@@ -171,7 +177,7 @@ inline lidarfx::raster<std::uint8_t> shadow_on_lines(lidarfx::raster_view<const 
             const double kp = key(z(r, c), r, c);
             for_each_earlier_on_line(z.rows(), z.cols(), azimuth_deg, r, c, [&](std::ptrdiff_t rq, std::ptrdiff_t cq) {
                 if (!std::isnan(z(rq, cq)) && key(z(rq, cq), rq, cq) > kp) out(r, c) = 0;
-            });
+            }, phases);
         }
     }
     return out;

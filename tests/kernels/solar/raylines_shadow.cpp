@@ -71,16 +71,20 @@ TEST_CASE("solar/raylines_shadow: equals a direct search over its ray lines for 
     for (int trial = 0; trial < 60; ++trial) {
         const double a = trial < 8 ? 45.0 * trial : azimuth(rng), e = elevation(rng);
         const auto z = reference::random_raster(rng, 9 + trial % 13, 31 - trial % 11, 0.0, 10.0, 0.05);
-        INFO("seed ", seed, " trial ", trial, " azimuth ", a, " elevation ", e);
-        CHECK(first_difference(raylines_shadow(z, 0.5, a, e), reference::shadow_on_lines(z.view(), 0.5, a, e)) == "");
+        for (const int phases : {1, 2, 4, 7}) {
+            INFO("seed ", seed, " trial ", trial, " azimuth ", a, " elevation ", e, " line_phases ", phases);
+            const raylines_shadow_options opt{.line_phases = phases};
+            CHECK(first_difference(raylines_shadow(z, 0.5, a, e, opt),
+                                   reference::shadow_on_lines(z.view(), 0.5, a, e, 255, phases)) == "");
+        }
     }
 }
 
-// The shared ray lines and a ray from each cell's own centre pick cells up to one apart across the ray, so they
-// can differ along the lateral edges of shadows; the share of such cells falls as buildings grow. Two brute
-// forces that differ only in how a straight ray picks cells (nearest cell per row, or every cell it touches)
-// disagree with each other on about 0.45 % of these cells too, so the bound is on all cells of all trials, and
-// each single trial must reach 99 %.
+// A family of ray lines and a ray from each cell's own centre pick cells up to 1 / (2 line_phases) apart across
+// the ray, so they can differ along the lateral edges of shadows; the share of such cells falls as buildings
+// grow. Two brute forces that differ only in how a straight ray picks cells (nearest cell per row, or every
+// cell it touches) disagree with each other on about 0.45 % of these cells. With the default four families
+// every trial reaches 99.5 %.
 TEST_CASE("solar/raylines_shadow: agrees with a straight ray march on >= 99.5 % of a town's cells")
 {
     const unsigned seed = 4242;
@@ -97,19 +101,19 @@ TEST_CASE("solar/raylines_shadow: agrees with a straight ray march on >= 99.5 % 
         const auto dda = reference::shadow_ray_march(z.view(), 1.0, a, e);
         const double share = agreement(lit, sampled);
         INFO("seed ", seed, " trial ", trial, " azimuth ", a, " elevation ", e, " agreement ", share);
-        CHECK(share >= 0.99);
+        CHECK(share >= 0.995);
         worst = std::min(worst, share);
         sum += share;
         dda_sum += agreement(lit, dda);
         refs_sum += agreement(sampled, dda);
     }
-    CHECK(sum / trials >= 0.995);  // equal-sized rasters: the mean share is the share of all cells
+    CHECK(sum / trials >= 0.998);  // equal-sized rasters: the mean share is the share of all cells
     MESSAGE("raylines_shadow vs per-cell ray march (nearest cell per row/column), 8..30 m buildings: all cells ",
             sum / trials, ", worst trial ", worst, "; vs cell-traversal march: ", dda_sum / trials,
             "; the two marches agree with each other on ", refs_sum / trials);
 }
 
-TEST_CASE("solar/raylines_shadow: agreement with a straight ray march on small 3..14 m buildings (reported)")
+TEST_CASE("solar/raylines_shadow: agrees with a straight ray march on >= 99 % of a town of small 3..14 m buildings")
 {
     std::mt19937 rng(4243);
     std::uniform_real_distribution<double> azimuth(0.0, 360.0), elevation(10.0, 70.0);
@@ -119,10 +123,11 @@ TEST_CASE("solar/raylines_shadow: agreement with a straight ray march on small 3
         const double a = azimuth(rng), e = elevation(rng);
         const auto z = reference::box_town(rng, 120, 140, 40);
         const double share = agreement(raylines_shadow(z, 1.0, a, e), reference::shadow_sampled_march(z.view(), 1.0, a, e));
-        CHECK(share >= 0.97);
+        CHECK(share >= 0.99);
         sum += share;
         worst = std::min(worst, share);
     }
+    CHECK(sum / trials >= 0.995);
     MESSAGE("raylines_shadow vs per-cell ray march, 3..14 m buildings covering ~17 %: mean ", sum / trials, ", worst ", worst);
 }
 

@@ -8,7 +8,10 @@
 // column, line k holding (k + shift(c), c). shift(i) = floor(0.5 + i * slope) with slope = dcol / drow
 // (steep) or drow / dcol (shallow), i.e. each line is the nearest-cell rendering of a straight line through
 // cell centres. For any fixed row (column) k -> k + shift is a bijection, so every cell lies on exactly one
-// line. Along a line the walk visits rows (steep) or columns (shallow) in the order that increases
+// line. A *phase* phi moves every line across itself: shift(i) = floor(phi + i * slope) renders the straight
+// line offset by phi - 0.5 cells; phi = 0.5 (the default) puts a line through the centre of every cell of
+// major index 0, and a cell of major index i lies exactly on its line's straight line when
+// frac(phi + i * slope) = 0.5 (see line_phase_of). Along a line the walk visits rows (steep) or columns (shallow) in the order that increases
 //   t(r, c) = ((c + 0.5) * dcol + (r + 0.5) * drow) * cell_m,
 // the projection of the cell centre on the walk direction (metres); t grows strictly along every line.
 #pragma once
@@ -42,11 +45,12 @@ struct ray_lines {
     bool steep = true;          ///< one cell per row (|drow| >= |dcol|), else one cell per column
     double slope = 0;           ///< steep: columns per row, dcol / drow; shallow: rows per column, drow / dcol
     std::ptrdiff_t rows = 0, cols = 0;
+    double phase = 0.5;  ///< phi in shift(i) = floor(phi + i * slope), in [0.5, 1.5)
 
     /// Offset of line cells at major index i (row if steep, column if shallow).
     std::ptrdiff_t shift(std::ptrdiff_t i) const noexcept
     {
-        return static_cast<std::ptrdiff_t>(std::floor(0.5 + static_cast<double>(i) * slope));
+        return static_cast<std::ptrdiff_t>(std::floor(phase + static_cast<double>(i) * slope));
     }
     std::ptrdiff_t major() const noexcept { return steep ? rows : cols; }  ///< cells per line at most
     std::ptrdiff_t minor() const noexcept { return steep ? cols : rows; }
@@ -98,6 +102,17 @@ struct ray_lines {
                 std::min(rows, k1 + std::max(sh.front(), sh.back()))};
     }
 };
+
+/// Of `phases` line families with phases 0.5 + j / phases (j = 0 .. phases - 1), the one whose line through a
+/// cell of major index i passes nearest that cell's centre: j = round(phases * (1 - frac(i * slope))) mod
+/// phases, so the line is at most 1 / (2 phases) cells off the centre.
+inline int line_phase_of(double slope, std::ptrdiff_t i, int phases) noexcept
+{
+    const double x = static_cast<double>(i) * slope;
+    const double f = x - std::floor(x);  // frac(i * slope) in [0, 1]
+    const int j = static_cast<int>(std::floor(0.5 + static_cast<double>(phases) * (1.0 - f)));
+    return j % phases;
+}
 
 inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept
 {
