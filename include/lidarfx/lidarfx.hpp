@@ -36,9 +36,12 @@
 #include "lidarfx/kernels/solar/spa_tables.hpp"
 #include "lidarfx/kernels/solar/sun_position.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
+#include "lidarfx/kernels/stats/zonal_statistics.hpp"
+#include "lidarfx/kernels/vector/burn_polygons.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
+#include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
