@@ -137,7 +137,7 @@ inline void require_perez_inputs(double dhi, double dni, double sun_elevation_de
 
 /// Extraterrestrial normal irradiance on day_of_year (1..366), W/m^2, by Spencer (1971):
 ///   E0 = S (1.00011 + 0.034221 cos g + 0.00128 sin g + 0.000719 cos 2g + 0.000077 sin 2g), g = 2 pi (doy - 1) / 365
-/// with S the solar constant (W/m^2, default 1366.1). About S * 1.034 in early January, S * 0.967 in early July.
+/// with S the solar constant (W/m^2, default 1366.1). About S * 1.035 in early January, S * 0.967 in early July.
 /// @throws invalid_input if day_of_year is outside [1, 366] or the solar constant is not finite and > 0.
 inline double extraterrestrial_normal_w_m2(int day_of_year, double solar_constant_w_m2 = 1366.1)
 {

@@ -151,7 +151,7 @@ inline int record_day_of_year(const irradiance_record& rec)
 /// month_utc_offset_h). dsm heights and cell_m in metres; latitude/longitude in degrees (north, east). Cost per
 /// daylight record O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky view factor
 /// (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell
-/// surfaces). Results are the same for any thread count.
+/// surfaces, 36 with the Perez sky). Results are the same for any thread count.
 /// @throws invalid_input if cell_m is not finite and > 0, a record has a non-positive interval or a negative or
 /// non-finite irradiance, the surface rasters' shapes differ from the DSM's or only one is given, an option is
 /// out of range, or sun_position refuses the place or a time; cancelled if run.progress returns false.
