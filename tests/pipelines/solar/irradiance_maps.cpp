@@ -3,6 +3,9 @@
 
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
 #include <lidarfx/kernels/solar/clear_sky.hpp>
+#include <lidarfx/kernels/solar/incidence.hpp>
+#include <lidarfx/kernels/solar/perez_diffuse.hpp>
+#include <lidarfx/kernels/solar/sun_position.hpp>
 #include <lidarfx/pipelines/solar/irradiance_maps.hpp>
 
 #include "reference/progress.hpp"
@@ -191,6 +194,29 @@ TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI 
             per.annual_kwh_m2(1, 1), " kWh/m^2 (ratio ", ratio, ")");
     CHECK(ratio > 1.02);
     CHECK(ratio < 1.15);
+}
+
+TEST_CASE("solar/irradiance_maps: with the Perez sky an open cell gets beam + perez_diffuse's total for its record")
+{
+    // One hour, 21 June 2021 18:00-19:00 UTC at Golden (sun high in the south), on an open 30 deg slope facing
+    // 160 deg: kWh/m^2 = (DNI cos theta + isotropic + circumsolar + horizon) W/m^2 * 1 h / 1000.
+    std::vector<irradiance_record> records(1);
+    records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 6 / 21} + std::chrono::hours{18};
+    records[0].dni_w_m2 = 800.0;
+    records[0].dhi_w_m2 = 120.0;
+    records[0].ghi_w_m2 = 850.0;
+    const raster<float> z(3, 4, 0.0f), tilt(3, 4, 30.0f), azimuth(3, 4, 160.0f);
+    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
+                                     {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
+                                      .diffuse = diffuse_model::perez});
+    const sun_position_result sun = sun_position(records[0].middle_utc(), golden_lat, golden_lon);
+    const double cos_theta = cos_incidence(sun.azimuth_deg, sun.elevation_deg, 30.0, 160.0);
+    const perez_diffuse_result sky = perez_diffuse(120.0, 800.0, sun.elevation_deg, cos_theta, 30.0, 172);
+    REQUIRE(sky.circumsolar_w_m2 > 0.0);
+    REQUIRE(sky.horizon_w_m2 > 0.0);
+    CHECK(res.sky_view_factor(1, 1) == 1.0f);
+    CHECK(res.annual_kwh_m2(1, 1) ==
+          doctest::Approx((800.0 * cos_theta + sky.total_w_m2()) / 1000.0).epsilon(1e-6));
 }
 
 TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the circumsolar diffuse with the beam")
