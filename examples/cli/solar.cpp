@@ -26,7 +26,8 @@ namespace {
 
 constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc --out DIR [--tmy FILE.csv] [--lat DEG --lon DEG]\n"
-    "                     [--cell M] [--year Y | --year-from-tmy] [--threads N] [--formats asc,tif,png]\n"
+    "                     [--cell M] [--year Y | --year-from-tmy] [--diffuse isotropic|perez] [--threads N]\n"
+    "                     [--formats asc,tif,png]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
@@ -41,6 +42,8 @@ constexpr const char* usage =
     "                 is re-stamped to (same local month, day and hour), so the sun follows one calendar year\n"
     "  --year-from-tmy  keep the TMY rows' own years (a TMY takes each month from a different year) instead\n"
     "                 of re-stamping them; needs --tmy, excludes --year\n"
+    "  --diffuse M    sky model of the diffuse part [isotropic]: isotropic = DHI * SVF (the dissertation's);\n"
+    "                 perez = Perez et al. 1990 anisotropic sky, its circumsolar part shaded with the beam\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 // Mean, min and max of the finite cells.
@@ -96,12 +99,16 @@ bool ends_with(const std::string& s, const std::string& tail)
 int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
-    const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats"},
+    const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats", "diffuse"},
                            {"help", "force", "year-from-tmy"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
     const cli::output_formats formats = cli::output_formats_from(a);
+    const std::string diffuse = a.text("diffuse", "isotropic");
+    if (diffuse != "isotropic" && diffuse != "perez") {
+        throw cli::usage_error("--diffuse must be isotropic or perez (got " + diffuse + ")");
+    }
 
     // Weather first: a bad file fails before the survey is read.
     const bool year_from_tmy = a.has("year-from-tmy");
@@ -177,7 +184,9 @@ int run_solar(const std::vector<std::string>& args)
     for (const auto& n : names) out.check_name(n);
 
     const auto res = lidarfx::irradiance_maps(dsm, cell_m, lat, lon, records,
-                                              {.month_utc_offset_h = zone_h,
+                                              {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez
+                                                                             : lidarfx::diffuse_model::isotropic,
+                                               .month_utc_offset_h = zone_h,
                                                .run = {.threads = threads,
                                                        .progress = cli::progress_bar("irradiance")}});
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "

@@ -30,6 +30,7 @@
 #include "lidarfx/kernels/solar/horizon_map.hpp"
 #include "lidarfx/kernels/solar/incidence.hpp"
 #include "lidarfx/kernels/solar/irradiance_record.hpp"
+#include "lidarfx/kernels/solar/perez_diffuse.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"

@@ -56,10 +56,19 @@ if(NOT months EQUAL 12)
 endif()
 message(STATUS "lidarfx solar: ${expected} written, 12 month rows")
 
+# The Perez sky option runs too.
+execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --lat 52.5 --lon 13.4 --diffuse perez --formats asc
+                        --out "${WORK_DIR}/out_perez"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK_DIR}/out_perez/annual_kwh_m2.asc")
+    message(FATAL_ERROR "lidarfx solar --diffuse perez failed (${rc}):\n${said}\n${err}")
+endif()
+
 set(cases
     "2|--lat must be given|[-90, 90]|solar^${dsm}^--out^${out}_refused"
     "2|--lon must be given|[-180, 180]|solar^${dsm}^--lat^52^--out^${out}_refused"
     "2|--year-from-tmy needs --tmy|FILE.csv|solar^${dsm}^--lat^52^--lon^13^--year-from-tmy^--out^${out}_refused"
-    "2|--year must be in|(got 1066)|solar^${dsm}^--lat^52^--lon^13^--year^1066^--out^${out}_refused")
+    "2|--year must be in|(got 1066)|solar^${dsm}^--lat^52^--lon^13^--year^1066^--out^${out}_refused"
+    "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused")
 set(out "${out}_refused")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -3,6 +3,9 @@
 
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
 #include <lidarfx/kernels/solar/clear_sky.hpp>
+#include <lidarfx/kernels/solar/incidence.hpp>
+#include <lidarfx/kernels/solar/perez_diffuse.hpp>
+#include <lidarfx/kernels/solar/sun_position.hpp>
 #include <lidarfx/pipelines/solar/irradiance_maps.hpp>
 
 #include "reference/progress.hpp"
@@ -164,6 +167,88 @@ TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slop
     CHECK(golden.annual_kwh_m2(30, 10) > 1.1 * golden.annual_kwh_m2(10, 10));
 }
 
+TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI and favours a slope facing the sun")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 5);
+    const raster<float> z(4, 6, 0.0f);
+    const auto iso_flat = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    const auto perez_flat =
+        irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.diffuse = diffuse_model::perez});
+    // Flat and open: the circumsolar share lands whole on the cell while the sun is >= 5 deg high, and a little
+    // less below (a / c = sin e / cos 85 < 1), so Perez gives slightly less than GHI, never more.
+    const double ratio_flat = perez_flat.annual_kwh_m2(1, 1) / iso_flat.annual_kwh_m2(1, 1);
+    MESSAGE("flat open ground at Golden, clear sky: Perez / isotropic = ", ratio_flat);
+    CHECK(ratio_flat <= 1.0);
+    CHECK(ratio_flat > 0.97);
+    CHECK(perez_flat.annual_kwh_m2(1, 1) == doctest::Approx(perez_flat.ghi_kwh_m2).epsilon(0.03));
+
+    // A 35 deg slope facing south: the bright sky around the sun is in front of it.
+    const raster<float> tilt(4, 6, 35.0f), azimuth(4, 6, 180.0f);
+    const irradiance_maps_options south{.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view()};
+    irradiance_maps_options south_perez = south;
+    south_perez.diffuse = diffuse_model::perez;
+    const auto iso = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, south);
+    const auto per = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, south_perez);
+    const double ratio = per.annual_kwh_m2(1, 1) / iso.annual_kwh_m2(1, 1);
+    MESSAGE("35 deg south slope at Golden, clear sky: isotropic ", iso.annual_kwh_m2(1, 1), ", Perez ",
+            per.annual_kwh_m2(1, 1), " kWh/m^2 (ratio ", ratio, ")");
+    CHECK(ratio > 1.02);
+    CHECK(ratio < 1.15);
+}
+
+TEST_CASE("solar/irradiance_maps: with the Perez sky an open cell gets beam + perez_diffuse's total for its record")
+{
+    // One hour, 21 June 2021 18:00-19:00 UTC at Golden (sun high in the south), on an open 30 deg slope facing
+    // 160 deg: kWh/m^2 = (DNI cos theta + isotropic + circumsolar + horizon) W/m^2 * 1 h / 1000.
+    std::vector<irradiance_record> records(1);
+    records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 6 / 21} + std::chrono::hours{18};
+    records[0].dni_w_m2 = 800.0;
+    records[0].dhi_w_m2 = 120.0;
+    records[0].ghi_w_m2 = 850.0;
+    const raster<float> z(3, 4, 0.0f), tilt(3, 4, 30.0f), azimuth(3, 4, 160.0f);
+    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
+                                     {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
+                                      .diffuse = diffuse_model::perez});
+    const sun_position_result sun = sun_position(records[0].middle_utc(), golden_lat, golden_lon);
+    const double cos_theta = cos_incidence(sun.azimuth_deg, sun.elevation_deg, 30.0, 160.0);
+    const perez_diffuse_result sky = perez_diffuse(120.0, 800.0, sun.elevation_deg, cos_theta, 30.0, 172);
+    REQUIRE(sky.circumsolar_w_m2 > 0.0);
+    REQUIRE(sky.horizon_w_m2 > 0.0);
+    CHECK(res.sky_view_factor(1, 1) == 1.0f);
+    CHECK(res.annual_kwh_m2(1, 1) ==
+          doctest::Approx((800.0 * cos_theta + sky.total_w_m2()) / 1000.0).epsilon(1e-6));
+}
+
+TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the circumsolar diffuse with the beam")
+{
+    const auto records = clear_days(golden_lat, golden_lon, 7);
+    const raster<float> z = block_scene();
+    const auto iso = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    const auto per = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.diffuse = diffuse_model::perez});
+    // North of the block (row 18: 2 m away, in its shadow for most of the year) against open ground south of it.
+    const double shaded = per.annual_kwh_m2(18, 20) / iso.annual_kwh_m2(18, 20);
+    const double open = per.annual_kwh_m2(35, 20) / iso.annual_kwh_m2(35, 20);
+    MESSAGE("Perez / isotropic: shaded cell ", shaded, ", open cell ", open);
+    CHECK(shaded < open - 0.02);
+    CHECK(per.sky_view_factor(18, 20) == iso.sky_view_factor(18, 20));
+
+    // The same for any thread count, on per-cell surfaces too, and with the published (signed) coefficients.
+    raster<float> tilt(40, 40, 20.0f), azimuth(40, 40, 135.0f);
+    tilt(7, 7) = std::numeric_limits<float>::quiet_NaN();
+    for (bool nonnegative : {true, false}) {
+        const irradiance_maps_options o{.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
+                                        .albedo = 0.2, .diffuse = diffuse_model::perez,
+                                        .perez = {.nonnegative = nonnegative}, .run = {.threads = 1}};
+        irradiance_maps_options o3 = o;
+        o3.run.threads = 3;
+        const auto one = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, o);
+        const auto three = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, o3);
+        CHECK(same_bits(one.annual_kwh_m2, three.annual_kwh_m2));
+        CHECK(std::isnan(one.annual_kwh_m2(7, 7)));
+        CHECK(one.annual_kwh_m2(18, 20) > 0.0);
+    }
+}
+
 TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN cells; progress and cancellation")
 {
     const auto records = clear_days(golden_lat, golden_lon, 11);
@@ -208,6 +293,9 @@ TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name"
                          invalid_input);
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.svf_directions = 2}),
                          doctest::Contains("irradiance_maps: svf_directions"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records,
+                                         {.diffuse = diffuse_model::perez, .perez = {.solar_constant_w_m2 = -1.0}}),
+                         doctest::Contains("perez.solar_constant_w_m2"), invalid_input);
     records[0].dni_w_m2 = -3.0;
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("records[0]"),
                          invalid_input);
