@@ -1,0 +1,74 @@
+# SPDX-License-Identifier: Apache-2.0
+# `lidarfx solar` on GeoTIFF DSMs (tests/data/dsm_*.tif, made by make_dsm_tifs.py): NoData corners stay holes,
+# feet become metres, degrees and rotated grids are refused. With PROJ the place comes from the CRS when --lat/--lon
+# are missing (UTM 13N centred on 40 N, 103 W: meridian convergence 1.2859 degrees), and the convergence applies
+# when they are given too; without PROJ their absence is refused naming them; without GDAL a .tif is refused.
+# HAVE_GDAL and HAVE_PROJ say how lidarfx was built.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(utm "${DATA}/dsm_utm13n.tif")
+set(feet "${DATA}/dsm_oregon_north_ft.tif")
+
+function(run_solar name)
+    execute_process(COMMAND "${LIDARFX}" solar ${ARGN} --formats asc --out "${WORK_DIR}/${name}"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "lidarfx solar ${ARGN} failed (${rc}):\n${said}\n${err}")
+    endif()
+    set(said "${said}" PARENT_SCOPE)
+endfunction()
+
+function(expect_said phrase)
+    string(FIND "${said}" "${phrase}" at)
+    if(at EQUAL -1)
+        message(FATAL_ERROR "lidarfx solar does not say '${phrase}':\n${said}")
+    endif()
+endfunction()
+
+set(out "${WORK_DIR}/refused")
+if(NOT HAVE_GDAL)
+    set(cases "2|needs GDAL|gdal_translate -of AAIGrid|solar^${utm}^--lat^40^--lon^-103^--out^${out}")
+    include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
+    return()
+endif()
+
+# The UTM DSM with --lat/--lon: read in metres, the NoData corner a hole in the maps.
+run_solar(given "${utm}" --lat 40 --lon -103)
+expect_said("DSM: ${utm}, 16 x 16 cells of 1.000 m, EPSG:32613 (metre)")
+expect_said("latitude 40.000000 from --lat, longitude -103.000000 from --lon")
+file(STRINGS "${WORK_DIR}/given/annual_kwh_m2.asc" grid_lines)
+list(GET grid_lines 6 first_row)
+if(NOT first_row MATCHES "^ *-9999 ")
+    message(FATAL_ERROR "the NoData cell (0, 0) of ${utm} is not NoData in annual_kwh_m2.asc: ${first_row}")
+endif()
+file(READ "${WORK_DIR}/given/manifest.json" manifest)
+string(FIND "${manifest}" "latitude 40.000000" at)
+if(at EQUAL -1)
+    message(FATAL_ERROR "manifest.json does not record the latitude used:\n${manifest}")
+endif()
+
+# Feet: 3.28 ft cells and heights in feet are 1 m cells and heights in metres.
+run_solar(feet "${feet}" --lat 45.5 --lon -122)
+expect_said("cells of 1.000 m, EPSG:2269 (foot)")
+
+if(HAVE_PROJ)
+    # No --lat/--lon: the centre of the UTM DSM, and grid north 1.2859 degrees east of true north.
+    run_solar(placed "${utm}")
+    expect_said("latitude 40.000000 from the survey's centre (PROJ), longitude -103.000000 from the survey's centre")
+    expect_said("meridian convergence 1.2859 degrees")
+    # Given --lat/--lon win, the convergence still applies.
+    run_solar(both "${utm}" --lat 41 --lon -104)
+    expect_said("latitude 41.000000 from --lat")
+    expect_said("meridian convergence 1.2859 degrees")
+    # Oregon North (Lambert, central meridian 120.5 W): 1.5 degrees west of it grid north is west of true north.
+    run_solar(feet_placed "${feet}")
+    expect_said("latitude 45.500000 from the survey's centre (PROJ), longitude -122.000000")
+    expect_said("meridian convergence -1.0")
+    set(cases)
+else()
+    set(cases "2|--lat must be given|without PROJ|solar^${utm}^--out^${out}")
+endif()
+list(APPEND cases
+    "2|longitude and latitude in degrees|gdalwarp -t_srs|solar^${DATA}/dsm_epsg4326.tif^--lat^40^--lon^-103^--out^${out}"
+    "1|north-up grids of square cells only|rotated|solar^${DATA}/dsm_rotated.tif^--lat^40^--lon^-103^--out^${out}")
+include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
