@@ -31,8 +31,9 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv] [--lat DEG --lon DEG]\n"
-    "                     [--cell M] [--year Y | --year-from-tmy] [--threads N] [--formats asc,tif,png]\n"
+    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv]\n"
+    "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy] [--threads N]\n"
+    "                     [--formats asc,tif,png]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
@@ -188,7 +189,9 @@ int run_solar(const std::vector<std::string>& args)
     const double nan = std::numeric_limits<double>::quiet_NaN();
     double lat = a.number("lat", nan), lon = a.number("lon", nan);
     if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw cli::usage_error("--lat must be in [-90, 90] degrees");
-    if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) throw cli::usage_error("--lon must be in [-180, 180] degrees");
+    if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) {
+        throw cli::usage_error("--lon must be in [-180, 180] degrees");
+    }
     double station_lat = nan, station_lon = nan;
     double zone_h = 0.0;
     if (a.has("tmy")) {
@@ -255,7 +258,8 @@ int run_solar(const std::vector<std::string>& args)
                                            g.y0 - 0.5 * static_cast<double>(g.rows) * g.cell);
         } catch (const std::exception& e) {
             no_centre = std::string("PROJ cannot place its centre: ") + e.what();
-            std::cerr << "lidarfx: warning: " << inputs[0] << ": " << no_centre << "; grid north is taken as true north\n";
+            std::cerr << "lidarfx: warning: " << inputs[0] << ": " << no_centre
+                      << "; grid north is taken as true north\n";
         }
     }
     const char* lat_from = "--lat";

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-# `lidarfx solar` on GeoTIFF DSMs (tests/data/dsm_*.tif, made by make_dsm_tifs.py): NoData corners stay holes,
-# feet become metres, degrees and rotated grids are refused. With PROJ the place comes from the CRS when --lat/--lon
-# are missing (UTM 13N centred on 40 N, 103 W: meridian convergence 1.2859 degrees), and the convergence applies
-# when they are given too; without PROJ their absence is refused naming them; without GDAL a .tif is refused.
+# `lidarfx solar` on GeoTIFF DSMs (tests/data/dsm_*.tif, made by make_dsm_tifs.py) and a LAS file in UTM 17N
+# (tests/data/test_utm17.las): NoData corners stay holes, feet become metres, degrees and rotated grids are
+# refused. With PROJ the place comes from the CRS when --lat/--lon are missing (UTM 13N centred on 40 N, 103 W:
+# meridian convergence 1.2859 degrees), and the convergence applies when they are given too; without PROJ their
+# absence is refused naming them; without GDAL a .tif is refused.
 # HAVE_GDAL and HAVE_PROJ say how lidarfx was built.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -25,9 +26,21 @@ function(expect_said phrase)
     endif()
 endfunction()
 
+# A LAS survey in UTM 17N (EPSG:32617) without --lat/--lon: its grid's centre (289816.5, 4320979.5) is at
+# 39.012608 N, 83.427571 W (gdaltransform), 2.43 degrees west of the central meridian (81 W), so grid north is
+# west of true north: atan(tan(-2.427571) sin(39.012608)) = -1.5287 degrees.
+if(HAVE_PROJ)
+    run_solar(las "${DATA}/test_utm17.las")
+    expect_said("latitude 39.012608 from the survey's centre (PROJ), longitude -83.427571 from the survey's centre")
+    expect_said("meridian convergence -1.5287 degrees")
+endif()
+
 set(out "${WORK_DIR}/refused")
 if(NOT HAVE_GDAL)
     set(cases "2|needs GDAL|gdal_translate -of AAIGrid|solar^${utm}^--lat^40^--lon^-103^--out^${out}")
+    if(NOT HAVE_PROJ)
+        list(APPEND cases "2|--lat must be given|without PROJ|solar^${DATA}/test_utm17.las^--out^${out}")
+    endif()
     include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
     return()
 endif()
@@ -97,7 +110,8 @@ if(HAVE_PROJ)
     expect_said("meridian convergence -1.0")
     set(cases)
 else()
-    set(cases "2|--lat must be given|without PROJ|solar^${utm}^--out^${out}")
+    set(cases "2|--lat must be given|without PROJ|solar^${utm}^--out^${out}"
+              "2|--lat must be given|without PROJ|solar^${DATA}/test_utm17.las^--out^${out}")
 endif()
 list(APPEND cases
     "2|longitude and latitude in degrees|gdalwarp -t_srs|solar^${DATA}/dsm_epsg4326.tif^--lat^40^--lon^-103^--out^${out}"

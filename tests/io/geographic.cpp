@@ -34,7 +34,8 @@ easting_northing utm(double lat_deg, double lon_deg, double lon0_deg, bool south
     const double t = std::tan(phi) * std::tan(phi), c = ep2 * std::cos(phi) * std::cos(phi);
     const double A = (lon_deg - lon0_deg) * deg * std::cos(phi);
     const double x = k0 * n *
-                     (A + (1 - t + c) * std::pow(A, 3) / 6 + (5 - 18 * t + t * t + 72 * c - 58 * ep2) * std::pow(A, 5) / 120);
+                     (A + (1 - t + c) * std::pow(A, 3) / 6 +
+                      (5 - 18 * t + t * t + 72 * c - 58 * ep2) * std::pow(A, 5) / 120);
     const double y = k0 * (m + n * std::tan(phi) *
                                    (A * A / 2 + (5 - t + 9 * c + 4 * c * c) * std::pow(A, 4) / 24 +
                                     (61 - 58 * t + t * t + 600 * c - 330 * ep2) * std::pow(A, 6) / 720));
@@ -63,8 +64,10 @@ TEST_CASE("io/place_of: UTM points give their latitude and longitude and the mer
         bool south;
     };
     // Zone 13N (central meridian -105) on, east and west of the meridian; zone 33S (15 E) east of it.
-    for (const site s : {site{"EPSG:32613", 40.0, -105.0, -105.0, false}, site{"EPSG:32613", 40.0, -103.0, -105.0, false},
-                         site{"EPSG:32613", 55.5, -107.5, -105.0, false}, site{"EPSG:32733", -20.0, 17.0, 15.0, true}}) {
+    for (const site s : {site{"EPSG:32613", 40.0, -105.0, -105.0, false},
+                         site{"EPSG:32613", 40.0, -103.0, -105.0, false},
+                         site{"EPSG:32613", 55.5, -107.5, -105.0, false},
+                         site{"EPSG:32733", -20.0, 17.0, 15.0, true}}) {
         CAPTURE(s.crs);
         CAPTURE(s.lat);
         CAPTURE(s.lon);
@@ -86,7 +89,7 @@ TEST_CASE("io/place_of: a CRS in feet gives what its metre twin gives; geographi
           "refused naming the CRS (with PROJ)")
 {
     if (!proj_available()) return;
-    // NAD83 / Oregon North in metres (EPSG:32126) and in feet (EPSG:2269, international feet): one Lambert projection.
+    // NAD83 / Oregon North in metres (EPSG:32126) and in international feet (EPSG:2269): one Lambert projection.
     const double x_m = 2300000.0, y_m = 200000.0, ft = 0.3048;
     const geographic_place m = place_of("EPSG:32126", x_m, y_m), f = place_of("EPSG:2269", x_m / ft, y_m / ft);
     MESSAGE("Oregon North at (", x_m, ", ", y_m, ") m: latitude ", m.latitude_deg, ", longitude ", m.longitude_deg,
@@ -100,5 +103,6 @@ TEST_CASE("io/place_of: a CRS in feet gives what its metre twin gives; geographi
 
     CHECK(contains(io_test::runtime_error_of([] { place_of("EPSG:4326", -105, 40); }), "not a projected"));
     CHECK(contains(io_test::runtime_error_of([] { place_of("EPSG:4326", -105, 40); }), "EPSG:4326"));
-    CHECK(contains(io_test::runtime_error_of([] { place_of("no such CRS", 0, 0); }), "'no such CRS' is not understood"));
+    CHECK(contains(io_test::runtime_error_of([] { place_of("no such CRS", 0, 0); }),
+                   "'no such CRS' is not understood"));
 }
