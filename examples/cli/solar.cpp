@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // lidarfx solar: annual and monthly irradiation maps of a surface model (dissertation ch. 3).
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,8 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,6 +19,9 @@
 #include "cli_common.hpp"
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
+#include "io/crs.hpp"
+#include "io/geographic.hpp"
+#include "io/geotiff.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 #include "io/tables.hpp"
@@ -25,17 +31,21 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc --out DIR [--tmy FILE.csv] [--lat DEG --lon DEG]\n"
-    "                     [--cell M] [--year Y | --year-from-tmy] [--diffuse isotropic|perez] [--threads N]\n"
+    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv]\n"
+    "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
+    "                     [--diffuse isotropic|perez] [--threads N]\n"
     "                     [--formats asc,tif,png]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
     "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
     "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
-    "IDW. Weather: a TMY3 file (--tmy; its station gives the latitude, longitude and time zone unless --lat/--lon\n"
-    "are given); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs), and then --lat/--lon\n"
-    "are required. The grid is taken as north-up in metres.\n"
+    "IDW; a GeoTIFF DSM (needs GDAL) is read with its NoData as holes and its CRS's units (feet become metres,\n"
+    "degrees are refused); an ESRI ASCII grid is taken as metres. Weather: a TMY3 file (--tmy; its station gives\n"
+    "the time zone); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs). The place of the\n"
+    "sun: --lat/--lon when given, else the survey's centre when its CRS is known and lidarfx has PROJ, else the TMY\n"
+    "station. With a known CRS and PROJ, sun azimuths are also turned from true to grid north by the meridian\n"
+    "convergence at the survey's centre (--lat/--lon given or not).\n"
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
     "  --year Y       the year the records are placed in [2021]: the clear-sky year, or the year every TMY row\n"
@@ -96,6 +106,71 @@ bool ends_with(const std::string& s, const std::string& tail)
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+std::string lower(std::string s)
+{
+    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return s;
+}
+
+bool is_geotiff(const std::string& path) { return ends_with(lower(path), ".tif") || ends_with(lower(path), ".tiff"); }
+
+std::string fixed(double v, int digits)
+{
+    std::ostringstream o;
+    o << std::fixed << std::setprecision(digits) << v;
+    return o.str();
+}
+
+// Refuses (exit code 2) a missing or out-of-range latitude or longitude, saying why none was found.
+void require_place(double lat, double lon, const std::string& why_none)
+{
+    if (!(lat >= -90.0 && lat <= 90.0)) {
+        throw lidarfx::cli::usage_error("--lat must be given, in [-90, 90] degrees, with --lon: " + why_none);
+    }
+    if (!(lon >= -180.0 && lon <= 180.0)) {
+        throw lidarfx::cli::usage_error("--lon must be given, in [-180, 180] degrees, with --lat: " + why_none);
+    }
+}
+
+// A GeoTIFF surface model in metres: heights times the vertical unit, the cell in metres; grid and CRS as in the
+// file (for outputs that land where the input lies).
+struct geotiff_dsm {
+    lidarfx::raster<float> values;
+    lidarfx::grid g;              // in the CRS's units
+    double cell_m = 0;            // g.cell in metres
+    lidarfx::io::survey_crs crs;
+};
+
+geotiff_dsm read_geotiff_dsm(const std::string& path)
+{
+    namespace io = lidarfx::io;
+    if (!io::geotiff_available()) {
+        throw lidarfx::cli::usage_error(path + ": reading a GeoTIFF needs GDAL, and this lidarfx was built without "
+                                        "it: convert it to ESRI ASCII (gdal_translate -of AAIGrid DSM.tif DSM.asc, "
+                                        "heights and cells in metres) or install libgdal-dev and rebuild");
+    }
+    io::geotiff_raster t = io::read_geotiff(path);
+    geotiff_dsm d;
+    d.crs = io::crs_of_wkt(t.crs_wkt);
+    for (const auto& w : d.crs.warnings) std::cerr << "lidarfx: warning: " << path << ": " << w << '\n';
+    if (d.crs.geographic) {
+        throw lidarfx::cli::usage_error(path + ": x and y are longitude and latitude in degrees (" + d.crs.describe() +
+                                        "), but cells, heights and areas are measured in metres. Reproject it to a "
+                                        "projected CRS first, e.g. gdalwarp -t_srs EPSG:<the UTM zone's code> "
+                                        "IN.tif OUT.tif");
+    }
+    if (!io::crs_understood(d.crs.wkt)) d.crs.wkt.clear();
+    if (d.crs.vertical_unit_m != 1.0) {
+        for (float& v : t.values) v = static_cast<float>(v * d.crs.vertical_unit_m);
+    }
+    d.values = std::move(t.values);
+    d.g = t.g;
+    d.cell_m = t.g.cell * d.crs.horizontal_unit_m;
+    std::cout << "DSM: " << path << ", " << d.g.rows << " x " << d.g.cols << " cells of " << fixed(d.cell_m, 3)
+              << " m, " << d.crs.describe() << "\n";
+    return d;
+}
+
 int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
@@ -118,15 +193,20 @@ int run_solar(const std::vector<std::string>& args)
     if (records_year < 1900 || records_year > 2200) throw cli::usage_error("--year must be in [1900, 2200] (got " +
                                                            std::to_string(records_year) + ")");
     std::vector<lidarfx::irradiance_record> records;
-    double lat = a.number("lat", std::numeric_limits<double>::quiet_NaN());
-    double lon = a.number("lon", std::numeric_limits<double>::quiet_NaN());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    double lat = a.number("lat", nan), lon = a.number("lon", nan);
+    if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw cli::usage_error("--lat must be in [-90, 90] degrees");
+    if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) {
+        throw cli::usage_error("--lon must be in [-180, 180] degrees");
+    }
+    double station_lat = nan, station_lon = nan;
     double zone_h = 0.0;
     if (a.has("tmy")) {
         const auto tmy = lidarfx::io::read_tmy3(a.text("tmy", ""));
         records = tmy.records;
         zone_h = tmy.station.utc_offset_h;
-        if (!a.has("lat")) lat = tmy.station.latitude_deg;
-        if (!a.has("lon")) lon = tmy.station.longitude_deg;
+        station_lat = tmy.station.latitude_deg;
+        station_lon = tmy.station.longitude_deg;
         std::cout << "weather: TMY3 " << tmy.station.id << " " << tmy.station.name << ", " << records.size()
                   << " hours, UTC" << (zone_h >= 0 ? "+" : "") << zone_h;
         if (year_from_tmy) {
@@ -136,25 +216,31 @@ int run_solar(const std::vector<std::string>& args)
             std::cout << ", re-stamped to " << records_year << "\n";
         }
     }
-    if (!(lat >= -90.0 && lat <= 90.0)) throw cli::usage_error("--lat must be given, in [-90, 90] degrees");
-    if (!(lon >= -180.0 && lon <= 180.0)) throw cli::usage_error("--lon must be given, in [-180, 180] degrees");
-    if (!a.has("tmy")) {
-        records = lidarfx::clear_sky_records(records_year, lat, lon);
-        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
-                  << records_year
-                  << "\n";
-    }
-
-    // The surface model.
     const auto& inputs = a.positional();
+    const bool single_grid = inputs.size() == 1 && (ends_with(lower(inputs[0]), ".asc") || is_geotiff(inputs[0]));
+    // Refusals that need no input read: nothing can give the place.
+    if (!a.has("tmy") && single_grid && ends_with(lower(inputs[0]), ".asc")) {
+        require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
+    }
+    if (!a.has("tmy") && !lidarfx::io::proj_available()) require_place(lat, lon, "this lidarfx was built without PROJ");
+
+    // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
     lidarfx::grid g;
     double cell_m = 0.0;
-    std::string crs_wkt;
+    std::string crs_wkt, place_crs;
     int epsg = 0;
-    if (inputs.size() == 1 && ends_with(inputs[0], ".asc")) {
+    if (single_grid && ends_with(lower(inputs[0]), ".asc")) {
         dsm = lidarfx::io::read_ascii_grid(inputs[0], g);
         cell_m = g.cell;  // taken as metres
+    } else if (single_grid) {
+        auto t = read_geotiff_dsm(inputs[0]);
+        dsm = std::move(t.values);
+        g = t.g;
+        cell_m = t.cell_m;
+        crs_wkt = t.crs.wkt;
+        epsg = t.crs.epsg;
+        place_crs = t.crs.for_outputs();
     } else {
         auto survey_options = cli::survey_options_from(a, 96);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
@@ -166,6 +252,53 @@ int run_solar(const std::vector<std::string>& args)
         g = cli::to_crs_units(g, s);
         crs_wkt = s.crs_wkt;
         epsg = s.epsg;
+        place_crs = s.crs.for_outputs();
+    }
+
+    // Where the sun is seen from, and how the grid is turned against true north.
+    std::optional<lidarfx::io::geographic_place> centre;
+    std::string no_centre = inputs[0] + " has no coordinate system";
+    if (!place_crs.empty() && !lidarfx::io::proj_available()) no_centre = "this lidarfx was built without PROJ";
+    if (!place_crs.empty() && lidarfx::io::proj_available()) {
+        try {
+            centre = lidarfx::io::place_of(place_crs, g.x0 + 0.5 * static_cast<double>(g.cols) * g.cell,
+                                           g.y0 - 0.5 * static_cast<double>(g.rows) * g.cell);
+        } catch (const std::exception& e) {
+            no_centre = std::string("PROJ cannot place its centre: ") + e.what();
+            std::cerr << "lidarfx: warning: " << inputs[0] << ": " << no_centre
+                      << "; grid north is taken as true north\n";
+        }
+    }
+    const char* lat_from = "--lat";
+    const char* lon_from = "--lon";
+    if (!a.has("lat")) {
+        lat = centre ? centre->latitude_deg : station_lat;
+        lat_from = centre ? "the survey's centre (PROJ)" : "the TMY station";
+    }
+    if (!a.has("lon")) {
+        lon = centre ? centre->longitude_deg : station_lon;
+        lon_from = centre ? "the survey's centre (PROJ)" : "the TMY station";
+    }
+    require_place(lat, lon, no_centre);
+    if (centre && (std::abs(lat - centre->latitude_deg) > 0.5 || std::abs(lon - centre->longitude_deg) > 0.5)) {
+        std::cerr << "lidarfx: warning: the sun is placed at latitude " << lat << ", longitude " << lon
+                  << ", but the survey's centre is at " << centre->latitude_deg << ", " << centre->longitude_deg
+                  << "\n";
+    }
+    const double convergence_deg = centre ? centre->convergence_deg : 0.0;
+    std::ostringstream place;
+    place << std::fixed << std::setprecision(6) << "latitude " << lat << " from " << lat_from << ", longitude " << lon
+          << " from " << lon_from << "; "
+          << (centre ? "meridian convergence " + fixed(convergence_deg, 4) +
+                           " degrees at the survey's centre (grid north east of true north when positive; sun "
+                           "azimuths turned to grid north by it)"
+                     : std::string("grid north taken as true north (no convergence: ") + no_centre + ")");
+    std::cout << "place: " << place.str() << "\n";
+    if (!a.has("tmy")) {
+        records = lidarfx::clear_sky_records(records_year, lat, lon);
+        std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
+                  << records_year
+                  << "\n";
     }
 
     lidarfx::io::output_folder out(a.text("out", ""), {inputs.begin(), inputs.end()});
@@ -187,6 +320,7 @@ int run_solar(const std::vector<std::string>& args)
                                               {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez
                                                                              : lidarfx::diffuse_model::isotropic,
                                                .month_utc_offset_h = zone_h,
+                                               .meridian_convergence_deg = convergence_deg,
                                                .run = {.threads = threads,
                                                        .progress = cli::progress_bar("irradiance")}});
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
@@ -221,6 +355,8 @@ int run_solar(const std::vector<std::string>& args)
     }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";
+    out.set_units_note("kWh/m2 per cell (horizontal surfaces), SVF in [0, 1], on the input's grid; sun for " +
+                       place.str());
     cli::commit_and_report(out, cli::command_line("solar", args));
     return 0;
 }

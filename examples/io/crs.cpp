@@ -672,4 +672,14 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
     return c;
 }
 
+survey_crs crs_of_wkt(const std::string& wkt, bool use_gdal)
+{
+    las_header h;   // a LAS 1.4 header whose only CRS record is the WKT
+    h.version_minor = 4;
+    h.global_encoding = 16;
+    h.has_wkt_record = !wkt.empty();
+    h.wkt = wkt;
+    return crs_of(h, use_gdal);
+}
+
 }  // namespace lidarfx::io

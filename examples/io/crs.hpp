@@ -47,6 +47,10 @@ struct survey_crs {
 /// Never throws for bad CRS data: what cannot be read is a warning.
 survey_crs crs_of(const las_header& h, bool use_gdal = true);
 
+/// The CRS and units of a raster file's WKT (GDAL's projection of a GeoTIFF), by the rules of crs_of for a
+/// LAS file whose only record is that WKT; "" gives no CRS, metres assumed. Never throws.
+survey_crs crs_of_wkt(const std::string& wkt, bool use_gdal = true);
+
 /// True when a and b hold the same CRS records (GeoKeys, their parameters, WKT, the WKT flag), so that
 /// crs_of gives the same answer for both: tiles of one survey need to be interpreted once (GDAL's search
 /// for a matching EPSG code takes a quarter of a second).

@@ -135,7 +135,9 @@ geotiff_raster read_geotiff(const std::string& path)
     try {
         out.g = from_gdal(gt, rows, cols);
     } catch (const invalid_input& e) {
-        throw std::runtime_error(path + ": unsupported georeferencing: " + e.what());
+        throw std::runtime_error(path + ": unsupported georeferencing: " + e.what() +
+                                 "; lidarfx reads north-up grids of square cells only: resample it first, e.g. "
+                                 "gdalwarp -tr CELL CELL IN.tif OUT.tif");
     }
     const char* wkt = GDALGetProjectionRef(ds.get());
     out.crs_wkt = wkt != nullptr ? wkt : "";

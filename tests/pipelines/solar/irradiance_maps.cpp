@@ -5,6 +5,7 @@
 #include <lidarfx/kernels/solar/clear_sky.hpp>
 #include <lidarfx/kernels/solar/incidence.hpp>
 #include <lidarfx/kernels/solar/perez_diffuse.hpp>
+#include <lidarfx/kernels/solar/raylines_shadow.hpp>
 #include <lidarfx/kernels/solar/sun_position.hpp>
 #include <lidarfx/pipelines/solar/irradiance_maps.hpp>
 
@@ -273,6 +274,53 @@ TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN ce
     CHECK_THROWS_AS(irradiance_maps(z, 0.5, golden_lat, golden_lon, records,
                                     {.run = {.progress = reference::cancel_at_once()}}),
                     cancelled);
+}
+
+TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from true to grid north (a_grid = a_true - "
+          "convergence)")
+{
+    // One hour of beam only (DHI 0): a cell's sum is DNI sin e where it is lit and 0 in shadow.
+    std::vector<irradiance_record> records(1);
+    records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 3 / 20} + std::chrono::hours{16};
+    records[0].dni_w_m2 = 800.0;
+    records[0].ghi_w_m2 = 500.0;
+    const auto sun = sun_position(records[0].middle_utc(), golden_lat, golden_lon);
+    REQUIRE(sun.elevation_deg > 10.0);
+    const raster<float> z = block_scene();
+    const double convergence = 25.0;   // grid north 25 degrees east of true north
+    const auto turned = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
+                                        {.meridian_convergence_deg = convergence});
+    const auto lit_grid = raylines_shadow(z, 1.0, sun.azimuth_deg - convergence, sun.elevation_deg, {.nan_cell = 0});
+    const auto lit_true = raylines_shadow(z, 1.0, sun.azimuth_deg, sun.elevation_deg, {.nan_cell = 0});
+    std::ptrdiff_t differ = 0, shadow = 0;
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
+            CHECK((turned.annual_kwh_m2(r, c) > 0.0f) == (lit_grid(r, c) == 1));
+            differ += lit_grid(r, c) != lit_true(r, c);
+            shadow += lit_grid(r, c) == 0;
+        }
+    }
+    CHECK(shadow > 10);
+    CHECK(differ > 5);   // the turn moves the shadow: the check above tells the two apart
+    // 0 (the default) leaves the maps bit for bit as they were.
+    CHECK(same_bits(irradiance_maps(z, 1.0, golden_lat, golden_lon, records).annual_kwh_m2,
+                    irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.meridian_convergence_deg = 0.0})
+                        .annual_kwh_m2));
+
+    // A tilted cell facing grid azimuth A under convergence g gets what a cell facing A + g gets without it.
+    const raster<float> flat(3, 3, 0.0f), tilt(3, 3, 40.0f), facing_grid(3, 3, 150.0f), facing_true(3, 3, 175.0f);
+    const auto on_grid = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
+                                         {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_grid.view(),
+                                          .meridian_convergence_deg = convergence});
+    const auto on_true = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
+                                         {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_true.view()});
+    const auto unturned = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
+                                          {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_grid.view()});
+    CHECK(on_grid.annual_kwh_m2(1, 1) == doctest::Approx(on_true.annual_kwh_m2(1, 1)).epsilon(1e-6));
+    CHECK(std::abs(on_grid.annual_kwh_m2(1, 1) - unturned.annual_kwh_m2(1, 1)) > 0.01f);
+
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.meridian_convergence_deg = 91.0}),
+                         doctest::Contains("meridian_convergence_deg"), invalid_input);
 }
 
 TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name")

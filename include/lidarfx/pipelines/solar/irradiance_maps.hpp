@@ -53,6 +53,12 @@ struct irradiance_maps_options {
     perez_diffuse_options perez = {};  ///< settings of the Perez sky (used with diffuse_model::perez)
     /// Months are those of local standard time UTC + this many hours (TMY3's zone), in [-14, 14]; 0 = UTC months.
     double month_utc_offset_h = 0.0;
+    /// Meridian convergence at the DSM, degrees in [-90, 90]: the angle from true north to the grid's north (up,
+    /// row 0), positive when grid north lies east (clockwise) of true north, as east of the central meridian of a
+    /// transverse Mercator zone in the northern hemisphere. Sun azimuths (from true north) are turned to grid
+    /// azimuths a_grid = a_true - meridian_convergence_deg before shadows and incidence, so surface_azimuth_deg
+    /// is taken clockwise from grid north too. 0 (the default): grid north is true north.
+    double meridian_convergence_deg = 0.0;
     execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
@@ -139,7 +145,8 @@ inline int record_day_of_year(const irradiance_record& rec)
 ///                                               sun position: 1 lit, 0 shadow)
 ///   diffuse = DHI * SVF * (1 + cos b) / 2      (isotropic sky; SVF = sky_view_factor of the DSM, computed once)
 ///   ground  = GHI * albedo * (1 - cos b) / 2   (only when opt.albedo > 0)
-/// with b the cell's tilt (0 by default: horizontal, cos theta = sin e). Records with the sun down add nothing.
+/// with b the cell's tilt (0 by default: horizontal, cos theta = sin e), and the sun's azimuth turned from true to
+/// grid north by opt.meridian_convergence_deg (a_grid = a_true - convergence). Records with the sun down add nothing.
 /// With opt.diffuse = diffuse_model::perez the diffuse line is instead the Perez et al. (1990) sky (perez_diffuse
 /// with opt.perez; the record's DHI, DNI, sun elevation and UTC day of year):
 ///   diffuse = (isotropic + horizon) * SVF + circumsolar * lit
@@ -170,6 +177,8 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
     detail::require_positive(opt.perez.solar_constant_w_m2, fn, "perez.solar_constant_w_m2");
     detail::require(opt.month_utc_offset_h >= -14.0 && opt.month_utc_offset_h <= 14.0, fn, "month_utc_offset_h",
                     "in [-14, 14] hours", opt.month_utc_offset_h);
+    detail::require(opt.meridian_convergence_deg >= -90.0 && opt.meridian_convergence_deg <= 90.0, fn,
+                    "meridian_convergence_deg", "in [-90, 90] degrees", opt.meridian_convergence_deg);
     const bool tilted = opt.surface_tilt_deg.rows() > 0 || opt.surface_tilt_deg.cols() > 0;
     const bool has_azimuth = opt.surface_azimuth_deg.rows() > 0 || opt.surface_azimuth_deg.cols() > 0;
     detail::require(tilted == has_azimuth, fn,
@@ -203,8 +212,14 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         res.ghi_kwh_m2 += kwh;
         const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
         if (sun.elevation_deg > 0.0) {
+            double grid_azimuth = sun.azimuth_deg;
+            if (opt.meridian_convergence_deg != 0.0) {
+                grid_azimuth -= opt.meridian_convergence_deg;
+                if (grid_azimuth < 0.0) grid_azimuth += 360.0;
+                if (grid_azimuth >= 360.0) grid_azimuth -= 360.0;
+            }
             by_month[static_cast<std::size_t>(m)].push_back(
-                {i, sun.azimuth_deg, sun.elevation_deg, detail::record_day_of_year(r)});
+                {i, grid_azimuth, sun.elevation_deg, detail::record_day_of_year(r)});
         }
     }
 
