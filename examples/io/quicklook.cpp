@@ -218,6 +218,11 @@ std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept
     case U'n': return g{0, 0, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
     case U'o': return g{0, 0, 0b01110, 0b10001, 0b10001, 0b10001, 0b01110};
     case U'a': return g{0, 0, 0b01110, 0b00001, 0b01111, 0b10001, 0b01111};
+    case U'°': return g{0b01100, 0b10010, 0b10010, 0b01100, 0, 0, 0};
+    case U'z': return g{0, 0, 0b11111, 0b00010, 0b00100, 0b01000, 0b11111};
+    case U'i': return g{0b00100, 0, 0b01100, 0b00100, 0b00100, 0b00100, 0b01110};
+    case U'u': return g{0, 0, 0b10001, 0b10001, 0b10001, 0b10011, 0b01101};
+    case U't': return g{0b01000, 0b01000, 0b11100, 0b01000, 0b01000, 0b01001, 0b00110};
     case U' ': return g{};
     default: return g{0b11111, 0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b11111};
     }

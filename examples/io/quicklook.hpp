@@ -48,7 +48,7 @@ rgb_image overlay_mask(raster_view<const std::uint8_t> grey, raster_view<const s
 
 /// Pixels of one glyph of the built-in 5x7 bitmap font (7 rows of 5 columns, bit 4 = left column). It covers
 /// the digits, ". - + /", the superscript "²" and the letters of the units and numbers the program writes
-/// ("kWh/m²", "SVF", "e", "n", "o", "a"); any other character is an empty box, space is blank.
+/// ("kWh/m²", "SVF", "° azimuth", "e", "n", "o", "a"); any other character is an empty box, space is blank.
 std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept;
 
 /// Width in pixels of `text` (UTF-8) drawn by draw_text at `scale`: 6 * scale per character (5 columns of
