@@ -39,7 +39,7 @@ struct extract_buildings_options {
     double step_m = 0.3;               ///< largest height step between neighbours of one surface beyond the slope, m
     double merge_angle_deg = 3.0;      ///< adjacent surfaces whose fitted normals are closer merge, degrees; >= 0
     double min_surface_m2 = 4.0;       ///< smaller surfaces are given to their neighbours, m^2; >= 0
-    double min_planar_share = 0.5;     ///< a building needs this share of planar cells, else it is rough (a tree)
+    double min_planar_share = 0.25;    ///< a building needs this share of planar cells, else it is rough (a tree)
     double x0 = 0.0;                   ///< world x of the west edge of column 0 (outlines), metres
     double y0 = std::numeric_limits<double>::quiet_NaN();  ///< world y of the north edge of row 0; NaN = rows * cell_m
     execution run = {};                ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
@@ -283,7 +283,11 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     const auto w = std::max<std::ptrdiff_t>(1, std::lround(opt.plane_window_m / cell_m));
     auto lp = detail::fit_local_planes(z.view(), out.building_id.view(), cell_m, w, threads, function);
     const auto planar_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return std::isfinite(lp.rms(r, c)) && static_cast<double>(lp.rms(r, c)) < opt.plane_rms_m;
+        if (!std::isfinite(lp.rms(r, c))) return false;
+        // Steep faces scatter more within a cell (z varies by tan(tilt) * cell_m across it): the tolerance
+        // grows with the secant of the tilt squared.
+        const double g2 = static_cast<double>(lp.a(r, c)) * lp.a(r, c) + static_cast<double>(lp.b(r, c)) * lp.b(r, c);
+        return static_cast<double>(lp.rms(r, c)) < opt.plane_rms_m * (1.0 + g2);
     };
     {
         std::vector<std::size_t> planar(kept + 1, 0), cells(kept + 1, 0);
