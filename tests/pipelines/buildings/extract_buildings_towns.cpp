@@ -122,15 +122,17 @@ void report(const std::string& name, const town_score& s)
                  << s.tilt_ok << "/" << s.tilt_checked << " (worst " << s.worst_tilt_error << " deg)");
 }
 
-/// The issue's targets where they are met (footprints, trees), and the levels reached so far where they are not
-/// yet (every building found: 95 %; plane count and tilt within 5 deg: the issue asks 100 %, see docs/buildings.md).
+/// The issue's targets: every building >= 50 m^2 found, footprint IoU >= 0.9 on >= 95 % of them, >= 98 % of the
+/// trees clean, every roof plane's tilt within 5 deg; the plane count is right on >= 90 % of the buildings per
+/// town (the issue asks all: one hip end in 176 buildings is still absorbed by its neighbours, seed 5).
 void check_targets(const town_score& s)
 {
-    CHECK(static_cast<double>(s.found) >= 0.95 * static_cast<double>(s.buildings));
+    CHECK(s.found == s.buildings);
     CHECK(static_cast<double>(s.iou_ok) >= 0.95 * static_cast<double>(s.buildings));
     CHECK(static_cast<double>(s.trees_clean) >= 0.98 * static_cast<double>(s.trees));
-    CHECK(static_cast<double>(s.planes_count_ok) >= 0.7 * static_cast<double>(s.planes_buildings));
-    CHECK(static_cast<double>(s.tilt_ok) >= 0.75 * static_cast<double>(s.tilt_checked));
+    CHECK(s.tilt_ok == s.tilt_checked);
+    CHECK(s.worst_tilt_error <= 5.0);
+    CHECK(static_cast<double>(s.planes_count_ok) >= 0.9 * static_cast<double>(s.planes_buildings));
 }
 
 }  // namespace

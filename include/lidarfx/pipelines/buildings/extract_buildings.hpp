@@ -37,7 +37,8 @@ struct extract_buildings_options {
     double plane_rms_m = 0.12;         ///< a cell whose local fit leaves an RMS below this is planar, metres; > 0
     double plane_angle_deg = 6.0;      ///< largest angle between a cell's normal and its surface's mean normal; > 0
     double step_m = 0.3;               ///< largest height step between neighbours of one surface beyond the slope, m
-    double merge_angle_deg = 3.0;      ///< adjacent surfaces whose fitted normals are closer merge, degrees; >= 0
+    double merge_rms_m = 0.1;          ///< adjacent surfaces merge while one plane fits both with an RMS <= this x
+                                       ///< (1 + tan^2 tilt), metres; >= 0
     double min_surface_m2 = 4.0;       ///< smaller surfaces are given to their neighbours, m^2; >= 0
     double min_planar_share = 0.25;    ///< a building needs this share of planar cells, else it is rough (a tree)
     double x0 = 0.0;                   ///< world x of the west edge of column 0 (outlines), metres
@@ -130,8 +131,7 @@ inline void check_extract_buildings(double cell_m, const extract_buildings_optio
     require(opt.plane_angle_deg > 0 && opt.plane_angle_deg < 90, function, "plane_angle_deg", "in (0, 90)",
             opt.plane_angle_deg);
     require_positive(opt.step_m, function, "step_m");
-    require(opt.merge_angle_deg >= 0 && opt.merge_angle_deg < 90, function, "merge_angle_deg", "in [0, 90)",
-            opt.merge_angle_deg);
+    require(opt.merge_rms_m >= 0 && opt.merge_rms_m < 1e300, function, "merge_rms_m", "finite and >= 0", opt.merge_rms_m);
     require(opt.min_surface_m2 >= 0 && opt.min_surface_m2 < 1e300, function, "min_surface_m2", "finite and >= 0",
             opt.min_surface_m2);
     require(opt.min_planar_share >= 0 && opt.min_planar_share <= 1, function, "min_planar_share", "in [0, 1]",
@@ -171,7 +171,29 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
             }
         }
     }, {}, function);
-    return lp;
+    // Edge-preserving choice (as the Kuwahara filter): each cell takes the fit of the window, among those
+    // holding it (centres within w cells, same building), that leaves the least RMS; a cell next to a ridge
+    // so takes the window lying on its own face.
+    local_planes best{lp.a, lp.b, lp.rms};
+    parallel_for_rows(rows, 16, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const std::int32_t me = id(r, c);
+                if (me == 0) continue;
+                float least = std::numeric_limits<float>::infinity();
+                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w); ++rr) {
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w); ++cc) {
+                        if (id(rr, cc) != me || !(lp.rms(rr, cc) < least)) continue;
+                        least = lp.rms(rr, cc);
+                        best.a(r, c) = lp.a(rr, cc);
+                        best.b(r, c) = lp.b(rr, cc);
+                        best.rms(r, c) = least;
+                    }
+                }
+            }
+        }
+    }, {}, function);
+    return best;
 }
 
 /// Root of x in a union-find forest (path halving).
@@ -200,7 +222,8 @@ inline std::int32_t uf_find(std::vector<std::int32_t>& parent, std::int32_t x) n
 ///     within plane_angle_deg of the region's mean normal and within step_m of its slope); regions under
 ///     min_surface_m2 dissolved; every other building cell (edges, ridges, walls) given, layer by layer, to
 ///     the neighbouring surface whose plane is nearest its height (the seed's rule, with fitted planes);
-///     adjacent surfaces with normals within merge_angle_deg merged. Numbered by area, largest first.
+///     adjacent surfaces merged, best pair first, while one plane fits both with an RMS <= merge_rms_m x
+///     (1 + tan^2 tilt). Numbered by area, largest first.
 /// Tilt and azimuth from each surface's least-squares plane; outlines from polygonize (exterior counter-
 /// clockwise) on the grid {x0, y0, cell_m}. O(cells * ((2 w + 1)^2 + radius^2 + idw_k)), w the window
 /// in cells. Same result for any thread count.
@@ -328,10 +351,12 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     constexpr std::ptrdiff_t dr4[] = {-1, 1, 0, 0}, dc4[] = {0, 0, -1, 1};
     std::int32_t regions = 0;
     std::vector<std::size_t> queue;
+    std::vector<std::uint8_t> core(region.size(), 0);   // 1 = cell joined its surface by growing
     for (const std::size_t s : seeds) {
         if (region[s] != 0) continue;
         const std::int32_t id = ++regions;
         region[s] = id;
+        core[s] = 1;
         queue.assign(1, s);
         double sa = lp.a.data()[s], sb = lp.b.data()[s], n = 1;
         for (std::size_t head = 0; head < queue.size(); ++head) {
@@ -347,6 +372,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                 const double expected = ma * (x_of(cc) - x_of(pc)) + mb * (y_of(rr) - y_of(pr));
                 if (std::abs(static_cast<double>(z.data()[q]) - static_cast<double>(z.data()[p]) - expected) > opt.step_m) continue;
                 region[q] = id;
+                core[q] = 1;
                 sa += lp.a.data()[q];
                 sb += lp.b.data()[q];
                 n += 1;
@@ -356,13 +382,21 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     }
 
     // 5. Fit, dissolve small regions, give the other building cells to the nearest plane in height; merge.
-    const auto fit_regions = [&](std::int32_t count) {
-        std::vector<detail::plane_sums> sums(static_cast<std::size_t>(count) + 1);
+    // Planes are fitted to the grown (planar) cells of a surface, so that cells given to it later (eaves
+    // mixed with the wall, filled holes) do not tilt it; a surface without any takes all its cells.
+    const auto fit_regions = [&](std::int32_t count, bool core_only = true) {
+        std::vector<detail::plane_sums> sums(static_cast<std::size_t>(count) + 1), all(sums.size());
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const auto g = region[idx(r, c)];
-                if (g > 0) sums[static_cast<std::size_t>(g)].add(x_of(c), y_of(r), static_cast<double>(z(r, c)));
+                const auto g = static_cast<std::size_t>(region[idx(r, c)]);
+                if (g == 0) continue;
+                all[g].add(x_of(c), y_of(r), static_cast<double>(z(r, c)));
+                if (core[idx(r, c)]) sums[g].add(x_of(c), y_of(r), static_cast<double>(z(r, c)));
             }
+        }
+        if (!core_only) return all;
+        for (std::size_t g = 1; g < sums.size(); ++g) {
+            if (sums[g].n < 3) sums[g] = all[g];
         }
         return sums;
     };
@@ -414,7 +448,10 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         for (std::int32_t g = 1; g <= regions; ++g) {
             if (sums[static_cast<std::size_t>(g)].n >= std::max(1.0, min_surface_cells)) renumber[static_cast<std::size_t>(g)] = ++next;
         }
-        for (auto& g : region) g = renumber[static_cast<std::size_t>(g)];
+        for (std::size_t p = 0; p < region.size(); ++p) {
+            region[p] = renumber[static_cast<std::size_t>(region[p])];
+            if (region[p] == 0) core[p] = 0;
+        }
         regions = next;
         // A building with no surface left becomes one surface.
         std::vector<std::int32_t> whole(kept + 1, 0);
@@ -437,27 +474,44 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
             grow_into_rest(planes);
             sums = fit_regions(regions);
             for (std::size_t g = 1; g < sums.size(); ++g) planes[g] = sums[g].fit();
-            // Merge adjacent surfaces of one building with nearly parallel planes that meet (step < step_m).
+            // Merge adjacent surfaces of one building while one plane fits both: the pair whose joint fit leaves
+            // the least RMS / (1 + tan^2 tilt), while that is <= merge_rms_m.
             std::vector<std::int32_t> parent(static_cast<std::size_t>(regions) + 1);
             std::iota(parent.begin(), parent.end(), 0);
+            std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
             for (std::ptrdiff_t r = 0; r < rows; ++r) {
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     const std::int32_t g = region[idx(r, c)];
                     if (g <= 0) continue;
-                    for (int k = 1; k < 4; k += 2) {   // south and east neighbours
-                        const std::ptrdiff_t rr = r + (k == 1 ? 1 : 0), cc = c + (k == 3 ? 1 : 0);
+                    for (int k = 0; k < 2; ++k) {   // south and east neighbours
+                        const std::ptrdiff_t rr = r + (k == 0 ? 1 : 0), cc = c + (k == 1 ? 1 : 0);
                         if (rr >= rows || cc >= cols) continue;
                         const std::int32_t h = region[idx(rr, cc)];
-                        if (h <= 0 || h == g) continue;
-                        const auto& f = planes[static_cast<std::size_t>(g)];
-                        const auto& e = planes[static_cast<std::size_t>(h)];
-                        if (detail::normal_angle_deg(f[0], f[1], e[0], e[1]) > opt.merge_angle_deg) continue;
-                        const double x = x_of(c), y = y_of(r);
-                        if (std::abs((f[0] - e[0]) * x + (f[1] - e[1]) * y + f[2] - e[2]) > opt.step_m) continue;
-                        const auto a = detail::uf_find(parent, g), b = detail::uf_find(parent, h);
-                        parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+                        if (h > 0 && h != g) pairs.emplace_back(std::min(g, h), std::max(g, h));
                     }
                 }
+            }
+            std::sort(pairs.begin(), pairs.end());
+            pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+            for (;;) {
+                double least = std::numeric_limits<double>::infinity();
+                std::pair<std::int32_t, std::int32_t> chosen{0, 0};
+                for (auto& [g, h] : pairs) {
+                    g = detail::uf_find(parent, g);
+                    h = detail::uf_find(parent, h);
+                    if (g == h) continue;
+                    detail::plane_sums joint = sums[static_cast<std::size_t>(g)];
+                    joint.add(sums[static_cast<std::size_t>(h)]);
+                    const auto f = joint.fit();   // RMS relative to the tolerance of planar cells at its slope
+                    const double rise = f[3] / (1.0 + f[0] * f[0] + f[1] * f[1]);
+                    if (rise < least || (rise == least && std::pair{std::min(g, h), std::max(g, h)} < chosen)) {
+                        least = rise;
+                        chosen = {std::min(g, h), std::max(g, h)};
+                    }
+                }
+                if (!(least <= opt.merge_rms_m)) break;
+                parent[static_cast<std::size_t>(chosen.second)] = chosen.first;
+                sums[static_cast<std::size_t>(chosen.first)].add(sums[static_cast<std::size_t>(chosen.second)]);
             }
             for (auto& g : region) {
                 if (g > 0) g = detail::uf_find(parent, g);
@@ -467,7 +521,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     detail::report(opt.run.progress, 0.85, function);
 
     // 6. Number surfaces by area (largest first; ties by first cell), describe them and the buildings.
-    auto sums = fit_regions(regions);
+    const auto sums = fit_regions(regions, false);
+    const auto planes_fit = fit_regions(regions);
     std::vector<std::int32_t> owner(static_cast<std::size_t>(regions) + 1, 0);
     std::vector<std::size_t> first_cell(static_cast<std::size_t>(regions) + 1, region.size());
     for (std::size_t p = 0; p < region.size(); ++p) {
@@ -491,7 +546,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     for (std::size_t b = 0; b < kept; ++b) out.buildings[b].id = static_cast<std::int32_t>(b + 1);
     for (std::size_t i = 0; i < order.size(); ++i) {
         const auto g = static_cast<std::size_t>(order[i]);
-        const auto f = sums[g].fit();
+        const auto f = planes_fit[g].fit();
         roof_surface s;
         s.id = static_cast<std::int32_t>(i + 1);
         s.building = owner[g];
