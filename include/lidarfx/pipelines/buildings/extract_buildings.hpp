@@ -35,6 +35,7 @@ struct extract_buildings_options {
     raster_view<const std::uint8_t> vegetation = {};
     double plane_window_m = 1.5;       ///< half-side of the window of each cell's local plane fit, metres (>= 1 cell)
     double plane_rms_m = 0.12;         ///< a cell whose local fit leaves an RMS below this is planar, metres; > 0
+    double slope_rms_share = 0.15;     ///< extra planar tolerance per metre of rise across a cell (see plane_tolerance)
     double plane_angle_deg = 6.0;      ///< largest angle between a cell's normal and its surface's mean normal; > 0
     double step_m = 0.3;               ///< largest height step between neighbours of one surface beyond the slope, m
     double merge_rms_m = 0.1;          ///< adjacent surfaces merge while one plane fits both with an RMS <= this x
@@ -137,6 +138,13 @@ inline void check_extract_buildings(double cell_m, const extract_buildings_optio
     require(opt.min_planar_share >= 0 && opt.min_planar_share <= 1, function, "min_planar_share", "in [0, 1]",
             opt.min_planar_share);
     require(std::isfinite(opt.x0) && !std::isinf(opt.y0), function, "x0 and y0 must be finite (y0 may be NaN)");
+}
+
+/// RMS a plane of squared gradient g2 (tan^2 tilt) may leave and still count as planar: plane_rms_m x (1 +
+/// g2), plus slope_rms_share x tan(tilt) x cell_m (a cell's highest return wanders over tan(tilt) x cell_m).
+inline double plane_tolerance(const extract_buildings_options& opt, double g2, double cell_m) noexcept
+{
+    return opt.plane_rms_m * (1.0 + g2) + opt.slope_rms_share * std::sqrt(g2) * cell_m;
 }
 
 /// Per building cell: local plane (a, b) and RMS over the cells of the same building within `w` cells.
@@ -310,7 +318,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         // Steep faces scatter more within a cell (z varies by tan(tilt) * cell_m across it): the tolerance
         // grows with the secant of the tilt squared.
         const double g2 = static_cast<double>(lp.a(r, c)) * lp.a(r, c) + static_cast<double>(lp.b(r, c)) * lp.b(r, c);
-        return static_cast<double>(lp.rms(r, c)) < opt.plane_rms_m * (1.0 + g2);
+        return static_cast<double>(lp.rms(r, c)) < detail::plane_tolerance(opt, g2, cell_m);
     };
     {
         std::vector<std::size_t> planar(kept + 1, 0), cells(kept + 1, 0);
@@ -503,7 +511,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                     detail::plane_sums joint = sums[static_cast<std::size_t>(g)];
                     joint.add(sums[static_cast<std::size_t>(h)]);
                     const auto f = joint.fit();   // RMS relative to the tolerance of planar cells at its slope
-                    const double rise = f[3] / (1.0 + f[0] * f[0] + f[1] * f[1]);
+                    const double rise = f[3] / detail::plane_tolerance(opt, f[0] * f[0] + f[1] * f[1], cell_m) * opt.plane_rms_m;
                     if (rise < least || (rise == least && std::pair{std::min(g, h), std::max(g, h)} < chosen)) {
                         least = rise;
                         chosen = {std::min(g, h), std::max(g, h)};
