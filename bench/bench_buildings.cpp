@@ -40,7 +40,8 @@ void extraction(benchmark::State& state)
         benchmark::DoNotOptimize(found);
     }
     state.counters["buildings"] = static_cast<double>(found);
-    state.counters["Mcells/s"] = benchmark::Counter(static_cast<double>(side * side) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["Mcells/s"] =
+        benchmark::Counter(static_cast<double>(side * side) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 }  // namespace

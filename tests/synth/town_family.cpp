@@ -21,7 +21,7 @@ TEST_CASE("town_family: deterministic, varied, with truth for every building and
     REQUIRE(t.footprints.size() >= 4);
     std::set<std::int32_t> ids;
     for (const auto v : t.building_id) ids.insert(v);
-    CHECK(ids.size() == t.footprints.size() + 1);   // every building has cells, plus 0
+    CHECK(ids.size() == t.footprints.size() + 1);  // every building has cells, plus 0
     std::set<double> tilts;
     for (const auto& p : t.roof_planes) {
         CHECK(p.tilt_deg <= 55.0);

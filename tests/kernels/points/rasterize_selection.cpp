@@ -50,7 +50,7 @@ TEST_CASE("rasterize/selection: the default bins every point, first returns give
     const auto dsm = rasterize(pts.cloud(), g2, first);
     CHECK(dsm.points_used == 3);
     CHECK(dsm.points_unselected == 2);
-    CHECK(dsm.min_z(0, 0) == 12.0f);   // only the canopy return
+    CHECK(dsm.min_z(0, 0) == 12.0f);  // only the canopy return
     CHECK(dsm.max_z(0, 0) == 12.0f);
     CHECK(dsm.multiple_returns(0, 0) == 1);  // the first return of a 3-return pulse
     CHECK(dsm.multiple_returns(0, 1) == 0);
@@ -80,7 +80,7 @@ TEST_CASE("rasterize/selection: last returns and class sets")
     CHECK(clean.max_z(0, 1) == 8.0f);
     CHECK(clean.points_unselected == 1);
 
-    rasterize_options both;   // first returns of classes 2..6 minus 5: only the roof
+    rasterize_options both;  // first returns of classes 2..6 minus 5: only the roof
     both.returns = return_selection::first;
     both.classes.include = {2, 3, 4, 5, 6};
     both.classes.exclude = {5};

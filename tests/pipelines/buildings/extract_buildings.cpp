@@ -31,7 +31,8 @@ raster<float> gable_scene(double tilt, double cell)
     const double slope = std::tan(tilt * 3.14159265358979 / 180.0);
     for (std::ptrdiff_t r = 10; r < 50; ++r) {
         for (std::ptrdiff_t c = 15; c < 45; ++c) {
-            const double to_edge = std::min(static_cast<double>(c - 15) + 0.5, static_cast<double>(45 - c) - 0.5) * cell;
+            const double to_edge =
+                std::min(static_cast<double>(c - 15) + 0.5, static_cast<double>(45 - c) - 0.5) * cell;
             z(r, c) = static_cast<float>(106.0 + slope * to_edge);
         }
     }
@@ -47,8 +48,8 @@ TEST_CASE("ground_model: the terrain under a box is the ground around it, and nD
     CHECK(gm.object_count == 1);
     CHECK(gm.in_hull(30, 30) == 1);
     CHECK(gm.in_hull(2, 2) == 0);
-    CHECK(gm.edges(20, 30) == 1);     // the wall
-    CHECK(gm.edges(30, 30) == 0);     // the middle of the flat roof
+    CHECK(gm.edges(20, 30) == 1);  // the wall
+    CHECK(gm.edges(30, 30) == 0);  // the middle of the flat roof
     CHECK(gm.ground(30, 30) == doctest::Approx(100.0));
     const auto h = ndsm(gm.surface, gm.ground);
     CHECK(h(30, 30) == doctest::Approx(8.0));
@@ -72,7 +73,7 @@ TEST_CASE("ground_model: flat ground has no edges, holes are filled, all-NaN is 
 
 TEST_CASE("extract_buildings: one box building: footprint, heights, one flat surface, outline")
 {
-    const auto z = box_scene(20, 40, 16, 44, 7.0f);   // 10 m x 14 m = 140 m^2
+    const auto z = box_scene(20, 40, 16, 44, 7.0f);  // 10 m x 14 m = 140 m^2
     const auto b = extract_buildings(z, 0.5);
     REQUIRE(b.buildings.size() == 1);
     REQUIRE(b.surfaces.size() == 1);
@@ -94,7 +95,7 @@ TEST_CASE("extract_buildings: one box building: footprint, heights, one flat sur
     CHECK(b.surfaces[0].tilt_deg < 0.5);
     CHECK(b.surfaces[0].building == 1);
     REQUIRE(rec.outline.size() == 1);
-    CHECK(rec.outline[0].rings[0].size() == 5);   // a rectangle, closed
+    CHECK(rec.outline[0].rings[0].size() == 5);  // a rectangle, closed
     CHECK(rec.outline[0].rings[0][0] == rec.outline[0].rings[0][4]);
 }
 
@@ -128,7 +129,7 @@ TEST_CASE("extract_buildings: vegetation cells and small objects are no building
     extract_buildings_options opt;
     opt.vegetation = veg;
     CHECK(extract_buildings(z, 0.5, opt).buildings.empty());
-    const auto small = box_scene(20, 30, 20, 30, 7.0f);   // 5 m x 5 m = 25 m^2 < 50 m^2
+    const auto small = box_scene(20, 30, 20, 30, 7.0f);  // 5 m x 5 m = 25 m^2 < 50 m^2
     CHECK(extract_buildings(small, 0.5).buildings.empty());
     opt = {};
     opt.min_area_m2 = 20;
@@ -154,7 +155,8 @@ TEST_CASE("extract_buildings: empty raster, all NaN, one cell, same result for a
     CHECK(a.building_id.size() == b.building_id.size());
     bool same = true;
     for (std::ptrdiff_t i = 0; i < a.building_id.size(); ++i) {
-        same = same && a.building_id.data()[i] == b.building_id.data()[i] && a.surface_id.data()[i] == b.surface_id.data()[i];
+        same = same && a.building_id.data()[i] == b.building_id.data()[i] &&
+               a.surface_id.data()[i] == b.surface_id.data()[i];
     }
     CHECK(same);
 }

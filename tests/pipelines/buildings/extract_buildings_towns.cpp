@@ -22,7 +22,7 @@ using namespace lidarfx;
 namespace {
 
 struct town_score {
-    std::size_t buildings = 0, found = 0, iou_ok = 0;   // truth buildings >= 50 m^2
+    std::size_t buildings = 0, found = 0, iou_ok = 0;  // truth buildings >= 50 m^2
     double worst_iou = 1.0;
     std::size_t trees = 0, trees_clean = 0;
     std::size_t planes_buildings = 0, planes_count_ok = 0;
@@ -61,11 +61,15 @@ town_score score_town(const synth::scene& s, const std::vector<synth::tree>& tre
         std::int32_t best = 0;
         std::size_t best_n = 0;
         for (const auto& [d, n] : overlap[k]) {
-            if (n > best_n) { best = d; best_n = n; }
+            if (n > best_n) {
+                best = d;
+                best_n = n;
+            }
         }
-        const double iou = best == 0 ? 0.0
-                                     : static_cast<double>(best_n) /
-                                           static_cast<double>(truth_cells[k] + found_cells[static_cast<std::size_t>(best)] - best_n);
+        const double iou =
+            best == 0 ? 0.0
+                      : static_cast<double>(best_n) /
+                            static_cast<double>(truth_cells[k] + found_cells[static_cast<std::size_t>(best)] - best_n);
         sc.worst_iou = std::min(sc.worst_iou, iou);
         if (iou > 0.5) ++sc.found;
         if (iou >= 0.9) ++sc.iou_ok;
@@ -87,10 +91,14 @@ town_score score_town(const synth::scene& s, const std::vector<synth::tree>& tre
             std::int32_t sid = 0;
             std::size_t most = 0;
             for (const auto& [id, n] : cover) {
-                if (n > most) { sid = id; most = n; }
+                if (n > most) {
+                    sid = id;
+                    most = n;
+                }
             }
             if (sid == 0) continue;
-            const double err = std::abs(b.surfaces[static_cast<std::size_t>(sid - 1)].tilt_deg - t.roof_planes[p].tilt_deg);
+            const double err =
+                std::abs(b.surfaces[static_cast<std::size_t>(sid - 1)].tilt_deg - t.roof_planes[p].tilt_deg);
             ++sc.tilt_checked;
             sc.tilt_ok += err <= 5.0 ? 1 : 0;
             sc.worst_tilt_error = std::max(sc.worst_tilt_error, err);
@@ -100,10 +108,14 @@ town_score score_town(const synth::scene& s, const std::vector<synth::tree>& tre
     for (const auto& tr : trees) {
         ++sc.trees;
         std::size_t in_building = 0;
-        const auto r0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((g.y0 - tr.y - tr.crown_radius_m) / g.cell));
-        const auto r1 = std::min<std::ptrdiff_t>(g.rows - 1, static_cast<std::ptrdiff_t>((g.y0 - tr.y + tr.crown_radius_m) / g.cell));
-        const auto c0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((tr.x - tr.crown_radius_m - g.x0) / g.cell));
-        const auto c1 = std::min<std::ptrdiff_t>(g.cols - 1, static_cast<std::ptrdiff_t>((tr.x + tr.crown_radius_m - g.x0) / g.cell));
+        const auto r0 =
+            std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((g.y0 - tr.y - tr.crown_radius_m) / g.cell));
+        const auto r1 = std::min<std::ptrdiff_t>(
+            g.rows - 1, static_cast<std::ptrdiff_t>((g.y0 - tr.y + tr.crown_radius_m) / g.cell));
+        const auto c0 =
+            std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((tr.x - tr.crown_radius_m - g.x0) / g.cell));
+        const auto c1 = std::min<std::ptrdiff_t>(
+            g.cols - 1, static_cast<std::ptrdiff_t>((tr.x + tr.crown_radius_m - g.x0) / g.cell));
         for (std::ptrdiff_t r = r0; r <= r1; ++r) {
             for (std::ptrdiff_t c = c0; c <= c1; ++c) {
                 const auto [x, y] = g.center(r, c);
@@ -137,8 +149,9 @@ void report(const std::string& name, const town_score& s)
 {
     MESSAGE(name << ": buildings >= 50 m2 " << s.buildings << ", found " << s.found << ", IoU >= 0.9 on " << s.iou_ok
                  << " (worst IoU " << s.worst_iou << "); trees clean " << s.trees_clean << "/" << s.trees
-                 << "; plane count right on " << s.planes_count_ok << "/" << s.planes_buildings << "; tilt within 5 deg on "
-                 << s.tilt_ok << "/" << s.tilt_checked << " (worst " << s.worst_tilt_error << " deg)");
+                 << "; plane count right on " << s.planes_count_ok << "/" << s.planes_buildings
+                 << "; tilt within 5 deg on " << s.tilt_ok << "/" << s.tilt_checked << " (worst " << s.worst_tilt_error
+                 << " deg)");
 }
 
 /// The issue's targets: every building >= 50 m^2 found, footprint IoU >= 0.9 on >= 95 % of them, >= 98 % of the
@@ -190,10 +203,11 @@ TEST_CASE("extract_buildings/towns: sparse family towns (1-2 pulses/m2) on 1 m c
         o.seed = seed;
         o.min_density = 1.0;
         o.max_density = 2.0;
-        o.truth_cell_m = 1.0;   // about one pulse per cell: finer cells hold too few returns for the roof planes
+        o.truth_cell_m = 1.0;  // about one pulse per cell: finer cells hold too few returns for the roof planes
         const auto town = synth::town_family(o);
         const auto s = score_town(town.town, town.trees);
-        report("sparse family seed " + std::to_string(seed) + " (" + std::to_string(town.density_per_m2) + " pts/m2)", s);
+        report("sparse family seed " + std::to_string(seed) + " (" + std::to_string(town.density_per_m2) + " pts/m2)",
+               s);
         check_sparse_levels(s);
     }
 }

@@ -554,8 +554,14 @@ public:
     double x(std::size_t i) const { return static_cast<double>(cloud_.x(index_[i])); }
     double y(std::size_t i) const { return static_cast<double>(cloud_.y(index_[i])); }
     double z(std::size_t i) const { return static_cast<double>(cloud_.z(index_[i])); }
-    double intensity(std::size_t i) const requires has_intensity<C> { return static_cast<double>(cloud_.intensity(index_[i])); }
-    int return_number(std::size_t i) const requires has_return_number<C> { return static_cast<int>(cloud_.return_number(index_[i])); }
+    double intensity(std::size_t i) const requires has_intensity<C>
+    {
+        return static_cast<double>(cloud_.intensity(index_[i]));
+    }
+    int return_number(std::size_t i) const requires has_return_number<C>
+    {
+        return static_cast<int>(cloud_.return_number(index_[i]));
+    }
     int number_of_returns(std::size_t i) const requires has_number_of_returns<C>
     {
         return static_cast<int>(cloud_.number_of_returns(index_[i]));
@@ -574,8 +580,9 @@ std::vector<std::size_t> select_points(const C& cloud, const rasterize_options& 
 {
     const bool by_return = opt.returns != return_selection::all, by_class = !opt.classes.selects_all();
     if constexpr (!has_return_number<C>) {
-        require(!by_return, function, "returns = first or last needs return numbers, and this point cloud type "
-                                      "has none (no return_number(i)): pass returns = all or a cloud with return numbers");
+        require(!by_return, function,
+                "returns = first or last needs return numbers, and this point cloud type has none (no "
+                "return_number(i)): pass returns = all or a cloud with return numbers");
     }
     if constexpr (!has_number_of_returns<C>) {
         require(opt.returns != return_selection::last, function,

@@ -33,28 +33,29 @@ struct extract_buildings_options {
     /// 1 = vegetation (e.g. rasterize_result::multiple_returns of first returns, or vegetation_mask); never a
     /// building. Empty (the default) = no return information. Same shape as the DSM when given.
     raster_view<const std::uint8_t> vegetation = {};
-    double plane_window_m = 1.5;       ///< half-side of the window of each cell's local plane fit, metres (>= 1 cell)
-    double plane_rms_m = 0.12;         ///< a cell whose local fit leaves an RMS below this is planar, metres; > 0
-    double slope_rms_share = 0.15;     ///< extra planar tolerance per metre of rise across a cell (see plane_tolerance)
-    double plane_angle_deg = 6.0;      ///< largest angle between a cell's normal and its surface's mean normal; > 0
-    double step_m = 0.3;               ///< largest height step between neighbours of one surface beyond the slope, m
-    double merge_rms_m = 0.1;          ///< adjacent surfaces merge while one plane fits both with an RMS <= this x
-                                       ///< (1 + tan^2 tilt), metres; >= 0
-    double min_surface_m2 = 4.0;       ///< smaller surfaces are given to their neighbours, m^2; >= 0
-    double min_planar_share = 0.25;    ///< a building needs this share of planar cells, else it is rough (a tree)
-    double x0 = 0.0;                   ///< world x of the west edge of column 0 (outlines), metres
+    double plane_window_m = 1.5;     ///< half-side of the window of each cell's local plane fit, metres (>= 1 cell)
+    double plane_rms_m = 0.12;       ///< a cell whose local fit leaves an RMS below this x (1 + tan^2 tilt) (plus
+                                     ///< slope_rms_share, see plane_tolerance) is planar, metres; > 0
+    double slope_rms_share = 0.15;   ///< extra planar tolerance per metre of rise across a cell (see plane_tolerance)
+    double plane_angle_deg = 6.0;    ///< largest angle between a cell's normal and its surface's mean normal; > 0
+    double step_m = 0.3;             ///< largest height step between neighbours of one surface beyond the slope, m
+    double merge_rms_m = 0.1;        ///< adjacent surfaces merge while one plane fits both with an RMS <=
+                                     ///< plane_tolerance x merge_rms_m / plane_rms_m, metres; >= 0
+    double min_surface_m2 = 4.0;     ///< smaller surfaces are given to their neighbours, m^2; >= 0
+    double min_planar_share = 0.25;  ///< a building needs this share of planar cells, else it is rough (a tree)
+    double x0 = 0.0;                 ///< world x of the west edge of column 0 (outlines), metres
     double y0 = std::numeric_limits<double>::quiet_NaN();  ///< world y of the north edge of row 0; NaN = rows * cell_m
-    execution run = {};                ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    execution run = {};  ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// One planar roof surface.
 struct roof_surface {
-    std::int32_t id = 0;                ///< 1-based, by decreasing area over the whole raster (as in surface_id)
-    std::int32_t building = 0;          ///< id of its building
-    double tilt_deg = 0;                ///< 0 horizontal .. 90 vertical, of the least-squares plane of its cells
-    double azimuth_deg = 0;             ///< down-slope direction, clockwise from north, [0, 360); 0 if tilt < 1 deg
-    double horizontal_area_m2 = 0;      ///< cells x cell_m^2
-    double area_m2 = 0;                 ///< sloped area = horizontal / cos(tilt), m^2
+    std::int32_t id = 0;            ///< 1-based, by decreasing area over the whole raster (as in surface_id)
+    std::int32_t building = 0;      ///< id of its building
+    double tilt_deg = 0;            ///< 0 horizontal .. 90 vertical, of the least-squares plane of its cells
+    double azimuth_deg = 0;         ///< down-slope direction, clockwise from north, [0, 360); 0 if tilt < 1 deg
+    double horizontal_area_m2 = 0;  ///< cells x cell_m^2
+    double area_m2 = 0;             ///< sloped area = horizontal / cos(tilt), m^2
 };
 
 /// One building.
@@ -71,14 +72,14 @@ struct building_record {
 
 /// Buildings of a surface model.
 struct extract_buildings_result {
-    raster<std::int32_t> building_id;   ///< building of each cell, 0 = none
-    raster<std::int32_t> surface_id;    ///< roof surface of each building cell, 0 = none
-    raster<float> ground;               ///< terrain elevation used (DTM), metres
-    raster<std::uint8_t> edges;         ///< angular value >= edge angle (ground_model)
-    raster<std::uint8_t> vegetation;    ///< vegetation cells as used (input mask, grown into empty cells)
+    raster<std::int32_t> building_id;        ///< building of each cell, 0 = none
+    raster<std::int32_t> surface_id;         ///< roof surface of each building cell, 0 = none
+    raster<float> ground;                    ///< terrain elevation used (DTM), metres
+    raster<std::uint8_t> edges;              ///< angular value >= edge angle (ground_model)
+    raster<std::uint8_t> vegetation;         ///< vegetation cells as used (input mask, grown into empty cells)
     std::vector<building_record> buildings;  ///< buildings[i].id == i + 1
     std::vector<roof_surface> surfaces;      ///< surfaces[i].id == i + 1
-    std::size_t rejected_rough = 0;     ///< candidates dropped as too rough to be roofs (trees without returns)
+    std::size_t rejected_rough = 0;          ///< candidates dropped as too rough to be roofs (trees without returns)
 };
 
 namespace detail {
@@ -88,13 +89,29 @@ struct plane_sums {
     double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, syy = 0, sxz = 0, syz = 0, szz = 0;
     void add(double x, double y, double z) noexcept
     {
-        n += 1; sx += x; sy += y; sz += z; sxx += x * x; sxy += x * y; syy += y * y; sxz += x * z; syz += y * z;
+        n += 1;
+        sx += x;
+        sy += y;
+        sz += z;
+        sxx += x * x;
+        sxy += x * y;
+        syy += y * y;
+        sxz += x * z;
+        syz += y * z;
         szz += z * z;
     }
     void add(const plane_sums& o) noexcept
     {
-        n += o.n; sx += o.sx; sy += o.sy; sz += o.sz; sxx += o.sxx; sxy += o.sxy; syy += o.syy; sxz += o.sxz;
-        syz += o.syz; szz += o.szz;
+        n += o.n;
+        sx += o.sx;
+        sy += o.sy;
+        sz += o.sz;
+        sxx += o.sxx;
+        sxy += o.sxy;
+        syy += o.syy;
+        sxz += o.sxz;
+        syz += o.syz;
+        szz += o.szz;
     }
     /// {a, b, c, rms}; a = b = 0 and c = mean when the points are degenerate (collinear or < 3).
     std::array<double, 4> fit() const noexcept
@@ -126,13 +143,17 @@ inline void check_extract_buildings(double cell_m, const extract_buildings_optio
 {
     check_ground_model(cell_m, opt.ground, function);
     require_positive(opt.min_height_m, function, "min_height_m");
-    require(opt.min_area_m2 >= 0 && opt.min_area_m2 < 1e300, function, "min_area_m2", "finite and >= 0", opt.min_area_m2);
+    require(opt.min_area_m2 >= 0 && opt.min_area_m2 < 1e300, function, "min_area_m2", "finite and >= 0",
+            opt.min_area_m2);
     require_positive(opt.plane_window_m, function, "plane_window_m");
     require_positive(opt.plane_rms_m, function, "plane_rms_m");
+    require(opt.slope_rms_share >= 0 && opt.slope_rms_share < 1e300, function, "slope_rms_share", "finite and >= 0",
+            opt.slope_rms_share);
     require(opt.plane_angle_deg > 0 && opt.plane_angle_deg < 90, function, "plane_angle_deg", "in (0, 90)",
             opt.plane_angle_deg);
     require_positive(opt.step_m, function, "step_m");
-    require(opt.merge_rms_m >= 0 && opt.merge_rms_m < 1e300, function, "merge_rms_m", "finite and >= 0", opt.merge_rms_m);
+    require(opt.merge_rms_m >= 0 && opt.merge_rms_m < 1e300, function, "merge_rms_m", "finite and >= 0",
+            opt.merge_rms_m);
     require(opt.min_surface_m2 >= 0 && opt.min_surface_m2 < 1e300, function, "min_surface_m2", "finite and >= 0",
             opt.min_surface_m2);
     require(opt.min_planar_share >= 0 && opt.min_planar_share <= 1, function, "min_planar_share", "in [0, 1]",
@@ -158,49 +179,59 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     local_planes lp{raster<float>(rows, cols, nan), raster<float>(rows, cols, nan), raster<float>(rows, cols, nan)};
-    parallel_for_rows(rows, 16, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const std::int32_t me = id(r, c);
-                if (me == 0) continue;
-                plane_sums s;
-                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w); ++rr) {
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w); ++cc) {
-                        if (id(rr, cc) != me) continue;
-                        s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
-                              static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
+    parallel_for_rows(
+        rows, 16, threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const std::int32_t me = id(r, c);
+                    if (me == 0) continue;
+                    plane_sums s;
+                    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w);
+                         ++rr) {
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w);
+                             ++cc) {
+                            if (id(rr, cc) != me) continue;
+                            s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
+                                  static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
+                        }
                     }
+                    if (s.n < 6) continue;
+                    const auto f = s.fit();
+                    lp.a(r, c) = static_cast<float>(f[0]);
+                    lp.b(r, c) = static_cast<float>(f[1]);
+                    lp.rms(r, c) = static_cast<float>(f[3]);
                 }
-                if (s.n < 6) continue;
-                const auto f = s.fit();
-                lp.a(r, c) = static_cast<float>(f[0]);
-                lp.b(r, c) = static_cast<float>(f[1]);
-                lp.rms(r, c) = static_cast<float>(f[3]);
             }
-        }
-    }, {}, function);
+        },
+        {}, function);
     // Edge-preserving choice (as the Kuwahara filter): each cell takes the fit of the window, among those
     // holding it (centres within w cells, same building), that leaves the least RMS; a cell next to a ridge
     // so takes the window lying on its own face.
     local_planes best{lp.a, lp.b, lp.rms};
-    parallel_for_rows(rows, 16, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const std::int32_t me = id(r, c);
-                if (me == 0) continue;
-                float least = std::numeric_limits<float>::infinity();
-                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w); ++rr) {
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w); ++cc) {
-                        if (id(rr, cc) != me || !(lp.rms(rr, cc) < least)) continue;
-                        least = lp.rms(rr, cc);
-                        best.a(r, c) = lp.a(rr, cc);
-                        best.b(r, c) = lp.b(rr, cc);
-                        best.rms(r, c) = least;
+    parallel_for_rows(
+        rows, 16, threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const std::int32_t me = id(r, c);
+                    if (me == 0) continue;
+                    float least = std::numeric_limits<float>::infinity();
+                    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w);
+                         ++rr) {
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w);
+                             ++cc) {
+                            if (id(rr, cc) != me || !(lp.rms(rr, cc) < least)) continue;
+                            least = lp.rms(rr, cc);
+                            best.a(r, c) = lp.a(rr, cc);
+                            best.b(r, c) = lp.b(rr, cc);
+                            best.rms(r, c) = least;
+                        }
                     }
                 }
             }
-        }
-    }, {}, function);
+        },
+        {}, function);
     return best;
 }
 
@@ -224,14 +255,17 @@ inline std::int32_t uf_find(std::vector<std::int32_t>& parent, std::int32_t x) n
 ///  2. Building cells: inside a hull, z - ground > min_height_m, not vegetation (the vegetation mask, grown
 ///     into empty DSM cells next to it); 4-connected parts with holes under min_area_m2 filled; parts
 ///     smaller than min_area_m2 dropped; parts where less than min_planar_share of the cells are planar
-///     (local fit RMS < plane_rms_m) dropped as rough (canopy). Numbered by area, largest first.
-///  3. Surfaces (beyond the seed, which splits by height level only): each cell's normal from a local plane
-///     fit over the building's cells within plane_window_m; planar cells grown into regions (4-neighbours
-///     within plane_angle_deg of the region's mean normal and within step_m of its slope); regions under
-///     min_surface_m2 dissolved; every other building cell (edges, ridges, walls) given, layer by layer, to
-///     the neighbouring surface whose plane is nearest its height (the seed's rule, with fitted planes);
-///     adjacent surfaces merged, best pair first, while one plane fits both with an RMS <= merge_rms_m x
-///     (1 + tan^2 tilt). Numbered by area, largest first.
+///     (local fit RMS below plane_tolerance) dropped as rough (canopy). Numbered by area, largest first.
+///  3. Surfaces (beyond the seed, which splits by height level only): a least-squares plane over the
+///     building's cells in the square window of half-side plane_window_m around each cell; each cell then
+///     takes, of the windows holding it, the one with the least RMS (edge-preserving, as the Kuwahara
+///     filter), so cells beside a ridge keep their own face's normal; planar cells (RMS below
+///     plane_tolerance) grown into regions (4-neighbours within plane_angle_deg of the region's mean normal and
+///     within step_m of its slope); regions under min_surface_m2 dissolved; every other building cell (eaves,
+///     ridges, wall tops) given, layer by layer, to the neighbouring surface whose plane is nearest its height
+///     (the seed's rule, with fitted planes); adjacent surfaces merged, best pair first, while one plane fits
+///     both with an RMS <= plane_tolerance x merge_rms_m / plane_rms_m. Planes are fitted to the grown cells
+///     only (cells given later do not tilt them). Numbered by area, largest first.
 /// Tilt and azimuth from each surface's least-squares plane; outlines from polygonize (exterior counter-
 /// clockwise) on the grid {x0, y0, cell_m}. O(cells * ((2 w + 1)^2 + radius^2 + idw_k)), w the window
 /// in cells. Same result for any thread count.
@@ -270,7 +304,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
             }
         }
         detail::require(any, function, "ground has no finite cell: pass an empty view to estimate the terrain");
-        idw_fill(given, gm.ground, cell_m, idw_fill_options{.k = gopt.idw_k, .power = gopt.idw_power, .run = {threads, {}}});
+        idw_fill(given, gm.ground, cell_m,
+                 idw_fill_options{.k = gopt.idw_k, .power = gopt.idw_power, .run = {threads, {}}});
     }
     const raster<float>& z = gm.surface;
 
@@ -300,7 +335,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     }
     const auto min_cells = static_cast<std::size_t>(std::ceil(opt.min_area_m2 / cell2 - 1e-9));
     candidate = fill_holes(candidate, min_cells > 0 ? min_cells - 1 : 0, connectivity::four);
-    components parts = connected_components(candidate, connected_components_options{.conn = connectivity::four, .run = {threads, {}}});
+    components parts =
+        connected_components(candidate, connected_components_options{.conn = connectivity::four, .run = {threads, {}}});
     rank_by_size(parts);
     std::size_t kept = 0;
     while (kept < parts.count() && parts.sizes[kept + 1] >= std::max<std::size_t>(1, min_cells)) ++kept;
@@ -334,8 +370,10 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         std::int32_t next = 0;
         for (std::size_t b = 1; b <= kept; ++b) {
             const bool smooth = static_cast<double>(planar[b]) >= opt.min_planar_share * static_cast<double>(cells[b]);
-            if (smooth) renumber[b] = ++next;
-            else ++out.rejected_rough;
+            if (smooth)
+                renumber[b] = ++next;
+            else
+                ++out.rejected_rough;
         }
         for (auto& v : out.building_id) v = renumber[static_cast<std::size_t>(v)];
         kept = static_cast<std::size_t>(next);
@@ -353,13 +391,12 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
             if (out.building_id(r, c) != 0 && planar_at(r, c)) seeds.push_back(idx(r, c));
         }
     }
-    std::stable_sort(seeds.begin(), seeds.end(), [&](std::size_t p, std::size_t q) {
-        return lp.rms.data()[p] < lp.rms.data()[q];
-    });
+    std::stable_sort(seeds.begin(), seeds.end(),
+                     [&](std::size_t p, std::size_t q) { return lp.rms.data()[p] < lp.rms.data()[q]; });
     constexpr std::ptrdiff_t dr4[] = {-1, 1, 0, 0}, dc4[] = {0, 0, -1, 1};
     std::int32_t regions = 0;
     std::vector<std::size_t> queue;
-    std::vector<std::uint8_t> core(region.size(), 0);   // 1 = cell joined its surface by growing
+    std::vector<std::uint8_t> core(region.size(), 0);  // 1 = cell joined its surface by growing
     for (const std::size_t s : seeds) {
         if (region[s] != 0) continue;
         const std::int32_t id = ++regions;
@@ -374,11 +411,14 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                 const std::ptrdiff_t rr = pr + dr4[k], cc = pc + dc4[k];
                 if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
                 const std::size_t q = idx(rr, cc);
-                if (region[q] != 0 || out.building_id.data()[q] != out.building_id.data()[p] || !planar_at(rr, cc)) continue;
+                if (region[q] != 0 || out.building_id.data()[q] != out.building_id.data()[p] || !planar_at(rr, cc))
+                    continue;
                 const double ma = sa / n, mb = sb / n;
                 if (detail::normal_angle_deg(lp.a.data()[q], lp.b.data()[q], ma, mb) > opt.plane_angle_deg) continue;
                 const double expected = ma * (x_of(cc) - x_of(pc)) + mb * (y_of(rr) - y_of(pr));
-                if (std::abs(static_cast<double>(z.data()[q]) - static_cast<double>(z.data()[p]) - expected) > opt.step_m) continue;
+                if (std::abs(static_cast<double>(z.data()[q]) - static_cast<double>(z.data()[p]) - expected) >
+                    opt.step_m)
+                    continue;
                 region[q] = id;
                 core[q] = 1;
                 sa += lp.a.data()[q];
@@ -434,17 +474,20 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                         const std::int32_t g = region[q];
                         if (g <= 0 || out.building_id.data()[q] != out.building_id.data()[p]) continue;
                         const auto& f = planes[static_cast<std::size_t>(g)];
-                        const double d = std::abs(static_cast<double>(z.data()[p]) - (f[0] * x_of(pc) + f[1] * y_of(pr) + f[2]));
+                        const double d =
+                            std::abs(static_cast<double>(z.data()[p]) - (f[0] * x_of(pc) + f[1] * y_of(pr) + f[2]));
                         if (d < best_d || (d == best_d && g < best)) {
                             best_d = d;
                             best = g;
                         }
                     }
                 }
-                if (best > 0) taken.emplace_back(p, best);
-                else next_frontier.push_back(p);
+                if (best > 0)
+                    taken.emplace_back(p, best);
+                else
+                    next_frontier.push_back(p);
             }
-            if (taken.empty()) break;   // cells of buildings without any surface: handled by the caller
+            if (taken.empty()) break;  // cells of buildings without any surface: handled by the caller
             for (const auto& [p, g] : taken) region[p] = g;
             frontier.swap(next_frontier);
         }
@@ -454,7 +497,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         std::vector<std::int32_t> renumber(static_cast<std::size_t>(regions) + 1, 0);
         std::int32_t next = 0;
         for (std::int32_t g = 1; g <= regions; ++g) {
-            if (sums[static_cast<std::size_t>(g)].n >= std::max(1.0, min_surface_cells)) renumber[static_cast<std::size_t>(g)] = ++next;
+            if (sums[static_cast<std::size_t>(g)].n >= std::max(1.0, min_surface_cells))
+                renumber[static_cast<std::size_t>(g)] = ++next;
         }
         for (std::size_t p = 0; p < region.size(); ++p) {
             region[p] = renumber[static_cast<std::size_t>(region[p])];
@@ -491,7 +535,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     const std::int32_t g = region[idx(r, c)];
                     if (g <= 0) continue;
-                    for (int k = 0; k < 2; ++k) {   // south and east neighbours
+                    for (int k = 0; k < 2; ++k) {  // south and east neighbours
                         const std::ptrdiff_t rr = r + (k == 0 ? 1 : 0), cc = c + (k == 1 ? 1 : 0);
                         if (rr >= rows || cc >= cols) continue;
                         const std::int32_t h = region[idx(rr, cc)];
@@ -510,8 +554,9 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                     if (g == h) continue;
                     detail::plane_sums joint = sums[static_cast<std::size_t>(g)];
                     joint.add(sums[static_cast<std::size_t>(h)]);
-                    const auto f = joint.fit();   // RMS relative to the tolerance of planar cells at its slope
-                    const double rise = f[3] / detail::plane_tolerance(opt, f[0] * f[0] + f[1] * f[1], cell_m) * opt.plane_rms_m;
+                    const auto f = joint.fit();  // RMS relative to the tolerance of planar cells at its slope
+                    const double rise =
+                        f[3] / detail::plane_tolerance(opt, f[0] * f[0] + f[1] * f[1], cell_m) * opt.plane_rms_m;
                     if (rise < least || (rise == least && std::pair{std::min(g, h), std::max(g, h)} < chosen)) {
                         least = rise;
                         chosen = {std::min(g, h), std::max(g, h)};
@@ -560,7 +605,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         s.building = owner[g];
         const double grad = std::hypot(f[0], f[1]);
         s.tilt_deg = std::atan(grad) * 180.0 / std::numbers::pi;
-        s.azimuth_deg = s.tilt_deg < 1.0 ? 0.0 : std::fmod(std::atan2(-f[0], -f[1]) * 180.0 / std::numbers::pi + 360.0, 360.0);
+        s.azimuth_deg =
+            s.tilt_deg < 1.0 ? 0.0 : std::fmod(std::atan2(-f[0], -f[1]) * 180.0 / std::numbers::pi + 360.0, 360.0);
         s.horizontal_area_m2 = sums[g].n * cell2;
         s.area_m2 = s.horizontal_area_m2 * std::sqrt(1.0 + grad * grad);
         surface_of[g] = s.id;
@@ -582,7 +628,9 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
         auto& h = heights[b];
         auto& rec = out.buildings[b];
         std::sort(h.begin(), h.end());
-        const auto at = [&](double q) { return static_cast<double>(h[static_cast<std::size_t>(q * static_cast<double>(h.size() - 1))]); };
+        const auto at = [&](double q) {
+            return static_cast<double>(h[static_cast<std::size_t>(q * static_cast<double>(h.size() - 1))]);
+        };
         rec.eave_z = at(0.05);
         rec.ridge_z = at(0.99);
         rec.ground_z = ground_sum[b] / static_cast<double>(h.size());

@@ -33,12 +33,12 @@ struct ground_model_options {
 
 /// A terrain model and how it was found, each raster of the DSM's shape.
 struct ground_model_result {
-    raster<float> surface;          ///< the DSM with its NaN cells (no return) filled by IDW, metres
-    raster<float> ground;           ///< terrain elevation (DTM), metres: surface outside the hulls, IDW inside
-    raster<std::uint8_t> edges;     ///< 1 = angular value >= edge_angle_deg
-    raster<std::int32_t> objects;   ///< edge object of each kept edge cell (1.. by decreasing size), 0 = none
-    raster<std::uint8_t> in_hull;   ///< 1 = cell centre inside (or on) the convex hull of some kept edge object
-    std::size_t object_count = 0;   ///< kept edge objects
+    raster<float> surface;         ///< the DSM with its NaN cells (no return) filled by IDW, metres
+    raster<float> ground;          ///< terrain elevation (DTM), metres: surface outside the hulls, IDW inside
+    raster<std::uint8_t> edges;    ///< 1 = angular value >= edge_angle_deg
+    raster<std::int32_t> objects;  ///< edge object of each kept edge cell (1.. by decreasing size), 0 = none
+    raster<std::uint8_t> in_hull;  ///< 1 = cell centre inside (or on) the convex hull of some kept edge object
+    std::size_t object_count = 0;  ///< kept edge objects
 };
 
 namespace detail {
@@ -87,9 +87,11 @@ inline void burn_convex(const std::vector<std::array<std::int64_t, 2>>& hull, ra
                 const auto& a = hull[i];
                 const auto& b = hull[(i + 1) % n];
                 const std::int64_t cr = (b[0] - a[0]) * (r - a[1]) - (b[1] - a[1]) * (c - a[0]);
-                if (n >= 3) inside = cr >= 0;
-                else if (n == 2) inside = cr == 0 && std::min(a[0], b[0]) <= c && c <= std::max(a[0], b[0]) &&
-                                          std::min(a[1], b[1]) <= r && r <= std::max(a[1], b[1]);
+                if (n >= 3)
+                    inside = cr >= 0;
+                else if (n == 2)
+                    inside = cr == 0 && std::min(a[0], b[0]) <= c && c <= std::max(a[0], b[0]) &&
+                             std::min(a[1], b[1]) <= r && r <= std::max(a[1], b[1]);
             }
             if (n == 1) inside = r == hull[0][1] && c == hull[0][0];
             if (inside) mask(static_cast<std::ptrdiff_t>(r), static_cast<std::ptrdiff_t>(c)) = 1;
@@ -150,8 +152,9 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
         for (auto& v : raw) v = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
         idw_fill(raw, out.surface, cell_m, fill);
     }
-    const raster<float> angle = angular_filter(
-        out.surface, cell_m, angular_filter_options{.radius_cells = opt.angular_radius_cells, .run = {opt.run.threads, {}}});
+    const raster<float> angle =
+        angular_filter(out.surface, cell_m,
+                       angular_filter_options{.radius_cells = opt.angular_radius_cells, .run = {opt.run.threads, {}}});
     detail::report(opt.run.progress, 0.3, function);
     const auto threshold = static_cast<float>(opt.edge_angle_deg);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
@@ -184,8 +187,10 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
             any_ground = true;
         }
     }
-    if (any_ground) idw_fill(known, out.ground, cell_m, fill);
-    else out.ground = out.surface;   // hulls cover everything: no ground to interpolate from, nDSM = 0
+    if (any_ground)
+        idw_fill(known, out.ground, cell_m, fill);
+    else
+        out.ground = out.surface;  // hulls cover everything: no ground to interpolate from, nDSM = 0
     detail::report(opt.run.progress, 1.0, function);
     return out;
 }

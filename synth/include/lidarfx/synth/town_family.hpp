@@ -15,10 +15,10 @@ namespace lidarfx::synth {
 
 /// Settings of a family town. Everything else follows from `seed`.
 struct town_family_options {
-    unsigned seed = 1;             ///< the town
-    double size_m = 200;           ///< side of the square town, metres, > 0
-    double truth_cell_m = 0.5;     ///< cell of the truth rasters, metres, > 0
-    double min_density = 1.0;      ///< pulses per m^2 are drawn uniformly in [min_density, max_density]
+    unsigned seed = 1;          ///< the town
+    double size_m = 200;        ///< side of the square town, metres, > 0
+    double truth_cell_m = 0.5;  ///< cell of the truth rasters, metres, > 0
+    double min_density = 1.0;   ///< pulses per m^2 are drawn uniformly in [min_density, max_density]
     double max_density = 8.0;
 };
 
