@@ -42,6 +42,8 @@
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
+#include "lidarfx/pipelines/buildings/extract_buildings.hpp"
+#include "lidarfx/pipelines/buildings/ground_model.hpp"
 #include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -22,9 +23,30 @@
 
 namespace lidarfx {
 
+/// Which returns of each laser pulse rasterize bins.
+enum class return_selection {
+    all,    ///< every return (the default)
+    first,  ///< return_number == 1: the top surface (a DSM of canopy and roofs)
+    last,   ///< return_number == number_of_returns: the lowest surface each pulse reached
+};
+
+/// ASPRS class codes (0..255) rasterize bins: a point is kept when `include` is empty or holds its class,
+/// and `exclude` does not hold it. Both empty (the default) keep every point; e.g. include = {2} bins the
+/// ground of a classified file, exclude = {7, 18} drops noise.
+struct class_selection {
+    std::vector<int> include = {};  ///< codes to keep (empty = all); each in [0, 255]
+    std::vector<int> exclude = {};  ///< codes to drop; each in [0, 255]
+
+    bool selects_all() const noexcept { return include.empty() && exclude.empty(); }
+};
+
 /// Settings of rasterize.
 struct rasterize_options {
     std::size_t chunk_points = 1 << 20;   ///< points per work unit (progress step and parallel split); >= 1
+    /// Returns binned (default all). first / last need return numbers (has_return_number; last also
+    /// has_number_of_returns) in the cloud type.
+    return_selection returns = return_selection::all;
+    class_selection classes = {};         ///< classes binned (default all); a choice needs has_classification
     execution run = {};                   ///< threads, progress, cancellation (core/parallel.hpp); same result
 };
 
@@ -39,6 +61,7 @@ struct rasterize_result {
     std::size_t points_used = 0;            ///< points written into a cell
     std::size_t points_outside = 0;         ///< finite points outside the grid (ignored)
     std::size_t points_nan = 0;             ///< points with a NaN or infinite x, y or z (ignored)
+    std::size_t points_unselected = 0;      ///< points left out by returns / classes (never binned or counted above)
 };
 
 namespace detail {
@@ -519,6 +542,92 @@ struct accumulator_access {
 
 }  // namespace detail
 
+namespace detail {
+
+/// The points rasterize_options selects, as a point cloud of their indices into `cloud` (x, y, z and the
+/// optional attributes read through). Built in one O(points) pass; 8 bytes per selected point.
+template <point_cloud C>
+class selected_points {
+public:
+    selected_points(const C& cloud, std::vector<std::size_t> index) : cloud_(cloud), index_(std::move(index)) {}
+    std::size_t size() const noexcept { return index_.size(); }
+    double x(std::size_t i) const { return static_cast<double>(cloud_.x(index_[i])); }
+    double y(std::size_t i) const { return static_cast<double>(cloud_.y(index_[i])); }
+    double z(std::size_t i) const { return static_cast<double>(cloud_.z(index_[i])); }
+    double intensity(std::size_t i) const requires has_intensity<C>
+    {
+        return static_cast<double>(cloud_.intensity(index_[i]));
+    }
+    int return_number(std::size_t i) const requires has_return_number<C>
+    {
+        return static_cast<int>(cloud_.return_number(index_[i]));
+    }
+    int number_of_returns(std::size_t i) const requires has_number_of_returns<C>
+    {
+        return static_cast<int>(cloud_.number_of_returns(index_[i]));
+    }
+
+private:
+    const C& cloud_;
+    std::vector<std::size_t> index_;
+};
+
+/// Indices of the points of `cloud` that opt.returns and opt.classes keep, in order.
+/// @throws invalid_input if a selection needs an attribute the cloud type lacks, or a class code is
+/// outside [0, 255].
+template <point_cloud C>
+std::vector<std::size_t> select_points(const C& cloud, const rasterize_options& opt, const char* function)
+{
+    const bool by_return = opt.returns != return_selection::all, by_class = !opt.classes.selects_all();
+    if constexpr (!has_return_number<C>) {
+        require(!by_return, function,
+                "returns = first or last needs return numbers, and this point cloud type has none (no "
+                "return_number(i)): pass returns = all or a cloud with return numbers");
+    }
+    if constexpr (!has_number_of_returns<C>) {
+        require(opt.returns != return_selection::last, function,
+                "returns = last needs number_of_returns(i), and this point cloud type has none: pass returns = "
+                "all or first, or a cloud with the number of returns");
+    }
+    if constexpr (!has_classification<C>) {
+        require(!by_class, function, "classes needs classification codes, and this point cloud type has none "
+                                     "(no classification(i)): leave classes empty or pass a classified cloud");
+    }
+    std::array<std::uint8_t, 256> keep{};
+    keep.fill(opt.classes.include.empty() ? 1 : 0);
+    for (const int k : opt.classes.include) {
+        require(k >= 0 && k <= 255, function, "classes.include code", "in [0, 255]", k);
+        keep[static_cast<std::size_t>(k)] = 1;
+    }
+    for (const int k : opt.classes.exclude) {
+        require(k >= 0 && k <= 255, function, "classes.exclude code", "in [0, 255]", k);
+        keep[static_cast<std::size_t>(k)] = 0;
+    }
+    std::vector<std::size_t> index;
+    const auto n = static_cast<std::size_t>(cloud.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        if constexpr (has_classification<C>) {
+            const int k = static_cast<int>(cloud.classification(i));
+            if (by_class && (k < 0 || k > 255 || !keep[static_cast<std::size_t>(k)])) continue;
+        }
+        if constexpr (has_return_number<C>) {
+            if (opt.returns == return_selection::first && static_cast<int>(cloud.return_number(i)) != 1) continue;
+            if constexpr (has_number_of_returns<C>) {
+                if (opt.returns == return_selection::last &&
+                    static_cast<int>(cloud.return_number(i)) != static_cast<int>(cloud.number_of_returns(i)))
+                    continue;
+            }
+        }
+        index.push_back(i);
+    }
+    return index;
+}
+
+template <point_cloud C>
+rasterize_result rasterize_selected(const C& cloud, const grid& g, const rasterize_options& opt);
+
+}  // namespace detail
+
 /// Bins a point cloud on `g` (dissertation 2.3.1): per cell min and max z (float, saturating), mean
 /// intensity, count, dropout (no return) and multiple returns (a point with number_of_returns > 1). Points
 /// go to grid::cell_of (far east/south edge -> last column/row); outside and NaN/infinite points are
@@ -528,10 +637,30 @@ struct accumulator_access {
 /// statistics of raster_accumulator (24 KiB per tile of 32 x 32 cells holding a point, 24 bytes per cell
 /// when the points outnumber the cells). Details in docs/rasters.md.
 /// Progress is reported after each chunk of chunk_points points (and once more after merging, with threads).
-/// @throws invalid_input on an invalid grid, chunk_points == 0 or run.threads < 0; cancelled if run.progress
-/// returns false.
+/// Selection: only the returns opt.returns and the classes opt.classes are binned (the others are counted
+/// in points_unselected); e.g. returns = first gives the DSM (max_z) and classes.include = {2} the ground
+/// of a classified file (min_z), in two calls. The default selects every point and costs nothing; a
+/// selection first gathers the kept points' indices (one pass, 8 bytes per kept point).
+/// @throws invalid_input on an invalid grid, chunk_points == 0, run.threads < 0, or a selection the cloud
+/// type cannot serve (see select_points); cancelled if run.progress returns false.
 template <point_cloud C>
 rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_options& opt = {})
+{
+    constexpr const char* function = "rasterize";
+    if (opt.returns == return_selection::all && opt.classes.selects_all())
+        return detail::rasterize_selected(cloud, g, opt);
+    g.validate(function);
+    detail::selected_points<C> kept(cloud, detail::select_points(cloud, opt, function));
+    rasterize_result out = detail::rasterize_selected(kept, g, opt);
+    out.points_unselected = static_cast<std::size_t>(cloud.size()) - kept.size();
+    return out;
+}
+
+namespace detail {
+
+/// rasterize of every point of `cloud` (the selection is already applied).
+template <point_cloud C>
+rasterize_result rasterize_selected(const C& cloud, const grid& g, const rasterize_options& opt)
 {
     constexpr const char* function = "rasterize";
     g.validate(function);
@@ -601,6 +730,8 @@ rasterize_result rasterize(const C& cloud, const grid& g, const rasterize_option
     detail::report(opt.run.progress, 1.0, function);
     return out;
 }
+
+}  // namespace detail
 
 /// Bounding box of the points of `cloud` whose x, y and z are all finite (others are ignored); pass it to
 /// snapped_grid(bounds, cell_m) for the usual survey grid. O(points).
