@@ -39,6 +39,13 @@
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
+#include "lidarfx/pipelines/buildings/facade_patches.hpp"
+#include "lidarfx/pipelines/buildings/facade_rays.hpp"
+#include "lidarfx/pipelines/buildings/facade_shading.hpp"
+#include "lidarfx/pipelines/buildings/facade_sky.hpp"
+#include "lidarfx/pipelines/buildings/patches.hpp"
+#include "lidarfx/pipelines/buildings/surface_energy.hpp"
+#include "lidarfx/pipelines/buildings/surface_energy_table.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
