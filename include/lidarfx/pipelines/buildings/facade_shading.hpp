@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -30,11 +31,11 @@ struct facade_lit_options {
 
 namespace detail {
 
-/// Outward unit normal of a vertical wall facing azimuth_deg (exact at 0, 90, 180, 270).
-inline enu_vector facade_normal(double azimuth_deg) noexcept
+/// cos theta of a vertical wall facing facing_deg under a sun at (azimuth, elevation): cos e cos(A_sun - A_facing)
+/// (cos_incidence with tilt 90), exactly 0 when the sun is in the wall plane (A_sun - A_facing = +-90 degrees).
+inline double facade_cos_incidence(double sun_azimuth_deg, double sun_elevation_deg, double facing_deg) noexcept
 {
-    const auto [s, c] = sincos_deg(azimuth_deg);
-    return {s, c, 0.0};
+    return std::cos(sun_elevation_deg * (std::numbers::pi / 180.0)) * sincos_deg(sun_azimuth_deg - facing_deg)[1];
 }
 
 /// Refuses sub-patches whose cells lie outside a rows x cols raster.
@@ -82,11 +83,11 @@ inline void facade_shadow_sweep(raster_view<const float> z, const facade_observe
 }
 
 /// Lit state of sub-patch p from its observer's limit: the sun in front of the wall plane and the key of the
-/// point (front cell centre, height_m) not below the limit.
-inline std::uint8_t facade_patch_lit(const facade_patch& p, const enu_vector& sun, double limit,
-                                     const shadow_lifts& lift) noexcept
+/// point (front cell centre, height_m) not below the limit. A sun in the wall plane lights nothing.
+inline std::uint8_t facade_patch_lit(const facade_patch& p, double sun_azimuth_deg, double sun_elevation_deg,
+                                     double limit, const shadow_lifts& lift) noexcept
 {
-    if (enu_dot(sun, facade_normal(p.facing_azimuth_deg)) <= 0.0) return 0;
+    if (facade_cos_incidence(sun_azimuth_deg, sun_elevation_deg, p.facing_azimuth_deg) <= 0.0) return 0;
     const double key = p.height_m + (lift.col_lift[static_cast<std::size_t>(p.front_col)] +
                                      lift.row_lift[static_cast<std::size_t>(p.front_row)]);
     return limit > key ? 0 : 1;
@@ -96,7 +97,7 @@ inline std::uint8_t facade_patch_lit(const facade_patch& p, const enu_vector& su
 
 /// Lit state of every facade sub-patch for one sun position: 1 lit, 0 shadow. A sub-patch is seen from its
 /// observer point, the centre of its front cell (half a cell in front of the wall) at height_m. It is lit iff
-/// the sun is in front of the wall plane (sun_vector . outward normal > 0) and no non-NaN cell q before the
+/// the sun is in front of the wall plane (cos e cos(A_sun - A_facing) > 0, exactly 0 in the plane) and no non-NaN cell q before the
 /// front cell on its ray line (raylines_shadow's lines along the sun azimuth, kernels/solar/ray_lines.hpp)
 /// rises above the sun ray: z_q + t_q tan e <= height_m + t_p tan e for all such q (t the projection on the walk
 /// away from the sun, metres) -- raylines_shadow's test with the observer's height in place of the cell's. Sun
@@ -128,10 +129,9 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
             detail::make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
         std::vector<double> limit;
         detail::facade_shadow_sweep(z, obs, l, lift, limit, {}, opt.run.threads, fn);
-        const enu_vector sun = detail::sun_vector_unchecked(sun_azimuth_deg, sun_elevation_deg);
         for (std::size_t i = 0; i < subs.size(); ++i) {
             const auto o = static_cast<std::size_t>(obs.index(subs[i].front_row, subs[i].front_col));
-            out[i] = detail::facade_patch_lit(subs[i], sun, limit[o], lift);
+            out[i] = detail::facade_patch_lit(subs[i], sun_azimuth_deg, sun_elevation_deg, limit[o], lift);
         }
     });
     detail::report(opt.run.progress, 1.0, fn);

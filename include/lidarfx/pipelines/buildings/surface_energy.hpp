@@ -191,8 +191,9 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                     double beam = 0.0;
                     if (!zenith) {
                         const auto o = static_cast<std::size_t>(obs.index(p.front_row, p.front_col));
-                        if (detail::facade_patch_lit(p, sun, limit[o], lift) == 1) {
-                            beam = dni * detail::enu_dot(sun, detail::facade_normal(p.facing_azimuth_deg));
+                        if (detail::facade_patch_lit(p, day.azimuth_deg, day.elevation_deg, limit[o], lift) == 1) {
+                            beam = dni * detail::facade_cos_incidence(day.azimuth_deg, day.elevation_deg,
+                                                                      p.facing_azimuth_deg);
                         }
                     }
                     facade_sum[static_cast<std::size_t>(i)][q] += beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
