@@ -82,16 +82,37 @@ inline void facade_shadow_sweep(raster_view<const float> z, const facade_observe
         {}, fn);
 }
 
-/// Lit state of sub-patch p from its observer's limit: the sun in front of the wall plane and the key of the
-/// point (front cell centre, height_m) not below the limit. A sun in the wall plane lights nothing.
-inline std::uint8_t facade_patch_lit(const facade_patch& p, double sun_azimuth_deg, double sun_elevation_deg,
-                                     double limit, const shadow_lifts& lift) noexcept
+/// Lit state of sub-patch p from its observer's limit, given cos_theta = facade_cos_incidence for p's wall: the
+/// sun in front of the wall plane (cos_theta > 0) and the key of the point (front cell centre, height_m) not below
+/// the limit. A sun in the wall plane lights nothing.
+inline std::uint8_t facade_patch_lit(const facade_patch& p, double cos_theta, double limit,
+                                     const shadow_lifts& lift) noexcept
 {
-    if (facade_cos_incidence(sun_azimuth_deg, sun_elevation_deg, p.facing_azimuth_deg) <= 0.0) return 0;
+    if (cos_theta <= 0.0) return 0;
     const double key = p.height_m + (lift.col_lift[static_cast<std::size_t>(p.front_col)] +
                                      lift.row_lift[static_cast<std::size_t>(p.front_row)]);
     return limit > key ? 0 : 1;
 }
+
+/// facade_cos_incidence for one sun position, looked up for the four grid facings (0, 90, 180, 270: every wall
+/// of facade_patches) and computed for any other.
+struct facade_cos_table {
+    double sun_azimuth_deg, sun_elevation_deg;
+    double grid[4];
+    facade_cos_table(double azimuth_deg, double elevation_deg) noexcept
+        : sun_azimuth_deg(azimuth_deg), sun_elevation_deg(elevation_deg)
+    {
+        for (int k = 0; k < 4; ++k) grid[k] = facade_cos_incidence(azimuth_deg, elevation_deg, 90.0 * k);
+    }
+    double operator()(double facing_deg) const noexcept
+    {
+        if (facing_deg == 0.0) return grid[0];
+        if (facing_deg == 90.0) return grid[1];
+        if (facing_deg == 180.0) return grid[2];
+        if (facing_deg == 270.0) return grid[3];
+        return facade_cos_incidence(sun_azimuth_deg, sun_elevation_deg, facing_deg);
+    }
+};
 
 }  // namespace detail
 
@@ -129,9 +150,10 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
             detail::make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
         std::vector<double> limit;
         detail::facade_shadow_sweep(z, obs, l, lift, limit, {}, opt.run.threads, fn);
+        const detail::facade_cos_table cos_theta(sun_azimuth_deg, sun_elevation_deg);
         for (std::size_t i = 0; i < subs.size(); ++i) {
             const auto o = static_cast<std::size_t>(obs.index(subs[i].front_row, subs[i].front_col));
-            out[i] = detail::facade_patch_lit(subs[i], sun_azimuth_deg, sun_elevation_deg, limit[o], lift);
+            out[i] = detail::facade_patch_lit(subs[i], cos_theta(subs[i].facing_azimuth_deg), limit[o], lift);
         }
     });
     detail::report(opt.run.progress, 1.0, fn);

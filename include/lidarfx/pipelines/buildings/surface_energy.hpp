@@ -173,6 +173,7 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                 l, cell_m, zenith ? 0.0 : std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
             if (!zenith) detail::facade_shadow_sweep(z, obs, l, lift, limit, lit.view(), opt.run.threads, fn);
             const std::size_t q = day.quarter;
+            const detail::facade_cos_table cos_theta(day.azimuth_deg, day.elevation_deg);
             parallel_for_rows(nroof, 4096, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
                 for (std::ptrdiff_t i = i0; i < i1; ++i) {
                     const surface_patch& p = res.roofs[static_cast<std::size_t>(i)];
@@ -191,10 +192,8 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                     double beam = 0.0;
                     if (!zenith) {
                         const auto o = static_cast<std::size_t>(obs.index(p.front_row, p.front_col));
-                        if (detail::facade_patch_lit(p, day.azimuth_deg, day.elevation_deg, limit[o], lift) == 1) {
-                            beam = dni * detail::facade_cos_incidence(day.azimuth_deg, day.elevation_deg,
-                                                                      p.facing_azimuth_deg);
-                        }
+                        const double cos_t = cos_theta(p.facing_azimuth_deg);
+                        if (detail::facade_patch_lit(p, cos_t, limit[o], lift) == 1) beam = dni * cos_t;
                     }
                     facade_sum[static_cast<std::size_t>(i)][q] += beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
                 }
