@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lidarfx/core/raster.hpp"
@@ -24,7 +25,7 @@ struct facade_observers {
 };
 
 inline facade_observers make_facade_observers(std::ptrdiff_t rows, std::ptrdiff_t cols,
-                                              const std::vector<facade_patch>& subs)
+                                              std::span<const facade_patch> subs)
 {
     facade_observers o{raster<std::int32_t>(rows, cols, -1), {}, {}, {}, {}};
     std::vector<std::size_t> count;

@@ -143,7 +143,7 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
         return out;
     }
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
-        const std::vector<facade_patch> subs(patches.begin(), patches.end());
+        const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
         const detail::ray_lines l = detail::make_ray_lines(sun_azimuth_deg, z.rows(), z.cols());
         const detail::shadow_lifts lift =

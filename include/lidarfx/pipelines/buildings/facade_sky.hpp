@@ -113,7 +113,7 @@ std::vector<double> facade_horizon(const Dsm& dsm, std::span<const facade_patch>
     detail::require_facade_cells(patches, dsm.rows(), dsm.cols(), fn);
     std::vector<double> tangent;
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
-        const std::vector<facade_patch> subs(patches.begin(), patches.end());
+        const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
         detail::facade_horizon_sweep(z, obs, subs, cell_m, azimuth_deg, tangent, opt.run.threads, fn);
     });
@@ -145,7 +145,7 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
     double tan_e[detail::sky_source_elevations];
     for (int j = 0; j < detail::sky_source_elevations; ++j) tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
-        const std::vector<facade_patch> subs(patches.begin(), patches.end());
+        const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
         std::vector<double> tangent;
         const int n = opt.directions;
