@@ -3,7 +3,6 @@
 // surface model (the shadow-height limit of raylines_shadow, read at each sub-patch's height).
 #pragma once
 
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,7 +15,6 @@
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
-#include "lidarfx/kernels/solar/incidence.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
