@@ -43,7 +43,14 @@
 
 // pipelines: methods composed of kernels
 #include "lidarfx/pipelines/buildings/extract_buildings.hpp"
+#include "lidarfx/pipelines/buildings/facade_patches.hpp"
+#include "lidarfx/pipelines/buildings/facade_rays.hpp"
+#include "lidarfx/pipelines/buildings/facade_shading.hpp"
+#include "lidarfx/pipelines/buildings/facade_sky.hpp"
 #include "lidarfx/pipelines/buildings/ground_model.hpp"
+#include "lidarfx/pipelines/buildings/patches.hpp"
+#include "lidarfx/pipelines/buildings/surface_energy.hpp"
+#include "lidarfx/pipelines/buildings/surface_energy_table.hpp"
 #include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"

@@ -3,7 +3,7 @@
 # ${INCLUDE_DIR}/lidarfx: a header includes lidarfx headers only from its own folder or from a lower layer.
 #   layer 0  core/
 #   layer 1  adapters/ and kernels/<area>/   (kernel areas never include each other)
-#   layer 2  pipelines/<area>/               (pipelines never include each other)
+#   layer 2  pipelines/<area>/               (pipelines never include each other): water, solar, buildings
 #   layer 3  tiling/
 # lidarfx.hpp (the umbrella) may include anything. A folder that is not in this table fails the check, so a new
 # module has to be placed in a layer (here and in docs/architecture.md) before it can exist.

@@ -3,6 +3,11 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <span>
+
+#include "lidarfx/core/error.hpp"
 
 namespace lidarfx {
 
@@ -17,5 +22,32 @@ struct irradiance_record {
     /// The middle of the interval, where the sun position is taken.
     constexpr std::chrono::sys_seconds middle_utc() const noexcept { return start_utc + interval / 2; }
 };
+
+namespace detail {
+
+/// Month index 0..11 of a record: the month of its middle in UTC + offset_h.
+inline int record_month(const irradiance_record& rec, double offset_h)
+{
+    namespace chr = std::chrono;
+    const auto local = rec.middle_utc() + chr::seconds{static_cast<long long>(std::llround(offset_h * 3600.0))};
+    const chr::year_month_day ymd{chr::floor<chr::days>(local)};
+    return static_cast<int>(static_cast<unsigned>(ymd.month())) - 1;
+}
+
+/// Refuses records with a non-positive interval or a DNI, DHI or GHI outside [0, 1e6] W/m^2 (or NaN).
+inline void require_records(std::span<const irradiance_record> records, const char* fn)
+{
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        const irradiance_record& r = records[i];
+        const auto bad = [&](double v) { return !(v >= 0.0 && v <= 1.0e6); };
+        if (r.interval.count() <= 0 || bad(r.dni_w_m2) || bad(r.dhi_w_m2) || bad(r.ghi_w_m2)) {
+            throw invalid_input(concat(fn, ": records[", i, "] must have interval > 0 and DNI, DHI, GHI in ",
+                                       "[0, 1e6] W/m^2 (got interval ", r.interval.count(), " s, DNI ", r.dni_w_m2,
+                                       ", DHI ", r.dhi_w_m2, ", GHI ", r.ghi_w_m2, ")"));
+        }
+    }
+}
+
+}  // namespace detail
 
 }  // namespace lidarfx

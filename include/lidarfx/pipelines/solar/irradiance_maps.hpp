@@ -74,15 +74,6 @@ struct irradiance_maps_result {
 
 namespace detail {
 
-/// Month index 0..11 of a record: the month of its middle in UTC + offset_h.
-inline int record_month(const irradiance_record& rec, double offset_h)
-{
-    namespace chr = std::chrono;
-    const auto local = rec.middle_utc() + chr::seconds{static_cast<long long>(std::llround(offset_h * 3600.0))};
-    const chr::year_month_day ymd{chr::floor<chr::days>(local)};
-    return static_cast<int>(static_cast<unsigned>(ymd.month())) - 1;
-}
-
 /// Per-cell incidence terms of a tilted surface: normal vector, (1 + cos b) / 2, (1 - cos b) / 2 and, for the
 /// Perez sky only, sin b.
 struct cell_surface {
@@ -187,15 +178,7 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         detail::require_same_shape(dsm, opt.surface_tilt_deg, fn, "dsm", "surface_tilt_deg");
         detail::require_same_shape(dsm, opt.surface_azimuth_deg, fn, "dsm", "surface_azimuth_deg");
     }
-    for (std::size_t i = 0; i < records.size(); ++i) {
-        const irradiance_record& r = records[i];
-        const auto bad = [&](double v) { return !(v >= 0.0 && v <= 1.0e6); };
-        if (r.interval.count() <= 0 || bad(r.dni_w_m2) || bad(r.dhi_w_m2) || bad(r.ghi_w_m2)) {
-            throw invalid_input(detail::concat(fn, ": records[", i, "] must have interval > 0 and DNI, DHI, GHI in ",
-                                               "[0, 1e6] W/m^2 (got interval ", r.interval.count(), " s, DNI ",
-                                               r.dni_w_m2, ", DHI ", r.dhi_w_m2, ", GHI ", r.ghi_w_m2, ")"));
-        }
-    }
+    detail::require_records(records, fn);
     // Sun positions first: they validate the place and every time before any long work.
     struct daylight {
         std::size_t record;

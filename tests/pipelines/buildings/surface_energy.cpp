@@ -1,0 +1,178 @@
+// SPDX-License-Identifier: Apache-2.0
+// surface_energy, surface_class_table and bill_savings on an isolated box building under a clear-sky year: the
+// pattern of the dissertation's Table 1, the rooftop closure with GHI, the southern hemisphere, Table 2's formula.
+#include <doctest/doctest.h>
+
+#include <lidarfx/kernels/solar/clear_sky.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy_table.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "../../reference/facades.hpp"
+#include "../../reference/progress.hpp"
+
+using namespace lidarfx;
+
+namespace {
+
+constexpr auto north = static_cast<std::size_t>(surface_class::north_facade);
+constexpr auto south = static_cast<std::size_t>(surface_class::south_facade);
+constexpr auto east = static_cast<std::size_t>(surface_class::east_facade);
+constexpr auto west = static_cast<std::size_t>(surface_class::west_facade);
+constexpr auto roof = static_cast<std::size_t>(surface_class::rooftop);
+
+/// Table 1 of a 12 x 10 m, 10 m tall box alone on flat ground at (lat, lon) under a clear-sky year.
+std::array<surface_class_row, 5> box_table(double lat, double lon, double utc_offset_h, surface_energy_result* out = nullptr)
+{
+    const auto s = reference::one_box(60, 60, 25, 24, 10, 12, 100.0f, 110.0f);
+    const auto records = clear_sky_records(2021, lat, lon);
+    auto res = surface_energy(s.dsm, s.ids, 1.0, lat, lon, records, {.month_utc_offset_h = utc_offset_h});
+    const auto table = surface_class_table(res);
+    if (out) *out = std::move(res);
+    return table;
+}
+
+}  // namespace
+
+TEST_CASE("buildings/surface_energy: a box at 40 N under clear sky -- the pattern of the dissertation's Table 1")
+{
+    surface_energy_result res;
+    const auto t = box_table(40.0, -75.2, -5.0, &res);  // Philadelphia
+    for (const auto& row : t) {
+        MESSAGE(static_cast<int>(row.kind), ": ", row.quarter_kwh_m2_day[0], " ", row.quarter_kwh_m2_day[1], " ",
+                row.quarter_kwh_m2_day[2], " ", row.quarter_kwh_m2_day[3], " kWh/m2/day, ", row.annual_kwh_m2,
+                " kWh/m2/yr, area ", row.area_m2, " m2");
+    }
+    CHECK(t[south].area_m2 == doctest::Approx(12 * 10.0));
+    CHECK(t[east].area_m2 == doctest::Approx(10 * 10.0));
+    CHECK(t[roof].area_m2 == doctest::Approx(11 * 9.0));
+    // South > east ~ west > north over the year.
+    CHECK(t[south].annual_kwh_m2 > t[east].annual_kwh_m2);
+    CHECK(t[south].annual_kwh_m2 > t[west].annual_kwh_m2);
+    CHECK(t[east].annual_kwh_m2 == doctest::Approx(t[west].annual_kwh_m2).epsilon(0.03));
+    CHECK(t[east].annual_kwh_m2 > t[north].annual_kwh_m2);
+    CHECK(t[west].annual_kwh_m2 > t[north].annual_kwh_m2);
+    // The south facade beats the rooftop in the winter quarters and falls below it in summer.
+    CHECK(t[south].quarter_kwh_m2_day[0] > t[roof].quarter_kwh_m2_day[0]);
+    CHECK(t[south].quarter_kwh_m2_day[3] > t[roof].quarter_kwh_m2_day[3]);
+    CHECK(t[south].quarter_kwh_m2_day[1] < t[roof].quarter_kwh_m2_day[1]);
+    CHECK(t[south].quarter_kwh_m2_day[2] < t[roof].quarter_kwh_m2_day[2]);
+    // The flat open roof receives the year's GHI (clear-sky records are consistent: DNI sin e + DHI = GHI).
+    CHECK(t[roof].annual_kwh_m2 == doctest::Approx(res.ghi_kwh_m2).epsilon(1e-9));
+    for (std::size_t q = 0; q < 4; ++q) {
+        CHECK(t[roof].quarter_kwh_m2_day[q] == doctest::Approx(res.quarter_ghi_kwh_m2_day[q]).epsilon(1e-9));
+    }
+    CHECK(res.quarter_days[0] == doctest::Approx(90.0));
+    CHECK(res.quarter_days[0] + res.quarter_days[1] + res.quarter_days[2] + res.quarter_days[3] == doctest::Approx(365.0));
+    // Quarterly daily means times days add up to the annual sum, per sub-patch.
+    for (std::size_t i = 0; i < res.facades.size(); i += 37) {
+        double sum = 0.0;
+        for (std::size_t q = 0; q < 4; ++q) sum += res.facade_energy[i].quarter_kwh_m2_day[q] * res.quarter_days[q];
+        CHECK(sum == doctest::Approx(res.facade_energy[i].annual_kwh_m2).epsilon(1e-9));
+    }
+}
+
+TEST_CASE("buildings/surface_energy: in the southern hemisphere the north facade is the sunniest")
+{
+    const auto t = box_table(-33.9, 151.2, 10.0);  // Sydney
+    CHECK(t[north].annual_kwh_m2 > t[east].annual_kwh_m2);
+    CHECK(t[north].annual_kwh_m2 > t[west].annual_kwh_m2);
+    CHECK(t[north].annual_kwh_m2 > t[south].annual_kwh_m2);
+    CHECK(t[east].annual_kwh_m2 > t[south].annual_kwh_m2);
+    // Winter there is the middle of the year: the north facade beats the roof in Apr-Jun and Jul-Sep.
+    CHECK(t[north].quarter_kwh_m2_day[1] > t[roof].quarter_kwh_m2_day[1]);
+    CHECK(t[north].quarter_kwh_m2_day[0] < t[roof].quarter_kwh_m2_day[0]);
+}
+
+TEST_CASE("buildings/surface_energy: a neighbour's shadow lowers the lower levels; results independent of threads")
+{
+    std::mt19937 rng(7);
+    const auto s = reference::box_town_ids(rng, 70, 64, 24);
+    const auto records = clear_sky_records(2021, 40.0, -75.0, {.interval = std::chrono::hours{3}});
+    const auto one = surface_energy(s.dsm, s.ids, 1.0, 40.0, -75.0, records, {.run = {.threads = 1}});
+    const auto two = surface_energy(s.dsm, s.ids, 1.0, 40.0, -75.0, records, {.run = {.threads = 2}});
+    REQUIRE(one.facades.size() > 200);
+    REQUIRE(one.facade_energy.size() == two.facade_energy.size());
+    REQUIRE(one.roof_energy.size() == two.roof_energy.size());
+    for (std::size_t i = 0; i < one.facade_energy.size(); ++i) {
+        CHECK(one.facade_energy[i].annual_kwh_m2 == two.facade_energy[i].annual_kwh_m2);
+        CHECK(one.facade_energy[i].quarter_kwh_m2_day == two.facade_energy[i].quarter_kwh_m2_day);
+    }
+    for (std::size_t i = 0; i < one.roof_energy.size(); ++i) CHECK(one.roof_energy[i].annual_kwh_m2 == two.roof_energy[i].annual_kwh_m2);
+    // In a town the lowest level of a wall never gets more than its top level (more horizon, more shadow).
+    std::size_t walls = 0, less = 0;
+    for (std::size_t i = 0; i + 7 < one.facades.size(); i += 8) {
+        REQUIRE(one.facades[i].level == 0);
+        ++walls;
+        CHECK(one.facade_energy[i].annual_kwh_m2 <= one.facade_energy[i + 7].annual_kwh_m2 + 1e-9);
+        less += one.facade_energy[i].annual_kwh_m2 < 0.95 * one.facade_energy[i + 7].annual_kwh_m2;
+    }
+    CHECK(less > walls / 10);
+}
+
+TEST_CASE("buildings/bill_savings: the dissertation's Table 1 gives its Table 2 with the default system")
+{
+    // Table 1 (kWh/m^2/day per quarter, kWh/m^2/yr) and Table 2 ($/day, $/yr) of the dissertation.
+    const double t1[5][5] = {{0.74, 1.45, 1.23, 0.65, 374.05}, {2.98, 1.98, 2.23, 3.17, 944.49},
+                             {1.93, 2.66, 2.89, 1.82, 850.21}, {1.58, 2.64, 2.42, 1.50, 743.32},
+                             {3.67, 6.27, 6.18, 3.38, 1780.80}};
+    const double t2[5][5] = {{0.23, 0.45, 0.38, 0.20, 114.99}, {0.92, 0.61, 0.69, 0.97, 290.36},
+                             {0.59, 0.82, 0.89, 0.56, 261.37}, {0.49, 0.81, 0.74, 0.46, 228.51},
+                             {1.13, 1.93, 1.90, 1.04, 547.45}};
+    std::array<surface_class_row, 5> table{};
+    for (std::size_t k = 0; k < 5; ++k) {
+        table[k].kind = static_cast<surface_class>(k);
+        for (std::size_t q = 0; q < 4; ++q) table[k].quarter_kwh_m2_day[q] = t1[k][q];
+        table[k].annual_kwh_m2 = t1[k][4];
+    }
+    const auto bill = bill_savings(table);
+    for (std::size_t k = 0; k < 5; ++k) {
+        CHECK(bill[k].kind == table[k].kind);
+        for (std::size_t q = 0; q < 4; ++q) CHECK(std::fabs(bill[k].quarter_per_day[q] - t2[k][q]) < 0.01);  // 2 printed decimals; South Q4 is off by 0.008
+        CHECK(bill[k].annual == doctest::Approx(t2[k][4]).epsilon(0.005));
+    }
+    // Twice the tariff, twice the saving; no modules' loss, more saving.
+    const auto dear = bill_savings(table, {.tariff_per_kwh = 0.22});
+    CHECK(dear[4].annual == doctest::Approx(2.0 * bill[4].annual));
+    CHECK(bill_savings(table, {.temperature_loss = 0.0})[4].annual > bill[4].annual);
+    CHECK_THROWS_AS(bill_savings(table, {.module_efficiency = 0.0}), invalid_input);
+    CHECK_THROWS_AS(bill_savings(table, {.inverter_efficiency = 1.5}), invalid_input);
+    CHECK_THROWS_AS(bill_savings(table, {.temperature_loss = 1.0}), invalid_input);
+    CHECK_THROWS_AS(bill_savings(table, {.modules = 0}), invalid_input);
+    CHECK_THROWS_AS(bill_savings(table, {.module_width_in = -65.0}), invalid_input);
+    CHECK_THROWS_AS(bill_savings(table, {.tariff_per_kwh = -0.1}), invalid_input);
+}
+
+TEST_CASE("buildings/facade_class: facing-azimuth quadrants")
+{
+    CHECK(facade_class(0.0) == surface_class::north_facade);
+    CHECK(facade_class(44.9) == surface_class::north_facade);
+    CHECK(facade_class(45.0) == surface_class::east_facade);
+    CHECK(facade_class(180.0) == surface_class::south_facade);
+    CHECK(facade_class(225.0) == surface_class::west_facade);
+    CHECK(facade_class(315.0) == surface_class::north_facade);
+    CHECK(facade_class(-90.0) == surface_class::west_facade);
+}
+
+TEST_CASE("buildings/surface_energy: progress, cancellation and refusals")
+{
+    const auto s = reference::one_box(20, 20, 8, 8, 4, 4, 0.0f, 9.0f);
+    const auto records = clear_sky_records(2021, 36.0, -80.0, {.interval = std::chrono::hours{6}});
+    reference::progress_log log;
+    surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.svf_directions = 8, .run = {.progress = log.callback()}});
+    CHECK(log.monotone_to_one());
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records,
+                                   {.run = {.progress = [](double f) { return f < 0.5; }}}),
+                    cancelled);
+    const raster<std::int32_t> other(19, 20, 0);
+    CHECK_THROWS_AS(surface_energy(s.dsm, other, 1.0, 36.0, -80.0, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 0.0, 36.0, -80.0, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 95.0, -80.0, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.svf_directions = 2}), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.month_utc_offset_h = 20.0}), invalid_input);
+    auto bad = records;
+    bad[3].dni_w_m2 = -1.0;
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, bad), invalid_input);
+}
