@@ -27,13 +27,14 @@
 #include "io/tables.hpp"
 #include "io/tmy3.hpp"
 #include "outputs.hpp"
+#include "solar_facades.hpp"
 
 namespace {
 
 constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
-    "                     [--diffuse isotropic|perez] [--threads N]\n"
+    "                     [--diffuse isotropic|perez] [--facades] [--threads N]\n"
     "                     [--formats asc,tif,png]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
@@ -54,6 +55,13 @@ constexpr const char* usage =
     "                 of re-stamping them; needs --tmy, excludes --year\n"
     "  --diffuse M    sky model of the diffuse part [isotropic]: isotropic = DHI * SVF (the dissertation's);\n"
     "                 perez = Perez et al. 1990 anisotropic sky, its circumsolar part shaded with the beam\n"
+    "  --facades      also find the buildings (extract_buildings) and the energy of every roof patch and facade\n"
+    "                 sub-patch (8 per wall): buildings.geojson (outlines; id, ground/eave/ridge z, height, roof\n"
+    "                 areas), facade_patches.csv (building_id,patch_id,level,facing_azimuth_deg,height_m (centre\n"
+    "                 above the wall's foot),area_m2,annual_kwh_m2,q1..q4_kwh_m2_day), surface_table.csv (north/\n"
+    "                 south/east/west facades and rooftops: quarterly kWh/m2/day, annual kWh/m2/yr),\n"
+    "                 bill_savings.csv (12 modules of 65x39 in, 16 %, inverter 95 %, -6 %, 0.11 per kWh) and\n"
+    "                 buildings_energy.png (roofs and walls coloured by annual kWh/m2)\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 // Mean, min and max of the finite cells.
@@ -175,7 +183,7 @@ int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
     const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats", "diffuse"},
-                           {"help", "force", "year-from-tmy"});
+                           {"help", "force", "year-from-tmy", "facades"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
@@ -226,6 +234,7 @@ int run_solar(const std::vector<std::string>& args)
 
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
+    lidarfx::raster<std::uint8_t> vegetation;  // cells with multiple returns (LAS input), for --facades
     lidarfx::grid g;
     double cell_m = 0.0;
     std::string crs_wkt, place_crs;
@@ -249,6 +258,7 @@ int run_solar(const std::vector<std::string>& args)
         g = s.rasters.g;
         cell_m = g.cell;  // read_survey works in metres
         dsm = lidarfx::idw_fill(s.rasters.max_z, cell_m, {.run = {.threads = threads}}).filled;
+        vegetation = s.rasters.multiple_returns;
         g = cli::to_crs_units(g, s);
         crs_wkt = s.crs_wkt;
         epsg = s.epsg;
@@ -314,6 +324,9 @@ int run_solar(const std::vector<std::string>& args)
         names.push_back("annual_kwh_m2.png");
         names.push_back("svf.png");
     }
+    if (a.has("facades")) {
+        for (const std::string& n : cli::facade_file_names(formats.png)) names.push_back(n);
+    }
     for (const auto& n : names) out.check_name(n);
 
     const auto res = lidarfx::irradiance_maps(dsm, cell_m, lat, lon, records,
@@ -357,6 +370,21 @@ int run_solar(const std::vector<std::string>& args)
               << " kWh/m2\n";
     out.set_units_note("kWh/m2 per cell (horizontal surfaces), SVF in [0, 1], on the input's grid; sun for " +
                        place.str());
+    if (a.has("facades")) {
+        cli::write_facade_outputs(out, {.dsm = dsm.view(),
+                                        .vegetation = vegetation.view(),
+                                        .cell_m = cell_m,
+                                        .grid_crs = g,
+                                        .crs_wkt = crs_wkt,
+                                        .epsg = epsg,
+                                        .latitude_deg = lat,
+                                        .longitude_deg = lon,
+                                        .utc_offset_h = zone_h,
+                                        .convergence_deg = convergence_deg,
+                                        .records = records,
+                                        .threads = threads,
+                                        .png = formats.png});
+    }
     cli::commit_and_report(out, cli::command_line("solar", args));
     return 0;
 }

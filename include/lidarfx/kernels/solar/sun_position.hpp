@@ -36,6 +36,18 @@ struct sun_position_result {
     double zenith_deg = 0;     ///< degrees from the vertical, 90 - elevation_deg, [0, 180]
 };
 
+/// An azimuth from true north turned to grid north: a_grid = a_true - meridian_convergence_deg, in [0, 360).
+/// The convergence is > 0 where grid north lies east of true north (east of a transverse Mercator zone's central
+/// meridian in the northern hemisphere). A convergence of 0 returns the azimuth unchanged, bit for bit.
+inline double to_grid_azimuth_deg(double true_azimuth_deg, double meridian_convergence_deg) noexcept
+{
+    if (meridian_convergence_deg == 0.0) return true_azimuth_deg;
+    double a = true_azimuth_deg - meridian_convergence_deg;
+    if (a < 0.0) a += 360.0;
+    if (a >= 360.0) a -= 360.0;
+    return a;
+}
+
 namespace detail {
 
 inline constexpr double spa_deg_per_rad = 180.0 / std::numbers::pi;

@@ -40,6 +40,9 @@ struct surface_energy_options {
     sun_position_options sun = {};    ///< sun model (default NREL SPA with refraction at sea level)
     /// Quarters are those of local standard time UTC + this many hours (TMY3's zone), in [-14, 14]; 0 = UTC.
     double month_utc_offset_h = 0.0;
+    /// Meridian convergence of the grid at the site, degrees (> 0: grid north east of true north): sun azimuths
+    /// are turned to grid north, a_grid = a_true - convergence (to_grid_azimuth_deg), in [-90, 90]; 0 = none.
+    double meridian_convergence_deg = 0.0;
     execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
@@ -107,6 +110,8 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
     detail::require_positive(cell_m, fn, "cell_m");
     detail::check_execution(opt.run, fn);
     detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
+    detail::require(opt.meridian_convergence_deg >= -90.0 && opt.meridian_convergence_deg <= 90.0, fn,
+                    "meridian_convergence_deg", "in [-90, 90] degrees", opt.meridian_convergence_deg);
     detail::require(opt.month_utc_offset_h >= -14.0 && opt.month_utc_offset_h <= 14.0, fn, "month_utc_offset_h",
                     "in [-14, 14] hours", opt.month_utc_offset_h);
     detail::require_same_shape(dsm, building_id, fn, "dsm", "building_id");
@@ -126,7 +131,8 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         res.quarter_ghi_kwh_m2_day[q] += r.ghi_w_m2 * hours / 1000.0;
         res.ghi_kwh_m2 += r.ghi_w_m2 * hours / 1000.0;
         const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
-        if (sun.elevation_deg > 0.0) days.push_back({i, q, sun.azimuth_deg, sun.elevation_deg});
+        if (sun.elevation_deg > 0.0)
+            days.push_back({i, q, to_grid_azimuth_deg(sun.azimuth_deg, opt.meridian_convergence_deg), sun.elevation_deg});
     }
     for (std::size_t q = 0; q < 4; ++q) {
         if (res.quarter_days[q] > 0.0) res.quarter_ghi_kwh_m2_day[q] /= res.quarter_days[q];

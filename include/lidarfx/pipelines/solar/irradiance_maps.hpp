@@ -195,12 +195,7 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         res.ghi_kwh_m2 += kwh;
         const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
         if (sun.elevation_deg > 0.0) {
-            double grid_azimuth = sun.azimuth_deg;
-            if (opt.meridian_convergence_deg != 0.0) {
-                grid_azimuth -= opt.meridian_convergence_deg;
-                if (grid_azimuth < 0.0) grid_azimuth += 360.0;
-                if (grid_azimuth >= 360.0) grid_azimuth -= 360.0;
-            }
+            const double grid_azimuth = to_grid_azimuth_deg(sun.azimuth_deg, opt.meridian_convergence_deg);
             by_month[static_cast<std::size_t>(m)].push_back(
                 {i, grid_azimuth, sun.elevation_deg, detail::record_day_of_year(r)});
         }

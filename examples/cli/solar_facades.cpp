@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "solar_facades.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <map>
+
+#include <lidarfx/kernels/vector/polygonize.hpp>
+#include <lidarfx/pipelines/buildings/extract_buildings.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy_table.hpp>
+
+#include "io/png.hpp"
+#include "io/quicklook.hpp"
+#include "io/tables.hpp"
+
+namespace lidarfx::cli {
+namespace {
+
+constexpr const char* class_names[5] = {"north facade", "south facade", "east facade", "west facade", "rooftop"};
+
+// Roof cells coloured by the energy of the quad patch they start, the ground cell in front of each wall by the
+// mean of its sub-patches, the rest a dim hillshade; a colour bar in kWh/m2 below.
+io::rgb_image energy_picture(const facade_run& run, const surface_energy_result& e)
+{
+    const std::ptrdiff_t rows = run.dsm.rows(), cols = run.dsm.cols();
+    raster<float> energy(rows, cols, std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t i = 0; i < e.roofs.size(); ++i)
+        energy(e.roofs[i].row, e.roofs[i].col) = static_cast<float>(e.roof_energy[i].annual_kwh_m2);
+    std::map<std::pair<std::ptrdiff_t, std::ptrdiff_t>, std::pair<double, int>> walls;
+    for (std::size_t i = 0; i < e.facades.size(); ++i) {
+        auto& w = walls[{e.facades[i].front_row, e.facades[i].front_col}];
+        w.first += e.facade_energy[i].annual_kwh_m2;
+        ++w.second;
+    }
+    for (const auto& [cell, sum] : walls) energy(cell.first, cell.second) = static_cast<float>(sum.first / sum.second);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (std::isfinite(energy(r, c))) {
+                lo = std::min(lo, static_cast<double>(energy(r, c)));
+                hi = std::max(hi, static_cast<double>(energy(r, c)));
+            }
+    if (!(lo <= hi)) lo = hi = 0.0;
+    io::rgb_image img = io::colorize(energy.view(), lo, hi);
+    const raster<std::uint8_t> shade = io::hillshade(run.dsm, run.cell_m);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (!std::isfinite(energy(r, c))) {
+                std::uint8_t* px = &img.rgb[static_cast<std::size_t>((r * img.width + c) * 3)];
+                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(r, c) / 2);
+            }
+    return io::with_legend(img, lo, hi, "kWh/m²");
+}
+
+}  // namespace
+
+std::vector<std::string> facade_file_names(bool png)
+{
+    std::vector<std::string> names{"buildings.geojson", "facade_patches.csv", "surface_table.csv", "bill_savings.csv"};
+    if (png) names.push_back("buildings_energy.png");
+    return names;
+}
+
+void write_facade_outputs(io::output_folder& out, const facade_run& run)
+{
+    extract_buildings_options bopt;
+    bopt.vegetation = run.vegetation;
+    bopt.run = {.threads = run.threads, .progress = progress_bar("buildings")};
+    const extract_buildings_result b = extract_buildings(run.dsm, run.cell_m, bopt);
+    const surface_energy_result e = surface_energy(
+        run.dsm, b.building_id, run.cell_m, run.latitude_deg, run.longitude_deg, run.records,
+        {.month_utc_offset_h = run.utc_offset_h,
+         .meridian_convergence_deg = run.convergence_deg,
+         .run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
+
+    // Outlines in the input's CRS units; heights and areas in metres.
+    std::vector<io::geojson_feature> features;
+    for (const auto& lp : polygonize(b.building_id, run.grid_crs)) {
+        const building_record& rec = b.buildings[static_cast<std::size_t>(lp.label - 1)];
+        for (const auto& poly : lp.polygons) {
+            features.push_back({poly.rings,
+                                {{"building_id", rec.id}, {"ground_z", rec.ground_z}, {"eave_z", rec.eave_z},
+                                 {"ridge_z", rec.ridge_z}, {"height_m", rec.ridge_z - rec.ground_z},
+                                 {"roof_area_m2", rec.roof_area_horizontal_m2},
+                                 {"roof_area_sloped_m2", rec.roof_area_sloped_m2},
+                                 {"roof_surfaces", static_cast<std::int64_t>(rec.surfaces.size())}}});
+        }
+    }
+    out.write("buildings.geojson", [&](const std::string& path) { io::write_geojson(path, features, run.epsg); });
+
+    std::vector<std::vector<io::table_value>> rows;
+    for (std::size_t i = 0; i < e.facades.size(); ++i) {
+        const facade_patch& p = e.facades[i];
+        const patch_energy& en = e.facade_energy[i];
+        rows.push_back({p.building_id, p.wall_id, p.level, p.facing_azimuth_deg, p.height_m - p.bottom_m, p.area_m2,
+                        en.annual_kwh_m2, en.quarter_kwh_m2_day[0], en.quarter_kwh_m2_day[1], en.quarter_kwh_m2_day[2],
+                        en.quarter_kwh_m2_day[3]});
+    }
+    out.write("facade_patches.csv", [&](const std::string& path) {
+        io::write_csv(path, {"building_id", "patch_id", "level", "facing_azimuth_deg", "height_m", "area_m2",
+                             "annual_kwh_m2", "q1_kwh_m2_day", "q2_kwh_m2_day", "q3_kwh_m2_day", "q4_kwh_m2_day"},
+                      rows);
+    });
+
+    const auto table = surface_class_table(e);
+    std::vector<std::vector<io::table_value>> t1, t2;
+    for (const surface_class_row& r : table) {
+        t1.push_back({class_names[static_cast<std::size_t>(r.kind)], r.quarter_kwh_m2_day[0], r.quarter_kwh_m2_day[1],
+                      r.quarter_kwh_m2_day[2], r.quarter_kwh_m2_day[3], r.annual_kwh_m2, r.area_m2});
+    }
+    out.write("surface_table.csv", [&](const std::string& path) {
+        io::write_csv(path, {"surface", "jan_mar_kwh_m2_day", "apr_jun_kwh_m2_day", "jul_sep_kwh_m2_day",
+                             "oct_dec_kwh_m2_day", "annual_kwh_m2_yr", "area_m2"},
+                      t1);
+    });
+    for (const bill_savings_row& r : bill_savings(table)) {
+        t2.push_back({class_names[static_cast<std::size_t>(r.kind)], r.quarter_per_day[0], r.quarter_per_day[1],
+                      r.quarter_per_day[2], r.quarter_per_day[3], r.annual});
+    }
+    out.write("bill_savings.csv", [&](const std::string& path) {
+        io::write_csv(path, {"surface", "jan_mar_per_day", "apr_jun_per_day", "jul_sep_per_day", "oct_dec_per_day",
+                             "annual"},
+                      t2);
+    });
+    if (run.png) {
+        const io::rgb_image img = energy_picture(run, e);
+        out.write("buildings_energy.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
+    }
+
+    std::cout << std::fixed << std::setprecision(1) << "buildings: " << b.buildings.size() << ", roof patches "
+              << e.roofs.size() << ", facade sub-patches " << e.facades.size() << "\n";
+    for (const surface_class_row& r : table) {
+        std::cout << "  " << std::setw(13) << class_names[static_cast<std::size_t>(r.kind)] << ": " << r.annual_kwh_m2
+                  << " kWh/m2/yr over " << r.area_m2 << " m2\n";
+    }
+}
+
+}  // namespace lidarfx::cli

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: Apache-2.0
+// lidarfx solar --facades: buildings, their roofs and facade sub-patches, and the energy each receives.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <lidarfx/core/grid.hpp>
+#include <lidarfx/core/raster.hpp>
+#include <lidarfx/kernels/solar/irradiance_record.hpp>
+
+#include "cli_common.hpp"
+#include "io/output_folder.hpp"
+
+namespace lidarfx::cli {
+
+/// Where the facade run takes place: the DSM in metres on `grid_crs` (the same cells in the input's CRS units),
+/// the sun's place and the weather.
+struct facade_run {
+    raster_view<const float> dsm;
+    raster_view<const std::uint8_t> vegetation;  ///< multiple-return cells (LAS input), empty otherwise
+    double cell_m = 1;
+    grid grid_crs;
+    std::string crs_wkt;
+    int epsg = 0;
+    double latitude_deg = 0, longitude_deg = 0, utc_offset_h = 0, convergence_deg = 0;
+    std::span<const irradiance_record> records;
+    int threads = 0;
+    bool png = true;
+};
+
+/// The files --facades adds: buildings.geojson, facade_patches.csv, surface_table.csv, bill_savings.csv and
+/// (with png) buildings_energy.png.
+std::vector<std::string> facade_file_names(bool png);
+
+/// Extracts the buildings (extract_buildings), computes the energy of every roof patch and facade sub-patch
+/// (surface_energy) and writes the facade files into `out`; prints a short summary.
+void write_facade_outputs(io::output_folder& out, const facade_run& run);
+
+}  // namespace lidarfx::cli
