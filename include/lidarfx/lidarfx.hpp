@@ -42,6 +42,8 @@
 
 // pipelines: methods composed of kernels
 #include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
+#include "lidarfx/pipelines/pv/roof_planes.hpp"
+#include "lidarfx/pipelines/pv/roof_suitability.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
