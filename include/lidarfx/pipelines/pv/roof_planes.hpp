@@ -247,15 +247,17 @@ inline void reassign_cells(const roof_box_surface& s, std::vector<std::vector<st
 }
 
 /// Segments the roof planes of one building (see roof_planes_options):
-/// 1. a 3x3 least-squares plane around each cell (roof neighbours only) gives its normal and rms residual;
-/// 2. regions grow from the most planar unassigned cell over 4-neighbours whose normal lies within the angle
+/// 1. a 3x3 least-squares plane around each cell (roof neighbours only) gives its normal and rms residual, and
+///    the building's noise sigma (sqrt(1.5) x their median rms) sets the tolerances;
+/// 2. regions grow from the most planar free cell over 4-neighbours whose normal lies within the angle
 ///    tolerance of the region's plane and whose elevation lies within the distance tolerance of it (the plane
 ///    refitted as the region doubles); regions under min_seed_cells are released;
-/// 3. each region gets a robust plane fit; adjacent regions whose normals agree within the angle tolerance and
-///    whose joint fit is hardly worse (rms <= 1.3 x the larger + 0.02 m) merge;
-/// 4. reassignment: every cell goes to the plane that reaches it, over 4-neighbours, with the smallest
-///    residual (cells farther than the distance tolerance from every plane stay out), then planes are refitted.
-/// O(cells log cells).
+/// 3. adjacent planes merge when their joint least-squares fit is hardly worse than theirs (merge_coplanar);
+/// 4. reassign_rounds times: every cell goes to the plane that reaches it with the smallest residual
+///    (reassign_cells), planes are refitted, and merged again between rounds;
+/// 5. final fits on each plane's interior cells; planes under min_plane_m2 or rougher than max_plane_rms_m
+///    (tree crowns, chimneys) are dropped, their cells left without a plane.
+/// Tilt, facing and areas follow from the fits (plane_fit). O(cells log cells) per building.
 inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_planes_options& o)
 {
     const auto n = static_cast<std::ptrdiff_t>(s.z.size());
