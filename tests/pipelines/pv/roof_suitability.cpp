@@ -227,6 +227,12 @@ TEST_CASE("pv/roof_suitability: bad input is refused with the argument named")
                          invalid_input);
     CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, {.min_azimuth_deg = 300}),
                          doctest::Contains("min_azimuth_deg"), invalid_input);
+    roof_suitability_options rough;
+    rough.planes.max_plane_rms_m = 0;
+    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, rough), doctest::Contains("planes.max_plane_rms_m"),
+                         invalid_input);
+    const grid other{0.0, 10.0, 1.0, 10, 10};
+    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, other), doctest::Contains("grid"), invalid_input);
 }
 
 TEST_CASE("pv/roof_suitability: same result for any thread count and on a strided window")

@@ -366,6 +366,10 @@ roof_suitability_result roof_suitability(const Dsm& dsm, const Dtm& dtm, const I
     detail::require(opt.planes.min_seed_cells >= 3, fn, "planes.min_seed_cells", ">= 3", opt.planes.min_seed_cells);
     detail::require(opt.planes.min_angle_deg > 0 && opt.planes.min_angle_deg <= opt.planes.max_angle_deg, fn,
                     "planes.min_angle_deg", "in (0, planes.max_angle_deg]", opt.planes.min_angle_deg);
+    detail::require(opt.planes.min_distance_m >= 0, fn, "planes.min_distance_m", ">= 0", opt.planes.min_distance_m);
+    detail::require(opt.planes.min_plane_m2 >= 0, fn, "planes.min_plane_m2", ">= 0", opt.planes.min_plane_m2);
+    detail::require(opt.planes.max_plane_rms_m > 0, fn, "planes.max_plane_rms_m", "> 0", opt.planes.max_plane_rms_m);
+    detail::require(opt.planes.reassign_rounds >= 1, fn, "planes.reassign_rounds", ">= 1", opt.planes.reassign_rounds);
     detail::check_execution(opt.run, fn);
 
     const detail::building_groups groups = detail::group_buildings(building_id, fn);
