@@ -224,13 +224,17 @@ inline void reassign_cells(const roof_box_surface& s, std::vector<std::vector<st
             const double r = residual(i, p);
             if (r <= dist_tol) queue.emplace(r, i, static_cast<std::int32_t>(p + 1));
         }
+    // A (cell, plane) entry has one residual, so pushing it again changes nothing: skip repeats by one plane.
+    std::vector<std::int32_t> last_pushed(assign.size(), 0);
     while (!queue.empty()) {
         const auto [r, i, p] = queue.top();
         queue.pop();
         if (assign[static_cast<std::size_t>(i)] != 0) continue;
         assign[static_cast<std::size_t>(i)] = p;
         s.for_neighbours(i, [&](std::ptrdiff_t j) {
-            if (assign[static_cast<std::size_t>(j)] != 0) return;
+            const auto ju = static_cast<std::size_t>(j);
+            if (assign[ju] != 0 || last_pushed[ju] == p) return;
+            last_pushed[ju] = p;
             const double rj = residual(j, static_cast<std::size_t>(p - 1));
             if (rj <= dist_tol) queue.emplace(rj, j, p);
         });
