@@ -147,6 +147,13 @@ TEST_CASE("pv/roof_suitability: sheds are suitable facing south, not facing nort
     CHECK(rt.patches[0].tilt_deg == doctest::Approx(65).epsilon(1e-3));
     CHECK_FALSE(rt.patches[0].suitable);
     CHECK(rt.patches[0].reason == "too steep");
+    // With flat_below_deg lowered to 10, a 12-degree shed is pitched but under min_tilt_deg.
+    const auto shallow = render(house(synth::roof_kind_truth::shed, 12, 90, 0));
+    const auto rw = roof_suitability(shallow.dsm, shallow.dtm, shallow.ids, shallow.g, {.flat_below_deg = 10});
+    REQUIRE(rw.patches.size() == 1);
+    CHECK_FALSE(rw.patches[0].flat);
+    CHECK_FALSE(rw.patches[0].suitable);
+    CHECK(rw.patches[0].reason == "too shallow");
 }
 
 TEST_CASE("pv/roof_suitability: flat roofs follow their own rule: suitable when large enough, whatever the facing")

@@ -96,7 +96,11 @@ inline void judge_patch(roof_patch& p, const roof_suitability_options& o)
     const bool tilt_ok = p.tilt_deg >= o.min_tilt_deg && p.tilt_deg <= o.max_tilt_deg;
     const bool facing_ok = p.azimuth_deg >= o.min_azimuth_deg && p.azimuth_deg <= o.max_azimuth_deg;
     p.suitable = big && tilt_ok && facing_ok;
-    p.reason = p.suitable ? "suitable" : !facing_ok ? "faces north" : !tilt_ok ? "too steep" : "under the minimum area";
+    p.reason = p.suitable                          ? "suitable"
+               : !facing_ok                        ? "faces north"
+               : p.tilt_deg > o.max_tilt_deg       ? "too steep"
+               : !tilt_ok                          ? "too shallow"
+                                                   : "under the minimum area";
 }
 
 /// Footprint cells grouped by building id (raster order inside a group).
