@@ -16,6 +16,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/plane_fit.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/interpolate/idw_fill.hpp"
@@ -84,59 +85,12 @@ struct extract_buildings_result {
 
 namespace detail {
 
-/// Least-squares plane z = a x + b y + c (x east, y north, metres from a reference) of accumulated sums.
-struct plane_sums {
-    double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, syy = 0, sxz = 0, syz = 0, szz = 0;
-    void add(double x, double y, double z) noexcept
-    {
-        n += 1;
-        sx += x;
-        sy += y;
-        sz += z;
-        sxx += x * x;
-        sxy += x * y;
-        syy += y * y;
-        sxz += x * z;
-        syz += y * z;
-        szz += z * z;
-    }
-    void add(const plane_sums& o) noexcept
-    {
-        n += o.n;
-        sx += o.sx;
-        sy += o.sy;
-        sz += o.sz;
-        sxx += o.sxx;
-        sxy += o.sxy;
-        syy += o.syy;
-        sxz += o.sxz;
-        syz += o.syz;
-        szz += o.szz;
-    }
-    /// {a, b, c, rms}; a = b = 0 and c = mean when the points are degenerate (collinear or < 3).
-    std::array<double, 4> fit() const noexcept
-    {
-        if (n <= 0) return {0, 0, 0, 0};
-        const double mx = sx / n, my = sy / n, mz = sz / n;
-        const double cxx = sxx / n - mx * mx, cxy = sxy / n - mx * my, cyy = syy / n - my * my;
-        const double cxz = sxz / n - mx * mz, cyz = syz / n - my * mz, czz = szz / n - mz * mz;
-        const double det = cxx * cyy - cxy * cxy;
-        double a = 0, b = 0;
-        if (n >= 3 && det > 1e-12 * (cxx + cyy) * (cxx + cyy) && det > 0) {
-            a = (cxz * cyy - cyz * cxy) / det;
-            b = (cyz * cxx - cxz * cxy) / det;
-        }
-        const double var = std::max(0.0, czz - a * cxz - b * cyz);
-        return {a, b, mz - a * mx - b * my, std::sqrt(var)};
-    }
-};
-
-/// Angle between the normals (-a1, -b1, 1) and (-a2, -b2, 1), degrees.
-inline double normal_angle_deg(double a1, double b1, double a2, double b2) noexcept
+/// {a, b, c, rms} of the least-squares plane z = a x + b y + c of `s` (core/plane_fit.hpp): a = b = 0 and
+/// c = mean when the points are degenerate (collinear or < 3).
+inline std::array<double, 4> plane_abc_rms(const plane_sums& s) noexcept
 {
-    const double dot = a1 * a2 + b1 * b2 + 1.0;
-    const double n1 = std::sqrt(a1 * a1 + b1 * b1 + 1.0), n2 = std::sqrt(a2 * a2 + b2 * b2 + 1.0);
-    return std::acos(std::clamp(dot / (n1 * n2), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    const plane_fit f = fit_plane(s);
+    return {f.a, f.b, f.c, f.rms};
 }
 
 inline void check_extract_buildings(double cell_m, const extract_buildings_options& opt, const char* function)
@@ -197,7 +151,7 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
                         }
                     }
                     if (s.n < 6) continue;
-                    const auto f = s.fit();
+                    const auto f = plane_abc_rms(s);
                     lp.a(r, c) = static_cast<float>(f[0]);
                     lp.b(r, c) = static_cast<float>(f[1]);
                     lp.rms(r, c) = static_cast<float>(f[3]);
@@ -414,7 +368,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                 if (region[q] != 0 || out.building_id.data()[q] != out.building_id.data()[p] || !planar_at(rr, cc))
                     continue;
                 const double ma = sa / n, mb = sb / n;
-                if (detail::normal_angle_deg(lp.a.data()[q], lp.b.data()[q], ma, mb) > opt.plane_angle_deg) continue;
+                if (normal_angle_deg(lp.a.data()[q], lp.b.data()[q], ma, mb) > opt.plane_angle_deg) continue;
                 const double expected = ma * (x_of(cc) - x_of(pc)) + mb * (y_of(rr) - y_of(pr));
                 if (std::abs(static_cast<double>(z.data()[q]) - static_cast<double>(z.data()[p]) - expected) >
                     opt.step_m)
@@ -433,7 +387,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     // Planes are fitted to the grown (planar) cells of a surface, so that cells given to it later (eaves
     // mixed with the wall, filled holes) do not tilt it; a surface without any takes all its cells.
     const auto fit_regions = [&](std::int32_t count, bool core_only = true) {
-        std::vector<detail::plane_sums> sums(static_cast<std::size_t>(count) + 1), all(sums.size());
+        std::vector<plane_sums> sums(static_cast<std::size_t>(count) + 1), all(sums.size());
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
                 const auto g = static_cast<std::size_t>(region[idx(r, c)]);
@@ -521,11 +475,11 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     {
         auto sums = fit_regions(regions);
         std::vector<std::array<double, 4>> planes(sums.size());
-        for (std::size_t g = 1; g < sums.size(); ++g) planes[g] = sums[g].fit();
+        for (std::size_t g = 1; g < sums.size(); ++g) planes[g] = detail::plane_abc_rms(sums[g]);
         {
             grow_into_rest(planes);
             sums = fit_regions(regions);
-            for (std::size_t g = 1; g < sums.size(); ++g) planes[g] = sums[g].fit();
+            for (std::size_t g = 1; g < sums.size(); ++g) planes[g] = detail::plane_abc_rms(sums[g]);
             // Merge adjacent surfaces of one building while one plane fits both: the pair whose joint fit leaves
             // the least RMS / (1 + tan^2 tilt), while that is <= merge_rms_m.
             std::vector<std::int32_t> parent(static_cast<std::size_t>(regions) + 1);
@@ -552,9 +506,9 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                     g = detail::uf_find(parent, g);
                     h = detail::uf_find(parent, h);
                     if (g == h) continue;
-                    detail::plane_sums joint = sums[static_cast<std::size_t>(g)];
+                    plane_sums joint = sums[static_cast<std::size_t>(g)];
                     joint.add(sums[static_cast<std::size_t>(h)]);
-                    const auto f = joint.fit();  // RMS relative to the tolerance of planar cells at its slope
+                    const auto f = detail::plane_abc_rms(joint);  // RMS relative to the tolerance of planar cells at its slope
                     const double rise =
                         f[3] / detail::plane_tolerance(opt, f[0] * f[0] + f[1] * f[1], cell_m) * opt.plane_rms_m;
                     if (rise < least || (rise == least && std::pair{std::min(g, h), std::max(g, h)} < chosen)) {
@@ -599,7 +553,7 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
     for (std::size_t b = 0; b < kept; ++b) out.buildings[b].id = static_cast<std::int32_t>(b + 1);
     for (std::size_t i = 0; i < order.size(); ++i) {
         const auto g = static_cast<std::size_t>(order[i]);
-        const auto f = planes_fit[g].fit();
+        const auto f = detail::plane_abc_rms(planes_fit[g]);
         roof_surface s;
         s.id = static_cast<std::int32_t>(i + 1);
         s.building = owner[g];
