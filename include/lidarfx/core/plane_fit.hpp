@@ -55,7 +55,7 @@ struct plane_fit {
     double azimuth_deg() const noexcept
     {
         double az = std::atan2(-a, -b) * 180.0 / std::numbers::pi;
-        return az < 0 ? az + 360.0 : az >= 360.0 ? 0.0 : az;
+        return az < 0 ? az + 360.0 : az >= 360.0 ? 0.0 : az + 0.0;  // + 0.0: -0 becomes 0
     }
 };
 

@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: Apache-2.0
+// lidarfx roofs: rooftop PV suitability per roof plane (or per building, the paper's method) from a surface
+// model and building footprints.
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <lidarfx/lidarfx.hpp>
+
+#include "cli_common.hpp"
+#include "command.hpp"
+#include "io/ascii_grid.hpp"
+#include "io/footprints.hpp"
+#include "io/png.hpp"
+#include "io/quicklook.hpp"
+#include "io/tables.hpp"
+#include "outputs.hpp"
+
+namespace {
+
+constexpr const char* usage =
+    "usage: lidarfx roofs IN.las|IN.laz [MORE ...] FOOTPRINTS.geojson --out DIR [--cell M] [--mode planes|paper]\n"
+    "       lidarfx roofs DSM.asc DTM.asc FOOTPRINTS.geojson --out DIR [--mode planes|paper]\n"
+    "Rooftop PV suitability. Footprints: a GeoJSON FeatureCollection of Polygon/MultiPolygon features with an\n"
+    "integer building_id property, in the CRS of the input. From LAS files the DSM is the highest return per\n"
+    "cell and the DTM the ground (class 2 when the file is classified, else the ground filter), both IDW-filled.\n"
+    "Mode planes (default): every roof plane with its own fitted tilt, azimuth and area; mode paper: one PV\n"
+    "plane per building by the published method (aspect mode, half-std band). Writes roof_patches.csv\n"
+    "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,centroid_y,...;\n"
+    "area_m2 horizontal, one row per plane or building, flat roofs included), roof_patches.geojson,\n"
+    "roof_patches.png (patches coloured by azimuth, suitable ones outlined) and footprints.csv (what happened to\n"
+    "every footprint: used, invalid, outside the grid, no cells).\n"
+    "options (defaults in brackets):\n"
+    "  --cell M       cell size for LAS input, metres [1]\n"
+    "  --mode M       planes | paper [planes]\n"
+    "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
+
+bool ends_with(const std::string& s, const std::string& tail)
+{
+    return s.size() >= tail.size() && std::equal(tail.rbegin(), tail.rend(), s.rbegin(),
+                                                 [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+}  // namespace
+
+namespace lidarfx::cli {
+namespace {
+
+// The surface models of the run, in metres, on one grid.
+struct roof_inputs {
+    raster<float> dsm, dtm;
+    grid g;                 // metres (read_survey's grid, or the .asc grid taken as metres)
+    grid out_grid;          // the same cells in the input's CRS units, for outputs
+    double unit_m = 1.0;    // metres per CRS unit of x and y
+    std::string crs_wkt;
+    int epsg = 0;
+};
+
+roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const arguments& a, int threads)
+{
+    roof_inputs in;
+    if (inputs.size() == 2 && ends_with(inputs[0], ".asc") && ends_with(inputs[1], ".asc")) {
+        grid g2;
+        in.dsm = io::read_ascii_grid(inputs[0], in.g);
+        in.dtm = io::read_ascii_grid(inputs[1], g2);
+        if (g2.rows != in.g.rows || g2.cols != in.g.cols || g2.x0 != in.g.x0 || g2.y0 != in.g.y0 || g2.cell != in.g.cell)
+            throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
+        in.out_grid = in.g;
+        return in;
+    }
+    for (const std::string& f : inputs) {
+        if (ends_with(f, ".asc")) throw usage_error(f + ": give either LAS/LAZ files or exactly DSM.asc DTM.asc");
+    }
+    auto survey_opts = survey_options_from(a, 64);
+    if (!a.has("cell")) survey_opts.cell_m = 1.0;  // roofs' default: 1 m cells
+    const survey s = read_survey(inputs, survey_opts);
+    print_survey(s);
+    in.g = s.rasters.g;
+    const ground_model_result ground = ground_model(s.rasters.max_z, in.g.cell, {.run = {.threads = threads}});
+    in.dsm = ground.surface;
+    in.dtm = ground.ground;
+    in.out_grid = to_crs_units(in.g, s);
+    in.unit_m = s.crs.horizontal_unit_m;
+    in.crs_wkt = s.crs_wkt;
+    in.epsg = s.epsg;
+    return in;
+}
+
+// Footprints in the metre space of the grid (file coordinates times the unit), burned with the cell-centre rule.
+struct burned_footprints {
+    burn_result burn;
+    io::footprint_collection file;
+};
+
+burned_footprints burn_footprints(const std::string& path, const roof_inputs& in)
+{
+    burned_footprints b{{}, io::read_footprints_geojson(path)};
+    std::vector<labelled_polygon> list;
+    for (const io::footprint& f : b.file.footprints) {
+        labelled_polygon lp{f.building_id, f.parts};
+        for (polygon& p : lp.parts)
+            for (auto& ring : p.rings)
+                for (auto& v : ring) v = {v[0] * in.unit_m, v[1] * in.unit_m};
+        list.push_back(std::move(lp));
+    }
+    b.burn = burn_polygons(list, in.g);
+    return b;
+}
+
+// A picture of the patches: azimuth as a colour (north blue, east green, south yellow, west red: the viridis
+// ramp over 0..360 degrees), other roof cells grey, suitable patches outlined in white.
+io::rgb_image patch_picture(const roof_suitability_result& r, const raster<float>& dsm, double cell_m)
+{
+    raster<float> azimuth(r.patch_id.rows(), r.patch_id.cols(), NAN);
+    std::map<std::int32_t, const roof_patch*> by_id;
+    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
+    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
+        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x)
+            if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end())
+                azimuth(y, x) = static_cast<float>(it->second->flat ? 180.0 : it->second->azimuth_deg);
+    io::rgb_image img = io::colorize(azimuth.view(), 0.0, 360.0);
+    const raster<std::uint8_t> shade = io::hillshade(dsm.view(), cell_m);
+    const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
+        if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return false;
+        const auto it = by_id.find(r.patch_id(y, x));
+        return it != by_id.end() && it->second->suitable;
+    };
+    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
+        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
+            std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
+            if (std::isnan(azimuth(y, x))) {
+                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(y, x) / 2);
+            } else if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
+                px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
+            }
+        }
+    return io::with_legend(img, 0.0, 360.0, "° azimuth");
+}
+
+int run_roofs(const std::vector<std::string>& args)
+{
+    const arguments a(args, {"out", "cell", "mode", "threads", "memory", "crop", "formats"}, {"help", "force"});
+    if (const auto code = stop_for_usage(a, usage, true)) return *code;
+    const int threads = a.integer("threads", 0);
+    if (threads < 0) throw usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
+    const std::string mode = a.text("mode", "planes");
+    if (mode != "planes" && mode != "paper") throw usage_error("--mode must be planes or paper (got " + mode + ")");
+    const output_formats formats = output_formats_from(a);
+    std::vector<std::string> inputs = a.positional();
+    if (inputs.size() < 2 || !(ends_with(inputs.back(), ".geojson") || ends_with(inputs.back(), ".json")))
+        throw usage_error("the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
+    const std::string footprint_file = inputs.back();
+    inputs.pop_back();
+
+    // Footprints first: a bad file fails before the survey is read and before the output folder exists.
+    try {
+        (void)io::read_footprints_geojson(footprint_file);
+    } catch (const invalid_input& e) {
+        throw usage_error(e.what());
+    }
+    io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
+    std::vector<std::string> names{"roof_patches.csv", "roof_patches.geojson", "footprints.csv"};
+    if (formats.png) names.push_back("roof_patches.png");
+    for (const auto& n : names) out.check_name(n);
+    const roof_inputs in = read_roof_inputs(inputs, a, threads);
+    const burned_footprints fp = burn_footprints(footprint_file, in);
+
+    roof_suitability_options opt;
+    opt.mode = mode == "paper" ? roof_mode::paper : roof_mode::planes;
+    opt.run = {.threads = threads, .progress = progress_bar("roofs")};
+    const roof_suitability_result r = roof_suitability(in.dsm, in.dtm, fp.burn.labels, in.g, opt);
+
+    // What happened to every footprint.
+    std::vector<std::vector<io::table_value>> report;
+    std::map<std::int32_t, std::size_t> patches_of;
+    for (const roof_patch& p : r.patches) ++patches_of[p.building_id];
+    std::size_t used = 0;
+    for (std::size_t i = 0; i < fp.file.footprints.size(); ++i) {
+        const io::footprint& f = fp.file.footprints[i];
+        const burn_account& acc = fp.burn.footprints[i];
+        std::string status = "used";
+        if (acc.outside) status = "outside the grid";
+        else if (acc.cells == 0) status = acc.contested ? "covered by other footprints" : "no cell centre inside";
+        else ++used;
+        report.push_back({f.building_id, static_cast<std::int64_t>(f.feature), status, static_cast<std::int64_t>(acc.cells),
+                          static_cast<std::int64_t>(acc.contested), static_cast<std::int64_t>(patches_of[f.building_id])});
+    }
+    for (const io::footprint_problem& p : fp.file.problems)
+        report.push_back({p.building_id, static_cast<std::int64_t>(p.feature), p.problem, std::int64_t{0}, std::int64_t{0}, std::int64_t{0}});
+    out.write("footprints.csv", [&](const std::string& path) {
+        io::write_csv(path, {"building_id", "feature", "status", "cells", "contested_cells", "patches"}, report);
+    });
+
+    // Patches: centroids and outlines in the input's CRS units; areas in m2.
+    std::vector<std::vector<io::table_value>> rows;
+    for (const roof_patch& p : r.patches) {
+        rows.push_back({p.building_id, p.patch_id, p.tilt_deg, p.azimuth_deg, p.area_m2, p.sloped_area_m2, p.kwp,
+                        std::int64_t{p.suitable ? 1 : 0}, p.centroid_x / in.unit_m, p.centroid_y / in.unit_m,
+                        std::int64_t{p.flat ? 1 : 0}, p.reason});
+    }
+    out.write("roof_patches.csv", [&](const std::string& path) {
+        io::write_csv(path, {"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2", "kwp",
+                             "suitable", "centroid_x", "centroid_y", "flat", "reason"},
+                      rows);
+    });
+    std::map<std::int32_t, const roof_patch*> by_id;
+    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
+    std::vector<io::geojson_feature> features;
+    for (const auto& lp : polygonize(r.patch_id, in.out_grid)) {
+        const roof_patch& p = *by_id.at(lp.label);
+        for (const auto& poly : lp.polygons) {
+            features.push_back({poly.rings, {{"building_id", p.building_id}, {"patch_id", p.patch_id},
+                                             {"tilt_deg", p.tilt_deg}, {"azimuth_deg", p.azimuth_deg},
+                                             {"area_m2", p.area_m2}, {"sloped_area_m2", p.sloped_area_m2},
+                                             {"kwp", p.kwp}, {"suitable", p.suitable}}});
+        }
+    }
+    out.write("roof_patches.geojson", [&](const std::string& path) { io::write_geojson(path, features, in.epsg); });
+    if (formats.png) {
+        const io::rgb_image img = patch_picture(r, in.dsm, in.g.cell);
+        out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
+    }
+
+    std::size_t suitable = 0;
+    double kwp = 0;
+    for (const roof_patch& p : r.patches) {
+        if (!p.suitable) continue;
+        ++suitable;
+        kwp += p.kwp;
+    }
+    std::cout << std::fixed << std::setprecision(1) << "footprints: " << used << " used of "
+              << fp.file.footprints.size() + fp.file.problems.size() << " (see footprints.csv)\n"
+              << "roof patches (" << mode << " mode): " << r.patches.size() << ", suitable " << suitable << ", "
+              << kwp << " kWp\n";
+    out.set_units_note("areas in m2 (horizontal area_m2, sloped_area_m2), angles in degrees (azimuth clockwise from "
+                  "grid north), centroids and outlines in the input's CRS units");
+    commit_and_report(out, command_line("roofs", args));
+    return 0;
+}
+
+const registration reg{"roofs", "DSM + DTM (or LAS) + footprints -> rooftop PV planes and suitability", run_roofs};
+
+}  // namespace
+}  // namespace lidarfx::cli
