@@ -43,14 +43,16 @@ BENCHMARK_CAPTURE(bm_sun_position, spa, lidarfx::sun_model::spa)->Unit(benchmark
 BENCHMARK_CAPTURE(bm_sun_position, simple, lidarfx::sun_model::simple)->Unit(benchmark::kMillisecond);
 
 // A year of hourly records (8760, about 4400 with the sun up, as a TMY3 year) on an n x n box town at 1 m
-// cells, one building per 1,750 m^2 (600 on 1024^2), SVF included. Arguments: n, threads (0 = all cores).
+// cells, one building per 1,750 m^2 (600 on 1024^2), SVF included. Arguments: n, threads (0 = all cores), shadow
+// line families (4 = default, 1 = the dissertation's single family).
 void bm_irradiance_year(benchmark::State& state)
 {
     const auto n = state.range(0);
     std::mt19937 rng(20261202);
     const auto z = reference::box_town(rng, n, n, static_cast<int>(n * n / 1750), 0.3, 8, 30);
     const auto records = lidarfx::clear_sky_records(2023, 36.1, -79.9);
-    const lidarfx::irradiance_maps_options opt{.run = {.threads = static_cast<int>(state.range(1))}};
+    lidarfx::irradiance_maps_options opt{.run = {.threads = static_cast<int>(state.range(1))}};
+    opt.shadow_line_phases = static_cast<int>(state.range(2));
     for (auto _ : state) {
         auto maps = lidarfx::irradiance_maps(z, 1.0, 36.1, -79.9, records, opt);
         benchmark::DoNotOptimize(maps.annual_kwh_m2.data());
@@ -59,8 +61,8 @@ void bm_irradiance_year(benchmark::State& state)
     state.SetItemsProcessed(state.iterations() * n * n);
 }
 BENCHMARK(bm_irradiance_year)
-    ->ArgsProduct({{1024}, {0}})
-    ->ArgNames({"n", "threads"})
+    ->ArgsProduct({{1024}, {0}, {4, 1}})
+    ->ArgNames({"n", "threads", "phases"})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kSecond);

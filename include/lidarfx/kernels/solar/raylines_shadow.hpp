@@ -143,6 +143,8 @@ inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::ui
     std::vector<double> keys(static_cast<std::size_t>(cols));
     const ray_lines& l = fam.lines.front();
     const bool fwd = l.forward();
+    std::array<const std::ptrdiff_t*, 64> shift{};
+    for (std::size_t f = 0; f < families; ++f) shift[f] = fam.shifts[f].data();
     std::ptrdiff_t lo_row = rows, hi_row = 0;
     for (std::size_t f = 0; f < families; ++f) {
         const auto [a, b] = ray_lines::rows_of(fam.shifts[f], k0, k1, rows);
@@ -165,16 +167,28 @@ inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::ui
         }
         double* key = keys.data();
         for (std::ptrdiff_t c = lo; c < hi; ++c) key[c] = static_cast<double>(zr[c]) + (lift.col_lift[static_cast<std::size_t>(c)] + rl);
-        for (std::size_t f = 0; f < families; ++f) {
-            const std::vector<std::ptrdiff_t>& sh = fam.shifts[f];
-            const auto [c0, c1] = span[f];
-            double* lim = limits.data() + f * static_cast<std::size_t>(n) - k0;
-            for (std::ptrdiff_t j = c0; j < c1; ++j) {
-                const std::ptrdiff_t c = fwd ? j : c0 + c1 - 1 - j;
-                double& m = lim[r - sh[static_cast<std::size_t>(c)]];
-                const std::uint8_t v = m > key[c] ? 0 : 1;
-                if (fam.owner[static_cast<std::size_t>(c)] == f) o[c] = zr[c] != zr[c] ? nan_cell : v;
-                m = key[c] > m ? key[c] : m;
+        if (families == 1) {  // one chain per line: the plain walk
+            double* lim = limits.data() - k0;
+            for (std::ptrdiff_t j = lo; j < hi; ++j) {
+                const std::ptrdiff_t c = fwd ? j : lo + hi - 1 - j;
+                double& m = lim[r - shift[0][c]];
+                o[c] = zr[c] != zr[c] ? nan_cell : (m > key[c] ? 0 : 1);
+                m = key[c] > m ? key[c] : m;  // false for a NaN key: NaN cells cast no shadow
+            }
+            continue;
+        }
+        // Columns in walk order, every family at each column: the families' running maxima are independent
+        // chains, so interleaving them hides the latency of each chain (consecutive cells of one line).
+        for (std::ptrdiff_t j = lo; j < hi; ++j) {
+            const std::ptrdiff_t c = fwd ? j : lo + hi - 1 - j;
+            const double kc = key[c];
+            const std::size_t own = fam.owner[static_cast<std::size_t>(c)];
+            for (std::size_t f = 0; f < families; ++f) {
+                if (c < span[f][0] || c >= span[f][1]) continue;
+                double& m = limits[f * static_cast<std::size_t>(n) +
+                                   static_cast<std::size_t>(r - shift[f][c] - k0)];
+                if (f == own) o[c] = zr[c] != zr[c] ? nan_cell : (m > kc ? 0 : 1);
+                m = kc > m ? kc : m;  // false for a NaN key: NaN cells cast no shadow
             }
         }
     }

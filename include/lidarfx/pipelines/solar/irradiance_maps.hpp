@@ -45,6 +45,10 @@ struct irradiance_maps_options {
     sun_position_options sun = {};  ///< sun model (default NREL SPA with refraction at sea level)
     sky_view_factor_method svf_method = sky_view_factor_method::source_share;  ///< the dissertation's by default
     int svf_directions = 72;        ///< azimuths of the sky view factor sweep, >= 4
+    /// Line families of the hourly shadows (raylines_shadow_options::line_phases), in [1, 64]: 4 (default) puts
+    /// every cell's ray within 1/8 cell of its own centre; 1 is the dissertation's single family, up to 3 times
+    /// faster for azimuths off the axes and diagonals.
+    int shadow_line_phases = 4;
     /// Ground reflectance (albedo) in [0, 1] for ground-reflected irradiance GHI * albedo * (1 - cos b) / 2 on
     /// tilted cells; 0 (the default, the dissertation's) leaves it out. Horizontal cells never get any.
     double albedo = 0.0;
@@ -162,6 +166,8 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
     detail::require_positive(cell_m, fn, "cell_m");
     detail::check_execution(opt.run, fn);
     detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
+    detail::require(opt.shadow_line_phases >= 1 && opt.shadow_line_phases <= 64, fn, "shadow_line_phases",
+                    "in [1, 64]", opt.shadow_line_phases);
     detail::require(opt.albedo >= 0.0 && opt.albedo <= 1.0, fn, "albedo", "in [0, 1]", opt.albedo);
     detail::require(opt.diffuse == diffuse_model::isotropic || opt.diffuse == diffuse_model::perez, fn,
                     "diffuse", "isotropic or perez", static_cast<int>(opt.diffuse));
@@ -254,7 +260,7 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
                 const irradiance_record& rec = records[d.record];
                 const double hours_k = static_cast<double>(rec.interval.count()) / 3600.0 / 1000.0;
                 raylines_shadow(z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
-                                {.nan_cell = 0, .run = {.threads = opt.run.threads}});
+                                {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = opt.run.threads}});
                 const enu_vector sun = detail::sun_vector_unchecked(d.azimuth_deg, d.elevation_deg);
                 const double beam_flat = rec.dni_w_m2 * (sun.up > 0.0 ? sun.up : 0.0) * hours_k;
                 const double dni = rec.dni_w_m2 * hours_k, dhi = rec.dhi_w_m2 * hours_k;
