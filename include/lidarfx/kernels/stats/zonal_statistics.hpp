@@ -17,6 +17,24 @@
 
 namespace lidarfx {
 
+namespace detail {
+
+/// The largest label of a label raster (0 when empty). @throws invalid_input naming `fn` on a negative label.
+template <raster_input Labels>
+std::int64_t largest_label(const Labels& labels, const char* fn)
+{
+    std::int64_t top = 0;
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+            const auto k = static_cast<std::int64_t>(labels(r, c));
+            detail::require(k >= 0, fn, "labels", ">= 0", k);
+            top = std::max(top, k);
+        }
+    return top;
+}
+
+}  // namespace detail
+
 /// Statistics of the finite values of one label.
 struct zone_statistics {
     std::size_t count = 0;  ///< finite values (NaN cells of the label are not counted)
@@ -36,13 +54,7 @@ std::vector<zone_statistics> zonal_statistics(const Labels& labels, const Values
 {
     constexpr const char* fn = "zonal_statistics";
     detail::require_same_shape(labels, values, fn, "labels", "values");
-    std::int64_t top = 0;
-    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
-            const auto k = static_cast<std::int64_t>(labels(r, c));
-            detail::require(k >= 0, fn, "labels", ">= 0", k);
-            top = std::max(top, k);
-        }
+    const std::int64_t top = detail::largest_label(labels, fn);
     // Values grouped by label (counting sort), then every statistic per group.
     std::vector<std::size_t> start(static_cast<std::size_t>(top) + 2, 0);
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
@@ -112,13 +124,7 @@ std::vector<circular_zone_statistics> zonal_circular_statistics(const Labels& la
                         bins_rounded <= 36000,
                     fn, "bin_width_deg", "360 / a whole number of bins in [1, 36000]", opt.bin_width_deg);
     const auto bins = static_cast<std::size_t>(bins_rounded);
-    std::int64_t top = 0;
-    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
-            const auto k = static_cast<std::int64_t>(labels(r, c));
-            detail::require(k >= 0, fn, "labels", ">= 0", k);
-            top = std::max(top, k);
-        }
+    const std::int64_t top = detail::largest_label(labels, fn);
     const std::size_t zones = static_cast<std::size_t>(top) + 1;
     std::vector<std::uint32_t> hist(zones * bins, 0);
     std::vector<double> sum_sin(zones, 0.0), sum_cos(zones, 0.0);

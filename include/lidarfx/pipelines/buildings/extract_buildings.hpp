@@ -127,6 +127,18 @@ struct local_planes {
     raster<float> a, b, rms;
 };
 
+/// Calls f(rr, cc) for the cells of the (2 w + 1)^2 window around (r, c), clipped to the raster, that have the
+/// same id as (r, c), in raster order.
+template <class F>
+void for_window_of_same_id(raster_view<const std::int32_t> id, std::ptrdiff_t r, std::ptrdiff_t c, std::ptrdiff_t w,
+                           F&& f)
+{
+    const std::int32_t me = id(r, c);
+    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(id.rows() - 1, r + w); ++rr)
+        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(id.cols() - 1, c + w); ++cc)
+            if (id(rr, cc) == me) f(rr, cc);
+}
+
 inline local_planes fit_local_planes(raster_view<const float> z, raster_view<const std::int32_t> id, double cell_m,
                                      std::ptrdiff_t w, int threads, const char* function)
 {
@@ -141,15 +153,10 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
                     const std::int32_t me = id(r, c);
                     if (me == 0) continue;
                     plane_sums s;
-                    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w);
-                         ++rr) {
-                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w);
-                             ++cc) {
-                            if (id(rr, cc) != me) continue;
-                            s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
-                                  static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
-                        }
-                    }
+                    for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
+                        s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
+                              static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
+                    });
                     if (s.n < 6) continue;
                     const auto f = plane_abc_rms(s);
                     lp.a(r, c) = static_cast<float>(f[0]);
@@ -171,17 +178,13 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
                     const std::int32_t me = id(r, c);
                     if (me == 0) continue;
                     float least = std::numeric_limits<float>::infinity();
-                    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - w); rr <= std::min(rows - 1, r + w);
-                         ++rr) {
-                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - w); cc <= std::min(cols - 1, c + w);
-                             ++cc) {
-                            if (id(rr, cc) != me || !(lp.rms(rr, cc) < least)) continue;
-                            least = lp.rms(rr, cc);
-                            best.a(r, c) = lp.a(rr, cc);
-                            best.b(r, c) = lp.b(rr, cc);
-                            best.rms(r, c) = least;
-                        }
-                    }
+                    for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
+                        if (!(lp.rms(rr, cc) < least)) return;
+                        least = lp.rms(rr, cc);
+                        best.a(r, c) = lp.a(rr, cc);
+                        best.b(r, c) = lp.b(rr, cc);
+                        best.rms(r, c) = least;
+                    });
                 }
             }
         },
