@@ -55,6 +55,7 @@
 #include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
 #include "lidarfx/pipelines/pv/roof_planes.hpp"
 #include "lidarfx/pipelines/pv/roof_suitability.hpp"
+#include "lidarfx/pipelines/pv/roof_yield.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
