@@ -30,6 +30,7 @@ constexpr const char* usage =
     "and paper mode on a synthetic roof town (make_roof_town, seed 4, 36 buildings; DIR/roofs_planes,\n"
     "DIR/roofs_paper) and scores the roof planes against its truth (DIR/roof_scores.csv). --las FILE adds a\n"
     "real survey (DIR/<file name>): its rasters, and its waterbodies or the reasons the data cannot support them.\n"
+    "--size and --seed set the lake and river scenes (the roof town is fixed).\n"
     "Default DIR: lidarfx-demo; --threads 0 = all cores (default).\n";
 
 struct scored {
