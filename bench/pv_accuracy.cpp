@@ -10,9 +10,9 @@
 
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/pv/roof_suitability.hpp>
+#include <lidarfx/synth/roof_metrics.hpp>
 #include <lidarfx/synth/roof_towns.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <reference/roof_metrics.hpp>
 
 namespace {
 
@@ -64,14 +64,14 @@ int main(int argc, char** argv)
             roof_suitability_options o;
             o.mode = mode;
             const auto r = roof_suitability(town.dsm, town.dtm, town.building_id, town.g, o);
-            reference::roof_scores s;
-            reference::score_roofs(town, r, o, s);
+            synth::roof_scores s;
+            synth::score_roofs(town, r, o, s);
             std::printf("  project town (town_scene seed 1, %zu buildings, 2 pts/m2, max z in 1 m cells): found %.3f tilt5 %.3f "
                         "tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f\n",
                         town.buildings.size(), s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(),
                         s.precision(), s.area_rmse());
         }
-        reference::roof_scores total;
+        synth::roof_scores total;
         for (unsigned seed = first; seed <= last; ++seed) {
             synth::roof_town_options to;
             to.seed = seed;
@@ -79,8 +79,8 @@ int main(int argc, char** argv)
             roof_suitability_options o;
             o.mode = mode;
             const auto r = roof_suitability(town.dsm, town.dtm, town.building_id, town.g, o);
-            reference::roof_scores s;
-            reference::score_roofs(town, r, o, s);
+            synth::roof_scores s;
+            synth::score_roofs(town, r, o, s);
             std::printf("  seed %u: found %.3f tilt5 %.3f tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f  (%.1f pts/m2)\n",
                         seed, s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(), s.precision(),
                         s.area_rmse(), town.density_per_m2);
@@ -102,19 +102,19 @@ int main(int argc, char** argv)
         std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
             std::printf("    worst tilt: seed %d building %d (%s) tilt %.1f vs %.1f\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, reference::kind_name(worst[k].kind), worst[k].tilt, worst[k].true_tilt);
+                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].tilt, worst[k].true_tilt);
         std::erase_if(worst, [](const auto& m) { return m.true_tilt < 5; });  // no azimuth on flat planes
         std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
             std::printf("    worst azimuth: seed %d building %d (%s) azimuth %.1f vs %.1f (tilt %.1f)\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, reference::kind_name(worst[k].kind), worst[k].azimuth,
+                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].azimuth,
                         worst[k].true_azimuth, worst[k].true_tilt);
         std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) {
             return std::fabs(a.area / a.true_area - 1) > std::fabs(b.area / b.true_area - 1);
         });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
             std::printf("    worst area: seed %d building %d (%s) %.1f vs %.1f m2\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, reference::kind_name(worst[k].kind), worst[k].area, worst[k].true_area);
+                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].area, worst[k].true_area);
     }
     return 0;
 }

@@ -15,10 +15,9 @@
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
-#include "io/png.hpp"
-#include "io/quicklook.hpp"
 #include "io/tables.hpp"
 #include "outputs.hpp"
+#include "roof_outputs.hpp"
 
 namespace {
 
@@ -27,7 +26,7 @@ constexpr const char* usage =
     "       lidarfx roofs DSM.asc DTM.asc FOOTPRINTS.geojson --out DIR [--mode planes|paper]\n"
     "Rooftop PV suitability. Footprints: a GeoJSON FeatureCollection of Polygon/MultiPolygon features with an\n"
     "integer building_id property, in the CRS of the input. From LAS files the DSM is the highest return per\n"
-    "cell and the DTM the ground (class 2 when the file is classified, else the ground filter), both IDW-filled.\n"
+    "cell (IDW-filled) and the DTM the terrain of ground_model (edge hulls, IDW inside them).\n"
     "Mode planes (default): every roof plane with its own fitted tilt, azimuth and area; mode paper: one PV\n"
     "plane per building by the published method (aspect mode, half-std band). Writes roof_patches.csv\n"
     "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,centroid_y,...;\n"
@@ -111,36 +110,6 @@ burned_footprints burn_footprints(const std::string& path, const roof_inputs& in
     return b;
 }
 
-// A picture of the patches: azimuth as a colour (north blue, east green, south yellow, west red: the viridis
-// ramp over 0..360 degrees), other roof cells grey, suitable patches outlined in white.
-io::rgb_image patch_picture(const roof_suitability_result& r, const raster<float>& dsm, double cell_m)
-{
-    raster<float> azimuth(r.patch_id.rows(), r.patch_id.cols(), NAN);
-    std::map<std::int32_t, const roof_patch*> by_id;
-    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
-    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
-        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x)
-            if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end())
-                azimuth(y, x) = static_cast<float>(it->second->flat ? 180.0 : it->second->azimuth_deg);
-    io::rgb_image img = io::colorize(azimuth.view(), 0.0, 360.0);
-    const raster<std::uint8_t> shade = io::hillshade(dsm.view(), cell_m);
-    const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
-        if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return false;
-        const auto it = by_id.find(r.patch_id(y, x));
-        return it != by_id.end() && it->second->suitable;
-    };
-    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
-        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
-            std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
-            if (std::isnan(azimuth(y, x))) {
-                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(y, x) / 2);
-            } else if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
-                px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
-            }
-        }
-    return io::with_legend(img, 0.0, 360.0, "° azimuth");
-}
-
 int run_roofs(const std::vector<std::string>& args)
 {
     const arguments a(args, {"out", "cell", "mode", "threads", "memory", "crop", "formats"}, {"help", "force"});
@@ -163,8 +132,8 @@ int run_roofs(const std::vector<std::string>& args)
         throw usage_error(e.what());
     }
     io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
-    std::vector<std::string> names{"roof_patches.csv", "roof_patches.geojson", "footprints.csv"};
-    if (formats.png) names.push_back("roof_patches.png");
+    std::vector<std::string> names = roof_patch_file_names(formats);
+    names.push_back("footprints.csv");
     for (const auto& n : names) out.check_name(n);
     const roof_inputs in = read_roof_inputs(inputs, a, threads);
     const burned_footprints fp = burn_footprints(footprint_file, in);
@@ -195,35 +164,7 @@ int run_roofs(const std::vector<std::string>& args)
         io::write_csv(path, {"building_id", "feature", "status", "cells", "contested_cells", "patches"}, report);
     });
 
-    // Patches: centroids and outlines in the input's CRS units; areas in m2.
-    std::vector<std::vector<io::table_value>> rows;
-    for (const roof_patch& p : r.patches) {
-        rows.push_back({p.building_id, p.patch_id, p.tilt_deg, p.azimuth_deg, p.area_m2, p.sloped_area_m2, p.kwp,
-                        std::int64_t{p.suitable ? 1 : 0}, p.centroid_x / in.unit_m, p.centroid_y / in.unit_m,
-                        std::int64_t{p.flat ? 1 : 0}, p.reason});
-    }
-    out.write("roof_patches.csv", [&](const std::string& path) {
-        io::write_csv(path, {"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2", "kwp",
-                             "suitable", "centroid_x", "centroid_y", "flat", "reason"},
-                      rows);
-    });
-    std::map<std::int32_t, const roof_patch*> by_id;
-    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
-    std::vector<io::geojson_feature> features;
-    for (const auto& lp : polygonize(r.patch_id, in.out_grid)) {
-        const roof_patch& p = *by_id.at(lp.label);
-        for (const auto& poly : lp.polygons) {
-            features.push_back({poly.rings, {{"building_id", p.building_id}, {"patch_id", p.patch_id},
-                                             {"tilt_deg", p.tilt_deg}, {"azimuth_deg", p.azimuth_deg},
-                                             {"area_m2", p.area_m2}, {"sloped_area_m2", p.sloped_area_m2},
-                                             {"kwp", p.kwp}, {"suitable", p.suitable}}});
-        }
-    }
-    out.write("roof_patches.geojson", [&](const std::string& path) { io::write_geojson(path, features, in.epsg); });
-    if (formats.png) {
-        const io::rgb_image img = patch_picture(r, in.dsm, in.g.cell);
-        out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
-    }
+    write_roof_patches(out, r, {in.dsm, in.g.cell, in.out_grid, in.unit_m, in.epsg}, formats);
 
     std::size_t suitable = 0;
     double kwp = 0;
@@ -236,8 +177,6 @@ int run_roofs(const std::vector<std::string>& args)
               << fp.file.footprints.size() + fp.file.problems.size() << " (see footprints.csv)\n"
               << "roof patches (" << mode << " mode): " << r.patches.size() << ", suitable " << suitable << ", "
               << kwp << " kWp\n";
-    out.set_units_note("areas in m2 (horizontal area_m2, sloped_area_m2), angles in degrees (azimuth clockwise from "
-                  "grid north), centroids and outlines in the input's CRS units");
     commit_and_report(out, command_line("roofs", args));
     return 0;
 }

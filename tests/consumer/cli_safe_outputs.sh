@@ -16,6 +16,12 @@ start=$(date +%s%N)
 "$lidarfx" "${args[@]}" --out "$work/reference" >/dev/null 2>&1
 duration_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "a complete run takes ${duration_ms} ms"
+# The complete run holds the roof town's outputs: both modes' patches and one score row per mode.
+for f in roof_scores.csv roofs_{planes,paper}/roof_patches.{csv,geojson,png} roofs_{planes,paper}/manifest.json; do
+    [[ -f "$work/reference/$f" ]] || { echo "lidarfx demo did not write $f" >&2; exit 1; }
+done
+[[ "$(cut -d, -f1 "$work/reference/roof_scores.csv" | tr '\n' ' ')" == "mode planes paper " ]] ||
+    { echo "roof_scores.csv should have a row per mode:" >&2; cat "$work/reference/roof_scores.csv" >&2; exit 1; }
 
 # Every visible file under $1 equals its twin in the reference run (manifest.json aside: it names the folder).
 check_complete() {

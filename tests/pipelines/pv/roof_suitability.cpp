@@ -4,9 +4,9 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/pipelines/pv/roof_suitability.hpp>
+#include <lidarfx/synth/roof_metrics.hpp>
 #include <lidarfx/synth/roof_towns.hpp>
 #include <lidarfx/synth/roofs.hpp>
-#include <reference/roof_metrics.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -291,9 +291,9 @@ TEST_CASE("pv/roof_suitability: cancelled through run.progress")
 
 namespace {
 
-reference::roof_scores score_family(roof_mode mode)
+synth::roof_scores score_family(roof_mode mode)
 {
-    reference::roof_scores s;
+    synth::roof_scores s;
     // Parameters (roof_planes_options defaults) were chosen on seeds 1-3; these are the reporting seeds.
     for (unsigned seed = 4; seed <= 9; ++seed) {
         synth::roof_town_options to;
@@ -302,24 +302,24 @@ reference::roof_scores score_family(roof_mode mode)
         roof_suitability_options o;
         o.mode = mode;
         const auto r = roof_suitability(town.dsm, town.dtm, town.building_id, town.g, o);
-        reference::score_roofs(town, r, o, s);
+        synth::score_roofs(town, r, o, s);
     }
     return s;
 }
 
-void report(const char* name, reference::roof_scores s)
+void report(const char* name, synth::roof_scores s)
 {
     MESSAGE(std::string(name), ": planes ", s.true_planes, ", found ", s.found_share(), ", tilt within 5 ", s.tilt5(), ", within 10 ",
             s.tilt10(), ", azimuth within 15 ", s.azimuth15(), ", suitability recall ", s.recall(), " precision ",
             s.precision(), ", sloped-area RMSE ", s.area_rmse());
     std::sort(s.matches.begin(), s.matches.end(), [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
     for (std::size_t k = 0; k < std::min<std::size_t>(3, s.matches.size()); ++k)
-        MESSAGE("worst tilt: building ", s.matches[k].building_id, " (", std::string(reference::kind_name(s.matches[k].kind)), ") ",
+        MESSAGE("worst tilt: building ", s.matches[k].building_id, " (", std::string(synth::kind_name(s.matches[k].kind)), ") ",
                 s.matches[k].tilt, " vs ", s.matches[k].true_tilt);
     std::erase_if(s.matches, [](const auto& m) { return m.true_tilt < 5; });
     std::sort(s.matches.begin(), s.matches.end(), [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
     for (std::size_t k = 0; k < std::min<std::size_t>(3, s.matches.size()); ++k)
-        MESSAGE("worst azimuth: building ", s.matches[k].building_id, " (", std::string(reference::kind_name(s.matches[k].kind)), ") ",
+        MESSAGE("worst azimuth: building ", s.matches[k].building_id, " (", std::string(synth::kind_name(s.matches[k].kind)), ") ",
                 s.matches[k].azimuth, " vs ", s.matches[k].true_azimuth);
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The rooftop PV paper's validation metrics, scored against a synthetic roof town's truth: planes found, tilt
-// and azimuth errors, per-building suitability recall and precision, sloped-area RMSE.
+// and azimuth errors, per-building suitability recall and precision, sloped-area RMSE (tests, the benchmark
+// bench/pv_accuracy and `lidarfx demo` share them).
 #pragma once
 
 #include <algorithm>
@@ -11,15 +12,15 @@
 #include <string>
 #include <vector>
 
-#include <lidarfx/pipelines/pv/roof_suitability.hpp>
-#include <lidarfx/synth/roof_towns.hpp>
+#include "lidarfx/pipelines/pv/roof_suitability.hpp"
+#include "lidarfx/synth/roof_towns.hpp"
 
-namespace lidarfx::reference {
+namespace lidarfx::synth {
 
 /// One matched true plane (for worst-case listings).
 struct roof_match {
     std::int32_t building_id = 0, plane_id = 0;
-    synth::roof_town_kind kind = synth::roof_town_kind::flat;
+    roof_town_kind kind = roof_town_kind::flat;
     double true_tilt = 0, tilt = 0, true_azimuth = 0, azimuth = 0, true_area = 0, area = 0;
     double tilt_error() const { return std::fabs(tilt - true_tilt); }
     double azimuth_error() const
@@ -49,13 +50,13 @@ struct roof_scores {
 };
 
 /// True when a true plane meets the suitability rule of `o` (the one judge_patch applies to measured patches).
-inline bool truth_suitable(const synth::roof_town_plane& p, const roof_suitability_options& o)
+inline bool truth_suitable(const roof_town_plane& p, const roof_suitability_options& o)
 {
     roof_patch q;
     q.tilt_deg = p.tilt_deg;
     q.azimuth_deg = p.azimuth_deg;
     q.sloped_area_m2 = p.sloped_area_m2;
-    detail::judge_patch(q, o);
+    lidarfx::detail::judge_patch(q, o);
     return q.suitable;
 }
 
@@ -69,7 +70,7 @@ inline bool truth_suitable(const synth::roof_town_plane& p, const roof_suitabili
 ///   wing keeps both pieces); in paper mode against the PV patch, as the paper compares it to the installed
 ///   system;
 /// - per building: truly suitable = some true plane meets the rule; found suitable = some patch is suitable.
-inline void score_roofs(const synth::roof_town& t, const roof_suitability_result& r, const roof_suitability_options& o,
+inline void score_roofs(const roof_town& t, const roof_suitability_result& r, const roof_suitability_options& o,
                         roof_scores& s, double min_true_m2 = 8.0)
 {
     // overlap[(plane, patch)] and per-patch majority plane.
@@ -92,7 +93,7 @@ inline void score_roofs(const synth::roof_town& t, const roof_suitability_result
     }
     std::map<std::int32_t, const roof_patch*> patch_by_id;
     for (const auto& p : r.patches) patch_by_id[p.patch_id] = &p;
-    std::map<std::int32_t, synth::roof_town_kind> kind_of;
+    std::map<std::int32_t, roof_town_kind> kind_of;
     for (const auto& b : t.buildings) kind_of[b.id] = b.kind;
     // Patches per true plane: those whose majority plane it is (a plane cut in pieces keeps all of them).
     std::map<std::int32_t, std::vector<std::int32_t>> pieces;
@@ -140,16 +141,16 @@ inline void score_roofs(const synth::roof_town& t, const roof_suitability_result
     }
 }
 
-inline const char* kind_name(synth::roof_town_kind k)
+inline const char* kind_name(roof_town_kind k)
 {
     switch (k) {
-        case synth::roof_town_kind::flat: return "flat";
-        case synth::roof_town_kind::shed: return "shed";
-        case synth::roof_town_kind::gable: return "gable";
-        case synth::roof_town_kind::hip: return "hip";
-        case synth::roof_town_kind::l_shaped: return "L";
+        case roof_town_kind::flat: return "flat";
+        case roof_town_kind::shed: return "shed";
+        case roof_town_kind::gable: return "gable";
+        case roof_town_kind::hip: return "hip";
+        case roof_town_kind::l_shaped: return "L";
     }
     return "?";
 }
 
-}  // namespace lidarfx::reference
+}  // namespace lidarfx::synth

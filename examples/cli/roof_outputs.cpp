@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: Apache-2.0
+// The roof outputs of `lidarfx roofs` and `lidarfx demo`: roof patches as a table, polygons and a picture.
+#include "roof_outputs.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+
+#include <lidarfx/lidarfx.hpp>
+
+#include "io/png.hpp"
+#include "io/quicklook.hpp"
+#include "io/tables.hpp"
+
+namespace lidarfx::cli {
+namespace {
+
+// A picture of the patches: azimuth as a colour (north blue, east green, south yellow, west red: the viridis
+// ramp over 0..360 degrees), other roof cells grey, suitable patches outlined in white.
+io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const float> dsm, double cell_m)
+{
+    raster<float> azimuth(r.patch_id.rows(), r.patch_id.cols(), NAN);
+    std::map<std::int32_t, const roof_patch*> by_id;
+    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
+    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
+        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x)
+            if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end())
+                azimuth(y, x) = static_cast<float>(it->second->flat ? 180.0 : it->second->azimuth_deg);
+    io::rgb_image img = io::colorize(azimuth.view(), 0.0, 360.0);
+    const raster<std::uint8_t> shade = io::hillshade(dsm, cell_m);
+    const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
+        if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return false;
+        const auto it = by_id.find(r.patch_id(y, x));
+        return it != by_id.end() && it->second->suitable;
+    };
+    for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
+        for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
+            std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
+            if (std::isnan(azimuth(y, x))) {
+                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(y, x) / 2);
+            } else if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
+                px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
+            }
+        }
+    return io::with_legend(img, 0.0, 360.0, "° azimuth");
+}
+
+}  // namespace
+
+std::vector<std::string> roof_patch_file_names(const output_formats& formats)
+{
+    std::vector<std::string> names{"roof_patches.csv", "roof_patches.geojson"};
+    if (formats.png) names.push_back("roof_patches.png");
+    return names;
+}
+
+void write_roof_patches(io::output_folder& out, const roof_suitability_result& r, const roof_output_frame& frame,
+                        const output_formats& formats)
+{
+    // Patches: centroids and outlines in the input's CRS units; areas in m2.
+    std::vector<std::vector<io::table_value>> rows;
+    for (const roof_patch& p : r.patches) {
+        rows.push_back({p.building_id, p.patch_id, p.tilt_deg, p.azimuth_deg, p.area_m2, p.sloped_area_m2, p.kwp,
+                        std::int64_t{p.suitable ? 1 : 0}, p.centroid_x / frame.unit_m, p.centroid_y / frame.unit_m,
+                        std::int64_t{p.flat ? 1 : 0}, p.reason});
+    }
+    out.write("roof_patches.csv", [&](const std::string& path) {
+        io::write_csv(path, {"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2", "kwp",
+                             "suitable", "centroid_x", "centroid_y", "flat", "reason"},
+                      rows);
+    });
+    std::map<std::int32_t, const roof_patch*> by_id;
+    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
+    std::vector<io::geojson_feature> features;
+    for (const auto& lp : polygonize(r.patch_id, frame.grid_crs)) {
+        const roof_patch& p = *by_id.at(lp.label);
+        for (const auto& poly : lp.polygons) {
+            features.push_back({poly.rings, {{"building_id", p.building_id}, {"patch_id", p.patch_id},
+                                             {"tilt_deg", p.tilt_deg}, {"azimuth_deg", p.azimuth_deg},
+                                             {"area_m2", p.area_m2}, {"sloped_area_m2", p.sloped_area_m2},
+                                             {"kwp", p.kwp}, {"suitable", p.suitable}}});
+        }
+    }
+    out.write("roof_patches.geojson", [&](const std::string& path) { io::write_geojson(path, features, frame.epsg); });
+    if (formats.png) {
+        const io::rgb_image img = patch_picture(r, frame.dsm, frame.cell_m);
+        out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
+    }
+    out.set_units_note("areas in m2 (horizontal area_m2, sloped_area_m2), angles in degrees (azimuth clockwise from "
+                       "grid north), centroids and outlines in the input's CRS units");
+}
+
+}  // namespace lidarfx::cli
