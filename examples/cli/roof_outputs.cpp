@@ -55,7 +55,7 @@ std::vector<std::string> roof_patch_file_names(const output_formats& formats)
 }
 
 void write_roof_patches(io::output_folder& out, const roof_suitability_result& r, const roof_output_frame& frame,
-                        const output_formats& formats)
+                        const output_formats& formats, std::span<const roof_patch_yield> yields)
 {
     // Patches: centroids and outlines in the input's CRS units; areas in m2.
     std::vector<std::vector<io::table_value>> rows;
@@ -63,22 +63,36 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
         rows.push_back({p.building_id, p.patch_id, p.tilt_deg, p.azimuth_deg, p.area_m2, p.sloped_area_m2, p.kwp,
                         std::int64_t{p.suitable ? 1 : 0}, p.centroid_x / frame.unit_m, p.centroid_y / frame.unit_m,
                         std::int64_t{p.flat ? 1 : 0}, p.reason});
+        if (!yields.empty()) {
+            const roof_patch_yield& y = yields[rows.size() - 1];
+            rows.back().push_back(y.annual_kwh_m2);
+            rows.back().push_back(y.annual_kwh);
+        }
+    }
+    std::vector<std::string> header{"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2",
+                                    "kwp", "suitable", "centroid_x", "centroid_y", "flat", "reason"};
+    if (!yields.empty()) {
+        header.push_back("annual_kwh_m2");
+        header.push_back("annual_kwh");
     }
     out.write("roof_patches.csv", [&](const std::string& path) {
-        io::write_csv(path, {"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2", "kwp",
-                             "suitable", "centroid_x", "centroid_y", "flat", "reason"},
-                      rows);
+        io::write_csv(path, header, rows);
     });
-    std::map<std::int32_t, const roof_patch*> by_id;
-    for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
+    std::map<std::int32_t, std::size_t> index_of;
+    for (std::size_t i = 0; i < r.patches.size(); ++i) index_of[r.patches[i].patch_id] = i;
     std::vector<io::geojson_feature> features;
     for (const auto& lp : polygonize(r.patch_id, frame.grid_crs)) {
-        const roof_patch& p = *by_id.at(lp.label);
+        const std::size_t i = index_of.at(lp.label);
+        const roof_patch& p = r.patches[i];
         for (const auto& poly : lp.polygons) {
             features.push_back({poly.rings, {{"building_id", p.building_id}, {"patch_id", p.patch_id},
                                              {"tilt_deg", p.tilt_deg}, {"azimuth_deg", p.azimuth_deg},
                                              {"area_m2", p.area_m2}, {"sloped_area_m2", p.sloped_area_m2},
                                              {"kwp", p.kwp}, {"suitable", p.suitable}}});
+            if (!yields.empty()) {
+                features.back().properties.emplace_back("annual_kwh_m2", yields[i].annual_kwh_m2);
+                features.back().properties.emplace_back("annual_kwh", yields[i].annual_kwh);
+            }
         }
     }
     out.write("roof_patches.geojson", [&](const std::string& path) { io::write_geojson(path, features, frame.epsg); });

@@ -2,12 +2,14 @@
 // The roof outputs of `lidarfx roofs` and `lidarfx demo`: roof patches as a table, polygons and a picture.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
 #include <lidarfx/core/grid.hpp>
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/pipelines/pv/roof_suitability.hpp>
+#include <lidarfx/pipelines/pv/roof_yield.hpp>
 
 #include "cli_common.hpp"
 #include "io/output_folder.hpp"
@@ -30,8 +32,9 @@ std::vector<std::string> roof_patch_file_names(const output_formats& formats = {
 /// roof_patches.csv (building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,
 /// centroid_y,flat,reason; areas in m2, centroids in CRS units), roof_patches.geojson (the patches' outlines)
 /// and, when formats.png, roof_patches.png (patches coloured by azimuth over a hillshade of the DSM, suitable
-/// ones outlined in white). Sets the folder's units note.
+/// ones outlined in white). Sets the folder's units note. With `yields` (roof_yield, one per patch in the same
+/// order) the table and the polygons also carry annual_kwh_m2 (irradiation on the patch's plane) and annual_kwh.
 void write_roof_patches(io::output_folder& out, const roof_suitability_result& r, const roof_output_frame& frame,
-                        const output_formats& formats = {});
+                        const output_formats& formats = {}, std::span<const roof_patch_yield> yields = {});
 
 }  // namespace lidarfx::cli

@@ -15,6 +15,7 @@
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
+#include "io/tmy3.hpp"
 #include "io/tables.hpp"
 #include "outputs.hpp"
 #include "roof_outputs.hpp"
@@ -36,6 +37,10 @@ constexpr const char* usage =
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
     "  --mode M       planes | paper [planes]\n"
+    "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
+    "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches; the\n"
+    "                 station gives the place unless --lat/--lon are given\n"
+    "  --lat/--lon    the place in degrees; without --tmy, the yields of a clear-sky year there\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 bool ends_with(const std::string& s, const std::string& tail)
@@ -112,7 +117,8 @@ burned_footprints burn_footprints(const std::string& path, const roof_inputs& in
 
 int run_roofs(const std::vector<std::string>& args)
 {
-    const arguments a(args, {"out", "cell", "mode", "threads", "memory", "crop", "formats"}, {"help", "force"});
+    const arguments a(args, {"out", "cell", "mode", "threads", "memory", "crop", "formats", "tmy", "lat", "lon"},
+                      {"help", "force"});
     if (const auto code = stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
@@ -124,6 +130,24 @@ int run_roofs(const std::vector<std::string>& args)
         throw usage_error("the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
     const std::string footprint_file = inputs.back();
     inputs.pop_back();
+
+    // Weather for the yields (optional): a TMY3 year (its rows' own years; the station gives the place unless
+    // --lat/--lon are given), or the clear-sky year 2021 at --lat/--lon.
+    std::vector<irradiance_record> records;
+    double lat = a.number("lat", NAN), lon = a.number("lon", NAN);
+    if (a.has("lat") != a.has("lon")) throw usage_error("--lat and --lon go together");
+    if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw usage_error("--lat must be in [-90, 90] degrees");
+    if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) throw usage_error("--lon must be in [-180, 180] degrees");
+    if (a.has("tmy")) {
+        const auto tmy = io::read_tmy3(a.text("tmy", ""));
+        records = tmy.records;
+        if (!a.has("lat")) {
+            lat = tmy.station.latitude_deg;
+            lon = tmy.station.longitude_deg;
+        }
+    } else if (a.has("lat")) {
+        records = clear_sky_records(2021, lat, lon);
+    }
 
     // Footprints first: a bad file fails before the survey is read and before the output folder exists.
     try {
@@ -164,7 +188,16 @@ int run_roofs(const std::vector<std::string>& args)
         io::write_csv(path, {"building_id", "feature", "status", "cells", "contested_cells", "patches"}, report);
     });
 
-    write_roof_patches(out, r, {in.dsm, in.g.cell, in.out_grid, in.unit_m, in.epsg}, formats);
+    std::vector<roof_patch_yield> yields;
+    if (!records.empty()) {
+        yields = roof_yield(in.dsm, in.g.cell, r, lat, lon, records,
+                            {.run = {.threads = threads, .progress = progress_bar("yield")}});
+        double kwh = 0;
+        for (const roof_patch_yield& y : yields) kwh += y.annual_kwh;
+        std::cout << std::fixed << std::setprecision(0) << "annual yield of all patches: " << kwh << " kWh ("
+                  << (a.has("tmy") ? "TMY3 " + a.text("tmy", "") : std::string("clear-sky year")) << ")\n";
+    }
+    write_roof_patches(out, r, {in.dsm, in.g.cell, in.out_grid, in.unit_m, in.epsg}, formats, yields);
 
     std::size_t suitable = 0;
     double kwp = 0;

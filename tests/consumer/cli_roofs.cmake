@@ -94,6 +94,30 @@ foreach(mode planes paper)
     message(STATUS "lidarfx roofs --mode ${mode}: shed and flat roof found, bad footprints reported")
 endforeach()
 
+# With a place (clear-sky year) the patches carry their yield: the south-facing shed gets more per m2 than the
+# flat roof at 40 N.
+execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson"
+                        --lat 40 --lon -105 --formats png --out "${WORK_DIR}/out_yield"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "lidarfx roofs --lat --lon failed (${rc}):\n${said}\n${err}")
+endif()
+file(STRINGS "${WORK_DIR}/out_yield/roof_patches.csv" rows)
+list(POP_FRONT rows head)
+if(NOT head MATCHES ",annual_kwh_m2,annual_kwh$")
+    message(FATAL_ERROR "roof_patches.csv with --lat/--lon has no yield columns: ${head}")
+endif()
+foreach(line IN LISTS rows)
+    string(REPLACE "," ";" v "${line}")
+    list(GET v 0 id)
+    list(GET v 12 kwh_m2)
+    set(yield_${id} "${kwh_m2}")
+endforeach()
+if(NOT yield_7 GREATER yield_8)
+    message(FATAL_ERROR "the south-facing shed (${yield_7}) should get more than the flat roof (${yield_8}) per m2")
+endif()
+message(STATUS "lidarfx roofs --lat 40: shed ${yield_7}, flat ${yield_8} kWh/m2")
+
 file(WRITE "${WORK_DIR}/dup.geojson" "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{\"building_id\":3},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[${shed}]}},{\"type\":\"Feature\",\"properties\":{\"building_id\":3},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[${flat}]}}]}")
 file(WRITE "${WORK_DIR}/noid.geojson" "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{\"name\":\"x\"},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[${shed}]}}]}")
 set(out "${WORK_DIR}/refused")
@@ -103,5 +127,6 @@ set(cases
     "2|building_id 3 is used by feature 0|unique|roofs^${d}^${t}^${WORK_DIR}/dup.geojson^--out^${out}"
     "2|no integer \"building_id\"|every footprint|roofs^${d}^${t}^${WORK_DIR}/noid.geojson^--out^${out}"
     "2|--mode must be planes or paper|(got best)|roofs^${d}^${t}^${WORK_DIR}/footprints.geojson^--mode^best^--out^${out}"
-    "2|the last input must be the footprints|.geojson|roofs^${d}^${t}^--out^${out}")
+    "2|the last input must be the footprints|.geojson|roofs^${d}^${t}^--out^${out}"
+    "2|--lat and --lon|go together|roofs^${d}^${t}^${WORK_DIR}/footprints.geojson^--lat^40^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
