@@ -234,6 +234,35 @@ std::vector<tree> site_trees(const world<Site>& w, rng& random, double spacing_m
                          [&](double x, double y) { return w.site(x, y).z; });
 }
 
+/// Trees beside buildings: for each building in order, with probability `chance` 1..3 trees whose crowns
+/// stand gap_min_m..gap_max_m outside its bounding circle in a random direction, kept where
+/// fits(x, y, crown_radius) holds; ground_z from ground(x, y). Draws from `random` in a fixed order.
+template <class Fits, class Ground>
+std::vector<tree> trees_beside_buildings(const std::vector<building_truth>& buildings, rng& random,
+                                         const tree_size& sizes, double chance, double gap_min_m, double gap_max_m,
+                                         Fits&& fits, Ground&& ground)
+{
+    std::vector<tree> out;
+    for (const auto& b : buildings) {
+        const int count = random.chance(chance) ? random.between(1, 3) : 0;
+        for (int k = 0; k < count; ++k) {
+            tree t;
+            const double angle = random.uniform(0.0, 2 * std::numbers::pi);
+            t.crown_radius_m = random.uniform(sizes.min_radius_m, sizes.max_radius_m);
+            const double distance = b.bounding_radius() + t.crown_radius_m + random.uniform(gap_min_m, gap_max_m);
+            t.x = b.x + distance * std::sin(angle);
+            t.y = b.y + distance * std::cos(angle);
+            t.height_m = random.uniform(sizes.min_height_m, sizes.max_height_m);
+            t.crown_base_m = std::max(1.5, t.height_m * random.uniform(0.25, 0.5));
+            t.intensity = random.uniform(sizes.min_intensity, sizes.max_intensity);
+            if (!fits(t.x, t.y, t.crown_radius_m)) continue;
+            t.ground_z = ground(t.x, t.y);
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
 }  // namespace internal
 
 /// Lake scene: rolling terrain (about 30 m of relief over 640 m) with one large irregular lake (mean
@@ -438,23 +467,9 @@ inline scene town_scene(const scene_options& options = {})
     };
     rng tree_random(w.seed, 11);
     const tree_size sizes{.min_radius_m = 2.0, .max_radius_m = 4.5, .min_height_m = 6.0, .max_height_m = 16.0};
-    for (const auto& b : w.buildings) {
-        const int count = tree_random.chance(0.4) ? tree_random.between(1, 3) : 0;
-        for (int k = 0; k < count; ++k) {
-            tree t;
-            const double angle = tree_random.uniform(0.0, 2 * std::numbers::pi);
-            t.crown_radius_m = tree_random.uniform(sizes.min_radius_m, sizes.max_radius_m);
-            const double distance = b.bounding_radius() + t.crown_radius_m + tree_random.uniform(1.5, 6.0);
-            t.x = b.x + distance * std::sin(angle);
-            t.y = b.y + distance * std::cos(angle);
-            t.height_m = tree_random.uniform(sizes.min_height_m, sizes.max_height_m);
-            t.crown_base_m = std::max(1.5, t.height_m * tree_random.uniform(0.25, 0.5));
-            t.intensity = tree_random.uniform(sizes.min_intensity, sizes.max_intensity);
-            if (!tree_fits(t.x, t.y, t.crown_radius_m)) continue;
-            t.ground_z = site(t.x, t.y).z;
-            w.trees.push_back(t);
-        }
-    }
+    const auto beside = internal::trees_beside_buildings(w.buildings, tree_random, sizes, 0.4, 1.5, 6.0, tree_fits,
+                                                         [&](double x, double y) { return site(x, y).z; });
+    w.trees.insert(w.trees.end(), beside.begin(), beside.end());
     const auto park = internal::site_trees(
         w, tree_random, 9.0, sizes, [&](double x, double y, double rc) { return tree_fits(x, y, rc) ? 0.03 : 0.0; });
     w.trees.insert(w.trees.end(), park.begin(), park.end());

@@ -80,23 +80,9 @@ inline town_family_scene town_family(const town_family_options& options = {})
     };
     rng tree_random(w.seed, 11);
     const tree_size sizes{.min_radius_m = 2.0, .max_radius_m = 5.0, .min_height_m = 6.0, .max_height_m = 18.0};
-    for (const auto& b : w.buildings) {
-        const int count = tree_random.chance(0.6) ? tree_random.between(1, 3) : 0;
-        for (int k = 0; k < count; ++k) {
-            tree t;
-            const double angle = tree_random.uniform(0.0, 2 * std::numbers::pi);
-            t.crown_radius_m = tree_random.uniform(sizes.min_radius_m, sizes.max_radius_m);
-            const double distance = b.bounding_radius() + t.crown_radius_m + tree_random.uniform(0.5, 4.0);
-            t.x = b.x + distance * std::sin(angle);
-            t.y = b.y + distance * std::cos(angle);
-            t.height_m = tree_random.uniform(sizes.min_height_m, sizes.max_height_m);
-            t.crown_base_m = std::max(1.5, t.height_m * tree_random.uniform(0.25, 0.5));
-            t.intensity = tree_random.uniform(sizes.min_intensity, sizes.max_intensity);
-            if (!tree_fits(t.x, t.y, t.crown_radius_m)) continue;
-            t.ground_z = w.site(t.x, t.y).z;
-            w.trees.push_back(t);
-        }
-    }
+    const auto beside = internal::trees_beside_buildings(w.buildings, tree_random, sizes, 0.6, 0.5, 4.0, tree_fits,
+                                                         [&](double x, double y) { return w.site(x, y).z; });
+    w.trees.insert(w.trees.end(), beside.begin(), beside.end());
     const auto park = internal::site_trees(
         w, tree_random, 12.0, sizes, [&](double x, double y, double rc) { return tree_fits(x, y, rc) ? 0.15 : 0.0; });
     w.trees.insert(w.trees.end(), park.begin(), park.end());
