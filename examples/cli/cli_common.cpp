@@ -2,6 +2,7 @@
 #include "cli_common.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <exception>
 #include <thread>
 #include <atomic>
@@ -509,6 +510,14 @@ raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int thr
     for (std::ptrdiff_t i = 0; i < covered.size(); ++i)
         covered.data()[i] = !pr.dropout.data()[i] || (scans && s.scan_covered.data()[i]);
     return survey_footprint(covered, pr.g.cell, {.hull_radius_m = hull_radius_m, .run = {.threads = threads}});
+}
+
+bool has_extension(const std::string& path, const std::string& extension)
+{
+    return path.size() >= extension.size() &&
+           std::equal(extension.rbegin(), extension.rend(), path.rbegin(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
 }
 
 grid to_crs_units(const grid& g, const survey& s)

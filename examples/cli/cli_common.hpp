@@ -127,6 +127,9 @@ void write_raster(io::output_folder& out, const std::string& name, raster_view<c
 /// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
 std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats = {});
 
+/// True when `path` ends with `extension` (".asc", ".geojson"), letters compared without case.
+bool has_extension(const std::string& path, const std::string& extension);
+
 /// "lidarfx <command> <args...>", for manifests.
 std::string command_line(const std::string& command, const std::vector<std::string>& args);
 

@@ -26,8 +26,7 @@ io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const 
         for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x)
             if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end())
                 azimuth(y, x) = static_cast<float>(it->second->flat ? 180.0 : it->second->azimuth_deg);
-    io::rgb_image img = io::colorize(azimuth.view(), 0.0, 360.0);
-    const raster<std::uint8_t> shade = io::hillshade(dsm, cell_m);
+    io::rgb_image img = io::colorize_over_hillshade(azimuth.view(), 0.0, 360.0, dsm, cell_m);
     const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
         if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return false;
         const auto it = by_id.find(r.patch_id(y, x));
@@ -35,10 +34,8 @@ io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const 
     };
     for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
         for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
-            std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
-            if (std::isnan(azimuth(y, x))) {
-                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(y, x) / 2);
-            } else if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
+            if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
+                std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
                 px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
             }
         }

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <lidarfx/lidarfx.hpp>
@@ -43,12 +44,6 @@ constexpr const char* usage =
     "  --lat/--lon    the place in degrees; without --tmy, the yields of a clear-sky year there\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
-bool ends_with(const std::string& s, const std::string& tail)
-{
-    return s.size() >= tail.size() && std::equal(tail.rbegin(), tail.rend(), s.rbegin(),
-                                                 [](char a, char b) { return std::tolower(a) == std::tolower(b); });
-}
-
 }  // namespace
 
 namespace lidarfx::cli {
@@ -67,7 +62,7 @@ struct roof_inputs {
 roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const arguments& a, int threads)
 {
     roof_inputs in;
-    if (inputs.size() == 2 && ends_with(inputs[0], ".asc") && ends_with(inputs[1], ".asc")) {
+    if (inputs.size() == 2 && has_extension(inputs[0], ".asc") && has_extension(inputs[1], ".asc")) {
         grid g2;
         in.dsm = io::read_ascii_grid(inputs[0], in.g);
         in.dtm = io::read_ascii_grid(inputs[1], g2);
@@ -77,7 +72,7 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
         return in;
     }
     for (const std::string& f : inputs) {
-        if (ends_with(f, ".asc")) throw usage_error(f + ": give either LAS/LAZ files or exactly DSM.asc DTM.asc");
+        if (has_extension(f, ".asc")) throw usage_error(f + ": give either LAS/LAZ files or exactly DSM.asc DTM.asc");
     }
     auto survey_opts = survey_options_from(a, 64);
     if (!a.has("cell")) survey_opts.cell_m = 1.0;  // roofs' default: 1 m cells
@@ -100,9 +95,9 @@ struct burned_footprints {
     io::footprint_collection file;
 };
 
-burned_footprints burn_footprints(const std::string& path, const roof_inputs& in)
+burned_footprints burn_footprints(io::footprint_collection file, const roof_inputs& in)
 {
-    burned_footprints b{{}, io::read_footprints_geojson(path)};
+    burned_footprints b{{}, std::move(file)};
     std::vector<labelled_polygon> list;
     for (const io::footprint& f : b.file.footprints) {
         labelled_polygon lp{f.building_id, f.parts};
@@ -126,7 +121,7 @@ int run_roofs(const std::vector<std::string>& args)
     if (mode != "planes" && mode != "paper") throw usage_error("--mode must be planes or paper (got " + mode + ")");
     const output_formats formats = output_formats_from(a);
     std::vector<std::string> inputs = a.positional();
-    if (inputs.size() < 2 || !(ends_with(inputs.back(), ".geojson") || ends_with(inputs.back(), ".json")))
+    if (inputs.size() < 2 || !(has_extension(inputs.back(), ".geojson") || has_extension(inputs.back(), ".json")))
         throw usage_error("the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
     const std::string footprint_file = inputs.back();
     inputs.pop_back();
@@ -150,8 +145,9 @@ int run_roofs(const std::vector<std::string>& args)
     }
 
     // Footprints first: a bad file fails before the survey is read and before the output folder exists.
+    io::footprint_collection footprints;
     try {
-        (void)io::read_footprints_geojson(footprint_file);
+        footprints = io::read_footprints_geojson(footprint_file);
     } catch (const invalid_input& e) {
         throw usage_error(e.what());
     }
@@ -160,7 +156,7 @@ int run_roofs(const std::vector<std::string>& args)
     names.push_back("footprints.csv");
     for (const auto& n : names) out.check_name(n);
     const roof_inputs in = read_roof_inputs(inputs, a, threads);
-    const burned_footprints fp = burn_footprints(footprint_file, in);
+    const burned_footprints fp = burn_footprints(std::move(footprints), in);
 
     roof_suitability_options opt;
     opt.mode = mode == "paper" ? roof_mode::paper : roof_mode::planes;

@@ -109,18 +109,10 @@ std::vector<lidarfx::irradiance_record> restamp_year(std::vector<lidarfx::irradi
     return records;
 }
 
-bool ends_with(const std::string& s, const std::string& tail)
+bool is_geotiff(const std::string& path)
 {
-    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+    return lidarfx::cli::has_extension(path, ".tif") || lidarfx::cli::has_extension(path, ".tiff");
 }
-
-std::string lower(std::string s)
-{
-    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return s;
-}
-
-bool is_geotiff(const std::string& path) { return ends_with(lower(path), ".tif") || ends_with(lower(path), ".tiff"); }
 
 std::string fixed(double v, int digits)
 {
@@ -225,9 +217,9 @@ int run_solar(const std::vector<std::string>& args)
         }
     }
     const auto& inputs = a.positional();
-    const bool single_grid = inputs.size() == 1 && (ends_with(lower(inputs[0]), ".asc") || is_geotiff(inputs[0]));
+    const bool single_grid = inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
     // Refusals that need no input read: nothing can give the place.
-    if (!a.has("tmy") && single_grid && ends_with(lower(inputs[0]), ".asc")) {
+    if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
         require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
     }
     if (!a.has("tmy") && !lidarfx::io::proj_available()) require_place(lat, lon, "this lidarfx was built without PROJ");
@@ -239,7 +231,7 @@ int run_solar(const std::vector<std::string>& args)
     double cell_m = 0.0;
     std::string crs_wkt, place_crs;
     int epsg = 0;
-    if (single_grid && ends_with(lower(inputs[0]), ".asc")) {
+    if (single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
         dsm = lidarfx::io::read_ascii_grid(inputs[0], g);
         cell_m = g.cell;  // taken as metres
     } else if (single_grid) {

@@ -45,14 +45,7 @@ io::rgb_image energy_picture(const facade_run& run, const surface_energy_result&
                 hi = std::max(hi, static_cast<double>(energy(r, c)));
             }
     if (!(lo <= hi)) lo = hi = 0.0;
-    io::rgb_image img = io::colorize(energy.view(), lo, hi);
-    const raster<std::uint8_t> shade = io::hillshade(run.dsm, run.cell_m);
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (!std::isfinite(energy(r, c))) {
-                std::uint8_t* px = &img.rgb[static_cast<std::size_t>((r * img.width + c) * 3)];
-                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(r, c) / 2);
-            }
+    const io::rgb_image img = io::colorize_over_hillshade(energy.view(), lo, hi, run.dsm, run.cell_m);
     return io::with_legend(img, lo, hi, "kWh/m²");
 }
 

@@ -137,6 +137,21 @@ raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double
     return out;
 }
 
+rgb_image colorize_over_hillshade(raster_view<const float> values, double min, double max,
+                                  raster_view<const float> elevation, double cell_m)
+{
+    detail::require_same_shape(values, elevation, "colorize_over_hillshade", "values", "elevation");
+    rgb_image img = colorize(values, min, max);
+    const raster<std::uint8_t> shade = hillshade(elevation, cell_m);
+    for (std::ptrdiff_t r = 0; r < values.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < values.cols(); ++c)
+            if (!std::isfinite(values(r, c))) {
+                std::uint8_t* px = &img.rgb[static_cast<std::size_t>((r * img.width + c) * 3)];
+                px[0] = px[1] = px[2] = static_cast<std::uint8_t>(shade(r, c) / 2);
+            }
+    return img;
+}
+
 std::array<std::uint8_t, 3> label_color(std::int32_t label) noexcept
 {
     if (label == 0) return {0, 0, 0};

@@ -34,6 +34,12 @@ rgb_image colorize(raster_view<const float> values);
 raster<std::uint8_t> hillshade(raster_view<const float> elevation, double cell_m, double azimuth_deg = 315.0,
                                double altitude_deg = 45.0);
 
+/// colorize(values, min, max) where `values` is finite; elsewhere a dim grey hillshade of `elevation` (half of
+/// hillshade(elevation, cell_m)), so coloured cells stand on the terrain. @throws as colorize and hillshade, and
+/// invalid_input if the shapes differ.
+rgb_image colorize_over_hillshade(raster_view<const float> values, double min, double max,
+                                  raster_view<const float> elevation, double cell_m);
+
 /// A distinct, saturated colour for each label (label 0 = background is black); the colour depends on the
 /// label alone (low-discrepancy hue, saturation and value sequences), so it is stable across pictures.
 std::array<std::uint8_t, 3> label_color(std::int32_t label) noexcept;

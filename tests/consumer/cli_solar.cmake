@@ -5,19 +5,8 @@
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 set(dsm "${WORK_DIR}/dsm.asc")
-set(text "ncols 16\nnrows 16\nxllcorner 1000\nyllcorner 2000\ncellsize 1\nNODATA_value -9999\n")
-foreach(r RANGE 15)
-    set(row "")
-    foreach(c RANGE 15)
-        if(r GREATER_EQUAL 6 AND r LESS 10 AND c GREATER_EQUAL 6 AND c LESS 10)
-            string(APPEND row " 106")
-        else()
-            string(APPEND row " 100")
-        endif()
-    endforeach()
-    string(APPEND text "${row}\n")
-endforeach()
-file(WRITE "${dsm}" "${text}")
+include("${CMAKE_CURRENT_LIST_DIR}/block_dsm.cmake")
+write_block_dsm("${dsm}" 16 6 10 6 10 106)
 
 set(out "${WORK_DIR}/out")
 execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --lat 52.5 --lon 13.4 --formats asc,png --out "${out}"
@@ -66,19 +55,7 @@ endif()
 
 # --facades on a 40 x 40 DSM with one 12 x 10 m block 10 m tall: the buildings, facade, table and bill files, one
 # building found, the Table 1 header and rows, and the south facade above the north one at 52.5 N.
-set(text "ncols 40\nnrows 40\nxllcorner 1000\nyllcorner 2000\ncellsize 1\nNODATA_value -9999\n")
-foreach(r RANGE 39)
-    set(row "")
-    foreach(c RANGE 39)
-        if(r GREATER_EQUAL 14 AND r LESS 24 AND c GREATER_EQUAL 14 AND c LESS 26)
-            string(APPEND row " 110")
-        else()
-            string(APPEND row " 100")
-        endif()
-    endforeach()
-    string(APPEND text "${row}\n")
-endforeach()
-file(WRITE "${WORK_DIR}/box.asc" "${text}")
+write_block_dsm("${WORK_DIR}/box.asc" 40 14 24 14 26 110)
 set(fac "${WORK_DIR}/out_facades")
 execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/box.asc" --lat 52.5 --lon 13.4 --facades --formats asc,png
                         --out "${fac}"

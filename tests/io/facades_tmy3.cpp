@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "../reference/facades.hpp"
@@ -17,16 +18,30 @@
 using namespace lidarfx;
 using namespace lidarfx::io;
 
-TEST_CASE("io/facades: a box in Greensboro's TMY3 year -- south > east ~ west > north, south over the roof in Oct-Dec")
+namespace {
+
+/// Greensboro's TMY3 year, or nothing (with a message) when LIDARFX_DATA_DIR does not hold it.
+std::optional<tmy3_data> greensboro()
 {
     const std::string path = std::string(LIDARFX_DATA_DIR) + "/723170TYA.CSV";
     if (!std::filesystem::exists(path)) {
         MESSAGE("skipped: " << path << " not found (set LIDARFX_DATA_DIR)");
-        return;
+        return std::nullopt;
     }
-    const tmy3_data d = read_tmy3(path);
-    // A 12 x 10 m, 10 m tall box alone on flat ground, 1 m cells.
-    const auto s = reference::one_box(60, 60, 25, 24, 10, 12, 270.0f, 280.0f);
+    return read_tmy3(path);
+}
+
+/// A 12 x 10 m, 10 m tall box alone on flat ground, 1 m cells.
+reference::box_scene lone_box() { return reference::one_box(60, 60, 25, 24, 10, 12, 270.0f, 280.0f); }
+
+}  // namespace
+
+TEST_CASE("io/facades: a box in Greensboro's TMY3 year -- south > east ~ west > north, south over the roof in Oct-Dec")
+{
+    const auto data = greensboro();
+    if (!data) return;
+    const tmy3_data& d = *data;
+    const auto s = lone_box();
     const auto res = surface_energy(s.dsm, s.ids, 1.0, d.station.latitude_deg, d.station.longitude_deg, d.records,
                                     {.sun = {.elevation_m = d.station.elevation_m},
                                      .month_utc_offset_h = d.station.utc_offset_h});
@@ -70,13 +85,10 @@ TEST_CASE("io/facades: a box in Greensboro's TMY3 year -- south > east ~ west > 
 // full: above the roof in Jan-Mar and Oct-Dec, below it in Apr-Jun and Jul-Sep.
 TEST_CASE("io/facades: with Greensboro's weather at 45 N the south facade beats the rooftop in both winter quarters")
 {
-    const std::string path = std::string(LIDARFX_DATA_DIR) + "/723170TYA.CSV";
-    if (!std::filesystem::exists(path)) {
-        MESSAGE("skipped: " << path << " not found (set LIDARFX_DATA_DIR)");
-        return;
-    }
-    const tmy3_data d = read_tmy3(path);
-    const auto s = reference::one_box(60, 60, 25, 24, 10, 12, 270.0f, 280.0f);
+    const auto data = greensboro();
+    if (!data) return;
+    const tmy3_data& d = *data;
+    const auto s = lone_box();
     const auto res = surface_energy(s.dsm, s.ids, 1.0, 45.0, d.station.longitude_deg, d.records,
                                     {.month_utc_offset_h = d.station.utc_offset_h});
     const auto t = surface_class_table(res);

@@ -295,3 +295,27 @@ TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under t
     CHECK_THROWS_AS(with_legend(picture, 2, 1, "SVF"), invalid_input);
     CHECK_THROWS_AS(with_legend(rgb_image{}, 0, 1, "SVF"), invalid_input);
 }
+
+TEST_CASE("io/colorize_over_hillshade: finite cells as colorize, the others a dim hillshade of the terrain")
+{
+    raster<float> z(6, 7);
+    for (std::ptrdiff_t r = 0; r < 6; ++r)
+        for (std::ptrdiff_t c = 0; c < 7; ++c) z(r, c) = static_cast<float>(0.7 * static_cast<double>(c) - 0.3 * static_cast<double>(r));
+    raster<float> v(6, 7, NAN);
+    v(1, 2) = 3.0f;
+    v(4, 5) = 8.0f;
+    const rgb_image img = colorize_over_hillshade(v.view(), 0.0, 10.0, z.view(), 1.0);
+    const rgb_image colours = colorize(v.view(), 0.0, 10.0);
+    const raster<std::uint8_t> shade = hillshade(z.view(), 1.0);
+    for (std::ptrdiff_t r = 0; r < 6; ++r)
+        for (std::ptrdiff_t c = 0; c < 7; ++c) {
+            const auto at = static_cast<std::size_t>((r * 7 + c) * 3);
+            const rgb got{img.rgb[at], img.rgb[at + 1], img.rgb[at + 2]};
+            const auto grey = static_cast<std::uint8_t>(shade(r, c) / 2);
+            const rgb want = std::isnan(v(r, c)) ? rgb{grey, grey, grey}
+                                                 : rgb{colours.rgb[at], colours.rgb[at + 1], colours.rgb[at + 2]};
+            INFO("cell ", r, ",", c);
+            CHECK(got == want);
+        }
+    CHECK_THROWS_AS(colorize_over_hillshade(v.view(), 0.0, 10.0, raster<float>(2, 2).view(), 1.0), invalid_input);
+}

@@ -35,30 +35,8 @@ inline std::uint8_t facade_lit_ray_march(lidarfx::raster_view<const float> z, do
                                          double elevation_deg)
 {
     if (elevation_deg <= 0 || !in_front_of_wall(azimuth_deg, elevation_deg, facing_deg)) return 0;
-    double s, c;
-    sincos_deg(azimuth_deg, s, c);
-    const double vx = s, vy = -c;
-    const double inf = std::numeric_limits<double>::infinity();
     const shadow_key key(azimuth_deg, elevation_deg, cell_m);
-    const double kp = key(h, r, col);
-    const double tp = (double(col) + 0.5) * -vx + (double(r) + 0.5) * -vy;
-    std::ptrdiff_t ix = col, iy = r;
-    const std::ptrdiff_t step_x = vx > 0 ? 1 : -1, step_y = vy > 0 ? 1 : -1;
-    double tmax_x = vx != 0 ? 0.5 / std::fabs(vx) : inf, tmax_y = vy != 0 ? 0.5 / std::fabs(vy) : inf;
-    const double dx = vx != 0 ? 1 / std::fabs(vx) : inf, dy = vy != 0 ? 1 / std::fabs(vy) : inf;
-    while (true) {
-        if (tmax_x < tmax_y) {
-            ix += step_x;
-            tmax_x += dx;
-        } else {
-            iy += step_y;
-            tmax_y += dy;
-        }
-        if (ix < 0 || ix >= z.cols() || iy < 0 || iy >= z.rows()) return 1;
-        const float zq = z(iy, ix);
-        const double tq = (double(ix) + 0.5) * -vx + (double(iy) + 0.5) * -vy;
-        if (!std::isnan(zq) && tq < tp && key(zq, iy, ix) > kp) return 0;
-    }
+    return straight_march_blocked(z, key, azimuth_deg, r, col, key(h, r, col)) ? 0 : 1;
 }
 
 /// Lit state of the same point on the kernel's ray lines: a direct search over every earlier cell of the front

@@ -67,38 +67,45 @@ lidarfx::raster<std::uint8_t> shadow_per_cell(lidarfx::raster_view<const float> 
     return out;
 }
 
-/// Shadow by a straight march: from each cell centre towards the sun, every cell the line passes through
-/// (Amanatides-Woo traversal) whose centre projects nearer the sun is tested: z_q + t_q tan e > z_p + t_p tan e
-/// means shadow. 1 lit, 0 shadow, nan_cell for NaN cells; NaN cells cast nothing. O(cells * length).
-inline lidarfx::raster<std::uint8_t> shadow_ray_march(lidarfx::raster_view<const float> z, double cell_m,
-                                                      double azimuth_deg, double elevation_deg,
-                                                      std::uint8_t nan_cell = 255)
+/// Whether a straight line from the centre of cell (r, col) towards the sun is blocked: every cell it passes
+/// through (Amanatides-Woo traversal) whose centre projects nearer the sun is tested, z_q + t_q tan e > kp (kp =
+/// the shadow key of the point, key(h, r, col)) blocks. NaN cells block nothing; the line leaves at the border.
+inline bool straight_march_blocked(lidarfx::raster_view<const float> z, const shadow_key& key, double azimuth_deg,
+                                   std::ptrdiff_t r, std::ptrdiff_t col, double kp)
 {
-    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     double s, c;
     sincos_deg(azimuth_deg, s, c);
     const double vx = s, vy = -c;  // towards the sun, in (column, row) units
     const double inf = std::numeric_limits<double>::infinity();
+    const double tp = (double(col) + 0.5) * -vx + (double(r) + 0.5) * -vy;  // along the walk direction
+    std::ptrdiff_t ix = col, iy = r;
+    const std::ptrdiff_t step_x = vx > 0 ? 1 : -1, step_y = vy > 0 ? 1 : -1;
+    double tmax_x = vx != 0 ? 0.5 / std::fabs(vx) : inf, tmax_y = vy != 0 ? 0.5 / std::fabs(vy) : inf;
+    const double dx = vx != 0 ? 1 / std::fabs(vx) : inf, dy = vy != 0 ? 1 / std::fabs(vy) : inf;
+    while (true) {
+        if (tmax_x < tmax_y) {
+            ix += step_x;
+            tmax_x += dx;
+        } else {
+            iy += step_y;
+            tmax_y += dy;
+        }
+        if (ix < 0 || ix >= z.cols() || iy < 0 || iy >= z.rows()) return false;
+        const float zq = z(iy, ix);
+        const double tq = (double(ix) + 0.5) * -vx + (double(iy) + 0.5) * -vy;
+        if (!std::isnan(zq) && tq < tp && key(zq, iy, ix) > kp) return true;
+    }
+}
+
+/// Shadow by a straight march: from each cell centre towards the sun (straight_march_blocked). 1 lit, 0 shadow,
+/// nan_cell for NaN cells; NaN cells cast nothing. O(cells * length).
+inline lidarfx::raster<std::uint8_t> shadow_ray_march(lidarfx::raster_view<const float> z, double cell_m,
+                                                      double azimuth_deg, double elevation_deg,
+                                                      std::uint8_t nan_cell = 255)
+{
     const shadow_key key(azimuth_deg, elevation_deg, cell_m);
     return shadow_per_cell(z, elevation_deg, key, nan_cell, [&](std::ptrdiff_t r, std::ptrdiff_t col, double kp) {
-        const double tp = (double(col) + 0.5) * -vx + (double(r) + 0.5) * -vy;  // along the walk direction
-        std::ptrdiff_t ix = col, iy = r;
-        const std::ptrdiff_t step_x = vx > 0 ? 1 : -1, step_y = vy > 0 ? 1 : -1;
-        double tmax_x = vx != 0 ? 0.5 / std::fabs(vx) : inf, tmax_y = vy != 0 ? 0.5 / std::fabs(vy) : inf;
-        const double dx = vx != 0 ? 1 / std::fabs(vx) : inf, dy = vy != 0 ? 1 / std::fabs(vy) : inf;
-        while (true) {
-            if (tmax_x < tmax_y) {
-                ix += step_x;
-                tmax_x += dx;
-            } else {
-                iy += step_y;
-                tmax_y += dy;
-            }
-            if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) return false;
-            const float zq = z(iy, ix);
-            const double tq = (double(ix) + 0.5) * -vx + (double(iy) + 0.5) * -vy;
-            if (!std::isnan(zq) && tq < tp && key(zq, iy, ix) > kp) return true;
-        }
+        return straight_march_blocked(z, key, azimuth_deg, r, col, kp);
     });
 }
 

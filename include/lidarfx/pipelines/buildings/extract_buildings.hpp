@@ -145,50 +145,43 @@ inline local_planes fit_local_planes(raster_view<const float> z, raster_view<con
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     local_planes lp{raster<float>(rows, cols, nan), raster<float>(rows, cols, nan), raster<float>(rows, cols, nan)};
-    parallel_for_rows(
-        rows, 16, threads,
-        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    const std::int32_t me = id(r, c);
-                    if (me == 0) continue;
-                    plane_sums s;
-                    for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
-                        s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
-                              static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
-                    });
-                    if (s.n < 6) continue;
-                    const auto f = plane_abc_rms(s);
-                    lp.a(r, c) = static_cast<float>(f[0]);
-                    lp.b(r, c) = static_cast<float>(f[1]);
-                    lp.rms(r, c) = static_cast<float>(f[3]);
-                }
-            }
-        },
-        {}, function);
+    // Calls f(r, c) for every building cell, rows split over the threads.
+    const auto each_building_cell = [&](auto&& f) {
+        parallel_for_rows(
+            rows, 16, threads,
+            [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                for (std::ptrdiff_t r = r0; r < r1; ++r)
+                    for (std::ptrdiff_t c = 0; c < cols; ++c)
+                        if (id(r, c) != 0) f(r, c);
+            },
+            {}, function);
+    };
+    each_building_cell([&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        plane_sums s;
+        for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
+            s.add(static_cast<double>(cc - c) * cell_m, static_cast<double>(r - rr) * cell_m,
+                  static_cast<double>(z(rr, cc)) - static_cast<double>(z(r, c)));
+        });
+        if (s.n < 6) return;
+        const auto f = plane_abc_rms(s);
+        lp.a(r, c) = static_cast<float>(f[0]);
+        lp.b(r, c) = static_cast<float>(f[1]);
+        lp.rms(r, c) = static_cast<float>(f[3]);
+    });
     // Edge-preserving choice (as the Kuwahara filter): each cell takes the fit of the window, among those
     // holding it (centres within w cells, same building), that leaves the least RMS; a cell next to a ridge
     // so takes the window lying on its own face.
     local_planes best{lp.a, lp.b, lp.rms};
-    parallel_for_rows(
-        rows, 16, threads,
-        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    const std::int32_t me = id(r, c);
-                    if (me == 0) continue;
-                    float least = std::numeric_limits<float>::infinity();
-                    for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
-                        if (!(lp.rms(rr, cc) < least)) return;
-                        least = lp.rms(rr, cc);
-                        best.a(r, c) = lp.a(rr, cc);
-                        best.b(r, c) = lp.b(rr, cc);
-                        best.rms(r, c) = least;
-                    });
-                }
-            }
-        },
-        {}, function);
+    each_building_cell([&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        float least = std::numeric_limits<float>::infinity();
+        for_window_of_same_id(id, r, c, w, [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
+            if (!(lp.rms(rr, cc) < least)) return;
+            least = lp.rms(rr, cc);
+            best.a(r, c) = lp.a(rr, cc);
+            best.b(r, c) = lp.b(rr, cc);
+            best.rms(r, c) = least;
+        });
+    });
     return best;
 }
 

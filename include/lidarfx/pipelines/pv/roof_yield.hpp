@@ -94,7 +94,8 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
         const raster<float> svf = sky_view_factor(z, cell_m, {.method = opt.svf_method, .directions = opt.svf_directions,
                                                               .run = {.threads = opt.run.threads}});
         // Per patch: sky factor sum over its cells (constant over the year) and the plane's normal.
-        std::vector<double> sky(roofs.patches.size(), 0.0), beam(roofs.patches.size(), 0.0), diffuse_k(roofs.patches.size(), 0.0);
+        std::vector<double> sky(roofs.patches.size(), 0.0), beam(roofs.patches.size(), 0.0);
+        double dhi_kwh = 0.0;  // the year's DHI sum, kWh/m^2: the same for every patch
         std::vector<enu_vector> normal(roofs.patches.size());
         for (std::size_t i = 0; i < roofs.patches.size(); ++i) {
             const roof_patch& p = roofs.patches[i];
@@ -109,8 +110,8 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
             raylines_shadow(z, lit, cell_m, days[d].azimuth_deg, days[d].elevation_deg,
                             {.nan_cell = 0, .run = {.threads = opt.run.threads}});
             const enu_vector sun = detail::sun_vector_unchecked(days[d].azimuth_deg, days[d].elevation_deg);
+            dhi_kwh += rec.dhi_w_m2 * hours_k;
             for (std::size_t i = 0; i < cells.size(); ++i) {
-                diffuse_k[i] += rec.dhi_w_m2 * hours_k;
                 const double cos_t = detail::enu_dot(sun, normal[i]);
                 if (!(cos_t > 0.0)) continue;
                 std::size_t lit_cells = 0;
@@ -122,7 +123,7 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
         for (std::size_t i = 0; i < out.size(); ++i) {
             const double n = static_cast<double>(cells[i].size());
             out[i].patch_id = roofs.patches[i].patch_id;
-            out[i].annual_kwh_m2 = n > 0 ? (beam[i] + diffuse_k[i] * sky[i]) / n : 0.0;
+            out[i].annual_kwh_m2 = n > 0 ? (beam[i] + dhi_kwh * sky[i]) / n : 0.0;
             out[i].annual_kwh = out[i].annual_kwh_m2 * roofs.patches[i].kwp * opt.performance_ratio;
         }
         return out;
