@@ -73,5 +73,6 @@
 
 // tiling: surveys larger than memory (docs/scale.md)
 #include "lidarfx/tiling/halo.hpp"
+#include "lidarfx/tiling/stitch_labels.hpp"
 #include "lidarfx/tiling/tile_plan.hpp"
 #include "lidarfx/tiling/tiled_local.hpp"
