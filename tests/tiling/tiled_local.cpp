@@ -7,6 +7,8 @@
 #include <lidarfx/kernels/interpolate/idw_fill.hpp>
 #include <lidarfx/kernels/solar/horizon_map.hpp>
 #include <lidarfx/kernels/solar/raylines_shadow.hpp>
+#include <lidarfx/pipelines/water/water_angles.hpp>
+#include <lidarfx/pipelines/water/water_vegetation.hpp>
 #include <lidarfx/tiling/halo.hpp>
 #include <lidarfx/tiling/tiled_local.hpp>
 
@@ -227,4 +229,47 @@ TEST_CASE("tiling/tiled_local: the step may take the window's box; refusals")
     const auto wrong = [](raster_view<const float> w) { return raster<float>(w.rows() + 1, w.cols()); };
     CHECK_THROWS_AS(tiled_local(s.z, 1, 5, wrong), invalid_input);
     CHECK(tiled_local(raster_view<const float>(nullptr, 0, 0, 0), 2, 5, copy).empty());
+}
+
+TEST_CASE("tiling/water_reach: the waterbody method's local steps, tiled with their reach, equal the whole rasters")
+{
+    std::mt19937 rng(1507);
+    const std::ptrdiff_t rows = 57, cols = 49;
+    // Random survey rasters: min z with dropouts (NaN), max z above it, multiple returns.
+    raster<float> min_z = reference::random_raster(rng, rows, cols, 0.0, 3.0, 0.25), max_z(rows, cols);
+    raster<std::uint8_t> dropout(rows, cols), multiple = reference::random_mask(rng, rows, cols, 0.1);
+    raster<float> intensity(rows, cols, 10.0f);
+    std::uniform_real_distribution<double> rise(0, 4);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            dropout(r, c) = std::isnan(min_z(r, c));
+            max_z(r, c) = min_z(r, c) + float(rise(rng));
+        }
+    const auto window = [&](const cell_box& b) {
+        const auto w = [&](const auto& x) { return x.view().window(b.row_min, b.col_min, b.rows(), b.cols()); };
+        return water_rasters{w(min_z), w(max_z), w(intensity), w(dropout), w(multiple)};
+    };
+    const water_rasters whole = window({0, 0, rows - 1, cols - 1});
+    const extract_waterbodies_options opt{.vegetation_closing_size_cells = 5, .angular_radius_cells = 2,
+                                          .seed_opening_size_cells = 3};
+    const water_step_reach reach = water_reach(opt);
+    CHECK(reach.vegetation_closing == 4);
+    CHECK(reach.angles == 2);
+    CHECK(reach.seed_opening == 2);
+    CHECK(reach.largest() == 4);
+    const auto vegetation = [&](raster_view<const float>, const cell_box& b) {
+        return water_vegetation(window(b), {.closing_size_cells = opt.vegetation_closing_size_cells});
+    };
+    const auto angles = [&](raster_view<const float>, const cell_box& b) {
+        return water_angles(window(b), 2.0, {.radius_cells = opt.angular_radius_cells});
+    };
+    const raster<std::uint8_t> whole_vegetation = water_vegetation(whole, {.closing_size_cells = 5});
+    const raster<float> whole_angles = water_angles(whole, 2.0, {.radius_cells = 2});
+    const raster_view<const float> z = min_z.view();
+    for (const std::ptrdiff_t t : tile_sizes) {
+        CAPTURE(t);
+        CHECK(same_bits(tiled_local(z, reach.vegetation_closing, t, vegetation), whole_vegetation));
+        CHECK(same_bits(tiled_local(z, reach.angles, t, angles), whole_angles));
+    }
+    CHECK_THROWS_AS(water_reach({.angular_on = angular_input::idw_filled}), invalid_input);
 }

@@ -44,7 +44,8 @@ using local_step_result = std::remove_cvref_t<decltype(call_local_step<T>(std::d
 /// (tiling/halo.hpp) and the step treats cells beyond its input as the raster border does, the result equals
 /// step(in) bit for bit: every cell of a core sees the same inputs in the window as in the whole raster. Peak
 /// memory: the output plus, per thread, one window and the step's result. Tiles run on run.threads threads
-/// (each tile writes only its core: the same result for any count); progress after each tile.
+/// (each tile writes only its core: the same result for any count), so `step` must be safe to call from
+/// several threads at once (a lambda that only reads what it captures is); progress after each tile.
 /// @throws invalid_input if reach < 0, tile_cells < 1 or run.threads < 0, or a step's result has not the
 /// window's shape; whatever `step` throws; cancelled if run.progress returns false.
 template <class T, class Step>
