@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -75,11 +77,14 @@ inline double tile_plan_peak(const grid& g, double halo_cells, const tile_plan_o
                (halo_cells * opt.bytes_per_tile_cell + static_cast<double>(opt.chunk_points) * opt.bytes_per_point);
 }
 
-/// Rounds v up to 3 significant digits (for cell sizes proposed in messages).
-inline double round_up_3_digits(double v) noexcept
+/// v rounded up to 3 significant digits and written with at most 3 (for cell sizes proposed in messages).
+inline std::string round_up_3_digits(double v)
 {
     const double scale = std::pow(10.0, std::floor(std::log10(v)) - 2);
-    return std::ceil(v / scale) * scale;
+    std::ostringstream os;
+    os.precision(3);
+    os << std::ceil(v / scale) * scale;
+    return os.str();
 }
 
 /// The closed range [lo, hi] of cells along one axis that a coordinate range [a, b] (fractional cell
