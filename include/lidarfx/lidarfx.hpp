@@ -70,3 +70,6 @@
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
+
+// tiling: surveys larger than memory (docs/scale.md)
+#include "lidarfx/tiling/tile_plan.hpp"
