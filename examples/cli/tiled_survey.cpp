@@ -310,7 +310,7 @@ std::string tiled_fingerprint(const std::vector<std::string>& paths, const surve
 {
     std::ostringstream f;
     f.precision(17);
-    f << "cell " << opt.cell_m << "\ntile " << tile_edge_m << "\n";
+    f << "cell_m " << opt.cell_m << "\ntile_edge_m " << tile_edge_m << "\n";
     if (opt.crop) f << "crop " << opt.crop->xmin << ' ' << opt.crop->ymin << ' ' << opt.crop->xmax << ' ' << opt.crop->ymax << "\n";
     for (const auto& p : paths) {
         struct stat st {};
