@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cctype>
 #include <cmath>
 #include <csignal>
@@ -51,13 +52,17 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
         throw usage_error("--tile must be a positive number of metres (got " + std::to_string(tile_edge_m) + ")");
     std::vector<survey_file_extent> files;
     for (std::size_t f = 0; f < layout.extents.size(); ++f) {
+        // Grown by a micrometre (and 1e-12 of the coordinates): a header box rounded a hair inside its points,
+        // or a scan segment's cell coordinates a rounding step beyond its ends, still reach the tile.
+        const bounds& e = layout.extents[f];
+        const double grow = 1e-6 + 1e-12 * std::max({std::abs(e.xmin), std::abs(e.xmax), std::abs(e.ymin), std::abs(e.ymax)});
         // A file without points has no meaningful box: it is read by no tile.
-        if (layout.points[f] > 0) files.push_back({layout.extents[f], layout.points[f]});
+        if (layout.points[f] > 0) files.push_back({{e.xmin - grow, e.ymin - grow, e.xmax + grow, e.ymax + grow}, layout.points[f]});
         else files.push_back({bounds{layout.g.x0 - 1e9, layout.g.y0 + 1e9, layout.g.x0 - 1e9, layout.g.y0 + 1e9}, 0});
     }
     tile_plan_options o;
     o.tile_edge_m = tile_edge_m;
-    o.halo_cells = 1;
+    o.halo_cells = 0;   // stage A bins each point in its own cell: no step reaches beyond the core
     o.memory_budget_bytes = opt.memory_budget_bytes;
     o.bytes_per_cell = opt.bytes_per_cell;
     o.bytes_per_tile_cell = 64;   // accumulator (24 B), finished rasters (18 B), scan lines (1 B), packed copy (19 B)
@@ -357,7 +362,13 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
             if (bar) bar(static_cast<double>(finished) / static_cast<double>(plan.tiles.size()));
         });
     }
+    const auto start = std::chrono::steady_clock::now();
     run_jobs(jobs, threads);
+    if (opt.show_progress) {
+        const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+        std::cerr << "tiles: " << plan.tiles.size() << " tiles of " << plan.tile_cells << " x " << plan.tile_cells
+                  << " cells read in " << took.count() << " s\n";
+    }
     return assembly.finish();   // the tiles stay in resume_dir until the caller's outputs are committed
 }
 

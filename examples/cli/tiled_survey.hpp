@@ -22,9 +22,10 @@ namespace lidarfx::cli {
 /// sorted by name) are taken. @throws usage_error for a folder with no LAS file.
 std::vector<std::string> survey_files(const std::vector<std::string>& arguments);
 
-/// The tiling of a survey's grid for a tiled run: cores of tile_edge_m metres (rounded to whole cells), a
-/// halo of one cell (so that a point or scan segment a rounding step beyond its file's header box is still
-/// read), `tiles_in_flight` tiles at once within opt.memory_budget_bytes (0 = no limit).
+/// The tiling of a survey's grid for a tiled run: cores of tile_edge_m metres (rounded to whole cells), no
+/// halo (stage A bins each point in its own cell), each file listed for the tiles its header box (grown by
+/// a micrometre, so that a rounding step beyond it is still read) reaches, `tiles_in_flight` tiles at once
+/// within opt.memory_budget_bytes (0 = no limit).
 /// @throws usage_error naming what fits when the plan exceeds the budget.
 tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, const survey_options& opt,
                             int tiles_in_flight);
