@@ -34,11 +34,11 @@ for threads in 1 2; do
     read -r w c r < <(stats "$work/time_$threads.txt")
     wall[$threads]=$w
     row "lidarfx --threads $threads" "$w" "$c" "$r"
-    echo "  stage A (tiles read): $(grep -o 'read in [0-9.]* s' "$work/log_$threads.txt" | cut -d' ' -f3) s of the wall time"
+    echo "  stage A (tiles read): $(grep -o 'read in .*' "$work/log_$threads.txt" | cut -d' ' -f3-)"
 done
 if [ -x "$mpi" ] && command -v mpirun > /dev/null; then
     start=$(date +%s.%N)
-    mpirun --allow-run-as-root --oversubscribe -np 2 sh -c \
+    OMPI_MCA_mpi_yield_when_idle=1 mpirun --allow-run-as-root --oversubscribe -np 2 sh -c \
         "/usr/bin/time -v -o \"$work/time_mpi_\$OMPI_COMM_WORLD_RANK.txt\" '$mpi' water '$work/survey' --cell $cell \
          --tile $tile --memory $memory --threads 1 --out '$work/out_mpi'" > "$work/log_mpi.txt" 2>&1
     end=$(date +%s.%N)

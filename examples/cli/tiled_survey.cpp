@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cctype>
 #include <cmath>
 #include <csignal>
@@ -363,11 +364,13 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
         });
     }
     const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     run_jobs(jobs, threads);
     if (opt.show_progress) {
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+        const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
         std::cerr << "tiles: " << plan.tiles.size() << " tiles of " << plan.tile_cells << " x " << plan.tile_cells
-                  << " cells read in " << took.count() << " s\n";
+                  << " cells read in " << took.count() << " s (CPU " << cpu << " s)\n";
     }
     return assembly.finish();   // the tiles stay in resume_dir until the caller's outputs are committed
 }

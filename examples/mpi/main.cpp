@@ -70,21 +70,30 @@ survey gather_survey(const run_plan& p, int ranks)
         ++finished;
         if (bar) bar(static_cast<double>(finished) / static_cast<double>(tiles));
     };
-    read_my_tiles(p, 0, ranks, [&](tile_rasters&& t) {
-        assembly.place(t);
-        placed();
-    });
     std::vector<std::uint8_t> bytes;
-    while (finished < tiles) {
+    // Receives one tile from another rank: waiting for it, or only when one has arrived (false if none).
+    const auto receive = [&](bool wait) {
         MPI_Status status;
-        MPI_Probe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &status);
+        int arrived = 1;
+        if (wait) MPI_Probe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &status);
+        else MPI_Iprobe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &arrived, &status);
+        if (!arrived) return false;
         int count = 0;
         MPI_Get_count(&status, MPI_BYTE, &count);
         bytes.resize(static_cast<std::size_t>(count));
         MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, tile_tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         assembly.place(unpack_tile(bytes, p.plan, "a tile from rank " + std::to_string(status.MPI_SOURCE)));
         placed();
-    }
+        return true;
+    };
+    // After each own tile, the tiles that other ranks have sent meanwhile (so that they do not wait).
+    read_my_tiles(p, 0, ranks, [&](tile_rasters&& t) {
+        assembly.place(t);
+        placed();
+        while (receive(false)) {
+        }
+    });
+    while (finished < tiles) receive(true);
     return assembly.finish();
 }
 
