@@ -72,4 +72,7 @@
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
 
 // tiling: surveys larger than memory (docs/scale.md)
+#include "lidarfx/tiling/halo.hpp"
+#include "lidarfx/tiling/stitch_labels.hpp"
 #include "lidarfx/tiling/tile_plan.hpp"
+#include "lidarfx/tiling/tiled_local.hpp"

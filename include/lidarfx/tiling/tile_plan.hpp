@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -267,6 +268,17 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
                                            static_cast<double>(fit) * g.cell, " m (", fit, " cells)"));
     }
     return plan;
+}
+
+/// The tile whose core holds world point (x, y): the cell is found on the survey grid, plan.g.cell_of(x, y)
+/// (never on a tile's own window grid, whose corner rounds differently), so every point goes to exactly one
+/// tile and lands in the very cell an untiled run gives it. nullopt when the point is outside the grid or NaN.
+/// O(1).
+inline std::optional<std::size_t> tile_index_of(const tile_plan& plan, double x, double y) noexcept
+{
+    const std::optional<cell_index> at = plan.g.cell_of(x, y);
+    if (!at || plan.tile_cells < 1) return std::nullopt;
+    return static_cast<std::size_t>(at->row / plan.tile_cells * plan.tile_cols + at->col / plan.tile_cells);
 }
 
 }  // namespace lidarfx
