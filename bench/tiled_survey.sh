@@ -36,6 +36,10 @@ for threads in 1 2; do
     row "lidarfx --threads $threads" "$w" "$c" "$r"
     echo "  stage A (tiles read): $(grep -o 'read in .*' "$work/log_$threads.txt" | cut -d' ' -f3-)"
 done
+/usr/bin/time -v -o "$work/time_untiled.txt" "$lidarfx" water "$work/survey" --cell "$cell" --memory "$memory" \
+    --threads 1 --out "$work/out_untiled" > "$work/log_untiled.txt" 2>&1
+read -r w c r < <(stats "$work/time_untiled.txt")
+row "untiled --threads 1" "$w" "$c" "$r"
 if [ -x "$mpi" ] && command -v mpirun > /dev/null; then
     start=$(date +%s.%N)
     OMPI_MCA_mpi_yield_when_idle=1 mpirun --allow-run-as-root --oversubscribe -np 2 sh -c \
@@ -55,5 +59,6 @@ fi
 for f in "$work"/out_1/*; do
     n=$(basename "$f")
     [ "$n" = manifest.json ] || cmp -s "$f" "$work/out_2/$n" || echo "  WARNING: $n differs between 1 and 2 threads"
+    [ "$n" = manifest.json ] || cmp -s "$f" "$work/out_untiled/$n" || echo "  WARNING: $n differs from the untiled run's"
 done
 awk -v a="${wall[1]}" -v b="${wall[2]}" 'BEGIN { printf "2-thread speedup (wall): %.2fx (target >= 1.7x)\n", a / b }'

@@ -73,7 +73,10 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
     try {
         return make_tile_plan(layout.g, files, o);
     } catch (const invalid_input& e) {
-        throw usage_error(std::string("--tile ") + std::to_string(tile_edge_m) + " with --memory: " + e.what());
+        std::ostringstream why;
+        why << "--tile " << tile_edge_m << " does not fit --memory (lower --tile or --threads, or raise --memory): "
+            << e.what();
+        throw usage_error(why.str());
     }
 }
 
