@@ -74,7 +74,6 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
     }
     // Everything not recorded (another run's tiles, temporary files of a killed one) goes.
     for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
-        const auto name = entry.path().filename().string();
         bool keep = false;
         for (const std::size_t t : done_) keep = keep || entry.path() == tile_path(t);
         if (!keep) std::filesystem::remove(entry.path());
