@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian packages lidarfx needs (only those missing). Usage: install-deps.sh [--peers] [--gdal]
+# Installs the Debian packages lidarfx needs (only those missing). Usage: install-deps.sh [--peers] [--gdal] [--mpi]
 set -euo pipefail
 packages=(cmake ninja-build g++ libeigen3-dev libboost-dev doctest-dev libbenchmark-dev zlib1g-dev)
 for arg in "$@"; do
@@ -7,6 +7,7 @@ for arg in "$@"; do
         --peers) packages+=(python3-numpy python3-scipy python3-opencv) ;;
         --gdal) packages+=(libgdal-dev) ;;
         --clang) packages+=(clang lld) ;;
+        --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
     esac
 done
 missing=()

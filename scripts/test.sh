@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --mpi   # the MPI driver and its test (mpi_tiled_water)
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
 ctest --preset "$preset"

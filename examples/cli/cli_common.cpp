@@ -315,7 +315,7 @@ void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, s
 
 }  // namespace
 
-survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
+survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt)
 {
     const double cell_m = opt.cell_m;
     const int threads = opt.threads;
@@ -337,7 +337,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         }
         identities.push_back(id);
     }
-    survey s;
+    survey_layout layout;
+    survey& s = layout.head;
     bounds box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     std::uint64_t total = 0;
@@ -381,6 +382,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         }
         ++s.files;
         total += h.point_count;
+        layout.points.push_back(h.point_count);
+        layout.extents.push_back({h.min[0], h.min[1], h.max[0], h.max[1]});
         if (h.point_count == 0) continue;
         box.xmin = std::min(box.xmin, h.min[0]);
         box.ymin = std::min(box.ymin, h.min[1]);
@@ -391,6 +394,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     // From here on, everything is in metres (a product of doubles is monotone, so bounds still hold the points).
     const double unit_xy = s.crs.horizontal_unit_m, unit_z = s.crs.vertical_unit_m;
     box = {box.xmin * unit_xy, box.ymin * unit_xy, box.xmax * unit_xy, box.ymax * unit_xy};
+    for (auto& e : layout.extents) e = {e.xmin * unit_xy, e.ymin * unit_xy, e.xmax * unit_xy, e.ymax * unit_xy};
     if (!opt.crop && !opt.force) refuse_outliers(paths, box, total, unit_xy);
     if (opt.crop) {
         const bounds c{opt.crop->xmin * unit_xy, opt.crop->ymin * unit_xy, opt.crop->xmax * unit_xy,
@@ -425,7 +429,31 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             << " or more (about one point per cell), --crop to where the points are, or --force";
         throw usage_error(why.str());
     }
-    const grid g = snapped_grid(box, cell_m);
+    layout.g = snapped_grid(box, cell_m);
+    layout.total = total;
+    layout.unit_xy = unit_xy;
+    layout.unit_z = unit_z;
+    return layout;
+}
+
+void to_metres(io::las_points& points, const survey_layout& layout)
+{
+    if (layout.unit_xy != 1) {
+        for (double& x : points.x) x *= layout.unit_xy;
+        for (double& y : points.y) y *= layout.unit_xy;
+    }
+    if (layout.unit_z != 1) {
+        for (double& z : points.z) z *= layout.unit_z;
+    }
+}
+
+survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
+{
+    const int threads = opt.threads;
+    survey_layout layout = survey_layout_of(paths, opt);
+    survey s = std::move(layout.head);
+    const grid g = layout.g;
+    const std::uint64_t total = layout.total;
     raster_accumulator acc(g);
     auto bar = opt.show_progress ? progress_bar("reading  ") : progress_callback{};
     // The files' chunks in order: next_chunk(dst) fills dst, records its file and returns its size, 0 after
@@ -445,13 +473,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             }
             dst.file = file - 1;
             if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) {
-                if (unit_xy != 1) {
-                    for (double& x : dst.points.x) x *= unit_xy;
-                    for (double& y : dst.points.y) y *= unit_xy;
-                }
-                if (unit_z != 1) {
-                    for (double& z : dst.points.z) z *= unit_z;
-                }
+                to_metres(dst.points, layout);
                 return n;
             }
             reader.reset();

@@ -17,6 +17,7 @@
 #include <lidarfx/kernels/points/rasterize.hpp>
 
 #include "io/crs.hpp"
+#include "io/las.hpp"
 #include "io/output_folder.hpp"
 
 namespace lidarfx::cli {
@@ -98,6 +99,24 @@ struct survey {
     std::size_t points = 0;      ///< points read
     std::size_t files = 0;
 };
+
+/// What read_survey learns from the files' headers before reading any point, everything in metres.
+struct survey_layout {
+    survey head;                          ///< crs, crs_wkt, epsg and files set; no rasters yet
+    grid g;                               ///< the snapped grid over the files' bounds (or the crop box)
+    std::vector<bounds> extents;          ///< each file's header bounds, in input order
+    std::vector<std::uint64_t> points;    ///< each file's header point count
+    std::uint64_t total = 0;              ///< points of every file
+    double unit_xy = 1, unit_z = 1;       ///< metres per unit of the files' x and y, and of z
+};
+
+/// The header checks of read_survey, before any point is read: the same file twice, CRS and units
+/// (degrees and mixed units refused), outliers, crop, the grid's memory against the budget and the cell
+/// against the density; then the grid. @throws as read_survey.
+survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt);
+
+/// Multiplies a chunk's x, y and z by the layout's units (metres per unit).
+void to_metres(io::las_points& points, const survey_layout& layout);
 
 /// Reads every point of `paths` in chunks and rasterizes them on the snapped grid covering the union of
 /// the files' header bounds (or the crop box); points outside those bounds (a header that lies) are reported

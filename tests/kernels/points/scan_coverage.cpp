@@ -3,6 +3,7 @@
 
 #include <lidarfx/kernels/points/scan_coverage.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -86,4 +87,37 @@ TEST_CASE("points/scan_coverage: chunking does not change the result; end_sweep 
     CHECK(covered_in_row(files, 4, 10, 30) == 0);
     CHECK_THROWS_AS(scan_coverage(tile, {.max_time_gap_s = 0.0}), invalid_input);
     CHECK_THROWS_AS(whole.add(s.x, s.y, std::span(s.t).first(3)), invalid_input);
+}
+
+TEST_CASE("points/scan_coverage: windows of a partition put together give the whole grid's coverage")
+{
+    // Diagonal and horizontal lines with gaps, on a grid whose cell is not a power of two (rounding differs
+    // between the whole grid's coordinates and a window's own).
+    const grid g{1000.3, 2000.7, 0.7, 23, 37};
+    std::vector<double> x, y, t;
+    for (int i = 0; i < 400; ++i) {
+        const double f = i / 400.0;
+        if (i % 50 > 20) continue;   // lost pulses
+        x.push_back(1000.3 + f * 25.9);
+        y.push_back(2000.7 - 0.05 - f * 16.0);
+        t.push_back(i * 1.0e-5);
+    }
+    scan_coverage whole(g);
+    whole.add(x, y, t);
+    const auto expected = whole.take();
+    REQUIRE(std::count(expected.data(), expected.data() + expected.size(), 1) > 20);
+    raster<std::uint8_t> assembled(g.rows, g.cols, 7);
+    for (std::ptrdiff_t r0 = 0; r0 < g.rows; r0 += 6) {
+        for (std::ptrdiff_t c0 = 0; c0 < g.cols; c0 += 5) {
+            const cell_box w{r0, c0, std::min(g.rows, r0 + 6) - 1, std::min(g.cols, c0 + 5) - 1};
+            scan_coverage part(g, w);
+            part.add(x, y, t);
+            REQUIRE(part.covered().rows() == w.rows());
+            for (std::ptrdiff_t r = 0; r < w.rows(); ++r)
+                for (std::ptrdiff_t c = 0; c < w.cols(); ++c) assembled(r0 + r, c0 + c) = part.covered()(r, c);
+        }
+    }
+    CHECK(assembled == expected);
+    CHECK_THROWS_AS(scan_coverage(g, cell_box{0, 0, 23, 3}), invalid_input);
+    CHECK_THROWS_AS(scan_coverage(g, cell_box{}), invalid_input);
 }

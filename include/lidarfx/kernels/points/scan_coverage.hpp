@@ -38,10 +38,22 @@ class scan_coverage {
 public:
     /// @throws invalid_input if the grid is invalid or an option is not finite and > 0.
     explicit scan_coverage(const grid& g, const scan_coverage_options& opt = {})
-        : g_(g), opt_(opt), covered_(g.rows, g.cols, 0)
+        : scan_coverage(g, cell_box{0, 0, g.rows - 1, g.cols - 1}, opt)
+    {
+    }
+
+    /// Coverage of the cells `window` of `g` only (a tile of a survey): segments are walked in g's cell
+    /// coordinates exactly as on the whole grid and clipped to the window, so the tiles' windows of a
+    /// partition of g put together give the whole grid's raster bit for bit. covered() is window-sized.
+    /// @throws invalid_input as above, or if the window is empty or not inside g.
+    scan_coverage(const grid& g, const cell_box& window, const scan_coverage_options& opt = {})
+        : g_(g), opt_(opt), window_(window), covered_(window.rows(), window.cols(), 0)
     {
         constexpr const char* function = "scan_coverage";
         g.validate(function);
+        detail::require(g.size() == 0 || (!window.empty() && window.row_min >= 0 && window.col_min >= 0 &&
+                                          window.row_max < g.rows && window.col_max < g.cols),
+                        function, "window must be a non-empty box of cells inside the grid");
         detail::require_positive(opt.max_time_gap_s, function, "max_time_gap_s");
         detail::require_positive(opt.max_span_m, function, "max_span_m");
     }
@@ -89,18 +101,27 @@ private:
         const cell_coords p = g_.to_cell_coords(a.x, a.y), q = g_.to_cell_coords(b.x, b.y);
         const double length = std::max(std::abs(q.row - p.row), std::abs(q.col - p.col));
         if (length < 1.0) return;  // within a cell or two neighbours: the returns mark them already
+        // A segment whose box (one cell wider, for rounding) misses the window marks nothing in it.
+        if (std::max(p.row, q.row) < static_cast<double>(window_.row_min - 1) ||
+            std::min(p.row, q.row) > static_cast<double>(window_.row_max + 2) ||
+            std::max(p.col, q.col) < static_cast<double>(window_.col_min - 1) ||
+            std::min(p.col, q.col) > static_cast<double>(window_.col_max + 2))
+            return;
         const auto steps = static_cast<std::ptrdiff_t>(std::ceil(2.0 * length));
         for (std::ptrdiff_t s = 1; s < steps; ++s) {
             const double f = static_cast<double>(s) / static_cast<double>(steps);
             const double row = p.row + f * (q.row - p.row), col = p.col + f * (q.col - p.col);
             if (!(row >= 0 && col >= 0 && row < static_cast<double>(g_.rows) && col < static_cast<double>(g_.cols)))
                 continue;
-            covered_.view()(static_cast<std::ptrdiff_t>(row), static_cast<std::ptrdiff_t>(col)) = 1;
+            const auto r = static_cast<std::ptrdiff_t>(row), c = static_cast<std::ptrdiff_t>(col);
+            if (r < window_.row_min || r > window_.row_max || c < window_.col_min || c > window_.col_max) continue;
+            covered_.view()(r - window_.row_min, c - window_.col_min) = 1;
         }
     }
 
     grid g_;
     scan_coverage_options opt_;
+    cell_box window_;   // the cells of g_ that covered_ holds
     raster<std::uint8_t> covered_;
     std::optional<point> previous_;
 };
