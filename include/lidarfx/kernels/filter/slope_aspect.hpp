@@ -61,15 +61,6 @@ inline double horn_axis(const double (&behind)[3], const double (&middle)[3], co
     return weight > 0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
 }
 
-/// sqrt(1 + u) for u in [0, 1] (relative error 2.9e-9): a degree-8 minimax polynomial. std::sqrt would do, but
-/// it may set errno, so compilers keep a branch around it and do not vectorize the loop that calls it.
-inline double sqrt_one_plus(double u) noexcept
-{
-    return horner(u, {-0.0008042263089434315, 0.00459414209851032, -0.01260423201756121, 0.023689821194072577,
-                      -0.03799556422631248, 0.06231838140092247, -0.12498423749403109, 0.49999947070359657,
-                      1.0000000029092297});
-}
-
 /// Slope, aspect and flat flag of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
 /// north, both in m/m). With hi = max(|east|, |north|) and t = min/max in [0, 1]: |grad| = hi * sqrt(1 + t^2)
 /// and the aspect is atan(t) reflected into its quadrant, so nothing here stops a loop from vectorizing (no
@@ -82,11 +73,13 @@ inline void slope_aspect_cell(double east, double north, double flat_slope_deg, 
     const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
     const double t = lo / (hi > std::numeric_limits<double>::min() ? hi : std::numeric_limits<double>::min());
     const float s = atan_deg(static_cast<float>(hi * sqrt_one_plus(t * t)));
-    float a = atan_deg(static_cast<float>(t));  // degrees from the nearer of the two axes, [0, 45]
-    a = ax > ay ? 90.0f - a : a;                // from north, down-slope direction in the NE quadrant
-    a = north > 0 ? 180.0f - a : a;             // down-slope points south
-    a = east > 0 ? 360.0f - a : a;              // down-slope points west
-    a = a >= 360.0f ? 0.0f : a;                 // 360 - tiny rounds to 360
+    // Reflections k - a are computed for every cell and picked by bit masks (fast_math.hpp: a select with
+    // arithmetic in one arm keeps the loop scalar on AVX2 and SSE, which have no masked arithmetic).
+    float a = atan_deg(static_cast<float>(t));       // degrees from the nearer of the two axes, [0, 45]
+    a = reflect_if(ax > ay, 90.0f, a);               // from north, down-slope direction in the NE quadrant
+    a = reflect_if(north > 0, 180.0f, a);            // down-slope points south
+    a = reflect_if(east > 0, 360.0f, a);             // down-slope points west
+    a = select_bits(a >= 360.0f, 0.0f, a);           // 360 - tiny rounds to 360
     const bool is_flat = static_cast<double>(s) <= flat_slope_deg;
     // NaN aspect for flat cells and NaN slopes, by adding NaN or 0 (s - s) rather than selecting: a select
     // against a constant makes compilers branch around the atan, and the loop no longer vectorizes.
@@ -217,8 +210,10 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
 template <raster_input In>
 slope_aspect_result slope_aspect(const In& z, double cell_m, const slope_aspect_options& opt = {})
 {
-    slope_aspect_result result{raster<float>(z.rows(), z.cols()), raster<float>(z.rows(), z.cols()),
-                               raster<std::uint8_t>(z.rows(), z.cols())};
+    // Every cell is written, by the worker that computes it: the pages are first touched in parallel.
+    slope_aspect_result result{raster<float>(z.rows(), z.cols(), uninitialized),
+                               raster<float>(z.rows(), z.cols(), uninitialized),
+                               raster<std::uint8_t>(z.rows(), z.cols(), uninitialized)};
     slope_aspect(z, result.slope_deg, result.aspect_deg, result.flat, cell_m, opt);
     return result;
 }
