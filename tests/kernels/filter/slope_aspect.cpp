@@ -203,9 +203,12 @@ TEST_CASE("filter/slope_aspect: the flat flag compares the float slope with the 
     // exactly (double)slope <= flat_slope_deg. A surface of slopes spread around 20 degrees hits both sides.
     const std::ptrdiff_t rows = 64, cols = 64;
     raster<float> z(rows, cols);
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            z(r, c) = static_cast<float>(0.30 * c + 0.001 * c * c + 0.0005 * r * c);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto x = static_cast<double>(c), y = static_cast<double>(r);
+            z(r, c) = static_cast<float>(0.30 * x + 0.001 * x * x + 0.0005 * y * x);
+        }
+    }
     const double next_float_above_20 = std::nextafter(20.0f, 30.0f);
     for (double flat_deg : {20.0 + 1e-9, (20.0 + next_float_above_20) / 2, next_float_above_20 - 1e-12, 20.0}) {
         INFO("flat_slope_deg " << flat_deg);
