@@ -3,6 +3,7 @@
 
 #include <lidarfx/core/fast_math.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -22,7 +23,9 @@ constexpr float not_a_number = std::numeric_limits<float>::quiet_NaN();
 std::vector<float> dense_non_negative_floats()
 {
     std::vector<float> v;
-    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 997) v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 997) {
+        v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    }
     v.push_back(std::numeric_limits<float>::max());
     v.push_back(std::numeric_limits<float>::denorm_min());
     v.push_back(1.0f);
@@ -34,7 +37,9 @@ std::vector<float> dense_non_negative_floats()
 std::vector<float> magnitudes()
 {
     std::vector<float> v;
-    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 0x7f800000u / 1600) v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 0x7f800000u / 1600) {
+        v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    }
     for (float x : {0.0f, 1.0f, 3.0f, std::numeric_limits<float>::max(), inf}) v.push_back(x);
     return v;
 }
@@ -63,7 +68,8 @@ TEST_CASE("core/fast_math: atan_deg is within 1e-5 degrees of atan for x >= 0")
 {
     double worst = 0;
     for (float x : dense_non_negative_floats()) {
-        worst = std::max(worst, std::fabs(detail::atan_deg(x) - std::atan(static_cast<double>(x)) * (180 / std::numbers::pi)));
+        const double exact_deg = std::atan(static_cast<double>(x)) * (180 / std::numbers::pi);
+        worst = std::max(worst, std::fabs(detail::atan_deg(x) - exact_deg));
     }
     CHECK(worst <= 1e-5);
     CHECK(detail::atan_deg(0.0f) == 0.0f);

@@ -78,8 +78,8 @@ constexpr float atan_deg(float x) noexcept
 /// x with the sign bit of `sign` (std::copysign without the libm call; compiles to bit operations).
 constexpr float with_sign_of(float x, float sign) noexcept
 {
-    const auto bits = (std::bit_cast<std::uint32_t>(x) & 0x7fffffffu) | (std::bit_cast<std::uint32_t>(sign) & 0x80000000u);
-    return std::bit_cast<float>(bits);
+    const std::uint32_t magnitude = std::bit_cast<std::uint32_t>(x) & 0x7fffffffu;
+    return std::bit_cast<float>(magnitude | (std::bit_cast<std::uint32_t>(sign) & 0x80000000u));
 }
 
 /// atan(x) in radians for every float x (float arithmetic, branch-free): +-inf gives +-pi/2, NaN gives NaN,
