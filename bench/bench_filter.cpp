@@ -36,7 +36,21 @@ void bm_angular_filter(benchmark::State& state)
     }
     state.SetItemsProcessed(state.iterations() * n * n);
 }
-BENCHMARK(bm_angular_filter)->ArgsProduct({{1024, 4096}, {1, 0}})->ArgNames({"n", "threads"})->UseRealTime();
+BENCHMARK(bm_angular_filter)->ArgsProduct({{1024, 4096}, {1, 2}})->ArgNames({"n", "threads"})->UseRealTime();
+
+// The returning form: a new raster per call (allocation and first touch included).
+void bm_angular_filter_returning(benchmark::State& state)
+{
+    const auto n = state.range(0);
+    const auto z = terrain(n);
+    const lidarfx::angular_filter_options opt{.radius_cells = 2, .run = {.threads = static_cast<int>(state.range(1))}};
+    for (auto _ : state) {
+        const auto out = lidarfx::angular_filter(z, 0.5, opt);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(state.iterations() * n * n);
+}
+BENCHMARK(bm_angular_filter_returning)->ArgsProduct({{4096}, {1, 2}})->ArgNames({"n", "threads"})->UseRealTime();
 
 void bm_angular_filter_reference(benchmark::State& state)
 {
@@ -66,7 +80,21 @@ void bm_slope_aspect(benchmark::State& state)
     }
     state.SetItemsProcessed(state.iterations() * n * n);
 }
-BENCHMARK(bm_slope_aspect)->ArgsProduct({{1024, 4096}, {1, 0}})->ArgNames({"n", "threads"})->UseRealTime();
+BENCHMARK(bm_slope_aspect)->ArgsProduct({{1024, 4096}, {1, 2}})->ArgNames({"n", "threads"})->UseRealTime();
+
+// The returning form: three new rasters per call (allocation and first touch included).
+void bm_slope_aspect_returning(benchmark::State& state)
+{
+    const auto n = state.range(0);
+    const auto z = terrain(n);
+    const lidarfx::slope_aspect_options opt{.run = {.threads = static_cast<int>(state.range(1))}};
+    for (auto _ : state) {
+        const auto out = lidarfx::slope_aspect(z, 0.5, opt);
+        benchmark::DoNotOptimize(out.slope_deg.data());
+    }
+    state.SetItemsProcessed(state.iterations() * n * n);
+}
+BENCHMARK(bm_slope_aspect_returning)->ArgsProduct({{4096}, {1, 2}})->ArgNames({"n", "threads"})->UseRealTime();
 
 void bm_slope_aspect_reference(benchmark::State& state)
 {

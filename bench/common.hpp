@@ -2,6 +2,8 @@
 // Shared input generators for the benchmarks: deterministic, built outside the timed loops.
 // Inputs can also be loaded from raw files written by the peer scripts (bench/peers/), so that lidarfx
 // and its peers time the very same cells: set LIDARFX_BENCH_INPUT_DIR to the folder holding them.
+// Every program that includes this header prints, in Google Benchmark's context, the CPU model, its vector
+// extensions, the extensions the build targets and the build flags (see build_context below).
 #pragma once
 
 #include <cmath>
@@ -10,9 +12,17 @@
 #include <fstream>
 #include <random>
 #include <stdexcept>
+#include <sstream>
 #include <string>
+#include <thread>
+
+#include <benchmark/benchmark.h>
 
 #include <lidarfx/core/raster.hpp>
+
+#ifndef LIDARFX_BENCH_FLAGS
+#define LIDARFX_BENCH_FLAGS "unknown (not set by bench/CMakeLists.txt)"
+#endif
 
 namespace bench {
 
@@ -60,5 +70,81 @@ lidarfx::raster<T> load_raw(const std::string& path, std::ptrdiff_t rows, std::p
         throw std::runtime_error(path + ": too short");
     return out;
 }
+
+/// The value of the first /proc/cpuinfo line starting with `key` (e.g. "model name"), or "" off Linux.
+inline std::string cpuinfo_field(const std::string& key)
+{
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind(key, 0) == 0) {
+            const auto colon = line.find(':');
+            return colon == std::string::npos ? std::string() : line.substr(colon + 2);
+        }
+    }
+    return {};
+}
+
+/// The vector extensions among the CPU's flags (/proc/cpuinfo), in a fixed order: what the machine offers.
+inline std::string cpu_vector_extensions()
+{
+    std::istringstream flags(" " + cpuinfo_field("flags") + " ");
+    const std::string all = flags.str();
+    std::string out;
+    for (const char* f : {"sse2", "sse4_2", "avx", "avx2", "fma", "bmi2", "avx512f", "avx512dq", "avx512cd", "avx512bw",
+                          "avx512vl", "avx512_vnni", "avx512_bf16", "avx512_vbmi2", "asimd", "sve"}) {
+        if (all.find(" " + std::string(f) + " ") != std::string::npos) out += (out.empty() ? "" : " ") + std::string(f);
+    }
+    return out;
+}
+
+/// The vector extensions this build may use (the compiler's predefined macros): what the code targets.
+inline std::string build_vector_extensions()
+{
+    std::string out = "sse2";
+#ifdef __SSE4_2__
+    out += " sse4_2";
+#endif
+#ifdef __AVX__
+    out += " avx";
+#endif
+#ifdef __AVX2__
+    out += " avx2";
+#endif
+#ifdef __FMA__
+    out += " fma";
+#endif
+#ifdef __AVX512F__
+    out += " avx512f";
+#endif
+#ifdef __AVX512BW__
+    out += " avx512bw";
+#endif
+#ifdef __AVX512VL__
+    out += " avx512vl";
+#endif
+#if defined(__aarch64__)
+    out = "asimd";
+#endif
+    return out;
+}
+
+/// Adds cpu_model, cpu_vector_extensions, build_vector_extensions, compiler and build_flags to Google
+/// Benchmark's context (printed before the results and stored in --benchmark_format=json output).
+inline bool add_build_context()
+{
+    benchmark::AddCustomContext("cpu_model", cpuinfo_field("model name"));
+    benchmark::AddCustomContext("cpu_vector_extensions", cpu_vector_extensions());
+    benchmark::AddCustomContext("hardware_threads", std::to_string(std::thread::hardware_concurrency()));
+    benchmark::AddCustomContext("build_vector_extensions", build_vector_extensions());
+#ifdef __VERSION__
+    benchmark::AddCustomContext("compiler", __VERSION__);
+#endif
+    benchmark::AddCustomContext("build_flags", LIDARFX_BENCH_FLAGS);
+    return true;
+}
+
+/// Runs add_build_context once per program, before BENCHMARK_MAIN's main() starts.
+inline const bool build_context_added = add_build_context();
 
 }  // namespace bench

@@ -196,6 +196,37 @@ TEST_CASE("filter/slope_aspect: matches the reference on random rasters, strided
     }
 }
 
+TEST_CASE("filter/slope_aspect: the flat flag compares the float slope with the double threshold exactly")
+{
+    // The kernel compares in float against the largest float <= flat_slope_deg; for a threshold that is no
+    // float (20 + 1e-9, just above the float 20, and one just below the next float) every flag must still be
+    // exactly (double)slope <= flat_slope_deg. A surface of slopes spread around 20 degrees hits both sides.
+    const std::ptrdiff_t rows = 64, cols = 64;
+    raster<float> z(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto x = static_cast<double>(c), y = static_cast<double>(r);
+            z(r, c) = static_cast<float>(0.30 * x + 0.001 * x * x + 0.0005 * y * x);
+        }
+    }
+    const double next_float_above_20 = std::nextafter(20.0f, 30.0f);
+    for (double flat_deg : {20.0 + 1e-9, (20.0 + next_float_above_20) / 2, next_float_above_20 - 1e-12, 20.0}) {
+        INFO("flat_slope_deg " << flat_deg);
+        const auto got = slope_aspect(z, 1.0, {.flat_slope_deg = flat_deg});
+        int flat = 0, steep = 0;
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool expected = static_cast<double>(got.slope_deg(r, c)) <= flat_deg;
+                CHECK(got.flat(r, c) == (expected ? 1 : 0));
+                CHECK(std::isnan(got.aspect_deg(r, c)) == expected);
+                (expected ? flat : steep) += 1;
+            }
+        }
+        CHECK(flat > 0);
+        CHECK(steep > 0);
+    }
+}
+
 TEST_CASE("filter/slope_aspect: adversarial rasters")
 {
     SUBCASE("a single row or column has no gradient across it: NaN, never flat")

@@ -61,45 +61,51 @@ inline double horn_axis(const double (&behind)[3], const double (&middle)[3], co
     return weight > 0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
 }
 
-/// sqrt(1 + u) for u in [0, 1] (relative error 2.9e-9): a degree-8 minimax polynomial. std::sqrt would do, but
-/// it may set errno, so compilers keep a branch around it and do not vectorize the loop that calls it.
-inline double sqrt_one_plus(double u) noexcept
-{
-    return horner(u, {-0.0008042263089434315, 0.00459414209851032, -0.01260423201756121, 0.023689821194072577,
-                      -0.03799556422631248, 0.06231838140092247, -0.12498423749403109, 0.49999947070359657,
-                      1.0000000029092297});
-}
-
-/// Slope, aspect and flat flag of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
+/// Slope and aspect of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
 /// north, both in m/m). With hi = max(|east|, |north|) and t = min/max in [0, 1]: |grad| = hi * sqrt(1 + t^2)
 /// and the aspect is atan(t) reflected into its quadrant, so nothing here stops a loop from vectorizing (no
 /// atan2, no std::sqrt, no select that picks a constant over a computed value). Aspect = azimuth of the
 /// down-slope direction (-east, -north), clockwise from north.
-inline void slope_aspect_cell(double east, double north, double flat_slope_deg, float& slope, float& aspect,
-                              std::uint8_t& flat) noexcept
+inline void slope_aspect_cell(double east, double north, float flat_slope_deg, float& slope, float& aspect) noexcept
 {
     const double ax = std::fabs(east), ay = std::fabs(north);
     const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
     const double t = lo / (hi > std::numeric_limits<double>::min() ? hi : std::numeric_limits<double>::min());
     const float s = atan_deg(static_cast<float>(hi * sqrt_one_plus(t * t)));
-    float a = atan_deg(static_cast<float>(t));  // degrees from the nearer of the two axes, [0, 45]
-    a = ax > ay ? 90.0f - a : a;                // from north, down-slope direction in the NE quadrant
-    a = north > 0 ? 180.0f - a : a;             // down-slope points south
-    a = east > 0 ? 360.0f - a : a;              // down-slope points west
-    a = a >= 360.0f ? 0.0f : a;                 // 360 - tiny rounds to 360
-    const bool is_flat = static_cast<double>(s) <= flat_slope_deg;
+    // Reflections k - a are computed for every cell and picked by bit masks (fast_math.hpp: a select with
+    // arithmetic in one arm keeps the loop scalar on AVX2 and SSE, which have no masked arithmetic).
+    float a = atan_deg(static_cast<float>(t));       // degrees from the nearer of the two axes, [0, 45]
+    a = reflect_if(ax > ay, 90.0f, a);               // from north, down-slope direction in the NE quadrant
+    a = reflect_if(north > 0, 180.0f, a);            // down-slope points south
+    a = reflect_if(east > 0, 360.0f, a);             // down-slope points west
+    a = select_bits(a >= 360.0f, 0.0f, a);           // 360 - tiny rounds to 360
+    const bool is_flat = s <= flat_slope_deg;
     // NaN aspect for flat cells and NaN slopes, by adding NaN or 0 (s - s) rather than selecting: a select
     // against a constant makes compilers branch around the atan, and the loop no longer vectorizes.
     const float nan_if_flat = is_flat ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
     slope = s;
     aspect = a + nan_if_flat + (s - s);
-    flat = static_cast<std::uint8_t>(is_flat);
+}
+
+/// The largest float <= d: for a float s, s <= float_at_most(d) exactly when s <= d, so the flat test runs in
+/// float (a float-to-double compare keeps loops scalar on SSE2).
+inline float float_at_most(double d) noexcept
+{
+    const float f = static_cast<float>(d);
+    return static_cast<double>(f) > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+/// The flat flag of a cell from its slope: 1 where slope <= flat_slope_deg, 0 otherwise and for NaN (written by
+/// a loop of its own: a byte store in the slope loop keeps it scalar on SSE2).
+inline std::uint8_t is_flat_slope(float slope, float flat_slope_deg) noexcept
+{
+    return static_cast<std::uint8_t>(slope <= flat_slope_deg);
 }
 
 /// General path for one cell: a 3x3 window read with NaN for cells beyond the border, Horn's weighted mean of
 /// whatever differences exist (horn_axis) along each axis.
 inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, std::ptrdiff_t c, double cell_m,
-                                 double flat_slope_deg, float& slope, float& aspect, std::uint8_t& flat) noexcept
+                                 float flat_slope_deg, float& slope, float& aspect) noexcept
 {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     double w[3][3];  // w[1 + dr][1 + dc]
@@ -112,7 +118,6 @@ inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, s
     }
     if (std::isnan(w[1][1])) {
         slope = aspect = std::numeric_limits<float>::quiet_NaN();
-        flat = 0;
         return;
     }
     // East: lines are the rows, behind = west column. North: lines are the columns, behind = south row.
@@ -120,7 +125,7 @@ inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, s
                  east_col[3] = {w[0][2], w[1][2], w[2][2]};
     const double east = horn_axis(west, mid_col, east_col) / cell_m;
     const double north = horn_axis(w[2], w[1], w[0]) / cell_m;
-    slope_aspect_cell(east, north, flat_slope_deg, slope, aspect, flat);
+    slope_aspect_cell(east, north, flat_slope_deg, slope, aspect);
 }
 
 /// Rows [r0, r1). Interior cells take Horn's formula directly, in two loops compilers vectorize (gradients,
@@ -133,6 +138,7 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const double scale = 1.0 / (8.0 * cell_m);
+    const float flat_deg = float_at_most(flat_slope_deg);
     std::vector<double> east_row(static_cast<std::size_t>(cols)), north_row(static_cast<std::size_t>(cols));
     double* east = east_row.data();
     double* north = north_row.data();
@@ -157,15 +163,16 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
                            scale;
             }
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
-                slope_aspect_cell(east[c], north[c], flat_slope_deg, s[c], a[c], f[c]);
+                slope_aspect_cell(east[c], north[c], flat_deg, s[c], a[c]);
             }
         }
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const bool edge = !interior || c == 0 || c + 1 == cols;
             if (edge || (s[c] != s[c] && m[c] == m[c])) {
-                slope_aspect_general(z, r, c, cell_m, flat_slope_deg, s[c], a[c], f[c]);
+                slope_aspect_general(z, r, c, cell_m, flat_deg, s[c], a[c]);
             }
         }
+        for (std::ptrdiff_t c = 0; c < cols; ++c) f[c] = is_flat_slope(s[c], flat_deg);
     }
 }
 
@@ -217,8 +224,10 @@ void slope_aspect(const In& z, SlopeOut&& slope_deg, AspectOut&& aspect_deg, Fla
 template <raster_input In>
 slope_aspect_result slope_aspect(const In& z, double cell_m, const slope_aspect_options& opt = {})
 {
-    slope_aspect_result result{raster<float>(z.rows(), z.cols()), raster<float>(z.rows(), z.cols()),
-                               raster<std::uint8_t>(z.rows(), z.cols())};
+    // Every cell is written, by the worker that computes it: the pages are first touched in parallel.
+    slope_aspect_result result{raster<float>(z.rows(), z.cols(), uninitialized),
+                               raster<float>(z.rows(), z.cols(), uninitialized),
+                               raster<std::uint8_t>(z.rows(), z.cols(), uninitialized)};
     slope_aspect(z, result.slope_deg, result.aspect_deg, result.flat, cell_m, opt);
     return result;
 }

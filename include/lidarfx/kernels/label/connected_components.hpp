@@ -472,7 +472,7 @@ template <raster_input In>
 raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells, connectivity c = connectivity::eight)
 {
     const components comps = connected_components(m, c);
-    raster<std::uint8_t> out(m.rows(), m.cols());
+    raster<std::uint8_t> out(m.rows(), m.cols(), uninitialized);  // every cell is written below
     std::vector<std::uint8_t> keep(comps.sizes.size(), 0);
     for (std::size_t l = 1; l < keep.size(); ++l) keep[l] = comps.sizes[l] >= min_cells ? 1 : 0;
     for (std::ptrdiff_t i = 0; i < out.size(); ++i) {
@@ -491,9 +491,9 @@ raster<std::uint8_t> fill_holes(const In& m, std::size_t max_hole_cells, connect
 {
     const detail::readable<In> in(m);
     const auto v = in.view();
-    raster<std::uint8_t> out(m.rows(), m.cols());
+    raster<std::uint8_t> out(m.rows(), m.cols(), uninitialized);  // both written in full by the first loop
     if (out.empty()) return out;
-    raster<std::uint8_t> background(m.rows(), m.cols());
+    raster<std::uint8_t> background(m.rows(), m.cols(), uninitialized);
     for (std::ptrdiff_t r = 0; r < v.rows(); ++r) {
         for (std::ptrdiff_t col = 0; col < v.cols(); ++col) {
             const bool fg = v(r, col) != typename In::value_type{};

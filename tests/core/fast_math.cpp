@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/core/fast_math.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+using namespace lidarfx;
+
+namespace {
+
+constexpr float inf = std::numeric_limits<float>::infinity();
+constexpr float not_a_number = std::numeric_limits<float>::quiet_NaN();
+
+/// Every 997th non-negative finite float (zero, subnormals, tiny, huge: all binades, ~2.1 million values) plus
+/// the largest float and +inf.
+std::vector<float> dense_non_negative_floats()
+{
+    std::vector<float> v;
+    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 997) {
+        v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    }
+    v.push_back(std::numeric_limits<float>::max());
+    v.push_back(std::numeric_limits<float>::denorm_min());
+    v.push_back(1.0f);
+    v.push_back(inf);
+    return v;
+}
+
+/// ~1600 magnitudes spread over all binades (bit patterns 0 .. +inf in equal steps) plus 0, 1, max and inf.
+std::vector<float> magnitudes()
+{
+    std::vector<float> v;
+    for (std::uint64_t bits = 0; bits < 0x7f800000u; bits += 0x7f800000u / 1600) {
+        v.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(bits)));
+    }
+    for (float x : {0.0f, 1.0f, 3.0f, std::numeric_limits<float>::max(), inf}) v.push_back(x);
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("core/fast_math: fast_atan is within 2e-7 rad of atan over every binade, both signs")
+{
+    double worst = 0, worst_relative = 0;
+    for (float x : dense_non_negative_floats()) {
+        const double exact = std::atan(static_cast<double>(x));
+        worst = std::max(worst, std::fabs(detail::fast_atan(x) - exact));
+        worst = std::max(worst, std::fabs(detail::fast_atan(-x) + exact));
+        if (x > 0 && x <= 1) worst_relative = std::max(worst_relative, std::fabs(detail::fast_atan(x) - exact) / exact);
+    }
+    CHECK(worst <= 2e-7);
+    CHECK(worst_relative <= 2e-7);
+    CHECK(detail::fast_atan(inf) == static_cast<float>(std::numbers::pi / 2));
+    CHECK(detail::fast_atan(-inf) == -static_cast<float>(std::numbers::pi / 2));
+    CHECK(std::signbit(detail::fast_atan(-0.0f)));
+    CHECK(detail::fast_atan(0.0f) == 0.0f);
+    CHECK(std::isnan(detail::fast_atan(not_a_number)));
+}
+
+TEST_CASE("core/fast_math: atan_deg is within 1e-5 degrees of atan for x >= 0")
+{
+    double worst = 0;
+    for (float x : dense_non_negative_floats()) {
+        const double exact_deg = std::atan(static_cast<double>(x)) * (180 / std::numbers::pi);
+        worst = std::max(worst, std::fabs(detail::atan_deg(x) - exact_deg));
+    }
+    CHECK(worst <= 1e-5);
+    CHECK(detail::atan_deg(0.0f) == 0.0f);
+    CHECK(detail::atan_deg(inf) == 90.0f);
+    CHECK(std::isnan(detail::atan_deg(not_a_number)));
+}
+
+TEST_CASE("core/fast_math: fast_atan2 is within 3e-7 rad of atan2 in all four quadrants, huge to tiny")
+{
+    const auto mags = magnitudes();
+    double worst = 0;
+    for (float a : mags) {
+        for (float b : mags) {
+            for (float y : {a, -a}) {
+                for (float x : {b, -b}) {
+                    const double exact = std::atan2(static_cast<double>(y), static_cast<double>(x));
+                    worst = std::max(worst, std::fabs(detail::fast_atan2(y, x) - exact));
+                }
+            }
+        }
+    }
+    CHECK(worst <= 3e-7);
+}
+
+TEST_CASE("core/fast_math: fast_atan2 keeps atan2's special cases")
+{
+    const float pi = static_cast<float>(std::numbers::pi);
+    // Signed zeros pick the half-plane as std::atan2 does.
+    CHECK(detail::fast_atan2(0.0f, 0.0f) == 0.0f);
+    CHECK_FALSE(std::signbit(detail::fast_atan2(0.0f, 0.0f)));
+    CHECK(std::signbit(detail::fast_atan2(-0.0f, 0.0f)));
+    CHECK(detail::fast_atan2(0.0f, -0.0f) == pi);
+    CHECK(detail::fast_atan2(-0.0f, -0.0f) == -pi);
+    CHECK(detail::fast_atan2(0.0f, -1.0f) == pi);
+    CHECK(detail::fast_atan2(-0.0f, -1.0f) == -pi);
+    // Infinities.
+    CHECK(detail::fast_atan2(inf, inf) == doctest::Approx(std::numbers::pi / 4).epsilon(1e-7));
+    CHECK(detail::fast_atan2(inf, -inf) == doctest::Approx(3 * std::numbers::pi / 4).epsilon(1e-7));
+    CHECK(detail::fast_atan2(-inf, -inf) == doctest::Approx(-3 * std::numbers::pi / 4).epsilon(1e-7));
+    CHECK(detail::fast_atan2(1.0f, inf) == 0.0f);
+    CHECK(detail::fast_atan2(1.0f, -inf) == pi);
+    CHECK(detail::fast_atan2(-inf, 1.0f) == -static_cast<float>(std::numbers::pi / 2));
+    // NaN in either argument.
+    CHECK(std::isnan(detail::fast_atan2(not_a_number, 1.0f)));
+    CHECK(std::isnan(detail::fast_atan2(1.0f, not_a_number)));
+    CHECK(std::isnan(detail::fast_atan2(not_a_number, inf)));
+    CHECK(std::isnan(detail::fast_atan2(0.0f, not_a_number)));
+}
+
+TEST_CASE("core/fast_math: sqrt_one_plus is within 3e-9 relative of sqrt(1 + u) on [0, 1]")
+{
+    double worst = 0;
+    for (int i = 0; i <= 1'000'000; ++i) {
+        const double u = i / 1e6;
+        worst = std::max(worst, std::fabs(detail::sqrt_one_plus(u) / std::sqrt(1 + u) - 1));
+    }
+    CHECK(worst <= 3e-9);
+}
+
+TEST_CASE("core/fast_math: select_bits picks a finished value, NaNs and signed zeros intact")
+{
+    CHECK(detail::select_bits(true, 1.5f, 2.5f) == 1.5f);
+    CHECK(detail::select_bits(false, 1.5f, 2.5f) == 2.5f);
+    CHECK(std::isnan(detail::select_bits(true, not_a_number, 0.0f)));
+    CHECK(std::signbit(detail::select_bits(false, 1.0f, -0.0f)));
+    CHECK(detail::reflect_if(true, 90.0f, 30.0f) == 60.0f);
+    CHECK(detail::reflect_if(false, 90.0f, 30.0f) == 30.0f);
+}
