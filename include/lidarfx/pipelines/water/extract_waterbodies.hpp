@@ -63,6 +63,16 @@ struct extract_waterbodies_options {
                                            ///< count); progress over seeds, returning false cancels
 };
 
+/// The options of the method before the water family (issue 17): no level gate (grow.level_gate_m = 0),
+/// no KS exemption of cells at the level. Kept so that its accuracy stays printable for comparison.
+inline extract_waterbodies_options previous_water_method()
+{
+    extract_waterbodies_options o;
+    o.grow.level_gate_m = 0;
+    o.grow.level_ks_exempt_m = -1;
+    return o;
+}
+
 /// Result of extract_waterbodies, with the intermediate rasters for inspection.
 struct extract_waterbodies_result {
     raster<std::int32_t> labels;           ///< 0 land, 1..n waterbodies by decreasing area
@@ -140,7 +150,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     water_field field{water_angles(in, cell_m, {.radius_cells = opt.angular_radius_cells, .input = opt.angular_on,
                                                 .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
                                                 .run = kernels}),
-                      raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins};
+                      raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins, in.min_z};
     for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.
     raster<std::uint8_t> dropout_inside;
