@@ -41,44 +41,6 @@ struct score {
     bool has_bridges, one_body;
 };
 
-/// True when the river's stretches between bridges (and beyond them) are found mostly as one label.
-bool river_is_one_body(const synth::water_family_scene& s, const raster<std::int32_t>& labels)
-{
-    std::vector<double> cuts;
-    for (const auto& b : s.bridge_along) cuts.push_back(b[0]);
-    std::sort(cuts.begin(), cuts.end());
-    std::vector<std::map<std::int32_t, long>> votes(cuts.size() + 1);
-    const double ca = std::cos(s.river_angle_rad), sa = std::sin(s.river_angle_rad), h = 0.5 * s.size_m;
-    for (std::ptrdiff_t r = 0; r < s.g.rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < s.g.cols; ++c) {
-            if (!s.water(r, c)) continue;
-            const auto [x, y] = s.g.center(r, c);
-            const double u = (x - h) * ca + (y - h) * sa + h;
-            std::size_t seg = 0;
-            bool on_bridge = false;
-            for (std::size_t k = 0; k < cuts.size(); ++k) {
-                if (std::abs(u - cuts[k]) <= s.bridge_along[k][1] + 4 * s.cell_m) on_bridge = true;
-                if (u > cuts[k]) seg = k + 1;
-            }
-            if (!on_bridge) votes[seg][labels.view()(r, c)] += 1;
-        }
-    }
-    std::int32_t common = -1;
-    for (const auto& v : votes) {
-        long total = 0, best = 0;
-        std::int32_t label = 0;
-        for (const auto& [l, n] : v) {
-            total += n;
-            if (l != 0 && n > best) best = n, label = l;
-        }
-        if (total < 20) continue;  // a stretch cut by the survey edge
-        if (label == 0 || 2 * best < total) return false;
-        if (common >= 0 && label != common) return false;
-        common = label;
-    }
-    return common > 0;
-}
-
 std::vector<score> run(const std::vector<prepared>& scenes, const extract_waterbodies_options& o)
 {
     std::vector<score> out;
@@ -90,7 +52,7 @@ std::vector<score> run(const std::vector<prepared>& scenes, const extract_waterb
                          w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction);
         score s{p.seed, c.accuracy(), c.sensitivity(), c.specificity(), c.iou(), p.truth.bridges > 0, false};
         if (p.truth.kind == synth::water_family_kind::river && s.has_bridges)
-            s.one_body = river_is_one_body(p.truth, w.labels);
+            s.one_body = synth::river_found_as_one_body(p.truth, w.labels.view());
         out.push_back(s);
     }
     return out;
@@ -163,6 +125,8 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_DRIFT")) o.grow.level_drift_m = std::atof(v);
              if (const char* v = std::getenv("WF_EXEMPT")) o.grow.level_ks_exempt_m = std::atof(v);
              if (const char* v = std::getenv("WF_Q")) o.grow.seed_level.quantile = std::atof(v);
+             if (const char* v = std::getenv("WF_SEEDMIN")) o.min_seed_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_OPEN")) o.seed_opening_size_cells = std::atoi(v);
          }},
     };
     if (ablation) {

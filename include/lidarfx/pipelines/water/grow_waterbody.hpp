@@ -42,12 +42,12 @@ struct grow_waterbody_options {
                                          ///< many intensity values (a seed of dropouts has none)
     ks_sample_mode sample = ks_sample_mode::increment;  ///< what each step's sample holds (cumulative =
                                                         ///< the dissertation's literal test)
-    double level_gate_m = 0.25;      ///< level gate (needs field.min_z): a cell with a return joins only when
+    double level_gate_m = 0.15;      ///< level gate (needs field.min_z): a cell with a return joins only when
                                      ///< |min z − L| <= level_gate_m, L the level it is reached from (the
-                                     ///< seed's: seed_water_level); metres; 0 disables. Default 0.25 m
-    double level_drift_m = 0.03;     ///< the level a joining cell passes on follows its min z by at most this
+                                     ///< seed's: seed_water_level); metres; 0 disables. Default 0.15 m
+    double level_drift_m = 0.005;    ///< the level a joining cell passes on follows its min z by at most this
                                      ///< (L' = L + clamp(min z − L, ±drift)): rivers fall, beaches rise
-                                     ///< faster; metres per cell, >= 0. Default 0.03 m
+                                     ///< faster; metres per cell, >= 0. Default 0.005 m
     double level_ks_exempt_m = 0.05; ///< with the gate: cells with min z <= L + this are water by level and
                                      ///< stay out of the KS increment sample (bright specular water near
                                      ///< nadir); metres; < 0 disables. Default 0.05 m

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -275,6 +276,126 @@ struct family_world {
 
 }  // namespace internal
 
+namespace internal {
+
+/// Samples the truth of `w` at the cell centres of out.cell_m cells over [0, out.size_m]² and scans it with
+/// out.scan and out.returns (see water_family). Deterministic from `seed`.
+inline void render_family(const family_world& w, water_family_scene& out, unsigned seed)
+{
+    const double S = out.size_m;
+    const auto cells = static_cast<std::ptrdiff_t>(std::llround(S / out.cell_m));
+    const auto& wr = out.returns;
+    // Truth at the cell centres.
+    out.g = grid{0.0, S, out.cell_m, cells, cells};
+    out.water = raster<std::uint8_t>(cells, cells, 0);
+    out.water_filled = raster<std::uint8_t>(cells, cells, 0);
+    out.body_id = raster<std::int32_t>(cells, cells, 0);
+    out.water_z = raster<float>(cells, cells, std::numeric_limits<float>::quiet_NaN());
+    for (std::ptrdiff_t r = 0; r < cells; ++r) {
+        for (std::ptrdiff_t c = 0; c < cells; ++c) {
+            const auto [x, y] = out.g.center(r, c);
+            const auto s = w.at(x, y);
+            if (s.body >= 0) {
+                out.water(r, c) = 1;
+                out.body_id(r, c) = s.body + 1;
+                out.water_z(r, c) = static_cast<float>(s.z);
+            }
+            out.water_filled(r, c) = s.body >= 0 || (s.island_area > 0 && s.island_area < 200.0);
+        }
+    }
+
+    // Scan: strips of swath W = 2 H tan(max angle), spaced W (1 - overlap); each strip at the density that
+    // makes the mean density out.density_per_m2.
+    const double H = out.scan.flying_height_m, tmax = std::tan(deg_to_rad(out.scan.max_scan_angle_deg));
+    const double swath = 2 * H * tmax, spacing_strips = swath * (1 - out.scan.overlap);
+    const auto strips = static_cast<int>(std::ceil(S / spacing_strips));
+    const double strip_density = out.density_per_m2 * spacing_strips / swath;
+    const double step = 1.0 / std::sqrt(strip_density);
+    const noise_field& patch = w.patch;
+    // Patches: the field above its (1 - patch_share) quantile over the scene's water (truth cells).
+    std::vector<double> on_water;
+    for (std::ptrdiff_t r = 0; r < cells; ++r)
+        for (std::ptrdiff_t c = 0; c < cells; ++c)
+            if (out.water(r, c)) on_water.push_back(patch(out.g.center(r, c)[0], out.g.center(r, c)[1]));
+    double patch_threshold = std::numeric_limits<double>::infinity();
+    if (!on_water.empty()) {
+        const auto at = on_water.begin() + static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * (on_water.size() - 1));
+        std::nth_element(on_water.begin(), at, on_water.end());
+        patch_threshold = *at;
+    }
+    rng random(hash64(seed, 0x5CA95), 2);
+    auto& pts = out.points;
+    pts.reserve(static_cast<std::size_t>(1.2 * S * S * out.density_per_m2));
+    double time = 0;
+    for (int k = 0; k < strips; ++k) {
+        const double xc = (k + 0.5) * S / strips;
+        const double x0 = std::max(0.0, xc - 0.5 * swath), x1 = std::min(S, xc + 0.5 * swath);
+        const auto lines = static_cast<long long>(std::ceil(S / step));
+        const auto per_line = static_cast<long long>(std::ceil((x1 - x0) / step));
+        for (long long i = 0; i < lines; ++i) {
+            for (long long j = 0; j < per_line; ++j) {
+                const double x = std::clamp(x0 + (j + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
+                const double y = std::clamp((i + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
+                time += 1e-5;
+                pts.pulse_time_s = time;
+                const double angle = rad_to_deg(std::atan(std::abs(x - xc) / H));
+                const double noise = 0.05 * random.triangular();
+                const int bridge = w.bridge_at(x, y);
+                if (bridge >= 0) {
+                    const auto& b = w.bridges[static_cast<std::size_t>(bridge)];
+                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.15 * random.triangular()), 1, 1, las_class::bridge_deck);
+                    continue;
+                }
+                const int building = w.building_at(x, y);
+                if (building >= 0) {
+                    const auto& b = w.buildings[static_cast<std::size_t>(building)];
+                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.1 * random.triangular()), 1, 1, las_class::building);
+                    continue;
+                }
+                const auto s = w.at(x, y);
+                const double top = w.tree_top(x, y);
+                if (top > s.z + 2 && random.chance(0.9)) {
+                    const bool ground_too = random.chance(0.5);
+                    pts.push(x, y, top - 2 * random.uniform() + noise, 60 + 30 * random.uniform(), 1, ground_too ? 2 : 1,
+                             las_class::high_vegetation);
+                    if (ground_too) pts.push(x, y, s.z + noise, 0.5 * s.intensity, 2, 2, las_class::ground);
+                    continue;
+                }
+                if (w.shadowed(x, y, s.z, xc, H)) continue;
+                if (s.body >= 0) {
+                    const double t = angle / out.scan.max_scan_angle_deg;
+                    const double g = wr.glint * std::exp(-(angle / wr.glint_width_deg) * (angle / wr.glint_width_deg));
+                    if (patch(x, y) + 0.03 * random.triangular() > patch_threshold && !random.chance(g)) continue;
+                    double drop = wr.drop_nadir + (wr.drop_edge - wr.drop_nadir) * t * t;
+                    drop *= 1 - g;
+                    if (random.chance(drop)) continue;
+                    double intensity;
+                    if (random.chance(g)) {
+                        intensity = wr.glint_intensity * (1 + 0.3 * random.triangular());
+                    } else {
+                        const double u = random.uniform();
+                        intensity = wr.low_min + (wr.low_max - wr.low_min) * u * u;
+                    }
+                    pts.push(x, y, s.z + wr.wave_m * random.triangular() + 0.5 * noise, intensity, 1, 1, las_class::water);
+                    continue;
+                }
+                if (s.reeds_m > 0 && random.chance(0.7)) {
+                    const bool ground_too = random.chance(0.4);
+                    pts.push(x, y, s.z + s.reeds_m * random.uniform(0.5, 1.0), 40 + 30 * random.uniform(), 1,
+                             ground_too ? 2 : 1, las_class::low_vegetation);
+                    if (ground_too) pts.push(x, y, s.z + noise, 0.6 * s.intensity, 2, 2, las_class::ground);
+                    continue;
+                }
+                if (random.chance(0.003)) continue;  // an odd lost pulse on land
+                pts.push(x, y, s.z + noise, s.intensity * (1 + 0.1 * random.triangular()), 1, 1, s.cls);
+            }
+        }
+        time += 60;
+    }
+}
+
+}  // namespace internal
+
 /// A randomized lake or river survey. Drawn from the seed: survey side (min..max_size_m), density
 /// (log-uniform), scan geometry (flying height 300-2000 m, half angle 10-30°, strip overlap 0-50 %),
 /// water returns (dropouts 5-60 % at nadir rising toward the swath edge, falling with wind; dropout
@@ -282,7 +403,7 @@ struct family_world {
 /// pulses; 30 % turbid water with intensities 25-55), shores (beach, steep bank, reeds, flat field
 /// 0.5-1 m above the water, wet dark ground), distractors (dark asphalt lots, flat-roofed buildings with
 /// their scan shadows, trees). Lakes: 1-3 lakes at different levels, some side by side 10-40 m apart,
-/// some cut by the survey edge, islands of 50-2000 m². Rivers: 15-60 m wide meandering in any direction
+/// some cut by the survey edge, islands of 50-2000 m² (at most 8 % of the lake). Rivers: 15-60 m wide meandering in any direction
 /// across the survey, level falling 0.1-1.5 m across it, 0-4 bridges (deck 3-8 m above the water, 8-20 m
 /// wide), sometimes an island. Deterministic; about 0.3 s per scene at 2 points/m² on 600 m.
 /// @throws invalid_input on bad options.
@@ -333,7 +454,7 @@ inline water_family_scene water_family(const water_family_options& options = {})
     if (is_lake) {
         const int n = pick.between(1, 3);
         for (int attempt = 0; attempt < 200 && static_cast<int>(w.lakes.size()) < n; ++attempt) {
-            const double r = pick.uniform(0.06, 0.22) * S;
+            const double r = pick.uniform(0.08, 0.22) * S;
             // Centres may lie just outside the survey: the lake is then cut by the edge.
             const double x = pick.uniform(-0.05, 1.05) * S, y = pick.uniform(-0.05, 1.05) * S;
             auto outline = lake_outline::random(pick, x, y, r, pick.uniform(0.1, 0.4));
@@ -352,7 +473,9 @@ inline water_family_scene water_family(const water_family_options& options = {})
             const auto& o = w.lakes[k].outline;
             const int isl = pick.between(0, 2);
             for (int i = 0, tries = 0; i < isl && tries < 50; ++tries) {
-                const double rr = std::sqrt(pick.uniform(50.0, 2000.0) / std::numbers::pi);
+                const double rr =
+                    std::sqrt(pick.uniform(50.0, std::min(2000.0, 0.08 * o.mean_radius_m * o.mean_radius_m * 3.14)) /
+                              std::numbers::pi);
                 const double ix = o.x + pick.uniform(-1.0, 1.0) * o.mean_radius_m,
                              iy = o.y + pick.uniform(-1.0, 1.0) * o.mean_radius_m;
                 if (o.shore_distance(ix, iy) > -(rr + 10)) continue;
@@ -445,114 +568,46 @@ inline water_family_scene water_family(const water_family_options& options = {})
         ++i;
     }
 
-    // Truth at the cell centres.
-    out.g = grid{0.0, S, out.cell_m, cells, cells};
-    out.water = raster<std::uint8_t>(cells, cells, 0);
-    out.water_filled = raster<std::uint8_t>(cells, cells, 0);
-    out.body_id = raster<std::int32_t>(cells, cells, 0);
-    out.water_z = raster<float>(cells, cells, std::numeric_limits<float>::quiet_NaN());
-    for (std::ptrdiff_t r = 0; r < cells; ++r) {
-        for (std::ptrdiff_t c = 0; c < cells; ++c) {
-            const auto [x, y] = out.g.center(r, c);
-            const auto s = w.at(x, y);
-            if (s.body >= 0) {
-                out.water(r, c) = 1;
-                out.body_id(r, c) = s.body + 1;
-                out.water_z(r, c) = static_cast<float>(s.z);
-            }
-            out.water_filled(r, c) = s.body >= 0 || (s.island_area > 0 && s.island_area < 200.0);
-        }
-    }
-
-    // Scan: strips of swath W = 2 H tan(max angle), spaced W (1 - overlap); each strip at the density that
-    // makes the mean density out.density_per_m2.
-    const double H = out.scan.flying_height_m, tmax = std::tan(deg_to_rad(out.scan.max_scan_angle_deg));
-    const double swath = 2 * H * tmax, spacing_strips = swath * (1 - out.scan.overlap);
-    const auto strips = static_cast<int>(std::ceil(S / spacing_strips));
-    const double strip_density = out.density_per_m2 * spacing_strips / swath;
-    const double step = 1.0 / std::sqrt(strip_density);
-    const noise_field& patch = w.patch;
-    // Patches: the field above its (1 - patch_share) quantile over the scene's water (truth cells).
-    std::vector<double> on_water;
-    for (std::ptrdiff_t r = 0; r < cells; ++r)
-        for (std::ptrdiff_t c = 0; c < cells; ++c)
-            if (out.water(r, c)) on_water.push_back(patch(out.g.center(r, c)[0], out.g.center(r, c)[1]));
-    double patch_threshold = std::numeric_limits<double>::infinity();
-    if (!on_water.empty()) {
-        const auto at = on_water.begin() + static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * (on_water.size() - 1));
-        std::nth_element(on_water.begin(), at, on_water.end());
-        patch_threshold = *at;
-    }
-    rng random(hash64(options.seed, 0x5CA95), 2);
-    auto& pts = out.points;
-    pts.reserve(static_cast<std::size_t>(1.2 * S * S * out.density_per_m2));
-    double time = 0;
-    for (int k = 0; k < strips; ++k) {
-        const double xc = (k + 0.5) * S / strips;
-        const double x0 = std::max(0.0, xc - 0.5 * swath), x1 = std::min(S, xc + 0.5 * swath);
-        const auto lines = static_cast<long long>(std::ceil(S / step));
-        const auto per_line = static_cast<long long>(std::ceil((x1 - x0) / step));
-        for (long long i = 0; i < lines; ++i) {
-            for (long long j = 0; j < per_line; ++j) {
-                const double x = std::clamp(x0 + (j + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
-                const double y = std::clamp((i + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
-                time += 1e-5;
-                pts.pulse_time_s = time;
-                const double angle = rad_to_deg(std::atan(std::abs(x - xc) / H));
-                const double noise = 0.05 * random.triangular();
-                const int bridge = w.bridge_at(x, y);
-                if (bridge >= 0) {
-                    const auto& b = w.bridges[static_cast<std::size_t>(bridge)];
-                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.15 * random.triangular()), 1, 1, las_class::bridge_deck);
-                    continue;
-                }
-                const int building = w.building_at(x, y);
-                if (building >= 0) {
-                    const auto& b = w.buildings[static_cast<std::size_t>(building)];
-                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.1 * random.triangular()), 1, 1, las_class::building);
-                    continue;
-                }
-                const auto s = w.at(x, y);
-                const double top = w.tree_top(x, y);
-                if (top > s.z + 2 && random.chance(0.9)) {
-                    const bool ground_too = random.chance(0.5);
-                    pts.push(x, y, top - 2 * random.uniform() + noise, 60 + 30 * random.uniform(), 1, ground_too ? 2 : 1,
-                             las_class::high_vegetation);
-                    if (ground_too) pts.push(x, y, s.z + noise, 0.5 * s.intensity, 2, 2, las_class::ground);
-                    continue;
-                }
-                if (w.shadowed(x, y, s.z, xc, H)) continue;
-                if (s.body >= 0) {
-                    const double t = angle / out.scan.max_scan_angle_deg;
-                    const double g = wr.glint * std::exp(-(angle / wr.glint_width_deg) * (angle / wr.glint_width_deg));
-                    if (patch(x, y) + 0.03 * random.triangular() > patch_threshold && !random.chance(g)) continue;
-                    double drop = wr.drop_nadir + (wr.drop_edge - wr.drop_nadir) * t * t;
-                    drop *= 1 - g;
-                    if (random.chance(drop)) continue;
-                    double intensity;
-                    if (random.chance(g)) {
-                        intensity = wr.glint_intensity * (1 + 0.3 * random.triangular());
-                    } else {
-                        const double u = random.uniform();
-                        intensity = wr.low_min + (wr.low_max - wr.low_min) * u * u;
-                    }
-                    pts.push(x, y, s.z + wr.wave_m * random.triangular() + 0.5 * noise, intensity, 1, 1, las_class::water);
-                    continue;
-                }
-                if (s.reeds_m > 0 && random.chance(0.7)) {
-                    const bool ground_too = random.chance(0.4);
-                    pts.push(x, y, s.z + s.reeds_m * random.uniform(0.5, 1.0), 40 + 30 * random.uniform(), 1,
-                             ground_too ? 2 : 1, las_class::low_vegetation);
-                    if (ground_too) pts.push(x, y, s.z + noise, 0.6 * s.intensity, 2, 2, las_class::ground);
-                    continue;
-                }
-                if (random.chance(0.003)) continue;  // an odd lost pulse on land
-                pts.push(x, y, s.z + noise, s.intensity * (1 + 0.1 * random.triangular()), 1, 1, s.cls);
-            }
-        }
-        time += 60;
-    }
+    internal::render_family(w, out, options.seed);
     return out;
+}
+
+/// True when a river scene's stretches between its bridges (and beyond them; cells within a bridge's half
+/// width + 4 cells of it left out) are each found mostly (over half their truth water cells) as one and
+/// the same nonzero label of `labels` (a waterbody label raster on the scene's grid). Stretches of fewer
+/// than 20 cells (cut by the survey edge) are ignored. O(cells · bridges).
+template <class Labels>
+bool river_found_as_one_body(const water_family_scene& s, const Labels& labels)
+{
+    std::vector<std::map<std::int64_t, long>> votes(s.bridge_along.size() + 1);
+    const double ca = std::cos(s.river_angle_rad), sa = std::sin(s.river_angle_rad), h = 0.5 * s.size_m;
+    for (std::ptrdiff_t r = 0; r < s.g.rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < s.g.cols; ++c) {
+            if (!s.water(r, c)) continue;
+            const auto [x, y] = s.g.center(r, c);
+            const double u = (x - h) * ca + (y - h) * sa + h;
+            std::size_t stretch = 0;
+            bool on_bridge = false;
+            for (const auto& b : s.bridge_along) {
+                if (std::abs(u - b[0]) <= b[1] + 4 * s.cell_m) on_bridge = true;
+                if (u > b[0]) ++stretch;
+            }
+            if (!on_bridge) votes[stretch][static_cast<std::int64_t>(labels(r, c))] += 1;
+        }
+    }
+    std::int64_t common = -1;
+    for (const auto& v : votes) {
+        long total = 0, best = 0;
+        std::int64_t label = 0;
+        for (const auto& [l, n] : v) {
+            total += n;
+            if (l != 0 && n > best) best = n, label = l;
+        }
+        if (total < 20) continue;
+        if (label == 0 || 2 * best < total || (common >= 0 && label != common)) return false;
+        common = label;
+    }
+    return common > 0;
 }
 
 }  // namespace lidarfx::synth
