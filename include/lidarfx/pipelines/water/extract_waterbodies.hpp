@@ -38,8 +38,8 @@ struct extract_waterbodies_options {
     angular_input angular_on = angular_input::returns_only;  ///< water_angles: elevation read by the filter
     bool dropouts_join_any_threshold = true;  ///< water_angles: dropout cells join a region at any θ (their
                                               ///< angle is unknown); false = the dissertation's literal behaviour
-    int seed_opening_size_cells = 5;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
-    std::size_t min_seed_cells = 100;      ///< water_seeds: smallest seed component kept, cells (>= it is kept)
+    int seed_opening_size_cells = 3;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
+    std::size_t min_seed_cells = 50;       ///< water_seeds: smallest seed component kept, cells (>= it is kept)
     grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
                                            ///< nearest, ties to even), > 0
