@@ -64,10 +64,13 @@ struct extract_waterbodies_options {
 };
 
 /// The options of the method before the water family (issue 17): no level gate (grow.level_gate_m = 0),
-/// no KS exemption of cells at the level. Kept so that its accuracy stays printable for comparison.
+/// no KS exemption of cells at the level, seeds from a 5-cell opening and >= 100 cells. Kept so that its
+/// accuracy stays printable for comparison.
 inline extract_waterbodies_options previous_water_method()
 {
     extract_waterbodies_options o;
+    o.seed_opening_size_cells = 5;
+    o.min_seed_cells = 100;
     o.grow.level_gate_m = 0;
     o.grow.level_ks_exempt_m = -1;
     return o;

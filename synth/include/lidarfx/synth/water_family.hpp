@@ -8,8 +8,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstddef>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -133,9 +135,15 @@ struct family_sample {
 
 /// The world of a family scene.
 struct family_world {
-    water_family_kind kind;
+    water_family_kind kind = water_family_kind::lake;
     double S = 500;
     noise_field relief, cover, patch;
+
+    family_world(water_family_kind k, double size_m, noise_field relief_field, noise_field cover_field,
+                 noise_field patch_field)
+        : kind(k), S(size_m), relief(relief_field), cover(cover_field), patch(patch_field)
+    {
+    }
     double base_z = 100, relief_m = 5;
     std::vector<family_lake> lakes;
     std::vector<island_truth> islands;  ///< each in body island_body[i]
@@ -319,7 +327,7 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
             if (out.water(r, c)) on_water.push_back(patch(out.g.center(r, c)[0], out.g.center(r, c)[1]));
     double patch_threshold = std::numeric_limits<double>::infinity();
     if (!on_water.empty()) {
-        const auto at = on_water.begin() + static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * (on_water.size() - 1));
+        const auto at = on_water.begin() + static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * static_cast<double>(on_water.size() - 1));
         std::nth_element(on_water.begin(), at, on_water.end());
         patch_threshold = *at;
     }
@@ -334,8 +342,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
         const auto per_line = static_cast<long long>(std::ceil((x1 - x0) / step));
         for (long long i = 0; i < lines; ++i) {
             for (long long j = 0; j < per_line; ++j) {
-                const double x = std::clamp(x0 + (j + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
-                const double y = std::clamp((i + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
+                const double x = std::clamp(x0 + (static_cast<double>(j) + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
+                const double y = std::clamp((static_cast<double>(i) + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
                 time += 1e-5;
                 pts.pulse_time_s = time;
                 const double angle = rad_to_deg(std::atan(std::abs(x - xc) / H));
