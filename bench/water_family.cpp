@@ -5,6 +5,9 @@
 // Prints, per configuration and kind: mean, 5th percentile ("worst 5 %") and worst scene of accuracy,
 // sensitivity, specificity and IoU, and the share of rivers with bridges found as one body.
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
+// For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
+// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds);
+// WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
