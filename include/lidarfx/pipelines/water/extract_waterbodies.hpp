@@ -38,8 +38,8 @@ struct extract_waterbodies_options {
     angular_input angular_on = angular_input::returns_only;  ///< water_angles: elevation read by the filter
     bool dropouts_join_any_threshold = true;  ///< water_angles: dropout cells join a region at any θ (their
                                               ///< angle is unknown); false = the dissertation's literal behaviour
-    int seed_opening_size_cells = 5;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
-    std::size_t min_seed_cells = 100;      ///< water_seeds: smallest seed component kept, cells (>= it is kept)
+    int seed_opening_size_cells = 3;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
+    std::size_t min_seed_cells = 50;       ///< water_seeds: smallest seed component kept, cells (>= it is kept)
     grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
                                            ///< nearest, ties to even), > 0
@@ -62,6 +62,19 @@ struct extract_waterbodies_options {
     execution run = {};                    ///< threads of the raster kernels (0 = all cores; same result for any
                                            ///< count); progress over seeds, returning false cancels
 };
+
+/// The options of the method before the water family (issue 17): no level gate (grow.level_gate_m = 0),
+/// no KS exemption of cells at the level, seeds from a 5-cell opening and >= 100 cells. Kept so that its
+/// accuracy stays printable for comparison.
+inline extract_waterbodies_options previous_water_method()
+{
+    extract_waterbodies_options o;
+    o.seed_opening_size_cells = 5;
+    o.min_seed_cells = 100;
+    o.grow.level_gate_m = 0;
+    o.grow.level_ks_exempt_m = -1;
+    return o;
+}
 
 /// Result of extract_waterbodies, with the intermediate rasters for inspection.
 struct extract_waterbodies_result {
@@ -140,7 +153,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     water_field field{water_angles(in, cell_m, {.radius_cells = opt.angular_radius_cells, .input = opt.angular_on,
                                                 .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
                                                 .run = kernels}),
-                      raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins};
+                      raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins, in.min_z};
     for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.
     raster<std::uint8_t> dropout_inside;

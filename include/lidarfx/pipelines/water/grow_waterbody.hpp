@@ -10,7 +10,9 @@
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
+#include "lidarfx/pipelines/water/seed_water_level.hpp"
 
 namespace lidarfx {
 
@@ -20,6 +22,8 @@ struct water_field {
     raster<std::uint8_t> eligible;       ///< 1 = may join a waterbody (not vegetation, not already taken)
     raster<std::int32_t> intensity_bin;  ///< intensity sample of the cell as a bin in [0, bins); -1 = none
     int bins = 1;                        ///< number of intensity bins, >= 1
+    raster_view<const float> min_z = {}; ///< optional: lowest return per cell, metres, NaN = none; the level
+                                         ///< gate reads it (empty = no gate). A view: keep it alive while growing
 };
 
 /// Which sample a growth step is compared with the previous region's sample.
@@ -38,6 +42,16 @@ struct grow_waterbody_options {
                                          ///< many intensity values (a seed of dropouts has none)
     ks_sample_mode sample = ks_sample_mode::increment;  ///< what each step's sample holds (cumulative =
                                                         ///< the dissertation's literal test)
+    double level_gate_m = 0.15;      ///< level gate (needs field.min_z): a cell with a return joins only when
+                                     ///< |min z − L| <= level_gate_m, L the level it is reached from (the
+                                     ///< seed's: seed_water_level); metres; 0 disables. Default 0.15 m
+    double level_drift_m = 0.005;    ///< the level a joining cell passes on follows its min z by at most this
+                                     ///< (L' = L + clamp(min z − L, ±drift)): rivers fall, beaches rise
+                                     ///< faster; metres per cell, >= 0. Default 0.005 m
+    double level_ks_exempt_m = 0.05; ///< with the gate: cells with min z <= L + this are water by level and
+                                     ///< stay out of the KS increment sample (bright specular water near
+                                     ///< nadir); metres; < 0 disables. Default 0.05 m
+    seed_water_level_options seed_level = {};  ///< how the seed's level L is read from the returns around it
 };
 
 /// Result of growing one seed.
@@ -59,6 +73,8 @@ inline void validate(const grow_waterbody_options& o, const char* function)
     require(o.theta_max_deg >= o.theta_start_deg && o.theta_max_deg <= 90, function, "theta_max_deg",
             ">= theta_start_deg and <= 90", o.theta_max_deg);
     require(o.ks.alpha > 0 && o.ks.alpha < 1, function, "ks.alpha", "in (0, 1)", o.ks.alpha);
+    require(o.level_gate_m >= 0, function, "level_gate_m", ">= 0", o.level_gate_m);
+    require(o.level_drift_m >= 0, function, "level_drift_m", ">= 0", o.level_drift_m);
 }
 
 /// θ_k, computed the same way everywhere so that step membership is exact.
@@ -117,18 +133,40 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     std::int32_t* seen = visited.data();
     const int last = detail::last_step(opt);
 
+    // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
+    const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
+    if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
+    // Per queued cell, parallel to buckets: the level it passes on.
+    std::vector<std::vector<float>> bucket_levels(gate ? static_cast<std::size_t>(last + 1) : 0);
     std::vector<std::vector<std::ptrdiff_t>> buckets(static_cast<std::size_t>(last + 1));
-    const auto push = [&](std::ptrdiff_t i, int from_step) {
+    const auto push = [&](std::ptrdiff_t i, int from_step, float from_level) {
         if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
         if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
+        float level = from_level;
+        if (gate) {
+            const float z = field.min_z.data()[(i / cols) * field.min_z.row_stride() + i % cols];
+            if (!std::isnan(z)) {
+                if (std::isnan(from_level)) {
+                    level = z;
+                } else {
+                    const double d = static_cast<double>(z) - from_level;
+                    if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
+                    level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, opt.level_drift_m));
+                }
+            }
+            bucket_levels[static_cast<std::size_t>(k)].push_back(level);
+        }
         seen[i] = stamp;
         buckets[static_cast<std::size_t>(k)].push_back(i);
     };
+    const float seed_level =
+        gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
     for (const auto i : seed_cells) {
         detail::require(i >= 0 && i < n, fn, "seed cell index", "inside the field", i);
-        push(i, 0);
+        push(i, 0, seed_level);
     }
+    const bool exempt = gate && opt.level_ks_exempt_m >= 0;
 
     grow_waterbody_result out;
     const auto max_bin = static_cast<std::uint32_t>(field.bins - 1);
@@ -140,10 +178,15 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         // Cells pushed into this bucket while it is being drained join at this same step.
         for (std::size_t q = 0; q < bucket.size(); ++q) {
             const std::ptrdiff_t i = bucket[q];
+            const float level = gate ? bucket_levels[static_cast<std::size_t>(k)][q] : NAN;
             out.cells.push_back(i);
             if (bin[i] >= 0) {
                 current.add(bin[i]);
-                if (increment) added.add(bin[i]);
+                // A cell at or below the level it joined at is water by its height: no KS evidence needed.
+                const bool by_level =
+                    exempt && field.min_z.data()[(i / cols) * field.min_z.row_stride() + i % cols] <=
+                                  level + static_cast<float>(opt.level_ks_exempt_m);
+                if (increment && !by_level) added.add(bin[i]);
             }
             const std::ptrdiff_t r = i / cols, c = i % cols;
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
@@ -152,14 +195,15 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t cc = c + dc;
                     if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
-                    push(rr * cols + cc, k);
+                    push(rr * cols + cc, k, level);
                 }
             }
         }
         std::vector<std::ptrdiff_t>().swap(bucket);
+        if (gate) std::vector<float>().swap(bucket_levels[static_cast<std::size_t>(k)]);
         const bool grew = out.cells.size() > before;
         if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&
-            current.size() > previous.size()) {
+            current.size() > previous.size() && (!increment || !added.empty())) {
             if (ks_one_sided(previous, increment ? added : current, opt.ks).reject) {
                 out.cells.resize(before);
                 out.stopped_by_ks = true;

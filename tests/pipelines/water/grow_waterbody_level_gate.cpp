@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/core/raster.hpp>
+#include <lidarfx/pipelines/water/grow_waterbody.hpp>
+
+#include <cmath>
+#include <vector>
+
+using namespace lidarfx;
+
+namespace {
+
+/// A flat field (angle 0 everywhere, all eligible, one intensity bin) with the given min z.
+water_field flat_field(const raster<float>& min_z)
+{
+    water_field f{raster<float>(min_z.rows(), min_z.cols(), 0.0f), raster<std::uint8_t>(min_z.rows(), min_z.cols(), 1),
+                  raster<std::int32_t>(min_z.rows(), min_z.cols(), 0), 1, min_z};
+    for (std::ptrdiff_t i = 0; i < min_z.size(); ++i)
+        if (std::isnan(min_z.data()[i])) f.intensity_bin.data()[i] = -1;
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("water/grow_waterbody level gate: a pond's flood stops where the field stands 0.7 m above its level")
+{
+    // 20 x 20: water at 100 m in rows/cols 6-13, its middle 4 x 4 a seed of dropouts; grass at 100.7 m around.
+    raster<float> min_z(20, 20, 100.7f);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 6; r <= 13; ++r) {
+        for (std::ptrdiff_t c = 6; c <= 13; ++c) {
+            const bool in_seed = r >= 8 && r <= 11 && c >= 8 && c <= 11;
+            min_z.view()(r, c) = in_seed ? NAN : 100.0f;
+            if (in_seed) seed.push_back(r * 20 + c);
+        }
+    }
+    const auto field = flat_field(min_z);
+    raster<std::int32_t> visited(20, 20, 0);
+    const auto gated = grow_waterbody(field, seed, {}, visited, -1);
+    CHECK(gated.cells.size() == 64);
+
+    grow_waterbody_options no_gate;
+    no_gate.level_gate_m = 0;
+    const auto flooded = grow_waterbody(field, seed, no_gate, visited, -2);
+    CHECK(flooded.cells.size() == 400);  // the untested first step takes the whole flat field
+}
+
+TEST_CASE("water/grow_waterbody level gate: the level drifts along a falling river, not up a bank")
+{
+    // 12 x 80: a river in rows 4-7 falling 0.004 m per column from 100 m, banks 0.5 m above it; a seed of
+    // dropouts at its west end (cols 0-3).
+    raster<float> min_z(12, 80);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 0; r < 12; ++r) {
+        for (std::ptrdiff_t c = 0; c < 80; ++c) {
+            const float level = 100.0f - 0.004f * static_cast<float>(c);
+            const bool river = r >= 4 && r <= 7;
+            min_z.view()(r, c) = river ? level : level + 0.5f;
+            if (river && c <= 3) {
+                min_z.view()(r, c) = NAN;
+                seed.push_back(r * 80 + c);
+            }
+        }
+    }
+    const auto field = flat_field(min_z);
+    raster<std::int32_t> visited(12, 80, 0);
+    CHECK(grow_waterbody(field, seed, {}, visited, -1).cells.size() == 4 * 80);
+
+    grow_waterbody_options fixed_level;
+    fixed_level.level_drift_m = 0;  // the seed's level only: the flood ends ~0.15 / 0.004 columns downstream
+    const auto short_reach = grow_waterbody(field, seed, fixed_level, visited, -2);
+    CHECK(short_reach.cells.size() < 4 * 45);
+    CHECK(short_reach.cells.size() > 4 * 30);
+}
