@@ -117,7 +117,9 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     std::int32_t* seen = visited.data();
     const int last = detail::last_step(opt);
 
-    std::vector<std::vector<std::ptrdiff_t>> buckets(static_cast<std::size_t>(last + 1));
+    // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
+    using cell_queue = std::vector<std::ptrdiff_t, detail::raster_allocator<std::ptrdiff_t>>;
+    std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
     const auto push = [&](std::ptrdiff_t i, int from_step) {
         if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
@@ -156,7 +158,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 }
             }
         }
-        std::vector<std::ptrdiff_t>().swap(bucket);
+        cell_queue().swap(bucket);
         const bool grew = out.cells.size() > before;
         if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&
             current.size() > previous.size()) {

@@ -82,6 +82,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         b.stopped_by_ks = known.stopped_by_ks;
         b.box.row_min = rows;
         b.box.col_min = cols;
+        heights[k].reserve(size[static_cast<std::size_t>(order[k])]);  // at most one per cell: no regrowth
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* label = labels.row(r);
