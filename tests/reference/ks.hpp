@@ -38,4 +38,25 @@ double ks_statistic(const std::vector<A>& previous, const std::vector<B>& curren
     return d;
 }
 
+/// The same D by sorting both samples (as long double) and sweeping them once: every distinct value x of
+/// either sample, i and j the counts <= x, diff = i / n - j / m in double. O((n + m) log(n + m)), for
+/// samples too large for ks_statistic; the kernel's D must equal it bit for bit.
+template <class A, class B>
+double ks_statistic_sort_sweep(const std::vector<A>& previous, const std::vector<B>& current)
+{
+    auto p = without_nan(previous), c = without_nan(current);
+    std::sort(p.begin(), p.end());
+    std::sort(c.begin(), c.end());
+    const auto n = static_cast<double>(p.size()), m = static_cast<double>(c.size());
+    std::size_t i = 0, j = 0;
+    double d = 0;
+    while (i < p.size() || j < c.size()) {
+        const long double x = j == c.size() || (i < p.size() && p[i] <= c[j]) ? p[i] : c[j];
+        while (i < p.size() && p[i] == x) ++i;
+        while (j < c.size() && c[j] == x) ++j;
+        d = std::max(d, static_cast<double>(i) / n - static_cast<double>(j) / m);
+    }
+    return d;
+}
+
 }  // namespace reference

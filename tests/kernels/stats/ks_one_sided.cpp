@@ -135,6 +135,75 @@ TEST_CASE("stats/ks_one_sided: floats order through negatives, both zeros and in
     CHECK(ks_one_sided(std::vector<float>{0.0f, 1.0f}, std::vector<float>{-0.0f, 1.0f}).d == 0.0);
 }
 
+TEST_CASE("stats/ks_one_sided: float and double samples give the sort-and-sweep D bit for bit")
+{
+    // The keyed path sorts only the buckets that may hold the maximum; its D must be the very double a full
+    // sort-and-sweep computes (same i / n - j / m at the same value), so these compare with ==.
+    const unsigned seed = 20261202;
+    std::mt19937 rng(seed);
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    for (int trial = 0; trial < 40; ++trial) {
+        INFO("seed " << seed << ", trial " << trial);
+        const std::size_t n = 1 + (trial * 7919) % 20000, m = 1 + (trial * 104729) % 15000;
+        std::normal_distribution<double> normal(0, 1);
+        std::vector<double> p(n), c(m);
+        const double shift = (trial % 7 - 3) * 0.05;
+        switch (trial % 4) {
+        case 0:  // continuous
+            for (auto& v : p) v = normal(rng);
+            for (auto& v : c) v = normal(rng) + shift;
+            break;
+        case 1:  // heavy ties: a few hundred distinct values
+            for (auto& v : p) v = std::round(normal(rng) * 50);
+            for (auto& v : c) v = std::round((normal(rng) + shift) * 50);
+            break;
+        case 2:  // NaN, infinities, both zeros, denormals and huge values mixed in
+            for (auto& v : p) v = rng() % 10 == 0 ? nan : normal(rng) * std::pow(10.0, static_cast<int>(rng() % 600) - 300);
+            for (auto& v : c) v = rng() % 10 == 0 ? -0.0 : normal(rng) + shift;
+            p.push_back(inf);
+            c.push_back(-inf);
+            c.push_back(4.9e-324);
+            p.push_back(0.0);
+            break;
+        default:  // a narrow cluster next to a far outlier: the buckets of the first level are uneven
+            for (auto& v : p) v = 1.0 + normal(rng) * 1e-9;
+            for (auto& v : c) v = 1.0 + (normal(rng) + shift) * 1e-9;
+            p.push_back(1e300);
+            break;
+        }
+        CHECK(ks_one_sided(p, c).d == reference::ks_statistic_sort_sweep(p, c));
+        const std::vector<float> pf(p.begin(), p.end()), cf(c.begin(), c.end());
+        CHECK(ks_one_sided(pf, cf).d == reference::ks_statistic_sort_sweep(pf, cf));
+        CHECK(ks_one_sided(pf, c).d == reference::ks_statistic_sort_sweep(pf, c));  // mixed: compared as double
+    }
+}
+
+TEST_CASE("stats/ks_one_sided: one value, all ties, all NaN and large samples")
+{
+    CHECK(ks_one_sided(std::vector<double>{1.0}, std::vector<double>{2.0}).d == 1.0);
+    CHECK(ks_one_sided(std::vector<double>{2.0}, std::vector<double>{1.0}).d == 0.0);
+    CHECK(ks_one_sided(std::vector<double>{1.0}, std::vector<double>(5000, 1.0)).d == 0.0);
+    const std::vector<double> tied(100000, 3.5);
+    CHECK(ks_one_sided(tied, tied).d == 0.0);
+    // NaN values are dropped before n and m are counted: {NaN, 1} is the sample {1}.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    CHECK(ks_one_sided(std::vector<double>{nan, 1.0}, std::vector<double>{2.0, nan, nan}).d == 1.0);
+    CHECK_THROWS_AS(ks_one_sided(std::vector<double>{nan, nan}, std::vector<double>{1.0}), invalid_input);
+    CHECK_THROWS_AS(ks_one_sided(std::vector<double>{1.0}, std::vector<double>{}), invalid_input);
+    CHECK_THROWS_AS(ks_one_sided(std::vector<float>{}, std::vector<float>{1.0f}), invalid_input);
+
+    std::mt19937_64 rng(77);
+    std::exponential_distribution<double> e(1.0);
+    std::vector<double> p(1'000'000), c(700'000);
+    for (auto& v : p) v = e(rng);
+    for (auto& v : c) v = e(rng) * 1.01;
+    CHECK(ks_one_sided(p, c).d == reference::ks_statistic_sort_sweep(p, c));
+    std::vector<std::int64_t> pi(p.size()), ci(c.size());
+    for (std::size_t k = 0; k < p.size(); ++k) pi[k] = static_cast<std::int64_t>(p[k] * 1e15) - (std::int64_t{1} << 52);
+    for (std::size_t k = 0; k < c.size(); ++k) ci[k] = static_cast<std::int64_t>(c[k] * 1e15) - (std::int64_t{1} << 52);
+    CHECK(ks_one_sided(pi, ci).d == reference::ks_statistic_sort_sweep(pi, ci));
+}
+
 TEST_CASE("stats/ks_one_sided: critical values, p-value and rejection")
 {
     std::vector<float> p(120), c(80);

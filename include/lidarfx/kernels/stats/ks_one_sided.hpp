@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
 
 namespace lidarfx {
 
@@ -201,58 +202,233 @@ std::vector<T> ks_values(const R& values)
     return out;
 }
 
+/// Types whose values ks_key maps to unsigned keys: float, double and integers of up to 64 bits.
 template <class T>
-inline constexpr bool ks_radix_sortable =
-    std::is_same_v<T, float> || std::is_same_v<T, std::int32_t> || std::is_same_v<T, std::uint32_t>;
+inline constexpr bool ks_keyed =
+    std::is_same_v<T, float> || std::is_same_v<T, double> || (std::is_integral_v<T> && sizeof(T) <= 8);
 
-/// Unsigned 32-bit keys in the order of the values (equal values, -0 and +0 included, give equal keys),
-/// sorted by a least-significant-digit radix sort: four passes of 8 bits, O(n), a pass skipped when every
-/// key has the same digit there.
 template <class T>
-std::vector<std::uint32_t> ks_sorted_keys(const std::vector<T>& values)
+using ks_key_t = std::conditional_t<sizeof(T) <= 4, std::uint32_t, std::uint64_t>;
+
+/// Unsigned key in the order of the values: equal values (-0 and +0 included) give equal keys. Floats:
+/// IEEE bits with negatives reversed below positives; signed integers: sign bit flipped. NaN never gets here.
+template <class T>
+ks_key_t<T> ks_key(T v) noexcept
 {
-    std::vector<std::uint32_t> keys(values.size()), scratch(values.size());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-        if constexpr (std::is_same_v<T, float>) {
-            const auto bits = std::bit_cast<std::uint32_t>(values[i] == 0.0f ? 0.0f : values[i]);
-            keys[i] = bits & 0x80000000u ? ~bits : bits | 0x80000000u;  // negatives reversed, below positives
-        } else if constexpr (std::is_same_v<T, std::int32_t>) {
-            keys[i] = static_cast<std::uint32_t>(values[i]) ^ 0x80000000u;
-        } else {
-            keys[i] = values[i];
+    using K = ks_key_t<T>;
+    constexpr K sign = K{1} << (8 * sizeof(K) - 1);
+    if constexpr (std::is_floating_point_v<T>) {
+        const auto bits = std::bit_cast<K>(v == T(0) ? T(0) : v);
+        return bits & sign ? static_cast<K>(~bits) : static_cast<K>(bits | sign);
+    } else if constexpr (std::is_signed_v<T>) {
+        return static_cast<K>(static_cast<K>(static_cast<std::make_signed_t<K>>(v)) ^ sign);
+    } else {
+        return static_cast<K>(v);
+    }
+}
+
+/// Keys of a sample: a buffer that is written in full before it is read (no zeroing), huge pages when large.
+template <class K>
+using ks_key_buffer = std::vector<K, raster_allocator<K>>;
+
+/// Keys of the non-NaN values of a range of T, in the order of the range.
+template <class T, class R>
+ks_key_buffer<ks_key_t<T>> ks_keys(const R& values)
+{
+    ks_key_buffer<ks_key_t<T>> out;
+    if constexpr (std::ranges::contiguous_range<R> && std::ranges::sized_range<R>) {
+        // One pass, no branch: every value is written, a NaN's slot is taken by the next value.
+        const auto n = static_cast<std::size_t>(std::ranges::size(values));
+        out.resize(n);
+        const auto* in = std::ranges::data(values);
+        std::size_t kept = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto t = static_cast<T>(in[k]);
+            out[kept] = ks_key<T>(t);
+            if constexpr (std::is_floating_point_v<T>) {
+                kept += t == t;
+            } else {
+                ++kept;
+            }
+        }
+        out.resize(kept);
+    } else {
+        if constexpr (std::ranges::sized_range<R>) out.reserve(static_cast<std::size_t>(std::ranges::size(values)));
+        for (const auto& v : values) {
+            const auto t = static_cast<T>(v);
+            if constexpr (std::is_floating_point_v<T>) {
+                if (t != t) continue;
+            }
+            out.push_back(ks_key<T>(t));
         }
     }
-    std::array<std::array<std::size_t, 256>, 4> counts{};
-    for (const std::uint32_t k : keys) {
-        for (int pass = 0; pass < 4; ++pass) ++counts[pass][(k >> (8 * pass)) & 255u];
-    }
-    for (int pass = 0; pass < 4; ++pass) {
-        auto& offset = counts[pass];
-        if (keys.empty() || offset[(keys[0] >> (8 * pass)) & 255u] == keys.size()) continue;
-        std::size_t total = 0;
-        for (auto& o : offset) total += std::exchange(o, total);
-        for (const std::uint32_t k : keys) scratch[offset[(k >> (8 * pass)) & 255u]++] = k;
-        keys.swap(scratch);
-    }
-    return keys;
+    return out;
 }
+
+/// Totals of the whole samples and the lower bound on D found so far, shared by the levels of ks_refine.
+struct ks_totals {
+    double nn, mm;  ///< sample sizes n and m
+    double d = 0;   ///< D so far: a value of the statistic's expression at a real x, never above the true D
+    /// F_previous - F_current from cumulative counts, as scipy computes it (two divisions, one subtraction):
+    /// monotone (non-decreasing in i, non-increasing in j) under IEEE rounding, which the bounds rely on.
+    double diff(std::uint64_t i, std::uint64_t j) const noexcept
+    {
+        return static_cast<double>(i) / nn - static_cast<double>(j) / mm;
+    }
+};
+
+/// Raises t.d to the largest diff over the distinct values of two sorted key runs, i0 / j0 values of the
+/// samples lying below both runs.
+template <class K>
+void ks_sweep_sorted(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0,
+                     ks_totals& t) noexcept
+{
+    std::size_t i = 0, j = 0;
+    while (i < p.size()) {  // steps where only current rises lower the difference: skip them
+        const K v = p[i];
+        while (j < c.size() && c[j] < v) ++j;
+        while (i < p.size() && p[i] == v) ++i;
+        while (j < c.size() && c[j] == v) ++j;
+        const double diff = t.diff(i0 + i, j0 + j);
+        t.d = diff > t.d ? diff : t.d;
+    }
+}
+
+/// Raises t.d to the largest diff over the distinct values of p, where p and c hold (unordered) the keys of
+/// both samples inside one key interval and i0 / j0 count the values below it. Bucket-bound-and-refine:
+/// count both samples in up to 2^16 buckets of the interval; the diff at each bucket's end is a value of the
+/// statistic (lower bound), and no value inside bucket b exceeds diff(i after b, j before b) (upper bound).
+/// Only buckets whose upper bound beats the best lower bound are gathered and refined, recursively (the key
+/// range shrinks by the bucket count at each level), small ones by sorting. The values reached are the
+/// same diffs a full sort-and-sweep computes, so D is bit-identical to it. O(n + m) passes, 3 at the top.
+template <class K>
+void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0, ks_totals& t)
+{
+    if (p.empty()) return;  // inside this interval only current rises
+    if (p.size() + c.size() <= 96) {
+        std::vector<K> sp(p.begin(), p.end()), sc(c.begin(), c.end());
+        std::sort(sp.begin(), sp.end());
+        std::sort(sc.begin(), sc.end());
+        ks_sweep_sorted<K>(sp, sc, i0, j0, t);
+        return;
+    }
+    K lo = p[0], hi = p[0];
+    for (const K k : p) {
+        lo = k < lo ? k : lo;
+        hi = k > hi ? k : hi;
+    }
+    for (const K k : c) {
+        lo = k < lo ? k : lo;
+        hi = k > hi ? k : hi;
+    }
+    const int wanted_bits = std::clamp(static_cast<int>(std::bit_width((p.size() + c.size()) / 4)), 8, 16);
+    const int shift = std::max(0, static_cast<int>(std::bit_width(static_cast<K>(hi - lo))) - wanted_bits);
+    const std::size_t buckets = static_cast<std::size_t>(static_cast<K>(hi - lo) >> shift) + 1;
+    const auto bucket = [lo, shift](K k) { return static_cast<std::size_t>(static_cast<K>(k - lo) >> shift); };
+    ks_key_buffer<std::uint32_t> count_p(buckets), count_c(buckets);
+    std::fill(count_p.begin(), count_p.end(), 0u);
+    std::fill(count_c.begin(), count_c.end(), 0u);
+    for (const K k : p) ++count_p[bucket(k)];
+    for (const K k : c) ++count_c[bucket(k)];
+    // Lower bounds: the diff at the end of every bucket, and the exact maximum of a bucket holding no current
+    // value (its last previous value, j unchanged).
+    std::uint64_t i = i0, j = j0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+        i += count_p[b];
+        const double exact_if_alone = t.diff(i, j);
+        j += count_c[b];
+        const double at_end = count_c[b] == 0 ? exact_if_alone : t.diff(i, j);
+        t.d = at_end > t.d ? at_end : t.d;
+    }
+    // Buckets that may hold a larger value: gathered contiguously (start offsets in the count arrays' place).
+    std::vector<std::size_t> refine;
+    std::vector<std::uint64_t> below_p, below_c;
+    std::size_t gathered_p = 0, gathered_c = 0;
+    i = i0, j = j0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+        const std::uint64_t ib = i + count_p[b];
+        if (count_p[b] > 0 && count_c[b] > 0 && buckets > 1 && t.diff(ib, j) > t.d) {
+            refine.push_back(b);
+            below_p.push_back(i);
+            below_c.push_back(j);
+        }
+        i = ib;
+        j += count_c[b];
+    }
+    if (refine.empty()) return;
+    constexpr std::uint32_t skip = std::numeric_limits<std::uint32_t>::max();
+    for (std::size_t b = 0, r = 0; b < buckets; ++b) {
+        const bool wanted = r < refine.size() && refine[r] == b;
+        const std::uint32_t np = count_p[b], nc = count_c[b];
+        count_p[b] = wanted ? static_cast<std::uint32_t>(gathered_p) : skip;
+        count_c[b] = wanted ? static_cast<std::uint32_t>(gathered_c) : skip;
+        if (wanted) {
+            gathered_p += np;
+            gathered_c += nc;
+            ++r;
+        }
+    }
+    ks_key_buffer<K> gp(gathered_p), gc(gathered_c);  // written in full by the gather
+    for (const K k : p)
+        if (const auto b = bucket(k); count_p[b] != skip) gp[count_p[b]++] = k;
+    for (const K k : c)
+        if (const auto b = bucket(k); count_c[b] != skip) gc[count_c[b]++] = k;
+    // After the gather, count_x[b] is the end of bucket b's run: runs follow one another in bucket order.
+    std::size_t start_p = 0, start_c = 0;
+    for (std::size_t r = 0; r < refine.size(); ++r) {
+        const std::size_t b = refine[r], end_p = count_p[b], end_c = count_c[b];
+        if (t.diff(below_p[r] + (end_p - start_p), below_c[r]) > t.d) {  // the bound again, with t.d raised
+            ks_refine<K>(std::span<const K>(gp).subspan(start_p, end_p - start_p),
+                         std::span<const K>(gc).subspan(start_c, end_c - start_c), below_p[r], below_c[r], t);
+        }
+        start_p = end_p;
+        start_c = end_c;
+    }
+}
+
+/// D of two samples of keys, bit-identical to sorting both and sweeping them once.
+template <class K>
+double ks_statistic_keys(std::span<const K> previous, std::span<const K> current)
+{
+    ks_totals t{static_cast<double>(previous.size()), static_cast<double>(current.size())};
+    ks_refine<K>(previous, current, 0, 0, t);
+    return t.d;
+}
+
+/// Value types both of whose values a double holds exactly (so comparing as double changes no order).
+template <class V>
+inline constexpr bool ks_exact_in_double =
+    std::is_same_v<V, float> || std::is_same_v<V, double> || (std::is_integral_v<V> && sizeof(V) <= 4);
 
 template <class A, class B>
 ks_result ks_sorted_path(const A& previous, const B& current, const ks_one_sided_options& opt)
 {
     using VA = std::ranges::range_value_t<A>;
     using VB = std::ranges::range_value_t<B>;
-    // Mixed value types compare as long double, which holds every float, double and 64-bit integer exactly
-    // on x86-64 and AArch64 Linux.
-    using T = std::conditional_t<std::is_same_v<VA, VB>, VA, long double>;
-    auto p = ks_values<T>(previous);
-    auto c = ks_values<T>(current);
-    require_sample(p.size(), "previous");
-    require_sample(c.size(), "current");
-    if constexpr (ks_radix_sortable<T>) {
-        auto pk = ks_sorted_keys(p), ck = ks_sorted_keys(c);
-        return ks_finish(ks_statistic_sorted(pk, ck), p.size(), c.size(), opt);
+    // Mixed value types compare as double when it holds both exactly, else as long double, which holds every
+    // float, double and 64-bit integer exactly on x86-64 and AArch64 Linux.
+    using T = std::conditional_t<std::is_same_v<VA, VB>, VA,
+                                 std::conditional_t<ks_exact_in_double<VA> && ks_exact_in_double<VB>, double,
+                                                    long double>>;
+    if constexpr (ks_keyed<T>) {
+        const auto p = ks_keys<T>(previous);
+        const auto c = ks_keys<T>(current);
+        require_sample(p.size(), "previous");
+        require_sample(c.size(), "current");
+        constexpr std::size_t counted = std::numeric_limits<std::uint32_t>::max();  // bucket counts are 32-bit
+        if (p.size() < counted && c.size() < counted) {
+            using K = ks_key_t<T>;
+            return ks_finish(ks_statistic_keys<K>(p, c), p.size(), c.size(), opt);
+        }
+        std::vector<ks_key_t<T>> sp(p.begin(), p.end()), sc(c.begin(), c.end());
+        std::sort(sp.begin(), sp.end());
+        std::sort(sc.begin(), sc.end());
+        return ks_finish(ks_statistic_sorted(sp, sc), p.size(), c.size(), opt);
     } else {
+        auto p = ks_values<T>(previous);
+        auto c = ks_values<T>(current);
+        require_sample(p.size(), "previous");
+        require_sample(c.size(), "current");
         std::sort(p.begin(), p.end());
         std::sort(c.begin(), c.end());
         return ks_finish(ks_statistic_sorted(p, c), p.size(), c.size(), opt);
@@ -291,8 +467,10 @@ inline constexpr bool ks_small_integer = std::is_integral_v<V> && sizeof(V) <= 2
 /// (its CDF lies below): D = sup_x (F_previous(x) - F_current(x)) >= 0 over the empirical CDFs, equal to
 /// scipy.stats.ks_2samp(previous, current, alternative='greater').statistic; reject when D > c(alpha)
 /// sqrt((n + m) / (n m)) (Massey 1951; c(alpha) per opt.critical); p_value = exp(-2 D^2 n m / (n + m)).
-/// NaN values are ignored. Integer values of at most 16 bits go through histograms, O(n + m + 2^16); float and
-/// 32-bit integers are radix-sorted, O(n + m); other types sort copies, O((n + m) log(n + m)).
+/// NaN values are ignored (dropped from both samples before n and m are counted). Integer values of at most 16
+/// bits go through histograms, O(n + m + 2^16); float, double and integers of up to 64 bits map to ordered
+/// unsigned keys and go through bucket-bound-and-refine (ks_refine: a few O(n + m) passes, sorting only the
+/// few buckets that may hold the maximum; D bit-identical to a sort-and-sweep); long double sorts copies.
 /// @throws invalid_input if alpha is outside (0, 1) or a sample has no non-NaN value.
 template <ks_sample Previous, ks_sample Current>
 ks_result ks_one_sided(const Previous& previous, const Current& current, const ks_one_sided_options& opt)

@@ -51,15 +51,15 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
     detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
-    const auto seed_lists = seed_cells(seeds);
-    const std::size_t n = seed_lists.size() - 1;
+    const auto seed_lists = detail::seed_cells_flat(seeds);
+    const std::size_t n = seeds.count();
     grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
     // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
     // marks the cells it visits with its own negative stamp; the marks are cleared at the end.
     std::int32_t stamp = 0;
     for (std::size_t s = 1; s <= n; ++s) {
         detail::report(opt.run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
-        const auto& cells = seed_lists[s];
+        const auto cells = seed_lists.of(s);
         if (std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return out.labels.data()[i] > 0; })) continue;
         auto region = grow_waterbody(field, cells, opt.grow, out.labels, --stamp);
         if (region.cells.empty()) continue;

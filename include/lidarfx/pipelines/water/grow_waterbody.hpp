@@ -136,9 +136,11 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
+    // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
+    using cell_queue = std::vector<std::ptrdiff_t, detail::raster_allocator<std::ptrdiff_t>>;
     // Per queued cell, parallel to buckets: the level it passes on.
     std::vector<std::vector<float>> bucket_levels(gate ? static_cast<std::size_t>(last + 1) : 0);
-    std::vector<std::vector<std::ptrdiff_t>> buckets(static_cast<std::size_t>(last + 1));
+    std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
     const auto push = [&](std::ptrdiff_t i, int from_step, float from_level) {
         if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
@@ -199,7 +201,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 }
             }
         }
-        std::vector<std::ptrdiff_t>().swap(bucket);
+        cell_queue().swap(bucket);
         if (gate) std::vector<float>().swap(bucket_levels[static_cast<std::size_t>(k)]);
         const bool grew = out.cells.size() > before;
         if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&

@@ -52,7 +52,7 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
     detail::validate(opt, fn);
     const std::ptrdiff_t rows = mean_intensity.rows(), cols = mean_intensity.cols();
     constexpr std::int32_t none = std::numeric_limits<std::int32_t>::min();
-    intensity_bins_result result{raster<std::int32_t>(rows, cols), 1};
+    intensity_bins_result result{raster<std::int32_t>(rows, cols, uninitialized), 1};  // pass 1 writes every cell
     raster<std::int32_t>& out = result.bin;
     // Pass 1: rounded values as integers (none = no sample), while they fit in +-1e9 (LAS intensities do).
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;

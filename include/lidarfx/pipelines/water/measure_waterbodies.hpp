@@ -52,7 +52,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const std::int32_t l = label[c];
             lowest = std::min(lowest, l);
-            if (l < 0) continue;
+            if (l <= 0) continue;  // land is not counted (size[0] is never read): no chain of increments on it
             if (static_cast<std::size_t>(l) >= size.size()) size.resize(static_cast<std::size_t>(l) + 1, 0);
             ++size[static_cast<std::size_t>(l)];
         }
@@ -82,10 +82,12 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         b.stopped_by_ks = known.stopped_by_ks;
         b.box.row_min = rows;
         b.box.col_min = cols;
+        heights[k].reserve(size[static_cast<std::size_t>(order[k])]);  // at most one per cell: no regrowth
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* label = labels.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (label[c] == 0) continue;  // land stays 0 (relabel[0] == 0): no load, no store
             const auto l = label[c] = relabel[static_cast<std::size_t>(label[c])];
             if (l <= 0) continue;
             const auto k = static_cast<std::size_t>(l - 1);

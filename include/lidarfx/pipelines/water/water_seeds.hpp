@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -75,5 +76,38 @@ inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& see
     }
     return out;
 }
+
+namespace detail {
+
+/// The cells of seed_cells() in one buffer: cells of label l are cells[offset[l] .. offset[l + 1]), in
+/// raster-scan order. One allocation (huge pages when large) instead of a growing vector per seed.
+struct seed_cell_runs {
+    std::vector<std::ptrdiff_t, raster_allocator<std::ptrdiff_t>> cells;
+    std::vector<std::size_t> offset;
+    std::span<const std::ptrdiff_t> of(std::size_t label) const noexcept
+    {
+        return std::span<const std::ptrdiff_t>(cells).subspan(offset[label], offset[label + 1] - offset[label]);
+    }
+};
+
+/// seed_cells() as runs of one buffer (counting sort by label). O(cells).
+inline seed_cell_runs seed_cells_flat(const components& seeds)
+{
+    seed_cell_runs out;
+    const std::size_t count = seeds.count();
+    out.offset.assign(count + 2, 0);
+    const std::int32_t* labels = seeds.labels.data();
+    const std::ptrdiff_t n = seeds.labels.size();
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        if (labels[i] > 0) ++out.offset[static_cast<std::size_t>(labels[i]) + 1];
+    for (std::size_t l = 1; l < out.offset.size(); ++l) out.offset[l] += out.offset[l - 1];
+    out.cells.resize(out.offset.back());  // default-initialized: every slot is written below
+    std::vector<std::size_t> next(out.offset.begin(), out.offset.end() - 1);
+    for (std::ptrdiff_t i = 0; i < n; ++i)
+        if (labels[i] > 0) out.cells[next[static_cast<std::size_t>(labels[i])]++] = i;
+    return out;
+}
+
+}  // namespace detail
 
 }  // namespace lidarfx
