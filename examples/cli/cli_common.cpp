@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "cli_common.hpp"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <algorithm>
 #include <cctype>
 #include <exception>
@@ -532,6 +536,14 @@ raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int thr
     for (std::ptrdiff_t i = 0; i < covered.size(); ++i)
         covered.data()[i] = !pr.dropout.data()[i] || (scans && s.scan_covered.data()[i]);
     return survey_footprint(covered, pr.g.cell, {.hull_radius_m = hull_radius_m, .run = {.threads = threads}});
+}
+
+void keep_freed_memory()
+{
+#if defined(__GLIBC__)
+    mallopt(M_MMAP_THRESHOLD, 64 << 20);   // blocks below 64 MiB come from the heap and are reused
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);  // the heap keeps up to 256 MiB of free space at its top
+#endif
 }
 
 bool has_extension(const std::string& path, const std::string& extension)

@@ -20,6 +20,7 @@ void usage(std::ostream& os)
 
 int main(int argc, char** argv)
 {
+    lidarfx::cli::keep_freed_memory();
     if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
         usage(argc < 2 ? std::cerr : std::cout);
         return argc < 2 ? 2 : 0;

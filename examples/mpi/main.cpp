@@ -120,6 +120,7 @@ void work(const std::vector<std::string>& args, int rank, int ranks)
 
 int main(int argc, char** argv)
 {
+    lidarfx::cli::keep_freed_memory();
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
     int rank = 0, ranks = 1;
