@@ -254,25 +254,41 @@ double round_cell_up(double cell_m)
 /// 1e-4 of the points along each axis, widened by 5 %, form the core box. When points outside it make the
 /// grid more than twice the core's area, the run is refused (usage_error) naming their count, where they
 /// are and the --crop that keeps the rest.
-void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total, double unit_m)
+void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total, double unit_m,
+                     int threads)
 {
     constexpr int bins = 256;
     const double bw = std::max(box.xmax - box.xmin, 1e-9) / bins, bh = std::max(box.ymax - box.ymin, 1e-9) / bins;
-    std::vector<std::uint64_t> count(static_cast<std::size_t>(bins) * bins, 0);
     const auto bin = [](double v, double lo, double w) {
         return std::clamp(static_cast<int>(std::floor((v - lo) / w)), 0, bins - 1);
     };
-    io::las_points chunk;
-    for (const auto& p : paths) {
-        io::las_reader r(p);
-        while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
-            for (std::size_t i = 0; i < n; ++i) {
-                const double x = chunk.x[i] * unit_m, y = chunk.y[i] * unit_m;
-                if (!std::isfinite(x) || !std::isfinite(y)) continue;
-                ++count[static_cast<std::size_t>(bin(y, box.ymin, bh)) * bins + bin(x, box.xmin, bw)];
+    // One histogram per group of files, read on its own thread; counts are integers, so the sum does not
+    // depend on the grouping.
+    const std::size_t groups = std::min<std::size_t>(
+        paths.size(), static_cast<std::size_t>(lidarfx::detail::resolve_threads(threads, "refuse_outliers")));
+    std::vector<std::vector<std::uint64_t>> counts(groups);
+    std::vector<std::function<void()>> jobs;
+    for (std::size_t g = 0; g < groups; ++g) {
+        jobs.push_back([&, g] {
+            auto& count = counts[g];
+            count.assign(static_cast<std::size_t>(bins) * bins, 0);
+            io::las_points chunk;
+            for (std::size_t f = g; f < paths.size(); f += groups) {
+                io::las_reader r(paths[f]);
+                while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
+                    for (std::size_t i = 0; i < n; ++i) {
+                        const double x = chunk.x[i] * unit_m, y = chunk.y[i] * unit_m;
+                        if (!std::isfinite(x) || !std::isfinite(y)) continue;
+                        ++count[static_cast<std::size_t>(bin(y, box.ymin, bh)) * bins + bin(x, box.xmin, bw)];
+                    }
+                }
             }
-        }
+        });
     }
+    run_jobs(jobs, threads);
+    std::vector<std::uint64_t> count(static_cast<std::size_t>(bins) * bins, 0);
+    for (const auto& c : counts)
+        for (std::size_t i = 0; i < count.size(); ++i) count[i] += c[i];
     std::vector<std::uint64_t> column(bins, 0), row(bins, 0);
     for (int j = 0; j < bins; ++j)
         for (int i = 0; i < bins; ++i) column[i] += count[static_cast<std::size_t>(j) * bins + i], row[j] += count[static_cast<std::size_t>(j) * bins + i];
@@ -399,7 +415,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     const double unit_xy = s.crs.horizontal_unit_m, unit_z = s.crs.vertical_unit_m;
     box = {box.xmin * unit_xy, box.ymin * unit_xy, box.xmax * unit_xy, box.ymax * unit_xy};
     for (auto& e : layout.extents) e = {e.xmin * unit_xy, e.ymin * unit_xy, e.xmax * unit_xy, e.ymax * unit_xy};
-    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total, unit_xy);
+    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total, unit_xy, opt.threads);
     if (opt.crop) {
         const bounds c{opt.crop->xmin * unit_xy, opt.crop->ymin * unit_xy, opt.crop->xmax * unit_xy,
                        opt.crop->ymax * unit_xy};
