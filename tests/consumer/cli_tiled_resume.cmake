@@ -3,11 +3,7 @@ cmake_minimum_required(VERSION 3.25)
 # again resumes from the recorded tiles and writes the untiled run's files byte for byte. A run with other
 # settings does not reuse another run's tiles.
 # -DLIDARFX=<lidarfx> -DMAKE_SURVEY=<make_water_survey> -DWORK_DIR=<scratch folder>
-file(REMOVE_RECURSE "${WORK_DIR}")
-execute_process(COMMAND "${MAKE_SURVEY}" "${WORK_DIR}/survey" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "make_water_survey failed (${rc}):\n${out}\n${err}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/make_water_survey.cmake")
 set(untiled "${WORK_DIR}/untiled")
 set(tiled "${WORK_DIR}/tiled")
 execute_process(COMMAND "${LIDARFX}" water "${WORK_DIR}/survey" --cell 2 --out "${untiled}"

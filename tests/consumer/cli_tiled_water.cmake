@@ -3,11 +3,7 @@ cmake_minimum_required(VERSION 3.25)
 # (lakes and a river across file and tile borders): tile edges 120 m (60 cells), 200 m and 310 m (not a
 # divisor of the survey), 1 and 2 threads. The tile folder is gone after each complete run.
 # -DLIDARFX=<lidarfx> -DMAKE_SURVEY=<make_water_survey> -DWORK_DIR=<scratch folder>
-file(REMOVE_RECURSE "${WORK_DIR}")
-execute_process(COMMAND "${MAKE_SURVEY}" "${WORK_DIR}/survey" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "make_water_survey failed (${rc}):\n${out}\n${err}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/make_water_survey.cmake")
 file(GLOB las_files "${WORK_DIR}/survey/*.las")
 list(LENGTH las_files file_count)
 if(file_count LESS 9)

@@ -2,11 +2,7 @@ cmake_minimum_required(VERSION 3.25)
 # mpirun -np 2 lidarfx-mpi water --tile writes the untiled lidarfx water run's files byte for byte on the
 # synthetic survey of 18 LAS files (lakes and a river across file and tile borders).
 # -DLIDARFX=<lidarfx> -DLIDARFX_MPI=<lidarfx-mpi> -DMPIEXEC=<mpirun> -DMAKE_SURVEY=<make_water_survey> -DWORK_DIR=<dir>
-file(REMOVE_RECURSE "${WORK_DIR}")
-execute_process(COMMAND "${MAKE_SURVEY}" "${WORK_DIR}/survey" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "make_water_survey failed (${rc}):\n${out}\n${err}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/make_water_survey.cmake")
 execute_process(COMMAND "${LIDARFX}" water "${WORK_DIR}/survey" --cell 2 --out "${WORK_DIR}/untiled"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
