@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace lidarfx {
 
@@ -46,6 +47,15 @@ void require(bool ok, std::string_view function, std::string_view argument,
 inline void require(bool ok, std::string_view function, std::string_view message)
 {
     if (!ok) throw invalid_input(concat(function, ": ", message));
+}
+
+/// As above, with the message made by make_message() only when the check fails: for checks on hot paths
+/// (per row, per tile, per test), where building the text every time would cost more than the work.
+template <class MakeMessage>
+requires std::is_invocable_r_v<std::string, MakeMessage&>
+void require(bool ok, std::string_view function, MakeMessage make_message)
+{
+    if (!ok) throw invalid_input(concat(function, ": ", make_message()));
 }
 
 /// Requires a finite value > 0 (cell sizes, distances).

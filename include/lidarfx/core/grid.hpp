@@ -151,11 +151,11 @@ struct grid {
         detail::require(nr >= 0 && nc >= 0, function, "window extents must be >= 0");
         detail::require_raster_cells(nr, nc, function, "nr x nc");
         const grid w{x0 + static_cast<double>(c0) * cell, y0 - static_cast<double>(r0) * cell, cell, nr, nc};
-        if (!(std::isfinite(w.x0) && std::isfinite(w.y0) && std::isfinite(w.x1()) && std::isfinite(w.y1()))) {
-            detail::require(false, function,
-                            detail::concat("window corners must be finite (got a window at row ", r0, ", col ", c0,
-                                           " of cells of ", cell, ")"));
-        }
+        detail::require(std::isfinite(w.x0) && std::isfinite(w.y0) && std::isfinite(w.x1()) && std::isfinite(w.y1()),
+                        function, [&] {
+                            return detail::concat("window corners must be finite (got a window at row ", r0, ", col ",
+                                                  c0, " of cells of ", cell, ")");
+                        });
         return w;
     }
 
@@ -195,16 +195,15 @@ inline grid snapped_grid(const bounds& b, double cell_m)
     constexpr const char* function = "snapped_grid";
     detail::require_positive(cell_m, function, "cell_m");
     const auto box = [&] { return detail::concat("bounds (", b.xmin, ", ", b.ymin, ", ", b.xmax, ", ", b.ymax, ")"); };
-    if (!(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax) &&
-          b.xmin <= b.xmax && b.ymin <= b.ymax)) {
-        detail::require(false, function, detail::concat("bounds must be finite with min <= max (got ", box(), ")"));
-    }
+    detail::require(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax) &&
+                        b.xmin <= b.xmax && b.ymin <= b.ymax,
+                    function,
+                    [&] { return detail::concat("bounds must be finite with min <= max (got ", box(), ")"); });
     const double largest = std::max({std::abs(b.xmin), std::abs(b.xmax), std::abs(b.ymin), std::abs(b.ymax)});
-    if (!(cell_m >= largest * 0x1p-36)) {
-        detail::require(false, function,
-                        detail::concat("cell_m must be >= 2^-36 x the largest |coordinate| of the bounds (got cell_m ",
-                                       cell_m, " for ", box(), ")"));
-    }
+    detail::require(cell_m >= largest * 0x1p-36, function, [&] {
+        return detail::concat("cell_m must be >= 2^-36 x the largest |coordinate| of the bounds (got cell_m ", cell_m,
+                              " for ", box(), ")");
+    });
     // |xmin / cell_m| and the rest are now <= 2^36: every quotient below is finite and far from overflow, and
     // one step corrects what rounding did to the quotient or the product.
     double kx = std::floor(b.xmin / cell_m), ky = std::ceil(b.ymax / cell_m);
@@ -220,11 +219,9 @@ inline grid snapped_grid(const bounds& b, double cell_m)
     detail::require(std::isfinite(g.x0) && std::isfinite(g.y0) && std::isfinite(far.col) && std::isfinite(far.row),
                     function, beyond());
     const double cols = std::max(1.0, std::ceil(far.col)), rows = std::max(1.0, std::ceil(far.row));
-    if (!(rows * cols <= static_cast<double>(max_raster_cells))) {
-        detail::require(
-            false, function,
-            detail::concat(box(), " at cell_m ", cell_m, " need ", rows, " x ", cols, " cells, more than 2^40"));
-    }
+    detail::require(rows * cols <= static_cast<double>(max_raster_cells), function, [&] {
+        return detail::concat(box(), " at cell_m ", cell_m, " need ", rows, " x ", cols, " cells, more than 2^40");
+    });
     g.rows = static_cast<std::ptrdiff_t>(rows);
     g.cols = static_cast<std::ptrdiff_t>(cols);
     detail::require(std::isfinite(g.x1()) && std::isfinite(g.y1()), function, beyond());

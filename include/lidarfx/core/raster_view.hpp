@@ -93,13 +93,11 @@ public:
         detail::require(row_stride >= cols, "raster_view", "row_stride", ">= cols", row_stride);
         if (rows > 0 && cols > 0) {
             constexpr std::ptrdiff_t most = std::numeric_limits<std::ptrdiff_t>::max() / static_cast<std::ptrdiff_t>(sizeof(T));
-            // The message is built only on failure: views are made in hot loops (per row, per tile).
-            if (rows - 1 > (most - cols) / row_stride) {
-                detail::require(false, "raster_view",
-                                detail::concat("(rows - 1) * row_stride + cols cells must fit in the address space "
-                                               "(got ",
-                                               rows, " rows, row_stride ", row_stride, ")"));
-            }
+            // The message is made only on failure: views are made in hot loops (per row, per tile).
+            detail::require(rows - 1 <= (most - cols) / row_stride, "raster_view", [&] {
+                return detail::concat("(rows - 1) * row_stride + cols cells must fit in the address space (got ", rows,
+                                      " rows, row_stride ", row_stride, ")");
+            });
         }
         detail::require(data != nullptr || rows == 0 || cols == 0, "raster_view",
                         "data must not be null for a non-empty view");

@@ -54,11 +54,10 @@ inline std::ptrdiff_t idw_fill_reach(const idw_fill_options& opt, double cell_m)
 {
     constexpr const char* fn = "idw_fill_reach";
     detail::require_positive(cell_m, fn, "cell_m");
-    if (!(opt.radius_m > 0 && opt.radius_m <= 1.0e300)) {
-        detail::require(false, fn,
-                        detail::concat("radius_m must be finite and > 0 (got ", opt.radius_m,
-                                       "); with radius_m 0 (unlimited) idw_fill is not local"));
-    }
+    detail::require(opt.radius_m > 0 && opt.radius_m <= 1.0e300, fn, [&] {
+        return detail::concat("radius_m must be finite and > 0 (got ", opt.radius_m,
+                              "); with radius_m 0 (unlimited) idw_fill is not local");
+    });
     const std::int64_t span = std::int64_t{1} << 30;  // beyond any raster: only the radius limits the reach
     const std::int64_t d2 = detail::idw_reach_d2(opt.radius_m, cell_m, span, span);
     return static_cast<std::ptrdiff_t>(detail::isqrt(d2));

@@ -141,12 +141,12 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
     detail::require(opt.tiles_in_flight >= 1, function, "tiles_in_flight", ">= 1", opt.tiles_in_flight);
     for (std::size_t i = 0; i < files.size(); ++i) {
         const bounds& b = files[i].box;
-        if (!(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax) &&
-              b.xmin <= b.xmax && b.ymin <= b.ymax)) {
-            detail::require(false, function,
-                            detail::concat("file ", i, ": extent must be finite with min <= max (got (", b.xmin, ", ",
-                                           b.ymin, ", ", b.xmax, ", ", b.ymax, "))"));
-        }
+        detail::require(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) &&
+                            std::isfinite(b.ymax) && b.xmin <= b.xmax && b.ymin <= b.ymax,
+                        function, [&] {
+                            return detail::concat("file ", i, ": extent must be finite with min <= max (got (", b.xmin,
+                                                  ", ", b.ymin, ", ", b.xmax, ", ", b.ymax, "))");
+                        });
     }
 
     const std::ptrdiff_t longest = std::max(g.rows, g.cols);

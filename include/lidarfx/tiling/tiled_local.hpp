@@ -74,11 +74,10 @@ auto tiled_local(raster_view<const T> in, std::ptrdiff_t reach, std::ptrdiff_t t
                                    r1 - 1 + std::min(reach, in.rows() - r1), c1 - 1 + std::min(reach, in.cols() - c1)};
                 const raster_view<const T> window = in.window(box.row_min, box.col_min, box.rows(), box.cols());
                 const auto result = detail::call_local_step<T>(step, window, box);
-                if (!(result.rows() == box.rows() && result.cols() == box.cols())) {
-                    detail::require(false, function,
-                                    detail::concat("the step returned ", result.rows(), "x", result.cols(),
-                                                   " cells for a window of ", box.rows(), "x", box.cols()));
-                }
+                detail::require(result.rows() == box.rows() && result.cols() == box.cols(), function, [&] {
+                    return detail::concat("the step returned ", result.rows(), "x", result.cols(),
+                                          " cells for a window of ", box.rows(), "x", box.cols());
+                });
                 for (std::ptrdiff_t r = r0; r < r1; ++r) {
                     for (std::ptrdiff_t c = c0; c < c1; ++c) {
                         target(r, c) = static_cast<U>(result(r - box.row_min, c - box.col_min));

@@ -298,10 +298,9 @@ template <class In>
 void validate_idw_extent(const In& z)
 {
     constexpr auto most = static_cast<std::ptrdiff_t>(std::numeric_limits<std::int32_t>::max());
-    if (!(z.rows() < most && z.cols() < most)) {
-        require(false, "idw_fill",
-                concat("z must have fewer than 2^31 - 1 rows and columns (got ", z.rows(), "x", z.cols(), ")"));
-    }
+    require(z.rows() < most && z.cols() < most, "idw_fill", [&] {
+        return concat("z must have fewer than 2^31 - 1 rows and columns (got ", z.rows(), "x", z.cols(), ")");
+    });
 }
 
 }  // namespace detail

@@ -176,11 +176,9 @@ public:
     void add(const C& cloud, std::size_t first, std::size_t last)
     {
         const auto n = static_cast<std::size_t>(cloud.size());
-        if (!(first <= last && last <= n)) {
-            detail::require(
-                false, "raster_accumulator::add",
-                detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))"));
-        }
+        detail::require(first <= last && last <= n, "raster_accumulator::add", [&] {
+            return detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))");
+        });
         // Sparse: in steps, so that the switch to the dense layout comes soon after it is due.
         constexpr std::size_t sparse_step = std::size_t{1} << 16;
         for (std::size_t base = first; base < last;) {

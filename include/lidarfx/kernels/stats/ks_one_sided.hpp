@@ -146,9 +146,7 @@ inline ks_result ks_finish(double d, std::uint64_t n, std::uint64_t m, const ks_
 
 inline void require_sample(std::uint64_t size, const char* name, const char* what = "non-NaN value")
 {
-    if (!(size > 0)) {
-        require(false, "ks_one_sided", concat(name, " must hold at least one ", what, " (got none)"));
-    }
+    require(size > 0, "ks_one_sided", [&] { return concat(name, " must hold at least one ", what, " (got none)"); });
 }
 
 /// D = max over value steps of i/n - j/m, i and j the cumulative counts of both histograms at the step.
@@ -508,11 +506,10 @@ inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& 
                               const ks_one_sided_options& opt)
 {
     detail::check_ks_options(opt);
-    if (!(previous.max_value() == current.max_value())) {
-        detail::require(false, "ks_one_sided",
-                        detail::concat("previous and current must have the same max_value (got ", previous.max_value(),
-                                       " and ", current.max_value(), ")"));
-    }
+    detail::require(previous.max_value() == current.max_value(), "ks_one_sided", [&] {
+        return detail::concat("previous and current must have the same max_value (got ", previous.max_value(), " and ",
+                              current.max_value(), ")");
+    });
     detail::require_sample(previous.size(), "previous", "value");
     detail::require_sample(current.size(), "current", "value");
     const double d =
