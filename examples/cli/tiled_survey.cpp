@@ -3,17 +3,18 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <ctime>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <iostream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include <sys/stat.h>
 
@@ -23,6 +24,35 @@
 #include "tile_store.hpp"
 
 namespace lidarfx::cli {
+
+namespace {
+
+/// Points a tile reads at a time (the memory model of plan_survey_tiles counts this chunk per tile in flight).
+constexpr std::size_t tile_chunk_points = std::size_t{1} << 19;
+
+/// Calls f(member) for each per-cell raster of rasterize_result (a pointer to member), always in this order:
+/// the tile file's layout follows it.
+template <class F>
+void each_cell_raster(F f)
+{
+    f(&rasterize_result::min_z);
+    f(&rasterize_result::max_z);
+    f(&rasterize_result::mean_intensity);
+    f(&rasterize_result::count);
+    f(&rasterize_result::dropout);
+    f(&rasterize_result::multiple_returns);
+}
+
+/// Sets each per-cell raster of r to rows x cols uninitialized cells.
+void allocate_cell_rasters(rasterize_result& r, std::ptrdiff_t rows, std::ptrdiff_t cols)
+{
+    each_cell_raster([&](auto member) {
+        auto& cells = r.*member;
+        cells = std::remove_cvref_t<decltype(cells)>(rows, cols, uninitialized);
+    });
+}
+
+}  // namespace
 
 std::vector<std::string> survey_files(const std::vector<std::string>& arguments)
 {
@@ -68,7 +98,7 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
     o.bytes_per_cell = opt.bytes_per_cell;
     o.bytes_per_tile_cell = 64;   // accumulator (24 B), finished rasters (18 B), scan lines (1 B), packed copy (19 B)
     o.bytes_per_point = 72;       // a chunk as read (42 B) and its points in the core (30 B)
-    o.chunk_points = std::size_t{1} << 19;
+    o.chunk_points = tile_chunk_points;
     o.tiles_in_flight = std::max(1, tiles_in_flight);
     try {
         return make_tile_plan(layout.g, files, o);
@@ -81,8 +111,6 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
 }
 
 namespace {
-
-constexpr std::size_t tile_chunk_points = std::size_t{1} << 19;
 
 /// The tile that reads each file first (lowest index); tiles.size() for files no tile lists.
 std::vector<std::size_t> file_owners(const tile_plan& plan, std::size_t files)
@@ -211,12 +239,7 @@ std::vector<std::uint8_t> pack_tile(const tile_rasters& t)
                                   std::uint64_t{r.points_nan}, std::uint64_t{t.points_read},
                                   std::uint64_t{!t.scan_covered.empty()}})
         w.u64(v);
-    w.cells(r.min_z);
-    w.cells(r.max_z);
-    w.cells(r.mean_intensity);
-    w.cells(r.count);
-    w.cells(r.dropout);
-    w.cells(r.multiple_returns);
+    each_cell_raster([&](auto member) { w.cells(r.*member); });
     if (!t.scan_covered.empty()) w.cells(t.scan_covered);
     return std::move(w.bytes);
 }
@@ -241,18 +264,8 @@ tile_rasters unpack_tile(std::span<const std::uint8_t> bytes, const tile_plan& p
     r.points_nan = in.u64();
     t.points_read = in.u64();
     const bool scans = in.u64() != 0;
-    r.min_z = raster<float>(rows, cols, uninitialized);
-    r.max_z = raster<float>(rows, cols, uninitialized);
-    r.mean_intensity = raster<float>(rows, cols, uninitialized);
-    r.count = raster<std::uint32_t>(rows, cols, uninitialized);
-    r.dropout = raster<std::uint8_t>(rows, cols, uninitialized);
-    r.multiple_returns = raster<std::uint8_t>(rows, cols, uninitialized);
-    in.cells(r.min_z);
-    in.cells(r.max_z);
-    in.cells(r.mean_intensity);
-    in.cells(r.count);
-    in.cells(r.dropout);
-    in.cells(r.multiple_returns);
+    allocate_cell_rasters(r, rows, cols);
+    each_cell_raster([&](auto member) { in.cells(r.*member); });
     if (scans) {
         t.scan_covered = raster<std::uint8_t>(rows, cols, uninitialized);
         in.cells(t.scan_covered);
@@ -267,12 +280,7 @@ tiled_survey_assembly::tiled_survey_assembly(survey_layout layout, const tile_pl
     const grid& g = plan.g;
     auto& r = s_.rasters;
     r.g = g;
-    r.min_z = raster<float>(g.rows, g.cols, uninitialized);
-    r.max_z = raster<float>(g.rows, g.cols, uninitialized);
-    r.mean_intensity = raster<float>(g.rows, g.cols, uninitialized);
-    r.count = raster<std::uint32_t>(g.rows, g.cols, uninitialized);
-    r.dropout = raster<std::uint8_t>(g.rows, g.cols, uninitialized);
-    r.multiple_returns = raster<std::uint8_t>(g.rows, g.cols, uninitialized);
+    allocate_cell_rasters(r, g.rows, g.cols);
     const auto owner = file_owners(plan, layout.points.size());
     for (std::size_t f = 0; f < owner.size(); ++f)
         if (owner[f] == plan.tiles.size()) unread_points_ += layout.points[f];
@@ -287,12 +295,7 @@ void tiled_survey_assembly::place(const tile_rasters& t)
         for (std::ptrdiff_t i = 0; i < core.rows(); ++i)
             std::copy(from.view().row(i), from.view().row(i) + core.cols(), to.view().row(core.row_min + i) + core.col_min);
     };
-    copy(r.min_z, t.rasters.min_z);
-    copy(r.max_z, t.rasters.max_z);
-    copy(r.mean_intensity, t.rasters.mean_intensity);
-    copy(r.count, t.rasters.count);
-    copy(r.dropout, t.rasters.dropout);
-    copy(r.multiple_returns, t.rasters.multiple_returns);
+    each_cell_raster([&](auto member) { copy(r.*member, t.rasters.*member); });
     if (!t.scan_covered.empty()) {
         if (s_.scan_covered.empty()) s_.scan_covered = raster<std::uint8_t>(r.g.rows, r.g.cols, 0);
         copy(s_.scan_covered, t.scan_covered);

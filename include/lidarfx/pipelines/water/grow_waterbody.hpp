@@ -136,6 +136,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
+    const auto min_z_at = [&](std::ptrdiff_t i) { return field.min_z(i / cols, i % cols); };
     // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
     using cell_queue = std::vector<std::ptrdiff_t, detail::raster_allocator<std::ptrdiff_t>>;
     // Per queued cell, parallel to buckets: the level it passes on.
@@ -147,7 +148,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
         float level = from_level;
         if (gate) {
-            const float z = field.min_z.data()[(i / cols) * field.min_z.row_stride() + i % cols];
+            const float z = min_z_at(i);
             if (!std::isnan(z)) {
                 if (std::isnan(from_level)) {
                     level = z;
@@ -185,9 +186,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
             if (bin[i] >= 0) {
                 current.add(bin[i]);
                 // A cell at or below the level it joined at is water by its height: no KS evidence needed.
-                const bool by_level =
-                    exempt && field.min_z.data()[(i / cols) * field.min_z.row_stride() + i % cols] <=
-                                  level + static_cast<float>(opt.level_ks_exempt_m);
+                const bool by_level = exempt && min_z_at(i) <= level + static_cast<float>(opt.level_ks_exempt_m);
                 if (increment && !by_level) added.add(bin[i]);
             }
             const std::ptrdiff_t r = i / cols, c = i % cols;

@@ -64,22 +64,9 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
     return seeds;
 }
 
-/// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
-/// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
-inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& seeds)
-{
-    std::vector<std::vector<std::ptrdiff_t>> out(seeds.count() + 1);
-    const auto& labels = seeds.labels;
-    for (std::ptrdiff_t i = 0; i < labels.size(); ++i) {
-        const auto l = labels.data()[i];
-        if (l > 0) out[static_cast<std::size_t>(l)].push_back(i);
-    }
-    return out;
-}
-
 namespace detail {
 
-/// The cells of seed_cells() in one buffer: cells of label l are cells[offset[l] .. offset[l + 1]), in
+/// The cells of each seed in one buffer: cells of label l are cells[offset[l] .. offset[l + 1]), in
 /// raster-scan order. One allocation (huge pages when large) instead of a growing vector per seed.
 struct seed_cell_runs {
     std::vector<std::ptrdiff_t, raster_allocator<std::ptrdiff_t>> cells;
@@ -90,7 +77,7 @@ struct seed_cell_runs {
     }
 };
 
-/// seed_cells() as runs of one buffer (counting sort by label). O(cells).
+/// The cells of each seed as runs of one buffer (counting sort by label). O(cells).
 inline seed_cell_runs seed_cells_flat(const components& seeds)
 {
     seed_cell_runs out;
@@ -109,5 +96,18 @@ inline seed_cell_runs seed_cells_flat(const components& seeds)
 }
 
 }  // namespace detail
+
+/// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
+/// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
+inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& seeds)
+{
+    const auto runs = detail::seed_cells_flat(seeds);
+    std::vector<std::vector<std::ptrdiff_t>> out(seeds.count() + 1);
+    for (std::size_t l = 1; l < out.size(); ++l) {
+        const auto cells = runs.of(l);
+        out[l].assign(cells.begin(), cells.end());
+    }
+    return out;
+}
 
 }  // namespace lidarfx
