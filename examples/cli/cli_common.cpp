@@ -249,46 +249,67 @@ double round_cell_up(double cell_m)
     return 10 * decade;
 }
 
-/// Points far from all the others (one point 200 km away) would stretch the grid over empty space. A first
-/// pass counts the points in 256 x 256 bins over the header bounds; the bins that hold all but the outermost
-/// 1e-4 of the points along each axis, widened by 5 %, form the core box. When points outside it make the
-/// grid more than twice the core's area, the run is refused (usage_error) naming their count, where they
-/// are and the --crop that keeps the rest.
-void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, std::uint64_t total, double unit_m,
-                     int threads)
+}  // namespace
+
+outlier_bins::outlier_bins(const bounds& b)
+    : box(b), bw(std::max(b.xmax - b.xmin, 1e-9) / bins), bh(std::max(b.ymax - b.ymin, 1e-9) / bins),
+      count(static_cast<std::size_t>(bins) * bins, 0)
 {
-    constexpr int bins = 256;
-    const double bw = std::max(box.xmax - box.xmin, 1e-9) / bins, bh = std::max(box.ymax - box.ymin, 1e-9) / bins;
-    const auto bin = [](double v, double lo, double w) {
-        return std::clamp(static_cast<int>(std::floor((v - lo) / w)), 0, bins - 1);
+}
+
+void outlier_bins::add(std::span<const double> x, std::span<const double> y)
+{
+    // Bins per metre: a product per point instead of a division (every count goes through here alike).
+    const double per_x = 1.0 / bw, per_y = 1.0 / bh;
+    const auto bin = [](double v, double lo, double per) {
+        const double b = (v - lo) * per;   // >= 0 and < bins + 1 for points inside the box
+        return b < 0 ? 0 : b >= bins - 1 ? bins - 1 : static_cast<int>(b);
     };
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (!std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
+        ++count[static_cast<std::size_t>(bin(y[i], box.ymin, per_y)) * bins + bin(x[i], box.xmin, per_x)];
+    }
+}
+
+void outlier_bins::merge(const outlier_bins& other)
+{
+    for (std::size_t i = 0; i < count.size(); ++i) count[i] += other.count[i];
+}
+
+outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads)
+{
     // One histogram per group of files, read on its own thread; counts are integers, so the sum does not
     // depend on the grouping.
     const std::size_t groups = std::min<std::size_t>(
         paths.size(), static_cast<std::size_t>(lidarfx::detail::resolve_threads(threads, "refuse_outliers")));
-    std::vector<std::vector<std::uint64_t>> counts(groups);
+    std::vector<outlier_bins> counts(groups, outlier_bins(box));
     std::vector<std::function<void()>> jobs;
     for (std::size_t g = 0; g < groups; ++g) {
         jobs.push_back([&, g] {
-            auto& count = counts[g];
-            count.assign(static_cast<std::size_t>(bins) * bins, 0);
             io::las_points chunk;
+            std::vector<double> x, y;
             for (std::size_t f = g; f < paths.size(); f += groups) {
                 io::las_reader r(paths[f]);
-                while (const std::size_t n = r.read(chunk, std::size_t{1} << 20)) {
-                    for (std::size_t i = 0; i < n; ++i) {
-                        const double x = chunk.x[i] * unit_m, y = chunk.y[i] * unit_m;
-                        if (!std::isfinite(x) || !std::isfinite(y)) continue;
-                        ++count[static_cast<std::size_t>(bin(y, box.ymin, bh)) * bins + bin(x, box.xmin, bw)];
-                    }
+                while (r.position() < r.point_count()) {   // an empty read would shrink the chunk's buffers
+                    const std::size_t n = r.read(chunk, std::size_t{1} << 20);
+                    x.resize(n), y.resize(n);
+                    for (std::size_t i = 0; i < n; ++i) x[i] = chunk.x[i] * unit_m, y[i] = chunk.y[i] * unit_m;
+                    counts[g].add(x, y);
                 }
             }
         });
     }
     run_jobs(jobs, threads);
-    std::vector<std::uint64_t> count(static_cast<std::size_t>(bins) * bins, 0);
-    for (const auto& c : counts)
-        for (std::size_t i = 0; i < count.size(); ++i) count[i] += c[i];
+    for (std::size_t g = 1; g < groups; ++g) counts[0].merge(counts[g]);
+    return std::move(counts[0]);
+}
+
+void refuse_outliers(const outlier_bins& bins_of_points, std::uint64_t total, double unit_m)
+{
+    constexpr int bins = outlier_bins::bins;
+    const bounds& box = bins_of_points.box;
+    const double bw = bins_of_points.bw, bh = bins_of_points.bh;
+    const auto& count = bins_of_points.count;
     std::vector<std::uint64_t> column(bins, 0), row(bins, 0);
     for (int j = 0; j < bins; ++j)
         for (int i = 0; i < bins; ++i) column[i] += count[static_cast<std::size_t>(j) * bins + i], row[j] += count[static_cast<std::size_t>(j) * bins + i];
@@ -333,9 +354,8 @@ void refuse_outliers(const std::vector<std::string>& paths, const bounds& box, s
     throw usage_error(why.str());
 }
 
-}  // namespace
-
-survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt)
+survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt,
+                               bool reader_checks_outliers)
 {
     const double cell_m = opt.cell_m;
     const int threads = opt.threads;
@@ -415,7 +435,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     const double unit_xy = s.crs.horizontal_unit_m, unit_z = s.crs.vertical_unit_m;
     box = {box.xmin * unit_xy, box.ymin * unit_xy, box.xmax * unit_xy, box.ymax * unit_xy};
     for (auto& e : layout.extents) e = {e.xmin * unit_xy, e.ymin * unit_xy, e.xmax * unit_xy, e.ymax * unit_xy};
-    if (!opt.crop && !opt.force) refuse_outliers(paths, box, total, unit_xy, opt.threads);
+    const bounds header_box = box;
     if (opt.crop) {
         const bounds c{opt.crop->xmin * unit_xy, opt.crop->ymin * unit_xy, opt.crop->xmax * unit_xy,
                        opt.crop->ymax * unit_xy};
@@ -428,6 +448,16 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     const double area = std::max(width, cell_m) * std::max(height, cell_m);
     const std::uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : physical_memory_bytes() / 2;
     const double need = cells * opt.bytes_per_cell;
+    const double points_per_cell = static_cast<double>(total) / area * cell_m * cell_m;
+    // Outliers are looked for before the checks below, whose refusals they would explain. When the grid
+    // passes them, the reader may count the points as it reads them instead of in a pass of their own.
+    if (!opt.crop && !opt.force) {
+        const bool refused = (budget > 0 && need > static_cast<double>(budget)) || points_per_cell < 0.01;
+        if (refused || !reader_checks_outliers)
+            refuse_outliers(count_outlier_bins(paths, header_box, unit_xy, opt.threads), total, unit_xy);
+        else
+            layout.outliers_unchecked = true;
+    }
     std::ostringstream extent;
     extent << std::fixed << std::setprecision(0) << width << " m x " << height << " m";
     if (budget > 0 && need > static_cast<double>(budget)) {
@@ -439,7 +469,6 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
             << " or more, --crop to a smaller extent, or a larger --memory";
         throw usage_error(why.str());
     }
-    const double points_per_cell = static_cast<double>(total) / area * cell_m * cell_m;
     if (!opt.force && points_per_cell < 0.01) {
         const double fits = round_cell_up(std::sqrt(area / static_cast<double>(total)));
         std::ostringstream why;
@@ -450,6 +479,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
         throw usage_error(why.str());
     }
     layout.g = snapped_grid(box, cell_m);
+    layout.header_box = header_box;
     layout.total = total;
     layout.unit_xy = unit_xy;
     layout.unit_z = unit_z;
@@ -470,9 +500,11 @@ void to_metres(io::las_points& points, const survey_layout& layout)
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
 {
     const int threads = opt.threads;
-    survey_layout layout = survey_layout_of(paths, opt);
+    survey_layout layout = survey_layout_of(paths, opt, true);
     survey s = std::move(layout.head);
     const grid g = layout.g;
+    std::optional<outlier_bins> outliers;   // counted as the points are read, when the layout left it to us
+    if (layout.outliers_unchecked) outliers.emplace(layout.header_box);
     const std::uint64_t total = layout.total;
     raster_accumulator acc(g);
     auto bar = opt.show_progress ? progress_bar("reading  ") : progress_callback{};
@@ -492,7 +524,9 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
                 reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
             }
             dst.file = file - 1;
-            if (const std::size_t n = reader->read(dst.points, std::size_t{1} << 20)) {
+            // Stopping at the last point, not at an empty read, keeps the chunk's buffers for the next file.
+            if (reader->position() < reader->point_count()) {
+                const std::size_t n = reader->read(dst.points, std::size_t{1} << 20);
                 to_metres(dst.points, layout);
                 return n;
             }
@@ -506,6 +540,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
+        if (outliers) outliers->add(c.points.x, c.points.y);
         if (!c.points.gps_time.empty()) {
             if (!scans) scans.emplace(g);
             if (c.file != scan_file) scans->end_sweep();
@@ -533,6 +568,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             std::swap(current, ahead);
         }
     }
+    if (outliers) refuse_outliers(*outliers, total, layout.unit_xy);
     s.rasters = acc.finish();
     if (scans) s.scan_covered = scans->take();
     s.points = done;

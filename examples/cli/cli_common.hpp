@@ -7,6 +7,7 @@
 #include <map>
 #include <functional>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <cstdint>
 #include <string>
@@ -106,6 +107,31 @@ struct survey {
     std::size_t files = 0;
 };
 
+/// Points counted in 256 x 256 bins over a survey's header box (metres): what refuse_outliers decides on.
+/// Counts are integers: bins filled on several threads and merged do not depend on the split.
+struct outlier_bins {
+    static constexpr int bins = 256;
+    bounds box;
+    double bw = 1, bh = 1;                 ///< bin width and height, metres
+    std::vector<std::uint64_t> count;      ///< bins x bins, row j (from ymin) then column i (from xmin)
+
+    explicit outlier_bins(const bounds& box);
+    /// Counts points at x, y (metres; non-finite ones are skipped; outside the box, in the border bins).
+    void add(std::span<const double> x, std::span<const double> y);
+    void merge(const outlier_bins& other);
+};
+
+/// Points far from all the others (one point 200 km away) would stretch the grid over empty space. The bins
+/// that hold all but the outermost 1e-4 of the `total` points along each axis, widened by 5 %, form the core
+/// box. When points outside it make the grid more than twice the core's area, the run is refused
+/// (usage_error) naming their count, where they are (in CRS units: metres / unit_m) and the --crop that keeps
+/// the rest.
+void refuse_outliers(const outlier_bins& bins, std::uint64_t total, double unit_m);
+
+/// outlier_bins over `box` (metres) of every point of the files, read in a pass of their own on `threads`
+/// threads; unit_m converts the files' x and y to metres.
+outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads);
+
 /// What read_survey learns from the files' headers before reading any point, everything in metres.
 struct survey_layout {
     survey head;                          ///< crs, crs_wkt, epsg and files set; no rasters yet
@@ -114,12 +140,20 @@ struct survey_layout {
     std::vector<std::uint64_t> points;    ///< each file's header point count
     std::uint64_t total = 0;              ///< points of every file
     double unit_xy = 1, unit_z = 1;       ///< metres per unit of the files' x and y, and of z
+    bounds header_box;                    ///< the union of the files' header boxes, metres (before any crop)
+    /// The outlier check is left to the reader: it counts outlier_bins over header_box as it reads every
+    /// point once and calls refuse_outliers before returning (survey_layout_of with reader_checks_outliers).
+    bool outliers_unchecked = false;
 };
 
 /// The header checks of read_survey, before any point is read: the same file twice, CRS and units
 /// (degrees and mixed units refused), outliers, crop, the grid's memory against the budget and the cell
 /// against the density; then the grid. @throws as read_survey.
-survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt);
+/// With reader_checks_outliers, a grid that passes the memory and density checks leaves the outlier check to
+/// the reader (outliers_unchecked) instead of reading every point in a pass of its own; otherwise, and always
+/// when a check fails (outliers would explain it), the pass runs here first.
+survey_layout survey_layout_of(const std::vector<std::string>& paths, const survey_options& opt,
+                               bool reader_checks_outliers = false);
 
 /// Multiplies a chunk's x, y and z by the layout's units (metres per unit).
 void to_metres(io::las_points& points, const survey_layout& layout);

@@ -219,7 +219,7 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
 }
 
 void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
-                       raster_view<const std::uint8_t> footprint, const output_formats& formats)
+                       raster_view<const std::uint8_t> footprint, const output_formats& formats, int threads)
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
@@ -249,37 +249,43 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
     }
     const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
     dir.set_units_note(units_note(s));
-    write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg, formats);
-    write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats);
-
+    // The files are independent: they are written on `threads` threads.
+    std::vector<std::function<void()>> jobs;
+    jobs.push_back([&] { write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg, formats); });
+    jobs.push_back([&] { write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats); });
     if (formats.png) {
-        const auto f = picture_factor(g);
-        const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
-        const auto overlay =
-            io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
-        dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
+        jobs.push_back([&] {
+            const auto f = picture_factor(g);
+            const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
+            const auto overlay =
+                io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
+            dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
+        });
     }
-
-    std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
-                                    "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
-                                    "dropout_fraction"};
-    std::vector<std::vector<io::table_value>> rows;
-    for (const auto& b : w.bodies) {
-        const bounds box = in_crs.extent(b.box);
-        rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg, b.stopped_by_ks,
-                        b.mean_intensity, b.water_level_m, b.dropout_fraction});
-    }
-    dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
-
-    std::vector<io::geojson_feature> features;
-    for (const auto& lp : polygonize(w.labels, in_crs)) {
-        const auto& b = w.bodies[static_cast<std::size_t>(lp.label - 1)];
-        for (const auto& poly : lp.polygons) {
-            features.push_back({poly.rings, {{"label", b.label}, {"area_m2", b.area_m2},
-                                             {"water_level_m", b.water_level_m}, {"theta_deg", b.theta_deg}}});
+    jobs.push_back([&] {
+        std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
+                                        "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
+                                        "dropout_fraction"};
+        std::vector<std::vector<io::table_value>> rows;
+        for (const auto& b : w.bodies) {
+            const bounds box = in_crs.extent(b.box);
+            rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg,
+                            b.stopped_by_ks, b.mean_intensity, b.water_level_m, b.dropout_fraction});
         }
-    }
-    dir.write("waterbodies.geojson", [&](const std::string& path) { io::write_geojson(path, features, s.epsg); });
+        dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
+    });
+    jobs.push_back([&] {
+        std::vector<io::geojson_feature> features;
+        for (const auto& lp : polygonize(w.labels, in_crs)) {
+            const auto& b = w.bodies[static_cast<std::size_t>(lp.label - 1)];
+            for (const auto& poly : lp.polygons) {
+                features.push_back({poly.rings, {{"label", b.label}, {"area_m2", b.area_m2},
+                                                 {"water_level_m", b.water_level_m}, {"theta_deg", b.theta_deg}}});
+            }
+        }
+        dir.write("waterbodies.geojson", [&](const std::string& path) { io::write_geojson(path, features, s.epsg); });
+    });
+    run_jobs(jobs, threads);
 }
 
 void print_diagnostics(const water_diagnostics& d)

@@ -76,21 +76,23 @@ std::vector<std::string> survey_files(const std::vector<std::string>& arguments)
     return files;
 }
 
+std::vector<survey_file_extent> survey_file_extents(const survey_layout& layout)
+{
+    std::vector<survey_file_extent> files;
+    for (std::size_t f = 0; f < layout.extents.size(); ++f) {
+        const bounds& e = layout.extents[f];
+        const double grow = 1e-6 + 1e-12 * std::max({std::abs(e.xmin), std::abs(e.xmax), std::abs(e.ymin), std::abs(e.ymax)});
+        if (layout.points[f] > 0) files.push_back({{e.xmin - grow, e.ymin - grow, e.xmax + grow, e.ymax + grow}, layout.points[f]});
+        else files.push_back({bounds{layout.g.x0 - 1e9, layout.g.y0 + 1e9, layout.g.x0 - 1e9, layout.g.y0 + 1e9}, 0});
+    }
+    return files;
+}
+
 tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, const survey_options& opt,
                             int tiles_in_flight)
 {
     if (!(tile_edge_m > 0) || !std::isfinite(tile_edge_m))
         throw usage_error("--tile must be a positive number of metres (got " + std::to_string(tile_edge_m) + ")");
-    std::vector<survey_file_extent> files;
-    for (std::size_t f = 0; f < layout.extents.size(); ++f) {
-        // Grown by a micrometre (and 1e-12 of the coordinates): a header box rounded a hair inside its points,
-        // or a scan segment's cell coordinates a rounding step beyond its ends, still reach the tile.
-        const bounds& e = layout.extents[f];
-        const double grow = 1e-6 + 1e-12 * std::max({std::abs(e.xmin), std::abs(e.xmax), std::abs(e.ymin), std::abs(e.ymax)});
-        // A file without points has no meaningful box: it is read by no tile.
-        if (layout.points[f] > 0) files.push_back({{e.xmin - grow, e.ymin - grow, e.xmax + grow, e.ymax + grow}, layout.points[f]});
-        else files.push_back({bounds{layout.g.x0 - 1e9, layout.g.y0 + 1e9, layout.g.x0 - 1e9, layout.g.y0 + 1e9}, 0});
-    }
     tile_plan_options o;
     o.tile_edge_m = tile_edge_m;
     o.halo_cells = 0;   // stage A bins each point in its own cell: no step reaches beyond the core
@@ -101,7 +103,7 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
     o.chunk_points = tile_chunk_points;
     o.tiles_in_flight = std::max(1, tiles_in_flight);
     try {
-        return make_tile_plan(layout.g, files, o);
+        return make_tile_plan(layout.g, survey_file_extents(layout), o);
     } catch (const invalid_input& e) {
         std::ostringstream why;
         why << "--tile " << tile_edge_m << " does not fit --memory (lower --tile or --threads, or raise --memory): "
@@ -110,84 +112,168 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
     }
 }
 
+std::vector<file_readers> survey_file_readers(const survey_layout& layout, const tile_plan& plan, bool hand,
+                                              std::uint64_t memory_budget_bytes)
+{
+    const auto files = survey_file_extents(layout);
+    if (!hand) return assign_file_readers(plan, files, 0);
+    // A tile is handed at most an eighth of a chunk per file, 30 B a point, held until the tile is finished;
+    // up to tile_cols + 1 tiles wait for their handed files with their accumulators (24 B a cell) open.
+    double handed = 0;
+    auto readers = assign_file_readers(plan, files, tile_chunk_points / 8, &handed);
+    const double waiting = static_cast<double>(plan.tile_cols + 1) * static_cast<double>(plan.tile_cells) *
+                           static_cast<double>(plan.tile_cells) * 24.0;
+    const bool fits = memory_budget_bytes == 0 ||
+                      plan.peak_bytes_estimate + handed * 30.0 + waiting <= static_cast<double>(memory_budget_bytes);
+    return fits ? readers : assign_file_readers(plan, files, 0);
+}
+
 namespace {
 
-/// The tile that reads each file first (lowest index); tiles.size() for files no tile lists.
-std::vector<std::size_t> file_owners(const tile_plan& plan, std::size_t files)
+/// Points of one tile's core as its accumulator takes them: each at the centre of its cell on the tile's
+/// window grid (so that the window cannot place it elsewhere), with z and the attributes the rasters use.
+struct core_points {
+    std::vector<double> x, y, z;
+    std::vector<std::uint16_t> intensity;
+    std::vector<std::uint8_t> return_number, number_of_returns, classification;
+
+    void clear()
+    {
+        x.clear(), y.clear(), z.clear(), intensity.clear();
+        return_number.clear(), number_of_returns.clear(), classification.clear();
+    }
+    /// Adds point i of `chunk`, in cell `at` of the survey grid, to the core `core` whose window grid is `window`.
+    void push(const io::las_points& chunk, std::size_t i, const cell_index& at, const cell_box& core, const grid& window)
+    {
+        const auto centre = window.center(at.row - core.row_min, at.col - core.col_min);
+        x.push_back(centre[0]);
+        y.push_back(centre[1]);
+        z.push_back(chunk.z[i]);
+        intensity.push_back(chunk.intensity[i]);
+        return_number.push_back(chunk.return_number[i]);
+        number_of_returns.push_back(chunk.number_of_returns[i]);
+        classification.push_back(chunk.classification[i]);
+    }
+    soa_cloud<> cloud() const
+    {
+        return soa_cloud<>(x, y, z, intensity, return_number, number_of_returns, classification);
+    }
+};
+
+bool holds(const cell_box& b, const cell_index& at)
 {
-    std::vector<std::size_t> owner(files, plan.tiles.size());
-    for (const auto& t : plan.tiles)
-        for (const std::size_t f : t.files) owner[f] = std::min(owner[f], t.index);
-    return owner;
+    return at.row >= b.row_min && at.row <= b.row_max && at.col >= b.col_min && at.col <= b.col_max;
+}
+
+/// ORs the cells of `from` (box `from_box` of the survey grid) that fall in `core` into `to` (core-sized;
+/// allocated zero when empty).
+void or_scan_lines(raster<std::uint8_t>& to, const cell_box& core, raster_view<const std::uint8_t> from,
+                   const cell_box& from_box)
+{
+    if (to.empty()) to = raster<std::uint8_t>(core.rows(), core.cols(), 0);
+    const std::ptrdiff_t r0 = std::max(core.row_min, from_box.row_min), r1 = std::min(core.row_max, from_box.row_max);
+    const std::ptrdiff_t c0 = std::max(core.col_min, from_box.col_min), c1 = std::min(core.col_max, from_box.col_max);
+    auto out = to.view();
+    for (std::ptrdiff_t r = r0; r <= r1; ++r) {
+        const std::uint8_t* in = from.row(r - from_box.row_min);
+        std::uint8_t* o = out.row(r - core.row_min);
+        for (std::ptrdiff_t c = c0; c <= c1; ++c) o[c - core.col_min] |= in[c - from_box.col_min];
+    }
+}
+
+/// What reading one file counted (only for the file's home tile).
+struct file_counts {
+    std::size_t nan = 0, outside = 0;
+    std::uint64_t points = 0;
+};
+
+/// Reads one file for the tiles whose cores are `cores` (cores[0] the reading tile): the points in cores[k]
+/// go to add(k, points) chunk by chunk, the others are skipped; scan lines (when the file has GPS times) are
+/// walked on the box holding every core and ORed into scans[k]. Counts NaN, outside and all points when
+/// `home`, and throws for points outside the grid unless `crop`, as read_survey does; the home also counts
+/// every point in `outliers` (when not null). `chunk` and `kept` are buffers reused across files.
+template <class Add>
+file_counts read_file_into(const survey_layout& layout, const std::string& path, const grid& g,
+                           std::span<const cell_box> cores, bool home, bool crop, Add&& add,
+                           std::span<raster<std::uint8_t>> scans, io::las_points& chunk, std::vector<core_points>& kept,
+                           outlier_bins* outliers = nullptr)
+{
+    file_counts counts;
+    io::las_reader reader(path);
+    cell_box all = cores[0];
+    std::vector<grid> windows;
+    for (const cell_box& c : cores) {
+        all = {std::min(all.row_min, c.row_min), std::min(all.col_min, c.col_min), std::max(all.row_max, c.row_max),
+               std::max(all.col_max, c.col_max)};
+        windows.push_back(g.window(c.row_min, c.col_min, c.rows(), c.cols()));
+    }
+    kept.resize(cores.size());
+    std::optional<scan_coverage> lines;
+    // Reading stops at the last point rather than at an empty read, which would shrink the chunk's buffers
+    // (and make the next file's first read fill them anew).
+    while (reader.position() < reader.point_count()) {
+        const std::size_t n = reader.read(chunk, tile_chunk_points);
+        to_metres(chunk, layout);
+        if (home && outliers) outliers->add(chunk.x, chunk.y);
+        for (auto& k : kept) k.clear();
+        for (std::size_t i = 0; i < n; ++i) {
+            const double x = chunk.x[i], y = chunk.y[i], z = chunk.z[i];
+            if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+                counts.nan += home;
+                continue;
+            }
+            const auto at = g.cell_of(x, y);
+            if (!at) {
+                counts.outside += home;
+                continue;
+            }
+            for (std::size_t k = 0; k < cores.size(); ++k) {
+                if (holds(cores[k], *at)) {
+                    kept[k].push(chunk, i, *at, cores[k], windows[k]);
+                    break;
+                }
+            }
+        }
+        for (std::size_t k = 0; k < cores.size(); ++k) add(k, kept[k]);
+        if (!chunk.gps_time.empty()) {
+            if (!lines) lines.emplace(g, all);
+            lines->add(chunk.x, chunk.y, chunk.gps_time);
+        }
+        if (home) counts.points += n;
+    }
+    if (counts.outside > 0 && !crop) {
+        throw std::runtime_error(path + ": " + std::to_string(counts.outside) +
+                                 " points lie outside the bounds its LAS header declares; fix the header "
+                                 "(e.g. lasinfo -repair) before rasterizing");
+    }
+    if (lines)
+        for (std::size_t k = 0; k < cores.size(); ++k) or_scan_lines(scans[k], cores[k], lines->covered(), all);
+    return counts;
 }
 
 }  // namespace
 
 tile_rasters read_tile(const survey_layout& layout, const std::vector<std::string>& paths, const tile_plan& plan,
-                       std::size_t index, bool crop)
+                       const std::vector<file_readers>& readers, std::size_t index, bool crop)
 {
     const survey_tile& tile = plan.tiles.at(index);
-    const grid& g = plan.g;
     const cell_box& core = tile.core;
-    const grid window = g.window(core.row_min, core.col_min, core.rows(), core.cols());
-    const auto owner = file_owners(plan, paths.size());
-    raster_accumulator acc(window);
-    std::optional<scan_coverage> scans;
+    raster_accumulator acc(plan.g.window(core.row_min, core.col_min, core.rows(), core.cols()));
     tile_rasters out;
     out.index = index;
-    std::size_t nan = 0, outside = 0;
     io::las_points chunk;
-    std::vector<double> kx, ky, kz;   // the chunk's points in the core, at the centres of their cells
-    std::vector<std::uint16_t> ki;
-    std::vector<std::uint8_t> kr, kn, kc;
+    std::vector<core_points> kept;
+    file_counts counts;
     for (const std::size_t f : tile.files) {
-        const bool owns = owner[f] == index;
-        io::las_reader reader(paths[f]);
-        if (scans) scans->end_sweep();   // a new file starts a new sweep, as in read_survey
-        std::size_t file_outside = 0;
-        while (const std::size_t n = reader.read(chunk, tile_chunk_points)) {
-            to_metres(chunk, layout);
-            kx.clear(), ky.clear(), kz.clear(), ki.clear(), kr.clear(), kn.clear(), kc.clear();
-            for (std::size_t i = 0; i < n; ++i) {
-                const double x = chunk.x[i], y = chunk.y[i], z = chunk.z[i];
-                if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
-                    nan += owns;
-                    continue;
-                }
-                const auto at = g.cell_of(x, y);
-                if (!at) {
-                    file_outside += owns;
-                    continue;
-                }
-                if (at->row < core.row_min || at->row > core.row_max || at->col < core.col_min || at->col > core.col_max)
-                    continue;
-                const auto centre = window.center(at->row - core.row_min, at->col - core.col_min);
-                kx.push_back(centre[0]);
-                ky.push_back(centre[1]);
-                kz.push_back(z);
-                ki.push_back(chunk.intensity[i]);
-                kr.push_back(chunk.return_number[i]);
-                kn.push_back(chunk.number_of_returns[i]);
-                kc.push_back(chunk.classification[i]);
-            }
-            acc.add(soa_cloud<>(kx, ky, kz, ki, kr, kn, kc));
-            if (!chunk.gps_time.empty()) {
-                if (!scans) scans.emplace(g, core);
-                scans->add(chunk.x, chunk.y, chunk.gps_time);
-            }
-            if (owns) out.points_read += n;
-        }
-        if (file_outside > 0 && !crop) {
-            throw std::runtime_error(paths[f] + ": " + std::to_string(file_outside) +
-                                     " points lie outside the bounds its LAS header declares; fix the header "
-                                     "(e.g. lasinfo -repair) before rasterizing");
-        }
-        outside += file_outside;
+        const file_counts c = read_file_into(
+            layout, paths[f], plan.g, std::span(&core, 1), readers.at(f).home == index, crop,
+            [&](std::size_t, const core_points& p) { acc.add(p.cloud()); }, std::span(&out.scan_covered, 1), chunk, kept);
+        counts.nan += c.nan, counts.outside += c.outside, counts.points += c.points;
     }
     out.rasters = acc.finish();
-    out.rasters.points_nan = nan;
-    out.rasters.points_outside = outside;
-    if (scans) out.scan_covered = scans->take();
+    out.rasters.points_nan = counts.nan;
+    out.rasters.points_outside = counts.outside;
+    out.points_read = counts.points;
     return out;
 }
 
@@ -274,16 +360,16 @@ tile_rasters unpack_tile(std::span<const std::uint8_t> bytes, const tile_plan& p
     return t;
 }
 
-tiled_survey_assembly::tiled_survey_assembly(survey_layout layout, const tile_plan& plan)
+tiled_survey_assembly::tiled_survey_assembly(survey_layout layout, const tile_plan& plan,
+                                             const std::vector<file_readers>& readers)
     : s_(std::move(layout.head)), plan_(plan)
 {
     const grid& g = plan.g;
     auto& r = s_.rasters;
     r.g = g;
     allocate_cell_rasters(r, g.rows, g.cols);
-    const auto owner = file_owners(plan, layout.points.size());
-    for (std::size_t f = 0; f < owner.size(); ++f)
-        if (owner[f] == plan.tiles.size()) unread_points_ += layout.points[f];
+    for (std::size_t f = 0; f < readers.size(); ++f)
+        if (readers[f].home == plan.tiles.size()) unread_points_ += layout.points[f];
 }
 
 void tiled_survey_assembly::place(const tile_rasters& t)
@@ -333,45 +419,205 @@ std::string tiled_fingerprint(const std::vector<std::string>& paths, const surve
     return f.str();
 }
 
+namespace {
+
+/// A tile of a tiled run while its parts come in: its own reading and the files handed to it.
+struct open_tile {
+    std::mutex mutex;
+    int pending = 1;                              // parts still to come: its own reading + files handed to it
+    std::unique_ptr<raster_accumulator> acc;      // from its own reading on
+    std::vector<core_points> handed;              // points handed by the homes of its thin files
+    tile_rasters out;                             // counts and scan lines so far
+};
+
+/// A reading thread's buffers: the chunk as read and its points sorted by core.
+struct reading_buffers {
+    io::las_points chunk;
+    std::vector<core_points> kept;
+    std::optional<outlier_bins> outliers;   // the points of the files this thread read as their home
+};
+
+}  // namespace
+
 survey read_survey_tiled(const std::vector<std::string>& paths, const survey_options& opt, double tile_edge_m,
                          const std::filesystem::path& resume_dir)
 {
-    survey_layout layout = survey_layout_of(paths, opt);
+    survey_layout layout = survey_layout_of(paths, opt, true);
     const int threads = detail::resolve_threads(opt.threads, "--threads");
-    const tile_plan plan = plan_survey_tiles(layout, tile_edge_m, opt, threads);
+    const auto check_outliers_now = [&] {
+        refuse_outliers(count_outlier_bins(paths, layout.header_box, layout.unit_xy, opt.threads), layout.total,
+                        layout.unit_xy);
+    };
+    const tile_plan plan = [&] {
+        try {
+            return plan_survey_tiles(layout, tile_edge_m, opt, threads);
+        } catch (const usage_error&) {
+            if (layout.outliers_unchecked) check_outliers_now();   // far points would explain the refusal
+            throw;
+        }
+    }();
+    const auto readers = survey_file_readers(layout, plan, true, opt.memory_budget_bytes);
     std::optional<tile_store> store;
     if (!resume_dir.empty()) store.emplace(resume_dir, tiled_fingerprint(paths, opt, tile_edge_m));
+    const auto done = [&](std::size_t tile) { return store && store->done(tile); };
+    // The outlier check counts the points as their home tiles read them; a resumed run, whose finished tiles
+    // are not read again, counts them in a pass of their own first.
+    bool count_outliers = layout.outliers_unchecked;
+    if (count_outliers && store && store->done_count() > 0) {
+        check_outliers_now();
+        count_outliers = false;
+    }
     const char* kill_hook = std::getenv("LIDARFX_TEST_KILL_AFTER_TILES");   // test hook, see the header
     const long kill_after = kill_hook ? std::atol(kill_hook) : 0;
     const survey_layout& L = layout;
-    tiled_survey_assembly assembly(layout, plan);
+    const bool crop = opt.crop.has_value();
+    tiled_survey_assembly assembly(layout, plan, readers);
     auto bar = opt.show_progress ? progress_bar("tiles    ") : progress_callback{};
     std::mutex bar_mutex;
     std::size_t finished = 0;
     std::atomic<long> recorded{0};
+    const auto placed = [&](const tile_rasters& t) {
+        assembly.place(t);
+        const std::lock_guard lock(bar_mutex);
+        ++finished;
+        if (bar) bar(static_cast<double>(finished) / static_cast<double>(plan.tiles.size()));
+    };
+
+    // Files a home hands on in this run: not to finished tiles, and none from a finished home (its tile came
+    // from the store, so the tiles it would hand to read the file themselves).
+    const std::size_t tiles = plan.tiles.size();
+    std::vector<std::vector<std::size_t>> hands(paths.size());
+    std::vector<open_tile> open(tiles);
+    for (std::size_t f = 0; f < paths.size(); ++f) {
+        if (readers[f].home == tiles || done(readers[f].home)) continue;
+        for (const std::size_t t : readers[f].handed_to) {
+            if (done(t)) continue;
+            hands[f].push_back(t);
+            ++open[t].pending;
+        }
+    }
+    // Finishes tile t once its last part is in (called by whichever thread brought that part).
+    const auto finish = [&](std::size_t t) {
+        open_tile& o = open[t];
+        for (const core_points& p : o.handed) o.acc->add(p.cloud());
+        tile_rasters r = std::move(o.out);
+        const std::size_t nan = r.rasters.points_nan, outside = r.rasters.points_outside;
+        r.rasters = o.acc->finish();
+        r.rasters.points_nan = nan;
+        r.rasters.points_outside = outside;
+        o.acc.reset();
+        o.handed = {};
+        if (store) {
+            store->save(t, pack_tile(r));
+            if (recorded.fetch_add(1) + 1 == kill_after) std::raise(SIGKILL);
+        }
+        placed(r);
+    };
+    // One part of tile t is in: `bring` runs under the tile's lock, then the tile is finished if it was the last.
+    const auto part_in = [&](std::size_t t, const auto& bring) {
+        bool last = false;
+        {
+            const std::lock_guard lock(open[t].mutex);
+            bring(open[t]);
+            last = --open[t].pending == 0;
+        }
+        if (last) finish(t);
+    };
+
+    // Chunk buffers pass from tile to tile (fresh ones would be zeroed again for every file).
+    std::mutex pool_mutex;
+    std::vector<std::unique_ptr<reading_buffers>> pool;
+    const auto take_buffers = [&] {
+        const std::lock_guard lock(pool_mutex);
+        if (pool.empty()) {
+            auto fresh = std::make_unique<reading_buffers>();
+            if (count_outliers) fresh->outliers.emplace(L.header_box);
+            return fresh;
+        }
+        auto b = std::move(pool.back());
+        pool.pop_back();
+        return b;
+    };
+    const auto give_back = [&](std::unique_ptr<reading_buffers> b) {
+        const std::lock_guard lock(pool_mutex);
+        pool.push_back(std::move(b));
+    };
+
     std::vector<std::function<void()>> jobs;
     for (const auto& tile : plan.tiles) {
         jobs.push_back([&, index = tile.index] {
-            const std::string where = resume_dir.empty() ? std::string("tile ") + std::to_string(index)
-                                                         : (resume_dir / ("tile_" + std::to_string(index))).string();
-            if (store && store->done(index)) {
-                assembly.place(unpack_tile(store->load(index), plan, where));
-            } else {
-                const tile_rasters t = read_tile(L, paths, plan, index, opt.crop.has_value());
-                if (store) {
-                    store->save(index, pack_tile(t));
-                    if (recorded.fetch_add(1) + 1 == kill_after) std::raise(SIGKILL);
-                }
-                assembly.place(t);
+            if (done(index)) {
+                const std::string where = (resume_dir / ("tile_" + std::to_string(index))).string();
+                placed(unpack_tile(store->load(index), plan, where));
+                return;
             }
-            const std::lock_guard lock(bar_mutex);
-            ++finished;
-            if (bar) bar(static_cast<double>(finished) / static_cast<double>(plan.tiles.size()));
+            const cell_box& core = tile.core;
+            auto acc = std::make_unique<raster_accumulator>(plan.g.window(core.row_min, core.col_min, core.rows(), core.cols()));
+            tile_rasters own;
+            own.index = index;
+            std::unique_ptr<reading_buffers> buffers = take_buffers();
+            io::las_points& chunk = buffers->chunk;
+            std::vector<core_points>& kept = buffers->kept;
+            for (const std::size_t f : tile.files) {
+                const bool home = readers[f].home == index;
+                const auto& to = hands[f];
+                if (!home && std::find(to.begin(), to.end(), index) != to.end()) continue;   // handed to this tile
+                // The reading tile first, then the tiles this home hands the file to.
+                std::vector<cell_box> cores{core};
+                if (home)
+                    for (const std::size_t t : to) cores.push_back(plan.tiles[t].core);
+                std::vector<raster<std::uint8_t>> scans(cores.size());
+                scans[0] = std::move(own.scan_covered);
+                std::vector<core_points> handing(cores.size());
+                const file_counts c = read_file_into(
+                    L, paths[f], plan.g, cores, home, crop,
+                    [&](std::size_t k, const core_points& p) {
+                        if (k == 0) {
+                            acc->add(p.cloud());
+                            return;
+                        }
+                        auto& h = handing[k];
+                        h.x.insert(h.x.end(), p.x.begin(), p.x.end());
+                        h.y.insert(h.y.end(), p.y.begin(), p.y.end());
+                        h.z.insert(h.z.end(), p.z.begin(), p.z.end());
+                        h.intensity.insert(h.intensity.end(), p.intensity.begin(), p.intensity.end());
+                        h.return_number.insert(h.return_number.end(), p.return_number.begin(), p.return_number.end());
+                        h.number_of_returns.insert(h.number_of_returns.end(), p.number_of_returns.begin(),
+                                                   p.number_of_returns.end());
+                        h.classification.insert(h.classification.end(), p.classification.begin(), p.classification.end());
+                    },
+                    scans, chunk, kept, buffers->outliers ? &*buffers->outliers : nullptr);
+                own.scan_covered = std::move(scans[0]);
+                own.rasters.points_nan += c.nan, own.rasters.points_outside += c.outside, own.points_read += c.points;
+                for (std::size_t k = 1; k < cores.size(); ++k) {
+                    part_in(to[k - 1], [&](open_tile& o) {
+                        o.handed.push_back(std::move(handing[k]));
+                        if (!scans[k].empty()) {
+                            const cell_box& r = cores[k];
+                            or_scan_lines(o.out.scan_covered, r, scans[k], r);
+                        }
+                    });
+                }
+            }
+            give_back(std::move(buffers));
+            part_in(index, [&](open_tile& o) {
+                o.acc = std::move(acc);
+                o.out.index = index;
+                o.out.points_read += own.points_read;
+                o.out.rasters.points_nan += own.rasters.points_nan;
+                o.out.rasters.points_outside += own.rasters.points_outside;
+                if (!own.scan_covered.empty()) or_scan_lines(o.out.scan_covered, core, own.scan_covered, core);
+            });
         });
     }
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
     run_jobs(jobs, threads);
+    if (count_outliers) {
+        outlier_bins all(L.header_box);
+        for (const auto& b : pool) all.merge(*b->outliers);
+        refuse_outliers(all, L.total, L.unit_xy);
+    }
     if (opt.show_progress) {
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;

@@ -140,7 +140,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
         return 3;
     }
     print_waterbodies(w);
-    write_waterbodies(out, s, w, found.footprint, survey_options.formats);
+    write_waterbodies(out, s, w, found.footprint, survey_options.formats, opt.run.threads);
     commit_and_report(out, command_line("water", args));
     std::filesystem::remove_all(tiles_dir);   // the run is complete: its tiles are no longer needed
     return 0;

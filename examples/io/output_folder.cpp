@@ -261,17 +261,19 @@ void output_folder::write(const std::string& name,
 void output_folder::commit(const std::string& command)
 {
     if (committed_) return;
-    // Everything is checked before anything moves, so a refusal leaves the folder as it was.
-    for (const auto& p : pending_) {
-        check_name(p.name);
-        sync_path(p.temporary, false);
-    }
-    // Checksums of the files on all cores (hashing reads back everything the run wrote).
+    // Everything is checked before anything moves, so a refusal leaves the folder as it was. The manifest lists
+    // the files by name, whatever order (or threads) they were written in.
+    for (const auto& p : pending_) check_name(p.name);
+    std::sort(pending_.begin(), pending_.end(), [](const pending& a, const pending& b) { return a.name < b.name; });
+    // Each file flushed to disk and its checksum taken, on all cores (hashing reads back everything written).
     std::vector<std::string> digests(pending_.size());
     {
         std::atomic<std::size_t> next{0};
         const auto worker = [&] {
-            for (std::size_t i; (i = next.fetch_add(1)) < pending_.size();) digests[i] = sha256_of_file(pending_[i].temporary);
+            for (std::size_t i; (i = next.fetch_add(1)) < pending_.size();) {
+                sync_path(pending_[i].temporary, false);
+                digests[i] = sha256_of_file(pending_[i].temporary);
+            }
         };
         const std::size_t helpers = std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), pending_.size());
         std::vector<std::future<void>> running;

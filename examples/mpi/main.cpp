@@ -32,13 +32,15 @@ struct run_plan {
     survey_options opt;
     survey_layout layout;
     tile_plan plan;
+    std::vector<file_readers> readers;   // every listing tile reads its files (ranks hand nothing on)
 };
 
 run_plan plan_run(const std::vector<std::string>& files, const survey_options& opt, double tile_edge_m)
 {
     if (!(tile_edge_m > 0)) throw usage_error("lidarfx-mpi needs --tile M (metres > 0): ranks share the tiles");
-    run_plan p{files, opt, survey_layout_of(files, opt), {}};
+    run_plan p{files, opt, survey_layout_of(files, opt), {}, {}};
     p.plan = plan_survey_tiles(p.layout, tile_edge_m, opt, std::max(1, opt.threads));
+    p.readers = survey_file_readers(p.layout, p.plan, false);
     return p;
 }
 
@@ -51,7 +53,7 @@ void read_my_tiles(const run_plan& p, int rank, int ranks, Done&& done)
     for (const auto& tile : p.plan.tiles) {
         if (static_cast<int>(tile.index % static_cast<std::size_t>(ranks)) != rank) continue;
         jobs.push_back([&, index = tile.index] {
-            tile_rasters t = read_tile(p.layout, p.files, p.plan, index, p.opt.crop.has_value());
+            tile_rasters t = read_tile(p.layout, p.files, p.plan, p.readers, index, p.opt.crop.has_value());
             const std::lock_guard lock(mutex);
             done(std::move(t));
         });
@@ -62,7 +64,7 @@ void read_my_tiles(const run_plan& p, int rank, int ranks, Done&& done)
 /// Rank 0's survey: its own tiles and every other rank's, received as packed tiles.
 survey gather_survey(const run_plan& p, int ranks)
 {
-    tiled_survey_assembly assembly(p.layout, p.plan);
+    tiled_survey_assembly assembly(p.layout, p.plan, p.readers);
     const std::size_t tiles = p.plan.tiles.size();
     auto bar = p.opt.show_progress ? progress_bar("tiles    ") : progress_callback{};
     std::size_t finished = 0;

@@ -20,14 +20,18 @@ using namespace lidarfx::io;
 
 namespace {
 
-/// A lake scene of 300 m (GPS times, so scan lines count) cut into 3 x 3 LAS files of 100 m; returns the paths.
-std::vector<std::string> write_lake_survey(const io_test::temp_dir& dir)
+/// A lake scene of 300 m (GPS times, so scan lines count) cut into 3 x 3 LAS files of 100 m, each also holding
+/// the points up to `overlap_m` beyond its edges (as flight strips overlap); returns the paths.
+std::vector<std::string> write_lake_survey(const io_test::temp_dir& dir, double overlap_m = 0)
 {
     const auto scene = synth::lake_scene({.seed = 7, .size_m = 300, .density_per_m2 = 1.5});
     std::vector<las_points> parts(9);
     const auto all = las_points_from(scene.points);
-    for (std::size_t i = 0; i < all.size(); ++i) {
-        const int c = std::min(2, static_cast<int>(all.x[i] / 100)), r = std::min(2, static_cast<int>(all.y[i] / 100));
+    const auto in = [&](double v, int k) { return (k == 0 || v >= k * 100 - overlap_m) && (k == 2 || v < k * 100 + 100 + overlap_m); };
+    for (std::size_t i = 0; i < all.size(); ++i)
+    for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+        if (!in(all.x[i], c) || !in(all.y[i], r)) continue;
         auto& p = parts[static_cast<std::size_t>(r * 3 + c)];
         p.x.push_back(all.x[i] + 600000.0);
         p.y.push_back(all.y[i] + 5000000.0);
@@ -100,12 +104,53 @@ TEST_CASE("io/tiled_survey: tile by tile, the survey read_survey reads, bit for 
             check_same_survey(untiled, cli::read_survey_tiled(paths, quiet(1.5, threads), edge, {}));
         }
     }
+    SUBCASE("files that reach a metre into their neighbours' tiles: their homes hand those points on")
+    {
+        io_test::temp_dir other;
+        const auto overlapping = write_lake_survey(other, 1.0);
+        const auto o = quiet(2.0, 2);
+        const auto layout = cli::survey_layout_of(overlapping, o);
+        const auto plan = cli::plan_survey_tiles(layout, 100.0, o, 2);
+        const auto readers = cli::survey_file_readers(layout, plan, true);
+        std::size_t handed = 0;
+        for (const auto& r : readers) handed += r.handed_to.size();
+        CHECK(handed >= 12);   // each inner border is crossed by the files on both sides
+        const auto want = cli::read_survey(overlapping, o);
+        for (const int threads : {1, 2}) check_same_survey(want, cli::read_survey_tiled(overlapping, quiet(2.0, threads), 100.0, {}));
+    }
     SUBCASE("with --crop (files outside it are read by no tile)")
     {
         auto o = quiet(1.5, 2);
         o.crop = bounds{600020.0, 5000030.0, 600150.0, 5000140.0};
         check_same_survey(cli::read_survey(paths, o), cli::read_survey_tiled(paths, o, 30.0, {}));
     }
+}
+
+TEST_CASE("io/tiled_survey: a point far from the rest is refused as read_survey refuses it, as the tiles read it")
+{
+    io_test::temp_dir dir;
+    auto paths = write_lake_survey(dir);
+    las_points far;
+    far.x = {600150.0, 630000.0};   // the second point 30 km east of a 300 m survey
+    far.y = {5000150.0, 5000150.0};
+    far.z = {10.0, 10.0};
+    far.intensity = {100, 100};
+    far.return_number = far.number_of_returns = {1, 1};
+    far.classification = {1, 1};
+    far.gps_time = {1.0e6, 1.0e6 + 1};
+    paths.push_back(dir.file("far.las"));
+    write_las(paths.back(), far, {.point_format = 1, .epsg_projected = 32633});
+    const auto want = io_test::error_of([&] { cli::read_survey(paths, quiet(2.0, 1)); });
+    REQUIRE(io_test::contains(want, "1 of "));
+    REQUIRE(io_test::contains(want, "lie far from the rest"));
+    for (const int threads : {1, 2}) CHECK(io_test::error_of([&] { cli::read_survey_tiled(paths, quiet(2.0, threads), 200.0, {}); }) == want);
+    // A resumed run (some tiles already kept) checks before reading, with the same message.
+    const std::filesystem::path kept = dir.file("kept");
+    {
+        cli::tile_store store(kept, cli::tiled_fingerprint(paths, quiet(2.0, 1), 200.0));
+        store.save(0, {1, 2, 3});
+    }
+    CHECK(io_test::error_of([&] { cli::read_survey_tiled(paths, quiet(2.0, 1), 200.0, kept); }) == want);
 }
 
 TEST_CASE("io/tiled_survey: a tile packed and unpacked is the same tile; damaged bytes are refused by name")
@@ -116,7 +161,7 @@ TEST_CASE("io/tiled_survey: a tile packed and unpacked is the same tile; damaged
     const auto layout = cli::survey_layout_of(paths, o);
     const auto plan = cli::plan_survey_tiles(layout, 60.0, o, 1);
     REQUIRE(plan.tiles.size() == 25);   // 150 x 150 cells in tiles of 30 x 30
-    const auto tile = cli::read_tile(layout, paths, plan, 12, false);
+    const auto tile = cli::read_tile(layout, paths, plan, cli::survey_file_readers(layout, plan, false), 12, false);
     CHECK(tile.rasters.points_used > 0);
     const auto bytes = cli::pack_tile(tile);
     const auto back = cli::unpack_tile(bytes, plan, "tile 12");

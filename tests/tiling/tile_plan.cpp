@@ -223,3 +223,57 @@ TEST_CASE("tiling/make_tile_plan: refuses bad options and extents")
     const std::vector<survey_file_extent> nan_box{{{nan, 5, 4, 6}, 1}};
     CHECK_THROWS_AS(make_tile_plan(g, nan_box), invalid_input);
 }
+
+TEST_CASE("tiling/assign_file_readers: files cut along the tile lines are read once, their slivers handed on")
+{
+    // 4 x 4 tiles of 100 cells; 4 x 4 files of 100 m whose boxes end on the tile lines, so that each also
+    // reaches one column into the tile east of it and one row into the tile south of it.
+    const grid g{0, 400, 1, 400, 400};
+    std::vector<survey_file_extent> files;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) files.push_back({{c * 100.0, r * 100.0, c * 100.0 + 100, r * 100.0 + 100}, 10000});
+    const tile_plan p = make_tile_plan(g, files, {.tile_edge_m = 100});
+    REQUIRE(p.tiles.size() == 16);
+    double handed = 0;
+    const auto readers = assign_file_readers(p, files, 1000, &handed);
+    REQUIRE(readers.size() == files.size());
+    double expected = 0;
+    for (std::size_t f = 0; f < files.size(); ++f) {
+        CAPTURE(f);
+        const int r = int(f) / 4, c = int(f) % 4;
+        const std::size_t home = std::size_t((3 - r) * 4 + c);   // the tile of its 100 x 100 cells (rows run south)
+        CHECK(readers[f].home == home);
+        std::vector<std::size_t> slivers;   // east, south, south-east when inside the grid
+        for (const auto& t : p.tiles)
+            if (t.index != home && std::find(t.files.begin(), t.files.end(), f) != t.files.end()) slivers.push_back(t.index);
+        CHECK(readers[f].handed_to == slivers);
+        CHECK(slivers.size() == std::size_t((c < 3) + (r > 0) + (c < 3 && r > 0)));
+        // The range has one more column and row where a sliver is (the grid's far borders fold into the last
+        // cell); the slivers hold 100, 100 and 1 of its cells; uniform density.
+        const double cells = (c < 3 ? 101.0 : 100.0) * (r > 0 ? 101.0 : 100.0);
+        for (const std::size_t t : slivers) expected += 10000.0 * (t == home + 5 ? 1 : 100) / cells;
+    }
+    CHECK(handed == doctest::Approx(expected));
+    // Larger shares than allowed, or nothing allowed: every listing tile reads the file itself.
+    for (const std::uint64_t max : {std::uint64_t{50}, std::uint64_t{0}}) {
+        const auto strict = assign_file_readers(p, files, max);
+        for (std::size_t f = 0; f < files.size(); ++f) {
+            CHECK(strict[f].home == readers[f].home);
+            for (const std::size_t t : strict[f].handed_to) CHECK(t == strict[f].home + 5);   // 1 cell: ~1 point
+            if (max == 0) CHECK(strict[f].handed_to.empty());
+        }
+    }
+}
+
+TEST_CASE("tiling/assign_file_readers: a file over many tiles is handed only to its home's neighbours")
+{
+    const grid g{0, 400, 1, 400, 400};
+    const std::vector<survey_file_extent> files{{{0.5, 0.5, 399.5, 399.5}, 1000}, {{-50, -50, -10, -10}, 5}};
+    const tile_plan p = make_tile_plan(g, files, {.tile_edge_m = 100});
+    const auto readers = assign_file_readers(p, files, 100);
+    CHECK(readers[0].home == 0);   // every tile holds 100 x 100 of its cells: the lowest index wins
+    CHECK(readers[0].handed_to == std::vector<std::size_t>{1, 4, 5});
+    CHECK(readers[1].home == p.tiles.size());   // outside the grid: no tile lists it
+    CHECK(readers[1].handed_to.empty());
+    CHECK_THROWS_AS(assign_file_readers(p, std::vector<survey_file_extent>{}, 100), invalid_input);   // plan lists file 0
+}

@@ -100,6 +100,22 @@ inline bool cell_range(double a, double b, std::ptrdiff_t n, std::ptrdiff_t& lo,
     return true;
 }
 
+/// The cells a file box can land in by grid::cell_of (see cell_range); false when it misses the grid.
+inline bool file_cell_range(const grid& g, const bounds& b, cell_box& out) noexcept
+{
+    const cell_coords nw = g.to_cell_coords(b.xmin, b.ymax), se = g.to_cell_coords(b.xmax, b.ymin);
+    return cell_range(nw.row, se.row, g.rows, out.row_min, out.row_max) &&
+           cell_range(nw.col, se.col, g.cols, out.col_min, out.col_max);
+}
+
+/// Cells of a and b in common.
+inline double shared_cells(const cell_box& a, const cell_box& b) noexcept
+{
+    const auto rows = std::min(a.row_max, b.row_max) - std::max(a.row_min, b.row_min) + 1;
+    const auto cols = std::min(a.col_max, b.col_max) - std::max(a.col_min, b.col_min) + 1;
+    return rows > 0 && cols > 0 ? static_cast<double>(rows) * static_cast<double>(cols) : 0.0;
+}
+
 /// Fraction of [a, b] inside [lo, hi] (world metres); a degenerate [a, a] counts 1 when `inside` says so.
 inline double overlap_fraction(double a, double b, double lo, double hi, bool inside) noexcept
 {
@@ -212,13 +228,7 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
         cell_box box;
     };
     std::vector<file_cells> reach(files.size());
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        const bounds& b = files[i].box;
-        const cell_coords nw = g.to_cell_coords(b.xmin, b.ymax), se = g.to_cell_coords(b.xmax, b.ymin);
-        file_cells& f = reach[i];
-        f.inside = detail::cell_range(nw.row, se.row, g.rows, f.box.row_min, f.box.row_max) &&
-                   detail::cell_range(nw.col, se.col, g.cols, f.box.col_min, f.box.col_max);
-    }
+    for (std::size_t i = 0; i < files.size(); ++i) reach[i].inside = detail::file_cell_range(g, files[i].box, reach[i].box);
 
     double largest_halo = 0;
     const std::ptrdiff_t h = opt.halo_cells;
@@ -274,6 +284,66 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
                                            static_cast<double>(fit) * g.cell, " m (", fit, " cells)"));
     }
     return plan;
+}
+
+/// Who reads one file of a tile plan (assign_file_readers).
+struct file_readers {
+    std::size_t home = 0;                 ///< the tile that reads the file; tiles.size() when no tile lists it
+    std::vector<std::size_t> handed_to;   ///< tiles next to home that home hands their points instead
+};
+
+/// Lets most files be read once instead of by every tile they touch. A file whose box ends on a tile border
+/// (files cut along the tile lines, points on the line, or a box grown for rounding) is listed by up to four
+/// tiles, and each would read all of it for a sliver of cells. For each file: home = the listing tile whose
+/// with_halo shares the most cells with the file's cell range (ties: the lowest index); a listing tile next
+/// to home (the 8 neighbours on the tile lattice) is handed its points by home when its share is small:
+/// points x shared cells / cells of the range <= max_handed_points (uniform density, as points_estimate);
+/// every other listing tile reads the file itself. A host keeps a tile open until the homes of its handed
+/// files have read them: with tiles started in index order, that is at most tile_cols + 1 tiles beyond those
+/// in flight. handed_estimate (when not null) gets the sum of the handed shares, points (with uniform
+/// density, what a host holds in flight at most). max_handed_points = 0 hands nothing. O(tiles x files).
+/// @throws invalid_input if the plan lists a file index >= files.size().
+inline std::vector<file_readers> assign_file_readers(const tile_plan& plan, std::span<const survey_file_extent> files,
+                                                     std::uint64_t max_handed_points, double* handed_estimate = nullptr)
+{
+    constexpr const char* function = "assign_file_readers";
+    std::vector<file_readers> readers(files.size(), file_readers{plan.tiles.size(), {}});
+    std::vector<std::vector<std::size_t>> listing(files.size());
+    for (const auto& t : plan.tiles) {
+        for (const std::size_t f : t.files) {
+            detail::require(f < files.size(), function, "the plan lists a file beyond `files`");
+            listing[f].push_back(t.index);
+        }
+    }
+    const auto cols = static_cast<std::size_t>(std::max<std::ptrdiff_t>(plan.tile_cols, 1));
+    const auto next_to = [&](std::size_t a, std::size_t b) {
+        const auto d = [](std::size_t u, std::size_t v) { return u > v ? u - v : v - u; };
+        return d(a / cols, b / cols) <= 1 && d(a % cols, b % cols) <= 1;
+    };
+    double handed = 0;
+    for (std::size_t f = 0; f < files.size(); ++f) {
+        cell_box range;
+        if (listing[f].empty() || !detail::file_cell_range(plan.g, files[f].box, range)) continue;
+        const double cells = static_cast<double>(range.rows()) * static_cast<double>(range.cols());
+        file_readers& r = readers[f];
+        double best = -1;
+        for (const std::size_t t : listing[f]) {
+            const double share = detail::shared_cells(range, plan.tiles[t].with_halo);
+            if (share > best) best = share, r.home = t;
+        }
+        if (max_handed_points == 0) continue;
+        for (const std::size_t t : listing[f]) {
+            if (t == r.home || !next_to(t, r.home)) continue;
+            const double share = static_cast<double>(files[f].points) *
+                                 detail::shared_cells(range, plan.tiles[t].with_halo) / cells;
+            if (share <= static_cast<double>(max_handed_points)) {
+                r.handed_to.push_back(t);
+                handed += share;
+            }
+        }
+    }
+    if (handed_estimate) *handed_estimate = handed;
+    return readers;
 }
 
 /// The tile whose core holds world point (x, y): the cell is found on the survey grid, plan.g.cell_of(x, y)

@@ -108,6 +108,7 @@ private:
             std::min(p.col, q.col) > static_cast<double>(window_.col_max + 2))
             return;
         const auto steps = static_cast<std::ptrdiff_t>(std::ceil(2.0 * length));
+        const raster_view<std::uint8_t> covered = covered_.view();
         for (std::ptrdiff_t s = 1; s < steps; ++s) {
             const double f = static_cast<double>(s) / static_cast<double>(steps);
             const double row = p.row + f * (q.row - p.row), col = p.col + f * (q.col - p.col);
@@ -115,7 +116,7 @@ private:
                 continue;
             const auto r = static_cast<std::ptrdiff_t>(row), c = static_cast<std::ptrdiff_t>(col);
             if (r < window_.row_min || r > window_.row_max || c < window_.col_min || c > window_.col_max) continue;
-            covered_.view()(r - window_.row_min, c - window_.col_min) = 1;
+            covered(r - window_.row_min, c - window_.col_min) = 1;
         }
     }
 
