@@ -34,7 +34,7 @@ void sync_fd_of(const std::filesystem::path& path, int flags)
 
 }  // namespace
 
-void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes)
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes, bool sync_folder)
 {
     auto temporary = path;
     temporary += ".tmp" + std::to_string(::getpid());
@@ -47,7 +47,7 @@ void write_file_atomically(const std::filesystem::path& path, const std::vector<
     }
     sync_fd_of(temporary, O_RDONLY);
     if (std::rename(temporary.c_str(), path.c_str()) != 0) fail(path, "cannot rename the temporary file into place");
-    sync_fd_of(path.parent_path(), O_RDONLY | O_DIRECTORY);
+    if (sync_folder) sync_fd_of(path.parent_path(), O_RDONLY | O_DIRECTORY);
 }
 
 tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
@@ -58,12 +58,18 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
     if (in) {
         const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
         const std::string expected = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
-        if (text.compare(0, expected.size(), expected) == 0) {
-            std::istringstream lines(text.substr(expected.size()));
-            std::string word;
-            std::size_t tile = 0;
-            while (lines >> word >> tile) {
-                if (word == "tile" && std::filesystem::exists(tile_path(tile))) done_.insert(tile);
+        if (text == expected) {
+            // A tile file exists only complete (renamed into place after it was flushed).
+            for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
+                const std::string name = entry.path().filename().string();
+                std::size_t tile = 0, used = 0;
+                if (name.rfind("tile_", 0) != 0 || name.size() < 10 || name.compare(name.size() - 4, 4, ".bin") != 0) continue;
+                try {
+                    tile = std::stoul(name.substr(5, name.size() - 9), &used);
+                } catch (const std::exception&) {
+                    continue;
+                }
+                if (used == name.size() - 9 && entry.path() == tile_path(tile)) done_.insert(tile);
             }
             std::cerr << "lidarfx: resuming the run in " << dir_.string() << ": " << done_.size()
                       << " tile(s) already done\n";
@@ -72,14 +78,16 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
                       << "starting over\n";
         }
     }
-    // Everything not recorded (another run's tiles, temporary files of a killed one) goes.
+    // Everything else (another run's tiles, temporary files of a killed one) goes.
     for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
-        bool keep = false;
+        bool keep = entry.path().filename() == "manifest.txt" && !done_.empty();
         for (const std::size_t t : done_) keep = keep || entry.path() == tile_path(t);
         if (!keep) std::filesystem::remove(entry.path());
     }
-    const std::lock_guard lock(mutex_);
-    write_manifest();
+    if (done_.empty()) {
+        const std::string text = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
+        write_file_atomically(dir_ / "manifest.txt", std::vector<std::uint8_t>(text.begin(), text.end()));
+    }
 }
 
 bool tile_store::done(std::size_t tile) const
@@ -104,10 +112,10 @@ std::vector<std::uint8_t> tile_store::load(std::size_t tile) const
 
 void tile_store::save(std::size_t tile, const std::vector<std::uint8_t>& bytes)
 {
-    write_file_atomically(tile_path(tile), bytes);
+    // The folder is not flushed: a rename lost to a power cut only means the tile is read again.
+    write_file_atomically(tile_path(tile), bytes, false);
     const std::lock_guard lock(mutex_);
     done_.insert(tile);
-    write_manifest();
 }
 
 void tile_store::remove()
@@ -120,13 +128,6 @@ void tile_store::remove()
 std::filesystem::path tile_store::tile_path(std::size_t tile) const
 {
     return dir_ / ("tile_" + std::to_string(tile) + ".bin");
-}
-
-void tile_store::write_manifest() const
-{
-    std::string text = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
-    for (const std::size_t t : done_) text += "tile " + std::to_string(t) + "\n";
-    write_file_atomically(dir_ / "manifest.txt", std::vector<std::uint8_t>(text.begin(), text.end()));
 }
 
 }  // namespace lidarfx::cli

@@ -13,15 +13,15 @@
 namespace lidarfx::cli {
 
 /// Writes `bytes` to `path` so that the file is either absent, as before, or complete: a temporary file
-/// next to it is written, flushed to disk (fsync) and renamed over `path`, then the folder is flushed.
-/// @throws std::runtime_error naming the file.
-void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+/// next to it is written, flushed to disk (fsync) and renamed over `path`, then (sync_folder) the folder is
+/// flushed so that the rename itself survives a power cut. @throws std::runtime_error naming the file.
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes,
+                           bool sync_folder = true);
 
 /// The finished tiles of a tiled run in a folder (OUT/.lidarfx-tiles/): manifest.txt holds the run's
-/// fingerprint (its inputs and settings, see tiled_fingerprint) and one line "tile N" per finished tile;
-/// tile_N.bin holds that tile's rasters. Each file is written atomically (write_file_atomically), the tile
-/// file before the manifest line that names it, so a killed run leaves only tiles that are complete.
-/// Thread-safe: tiles may be saved from several threads.
+/// fingerprint (its inputs and settings, see tiled_fingerprint), written once; tile_N.bin holds the rasters
+/// of finished tile N. Each file is written atomically (write_file_atomically), so a tile file exists only
+/// complete and a killed run leaves only finished tiles. Thread-safe: tiles may be saved from several threads.
 class tile_store {
 public:
     /// Opens (creating) `dir`. When its manifest holds another fingerprint, the tiles there are of another
@@ -33,14 +33,13 @@ public:
     std::size_t done_count() const;
     /// The bytes saved for `tile`. @throws std::runtime_error naming the file.
     std::vector<std::uint8_t> load(std::size_t tile) const;
-    /// Saves the bytes of `tile`, then records it in the manifest.
+    /// Saves the bytes of `tile` (its file is the record that it is finished).
     void save(std::size_t tile, const std::vector<std::uint8_t>& bytes);
     /// Removes the folder (after a complete run).
     void remove();
 
 private:
     std::filesystem::path tile_path(std::size_t tile) const;
-    void write_manifest() const;   // the caller holds mutex_
 
     std::filesystem::path dir_;
     std::string fingerprint_;

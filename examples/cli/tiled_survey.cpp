@@ -28,7 +28,11 @@ namespace lidarfx::cli {
 namespace {
 
 /// Points a tile reads at a time (the memory model of plan_survey_tiles counts this chunk per tile in flight).
-constexpr std::size_t tile_chunk_points = std::size_t{1} << 19;
+/// 64 Ki points (2.7 MiB as read): larger chunks fall out of the caches, and two threads then share less well.
+constexpr std::size_t tile_chunk_points = std::size_t{1} << 16;
+
+/// The largest share of a file a home hands to one neighbour (survey_file_readers), points.
+constexpr std::uint64_t max_handed_points = std::uint64_t{1} << 16;
 
 /// Calls f(member) for each per-cell raster of rasterize_result (a pointer to member), always in this order:
 /// the tile file's layout follows it.
@@ -113,18 +117,25 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
 }
 
 std::vector<file_readers> survey_file_readers(const survey_layout& layout, const tile_plan& plan, bool hand,
-                                              std::uint64_t memory_budget_bytes)
+                                              std::uint64_t memory_budget_bytes, int tiles_in_flight)
 {
     const auto files = survey_file_extents(layout);
     if (!hand) return assign_file_readers(plan, files, 0);
-    // A tile is handed at most an eighth of a chunk per file, 30 B a point, held until the tile is finished;
-    // up to tile_cols + 1 tiles wait for their handed files with their accumulators (24 B a cell) open.
-    double handed = 0;
-    auto readers = assign_file_readers(plan, files, tile_chunk_points / 8, &handed);
-    const double waiting = static_cast<double>(plan.tile_cols + 1) * static_cast<double>(plan.tile_cells) *
+    // Handed points (30 B each) are held until their tile is finished, and tiles started in index order wait
+    // for at most tile_cols + 1 later ones: at most tile_cols + 2 + tiles_in_flight consecutive tiles hold
+    // handed points and open accumulators (24 B a cell) at once.
+    std::vector<double> handed;
+    auto readers = assign_file_readers(plan, files, max_handed_points, &handed);
+    const auto open = std::min(handed.size(), static_cast<std::size_t>(plan.tile_cols) + 2 + static_cast<std::size_t>(tiles_in_flight));
+    double most = 0, sum = 0;   // the largest sum of handed points over `open` consecutive tiles
+    for (std::size_t t = 0; t < handed.size(); ++t) {
+        sum += handed[t] - (t >= open ? handed[t - open] : 0.0);
+        most = std::max(most, sum);
+    }
+    const double waiting = static_cast<double>(open) * static_cast<double>(plan.tile_cells) *
                            static_cast<double>(plan.tile_cells) * 24.0;
     const bool fits = memory_budget_bytes == 0 ||
-                      plan.peak_bytes_estimate + handed * 30.0 + waiting <= static_cast<double>(memory_budget_bytes);
+                      plan.peak_bytes_estimate + most * 30.0 + waiting <= static_cast<double>(memory_budget_bytes);
     return fits ? readers : assign_file_readers(plan, files, 0);
 }
 
@@ -456,7 +467,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
             throw;
         }
     }();
-    const auto readers = survey_file_readers(layout, plan, true, opt.memory_budget_bytes);
+    const auto readers = survey_file_readers(layout, plan, true, opt.memory_budget_bytes, threads);
     std::optional<tile_store> store;
     if (!resume_dir.empty()) store.emplace(resume_dir, tiled_fingerprint(paths, opt, tile_edge_m));
     const auto done = [&](std::size_t tile) { return store && store->done(tile); };
@@ -621,8 +632,20 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     if (opt.show_progress) {
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+        std::size_t reads = 0;   // files read by tiles, against files listed
+        for (const auto& t : plan.tiles) {
+            for (const std::size_t f : t.files) {
+                const auto& to = hands[f];
+                reads += readers[f].home == t.index || std::find(to.begin(), to.end(), t.index) == to.end();
+            }
+        }
         std::cerr << "tiles: " << plan.tiles.size() << " tiles of " << plan.tile_cells << " x " << plan.tile_cells
-                  << " cells read in " << took.count() << " s (CPU " << cpu << " s)\n";
+                  << " cells read in " << took.count() << " s (CPU " << cpu << " s); " << reads << " file reads for "
+                  << paths.size() << " files"
+                  << (reads > paths.size() ? " (files that end on tile lines are read by each tile they touch when "
+                                             "--memory leaves no room to hand their edges on)"
+                                           : "")
+                  << "\n";
     }
     return assembly.finish();   // the tiles stay in resume_dir until the caller's outputs are committed
 }

@@ -37,10 +37,11 @@ std::vector<survey_file_extent> survey_file_extents(const survey_layout& layout)
 
 /// Who reads each file of a tiled run (assign_file_readers on survey_file_extents): its home tile, which
 /// counts its points, and the neighbours the home hands their few points to. hand = false, or a plan whose
-/// handed points and waiting tiles would not fit memory_budget_bytes (0 = no limit) besides its own peak:
-/// nothing is handed, every listing tile reads the file (as MPI ranks do: they share no memory).
+/// handed points and waiting tiles (with tiles_in_flight tiles read at once) would not fit memory_budget_bytes
+/// (0 = no limit) besides its own peak: nothing is handed, every listing tile reads the file (as MPI ranks do:
+/// they share no memory).
 std::vector<file_readers> survey_file_readers(const survey_layout& layout, const tile_plan& plan, bool hand,
-                                              std::uint64_t memory_budget_bytes = 0);
+                                              std::uint64_t memory_budget_bytes = 0, int tiles_in_flight = 1);
 
 /// The survey rasters of one tile's core cells.
 struct tile_rasters {

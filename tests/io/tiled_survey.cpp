@@ -184,11 +184,17 @@ TEST_CASE("io/tile_store: finished tiles survive a reopen with the same fingerpr
         store.save(7, {4});
         CHECK(store.done_count() == 2);
     }
+    // What a killed run may leave besides finished tiles: a temporary file, and names that are no tile.
+    for (const char* stray : {"tile_4.bin.tmp99", "tile_x.bin", "tile_5.binx", "notes"})
+        io_test::write_bytes((folder / stray).string(), {9});
     {
         cli::tile_store store(folder, "inputs A\n");
         CHECK(store.done(3));
         CHECK(store.done(7));
         CHECK(!store.done(4));
+        CHECK(store.done_count() == 2);
+        CHECK(!std::filesystem::exists(folder / "tile_4.bin.tmp99"));
+        CHECK(!std::filesystem::exists(folder / "notes"));
         CHECK(store.load(3) == std::vector<std::uint8_t>{1, 2, 3});
     }
     {

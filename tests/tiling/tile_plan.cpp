@@ -234,8 +234,12 @@ TEST_CASE("tiling/assign_file_readers: files cut along the tile lines are read o
         for (int c = 0; c < 4; ++c) files.push_back({{c * 100.0, r * 100.0, c * 100.0 + 100, r * 100.0 + 100}, 10000});
     const tile_plan p = make_tile_plan(g, files, {.tile_edge_m = 100});
     REQUIRE(p.tiles.size() == 16);
+    std::vector<double> per_tile;
+    const auto readers = assign_file_readers(p, files, 1000, &per_tile);
+    REQUIRE(per_tile.size() == p.tiles.size());
     double handed = 0;
-    const auto readers = assign_file_readers(p, files, 1000, &handed);
+    for (const double h : per_tile) handed += h;
+    CHECK(per_tile[0] == 0);   // the north-west tile is nobody's east or south neighbour
     REQUIRE(readers.size() == files.size());
     double expected = 0;
     for (std::size_t f = 0; f < files.size(); ++f) {

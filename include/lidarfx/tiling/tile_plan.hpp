@@ -300,11 +300,12 @@ struct file_readers {
 /// points x shared cells / cells of the range <= max_handed_points (uniform density, as points_estimate);
 /// every other listing tile reads the file itself. A host keeps a tile open until the homes of its handed
 /// files have read them: with tiles started in index order, that is at most tile_cols + 1 tiles beyond those
-/// in flight. handed_estimate (when not null) gets the sum of the handed shares, points (with uniform
-/// density, what a host holds in flight at most). max_handed_points = 0 hands nothing. O(tiles x files).
-/// @throws invalid_input if the plan lists a file index >= files.size().
+/// in flight. handed_per_tile (when not null) gets, for each tile, the sum of the shares handed to it, points
+/// (uniform density): what a host holds for the tile until it is finished. max_handed_points = 0 hands
+/// nothing. O(tiles x files). @throws invalid_input if the plan lists a file index >= files.size().
 inline std::vector<file_readers> assign_file_readers(const tile_plan& plan, std::span<const survey_file_extent> files,
-                                                     std::uint64_t max_handed_points, double* handed_estimate = nullptr)
+                                                     std::uint64_t max_handed_points,
+                                                     std::vector<double>* handed_per_tile = nullptr)
 {
     constexpr const char* function = "assign_file_readers";
     std::vector<file_readers> readers(files.size(), file_readers{plan.tiles.size(), {}});
@@ -320,7 +321,7 @@ inline std::vector<file_readers> assign_file_readers(const tile_plan& plan, std:
         const auto d = [](std::size_t u, std::size_t v) { return u > v ? u - v : v - u; };
         return d(a / cols, b / cols) <= 1 && d(a % cols, b % cols) <= 1;
     };
-    double handed = 0;
+    std::vector<double> handed(plan.tiles.size(), 0.0);
     for (std::size_t f = 0; f < files.size(); ++f) {
         cell_box range;
         if (listing[f].empty() || !detail::file_cell_range(plan.g, files[f].box, range)) continue;
@@ -338,11 +339,11 @@ inline std::vector<file_readers> assign_file_readers(const tile_plan& plan, std:
                                  detail::shared_cells(range, plan.tiles[t].with_halo) / cells;
             if (share <= static_cast<double>(max_handed_points)) {
                 r.handed_to.push_back(t);
-                handed += share;
+                handed[t] += share;
             }
         }
     }
-    if (handed_estimate) *handed_estimate = handed;
+    if (handed_per_tile) *handed_per_tile = std::move(handed);
     return readers;
 }
 
