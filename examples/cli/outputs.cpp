@@ -223,36 +223,10 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
-    // No data: cells outside the footprint (nothing flown), and cells without any return within 2 cells that
-    // are not water (data gaps).
-    raster<float> water(g.rows, g.cols), labels(g.rows, g.cols);
-    for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
-            if (!footprint(r, c)) {
-                water(r, c) = labels(r, c) = NAN;
-                continue;
-            }
-            labels(r, c) = static_cast<float>(w.labels(r, c));
-            if (w.water(r, c)) {
-                water(r, c) = 1.0f;
-                continue;
-            }
-            bool data = false;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 2); rr <= std::min(g.rows - 1, r + 2) && !data; ++rr)
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 2); cc <= std::min(g.cols - 1, c + 2); ++cc)
-                    if (!pr.dropout(rr, cc)) {
-                        data = true;
-                        break;
-                    }
-            water(r, c) = data ? 0.0f : NAN;
-        }
-    }
     const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
     dir.set_units_note(units_note(s));
-    // The files are independent: they are written on `threads` threads.
+    // The files are independent: they are written on `threads` threads, the longest (the picture) first.
     std::vector<std::function<void()>> jobs;
-    jobs.push_back([&] { write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg, formats); });
-    jobs.push_back([&] { write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats); });
     if (formats.png) {
         jobs.push_back([&] {
             const auto f = picture_factor(g);
@@ -262,6 +236,35 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
             dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
         });
     }
+    jobs.push_back([&] {
+        // No data: cells outside the footprint (nothing flown), and cells without any return within 2 cells
+        // that are not water (data gaps).
+        raster<float> water(g.rows, g.cols, uninitialized);
+        for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+                if (!footprint(r, c) || w.water(r, c)) {
+                    water(r, c) = footprint(r, c) ? 1.0f : NAN;
+                    continue;
+                }
+                bool data = false;
+                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 2); rr <= std::min(g.rows - 1, r + 2) && !data; ++rr)
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 2); cc <= std::min(g.cols - 1, c + 2); ++cc)
+                        if (!pr.dropout(rr, cc)) {
+                            data = true;
+                            break;
+                        }
+                water(r, c) = data ? 0.0f : NAN;
+            }
+        }
+        write_raster(dir, "water", water, in_crs, s.crs_wkt, s.epsg, formats);
+    });
+    jobs.push_back([&] {
+        raster<float> labels(g.rows, g.cols, uninitialized);
+        for (std::ptrdiff_t r = 0; r < g.rows; ++r)
+            for (std::ptrdiff_t c = 0; c < g.cols; ++c)
+                labels(r, c) = footprint(r, c) ? static_cast<float>(w.labels(r, c)) : NAN;
+        write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats);
+    });
     jobs.push_back([&] {
         std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
                                         "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
