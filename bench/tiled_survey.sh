@@ -3,8 +3,9 @@
 # 1 and 2 threads and on 2 MPI ranks; prints peak RSS, wall and CPU time, M points/s, and the 2-thread speedup.
 # Usage: bench/tiled_survey.sh [BUILD_DIR=build/release] [WORK_DIR=/tmp/lidarfx_tiled_bench]
 #        environment: SIZE (metres, default 2000; the survey is 2 SIZE x SIZE), DENSITY (pulses/m2, default 7),
-#        TILE (metres, default 250), MEMORY (default 512MiB), CELL (default 2), REPEAT (runs per row, default 3:
-#        each row shows the fastest run, and the largest peak RSS of all; shared machines vary by 30 % run to run)
+#        TILE (metres, default 250), MEMORY (default 512MiB), CELL (default 2), REPEAT (runs per row, default 3;
+#        the rows take turns, each shows its fastest run and the largest peak RSS of all: shared machines vary
+#        by 30 % from run to run)
 # Needs the programs of the release build: lidarfx, make_water_survey and (for the MPI row) lidarfx-mpi.
 set -euo pipefail
 build="${1:-build/release}"
@@ -29,28 +30,32 @@ stats() {   # file -> "wall cpu rss"
                 /User time/ { c += $2 } /System time/ { c += $2 } /Maximum resident set size/ { r = $2 }
                 END { print w, c, r }' "$1"
 }
-# best NAME COMMAND...: runs COMMAND $repeat times under /usr/bin/time -v; sets w c r to the fastest run's wall
-# and CPU seconds and the largest peak RSS (KiB) of all runs.
-best() {
+# One timed run: once NAME COMMAND... runs COMMAND under /usr/bin/time -v and keeps, per NAME, the fastest
+# run's wall and CPU seconds (and its log) and the largest peak RSS (KiB) of all runs.
+declare -A wall cpu rss
+once() {
     local name="$1"; shift
-    w="" c="" r=0
-    for ((k = 0; k < repeat; k++)); do
-        /usr/bin/time -v -o "$work/time_$name.txt" "$@" > "$work/log_$name.txt" 2>&1
-        read -r w1 c1 r1 < <(stats "$work/time_$name.txt")
-        if [ -z "$w" ] || awk -v a="$w1" -v b="$w" 'BEGIN { exit !(a < b) }'; then w=$w1 c=$c1; cp "$work/log_$name.txt" "$work/best_$name.txt"; fi
-        if [ "$r1" -gt "$r" ]; then r=$r1; fi
-    done
+    /usr/bin/time -v -o "$work/time_$name.txt" "$@" > "$work/log_$name.txt" 2>&1
+    read -r w1 c1 r1 < <(stats "$work/time_$name.txt")
+    if [ -z "${wall[$name]:-}" ] || awk -v a="$w1" -v b="${wall[$name]}" 'BEGIN { exit !(a < b) }'; then
+        wall[$name]=$w1 cpu[$name]=$c1
+        cp "$work/log_$name.txt" "$work/best_$name.txt"
+    fi
+    if [ "$r1" -gt "${rss[$name]:-0}" ]; then rss[$name]=$r1; fi
 }
-declare -A wall
+# The rows take turns, so that a slow spell of a shared machine falls on all of them alike.
+for ((k = 0; k < repeat; k++)); do
+    for threads in 1 2; do
+        once "$threads" "$lidarfx" water "$work/survey" --cell "$cell" --tile "$tile" --memory "$memory" \
+            --threads "$threads" --out "$work/out_$threads"
+    done
+    once untiled "$lidarfx" water "$work/survey" --cell "$cell" --memory "$memory" --threads 1 --out "$work/out_untiled"
+done
 for threads in 1 2; do
-    best "$threads" "$lidarfx" water "$work/survey" --cell "$cell" --tile "$tile" --memory "$memory" --threads "$threads" \
-        --out "$work/out_$threads"
-    wall[$threads]=$w
-    row "lidarfx --threads $threads" "$w" "$c" "$r"
+    row "lidarfx --threads $threads" "${wall[$threads]}" "${cpu[$threads]}" "${rss[$threads]}"
     echo "  stage A (tiles read): $(grep -o 'read in .*' "$work/best_$threads.txt" | cut -d' ' -f3-)"
 done
-best untiled "$lidarfx" water "$work/survey" --cell "$cell" --memory "$memory" --threads 1 --out "$work/out_untiled"
-row "untiled --threads 1" "$w" "$c" "$r"
+row "untiled --threads 1" "${wall[untiled]}" "${cpu[untiled]}" "${rss[untiled]}"
 if [ -x "$mpi" ] && command -v mpirun > /dev/null; then
     start=$(date +%s.%N)
     OMPI_MCA_mpi_yield_when_idle=1 mpirun --allow-run-as-root --oversubscribe -np 2 sh -c \
