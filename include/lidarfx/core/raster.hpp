@@ -23,7 +23,10 @@ namespace lidarfx {
 namespace detail {
 
 /// Allocator of raster cells: blocks of 4 MiB and more are aligned to 2 MiB and, on Linux, marked for
-/// transparent huge pages (as NumPy does), which saves most of the page faults of a large new raster.
+/// transparent huge pages (as NumPy does), which saves most of the page faults of a large new raster. They
+/// come from malloc, over-allocated by 2 MiB and aligned inside, with the block's start kept just before the
+/// cells: glibc keeps a freed block of that size for the next one (aligned_alloc's blocks were unmapped on
+/// every free), so a returning form called again finds warm pages instead of the kernel's zero fill.
 template <class T>
 struct raster_allocator {
     using value_type = T;
@@ -35,21 +38,23 @@ struct raster_allocator {
 
     T* allocate(std::size_t n)
     {
-        if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+        if (n > (static_cast<std::size_t>(-1) - 2 * huge) / sizeof(T)) throw std::bad_array_new_length();
         const std::size_t bytes = n * sizeof(T);
         if (bytes < 2 * huge) return std::allocator<T>().allocate(n);
-        const std::size_t rounded = (bytes + huge - 1) / huge * huge;
-        void* p = std::aligned_alloc(huge, rounded);
-        if (!p) throw std::bad_alloc();
+        void* block = std::malloc(bytes + huge + sizeof(void*));
+        if (!block) throw std::bad_alloc();
+        const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(block) + sizeof(void*);
+        void* cells = reinterpret_cast<void*>((start + huge - 1) / huge * huge);
+        static_cast<void**>(cells)[-1] = block;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-        ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure only costs speed
+        ::madvise(cells, bytes / huge * huge, MADV_HUGEPAGE);  // a hint: failure only costs speed
 #endif
-        return static_cast<T*>(p);
+        return static_cast<T*>(cells);
     }
     void deallocate(T* p, std::size_t n) noexcept
     {
         if (n * sizeof(T) < 2 * huge) std::allocator<T>().deallocate(p, n);
-        else std::free(p);
+        else std::free(reinterpret_cast<void**>(p)[-1]);
     }
     /// Value-less construction default-initializes (no zeroing of trivial cells; see raster(.., uninitialized)).
     template <class U>
