@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -134,6 +135,16 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         float z;  // lowest min z of the component's cells in the window
     };
     std::vector<near_level> near;
+    // Only cells within ring_cells of a component large enough are in a ring: find them in O(cells).
+    raster<std::uint8_t> big(rows, cols, 0);
+    raster<std::int32_t> big_label(rows, cols, 0);  // the label of a component large enough, else 0
+    for (std::ptrdiff_t i = 0; i < big.size(); ++i) {
+        const std::int32_t l = labels.data()[i];
+        big.data()[i] = l > 0 && comps.sizes[static_cast<std::size_t>(l)] >= opt.min_cells;
+        big_label.data()[i] = big.data()[i] ? l : 0;
+    }
+    const auto in_reach = morph_dilate(big, morphology_options{.size_cells = static_cast<int>(2 * q + 1),
+                                                                .run = {.threads = opt.run.threads}});
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const std::int32_t l = labels.view()(r, c);
@@ -144,12 +155,13 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 rough[static_cast<std::size_t>(l)] += in.max_z(r, c) - in.min_z(r, c);
                 continue;
             }
-            if (!has_return(r, c)) continue;
+            if (!in_reach(r, c) || !has_return(r, c)) continue;
             near.clear();
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q); ++rr) {
+                const std::int32_t* row = big_label.view().row(rr);
                 for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(cols - 1, c + q); ++cc) {
-                    const std::int32_t m = labels.view()(rr, cc);
-                    if (m <= 0 || comps.sizes[static_cast<std::size_t>(m)] < opt.min_cells) continue;
+                    const std::int32_t m = row[cc];
+                    if (m == 0) continue;
                     const auto it = std::find_if(near.begin(), near.end(), [&](const near_level& e) { return e.label == m; });
                     if (it == near.end()) near.push_back({m, in.min_z(rr, cc)});
                     else it->z = std::min(it->z, in.min_z(rr, cc));
