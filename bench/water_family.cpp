@@ -6,7 +6,8 @@
 // sensitivity, specificity and IoU, and the share of rivers with bridges found as one body.
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
-// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds);
+// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
+// and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER} (flat_water_seeds options);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -132,12 +133,25 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_Q")) o.grow.seed_level.quantile = std::atof(v);
              if (const char* v = std::getenv("WF_SEEDMIN")) o.min_seed_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_OPEN")) o.seed_opening_size_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_FLAT")) o.flat_seeds = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_FLAT_TOL")) o.flat.level_tolerance_m = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_RAD")) o.flat.level_radius_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_FLAT_ROUGH")) o.flat.max_roughness_m = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_MIN")) o.flat.min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_FLAT_RING")) o.flat.ring_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_FLAT_DENS")) o.flat.max_density_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_DARKDENS")) o.flat.dark_density_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_DARK")) o.flat.max_intensity_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_SMOOTH")) o.flat.max_roughness_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_LOWER")) o.flat.max_lower_share = std::atof(v);
          }},
     };
     if (ablation) {
         configs.push_back({"without the level gate", [](extract_waterbodies_options& o) { o.grow.level_gate_m = 0; }});
         configs.push_back({"without level cells exempt from KS",
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
+        configs.push_back({"without flat seeds (dropout seeds only)",
+                           [](extract_waterbodies_options& o) { o.flat_seeds = false; }});
         configs.push_back({"without bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }});
         configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
     }

@@ -127,8 +127,17 @@ TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public st
                                                      .dropouts_join_any_threshold = false});
     CHECK(std::memcmp(w.angle_deg.data(), angles.data(), static_cast<std::size_t>(angles.size()) * sizeof(float)) == 0);
     const auto seeds = water_seeds(pr.dropout, {.opening_size_cells = 3, .min_cells = 50});
-    CHECK(w.seeds == seeds.labels);
-    CHECK(w.seeds_found == seeds.count());
+    // The dropout seeds keep their labels 1..k; the seeds of flat_water_seeds (flat_seeds) follow as k + 1..
+    const auto k = static_cast<std::int32_t>(seeds.count());
+    for (std::ptrdiff_t i = 0; i < w.seeds.size(); ++i) {
+        if (seeds.labels.data()[i] > 0) REQUIRE(w.seeds.data()[i] == seeds.labels.data()[i]);
+        else REQUIRE((w.seeds.data()[i] == 0 || w.seeds.data()[i] > k));
+    }
+    CHECK(w.seeds_found >= seeds.count());
+    o.flat_seeds = false;
+    const auto dropouts_only = extract_waterbodies(pr, o);
+    CHECK(dropouts_only.seeds == seeds.labels);
+    CHECK(dropouts_only.seeds_found == seeds.count());
     CHECK(w.seeds_grown >= 1);
     CHECK(w.seeds_grown <= w.seeds_found);
     // The water mask is the label raster's foreground.

@@ -91,8 +91,10 @@ TEST_CASE("water/family: a fixed subset of the family (seeds 501-503 per kind) i
         const bool lake = kind == synth::water_family_kind::lake;
         MESSAGE((lake ? std::string("lakes") : std::string("rivers")) << ": mean accuracy " << 100 * acc << " %, sensitivity " << 100 * sens
                                             << " %, specificity " << 100 * spec << " %");
-        CHECK(acc >= (lake ? 0.935 : 0.945));
-        CHECK(sens >= (lake ? 0.62 : 0.39));
-        CHECK(spec >= (lake ? 0.998 : 0.988));
+        // Measured with flat seeds (lakes 99.51 / 97.00 / 99.99 %, rivers 98.46 / 97.33 / 98.55 %); the river
+        // specificity fell from 98.8 % as the stretches found now bring their banks' overflow (seed 501).
+        CHECK(acc >= (lake ? 0.99 : 0.98));
+        CHECK(sens >= (lake ? 0.96 : 0.96));
+        CHECK(spec >= (lake ? 0.998 : 0.984));
     }
 }

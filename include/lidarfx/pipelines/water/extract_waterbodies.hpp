@@ -15,6 +15,7 @@
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
+#include "lidarfx/pipelines/water/flat_water_seeds.hpp"
 #include "lidarfx/pipelines/water/grow_waterbodies.hpp"
 #include "lidarfx/pipelines/water/grow_waterbody.hpp"
 #include "lidarfx/pipelines/water/intensity_bins.hpp"
@@ -40,6 +41,12 @@ struct extract_waterbodies_options {
                                               ///< angle is unknown); false = the dissertation's literal behaviour
     int seed_opening_size_cells = 3;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
     std::size_t min_seed_cells = 50;       ///< water_seeds: smallest seed component kept, cells (>= it is kept)
+    bool flat_seeds = true;                ///< flat_water_seeds: also seed from level, low cells with fewer returns
+                                           ///< than the land around them (or a few % fewer and dark or smooth):
+                                           ///< water without dropouts (turbid, specular, dense surveys). These
+                                           ///< seeds (their cells outside the bodies of the dropout seeds; same
+                                           ///< opening and min_seed_cells) grow after the dropout seeds. Default on
+    flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
     grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
                                            ///< nearest, ties to even), > 0
@@ -64,8 +71,8 @@ struct extract_waterbodies_options {
 };
 
 /// The options of the method before the water family (issue 17): no level gate (grow.level_gate_m = 0),
-/// no KS exemption of cells at the level, seeds from a 5-cell opening and >= 100 cells. Kept so that its
-/// accuracy stays printable for comparison.
+/// no KS exemption of cells at the level, seeds from a 5-cell opening and >= 100 cells, dropouts only
+/// (no flat_seeds). Kept so that its accuracy stays printable for comparison.
 inline extract_waterbodies_options previous_water_method()
 {
     extract_waterbodies_options o;
@@ -73,6 +80,7 @@ inline extract_waterbodies_options previous_water_method()
     o.min_seed_cells = 100;
     o.grow.level_gate_m = 0;
     o.grow.level_ks_exempt_m = -1;
+    o.flat_seeds = false;
     return o;
 }
 
@@ -120,7 +128,8 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
 /// as a composition of the public steps: assess_water_inputs, water_vegetation, intensity_bins,
 /// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
 /// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
-/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). With in.footprint, cells
+/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). With flat_seeds, after the
+/// dropout seeds: flat_water_seeds outside the bodies grown, water_seeds on them, grow_waterbodies again. With in.footprint, cells
 /// outside it are no data: they neither seed nor join a body (survey_footprint tells them apart).
 /// When check_inputs is set and assess_water_inputs()
 /// reports problems, nothing is extracted (ran = false) and the diagnostics say why. cell_m in metres.
@@ -170,20 +179,65 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     auto seeds = water_seeds(in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside),
                              {.opening_size_cells = opt.seed_opening_size_cells, .min_cells = opt.min_seed_cells,
                               .run = kernels});
-    // Growing is the first 0.9 of the run's progress; cancelling there throws in this function's name.
+    // Growing is the first 0.9 of the run's progress (0.8 for the dropout seeds when flat seeds follow);
+    // cancelling there throws in this function's name.
+    const double share = opt.flat_seeds ? 0.8 : 0.9;
     const progress_callback seed_progress = [&](double f) {
-        detail::report(opt.run.progress, 0.9 * f, fn);
+        detail::report(opt.run.progress, share * f, fn);
         return true;
     };
-    auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z,
-                                  {.grow = opt.grow,
-                                   .level = {.tolerance_m = opt.level_tolerance_m, .max_rise_m = opt.level_max_rise_m,
-                                             .depth_cells = opt.level_join_depth_cells},
-                                   .run = {.progress = seed_progress}});
+    const grow_waterbodies_options grow_opt{
+        .grow = opt.grow,
+        .level = {.tolerance_m = opt.level_tolerance_m, .max_rise_m = opt.level_max_rise_m,
+                  .depth_cells = opt.level_join_depth_cells},
+        .run = {.progress = seed_progress}};
+    auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, grow_opt);
     res.seeds_found = seeds.count();
     res.seeds = std::move(seeds.labels);
     res.labels = std::move(grown.labels);
     res.seeds_grown = grown.seeds_grown;
+    if (opt.flat_seeds) {
+        // Then seeds from level, sparse cells (flat_water_seeds), for the water no dropout seed reached:
+        // their cells outside the bodies grown so far, opened and sized like the dropout seeds, largest
+        // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
+        auto flat = opt.flat;
+        flat.run = kernels;
+        auto mask = flat_water_seeds(in, res.vegetation, flat);
+        for (std::ptrdiff_t i = 0; i < mask.size(); ++i) mask.data()[i] = mask.data()[i] && res.labels.data()[i] == 0;
+        // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
+        // falling river would otherwise take the level of its low end and gate out its high end).
+        if (opt.grow.level_gate_m > 0) {
+            const double band = 2 * opt.grow.level_gate_m;
+            const auto band_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return std::floor(in.min_z(r, c) / band); };
+            auto cut = mask;
+            for (std::ptrdiff_t r = 0; r + 1 < rows; ++r)
+                for (std::ptrdiff_t c = 0; c + 1 < cols; ++c)
+                    if (mask(r, c) && ((mask(r, c + 1) && band_of(r, c + 1) != band_of(r, c)) ||
+                                       (mask(r + 1, c) && band_of(r + 1, c) != band_of(r, c))))
+                        cut(r, c) = 0;
+            mask = std::move(cut);
+        }
+        const auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
+                                             .min_cells = opt.min_seed_cells, .run = kernels});
+        auto more_opt = grow_opt;
+        more_opt.run.progress = [&](double f) {
+            detail::report(opt.run.progress, 0.8 + 0.1 * f, fn);
+            return true;
+        };
+        auto grown_more = grow_waterbodies(field, more, in.min_z, in.max_z, more_opt);
+        const auto k = static_cast<std::int32_t>(res.seeds_found);
+        const auto n = static_cast<std::int32_t>(grown.bodies.size());
+        for (std::ptrdiff_t i = 0; i < mask.size(); ++i) {
+            if (more.labels.data()[i] > 0) res.seeds.data()[i] = k + more.labels.data()[i];
+            if (grown_more.labels.data()[i] > 0) res.labels.data()[i] = n + grown_more.labels.data()[i];
+        }
+        for (auto b : grown_more.bodies) {
+            b.seed += k;
+            grown.bodies.push_back(b);
+        }
+        res.seeds_found += more.count();
+        res.seeds_grown += grown_more.seeds_grown;
+    }
     auto& bodies = grown.bodies;
 
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {

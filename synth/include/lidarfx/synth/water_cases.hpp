@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// water_cases: the two failure modes of issue 17 rebuilt as fixed family scenes (a dropout-dominated pond
-// in a field just above its level; a river with bright specular stretches near nadir and a bridge).
+// water_cases: the failure modes of issue 17 rebuilt as fixed family scenes (a dropout-dominated pond in a
+// field just above its level; a river with bright specular stretches near nadir and a bridge; a turbid
+// lake without dropouts next to a meadow and a dark asphalt lot).
 #pragma once
 
 #include <cstdint>
@@ -67,6 +68,33 @@ inline water_family_scene specular_river_scene(unsigned seed = 1)
     out.shores = {shore_kind::steep_bank, shore_kind::steep_bank};
     out.body_level = {ch.level(200)};
     out.touches_edge = true;
+    internal::render_family(w, out, seed);
+    return out;
+}
+
+/// A turbid lake of mean radius 60 m (level 100 m) in a flat meadow 0.5-0.6 m above the water
+/// (shore_kind::flat_field, grass intensity 86 ± 8) with a dark asphalt lot (intensity 20, 60 × 40 m,
+/// level, at x 20-80 m, y 20-60 m) on the plain: the lake's returns have ordinary intensities (25-55) and
+/// it loses 20-30 % of its pulses but has no dropout cells (16 pulses per 2 m cell at 4 pulses/m², no
+/// dropout patches). 300 m square, 2 m truth cells. Deterministic from `seed`.
+inline water_family_scene turbid_lake_scene(unsigned seed = 1)
+{
+    water_family_scene out;
+    out.kind = water_family_kind::lake;
+    out.size_m = 300, out.density_per_m2 = 4.0, out.cell_m = 2;
+    out.scan = {1000, 15, 0.2};
+    out.returns = {.drop_nadir = 0.2, .drop_edge = 0.3, .patch_share = 0.0, .low_min = 25, .low_max = 55,
+                   .turbid = true};
+    const std::uint64_t ws = hash64(seed, 0x7B1D);
+    internal::family_world w{water_family_kind::lake, out.size_m, noise_field{hash64(ws, 1), 400.0, 4, 0.45},
+                             noise_field{hash64(ws, 2), 70.0, 3, 0.5}, noise_field{hash64(ws, 3), 60.0, 3, 0.5}};
+    w.base_z = 99;  // below the meadow: the meadow's plain is the ground everywhere
+    w.relief_m = 0.2;
+    rng pick(ws, 1);
+    w.lakes.push_back({lake_outline::random(pick, 170, 170, 60, 0.2), 100.0, shore_kind::flat_field, 0.2});
+    w.lots.push_back({20, 20, 80, 60, 20});
+    out.shores = {shore_kind::flat_field};
+    out.body_level = {100.0};
     internal::render_family(w, out, seed);
     return out;
 }

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/kernels/metrics/confusion.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/pipelines/water/flat_water_seeds.hpp>
+#include <lidarfx/synth/water_cases.hpp>
+
+#include <cstdint>
+
+#include "water_test_rasters.hpp"
+
+using namespace lidarfx;
+
+namespace {
+
+/// A 40 × 40 survey on a plane tilted 1 cm per cell eastwards (level within the tolerance over a window)
+/// with range noise: min z and max z ± 2.5 cm around it, 6 returns per cell, intensity 80.
+water_test::survey flat_ground()
+{
+    water_test::survey s(40, 40);
+    for (std::ptrdiff_t r = 0; r < 40; ++r) {
+        for (std::ptrdiff_t c = 0; c < 40; ++c) {
+            const float z = 10.0f + 0.01f * static_cast<float>(c), e = 0.01f * static_cast<float>((r * 7 + c * 3) % 5);
+            s.min_z(r, c) = z - 0.025f + e * 0.2f;
+            s.max_z(r, c) = z + 0.025f;
+            s.intensity(r, c) = 80.0f;
+            s.count(r, c) = 6;
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the meadow and the asphalt lot none")
+{
+    const auto lake = synth::turbid_lake_scene();
+    const auto pr = rasterize(lake.points.cloud(), lake.g);
+    const auto in = to_water_rasters(pr);
+    // The dropout seeds find nothing: the lake loses pulses but no cell loses all of them.
+    const auto dropout_seeds = water_seeds(pr.dropout, {.opening_size_cells = 3, .min_cells = 50});
+    CHECK(dropout_seeds.count() == 0);
+    const auto seeds = flat_water_seeds(in);
+    long on_water = 0, on_land = 0;
+    for (std::ptrdiff_t r = 0; r < seeds.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < seeds.cols(); ++c)
+            if (seeds.view()(r, c)) (lake.water_filled(r, c) ? on_water : on_land) += 1;
+    MESSAGE("turbid lake: seed cells on water " << on_water << ", on land " << on_land);
+    CHECK(on_water >= 50);
+    CHECK(on_land == 0);
+
+    const auto found = extract_waterbodies(pr);
+    REQUIRE(found.ran);
+    const auto score = confusion_counts(found.water, lake.water_filled, lake.cell_m);
+    MESSAGE("turbid lake: sensitivity " << 100 * score.sensitivity() << " %, specificity "
+                                        << 100 * score.specificity() << " %");
+    CHECK(score.sensitivity() >= 0.9);
+    CHECK(score.specificity() >= 0.995);
+    // The asphalt lot (x 20-80 m, y 20-60 m) stays land.
+    long lot_water = 0;
+    for (std::ptrdiff_t r = 0; r < lake.g.rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < lake.g.cols; ++c) {
+            const auto [x, y] = lake.g.center(r, c);
+            if (x > 20 && x < 80 && y > 20 && y < 60) lot_water += found.water.view()(r, c);
+        }
+    }
+    CHECK(lot_water == 0);
+
+    extract_waterbodies_options dropouts_only;
+    dropouts_only.flat_seeds = false;
+    CHECK(extract_waterbodies(pr, dropouts_only).bodies.empty());
+}
+
+TEST_CASE("flat_water_seeds: flat dry ground gets none: a meadow, a dark lot on it, a raised flat roof")
+{
+    auto s = flat_ground();
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
+    // A dark asphalt lot (intensity 15) returns every pulse: dark but not sparse.
+    for (std::ptrdiff_t r = 10; r < 30; ++r)
+        for (std::ptrdiff_t c = 10; c < 30; ++c) s.intensity(r, c) = 15.0f;
+    const auto lot = flat_water_seeds(s.view());
+    long n = 0;
+    for (std::ptrdiff_t i = 0; i < lot.size(); ++i) n += lot.data()[i];
+    CHECK(n == 0);
+    // A flat roof 4 m up with fewer returns than the ground (scan geometry): raised, so not water.
+    for (std::ptrdiff_t r = 10; r < 30; ++r) {
+        for (std::ptrdiff_t c = 10; c < 30; ++c) {
+            s.min_z(r, c) = 14.0f + 0.01f * static_cast<float>((r + c) % 3);
+            s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+            s.count(r, c) = 3;
+        }
+    }
+    const auto roof = flat_water_seeds(s.view());
+    n = 0;
+    for (std::ptrdiff_t i = 0; i < roof.size(); ++i) n += roof.data()[i];
+    CHECK(n == 0);
+    // The same block at the ground's level minus 0.5 m, sparse and dark: a pond; it seeds.
+    for (std::ptrdiff_t r = 10; r < 30; ++r) {
+        for (std::ptrdiff_t c = 10; c < 30; ++c) {
+            s.min_z(r, c) = 9.5f + 0.01f * static_cast<float>((r + c) % 3);
+            s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+        }
+    }
+    const auto pond = flat_water_seeds(s.view());
+    CHECK(pond.view()(20, 20) == 1);
+    CHECK(pond.view()(5, 5) == 0);
+}
+
+TEST_CASE("flat_water_seeds: options out of range and rasters of different shapes are refused")
+{
+    const auto s = flat_ground();
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.level_radius_cells = 0}), invalid_input);
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.max_density_ratio = 0}), invalid_input);
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.max_lower_share = 2}), invalid_input);
+    const raster<std::uint8_t> wrong(3, 3, 0);
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), wrong), invalid_input);
+    // Without a count raster there is no density to compare: no seed.
+    auto v = s.view();
+    v.count = {};
+    CHECK(flat_water_seeds(v).size() == s.min_z.size());
+}
