@@ -60,10 +60,12 @@ const lidarfx::rasterize_result& rasters_4096()
     return big;
 }
 
+/// Args: threads (0 = all), flat seeds (1 = the default, 0 = dropout seeds only).
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();
-    const lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
+    lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
+    opt.flat_seeds = state.range(1) != 0;
     std::size_t bodies = 0;
     for (auto _ : state) {
         const auto w = lidarfx::extract_waterbodies(pr, opt);
@@ -73,7 +75,14 @@ void bm_extract_waterbodies_4096(benchmark::State& state)
     state.SetItemsProcessed(state.iterations() * pr.g.size());
     state.counters["bodies"] = static_cast<double>(bodies);
 }
-BENCHMARK(bm_extract_waterbodies_4096)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(bm_extract_waterbodies_4096)
+    ->ArgNames({"threads", "flat"})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// Labels of the 4096 x 4096 scene as they reach a step: after growing (no bridges, no islands) or after
 /// bridging (no islands).

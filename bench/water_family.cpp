@@ -150,8 +150,8 @@ int main(int argc, char** argv)
         configs.push_back({"without the level gate", [](extract_waterbodies_options& o) { o.grow.level_gate_m = 0; }});
         configs.push_back({"without level cells exempt from KS",
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
-        configs.push_back({"without flat seeds (dropout seeds only)",
-                           [](extract_waterbodies_options& o) { o.flat_seeds = false; }});
+        configs.push_back({"with flat seeds (flat_seeds = true)",
+                           [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
         configs.push_back({"without bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }});
         configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
     }

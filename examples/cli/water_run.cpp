@@ -32,6 +32,8 @@ constexpr const char* usage =
     "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
     "  --veg-height M        vegetation height h, metres [2]\n"
     "  --min-seed-cells N    smallest dropout seed, cells [100]\n"
+    "  --flat-seeds          also seed from level, sparse cells: finds turbid or specular water without\n"
+    "                        dropouts; costs about twice the time and can take some river banks [off]\n"
     "  --theta-start D       first angular threshold, degrees [2]\n"
     "  --theta-step D        threshold step, degrees [1]\n"
     "  --theta-max D         last threshold, degrees [30]\n"
@@ -64,7 +66,7 @@ const std::vector<std::string>& water_value_options()
 
 const std::vector<std::string>& water_flag_options()
 {
-    static const std::vector<std::string> names{"help", "force", "one-sided"};
+    static const std::vector<std::string> names{"help", "force", "one-sided", "flat-seeds"};
     return names;
 }
 
@@ -92,6 +94,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     opt.grow.theta_max_deg = a.number("theta-max", opt.grow.theta_max_deg);
     opt.grow.ks.alpha = a.number("alpha", opt.grow.ks.alpha);
     if (a.has("one-sided")) opt.grow.ks.critical = ks_critical::one_sided;
+    opt.flat_seeds = a.has("flat-seeds");
     opt.level_tolerance_m = a.number("level-tolerance", opt.level_tolerance_m);
     opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);

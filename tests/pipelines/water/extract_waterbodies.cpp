@@ -120,6 +120,7 @@ TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public st
     o.min_seed_cells = 50;
     o.angular_on = angular_input::idw_filled;
     o.dropouts_join_any_threshold = false;
+    o.flat_seeds = true;
     const auto w = extract_waterbodies(pr, o);
     REQUIRE(w.ran);
     CHECK(w.vegetation == water_vegetation(in, {.height_m = 3.0, .closing_size_cells = 3}));

@@ -51,7 +51,7 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     CHECK(on_water >= 50);
     CHECK(on_land == 0);
 
-    const auto found = extract_waterbodies(pr);
+    const auto found = extract_waterbodies(pr, {.flat_seeds = true});
     REQUIRE(found.ran);
     const auto score = confusion_counts(found.water, lake.water_filled, lake.cell_m);
     MESSAGE("turbid lake: sensitivity " << 100 * score.sensitivity() << " %, specificity "
@@ -68,9 +68,7 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     }
     CHECK(lot_water == 0);
 
-    extract_waterbodies_options dropouts_only;
-    dropouts_only.flat_seeds = false;
-    CHECK(extract_waterbodies(pr, dropouts_only).bodies.empty());
+    CHECK(extract_waterbodies(pr).bodies.empty());   // the defaults: dropout seeds only
 }
 
 TEST_CASE("flat_water_seeds: flat dry ground gets none: a meadow, a dark lot on it, a raised flat roof")
