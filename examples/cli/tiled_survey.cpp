@@ -165,6 +165,13 @@ struct core_points {
         number_of_returns.push_back(chunk.number_of_returns[i]);
         classification.push_back(chunk.classification[i]);
     }
+    void append(const core_points& p)
+    {
+        const auto cat = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+        cat(x, p.x), cat(y, p.y), cat(z, p.z), cat(intensity, p.intensity);
+        cat(return_number, p.return_number), cat(number_of_returns, p.number_of_returns);
+        cat(classification, p.classification);
+    }
     soa_cloud<> cloud() const
     {
         return soa_cloud<>(x, y, z, intensity, return_number, number_of_returns, classification);
@@ -587,15 +594,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
                             acc->add(p.cloud());
                             return;
                         }
-                        auto& h = handing[k];
-                        h.x.insert(h.x.end(), p.x.begin(), p.x.end());
-                        h.y.insert(h.y.end(), p.y.begin(), p.y.end());
-                        h.z.insert(h.z.end(), p.z.begin(), p.z.end());
-                        h.intensity.insert(h.intensity.end(), p.intensity.begin(), p.intensity.end());
-                        h.return_number.insert(h.return_number.end(), p.return_number.begin(), p.return_number.end());
-                        h.number_of_returns.insert(h.number_of_returns.end(), p.number_of_returns.begin(),
-                                                   p.number_of_returns.end());
-                        h.classification.insert(h.classification.end(), p.classification.begin(), p.classification.end());
+                        handing[k].append(p);
                     },
                     scans, chunk, kept, buffers->outliers ? &*buffers->outliers : nullptr);
                 own.scan_covered = std::move(scans[0]);
