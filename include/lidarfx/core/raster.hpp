@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 #include <type_traits>
 #include <utility>
@@ -45,7 +46,7 @@ struct raster_allocator {
         if (!block) throw std::bad_alloc();
         const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(block) + sizeof(void*);
         void* cells = reinterpret_cast<void*>((start + huge - 1) / huge * huge);
-        static_cast<void**>(cells)[-1] = block;
+        std::memcpy(block_slot(cells), &block, sizeof block);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
         ::madvise(cells, bytes / huge * huge, MADV_HUGEPAGE);  // a hint: failure only costs speed
 #endif
@@ -54,7 +55,17 @@ struct raster_allocator {
     void deallocate(T* p, std::size_t n) noexcept
     {
         if (n * sizeof(T) < 2 * huge) std::allocator<T>().deallocate(p, n);
-        else std::free(reinterpret_cast<void**>(p)[-1]);
+        else {
+            void* block = nullptr;
+            std::memcpy(&block, block_slot(p), sizeof block);
+            std::free(block);
+        }
+    }
+    /// Where a large block's start is kept: the bytes just before its cells. Reached through the address as
+    /// an integer, since the cells' own type says nothing of the bytes before them (and GCC would warn).
+    static void* block_slot(void* cells) noexcept
+    {
+        return reinterpret_cast<void*>(reinterpret_cast<std::uintptr_t>(cells) - sizeof(void*));
     }
     /// Value-less construction default-initializes (no zeroing of trivial cells; see raster(.., uninitialized)).
     template <class U>
