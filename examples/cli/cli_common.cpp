@@ -449,18 +449,19 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     const std::uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : physical_memory_bytes() / 2;
     const double need = cells * opt.bytes_per_cell;
     const double points_per_cell = static_cast<double>(total) / area * cell_m * cell_m;
+    const bool over_budget = budget > 0 && need > static_cast<double>(budget);
+    const bool too_sparse = points_per_cell < 0.01;
     // Outliers are looked for before the checks below, whose refusals they would explain. When the grid
     // passes them, the reader may count the points as it reads them instead of in a pass of their own.
     if (!opt.crop && !opt.force) {
-        const bool refused = (budget > 0 && need > static_cast<double>(budget)) || points_per_cell < 0.01;
-        if (refused || !reader_checks_outliers)
+        if (over_budget || too_sparse || !reader_checks_outliers)
             refuse_outliers(count_outlier_bins(paths, header_box, unit_xy, opt.threads), total, unit_xy);
         else
             layout.outliers_unchecked = true;
     }
     std::ostringstream extent;
     extent << std::fixed << std::setprecision(0) << width << " m x " << height << " m";
-    if (budget > 0 && need > static_cast<double>(budget)) {
+    if (over_budget) {
         const double fits = round_cell_up(cell_m * std::sqrt(need / static_cast<double>(budget)));
         std::ostringstream why;
         why << "a grid of " << extent.str() << " at " << cell_m << " m cells (" << std::setprecision(4) << cells
@@ -469,7 +470,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
             << " or more, --crop to a smaller extent, or a larger --memory";
         throw usage_error(why.str());
     }
-    if (!opt.force && points_per_cell < 0.01) {
+    if (!opt.force && too_sparse) {
         const double fits = round_cell_up(std::sqrt(area / static_cast<double>(total)));
         std::ostringstream why;
         why << total << " points over " << extent.str() << " give " << std::setprecision(2) << points_per_cell

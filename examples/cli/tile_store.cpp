@@ -55,10 +55,10 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
 {
     std::filesystem::create_directories(dir_);
     std::ifstream in(dir_ / "manifest.txt");
+    const std::string manifest = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
     if (in) {
         const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-        const std::string expected = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
-        if (text == expected) {
+        if (text == manifest) {
             // A tile file exists only complete (renamed into place after it was flushed).
             for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
                 const std::string name = entry.path().filename().string();
@@ -84,10 +84,7 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
         for (const std::size_t t : done_) keep = keep || entry.path() == tile_path(t);
         if (!keep) std::filesystem::remove(entry.path());
     }
-    if (done_.empty()) {
-        const std::string text = std::string(manifest_header) + "\n" + fingerprint_ + "end of fingerprint\n";
-        write_file_atomically(dir_ / "manifest.txt", std::vector<std::uint8_t>(text.begin(), text.end()));
-    }
+    if (done_.empty()) write_file_atomically(dir_ / "manifest.txt", std::vector<std::uint8_t>(manifest.begin(), manifest.end()));
 }
 
 bool tile_store::done(std::size_t tile) const

@@ -514,6 +514,11 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
             ++open[t].pending;
         }
     }
+    // Whether tile t reads file f itself: the file's home does, and so does every listing tile it is not handed to.
+    const auto reads_itself = [&](std::size_t f, std::size_t t) {
+        const auto& to = hands[f];
+        return readers[f].home == t || std::find(to.begin(), to.end(), t) == to.end();
+    };
     // Finishes tile t once its last part is in (called by whichever thread brought that part).
     const auto finish = [&](std::size_t t) {
         open_tile& o = open[t];
@@ -577,9 +582,9 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
             io::las_points& chunk = buffers->chunk;
             std::vector<core_points>& kept = buffers->kept;
             for (const std::size_t f : tile.files) {
+                if (!reads_itself(f, index)) continue;   // handed to this tile
                 const bool home = readers[f].home == index;
                 const auto& to = hands[f];
-                if (!home && std::find(to.begin(), to.end(), index) != to.end()) continue;   // handed to this tile
                 // The reading tile first, then the tiles this home hands the file to.
                 std::vector<cell_box> cores{core};
                 if (home)
@@ -631,18 +636,16 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     if (opt.show_progress) {
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-        std::size_t reads = 0;   // files read by tiles, against files listed
-        for (const auto& t : plan.tiles) {
-            for (const std::size_t f : t.files) {
-                const auto& to = hands[f];
-                reads += readers[f].home == t.index || std::find(to.begin(), to.end(), t.index) == to.end();
-            }
-        }
+        std::size_t reads = 0;   // files read by the tiles this run read (not those taken from the store)
+        for (const auto& t : plan.tiles)
+            if (!done(t.index))
+                for (const std::size_t f : t.files) reads += reads_itself(f, t.index);
         std::cerr << "tiles: " << plan.tiles.size() << " tiles of " << plan.tile_cells << " x " << plan.tile_cells
                   << " cells read in " << took.count() << " s (CPU " << cpu << " s); " << reads << " file reads for "
                   << paths.size() << " files"
-                  << (reads > paths.size() ? " (files that end on tile lines are read by each tile they touch when "
-                                             "--memory leaves no room to hand their edges on)"
+                  << (reads > paths.size() ? " (a file is read by each tile it reaches unless its home hands that "
+                                             "tile its points: only small shares are handed, and none when "
+                                             "--memory leaves no room)"
                                            : "")
                   << "\n";
     }

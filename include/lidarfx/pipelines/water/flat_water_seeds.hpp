@@ -136,14 +136,12 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     };
     std::vector<near_level> near;
     // Only cells within ring_cells of a component large enough are in a ring: find them in O(cells).
-    raster<std::uint8_t> big(rows, cols, 0);
-    raster<std::int32_t> big_label(rows, cols, 0);  // the label of a component large enough, else 0
-    for (std::ptrdiff_t i = 0; i < big.size(); ++i) {
+    raster<std::int32_t> big_label(rows, cols, uninitialized);  // the label of a component large enough, else 0
+    for (std::ptrdiff_t i = 0; i < big_label.size(); ++i) {
         const std::int32_t l = labels.data()[i];
-        big.data()[i] = l > 0 && comps.sizes[static_cast<std::size_t>(l)] >= opt.min_cells;
-        big_label.data()[i] = big.data()[i] ? l : 0;
+        big_label.data()[i] = l > 0 && comps.sizes[static_cast<std::size_t>(l)] >= opt.min_cells ? l : 0;
     }
-    const auto in_reach = morph_dilate(big, morphology_options{.size_cells = static_cast<int>(2 * q + 1),
+    const auto in_reach = morph_dilate(big_label, morphology_options{.size_cells = static_cast<int>(2 * q + 1),
                                                                 .run = {.threads = opt.run.threads}});
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {

@@ -10,6 +10,21 @@
 
 namespace lidarfx::synth {
 
+namespace internal {
+
+/// The world of the lake cases: a plain of 0.2 m relief whose flat fields are the ground everywhere (the
+/// base, 99 m, lies below them), its noise fields drawn from `ws`; the caller adds the lake.
+inline family_world flat_plain_lake_world(std::uint64_t ws, double size_m)
+{
+    family_world w{water_family_kind::lake, size_m, noise_field{hash64(ws, 1), 400.0, 4, 0.45},
+                   noise_field{hash64(ws, 2), 70.0, 3, 0.5}, noise_field{hash64(ws, 3), 60.0, 3, 0.5}};
+    w.base_z = 99;
+    w.relief_m = 0.2;
+    return w;
+}
+
+}  // namespace internal
+
 /// A pond of mean radius 55 m (level 100 m) in the middle of a flat grass field 0.7 m above the water
 /// (shore_kind::flat_field; grass intensity 86 ± 8, no dropouts, 10 returns per 2 m cell at 2.5
 /// pulses/m²); the pond's surface is mostly dropouts (60 % in patches, 70-90 % of other pulses lost) and
@@ -22,10 +37,7 @@ inline water_family_scene dropout_pond_scene(unsigned seed = 1)
     out.scan = {1000, 15, 0.2};
     out.returns = {.drop_nadir = 0.9, .drop_edge = 0.97, .patch_share = 0.8, .low_min = 6, .low_max = 27};
     const std::uint64_t ws = hash64(seed, 0x90D);
-    internal::family_world w{water_family_kind::lake, out.size_m, noise_field{hash64(ws, 1), 400.0, 4, 0.45},
-                             noise_field{hash64(ws, 2), 70.0, 3, 0.5}, noise_field{hash64(ws, 3), 60.0, 3, 0.5}};
-    w.base_z = 99;  // below the field: the field's plain is the ground everywhere
-    w.relief_m = 0.2;
+    auto w = internal::flat_plain_lake_world(ws, out.size_m);
     rng pick(ws, 1);
     w.lakes.push_back({lake_outline::random(pick, 150, 150, 55, 0.2), 100.0, shore_kind::flat_field, 0.4});
     out.shores = {shore_kind::flat_field};
@@ -86,10 +98,7 @@ inline water_family_scene turbid_lake_scene(unsigned seed = 1)
     out.returns = {.drop_nadir = 0.2, .drop_edge = 0.3, .patch_share = 0.0, .low_min = 25, .low_max = 55,
                    .turbid = true};
     const std::uint64_t ws = hash64(seed, 0x7B1D);
-    internal::family_world w{water_family_kind::lake, out.size_m, noise_field{hash64(ws, 1), 400.0, 4, 0.45},
-                             noise_field{hash64(ws, 2), 70.0, 3, 0.5}, noise_field{hash64(ws, 3), 60.0, 3, 0.5}};
-    w.base_z = 99;  // below the meadow: the meadow's plain is the ground everywhere
-    w.relief_m = 0.2;
+    auto w = internal::flat_plain_lake_world(ws, out.size_m);
     rng pick(ws, 1);
     w.lakes.push_back({lake_outline::random(pick, 170, 170, 60, 0.2), 100.0, shore_kind::flat_field, 0.2});
     w.lots.push_back({20, 20, 80, 60, 20});
