@@ -185,6 +185,21 @@ TEST_CASE("filter/angular_filter: adversarial rasters")
             for (std::ptrdiff_t c = 0; c < 9; ++c) z(r, c) = nan_f;  // a hole touching the west border
         CHECK(close_to(angular_filter(z, 1.0, 2), reference::angular_filter(z, 1.0, 2)));
     }
+    SUBCASE("infinite cells: the window kernel agrees with the per-neighbour reference")
+    {
+        // Inside the raster the unrolled window kernel runs, at the borders the per-offset passes: both must
+        // give 90 next to an infinite step and 0 where every difference is inf - inf (skipped like NaN).
+        std::mt19937 rng(91);
+        auto z = reference::random_raster(rng, 17, 19, 0.0, 3.0, 0.1);
+        const float inf = std::numeric_limits<float>::infinity();
+        std::uniform_int_distribution<int> pick(0, 9);
+        for (auto& v : z) v = pick(rng) == 0 ? inf : (pick(rng) == 0 ? -inf : v);
+        for (std::ptrdiff_t r = 6; r < 13; ++r)
+            for (std::ptrdiff_t c = 6; c < 13; ++c) z(r, c) = inf;  // a block where all neighbours are inf
+        for (int radius : {1, 2, 3})
+            CHECK(close_to(angular_filter(z, 0.5, radius), reference::angular_filter(z, 0.5, radius)));
+        CHECK(angular_filter(z, 0.5, 2)(9, 9) == 0.0f);
+    }
 }
 
 TEST_CASE("filter/angular_filter: a larger window never gives a smaller angle")

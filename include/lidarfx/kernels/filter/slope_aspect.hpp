@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -62,19 +63,21 @@ inline double horn_axis(const double (&behind)[3], const double (&middle)[3], co
 }
 
 /// Slope and aspect of one cell from its gradient (east = dz/dx towards east, north = dz/dy towards
-/// north, both in m/m). With hi = max(|east|, |north|) and t = min/max in [0, 1]: |grad| = hi * sqrt(1 + t^2)
-/// and the aspect is atan(t) reflected into its quadrant, so nothing here stops a loop from vectorizing (no
-/// atan2, no std::sqrt, no select that picks a constant over a computed value). Aspect = azimuth of the
-/// down-slope direction (-east, -north), clockwise from north.
-inline void slope_aspect_cell(double east, double north, float flat_slope_deg, float& slope, float& aspect) noexcept
+/// north, both in m/m), in float (8 lanes with AVX2, 16 with AVX-512). With hi = max(|east|, |north|) and
+/// t = min/max in [0, 1]: |grad| = hi * sqrt(1 + t^2) and the aspect is atan(t) reflected into its quadrant,
+/// so nothing here stops a loop from vectorizing (no atan2, no std::sqrt, no select that picks a constant over
+/// a computed value). Aspect = azimuth of the down-slope direction (-east, -north), clockwise from north.
+inline void slope_aspect_cell(float east, float north, float flat_slope_deg, float& slope, float& aspect) noexcept
 {
-    const double ax = std::fabs(east), ay = std::fabs(north);
-    const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
-    const double t = lo / (hi > std::numeric_limits<double>::min() ? hi : std::numeric_limits<double>::min());
-    const float s = atan_deg(static_cast<float>(hi * sqrt_one_plus(t * t)));
+    const float ax = std::fabs(east), ay = std::fabs(north);
+    const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
+    const float t = lo / (hi > std::numeric_limits<float>::min() ? hi : std::numeric_limits<float>::min());
+    const float s = atan_deg(hi * sqrt_one_plus(t * t));
     // Reflections k - a are computed for every cell and picked by bit masks (fast_math.hpp: a select with
     // arithmetic in one arm keeps the loop scalar on AVX2 and SSE, which have no masked arithmetic).
-    float a = atan_deg(static_cast<float>(t));       // degrees from the nearer of the two axes, [0, 45]
+    // Degrees from the nearer of the two axes, [0, 45]: t <= 1, so atan_unit directly (atan_deg's reflection
+    // for t > 1 would repeat the comparison ax > ay, and compilers then branch and stop vectorizing).
+    float a = atan_unit(t) * static_cast<float>(180 / std::numbers::pi);
     a = reflect_if(ax > ay, 90.0f, a);               // from north, down-slope direction in the NE quadrant
     a = reflect_if(north > 0, 180.0f, a);            // down-slope points south
     a = reflect_if(east > 0, 360.0f, a);             // down-slope points west
@@ -125,13 +128,14 @@ inline void slope_aspect_general(raster_view<const float> z, std::ptrdiff_t r, s
                  east_col[3] = {w[0][2], w[1][2], w[2][2]};
     const double east = horn_axis(west, mid_col, east_col) / cell_m;
     const double north = horn_axis(w[2], w[1], w[0]) / cell_m;
-    slope_aspect_cell(east, north, flat_slope_deg, slope, aspect);
+    slope_aspect_cell(static_cast<float>(east), static_cast<float>(north), flat_slope_deg, slope, aspect);
 }
 
 /// Rows [r0, r1). Interior cells take Horn's formula directly, in two loops compilers vectorize (gradients,
 /// then slope and aspect; one loop mixing float loads with double arithmetic does not vectorize). A NaN anywhere
 /// in the window makes that result NaN, and such cells, the border rows and the border columns are redone by
-/// the general path. Differences of floats are exact in double, so each gradient carries one rounding.
+/// the general path. Differences of floats are exact in double, so each gradient is rounded
+/// once (to float, for the slope and aspect loop).
 inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slope, raster_view<float> aspect,
                               raster_view<std::uint8_t> flat, double cell_m, double flat_slope_deg, std::ptrdiff_t r0,
                               std::ptrdiff_t r1)
@@ -139,9 +143,9 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const double scale = 1.0 / (8.0 * cell_m);
     const float flat_deg = float_at_most(flat_slope_deg);
-    std::vector<double> east_row(static_cast<std::size_t>(cols)), north_row(static_cast<std::size_t>(cols));
-    double* east = east_row.data();
-    double* north = north_row.data();
+    std::vector<float> east_row(static_cast<std::size_t>(cols)), north_row(static_cast<std::size_t>(cols));
+    float* east = east_row.data();
+    float* north = north_row.data();
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
         float* s = slope.row(r);
         float* a = aspect.row(r);
@@ -153,23 +157,33 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
             const float* so = z.row(r + 1);
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
                 // (m[c] - m[c]) is 0, or NaN for a NaN centre, which sends the cell to the general path.
-                east[c] =
+                east[c] = static_cast<float>(
                     ((static_cast<double>(n[c + 1]) - n[c - 1]) + 2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
                      (static_cast<double>(so[c + 1]) - so[c - 1])) *
                         scale +
-                    (static_cast<double>(m[c]) - m[c]);
-                north[c] = ((static_cast<double>(n[c - 1]) - so[c - 1]) + 2.0 * (static_cast<double>(n[c]) - so[c]) +
-                            (static_cast<double>(n[c + 1]) - so[c + 1])) *
-                           scale;
+                    (static_cast<double>(m[c]) - m[c]));
+                north[c] = static_cast<float>(((static_cast<double>(n[c - 1]) - so[c - 1]) +
+                                               2.0 * (static_cast<double>(n[c]) - so[c]) +
+                                               (static_cast<double>(n[c + 1]) - so[c + 1])) *
+                                              scale);
             }
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
                 slope_aspect_cell(east[c], north[c], flat_deg, s[c], a[c]);
             }
         }
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const bool edge = !interior || c == 0 || c + 1 == cols;
-            if (edge || (s[c] != s[c] && m[c] == m[c])) {
-                slope_aspect_general(z, r, c, cell_m, flat_deg, s[c], a[c]);
+        const auto general = [&](std::ptrdiff_t c) { slope_aspect_general(z, r, c, cell_m, flat_deg, s[c], a[c]); };
+        if (!interior) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) general(c);
+        } else {
+            general(0);
+            if (cols > 1) general(cols - 1);
+            // Cells next to a NaN: found by a vectorized scan first, as most rows have none.
+            bool any_nan = false;
+            for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) any_nan |= s[c] != s[c];
+            if (any_nan) {
+                for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
+                    if (s[c] != s[c] && m[c] == m[c]) general(c);
+                }
             }
         }
         for (std::ptrdiff_t c = 0; c < cols; ++c) f[c] = is_flat_slope(s[c], flat_deg);
