@@ -91,6 +91,22 @@ void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* bes
     }
 }
 
+/// The steepest ratio |dz| / d of cell (r, c) over its window clipped at the raster border, one neighbour at a
+/// time, with the same float factors and the same NaN rule as the passes (a NaN ratio never wins).
+inline float angular_cell(raster_view<const float> z, std::ptrdiff_t r, std::ptrdiff_t c, std::ptrdiff_t rad,
+                          const float* inv_d) noexcept
+{
+    const float p = z(r, c);
+    float steepest = 0.0f;
+    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - rad); rr <= std::min(z.rows() - 1, r + rad); ++rr) {
+        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - rad); cc <= std::min(z.cols() - 1, c + rad); ++cc) {
+            const float ratio = std::fabs(z(rr, cc) - p) * inv_d[std::abs(rr - r) * (rad + 1) + std::abs(cc - c)];
+            steepest = ratio > steepest ? ratio : steepest;  // the centre adds 0 (inv_d[0] = 0) or NaN
+        }
+    }
+    return steepest;
+}
+
 /// Rows [r0, r1) of the angular filter: the largest ratio |dz| / d per cell, then one atan per cell.
 /// Radii 1-3 run the unrolled kernel on cells whose window lies inside the raster and clipped per-offset
 /// passes on the others (rows and columns within `radius` of the border); larger radii run the passes only.
@@ -103,22 +119,22 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
     float* best = best_row.data();
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
         const float* centre = z.row(r);
-        std::fill(best_row.begin(), best_row.end(), 0.0f);
         const bool unrolled = radius <= 3 && r >= rad && r + rad < rows && cols > 2 * rad;
         if (unrolled) {
             const auto stride = z.row_stride();
             if (radius == 1) angular_interior<1>(centre, stride, best, rad, cols - rad, inv_d.data());
             if (radius == 2) angular_interior<2>(centre, stride, best, rad, cols - rad, inv_d.data());
             if (radius == 3) angular_interior<3>(centre, stride, best, rad, cols - rad, inv_d.data());
-        }
-        for (std::ptrdiff_t dr = std::max(-rad, -r); dr <= std::min(rad, rows - 1 - r); ++dr) {
-            for (std::ptrdiff_t dc = -rad; dc <= rad; ++dc) {
-                if (dr == 0 && dc == 0) continue;
-                const float inv = inv_d[std::abs(dr) * (rad + 1) + std::abs(dc)];
-                if (unrolled) {  // only the `rad` columns at each end are left
-                    angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, 0, rad);
-                    angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, cols - rad, cols);
-                } else {
+            // The `rad` columns at each end, cell by cell (a pass per offset would cost a call per offset).
+            for (std::ptrdiff_t c : {std::ptrdiff_t{0}, cols - rad}) {
+                for (std::ptrdiff_t cc = c; cc < c + rad; ++cc) best[cc] = angular_cell(z, r, cc, rad, inv_d.data());
+            }
+        } else {
+            std::fill(best_row.begin(), best_row.end(), 0.0f);
+            for (std::ptrdiff_t dr = std::max(-rad, -r); dr <= std::min(rad, rows - 1 - r); ++dr) {
+                for (std::ptrdiff_t dc = -rad; dc <= rad; ++dc) {
+                    if (dr == 0 && dc == 0) continue;
+                    const float inv = inv_d[std::abs(dr) * (rad + 1) + std::abs(dc)];
                     angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, 0, cols);
                 }
             }
