@@ -86,6 +86,7 @@ inline extract_waterbodies_options previous_water_method()
     o.min_seed_cells = 100;
     o.grow.level_gate_m = 0;
     o.grow.level_ks_exempt_m = -1;
+    o.grow.level_rise_m = -1;
     o.flat_seeds = false;
     o.flat.bright_density_ratio = 0;
     o.flat.max_joint_ratio = 0;
