@@ -46,7 +46,7 @@ struct extract_waterbodies_options {
                                            ///< water without dropouts (turbid, specular, dense surveys). These
                                            ///< seeds (their cells outside the bodies of the dropout seeds; same
                                            ///< opening and min_seed_cells) grow after the dropout seeds. Off by
-                                           ///< default: on the water family they lift sensitivity (lakes 77 -> 92 %,
+                                           ///< default: on the water family they lift sensitivity (lakes 77 -> 94 %,
                                            ///< rivers 72 -> 94 %) but lower river specificity (99.1 -> 98.5 %) and
                                            ///< cost 2.1x the time (docs/waterbodies.md)
     flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
