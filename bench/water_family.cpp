@@ -7,7 +7,8 @@
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
 // WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
-// and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER} (flat_water_seeds options);
+// and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
+// options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -144,6 +145,11 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_DARK")) o.flat.max_intensity_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_SMOOTH")) o.flat.max_roughness_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_LOWER")) o.flat.max_lower_share = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_BRIGHT")) o.flat.bright_density_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_JOINTMIN")) o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
+             if (const char* v = std::getenv("WF_TOUCH")) o.bridge_join_touching = std::atoi(v) != 0;
          }},
     };
     if (ablation) {
@@ -152,6 +158,21 @@ int main(int argc, char** argv)
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
         configs.push_back({"with flat seeds (flat_seeds = true)",
                            [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
+        configs.push_back({"with flat seeds, without their bright and joint paths",
+                           [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.flat.bright_density_ratio = 0;
+                               o.flat.max_joint_ratio = 0;
+                           }});
+        configs.push_back({"with flat seeds, touching bodies not merged", [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.bridge_join_touching = false;
+                           }});
+        configs.push_back({"with flat seeds and a level that never rises (grow.level_rise_m = 0)",
+                           [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.grow.level_rise_m = 0;
+                           }});
         configs.push_back({"without bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }});
         configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
     }

@@ -58,7 +58,7 @@ TEST_CASE("water/join_across_bridges: one sweep equals walking every land cell's
         auto fast = labels, slow = labels;
         join_across_bridges(fast, z, level, cell,
                             {.max_span_m = span * cell, .level_tolerance_m = 0.5, .min_clearance_m = 2.0,
-                             .water_tolerance_m = 0.15});
+                             .water_tolerance_m = 0.15, .join_touching = false});  // the reference: bridges only
         reference::join_across_bridges(slow, z, level, span, 0.5, 2.0, 0.15);
         CHECK(fast == slow);
         merged_scenes += !(fast == labels);
@@ -84,6 +84,28 @@ TEST_CASE("water/join_across_bridges: a deck joins the two halves of a river, a 
         for (std::ptrdiff_t c = 0; c < 14; ++c) CHECK(labels(r, c) == 1);
     CHECK(labels(2, 6) == 0);
     CHECK(labels(6, 6) == 0);
+}
+
+TEST_CASE("water/join_across_bridges: bodies that touch at one level merge; at levels apart, or with join_touching off, not")
+{
+    // Two stretches of one river grown from two seeds (labels 1 and 2) meet at column 5 (8-adjacent only
+    // diagonally in row 1); a pond (label 3) touches stretch 2 at row 4 but lies 3 m higher.
+    raster<std::int32_t> labels(6, 10, 0);
+    raster<float> z(6, 10, 10.0f);
+    for (std::ptrdiff_t c = 0; c < 10; ++c) labels(2, c) = labels(3, c) = c < 5 ? 1 : 2;
+    labels(1, 4) = 1;
+    labels(1, 6) = 2;  // no row/column contact in row 1; columns 4 and 6 are two cells apart
+    for (std::ptrdiff_t c = 6; c < 10; ++c) labels(4, c) = 3, z(4, c) = 13.0f;
+    const std::vector<double> level{0.0, 10.0, 9.9, 13.0};
+    auto joined = labels;
+    join_across_bridges(joined, z, level, 1.0, {.max_span_m = 0.5});  // span below a cell: no bridge
+    CHECK(joined(2, 7) == 1);   // stretch 2 merged into 1
+    CHECK(joined(1, 6) == 1);
+    CHECK(joined(4, 7) == 3);   // the pond stays apart: 3 m above the river (tolerance 1 m)
+    CHECK(joined(0, 0) == 0);
+    auto apart = labels;
+    join_across_bridges(apart, z, level, 1.0, {.max_span_m = 0.5, .join_touching = false});
+    CHECK(apart == labels);
 }
 
 TEST_CASE("water/join_across_bridges: the span is in metres and inclusive, the tolerances too")

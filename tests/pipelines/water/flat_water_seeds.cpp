@@ -106,12 +106,53 @@ TEST_CASE("flat_water_seeds: flat dry ground gets none: a meadow, a dark lot on 
     CHECK(pond.view()(5, 5) == 0);
 }
 
+TEST_CASE("flat_water_seeds: a bright but very sparse pond seeds (specular echoes); weak cues together seed")
+{
+    // A pond 0.5 m below the meadow, as rough as the meadow (max z − min z 5 cm), with half its pulses lost
+    // and its echoes brighter than the grass (specular, near nadir): not dark, not smooth, and brighter than
+    // its ring, so only bright_density_ratio makes it a seed. (The ring holds the pond's own non-level edge
+    // and the meadow's cells next to it, so the ratios lie between the pond's and the meadow's.)
+    auto s = flat_ground();
+    const auto pond = [&](std::uint32_t count, float intensity, float rough_m) {
+        for (std::ptrdiff_t r = 10; r < 30; ++r) {
+            for (std::ptrdiff_t c = 10; c < 30; ++c) {
+                s.min_z(r, c) = 9.5f + 0.01f * static_cast<float>((r + c) % 3);
+                s.max_z(r, c) = s.min_z(r, c) + rough_m;
+                s.count(r, c) = count;
+                s.intensity(r, c) = intensity;
+            }
+        }
+    };
+    pond(3, 120.0f, 0.05f);  // density 0.66 of the ring's, intensity 1.2 times
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.bright_density_ratio = 0}).view()(20, 20) == 0);
+    pond(4, 120.0f, 0.05f);  // density 0.79: bright and only a little sparse, as a sunlit field may be
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
+
+    // Weak cues together: 8 of 10 returns (0.88 of the ring's: not sparse), intensity 0.71 of the ring's
+    // (not dark), roughness 3 cm, 0.68 of the median of level cells (not smooth). Each alone is not
+    // enough; their product (0.43) is within max_joint_ratio (0.6), on 324 level cells.
+    for (std::ptrdiff_t i = 0; i < s.count.size(); ++i) s.count.data()[i] = 10;
+    pond(8, 45.0f, 0.03f);
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.max_joint_ratio = 0}).view()(20, 20) == 0);
+    CHECK(flat_water_seeds(s.view(), {}, {.joint_min_cells = 325}).view()(20, 20) == 0);
+    CHECK(flat_water_seeds(s.view()).view()(5, 5) == 0);
+    // As dense as the meadow it is land (a dark, smooth lot returns every pulse), although the product
+    // (0.48) is within max_joint_ratio: the joint path, like the dark and smooth ones, needs at most
+    // dark_density_ratio of the ring's returns.
+    pond(10, 45.0f, 0.03f);
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
+}
+
 TEST_CASE("flat_water_seeds: options out of range and rasters of different shapes are refused")
 {
     const auto s = flat_ground();
     CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.level_radius_cells = 0}), invalid_input);
     CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.max_density_ratio = 0}), invalid_input);
     CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.max_lower_share = 2}), invalid_input);
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.bright_density_ratio = 1.5}), invalid_input);
+    CHECK_THROWS_AS(flat_water_seeds(s.view(), {}, {.max_joint_ratio = -1}), invalid_input);
     const raster<std::uint8_t> wrong(3, 3, 0);
     CHECK_THROWS_AS(flat_water_seeds(s.view(), wrong), invalid_input);
     // Without a count raster there is no density to compare: no seed.

@@ -73,3 +73,30 @@ TEST_CASE("water/grow_waterbody level gate: the level drifts along a falling riv
     CHECK(short_reach.cells.size() < 4 * 45);
     CHECK(short_reach.cells.size() > 4 * 30);
 }
+
+TEST_CASE("water/grow_waterbody level gate: with level_rise_m 0 the level does not creep up a gentle slope")
+{
+    // 40 x 40: a pond at 100 m in the west columns 0-5 (its columns 0-1 a dropout seed), then land from
+    // 2 cm above it rising 4 mm per column eastward (gentler than the drift limit of 5 mm per cell).
+    raster<float> min_z(40, 40);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 0; r < 40; ++r) {
+        for (std::ptrdiff_t c = 0; c < 40; ++c) {
+            min_z.view()(r, c) = c <= 5 ? 100.0f : 100.02f + 0.004f * static_cast<float>(c - 5);
+            if (c <= 1) {
+                min_z.view()(r, c) = NAN;
+                seed.push_back(r * 40 + c);
+            }
+        }
+    }
+    const auto field = flat_field(min_z);
+    raster<std::int32_t> visited(40, 40, 0);
+    grow_waterbody_options creep;
+    creep.level_rise_m = -1;  // rises like it falls (5 mm per cell): the flood climbs the whole slope
+    CHECK(grow_waterbody(field, seed, creep, visited, -1).cells.size() == 40 * 40);
+    grow_waterbody_options flat;
+    flat.level_rise_m = 0;  // the level passed on never rises: the flood stops 0.15 m above the pond
+    const auto held = grow_waterbody(field, seed, flat, visited, -2);
+    // Land joins while 0.02 + 0.004 (c − 5) <= 0.15 m above the pond: columns up to 37, not 38 and 39.
+    CHECK(held.cells.size() == 40 * 38);
+}

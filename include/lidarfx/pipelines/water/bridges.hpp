@@ -27,6 +27,10 @@ struct join_across_bridges_options {
     double water_tolerance_m = 0.15;  ///< a cell whose min z lies between the lower level − this and the higher
                                       ///< level + this is water seen past the deck's edge, metres; >= 0. Default
                                       ///< 0.15 m (extract_waterbodies passes its level_tolerance_m).
+    bool join_touching = true;        ///< bodies a != b that touch (8-adjacent cells, a run of 0 land cells) with
+                                      ///< levels within level_tolerance_m merge too: one water surface grown
+                                      ///< from several seeds (a river whose level gate let each seed cover only
+                                      ///< part of its fall) is one body. Default true.
 };
 
 namespace detail {
@@ -84,7 +88,7 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     // No straight run of cells is longer than rows + cols: clamping there keeps huge or infinite spans exact.
     const int span_cells = static_cast<int>(
         std::min(std::floor(opt.max_span_m / cell_m), static_cast<double>(std::min<std::ptrdiff_t>(rows + cols, 1 << 30))));
-    if (span_cells <= 0) return 0;
+    if (span_cells <= 0 && !opt.join_touching) return 0;
     std::vector<std::int32_t> parent(level.size());
     std::iota(parent.begin(), parent.end(), 0);
     const auto find = [&](std::int32_t x) {
@@ -110,6 +114,11 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     const auto close_run = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r,
                                std::ptrdiff_t c, int dr, int dc, int direction) {
         const std::ptrdiff_t gap = at - lw.at - 1;
+        if (opt.join_touching && lw.at >= 0 && lw.label != l && gap == 0 &&
+            std::abs(level[static_cast<std::size_t>(lw.label)] - level[static_cast<std::size_t>(l)]) <= opt.level_tolerance_m) {
+            const auto ra = find(lw.label), rb = find(l);
+            if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+        }
         if (lw.at >= 0 && lw.label != l && gap >= 1 && gap <= span_cells) {
             bool any = false;
             for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
@@ -165,7 +174,8 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
 /// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
 /// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in
 /// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every label of a
-/// merged group becomes its smallest). Every decision reads the labels as given. Elevations in metres.
+/// merged group becomes its smallest), and with join_touching so do bodies with 8-adjacent cells and levels
+/// within level_tolerance_m. Every decision reads the labels as given. Elevations in metres.
 /// One row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined
 /// when a water cell of another body closes it. O(cells + cells of examined runs).
 /// Returns the number of bridged cells.

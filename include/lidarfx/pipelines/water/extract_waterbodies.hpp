@@ -46,7 +46,7 @@ struct extract_waterbodies_options {
                                            ///< water without dropouts (turbid, specular, dense surveys). These
                                            ///< seeds (their cells outside the bodies of the dropout seeds; same
                                            ///< opening and min_seed_cells) grow after the dropout seeds. Off by
-                                           ///< default: on the water family they lift sensitivity (lakes 77 -> 92 %,
+                                           ///< default: on the water family they lift sensitivity (lakes 77 -> 94 %,
                                            ///< rivers 72 -> 94 %) but lower river specificity (99.1 -> 98.5 %) and
                                            ///< cost 2.1x the time (docs/waterbodies.md)
     flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
@@ -67,6 +67,9 @@ struct extract_waterbodies_options {
     double bridge_level_tolerance_m = 1.0; ///< join_across_bridges: water levels on both sides differ by at most this
     double bridge_min_clearance_m = 2.0;   ///< join_across_bridges: a deck cell's lowest return stands at least
                                            ///< this high above the water on both sides, metres
+    bool bridge_join_touching = true;      ///< join_across_bridges: bodies that touch, at levels within
+                                           ///< bridge_level_tolerance_m, merge (one surface grown from several
+                                           ///< seeds); needs bridge_max_span_m > 0. Default true
     double min_points_per_cell = 2.0;      ///< assess_water_inputs: below this mean density the inputs are refused
     bool check_inputs = true;              ///< refuse inputs that cannot support the method (see diagnostics)
     execution run = {};                    ///< threads of the raster kernels (0 = all cores; same result for any
@@ -83,7 +86,11 @@ inline extract_waterbodies_options previous_water_method()
     o.min_seed_cells = 100;
     o.grow.level_gate_m = 0;
     o.grow.level_ks_exempt_m = -1;
+    o.grow.level_rise_m = -1;
     o.flat_seeds = false;
+    o.flat.bright_density_ratio = 0;
+    o.flat.max_joint_ratio = 0;
+    o.bridge_join_touching = false;
     return o;
 }
 
@@ -246,7 +253,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
         join_across_bridges(res.labels, in.min_z, cell_m,
                             {.max_span_m = opt.bridge_max_span_m, .level_tolerance_m = opt.bridge_level_tolerance_m,
-                             .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m});
+                             .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m,
+                             .join_touching = opt.bridge_join_touching});
     }
     fill_small_islands(res.labels, cell_m, {.island_min_area_m2 = opt.island_min_area_m2, .run = kernels});
     if (!in.footprint.empty()) {  // neither a bridge nor a filled hole reaches beyond what was flown

@@ -47,6 +47,18 @@ struct flat_water_seeds_options {
                                       ///< the lowest ground around it; roofs and lots on sloping ground have
                                       ///< lower ground next to them), in [0, 1].
                                       ///< Default 0.1
+    double bright_density_ratio = 0.72; ///< sparse and bright: at most this share of the ring's returns makes a
+                                      ///< component sparse whatever its intensity (specular echoes near nadir
+                                      ///< are brighter than a dark ring while the pulses around them are lost;
+                                      ///< no flat land loses a quarter of its pulses), in [0, 1]; 0 disables.
+                                      ///< Default 0.72
+    double max_joint_ratio = 0.6;     ///< weak cues together: ... or at most dark_density_ratio of the ring's
+                                      ///< returns when density ratio × intensity ratio × roughness ratio (as
+                                      ///< above; roughness against the median of level cells) is at most this,
+                                      ///< for a component of at least joint_min_cells (each cue a little
+                                      ///< water-like; land fragments of a few dozen cells scatter too much to be
+                                      ///< judged so), >= 0; 0 disables. Default 0.6
+    std::size_t joint_min_cells = 150; ///< see max_joint_ratio, cells. Default 150
     execution run = {};               ///< threads of the labelling kernel (same result for any count)
 };
 
@@ -66,6 +78,9 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
     require(o.max_intensity_ratio >= 0, fn, "max_intensity_ratio", ">= 0", o.max_intensity_ratio);
     require(o.max_roughness_ratio >= 0, fn, "max_roughness_ratio", ">= 0", o.max_roughness_ratio);
     require(o.max_lower_share >= 0 && o.max_lower_share <= 1, fn, "max_lower_share", "in [0, 1]", o.max_lower_share);
+    require(o.bright_density_ratio >= 0 && o.bright_density_ratio <= 1, fn, "bright_density_ratio", "in [0, 1]",
+            o.bright_density_ratio);
+    require(o.max_joint_ratio >= 0, fn, "max_joint_ratio", ">= 0", o.max_joint_ratio);
     check_execution(o.run, fn);
 }
 
@@ -74,7 +89,9 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
 /// level cells {return, not excluded, max z − min z <= max_roughness_m, max − min of min z over the
 /// (2 level_radius_cells + 1)² window <= level_tolerance_m} that are sparse (mean count <=
-/// max_density_ratio · their ring's) or dark and sparse (<= dark_density_ratio · and mean intensity <=
+/// max_density_ratio · their ring's and not brighter, or <= bright_density_ratio · whatever the intensity),
+/// or, on >= joint_min_cells, <= dark_density_ratio · with count ratio × intensity ratio × roughness ratio
+/// <= max_joint_ratio, or dark and sparse (<= dark_density_ratio · and mean intensity <=
 /// max_intensity_ratio · their ring's), or smooth and sparse (<= dark_density_ratio · and mean max z −
 /// min z <= max_roughness_ratio · median over level cells) and lowest (<= max_lower_share of the ring more than
 /// level_tolerance_m below the component's lowest min z within ring_cells of the ring cell); the ring:
@@ -181,10 +198,12 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
         const double intensity = light[l] / size / (ring_light[l] / ring_cells[l]);
         // Sparse counts only when not brighter than the ring: a bright (specular) echo is one that arrived.
-        const bool sparse = density <= opt.max_density_ratio && intensity <= 1;
+        const bool sparse = (density <= opt.max_density_ratio && intensity <= 1) || density <= opt.bright_density_ratio;
         const bool dark = intensity <= opt.max_intensity_ratio;
-        const bool smooth = rough[l] / size <= opt.max_roughness_ratio * typical_rough;
-        if (!sparse && !((dark || smooth) && density <= opt.dark_density_ratio)) continue;
+        const double roughness = rough[l] / size / typical_rough;
+        const bool smooth = roughness <= opt.max_roughness_ratio;
+        const bool joint = comps.sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
+        if (!sparse && !((dark || smooth || joint) && density <= opt.dark_density_ratio)) continue;
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
     }

@@ -48,6 +48,9 @@ struct grow_waterbody_options {
     double level_drift_m = 0.005;    ///< the level a joining cell passes on follows its min z by at most this
                                      ///< (L' = L + clamp(min z − L, ±drift)): rivers fall, beaches rise
                                      ///< faster; metres per cell, >= 0. Default 0.005 m
+    double level_rise_m = -1;        ///< upward drift: the level a joining cell passes on rises by at most this
+                                     ///< per cell (L' = L + clamp(min z − L, −level_drift_m, level_rise_m));
+                                     ///< metres per cell; < 0 = level_drift_m. Default -1
     double level_ks_exempt_m = 0.05; ///< with the gate: cells with min z <= L + this are water by level and
                                      ///< stay out of the KS increment sample (bright specular water near
                                      ///< nadir); metres; < 0 disables. Default 0.05 m
@@ -142,6 +145,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // Per queued cell, parallel to buckets: the level it passes on.
     std::vector<std::vector<float>> bucket_levels(gate ? static_cast<std::size_t>(last + 1) : 0);
     std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
+    const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
     const auto push = [&](std::ptrdiff_t i, int from_step, float from_level) {
         if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
@@ -155,7 +159,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, opt.level_drift_m));
+                    level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
             bucket_levels[static_cast<std::size_t>(k)].push_back(level);
