@@ -3,15 +3,17 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
-#include "lidarfx/kernels/filter/morphology.hpp"
+#include "lidarfx/kernels/filter/min_max_filter.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -86,6 +88,36 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
 
 }  // namespace detail
 
+namespace detail {
+
+/// The element at position size / 2 of the sorted `values` (as detail::median), found without sorting:
+/// radix selection on the 32-bit keys that order floats as numbers, 16 bits per pass. Values must not be
+/// NaN; NaN when there are none. O(size + 2^16).
+inline float median_by_radix(const std::vector<float>& values)
+{
+    if (values.empty()) return NAN;
+    const auto key = [](float x) {
+        const auto u = std::bit_cast<std::uint32_t>(x);
+        return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;  // negatives reversed, below positives
+    };
+    std::size_t rank = values.size() / 2;  // rank of the median among the values left
+    std::vector<std::size_t> histogram(std::size_t{1} << 16);
+    for (const float x : values) ++histogram[key(x) >> 16];
+    std::uint32_t high = 0;
+    while (rank >= histogram[high]) rank -= histogram[high++];
+    std::fill(histogram.begin(), histogram.end(), 0);
+    for (const float x : values) {
+        const std::uint32_t k = key(x);
+        if ((k >> 16) == high) ++histogram[k & 0xFFFFu];
+    }
+    std::uint32_t low = 0;
+    while (rank >= histogram[low]) rank -= histogram[low++];
+    const std::uint32_t k = high << 16 | low;
+    return std::bit_cast<float>((k & 0x80000000u) != 0 ? k & 0x7FFFFFFFu : ~k);
+}
+
+}  // namespace detail
+
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
 /// level cells {return, not excluded, max z − min z <= max_roughness_m, max − min of min z over the
 /// (2 level_radius_cells + 1)² window <= level_tolerance_m} that are sparse (mean count <=
@@ -98,7 +130,8 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
 /// cells with returns within ring_cells of the component, not in a component.
 /// Needs in.count (without it the mask is empty). `excluded` (optional, same shape; nonzero = never a
 /// seed, e.g. vegetation) and in.footprint keep cells out. Returns 1 = seed cell.
-/// O(cells · ((2 level_radius_cells + 1)² + (2 ring_cells + 1)²)).
+/// The windows are running min/max filters (min_max_filter's strips): O(cells · log(level_radius_cells ·
+/// ring_cells)), plus (2 ring_cells + 1)² per ring cell within reach of two components or more.
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
                                              const flat_water_seeds_options& opt = {})
@@ -113,82 +146,161 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     const auto has_return = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
         return !in.dropout(r, c) && std::isfinite(in.min_z(r, c)) && detail::inside_footprint(in, r, c);
     };
+    constexpr float none = std::numeric_limits<float>::quiet_NaN();
     // Level cells: smooth, not excluded, and the lowest returns of the window around them within the tolerance.
-    raster<std::uint8_t> level(rows, cols, 0);
-    const std::ptrdiff_t k = opt.level_radius_cells;
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (!has_return(r, c) || (!excluded.empty() && excluded(r, c))) continue;
-            if (!(in.max_z(r, c) - in.min_z(r, c) <= opt.max_roughness_m)) continue;
-            float lo = in.min_z(r, c), hi = lo;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc) {
-                    const float z = in.min_z(rr, cc);
-                    if (!std::isfinite(z)) continue;
-                    lo = std::min(lo, z);
-                    hi = std::max(hi, z);
+    // The window's lowest and highest finite min z come from running min/max filters over strips of rows;
+    // the test is branch-free so that it vectorizes.
+    raster<std::uint8_t> level(rows, cols, uninitialized);
+    {
+        const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
+        const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
+        const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
+        parallel_for_rows(
+            rows, detail::min_max_strip_rows(rows, cols, ky), opt.run.threads,
+            [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                detail::min_max_scratch<float> s;
+                std::vector<float> lows(static_cast<std::size_t>((r1 - r0) * cols)), highs(lows.size());
+                const auto load = [&](std::ptrdiff_t r, float* dst) {
+                    const float* z = in.min_z.row(r);
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
+                };
+                detail::min_max_rows<detail::min_reduce<float>>(rows, cols, kx, ky, r0, r1, load, lows.data(), s);
+                detail::min_max_rows<detail::max_reduce<float>>(rows, cols, kx, ky, r0, r1, load, highs.data(), s);
+                for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                    const float* lo = lows.data() + (r - r0) * cols;
+                    const float* hi = highs.data() + (r - r0) * cols;
+                    const float* z0 = in.min_z.row(r);
+                    const float* z1 = in.max_z.row(r);
+                    const std::uint8_t* drop = in.dropout.row(r);
+                    const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
+                    const std::uint8_t* ex = excluded.empty() ? zeros.data() : excluded.row(r);
+                    std::uint8_t* d = level.row(r);
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        // has_return(r, c), not excluded, smooth, level: & rather than && (no branches).
+                        d[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) &
+                                                         (ex[c] == 0) & (z1[c] - z0[c] <= opt.max_roughness_m) &
+                                                         (hi[c] - lo[c] <= opt.level_tolerance_m));
+                    }
                 }
-            }
-            level.view()(r, c) = hi - lo <= opt.level_tolerance_m;
-        }
+            },
+            {}, fn);
     }
     auto comps = connected_components(level, connected_components_options{.conn = connectivity::eight,
                                                                           .run = {.threads = opt.run.threads}});
     const std::size_t n = comps.count();
     if (n == 0) return out;
-    const auto& labels = comps.labels;
-    // Per component: its count and min z, and those of its ring (cells with returns near it, not level).
-    std::vector<double> count_sum(n + 1, 0), ring_count(n + 1, 0), ring_cells(n + 1, 0), light(n + 1, 0), ring_light(n + 1, 0),
-        rough(n + 1, 0);
-    std::vector<float> level_rough;  // max z − min z of every level cell: the survey's typical roughness
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (level(r, c)) level_rough.push_back(in.max_z(r, c) - in.min_z(r, c));
-    const double typical_rough = detail::median(level_rough);
-    std::vector<double> lower(n + 1, 0);
-    const std::ptrdiff_t q = opt.ring_cells;
-    struct near_level {
-        std::int32_t label;
-        float z;  // lowest min z of the component's cells in the window
-    };
-    std::vector<near_level> near;
-    // Only cells within ring_cells of a component large enough are in a ring: find them in O(cells).
-    raster<std::int32_t> big_label(rows, cols, uninitialized);  // the label of a component large enough, else 0
-    for (std::ptrdiff_t i = 0; i < big_label.size(); ++i) {
-        const std::int32_t l = labels.data()[i];
-        big_label.data()[i] = l > 0 && comps.sizes[static_cast<std::size_t>(l)] >= opt.min_cells ? l : 0;
+    // From here on a label > 0 is a component large enough to be a seed and -1 marks the cells of the
+    // smaller ones (level cells all the same): later passes test the sign, not a table.
+    auto& labels = comps.labels;
+    std::vector<std::uint8_t> big(n + 1, 0);
+    std::size_t level_cells = 0;
+    for (std::size_t l = 1; l <= n; ++l) {
+        big[l] = comps.sizes[l] >= opt.min_cells;
+        level_cells += comps.sizes[l];
     }
-    const auto in_reach = morph_dilate(big_label, morphology_options{.size_cells = static_cast<int>(2 * q + 1),
-                                                                .run = {.threads = opt.run.threads}});
+    // Per component: its count, intensity and roughness (summed in row order); max z − min z of every level
+    // cell: the survey's typical roughness.
+    std::vector<double> count_sum(n + 1, 0), ring_count(n + 1, 0), ring_cells(n + 1, 0), light(n + 1, 0), ring_light(n + 1, 0),
+        rough(n + 1, 0), lower(n + 1, 0);
+    std::vector<float> level_rough;
+    level_rough.reserve(level_cells);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        std::int32_t* lab = labels.row(r);
+        const float* z0 = in.min_z.row(r);
+        const float* z1 = in.max_z.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::int32_t l = labels.view()(r, c);
-            if (l > 0) {
-                if (comps.sizes[static_cast<std::size_t>(l)] < opt.min_cells) continue;
-                count_sum[static_cast<std::size_t>(l)] += in.count(r, c);
-                light[static_cast<std::size_t>(l)] += in.mean_intensity(r, c);
-                rough[static_cast<std::size_t>(l)] += in.max_z(r, c) - in.min_z(r, c);
+            const std::int32_t l = lab[c];
+            if (l <= 0) continue;
+            const float d = z1[c] - z0[c];
+            level_rough.push_back(d);
+            const auto m = static_cast<std::size_t>(l);
+            if (!big[m]) {
+                lab[c] = -1;
                 continue;
             }
-            if (!in_reach(r, c) || !has_return(r, c)) continue;
-            near.clear();
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q); ++rr) {
-                const std::int32_t* row = big_label.view().row(rr);
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(cols - 1, c + q); ++cc) {
-                    const std::int32_t m = row[cc];
-                    if (m == 0) continue;
-                    const auto it = std::find_if(near.begin(), near.end(), [&](const near_level& e) { return e.label == m; });
-                    if (it == near.end()) near.push_back({m, in.min_z(rr, cc)});
-                    else it->z = std::min(it->z, in.min_z(rr, cc));
+            count_sum[m] += in.count(r, c);
+            light[m] += in.mean_intensity(r, c);
+            rough[m] += d;
+        }
+    }
+    const double typical_rough = detail::median_by_radix(level_rough);
+    // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows,
+    // running filters over the labels of large components give the smallest and largest label within reach
+    // and the lowest min z of their cells; where both labels agree that is the one component in reach,
+    // else the window is read cell by cell. Strips list their ring cells; the sums below read the lists
+    // in row order (as one pass over the raster would), whatever the thread count.
+    struct ring_cell {
+        std::ptrdiff_t r, c;
+        std::int32_t label;
+        float z;  // lowest min z of the component's cells within ring_cells
+    };
+    const std::ptrdiff_t q = opt.ring_cells;
+    const std::ptrdiff_t qx = std::min<std::ptrdiff_t>(q, cols - 1), qy = std::min<std::ptrdiff_t>(q, rows - 1);
+    const std::ptrdiff_t strip = detail::min_max_strip_rows(rows, cols, qy);
+    std::vector<std::vector<ring_cell>> found(static_cast<std::size_t>((rows + strip - 1) / strip));
+    parallel_for_rows(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        bool any = false;
+        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
+            const std::int32_t* lab = labels.row(r);
+            for (std::ptrdiff_t c = 0; c < cols && !any; ++c) any = lab[c] > 0;
+        }
+        if (!any) return;
+        const auto cells = static_cast<std::size_t>((r1 - r0) * cols);
+        detail::min_max_scratch<std::int32_t> si;
+        detail::min_max_scratch<float> sf;
+        std::vector<std::int32_t> lowest(cells), highest(cells);
+        std::vector<float> z_low(cells);
+        const auto load_low = [&](std::ptrdiff_t r, std::int32_t* dst) {
+            const std::int32_t* lab = labels.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                dst[c] = lab[c] > 0 ? lab[c] : std::numeric_limits<std::int32_t>::max();
+        };
+        const auto load_high = [&](std::ptrdiff_t r, std::int32_t* dst) {
+            const std::int32_t* lab = labels.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = std::max(lab[c], 0);
+        };
+        const auto load_z = [&](std::ptrdiff_t r, float* dst) {
+            const std::int32_t* lab = labels.row(r);
+            const float* z = in.min_z.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
+        };
+        detail::min_max_rows<detail::min_reduce<std::int32_t>>(rows, cols, qx, qy, r0, r1, load_low, lowest.data(), si);
+        detail::min_max_rows<detail::max_reduce<std::int32_t>>(rows, cols, qx, qy, r0, r1, load_high, highest.data(), si);
+        detail::min_max_rows<detail::min_reduce<float>>(rows, cols, qx, qy, r0, r1, load_z, z_low.data(), sf);
+        auto& list = found[static_cast<std::size_t>(r0 / strip)];
+        std::vector<ring_cell> near;
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const std::int32_t* lab = labels.row(r);
+            const std::size_t row0 = static_cast<std::size_t>((r - r0) * cols);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const std::size_t i = row0 + static_cast<std::size_t>(c);
+                if (lab[c] != 0 || highest[i] == 0 || !has_return(r, c)) continue;
+                if (lowest[i] == highest[i]) {
+                    list.push_back({r, c, highest[i], z_low[i]});
+                    continue;
                 }
+                near.clear();  // two components or more within reach: each with its own lowest min z
+                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q); ++rr) {
+                    const std::int32_t* row = labels.row(rr);
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(cols - 1, c + q); ++cc) {
+                        if (row[cc] <= 0) continue;
+                        const auto it = std::find_if(near.begin(), near.end(),
+                                                     [&](const ring_cell& e) { return e.label == row[cc]; });
+                        if (it == near.end()) near.push_back({r, c, row[cc], in.min_z(rr, cc)});
+                        else it->z = std::min(it->z, in.min_z(rr, cc));
+                    }
+                }
+                list.insert(list.end(), near.begin(), near.end());
             }
-            for (const auto& e : near) {
-                const auto m = static_cast<std::size_t>(e.label);
-                ring_count[m] += in.count(r, c);
-                ring_cells[m] += 1;
-                ring_light[m] += in.mean_intensity(r, c);
-                lower[m] += in.min_z(r, c) < e.z - opt.level_tolerance_m;
-            }
+        }
+    }, {}, fn);
+    for (const auto& list : found) {
+        for (const auto& e : list) {
+            const auto m = static_cast<std::size_t>(e.label);
+            ring_count[m] += in.count(e.r, e.c);
+            ring_cells[m] += 1;
+            ring_light[m] += in.mean_intensity(e.r, e.c);
+            lower[m] += in.min_z(e.r, e.c) < e.z - opt.level_tolerance_m;
         }
     }
     std::vector<std::uint8_t> keep(n + 1, 0);
@@ -207,7 +319,11 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
     }
-    for (std::ptrdiff_t i = 0; i < out.size(); ++i) out.data()[i] = keep[static_cast<std::size_t>(labels.data()[i])];
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* lab = labels.row(r);
+        std::uint8_t* d = out.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) d[c] = lab[c] > 0 ? keep[static_cast<std::size_t>(lab[c])] : 0;
+    }
     return out;
 }
 
