@@ -154,6 +154,24 @@ inline std::ptrdiff_t min_max_strip_rows(std::ptrdiff_t rows, std::ptrdiff_t col
     return std::min(std::max<std::ptrdiff_t>(rows, 1), std::max(fit, 8 * radius));
 }
 
+/// Runs strip(r0, r1, scratch) over [0, rows) in strips of `strip_rows` rows (the last one shorter), on
+/// `threads` threads (parallel_for_rows) that take runs of up to 16 consecutive strips sharing one
+/// default-constructed Scratch, so buffers are allocated once per run, not per strip.
+template <class Scratch, class Strip>
+void for_each_strip(std::ptrdiff_t rows, std::ptrdiff_t strip_rows, int threads, Strip&& strip,
+                    const progress_callback& progress, const char* function)
+{
+    const std::ptrdiff_t strips = (rows + strip_rows - 1) / strip_rows;
+    const std::ptrdiff_t run = std::clamp<std::ptrdiff_t>(strips / 8, 1, 16);
+    parallel_for_rows(
+        rows, run * strip_rows, threads,
+        [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
+            Scratch scratch;
+            for (std::ptrdiff_t r0 = b0; r0 < b1; r0 += strip_rows) strip(r0, std::min(b1, r0 + strip_rows), scratch);
+        },
+        progress, function);
+}
+
 }  // namespace detail
 
 /// Running minimum and maximum over a square window: out_min(r, c) and out_max(r, c) are the lowest and
@@ -189,18 +207,21 @@ void min_max_filter(const In& in, OutMin&& out_min, OutMax&& out_max, const min_
         detail::write_through<T>(std::forward<OutMax>(out_max), [&](raster_view<T> hi) {
             detail::require(!detail::overlaps(src, lo) && !detail::overlaps(src, hi) && !detail::overlaps(lo, hi), fn,
                             "out_min, out_max and in must not share memory");
-            parallel_for_rows(
+            struct scratch {
+                detail::min_max_scratch<T> s;
+                std::vector<T> mins, maxs;
+            };
+            detail::for_each_strip<scratch>(
                 rows, detail::min_max_strip_rows(rows, cols, std::max(kx, ky)), opt.run.threads,
-                [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                    detail::min_max_scratch<T> s;
-                    std::vector<T> mins(static_cast<std::size_t>((r1 - r0) * cols));
-                    std::vector<T> maxs(mins.size());
+                [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
+                    w.mins.resize(static_cast<std::size_t>((r1 - r0) * cols));
+                    w.maxs.resize(w.mins.size());
                     auto load = [&](std::ptrdiff_t r, T* dst) { std::copy(src.row(r), src.row(r) + cols, dst); };
-                    detail::min_max_rows<detail::min_reduce<T>>(rows, cols, kx, ky, r0, r1, load, mins.data(), s);
-                    detail::min_max_rows<detail::max_reduce<T>>(rows, cols, kx, ky, r0, r1, load, maxs.data(), s);
+                    detail::min_max_rows<detail::min_reduce<T>>(rows, cols, kx, ky, r0, r1, load, w.mins.data(), w.s);
+                    detail::min_max_rows<detail::max_reduce<T>>(rows, cols, kx, ky, r0, r1, load, w.maxs.data(), w.s);
                     for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                        const T* a = mins.data() + (r - r0) * cols;
-                        const T* b = maxs.data() + (r - r0) * cols;
+                        const T* a = w.mins.data() + (r - r0) * cols;
+                        const T* b = w.maxs.data() + (r - r0) * cols;
                         T* dlo = lo.row(r);
                         T* dhi = hi.row(r);
                         for (std::ptrdiff_t c = 0; c < cols; ++c) {

@@ -86,10 +86,6 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
     check_execution(o.run, fn);
 }
 
-}  // namespace detail
-
-namespace detail {
-
 /// The element at position size / 2 of the sorted `values` (as detail::median), found without sorting:
 /// radix selection on the 32-bit keys that order floats as numbers, 16 bits per pass. Values must not be
 /// NaN; NaN when there are none. O(size + 2^16).
@@ -141,8 +137,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     detail::validate(opt, fn);
     if (!excluded.empty()) detail::require_same_shape(in.min_z, excluded, fn, "min_z", "excluded");
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    raster<std::uint8_t> out(rows, cols, 0);
-    if (in.count.empty()) return out;
+    if (in.count.empty()) return raster<std::uint8_t>(rows, cols, 0);
     const auto has_return = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
         return !in.dropout(r, c) && std::isfinite(in.min_z(r, c)) && detail::inside_footprint(in, r, c);
     };
@@ -155,31 +150,37 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
         const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
         const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
-        parallel_for_rows(
+        const double max_rough = opt.max_roughness_m, tolerance = opt.level_tolerance_m;
+        struct scratch {
+            detail::min_max_scratch<float> s;
+            std::vector<float> lows, highs;
+        };
+        detail::for_each_strip<scratch>(
             rows, detail::min_max_strip_rows(rows, cols, ky), opt.run.threads,
-            [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                detail::min_max_scratch<float> s;
-                std::vector<float> lows(static_cast<std::size_t>((r1 - r0) * cols)), highs(lows.size());
+            [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
+                const std::ptrdiff_t nc = cols;  // a local bound: the uint8 stores below cannot alias it
+                w.lows.resize(static_cast<std::size_t>((r1 - r0) * nc));
+                w.highs.resize(w.lows.size());
                 const auto load = [&](std::ptrdiff_t r, float* dst) {
                     const float* z = in.min_z.row(r);
-                    for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
+                    for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
                 };
-                detail::min_max_rows<detail::min_reduce<float>>(rows, cols, kx, ky, r0, r1, load, lows.data(), s);
-                detail::min_max_rows<detail::max_reduce<float>>(rows, cols, kx, ky, r0, r1, load, highs.data(), s);
+                detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(), w.s);
+                detail::min_max_rows<detail::max_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.highs.data(), w.s);
                 for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                    const float* lo = lows.data() + (r - r0) * cols;
-                    const float* hi = highs.data() + (r - r0) * cols;
+                    const float* lo = w.lows.data() + (r - r0) * nc;
+                    const float* hi = w.highs.data() + (r - r0) * nc;
                     const float* z0 = in.min_z.row(r);
                     const float* z1 = in.max_z.row(r);
                     const std::uint8_t* drop = in.dropout.row(r);
                     const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
                     const std::uint8_t* ex = excluded.empty() ? zeros.data() : excluded.row(r);
                     std::uint8_t* d = level.row(r);
-                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    for (std::ptrdiff_t c = 0; c < nc; ++c) {
                         // has_return(r, c), not excluded, smooth, level: & rather than && (no branches).
                         d[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) &
-                                                         (ex[c] == 0) & (z1[c] - z0[c] <= opt.max_roughness_m) &
-                                                         (hi[c] - lo[c] <= opt.level_tolerance_m));
+                                                         (ex[c] == 0) & (z1[c] - z0[c] <= max_rough) &
+                                                         (hi[c] - lo[c] <= tolerance));
                     }
                 }
             },
@@ -188,7 +189,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     auto comps = connected_components(level, connected_components_options{.conn = connectivity::eight,
                                                                           .run = {.threads = opt.run.threads}});
     const std::size_t n = comps.count();
-    if (n == 0) return out;
+    if (n == 0) return level;  // all 0
     // From here on a label > 0 is a component large enough to be a seed and -1 marks the cells of the
     // smaller ones (level cells all the same): later passes test the sign, not a table.
     auto& labels = comps.labels;
@@ -238,51 +239,58 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     const std::ptrdiff_t qx = std::min<std::ptrdiff_t>(q, cols - 1), qy = std::min<std::ptrdiff_t>(q, rows - 1);
     const std::ptrdiff_t strip = detail::min_max_strip_rows(rows, cols, qy);
     std::vector<std::vector<ring_cell>> found(static_cast<std::size_t>((rows + strip - 1) / strip));
-    parallel_for_rows(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    struct scratch {
+        detail::min_max_scratch<std::int32_t> si;
+        detail::min_max_scratch<float> sf;
+        std::vector<std::int32_t> lowest, highest;
+        std::vector<float> z_low;
+        std::vector<ring_cell> near;
+    };
+    detail::for_each_strip<scratch>(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
+        const std::ptrdiff_t nc = cols;
         bool any = false;
         for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
             const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < cols && !any; ++c) any = lab[c] > 0;
+            for (std::ptrdiff_t c = 0; c < nc; ++c) any |= lab[c] > 0;
         }
         if (!any) return;
-        const auto cells = static_cast<std::size_t>((r1 - r0) * cols);
-        detail::min_max_scratch<std::int32_t> si;
-        detail::min_max_scratch<float> sf;
-        std::vector<std::int32_t> lowest(cells), highest(cells);
-        std::vector<float> z_low(cells);
+        const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
+        w.lowest.resize(cells);
+        w.highest.resize(cells);
+        w.z_low.resize(cells);
         const auto load_low = [&](std::ptrdiff_t r, std::int32_t* dst) {
             const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                dst[c] = lab[c] > 0 ? lab[c] : std::numeric_limits<std::int32_t>::max();
+            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? lab[c] : std::numeric_limits<std::int32_t>::max();
         };
         const auto load_high = [&](std::ptrdiff_t r, std::int32_t* dst) {
             const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = std::max(lab[c], 0);
+            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::max(lab[c], 0);
         };
         const auto load_z = [&](std::ptrdiff_t r, float* dst) {
             const std::int32_t* lab = labels.row(r);
             const float* z = in.min_z.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
+            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
         };
-        detail::min_max_rows<detail::min_reduce<std::int32_t>>(rows, cols, qx, qy, r0, r1, load_low, lowest.data(), si);
-        detail::min_max_rows<detail::max_reduce<std::int32_t>>(rows, cols, qx, qy, r0, r1, load_high, highest.data(), si);
-        detail::min_max_rows<detail::min_reduce<float>>(rows, cols, qx, qy, r0, r1, load_z, z_low.data(), sf);
+        detail::min_max_rows<detail::min_reduce<std::int32_t>>(rows, nc, qx, qy, r0, r1, load_low, w.lowest.data(), w.si);
+        detail::min_max_rows<detail::max_reduce<std::int32_t>>(rows, nc, qx, qy, r0, r1, load_high, w.highest.data(), w.si);
+        detail::min_max_rows<detail::min_reduce<float>>(rows, nc, qx, qy, r0, r1, load_z, w.z_low.data(), w.sf);
         auto& list = found[static_cast<std::size_t>(r0 / strip)];
-        std::vector<ring_cell> near;
+        auto& near = w.near;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const std::int32_t* lab = labels.row(r);
-            const std::size_t row0 = static_cast<std::size_t>((r - r0) * cols);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const std::size_t i = row0 + static_cast<std::size_t>(c);
-                if (lab[c] != 0 || highest[i] == 0 || !has_return(r, c)) continue;
-                if (lowest[i] == highest[i]) {
-                    list.push_back({r, c, highest[i], z_low[i]});
+            const std::int32_t* lowest = w.lowest.data() + (r - r0) * nc;
+            const std::int32_t* highest = w.highest.data() + (r - r0) * nc;
+            const float* z_low = w.z_low.data() + (r - r0) * nc;
+            for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                if (lab[c] != 0 || highest[c] == 0 || !has_return(r, c)) continue;
+                if (lowest[c] == highest[c]) {
+                    list.push_back({r, c, highest[c], z_low[c]});
                     continue;
                 }
                 near.clear();  // two components or more within reach: each with its own lowest min z
                 for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q); ++rr) {
                     const std::int32_t* row = labels.row(rr);
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(cols - 1, c + q); ++cc) {
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(nc - 1, c + q); ++cc) {
                         if (row[cc] <= 0) continue;
                         const auto it = std::find_if(near.begin(), near.end(),
                                                      [&](const ring_cell& e) { return e.label == row[cc]; });
@@ -319,12 +327,14 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
     }
+    // The seed mask takes the level mask's place (connected_components has read it).
+    const std::ptrdiff_t nc = cols;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
-        std::uint8_t* d = out.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) d[c] = lab[c] > 0 ? keep[static_cast<std::size_t>(lab[c])] : 0;
+        std::uint8_t* d = level.row(r);
+        for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = lab[c] > 0 ? keep[static_cast<std::size_t>(lab[c])] : 0;
     }
-    return out;
+    return level;
 }
 
 }  // namespace lidarfx
