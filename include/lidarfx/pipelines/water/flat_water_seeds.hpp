@@ -86,6 +86,28 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
     check_execution(o.run, fn);
 }
 
+/// The largest float f with f <= t (t not NaN): for every float x, x <= f exactly when double(x) <= t, so a
+/// threshold in metres is compared in float (which vectorizes next to byte masks) with the same outcome.
+inline float float_at_most(double t) noexcept
+{
+    float f = static_cast<float>(t);  // nearest, or ±inf beyond the float range
+    if (static_cast<double>(f) > t) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+
+/// One row of flat_water_seeds' level test: a return (no dropout, finite min z, inside the footprint), not
+/// excluded, smooth (max z − min z <= max_rough) and level (window max − min of min z <= tolerance).
+/// Branch-free (& rather than &&) so that it vectorizes.
+inline void level_row(const float* z0, const float* z1, const float* lo, const float* hi, const std::uint8_t* drop,
+                      const std::uint8_t* inside, const std::uint8_t* ex, std::uint8_t* out, std::ptrdiff_t cols,
+                      float max_rough, float tolerance) noexcept
+{
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        out[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) & (ex[c] == 0) &
+                                           (z1[c] - z0[c] <= max_rough) & (hi[c] - lo[c] <= tolerance));
+    }
+}
+
 /// The element at position size / 2 of the sorted `values` (as detail::median), found without sorting:
 /// radix selection on the 32-bit keys that order floats as numbers, 16 bits per pass. Values must not be
 /// NaN; NaN when there are none. O(size + 2^16).
@@ -143,14 +165,14 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     };
     constexpr float none = std::numeric_limits<float>::quiet_NaN();
     // Level cells: smooth, not excluded, and the lowest returns of the window around them within the tolerance.
-    // The window's lowest and highest finite min z come from running min/max filters over strips of rows;
-    // the test is branch-free so that it vectorizes.
+    // The window's lowest and highest finite min z come from running min/max filters over strips of rows.
     raster<std::uint8_t> level(rows, cols, uninitialized);
     {
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
         const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
         const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
-        const double max_rough = opt.max_roughness_m, tolerance = opt.level_tolerance_m;
+        const float max_rough = detail::float_at_most(opt.max_roughness_m);
+        const float tolerance = detail::float_at_most(opt.level_tolerance_m);
         struct scratch {
             detail::min_max_scratch<float> s;
             std::vector<float> lows, highs;
@@ -158,7 +180,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         detail::for_each_strip<scratch>(
             rows, detail::min_max_strip_rows(rows, cols, ky), opt.run.threads,
             [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
-                const std::ptrdiff_t nc = cols;  // a local bound: the uint8 stores below cannot alias it
+                const std::ptrdiff_t nc = cols;
                 w.lows.resize(static_cast<std::size_t>((r1 - r0) * nc));
                 w.highs.resize(w.lows.size());
                 const auto load = [&](std::ptrdiff_t r, float* dst) {
@@ -168,20 +190,11 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(), w.s);
                 detail::min_max_rows<detail::max_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.highs.data(), w.s);
                 for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                    const float* lo = w.lows.data() + (r - r0) * nc;
-                    const float* hi = w.highs.data() + (r - r0) * nc;
-                    const float* z0 = in.min_z.row(r);
-                    const float* z1 = in.max_z.row(r);
-                    const std::uint8_t* drop = in.dropout.row(r);
-                    const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
-                    const std::uint8_t* ex = excluded.empty() ? zeros.data() : excluded.row(r);
-                    std::uint8_t* d = level.row(r);
-                    for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                        // has_return(r, c), not excluded, smooth, level: & rather than && (no branches).
-                        d[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) &
-                                                         (ex[c] == 0) & (z1[c] - z0[c] <= max_rough) &
-                                                         (hi[c] - lo[c] <= tolerance));
-                    }
+                    detail::level_row(in.min_z.row(r), in.max_z.row(r), w.lows.data() + (r - r0) * nc,
+                                      w.highs.data() + (r - r0) * nc, in.dropout.row(r),
+                                      in.footprint.empty() ? ones.data() : in.footprint.row(r),
+                                      excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), nc, max_rough,
+                                      tolerance);
                 }
             },
             {}, fn);
