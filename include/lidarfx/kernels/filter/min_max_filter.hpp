@@ -93,7 +93,8 @@ void min_max_row(const T* src, T* out, std::ptrdiff_t cols, std::ptrdiff_t k, mi
 /// load(r, T* dst) writes (cols values; NaN = no data). Rows of `h` are the horizontal pass of input rows
 /// r0 - k .. r1 + k (neutral outside the raster); vertical van Herk / Gil-Werman: those rows are cut into
 /// blocks of 2k + 1, `prefix` = Op from the block start to a row and `suffix` = Op from a row to the block
-/// end, and rows [i - k, i + k] combine as suffix(i) Op prefix(i + 2k): 3 ops per cell whatever k.
+/// end, and rows [i - k, i + k] combine as suffix(i) Op prefix(i + 2k): 3 ops per cell whatever k (for
+/// k <= 2 the 2k + 1 rows are combined directly, which is as cheap and needs no prefix and suffix rows).
 /// Writes output row r to out + (r - r0) * cols.
 template <class Op, class T, class Load>
 void min_max_rows(std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t kx, std::ptrdiff_t ky, std::ptrdiff_t r0,
@@ -116,6 +117,18 @@ void min_max_rows(std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t kx, s
     }
     if (ky == 0) {
         std::copy(s.h.begin(), s.h.begin() + static_cast<std::ptrdiff_t>(cells), out);
+        return;
+    }
+    if (ky <= 2) {  // short columns: the 2k + 1 rows directly (2k ops per cell, no prefix/suffix rows)
+        for (std::ptrdiff_t i = 0; i < r1 - r0; ++i) {
+            T* d = out + i * cols;
+            const T* first = s.h.data() + i * cols;
+            std::copy(first, first + cols, d);
+            for (std::ptrdiff_t p = i + 1; p <= i + 2 * ky; ++p) {
+                const T* x = s.h.data() + p * cols;
+                for (std::ptrdiff_t c = 0; c < cols; ++c) d[c] = Op::apply(d[c], x[c]);
+            }
+        }
         return;
     }
     s.prefix.resize(cells);
