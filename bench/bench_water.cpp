@@ -144,17 +144,23 @@ void bm_water_step_4096(benchmark::State& state)
             benchmark::DoNotOptimize(bodies.data());
             break;
         }
+        case 9: {  // with the vegetation mask excluded, as extract_waterbodies calls it
+            static const auto vegetation = lidarfx::water_vegetation(in, {.run = {.threads = 0}});
+            benchmark::DoNotOptimize(lidarfx::flat_water_seeds(in, vegetation, {.run = run}).data());
+            break;
+        }
         }
     }
     static const char* const names[] = {"assess_water_inputs", "water_vegetation", "water_angles",
                                         "water_seeds", "intensity_bins", "join_across_bridges",
-                                        "fill_small_islands", "reference::fill_small_islands", "measure_waterbodies"};
+                                        "fill_small_islands", "reference::fill_small_islands", "measure_waterbodies",
+                                        "flat_water_seeds"};
     state.SetLabel(names[state.range(0)]);
     state.SetItemsProcessed(state.iterations() * pr.g.size());
 }
 BENCHMARK(bm_water_step_4096)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {1}})
-    ->ArgsProduct({{1, 2, 3, 6}, {0}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, {1}})
+    ->ArgsProduct({{1, 2, 3, 6, 9}, {0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
