@@ -3,10 +3,12 @@
 
 #include <lidarfx/kernels/filter/min_max_filter.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 using namespace lidarfx;

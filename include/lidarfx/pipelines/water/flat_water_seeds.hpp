@@ -61,7 +61,7 @@ struct flat_water_seeds_options {
                                       ///< water-like; land fragments of a few dozen cells scatter too much to be
                                       ///< judged so), >= 0; 0 disables. Default 0.6
     std::size_t joint_min_cells = 150; ///< see max_joint_ratio, cells. Default 150
-    execution run = {};               ///< threads of the labelling kernel (same result for any count)
+    execution run = {};               ///< threads of the window filters and the labelling (same result for any count)
 };
 
 namespace detail {
@@ -88,7 +88,8 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
 
 /// The largest float f with f <= t (t not NaN): for every float x, x <= f exactly when double(x) <= t, so a
 /// threshold in metres is compared in float (which vectorizes next to byte masks) with the same outcome.
-inline float float_at_most(double t) noexcept
+/// (slope_aspect.hpp has the same helper as detail::float_at_most; this header does not need that kernel.)
+inline float float_not_above(double t) noexcept
 {
     float f = static_cast<float>(t);  // nearest, or ±inf beyond the float range
     if (static_cast<double>(f) > t) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
@@ -171,8 +172,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
         const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
         const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
-        const float max_rough = detail::float_at_most(opt.max_roughness_m);
-        const float tolerance = detail::float_at_most(opt.level_tolerance_m);
+        const float max_rough = detail::float_not_above(opt.max_roughness_m);
+        const float tolerance = detail::float_not_above(opt.level_tolerance_m);
         struct scratch {
             detail::min_max_scratch<float> s;
             std::vector<float> lows, highs;
