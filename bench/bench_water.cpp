@@ -60,7 +60,7 @@ const lidarfx::rasterize_result& rasters_4096()
     return big;
 }
 
-/// Args: threads (0 = all), flat seeds (1 = the default, 0 = dropout seeds only).
+/// Args: threads (0 = all), flat seeds (1 = on, 0 = dropout seeds only, the default).
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();

@@ -142,3 +142,18 @@ TEST_CASE("core/fast_math: select_bits picks a finished value, NaNs and signed z
     CHECK(detail::reflect_if(true, 90.0f, 30.0f) == 60.0f);
     CHECK(detail::reflect_if(false, 90.0f, 30.0f) == 30.0f);
 }
+
+TEST_CASE("core/fast_math: float_at_most compares in float as the double threshold does")
+{
+    for (double t : {0.1, 0.15, 1.0 / 3.0, -0.2, 0.0, 2.0, 1e-40, 1e300, -1e300}) {
+        const float f = detail::float_at_most(t);
+        CHECK(static_cast<double>(f) <= t);
+        // The floats around the threshold: each is <= f exactly when it is <= t in double.
+        float x = static_cast<float>(t);
+        for (int i = 0; i < 3; ++i) x = std::nextafter(x, -std::numeric_limits<float>::infinity());
+        for (int i = 0; i < 7; ++i, x = std::nextafter(x, std::numeric_limits<float>::infinity())) {
+            INFO("t = " << t << ", x = " << x);
+            CHECK((x <= f) == (static_cast<double>(x) <= t));
+        }
+    }
+}

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -125,6 +126,15 @@ constexpr float sqrt_one_plus(float u) noexcept
 {
     return horner(u, {0.0014404128305613995f, -0.0075965444557368755f, 0.019566621631383896f,
                       -0.036124978214502335f, 0.0618608333170414f, -0.12492980808019638f, 0.4999970495700836f, 1.0f});
+}
+
+/// The largest float f with f <= t (t not NaN): for every float x, x <= f exactly when double(x) <= t, so a
+/// threshold given in double is compared in float (float-to-double compares keep loops scalar on SSE2, and
+/// float compares vectorize next to byte masks) with the same outcome.
+inline float float_at_most(double t) noexcept
+{
+    const float f = static_cast<float>(t);  // nearest, or +-inf beyond the float range
+    return static_cast<double>(f) > t ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
 
 }  // namespace lidarfx::detail

@@ -90,14 +90,6 @@ inline void slope_aspect_cell(float east, float north, float flat_slope_deg, flo
     aspect = a + nan_if_flat + (s - s);
 }
 
-/// The largest float <= d: for a float s, s <= float_at_most(d) exactly when s <= d, so the flat test runs in
-/// float (a float-to-double compare keeps loops scalar on SSE2).
-inline float float_at_most(double d) noexcept
-{
-    const float f = static_cast<float>(d);
-    return static_cast<double>(f) > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-
 /// The flat flag of a cell from its slope: 1 where slope <= flat_slope_deg, 0 otherwise and for NaN (written by
 /// a loop of its own: a byte store in the slope loop keeps it scalar on SSE2).
 inline std::uint8_t is_flat_slope(float slope, float flat_slope_deg) noexcept

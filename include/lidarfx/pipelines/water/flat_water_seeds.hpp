@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/filter/min_max_filter.hpp"
@@ -84,16 +85,6 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
             o.bright_density_ratio);
     require(o.max_joint_ratio >= 0, fn, "max_joint_ratio", ">= 0", o.max_joint_ratio);
     check_execution(o.run, fn);
-}
-
-/// The largest float f with f <= t (t not NaN): for every float x, x <= f exactly when double(x) <= t, so a
-/// threshold in metres is compared in float (which vectorizes next to byte masks) with the same outcome.
-/// (slope_aspect.hpp has the same helper as detail::float_at_most; this header does not need that kernel.)
-inline float float_not_above(double t) noexcept
-{
-    float f = static_cast<float>(t);  // nearest, or ±inf beyond the float range
-    if (static_cast<double>(f) > t) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-    return f;
 }
 
 /// One row of flat_water_seeds' level test: a return (no dropout, finite min z, inside the footprint), not
@@ -172,8 +163,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
         const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
         const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
-        const float max_rough = detail::float_not_above(opt.max_roughness_m);
-        const float tolerance = detail::float_not_above(opt.level_tolerance_m);
+        const float max_rough = detail::float_at_most(opt.max_roughness_m);
+        const float tolerance = detail::float_at_most(opt.level_tolerance_m);
         struct scratch {
             detail::min_max_scratch<float> s;
             std::vector<float> lows, highs;
