@@ -30,9 +30,10 @@ for preset in bench bench-v3; do
         echo "### $preset: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2-), $(nproc) cores"
         echo "### build flags: $(grep -m1 '^CMAKE_CXX_FLAGS:' "build/$preset/CMakeCache.txt" | cut -d= -f2-)"
         echo "### peer_filter_stats.py"
-        LIDARFX_BENCH_BUILD=$dir "$python" bench/peers/peer_filter_stats.py
+        # The peer scripts exit 1 when a target is missed; the table shows which, and the run goes on.
+        LIDARFX_BENCH_BUILD=$dir "$python" bench/peers/peer_filter_stats.py || echo "(a target above was missed)"
         echo "### peer_morphology_label.py"
-        LIDARFX_BENCH_BUILD=$dir "$python" bench/peers/peer_morphology_label.py
+        LIDARFX_BENCH_BUILD=$dir "$python" bench/peers/peer_morphology_label.py || echo "(a target above was missed)"
         echo "### ks_one_sided against sort-and-sweep"
         "$dir/bench_stats" --benchmark_filter=vs_sort
         echo "### kernels at 4096^2, 1 and 2 threads"
