@@ -294,24 +294,13 @@ void ks_sweep_sorted(std::span<const K> p, std::span<const K> c, std::uint64_t i
     }
 }
 
-/// Raises t.d to the largest diff over the distinct values of p, where p and c hold (unordered) the keys of
-/// both samples inside one key interval and i0 / j0 count the values below it. Bucket-bound-and-refine:
-/// count both samples in up to 2^16 buckets of the interval; the diff at each bucket's end is a value of the
-/// statistic (lower bound), and no value inside bucket b exceeds diff(i after b, j before b) (upper bound).
-/// Only buckets whose upper bound beats the best lower bound are gathered and refined, recursively (the key
-/// range shrinks by the bucket count at each level), small ones by sorting. The values reached are the
-/// same diffs a full sort-and-sweep computes, so D is bit-identical to it. O(n + m) passes, 3 at the top.
 template <class K>
-void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0, ks_totals& t)
+void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0, ks_totals& t);
+
+/// The smallest and largest key of both samples (p not empty).
+template <class K>
+std::pair<K, K> ks_key_range(std::span<const K> p, std::span<const K> c) noexcept
 {
-    if (p.empty()) return;  // inside this interval only current rises
-    if (p.size() + c.size() <= 96) {
-        std::vector<K> sp(p.begin(), p.end()), sc(c.begin(), c.end());
-        std::sort(sp.begin(), sp.end());
-        std::sort(sc.begin(), sc.end());
-        ks_sweep_sorted<K>(sp, sc, i0, j0, t);
-        return;
-    }
     K lo = p[0], hi = p[0];
     for (const K k : p) {
         lo = k < lo ? k : lo;
@@ -321,10 +310,26 @@ void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std
         lo = k < lo ? k : lo;
         hi = k > hi ? k : hi;
     }
-    const int wanted_bits = std::clamp(static_cast<int>(std::bit_width((p.size() + c.size()) / 4)), 8, 16);
-    const int shift = std::max(0, static_cast<int>(std::bit_width(static_cast<K>(hi - lo))) - wanted_bits);
-    const std::size_t buckets = static_cast<std::size_t>(static_cast<K>(hi - lo) >> shift) + 1;
-    const auto bucket = [lo, shift](K k) { return static_cast<std::size_t>(static_cast<K>(k - lo) >> shift); };
+    return {lo, hi};
+}
+
+/// Buckets per level of ks_refine: about a quarter of the values, 2^8 to 2^16.
+inline int ks_bucket_bits(std::size_t values) noexcept
+{
+    return std::clamp(static_cast<int>(std::bit_width(values / 4)), 8, 16);
+}
+
+/// One level of bucket-bound-and-refine: count both samples (keys of one interval, unordered; i0 / j0 values
+/// of the samples lie below it) in `buckets` buckets, bucket(k) being a non-decreasing map of the keys onto
+/// [0, buckets), so equal keys share a bucket. The diff at each bucket's end is a value of the statistic
+/// (lower bound), and no value inside bucket b exceeds diff(i after b, j before b) (upper bound). Only
+/// buckets whose upper bound beats the best lower bound are gathered and refined (ks_refine), recursively,
+/// small ones by sorting. The values reached are the same diffs a full sort-and-sweep computes, so D is
+/// bit-identical to it. O(n + m) passes, 3 per level.
+template <class K, class Bucket>
+void ks_refine_buckets(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0, ks_totals& t,
+                       std::size_t buckets, Bucket bucket)
+{
     ks_key_buffer<std::uint32_t> count_p(buckets), count_c(buckets);
     std::fill(count_p.begin(), count_p.end(), 0u);
     std::fill(count_c.begin(), count_c.end(), 0u);
@@ -386,12 +391,69 @@ void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std
     }
 }
 
-/// D of two samples of keys, bit-identical to sorting both and sweeping them once.
+/// Raises t.d to the largest diff over the distinct values of p, where p and c hold (unordered) the keys of
+/// both samples inside one key interval and i0 / j0 count the values below it (see ks_refine_buckets):
+/// buckets split the key interval evenly, the interval shrinking by the bucket count at each level; small
+/// intervals are sorted and swept.
 template <class K>
-double ks_statistic_keys(std::span<const K> previous, std::span<const K> current)
+void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std::uint64_t j0, ks_totals& t)
+{
+    if (p.empty()) return;  // inside this interval only current rises
+    if (p.size() + c.size() <= 96) {
+        std::vector<K> sp(p.begin(), p.end()), sc(c.begin(), c.end());
+        std::sort(sp.begin(), sp.end());
+        std::sort(sc.begin(), sc.end());
+        ks_sweep_sorted<K>(sp, sc, i0, j0, t);
+        return;
+    }
+    const auto [lo, hi] = ks_key_range(p, c);
+    const int wanted_bits = ks_bucket_bits(p.size() + c.size());
+    const int shift = std::max(0, static_cast<int>(std::bit_width(static_cast<K>(hi - lo))) - wanted_bits);
+    const std::size_t buckets = static_cast<std::size_t>(static_cast<K>(hi - lo) >> shift) + 1;
+    ks_refine_buckets<K>(p, c, i0, j0, t, buckets,
+                         [lo, shift](K k) { return static_cast<std::size_t>(static_cast<K>(k - lo) >> shift); });
+}
+
+/// The value of a key of ks_key<T> (T float or double): its inverse.
+template <class T>
+T ks_value(ks_key_t<T> k) noexcept
+{
+    using K = ks_key_t<T>;
+    constexpr K sign = K{1} << (8 * sizeof(K) - 1);
+    return std::bit_cast<T>(k & sign ? static_cast<K>(k ^ sign) : static_cast<K>(~k));
+}
+
+/// The first level for floating samples: buckets split the *value* range evenly, bucket = floor((v - lo) *
+/// scale), which is non-decreasing in v under IEEE rounding. Keys split by their top bits put a value range
+/// such as 4096..8191 into a few buckets (one per 2^-4 of an octave), which then all need refining when the
+/// values are tied integers; even value buckets hold one or a few values each. Infinite or NaN range: keys.
+template <class T>
+void ks_refine_by_value(std::span<const ks_key_t<T>> p, std::span<const ks_key_t<T>> c, ks_totals& t)
+{
+    using K = ks_key_t<T>;
+    if (p.empty()) return;
+    const auto [lo_key, hi_key] = ks_key_range(p, c);
+    const double lo = static_cast<double>(ks_value<T>(lo_key)), span = static_cast<double>(ks_value<T>(hi_key)) - lo;
+    if (p.size() + c.size() <= 96 || !(span > 0) || !std::isfinite(span)) return ks_refine<K>(p, c, 0, 0, t);
+    const std::size_t buckets = std::size_t{1} << ks_bucket_bits(p.size() + c.size());
+    const double scale = static_cast<double>(buckets - 1) / span;
+    if (!std::isfinite(scale)) return ks_refine<K>(p, c, 0, 0, t);
+    ks_refine_buckets<K>(p, c, 0, 0, t, buckets, [lo, scale, buckets](K k) {
+        const double x = (static_cast<double>(ks_value<T>(k)) - lo) * scale;  // in [0, buckets - 1]
+        return std::min(static_cast<std::size_t>(x), buckets - 1);
+    });
+}
+
+/// D of two samples of keys of T, bit-identical to sorting both and sweeping them once.
+template <class T>
+double ks_statistic_keys(std::span<const ks_key_t<T>> previous, std::span<const ks_key_t<T>> current)
 {
     ks_totals t{static_cast<double>(previous.size()), static_cast<double>(current.size())};
-    ks_refine<K>(previous, current, 0, 0, t);
+    if constexpr (std::is_floating_point_v<T>) {
+        ks_refine_by_value<T>(previous, current, t);
+    } else {
+        ks_refine<ks_key_t<T>>(previous, current, 0, 0, t);
+    }
     return t.d;
 }
 
@@ -418,7 +480,8 @@ ks_result ks_sorted_path(const A& previous, const B& current, const ks_one_sided
         constexpr std::size_t counted = std::numeric_limits<std::uint32_t>::max();  // bucket counts are 32-bit
         if (p.size() < counted && c.size() < counted) {
             using K = ks_key_t<T>;
-            return ks_finish(ks_statistic_keys<K>(p, c), p.size(), c.size(), opt);
+            return ks_finish(ks_statistic_keys<T>(std::span<const K>(p), std::span<const K>(c)), p.size(), c.size(),
+                             opt);
         }
         std::vector<ks_key_t<T>> sp(p.begin(), p.end()), sc(c.begin(), c.end());
         std::sort(sp.begin(), sp.end());
