@@ -48,7 +48,7 @@ struct extract_waterbodies_options {
                                            ///< opening and min_seed_cells) grow after the dropout seeds. Off by
                                            ///< default: on the water family they lift sensitivity (lakes 77 -> 94 %,
                                            ///< rivers 72 -> 94 %) but lower river specificity (99.1 -> 98.5 %) and
-                                           ///< cost 2.1x the time (docs/waterbodies.md)
+                                           ///< cost about 1.5x the time (docs/waterbodies.md)
     flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
     grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
