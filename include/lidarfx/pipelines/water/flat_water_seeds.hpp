@@ -325,7 +325,9 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         // Sparse counts only when not brighter than the ring: a bright (specular) echo is one that arrived.
         const bool sparse = (density <= opt.max_density_ratio && intensity <= 1) || density <= opt.bright_density_ratio;
         const bool dark = intensity <= opt.max_intensity_ratio;
-        const double roughness = rough[l] / size / typical_rough;
+        // Against the typical roughness; on perfectly smooth data (typical 0) a smooth component is 0, not 0 / 0.
+        const double mean_rough = rough[l] / size;
+        const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical_rough;
         const bool smooth = roughness <= opt.max_roughness_ratio;
         const bool joint = comps.sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
         if (!sparse && !((dark || smooth || joint) && density <= opt.dark_density_ratio)) continue;
