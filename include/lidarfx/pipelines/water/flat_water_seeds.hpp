@@ -3,7 +3,6 @@
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +15,7 @@
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/filter/min_max_filter.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
+#include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
 namespace lidarfx {
@@ -101,29 +101,24 @@ inline void level_row(const float* z0, const float* z1, const float* lo, const f
 }
 
 /// The element at position size / 2 of the sorted `values` (as detail::median), found without sorting:
-/// radix selection on the 32-bit keys that order floats as numbers, 16 bits per pass. Values must not be
-/// NaN; NaN when there are none. O(size + 2^16).
+/// radix selection on the 32-bit keys that order floats as numbers (ks_key; -0 and +0 share one), 16 bits
+/// per pass. Values must not be NaN; NaN when there are none. O(size + 2^16).
 inline float median_by_radix(const std::vector<float>& values)
 {
     if (values.empty()) return NAN;
-    const auto key = [](float x) {
-        const auto u = std::bit_cast<std::uint32_t>(x);
-        return (u & 0x80000000u) != 0 ? ~u : u | 0x80000000u;  // negatives reversed, below positives
-    };
     std::size_t rank = values.size() / 2;  // rank of the median among the values left
     std::vector<std::size_t> histogram(std::size_t{1} << 16);
-    for (const float x : values) ++histogram[key(x) >> 16];
+    for (const float x : values) ++histogram[ks_key(x) >> 16];
     std::uint32_t high = 0;
     while (rank >= histogram[high]) rank -= histogram[high++];
     std::fill(histogram.begin(), histogram.end(), 0);
     for (const float x : values) {
-        const std::uint32_t k = key(x);
+        const std::uint32_t k = ks_key(x);
         if ((k >> 16) == high) ++histogram[k & 0xFFFFu];
     }
     std::uint32_t low = 0;
     while (rank >= histogram[low]) rank -= histogram[low++];
-    const std::uint32_t k = high << 16 | low;
-    return std::bit_cast<float>((k & 0x80000000u) != 0 ? k & 0x7FFFFFFFu : ~k);
+    return ks_value<float>(high << 16 | low);
 }
 
 }  // namespace detail
