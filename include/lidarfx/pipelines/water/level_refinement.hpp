@@ -67,15 +67,16 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
                 if (seen[rr * cols + cc] != stamp) return true;
         return false;
     };
+    const detail::cell_splitter split(cols);
     for (const auto i : region) {
-        const std::ptrdiff_t r = i / cols, c = i % cols;
+        const auto [r, c] = split(i);
         const float z = min_z(r, c);
         if (std::isfinite(z) && on_edge(r, c)) frontier.push_back({i, z, 0});
     }
     for (std::size_t q = 0; q < frontier.size(); ++q) {
         const entry e = frontier[q];
         if (e.depth >= opt.depth_cells) continue;
-        const std::ptrdiff_t r = e.cell / cols, c = e.cell % cols;
+        const auto [r, c] = split(e.cell);
         for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
             for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                 const std::ptrdiff_t rr = r + dr, cc = c + dc;

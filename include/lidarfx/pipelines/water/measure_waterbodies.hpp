@@ -45,19 +45,16 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
     detail::require_same_shape(labels, in.min_z, fn, "labels", "min_z");
     detail::require_positive(cell_m, fn, "cell_m");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    std::vector<std::size_t> size(bodies.size() + 1, 0);
-    std::int32_t lowest = 0;
+    const auto [lowest, highest] = detail::label_range(labels);
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    std::vector<std::size_t> size(std::max(bodies.size(), static_cast<std::size_t>(highest)) + 1, 0);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* label = labels.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::int32_t l = label[c];
-            lowest = std::min(lowest, l);
-            if (l <= 0) continue;  // land is not counted (size[0] is never read): no chain of increments on it
-            if (static_cast<std::size_t>(l) >= size.size()) size.resize(static_cast<std::size_t>(l) + 1, 0);
-            ++size[static_cast<std::size_t>(l)];
+            // Land is not counted (size[0] is never read): no chain of increments on it.
+            if (label[c] > 0) ++size[static_cast<std::size_t>(label[c])];
         }
     }
-    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     if (bodies.size() + 1 < size.size()) bodies.resize(size.size() - 1);
     std::vector<std::int32_t> order;
     for (std::size_t b = 1; b < size.size(); ++b)
