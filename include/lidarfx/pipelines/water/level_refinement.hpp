@@ -70,8 +70,8 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
     const detail::cell_splitter split(cols);
     for (const auto i : region) {
         const auto [r, c] = split(i);
-        const float z = min_z(r, c);
-        if (std::isfinite(z) && on_edge(r, c)) frontier.push_back({i, z, 0});
+        if (!on_edge(r, c)) continue;  // first: the stamps are in cache, the heights are not
+        if (const float z = min_z(r, c); std::isfinite(z)) frontier.push_back({i, z, 0});
     }
     for (std::size_t q = 0; q < frontier.size(); ++q) {
         const entry e = frontier[q];
