@@ -51,7 +51,7 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
     detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
-    const auto seed_lists = detail::seed_cells_flat(seeds);
+    const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
     grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
     // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
