@@ -173,7 +173,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                                                 .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
                                                 .run = kernels}),
                       raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins, in.min_z};
-    for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
+    {  // byte stores may alias anything: with the pointers in locals the loop vectorizes
+        std::uint8_t* eligible = field.eligible.data();
+        const std::uint8_t* vegetation = res.vegetation.data();
+        for (std::ptrdiff_t i = 0, n = field.eligible.size(); i < n; ++i) eligible[i] = !vegetation[i];
+    }
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.
     raster<std::uint8_t> dropout_inside;
     if (!in.footprint.empty()) {
@@ -213,7 +217,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         auto flat = opt.flat;
         flat.run = kernels;
         auto mask = flat_water_seeds(in, res.vegetation, flat);
-        for (std::ptrdiff_t i = 0; i < mask.size(); ++i) mask.data()[i] = mask.data()[i] && res.labels.data()[i] == 0;
+        std::uint8_t* cells = mask.data();
+        const std::int32_t* label = res.labels.data();
+        for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i) cells[i] = cells[i] && label[i] == 0;
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end).
         if (opt.grow.level_gate_m > 0) {
@@ -264,7 +270,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     }
     measure_waterbodies(res.labels, bodies, in, cell_m);
     res.bodies = std::move(bodies);
-    for (std::ptrdiff_t i = 0; i < res.water.size(); ++i) res.water.data()[i] = res.labels.data()[i] > 0;
+    std::uint8_t* water = res.water.data();
+    const std::int32_t* label = res.labels.data();
+    for (std::ptrdiff_t i = 0, n = res.water.size(); i < n; ++i) water[i] = label[i] > 0;
     res.angle_deg = std::move(field.angle_deg);
     detail::report(opt.run.progress, 1.0, fn);
     return res;

@@ -65,9 +65,11 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
         if (region.cells.empty()) continue;
         join_level_cells(region.cells, min_z, max_z, field.eligible, out.labels, --stamp, opt.level);
         const auto label = static_cast<std::int32_t>(out.bodies.size() + 1);
+        std::int32_t* labels = out.labels.data();  // in locals: the byte stores would reload them
+        std::uint8_t* eligible = field.eligible.data();
         for (const auto i : region.cells) {
-            out.labels.data()[i] = label;
-            field.eligible.data()[i] = 0;
+            labels[i] = label;
+            eligible[i] = 0;
         }
         auto& body = out.bodies.emplace_back();
         body.label = label;

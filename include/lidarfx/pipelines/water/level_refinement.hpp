@@ -62,6 +62,13 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
     for (const auto i : region) seen[i] = stamp;
     // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
     const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        if (r > 0 && c > 0 && r + 1 < rows && c + 1 < cols) {  // all 8 neighbours exist: no loop, no branch
+            const std::int32_t* up = seen + (r - 1) * cols + c;
+            const std::int32_t* mid = up + cols;
+            const std::int32_t* down = mid + cols;
+            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) |
+                    (mid[1] != stamp) | (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
+        }
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
             for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
                 if (seen[rr * cols + cc] != stamp) return true;
