@@ -58,10 +58,11 @@ inline void angular_offset_pass(const float* centre, const float* other, float* 
     }
 }
 
-/// best[c] for the cells [c0, c1) of a row whose whole (2R+1)^2 window lies inside the raster, R known at
-/// compile time: the window is unrolled and every value stays in registers. The offsets (+-a, +-b) and
-/// (+-b, +-a) share one distance, so their largest |dz| is taken first and multiplied once: rounding is
-/// monotone, so max(|dz|) * f equals max(|dz| * f) bit for bit, and NaN differences never win.
+/// best[c] for the cells [c0, c1) of a row whose whole (2R+1)^2 window lies inside the raster (NaN for a
+/// NaN centre, so that the row needs no second pass), R known at compile time: the window is unrolled and
+/// every value stays in registers. The offsets (+-a, +-b) and (+-b, +-a) share one distance, so their
+/// largest |dz| is taken first and multiplied once: rounding is monotone, so max(|dz|) * f equals
+/// max(|dz| * f) bit for bit, and NaN differences never win.
 template <int R>
 void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
                       const float* inv_d) noexcept
@@ -87,7 +88,7 @@ void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* bes
                 steepest = ratio > steepest ? ratio : steepest;
             }
         }
-        best[c] = steepest;
+        best[c] = select_bits(p == p, steepest, std::numeric_limits<float>::quiet_NaN());  // NaN centre: NaN
     }
 }
 
@@ -127,7 +128,10 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
             if (radius == 3) angular_interior<3>(centre, stride, best, rad, cols - rad, inv_d.data());
             // The `rad` columns at each end, cell by cell (a pass per offset would cost a call per offset).
             for (std::ptrdiff_t c : {std::ptrdiff_t{0}, cols - rad}) {
-                for (std::ptrdiff_t cc = c; cc < c + rad; ++cc) best[cc] = angular_cell(z, r, cc, rad, inv_d.data());
+                for (std::ptrdiff_t cc = c; cc < c + rad; ++cc) {
+                    const float steepest = angular_cell(z, r, cc, rad, inv_d.data());
+                    best[cc] = centre[cc] == centre[cc] ? steepest : std::numeric_limits<float>::quiet_NaN();
+                }
             }
         } else {
             std::fill(best_row.begin(), best_row.end(), 0.0f);
@@ -138,11 +142,11 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
                     angular_offset_pass(centre, z.row(r + dr), best, cols, dc, inv, 0, cols);
                 }
             }
-        }
-        // A NaN centre gives NaN through atan. (Kept out of the atan loop: a select there between the atan and a
-        // constant makes compilers branch around the atan, and the loop no longer vectorizes.)
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            best[c] = centre[c] == centre[c] ? best[c] : std::numeric_limits<float>::quiet_NaN();
+            // A NaN centre gives NaN through atan. (Kept out of the atan loop: a select there between the atan
+            // and a constant makes compilers branch around the atan, and the loop no longer vectorizes.)
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                best[c] = centre[c] == centre[c] ? best[c] : std::numeric_limits<float>::quiet_NaN();
+            }
         }
         float* o = out.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) o[c] = atan_deg(best[c]);
