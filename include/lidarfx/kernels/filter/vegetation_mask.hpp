@@ -54,11 +54,18 @@ void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vege
                                                  : raster<std::uint8_t>();
         const raster_view<std::uint8_t> t = close ? spread_mask.view() : o;
         parallel_for_rows(o.rows(), 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            // Row pointers and the threshold in locals: a byte store may alias the views' own fields, which
+            // would be reloaded per cell and keep the loop scalar.
+            const std::ptrdiff_t cols = o.cols();
+            const double height = opt.height_m;
             for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                for (std::ptrdiff_t c = 0; c < o.cols(); ++c) {
+                const auto* low = a.row(r);
+                const auto* high = b.row(r);
+                std::uint8_t* mask = t.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     // A NaN on either side makes the comparison false: no return, no vegetation.
-                    const double spread = static_cast<double>(b(r, c)) - static_cast<double>(a(r, c));
-                    t(r, c) = static_cast<std::uint8_t>(spread > opt.height_m);
+                    const double spread = static_cast<double>(high[c]) - static_cast<double>(low[c]);
+                    mask[c] = static_cast<std::uint8_t>(spread > height);
                 }
             }
         }, detail::progress_phase(opt.run.progress, 0.0, close ? 0.2 : 1.0), function);
@@ -76,7 +83,7 @@ template <raster_input MinZ, raster_input MaxZ>
     requires std::is_arithmetic_v<typename MinZ::value_type> && std::is_arithmetic_v<typename MaxZ::value_type>
 raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_mask_options& opt = {})
 {
-    raster<std::uint8_t> out(min_z.rows(), min_z.cols());
+    raster<std::uint8_t> out(min_z.rows(), min_z.cols(), uninitialized);  // every cell is written
     vegetation_mask(min_z, max_z, out, opt);
     return out;
 }

@@ -51,11 +51,12 @@ inline raster<std::uint8_t> water_vegetation(const water_rasters& in, const wate
                                                               .closing_size_cells = opt.closing_size_cells,
                                                               .run = {.threads = opt.run.threads}});
     if (opt.from_multiple_returns && !in.multiple_returns.empty()) {
-        for (std::ptrdiff_t r = 0; r < vegetation.rows(); ++r) {
+        const std::ptrdiff_t rows = vegetation.rows(), cols = vegetation.cols();  // locals: see vegetation_mask
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
             const std::uint8_t* multiple = in.multiple_returns.row(r);
             const std::uint8_t* dropout = in.dropout.row(r);
             std::uint8_t* v = vegetation.row(r);
-            for (std::ptrdiff_t c = 0; c < vegetation.cols(); ++c)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
                 v[c] = static_cast<std::uint8_t>(v[c] | ((multiple[c] != 0) & (dropout[c] == 0)));
         }
     }
