@@ -4,7 +4,9 @@
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/water/assess_water_inputs.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 #include <string>
 
@@ -187,4 +189,54 @@ TEST_CASE("water/assess_water_inputs: bad arguments are refused")
                          invalid_input);
     CHECK_THROWS_WITH_AS(assess_water_inputs(s.view(), 1.0, {.min_points_per_cell = -1}),
                          "assess_water_inputs: min_points_per_cell must be >= 0 (got -1)", invalid_input);
+}
+
+TEST_CASE("water/assess_water_inputs: the intensity range and dropout share equal a plain loop, with NaN, inf, "
+          "signed zeros and a footprint")
+{
+    std::mt19937 rng(31);
+    const float specials[] = {NAN, INFINITY, -INFINITY, 0.0f, -0.0f, -5.5f, 1e30f};
+    for (int trial = 0; trial < 80; ++trial) {
+        CAPTURE(trial);
+        const std::ptrdiff_t rows = 1 + rng() % 9, cols = 1 + rng() % 70;
+        survey s(rows, cols);
+        raster<std::uint8_t> footprint(rows, cols, 1);
+        const int one_value = trial % 4 == 0;  // constant intensity: the range must collapse
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                s.intensity(r, c) = one_value ? 12.0f : static_cast<float>(rng() % 200) - 50.0f;
+                if (rng() % 9 == 0) s.intensity(r, c) = specials[rng() % 7];
+                if (rng() % 5 == 0) s.drop(r, c);
+                if (trial % 2 && rng() % 4 == 0) footprint(r, c) = 0;
+            }
+        }
+        auto in = s.view();
+        if (trial % 2) in.footprint = footprint;
+        // The definition, one cell at a time.
+        float lo = INFINITY, hi = -INFINITY;
+        std::size_t inside = 0, dropouts = 0;
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                if (trial % 2 && !footprint(r, c)) continue;
+                ++inside;
+                if (s.dropout(r, c)) {
+                    ++dropouts;
+                    continue;
+                }
+                const float v = s.intensity(r, c);
+                if (std::isnan(v)) continue;
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        const auto d = assess_water_inputs(in, 1.0);
+        CHECK(d.has_intensity == (hi > lo));
+        const double cells = static_cast<double>(std::max<std::size_t>(inside, 1));
+        CHECK(d.dropout_fraction == doctest::Approx(static_cast<double>(dropouts) / cells));
+        const bool constant = !d.issues.empty() && d.issues[0].kind == water_issue_kind::intensity_constant;
+        const bool none = !d.issues.empty() && d.issues[0].kind == water_issue_kind::no_returns;
+        CHECK(constant == (lo == hi));
+        CHECK(none == (lo > hi));
+        if (constant) CHECK(d.issues[0].intensity == lo);
+    }
 }

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -121,9 +123,9 @@ inline std::string water_issue::message() const
 
 /// Checks whether the rasters can support the waterbody method: intensity that varies between cells with
 /// returns (the KS stop compares intensity distributions), point density (needs `count`): mean points per
-/// cell p = points / cells (cells inside the footprint when one is given) against min_points_per_cell, with suggested cell ceil(2·sqrt(min / (points per
-/// m²))) / 2 m (at least cell_m), and multiple returns (vegetation). Blocking findings are problems, the
-/// others warnings. O(cells).
+/// cell p = points / cells (cells inside the footprint when one is given) against min_points_per_cell, with
+/// suggested cell ceil(2·sqrt(min / (points per m²))) / 2 m (at least cell_m), and multiple returns
+/// (vegetation). Blocking findings are problems, the others warnings. O(cells), one vectorized pass.
 /// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, min_points_per_cell < 0.
 inline water_diagnostics assess_water_inputs(const water_rasters& in, double cell_m,
                                              const assess_water_inputs_options& opt = {})
@@ -135,7 +137,13 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
     water_diagnostics d;
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     std::uint64_t points = 0, dropouts = 0, inside = 0;
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    // The intensity range over cells with a return, as integer keys that order floats as numbers
+    // (key = bits ^ ((bits >> 31) & 0x7fffffff), its own inverse) and integer masks: the loop vectorizes,
+    // which float min / max reductions with selects do not. NaN changes neither bound.
+    constexpr std::int32_t most = std::numeric_limits<std::int32_t>::max();
+    constexpr std::int32_t least = std::numeric_limits<std::int32_t>::min();
+    const auto key = [](std::int32_t bits) { return bits ^ ((bits >> 31) & 0x7fffffff); };
+    std::int32_t lo_key = most, hi_key = least;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::uint8_t* dropout = in.dropout.row(r);
         const float* mean = in.mean_intensity.row(r);
@@ -143,20 +151,31 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
             const std::uint32_t* count = in.count.row(r);
             for (std::ptrdiff_t c = 0; c < cols; ++c) points += count[c];
         }
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (!detail::inside_footprint(in, r, c)) continue;  // no data: neither a dropout nor a cell of the survey
-            ++inside;
-            dropouts += dropout[c] != 0;
-            // NaN compares false, so it changes neither bound.
-            const float v = dropout[c] ? lo : mean[c];
-            lo = std::min(lo, v);
-            hi = std::max(hi, dropout[c] ? hi : v);
-        }
+        // Outside the footprint: no data, neither a dropout nor a cell of the survey.
+        const std::uint8_t* footprint = in.footprint.empty() ? nullptr : in.footprint.row(r);
+        const auto scan = [&](auto with_footprint) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const std::int32_t flown = with_footprint ? footprint[c] != 0 : 1;
+                inside += static_cast<std::uint32_t>(flown);
+                dropouts += static_cast<std::uint32_t>(flown & (dropout[c] != 0));
+                const auto bits = std::bit_cast<std::int32_t>(mean[c]);
+                const std::int32_t number = (bits & 0x7fffffff) <= 0x7f800000;  // not NaN
+                const std::int32_t mask = -(flown & (dropout[c] == 0) & number);
+                const std::int32_t k = key(bits);
+                lo_key = std::min(lo_key, (k & mask) | (most & ~mask));
+                hi_key = std::max(hi_key, (k & mask) | (least & ~mask));
+            }
+        };
+        if (footprint) scan(std::true_type{});
+        else scan(std::false_type{});
         if (!in.multiple_returns.empty() && !d.has_multiple_returns) {
             const std::uint8_t* multiple = in.multiple_returns.row(r);
             for (std::ptrdiff_t c = 0; c < cols; ++c) d.has_multiple_returns |= multiple[c] && !dropout[c];
         }
     }
+    const bool any_return = hi_key != least;
+    const float lo = any_return ? std::bit_cast<float>(key(lo_key)) : std::numeric_limits<float>::infinity();
+    const float hi = any_return ? std::bit_cast<float>(key(hi_key)) : -std::numeric_limits<float>::infinity();
     const double cells = static_cast<double>(std::max<std::uint64_t>(inside, 1));
     d.dropout_fraction = static_cast<double>(dropouts) / cells;
     d.has_intensity = hi > lo;

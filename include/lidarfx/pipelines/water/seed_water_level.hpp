@@ -36,9 +36,11 @@ inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), n = rows * cols;
     const std::ptrdiff_t k = opt.ring_cells;
     std::vector<std::ptrdiff_t> ring;
+    const detail::cell_splitter split(cols);
     for (const auto i : seed) {
-        detail::require(i >= 0 && i < n, fn, "seed cell index", "inside min_z", i);
-        const std::ptrdiff_t r = i / cols, c = i % cols;
+        if (i < 0 || i >= n) [[unlikely]]
+            detail::require(false, fn, "seed cell index", "inside min_z", i);
+        const auto [r, c] = split(i);
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr)
             for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
                 if (std::isfinite(min_z(rr, cc))) ring.push_back(rr * cols + cc);
@@ -49,7 +51,10 @@ inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view
     if (ring.empty()) return NAN;
     std::vector<float> z;
     z.reserve(ring.size());
-    for (const auto i : ring) z.push_back(min_z(i / cols, i % cols));
+    for (const auto i : ring) {
+        const auto [r, c] = split(i);
+        z.push_back(min_z(r, c));
+    }
     const auto at = z.begin() + static_cast<std::ptrdiff_t>(std::floor(opt.quantile * static_cast<double>(z.size() - 1)));
     std::nth_element(z.begin(), at, z.end());
     return *at;
