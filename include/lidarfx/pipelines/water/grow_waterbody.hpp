@@ -171,7 +171,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     const float seed_level =
         gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
     for (const auto i : seed_cells) {
-        detail::require(i >= 0 && i < n, fn, "seed cell index", "inside the field", i);
+        if (i < 0 || i >= n) [[unlikely]]
+            detail::require(false, fn, "seed cell index", "inside the field", i);
         const auto [r, c] = split(i);
         push(i, r, c, 0, seed_level);
     }

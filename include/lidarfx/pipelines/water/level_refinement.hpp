@@ -54,7 +54,10 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
     detail::require_same_shape(min_z, visited, fn, "min_z", "visited");
     detail::validate(opt, fn);
     const std::ptrdiff_t rows = eligible.rows(), cols = eligible.cols();
-    for (const auto i : region) detail::require(i >= 0 && i < rows * cols, fn, "region cell index", "inside the rasters", i);
+    for (const auto i : region) {
+        if (i < 0 || i >= rows * cols) [[unlikely]]
+            detail::require(false, fn, "region cell index", "inside the rasters", i);
+    }
     if (opt.tolerance_m <= 0 || opt.depth_cells <= 0) return;
     struct entry { std::ptrdiff_t cell; float level; int depth; };
     std::vector<entry> frontier;
