@@ -23,6 +23,17 @@
 #include <numbers>
 #include <type_traits>
 
+/// Put before a loop whose stores never feed its own loads, such as a gather from a lookup table into a
+/// raster: GCC then vectorizes the gather, which it otherwise refuses for a possible alias between the
+/// two. Expands to nothing on compilers without such a hint.
+#if defined(__clang__)
+#define LIDARFX_IVDEP _Pragma("clang loop vectorize(assume_safety)")
+#elif defined(__GNUC__)
+#define LIDARFX_IVDEP _Pragma("GCC ivdep")
+#else
+#define LIDARFX_IVDEP
+#endif
+
 namespace lidarfx::detail {
 
 /// Polynomial c[0] x^(N-1) + c[1] x^(N-2) + ... + c[N-1] by Horner's scheme, p = p * x + c[i]; the loop is

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
@@ -102,9 +103,7 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
         for (auto& k : rank) k = k ? next++ : -1;
         result.bins = std::max(1, static_cast<int>(next));
         const std::int32_t* ranks = rank.data();
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC ivdep
-#endif
+        LIDARFX_IVDEP
         for (std::ptrdiff_t i = 0; i < n; ++i) cell[i] = ranks[offset(cell[i])];
         return result;
     }
