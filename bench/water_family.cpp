@@ -9,7 +9,8 @@
 // WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
 // options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching), WF_SLOPE
-// (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options);
+// (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_FLAT_SLOPE
+// (flat.max_surface_slope);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -152,6 +153,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_BAND")) o.surface_slope.band_m = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_RAD")) o.surface_slope.radius_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_SLOPE_MIN")) o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_TOUCH")) o.bridge_join_touching = std::atoi(v) != 0;

@@ -223,7 +223,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
         auto flat = opt.flat;
         flat.run = kernels;
-        auto mask = flat_water_seeds(in, res.vegetation, flat);
+        auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope);
         for (std::ptrdiff_t i = 0; i < mask.size(); ++i) mask.data()[i] = mask.data()[i] && res.labels.data()[i] == 0;
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end).
