@@ -25,12 +25,41 @@ struct water_surface_slope_options {
     execution run = {};          ///< threads (rows are independent; same result for any count)
 };
 
+namespace detail {
+
+/// One offset (x, y) of water_surface_slope's window over `count` cells of a row: the sums of the
+/// neighbours nb[c] within ±band of the cell's own z0[c] (NaN on either side: left out). Branch-free over
+/// separate arrays, so it vectorizes.
+inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count,
+                       float x, float y, float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
+                       float* __restrict sxx, float* __restrict syy, float* __restrict sxy, float* __restrict sz,
+                       float* __restrict sxz, float* __restrict syz) noexcept
+{
+    const float xx = x * x, yy = y * y, xy = x * y;
+    for (std::ptrdiff_t c = 0; c < count; ++c) {
+        const float d = nb[c] - z0[c];
+        const bool in = std::fabs(d) <= band;
+        const float m = in ? 1.0f : 0.0f, dz = in ? d : 0.0f;
+        n[c] += m;
+        sx[c] += m * x;
+        sy[c] += m * y;
+        sxx[c] += m * xx;
+        syy[c] += m * yy;
+        sxy[c] += m * xy;
+        sz[c] += dz;
+        sxz[c] += dz * x;
+        syz[c] += dz * y;
+    }
+}
+
+}  // namespace detail
+
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
 /// z = a + b·x + c·y through the min z of the (2·radius_cells + 1)² window (clipped at the raster border)
 /// that lie within band_m of the cell's own, sqrt(b² + c²) in metres per metre (0 = level); NaN where the
 /// cell has no return, the window holds fewer than min_cells such returns, or they lie on a line. A water surface is level to the range noise (a river falls a few mm per
 /// metre at most); beaches, banks and meadows rising from the water are not. cell_m in metres.
-/// O(cells · (2·radius_cells + 1)²).
+/// O(cells · (2·radius_cells + 1)²), vectorized along rows.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 inline raster<float> water_surface_slope(raster_view<const float> min_z, double cell_m,
                                          const water_surface_slope_options& opt = {})
@@ -43,29 +72,47 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
     detail::check_execution(opt.run, fn);
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), k = opt.radius_cells;
     raster<float> out(rows, cols, NAN);
+    const float band = static_cast<float>(opt.band_m);
+    const auto need = static_cast<float>(opt.min_cells);
+    // Per row, the window's sums are accumulated offset by offset over the whole row (contiguous, so the
+    // loops vectorize), in float: heights enter relative to the cell's own, within ±band_m.
     parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const auto n_cols = static_cast<std::size_t>(cols);
+        std::vector<float> sums(9 * n_cols);
+        float* n = sums.data();
+        float* sx = n + n_cols;
+        float* sy = sx + n_cols;
+        float* sxx = sy + n_cols;
+        float* syy = sxx + n_cols;
+        float* sxy = syy + n_cols;
+        float* sz = sxy + n_cols;
+        float* sxz = sz + n_cols;
+        float* syz = sxz + n_cols;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                // Normal equations of the plane in window coordinates (cells), heights about the first return.
-                double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sz = 0, sxz = 0, syz = 0;
-                const float z0 = min_z(r, c);
-                if (!std::isfinite(z0)) continue;
-                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc) {
-                        const float zf = min_z(rr, cc);
-                        const double z = static_cast<double>(zf) - z0;
-                        if (!(std::abs(z) <= opt.band_m)) continue;  // also skips NaN
-                        const double x = static_cast<double>(cc - c), y = static_cast<double>(rr - r);
-                        n += 1, sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
-                        sz += z, sxz += x * z, syz += y * z;
-                    }
+            std::fill(sums.begin(), sums.end(), 0.0f);
+            const float* z0 = min_z.row(r);
+            for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
+                if (r + dr < 0 || r + dr >= rows) continue;
+                const float* zr = min_z.row(r + dr);
+                const auto y = static_cast<float>(dr);
+                for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
+                    const auto x = static_cast<float>(dc);
+                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
+                    detail::slope_sums(zr + c0 + dc, z0 + c0, c1 - c0, x, y, band, n + c0, sx + c0, sy + c0, sxx + c0,
+                                       syy + c0, sxy + c0, sz + c0, sxz + c0, syz + c0);
                 }
-                if (n < static_cast<double>(opt.min_cells)) continue;
-                // Centre the sums on the mean position: b, c solve the 2 × 2 system of the covariances.
-                const double cxx = sxx - sx * sx / n, cyy = syy - sy * sy / n, cxy = sxy - sx * sy / n;
-                const double cxz = sxz - sx * sz / n, cyz = syz - sy * sz / n;
+            }
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                if (!(n[c] >= need)) continue;
+                // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances.
+                const double w = n[c];
+                const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
+                const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
+                const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
+                const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
+                const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
                 const double det = cxx * cyy - cxy * cxy;
-                if (!(det > 1e-9 * (cxx * cyy + 1))) continue;
+                if (!(det > 1e-6 * (cxx * cyy + 1))) continue;
                 const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
                 out(r, c) = static_cast<float>(std::sqrt(b * b + g * g) / cell_m);
             }
