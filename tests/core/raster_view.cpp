@@ -4,9 +4,11 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/core/raster_view.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -236,4 +238,27 @@ TEST_CASE("core/raster: uninitialized rasters have the shape and take writes")
     small.fill(4);
     CHECK(small == raster<std::int32_t>(2, 3, 4));
     CHECK_THROWS_AS(raster<int>(-1, 3, uninitialized), invalid_input);
+}
+
+TEST_CASE("core/raster_view: cell_splitter splits linear indices exactly as / and % do")
+{
+    std::mt19937_64 rng(17);
+    const std::ptrdiff_t limit = static_cast<std::ptrdiff_t>(lidarfx::max_raster_cells);
+    const std::vector<std::ptrdiff_t> widths{1, 2, 3, 7, 1000, 4096, 4097, 65535, 1 << 20, 999'999'937,
+                                             std::ptrdiff_t{1} << 39, limit - 1, limit};
+    for (const std::ptrdiff_t cols : widths) {
+        const lidarfx::detail::cell_splitter split(cols);
+        const std::ptrdiff_t rows = std::max<std::ptrdiff_t>(1, limit / cols);
+        std::vector<std::ptrdiff_t> probes{0, cols - 1, rows * cols - 1};
+        for (std::ptrdiff_t r : {std::ptrdiff_t{1}, rows / 2, rows - 1})  // both sides of row starts
+            for (std::ptrdiff_t d : {-1, 0, 1})
+                if (const std::ptrdiff_t i = r * cols + d; i >= 0 && i < rows * cols) probes.push_back(i);
+        std::uniform_int_distribution<std::ptrdiff_t> any(0, rows * cols - 1);
+        for (int k = 0; k < 2000; ++k) probes.push_back(any(rng));
+        for (const std::ptrdiff_t i : probes) {
+            const auto [r, c] = split(i);
+            REQUIRE(r == i / cols);
+            REQUIRE(c == i % cols);
+        }
+    }
 }

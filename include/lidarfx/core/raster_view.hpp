@@ -9,6 +9,7 @@
 #include <limits>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "lidarfx/core/error.hpp"
 
@@ -43,6 +44,32 @@ constexpr void require_raster_cells(std::ptrdiff_t rows, std::ptrdiff_t cols, st
         throw invalid_input(concat(function, ": ", what, " must be <= 2^40 cells (got ", rows, " x ", cols, ")"));
     }
 }
+
+/// Splits linear cell indices i = r * cols + c (0 <= i < max_raster_cells) into row and column without an
+/// integer division: r = ⌊i · (1 / cols)⌋ in double, which below 2^40 is off by at most one (the product's
+/// error is < 2^-11), then corrected. For the hot loops of floods, where a division per cell costs more
+/// than the cell's work.
+struct cell_splitter {
+    std::ptrdiff_t cols = 1;
+    double inverse = 1.0;
+
+    explicit cell_splitter(std::ptrdiff_t columns) noexcept
+        : cols(columns), inverse(columns > 0 ? 1.0 / static_cast<double>(columns) : 0.0) {}
+
+    std::pair<std::ptrdiff_t, std::ptrdiff_t> operator()(std::ptrdiff_t i) const noexcept
+    {
+        auto r = static_cast<std::ptrdiff_t>(static_cast<double>(i) * inverse);
+        std::ptrdiff_t c = i - r * cols;
+        if (c < 0) {
+            --r;
+            c += cols;
+        } else if (c >= cols) {
+            ++r;
+            c -= cols;
+        }
+        return {r, c};
+    }
+};
 
 }  // namespace detail
 

@@ -69,12 +69,14 @@ TEST_CASE("water/intensity_bins: no sample at all gives one bin and -1 everywher
 TEST_CASE("water/intensity_bins: small, negative and very wide ranges all equal the definition")
 {
     std::mt19937 rng(99);
-    for (int trial = 0; trial < 60; ++trial) {
+    for (int trial = 0; trial < 100; ++trial) {
         CAPTURE(trial);
         const std::ptrdiff_t rows = 1 + rng() % 20, cols = 1 + rng() % 20;
-        // Three regimes: 16-bit LAS values, values with negatives, a range wider than 2^24.
-        const double lo = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? -500.0 : -3.0e7;
-        const double hi = trial % 3 == 0 ? 65535.0 : trial % 3 == 1 ? 500.0 : 3.0e7;
+        // Five regimes: 16-bit LAS values, values with negatives, a range wider than 2^24, values on both
+        // sides of the +-1e9 limit of the integer pass (a narrow range there), values far beyond it.
+        const int regime = trial % 5;
+        const double lo = regime == 0 ? 0.0 : regime == 1 ? -500.0 : regime == 2 ? -3.0e7 : regime == 3 ? 0.99999e9 : -1.0e15;
+        const double hi = regime == 0 ? 65535.0 : regime == 1 ? 500.0 : regime == 2 ? 3.0e7 : regime == 3 ? 1.00001e9 : 1.0e15;
         std::uniform_real_distribution<double> value(lo, hi);
         raster<float> v(rows, cols);
         raster<std::uint8_t> d(rows, cols);
@@ -82,7 +84,10 @@ TEST_CASE("water/intensity_bins: small, negative and very wide ranges all equal 
             v.data()[i] = rng() % 10 == 0 ? NAN : static_cast<float>(value(rng));
             d.data()[i] = rng() % 7 == 0;
         }
-        const double resolution = trial % 2 ? 1.0 : 0.25 * static_cast<double>(1 + rng() % 8);
+        if (regime == 3 && trial % 2) {  // the mirror image: just below -1e9 and above it
+            for (std::ptrdiff_t i = 0; i < v.size(); ++i) v.data()[i] = -v.data()[i];
+        }
+        const double resolution = trial % 2 || regime >= 3 ? 1.0 : 0.25 * static_cast<double>(1 + rng() % 8);
         const auto got = intensity_bins(v, d, {.resolution = resolution});
         const auto expected = reference_bins(v, d, resolution);
         CHECK(got.bins == expected.bins);

@@ -10,7 +10,10 @@
 
 #include "water_test_rasters.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 
 using namespace lidarfx;
@@ -111,4 +114,34 @@ TEST_CASE("water/water_rasters: the steps that read the survey give the same res
         CHECK(std::memcmp(&bodies_a[k].mean_intensity, &bodies_b[k].mean_intensity, sizeof(double)) == 0);
         CHECK(std::memcmp(&bodies_a[k].water_level_m, &bodies_b[k].water_level_m, sizeof(double)) == 0);
     }
+}
+
+TEST_CASE("water/median: the element at position n / 2 of the sorted values, below and above the radix size")
+{
+    std::mt19937 rng(5);
+    const std::size_t radix_from = std::size_t{1} << 16;
+    for (const std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{7}, radix_from - 1, radix_from,
+                                radix_from + 1, 3 * radix_from + 5}) {
+        for (int kind = 0; kind < 4; ++kind) {
+            std::vector<float> v(n);
+            std::normal_distribution<float> level(12.5f, 0.3f);
+            std::uniform_int_distribution<int> few(-3, 3);
+            for (std::size_t i = 0; i < n; ++i) {
+                switch (kind) {
+                case 0: v[i] = level(rng); break;                                  // heights of one level
+                case 1: v[i] = static_cast<float>(few(rng)) * 0.5f; break;         // ties, negatives, zeros
+                case 2: v[i] = i % 2 ? 0.0f : -0.0f; break;                        // signed zeros only
+                default: v[i] = i % 97 == 0 ? std::numeric_limits<float>::infinity() : -level(rng);  // inf, < 0
+                }
+            }
+            auto sorted = v;
+            std::sort(sorted.begin(), sorted.end());
+            const double expected = sorted[n / 2];
+            const double m = detail::median(v);
+            CHECK(m == expected);
+            CHECK_FALSE((std::signbit(m) && m == 0));  // a median of zeros is +0
+        }
+    }
+    std::vector<float> none;
+    CHECK(std::isnan(detail::median(none)));
 }

@@ -81,6 +81,30 @@ TEST_CASE("water/seed_cells: the cells of every seed in raster-scan order")
     CHECK(cells[2] == std::vector<std::ptrdiff_t>{1, 2, 5});
 }
 
+TEST_CASE("water/seed_cells: blocks of empty cells are skipped; sizes that do not match are recounted")
+{
+    std::mt19937 rng(64);
+    for (int trial = 0; trial < 30; ++trial) {
+        CAPTURE(trial);
+        const std::ptrdiff_t rows = 1 + rng() % 9, cols = 1 + rng() % 300;  // rows longer than a 64-cell block
+        const std::int32_t count = 1 + static_cast<std::int32_t>(rng() % 5);
+        components s{raster<std::int32_t>(rows, cols, 0), std::vector<std::size_t>(static_cast<std::size_t>(count) + 1, 0)};
+        std::vector<std::vector<std::ptrdiff_t>> expected(static_cast<std::size_t>(count) + 1);
+        for (std::ptrdiff_t i = 0; i < s.labels.size(); ++i) {
+            if (rng() % 23 != 0) continue;  // sparse, so that most blocks are empty
+            const auto l = static_cast<std::int32_t>(1 + rng() % static_cast<unsigned>(count));
+            s.labels.data()[i] = l;
+            expected[static_cast<std::size_t>(l)].push_back(i);
+        }
+        for (std::size_t l = 1; l < expected.size(); ++l) s.sizes[l] = expected[l].size();
+        if (trial % 3 == 1) s.sizes[1] += 2;                            // too large
+        if (trial % 3 == 2 && s.sizes.back() > 0) --s.sizes.back();     // too small
+        CHECK(seed_cells(s) == expected);
+    }
+    components bad{water_test::grid_of<std::int32_t>({{0, 3}}), {0, 1}};  // label 3 of 1 seed
+    CHECK_THROWS_AS(seed_cells(bad), invalid_input);
+}
+
 TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definition on random masks")
 {
     std::mt19937 rng(8080);

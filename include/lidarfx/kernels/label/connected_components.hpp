@@ -475,9 +475,10 @@ raster<std::uint8_t> remove_small_components(const In& m, std::size_t min_cells,
     raster<std::uint8_t> out(m.rows(), m.cols(), uninitialized);  // every cell is written below
     std::vector<std::uint8_t> keep(comps.sizes.size(), 0);
     for (std::size_t l = 1; l < keep.size(); ++l) keep[l] = comps.sizes[l] >= min_cells ? 1 : 0;
-    for (std::ptrdiff_t i = 0; i < out.size(); ++i) {
-        out.data()[i] = keep[static_cast<std::size_t>(comps.labels.data()[i])];
-    }
+    std::uint8_t* cells = out.data();  // in locals: the byte stores would reload them
+    const std::int32_t* labels = comps.labels.data();
+    const std::uint8_t* kept = keep.data();
+    for (std::ptrdiff_t i = 0, n = out.size(); i < n; ++i) cells[i] = kept[static_cast<std::size_t>(labels[i])];
     return out;
 }
 

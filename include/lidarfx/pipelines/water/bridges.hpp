@@ -48,20 +48,17 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
                                         const char* fn)
 {
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    std::vector<std::vector<float>> heights(1);
-    std::int32_t lowest = 0;
+    const auto [lowest, highest] = detail::label_range(labels);
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    std::vector<std::vector<float>> heights(static_cast<std::size_t>(highest) + 1);
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
         const std::int32_t* label = labels.row(r);
         const float* z = min_z.row(r);
         for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
             const std::int32_t l = label[c];
-            lowest = std::min(lowest, l);
-            if (l <= 0) continue;
-            if (static_cast<std::size_t>(l) >= heights.size()) heights.resize(static_cast<std::size_t>(l) + 1);
-            if (std::isfinite(z[c])) heights[static_cast<std::size_t>(l)].push_back(z[c]);
+            if (l > 0 && std::isfinite(z[c])) heights[static_cast<std::size_t>(l)].push_back(z[c]);
         }
     }
-    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     std::vector<double> level(heights.size(), NAN);
     for (std::size_t l = 1; l < heights.size(); ++l) level[l] = detail::median(heights[l]);
     return level;

@@ -177,7 +177,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                                                 .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
                                                 .run = kernels}),
                       raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins, in.min_z};
-    for (std::ptrdiff_t i = 0; i < field.eligible.size(); ++i) field.eligible.data()[i] = !res.vegetation.data()[i];
+    {  // byte stores may alias anything: with the pointers in locals the loop vectorizes
+        std::uint8_t* eligible = field.eligible.data();
+        const std::uint8_t* vegetation = res.vegetation.data();
+        for (std::ptrdiff_t i = 0, n = field.eligible.size(); i < n; ++i) eligible[i] = !vegetation[i];
+    }
     raster<float> surface_slope;  // the level follows min z only where the surface is level
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0) {
         auto so = opt.surface_slope;
@@ -224,7 +228,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         auto flat = opt.flat;
         flat.run = kernels;
         auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope);
-        for (std::ptrdiff_t i = 0; i < mask.size(); ++i) mask.data()[i] = mask.data()[i] && res.labels.data()[i] == 0;
+        std::uint8_t* cells = mask.data();
+        const std::int32_t* label = res.labels.data();
+        for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i) cells[i] = cells[i] && label[i] == 0;
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end).
         if (opt.grow.level_gate_m > 0) {
@@ -275,7 +281,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     }
     measure_waterbodies(res.labels, bodies, in, cell_m);
     res.bodies = std::move(bodies);
-    for (std::ptrdiff_t i = 0; i < res.water.size(); ++i) res.water.data()[i] = res.labels.data()[i] > 0;
+    std::uint8_t* water = res.water.data();
+    const std::int32_t* label = res.labels.data();
+    for (std::ptrdiff_t i = 0, n = res.water.size(); i < n; ++i) water[i] = label[i] > 0;
     res.angle_deg = std::move(field.angle_deg);
     detail::report(opt.run.progress, 1.0, fn);
     return res;

@@ -106,27 +106,6 @@ inline void level_row(const float* z0, const float* z1, const float* lo, const f
     }
 }
 
-/// The element at position size / 2 of the sorted `values` (as detail::median), found without sorting:
-/// radix selection on the 32-bit keys that order floats as numbers (ks_key; -0 and +0 share one), 16 bits
-/// per pass. Values must not be NaN; NaN when there are none. O(size + 2^16).
-inline float median_by_radix(const std::vector<float>& values)
-{
-    if (values.empty()) return NAN;
-    std::size_t rank = values.size() / 2;  // rank of the median among the values left
-    std::vector<std::size_t> histogram(std::size_t{1} << 16);
-    for (const float x : values) ++histogram[ks_key(x) >> 16];
-    std::uint32_t high = 0;
-    while (rank >= histogram[high]) rank -= histogram[high++];
-    std::fill(histogram.begin(), histogram.end(), 0);
-    for (const float x : values) {
-        const std::uint32_t k = ks_key(x);
-        if ((k >> 16) == high) ++histogram[k & 0xFFFFu];
-    }
-    std::uint32_t low = 0;
-    while (rank >= histogram[low]) rank -= histogram[low++];
-    return ks_value<float>(high << 16 | low);
-}
-
 }  // namespace detail
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
@@ -234,7 +213,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             rough[m] += d;
         }
     }
-    const double typical_rough = detail::median_by_radix(level_rough);
+    const double typical_rough = detail::median(level_rough);
     // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows,
     // running filters over the labels of large components give the smallest and largest label within reach
     // and the lowest min z of their cells; where both labels agree that is the one component in reach,

@@ -51,7 +51,7 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
     detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
-    const auto seed_lists = detail::seed_cells_flat(seeds);
+    const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
     grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
     // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
@@ -65,9 +65,11 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
         if (region.cells.empty()) continue;
         join_level_cells(region.cells, min_z, max_z, field.eligible, out.labels, --stamp, opt.level);
         const auto label = static_cast<std::int32_t>(out.bodies.size() + 1);
+        std::int32_t* labels = out.labels.data();  // in locals: the byte stores would reload them
+        std::uint8_t* eligible = field.eligible.data();
         for (const auto i : region.cells) {
-            out.labels.data()[i] = label;
-            field.eligible.data()[i] = 0;
+            labels[i] = label;
+            eligible[i] = 0;
         }
         auto& body = out.bodies.emplace_back();
         body.label = label;

@@ -147,7 +147,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
-    const auto min_z_at = [&](std::ptrdiff_t i) { return field.min_z(i / cols, i % cols); };
+    const detail::cell_splitter split(cols);
     // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
     using cell_queue = std::vector<std::ptrdiff_t, detail::raster_allocator<std::ptrdiff_t>>;
     // Per queued cell, parallel to buckets: the level it passes on.
@@ -158,20 +158,21 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         detail::require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
     const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
-    const auto push = [&](std::ptrdiff_t i, int from_step, float from_level) {
+    // Cell i = r * cols + c, reached at step from_step from a cell passing on from_level.
+    const auto push = [&](std::ptrdiff_t i, std::ptrdiff_t r, std::ptrdiff_t c, int from_step, float from_level) {
         if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
         if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
         float level = from_level;
         if (gate) {
-            const float z = min_z_at(i);
+            const float z = field.min_z(r, c);
             if (!std::isnan(z)) {
                 if (std::isnan(from_level)) {
                     level = z;
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    if (!slope_gate || !(field.surface_slope(i / cols, i % cols) > max_slope))
+                    if (!slope_gate || !(field.surface_slope(r, c) > max_slope))
                         level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
@@ -184,7 +185,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
     for (const auto i : seed_cells) {
         detail::require(i >= 0 && i < n, fn, "seed cell index", "inside the field", i);
-        push(i, 0, seed_level);
+        const auto [r, c] = split(i);
+        push(i, r, c, 0, seed_level);
     }
     const bool exempt = gate && opt.level_ks_exempt_m >= 0;
 
@@ -200,20 +202,20 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
             const std::ptrdiff_t i = bucket[q];
             const float level = gate ? bucket_levels[static_cast<std::size_t>(k)][q] : NAN;
             out.cells.push_back(i);
+            const auto [r, c] = split(i);
             if (bin[i] >= 0) {
                 current.add(bin[i]);
                 // A cell at or below the level it joined at is water by its height: no KS evidence needed.
-                const bool by_level = exempt && min_z_at(i) <= level + static_cast<float>(opt.level_ks_exempt_m);
+                const bool by_level = exempt && field.min_z(r, c) <= level + static_cast<float>(opt.level_ks_exempt_m);
                 if (increment && !by_level) added.add(bin[i]);
             }
-            const std::ptrdiff_t r = i / cols, c = i % cols;
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
                 const std::ptrdiff_t rr = r + dr;
                 if (rr < 0 || rr >= rows) continue;
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t cc = c + dc;
                     if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
-                    push(rr * cols + cc, k, level);
+                    push(rr * cols + cc, rr, cc, k, level);
                 }
             }
         }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -54,48 +55,57 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
     constexpr std::int32_t none = std::numeric_limits<std::int32_t>::min();
     intensity_bins_result result{raster<std::int32_t>(rows, cols, uninitialized), 1};  // pass 1 writes every cell
     raster<std::int32_t>& out = result.bin;
-    // Pass 1: rounded values as integers (none = no sample), while they fit in +-1e9 (LAS intensities do).
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    // Pass 1, in integer masks rather than selects so that GCC vectorizes it (FP compares and selects
+    // feeding the min / max reductions keep it scalar): rounded values as integers, clamped to
+    // +-(1e9 + 1) (a clamped value shows as lo < -1e9 or hi > 1e9 below), none = no sample; lo, hi over
+    // the samples.
+    constexpr double limit = 1.0e9 + 1.0;
+    constexpr std::int32_t most = std::numeric_limits<std::int32_t>::max();
     const double inverse = 1.0 / opt.resolution;
-    // Presence of the values 0..65535 (16-bit LAS intensities), marked on the way.
-    constexpr std::int32_t small = 65536;
-    std::vector<std::uint8_t> seen_small(small, 0);
+    std::int32_t lo = most, hi = none;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* o = out.row(r);
         const std::uint8_t* d = dropout.row(r);
         const float* mean = mean_intensity.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (d[c] || !std::isfinite(mean[c])) {
-                o[c] = none;
-                continue;
-            }
-            const double q = std::nearbyint(static_cast<double>(mean[c]) * inverse);
-            lo = std::min(lo, q);
-            hi = std::max(hi, q);
-            o[c] = static_cast<std::int32_t>(std::clamp(q, -1.0e9, 1.0e9));
-            if (o[c] >= 0 && o[c] < small) seen_small[static_cast<std::size_t>(o[c])] = 1;
+            const auto bits = std::bit_cast<std::int32_t>(mean[c]);
+            const bool finite = (bits & 0x7f800000) != 0x7f800000;
+            const std::int32_t sample = -static_cast<std::int32_t>(finite & (d[c] == 0));  // all ones or 0
+            double x = static_cast<double>(std::bit_cast<float>(bits & sample)) * inverse;  // 0 without sample
+            x = x < -limit ? -limit : x;  // clamping before rounding gives the same integer as after
+            x = x > limit ? limit : x;
+            const auto q = static_cast<std::int32_t>(std::nearbyint(x));
+            o[c] = (q & sample) | (none & ~sample);
+            lo = std::min(lo, (q & sample) | (most & ~sample));
+            hi = std::max(hi, (q & sample) | (none & ~sample));
         }
     }
-    if (lo > hi) {
+    if (hi == none) {
         out.fill(-1);
         return result;
     }
     std::int32_t* cell = out.data();
     const std::ptrdiff_t n = out.size();
-    if (hi - lo < double(1 << 24) && lo >= -1.0e9 && hi <= 1.0e9) {
-        // Ranks from a presence table over the range of values.
-        const auto base = static_cast<std::int64_t>(lo);
-        std::vector<std::int32_t> rank(static_cast<std::size_t>(hi - lo) + 1, 0);
-        if (lo >= 0 && hi < small) {
-            for (std::size_t k = 0; k < rank.size(); ++k) rank[k] = seen_small[k + static_cast<std::size_t>(base)];
-        } else {
-            for (std::ptrdiff_t i = 0; i < n; ++i)
-                if (cell[i] != none) rank[static_cast<std::size_t>(cell[i] - base)] = 1;
-        }
+    if (std::int64_t{hi} - lo < (std::int64_t{1} << 24) && lo >= -1'000'000'000 && hi <= 1'000'000'000) {
+        // Ranks from a presence table over the range of values. Offsets are unsigned 32-bit differences
+        // capped at span: none wraps to a huge offset and lands in the extra slot rank[span], which holds
+        // -1 in the end; no branch, so pass 2 gathers in vectors.
+        const auto base = static_cast<std::uint32_t>(lo);
+        const auto span = static_cast<std::uint32_t>(hi - lo) + 1;
+        const auto offset = [&](std::int32_t v) {
+            return static_cast<std::int32_t>(std::min(static_cast<std::uint32_t>(v) - base, span));
+        };
+        std::vector<std::int32_t> rank(std::size_t{span} + 1, 0);
+        for (std::ptrdiff_t i = 0; i < n; ++i) rank[static_cast<std::size_t>(offset(cell[i]))] = 1;
+        rank[span] = 0;
         std::int32_t next = 0;
         for (auto& k : rank) k = k ? next++ : -1;
         result.bins = std::max(1, static_cast<int>(next));
-        for (std::ptrdiff_t i = 0; i < n; ++i) cell[i] = cell[i] == none ? -1 : rank[static_cast<std::size_t>(cell[i] - base)];
+        const std::int32_t* ranks = rank.data();
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+        for (std::ptrdiff_t i = 0; i < n; ++i) cell[i] = ranks[offset(cell[i])];
         return result;
     }
     // Wide ranges: ranks from the sorted distinct values, recomputed exactly.

@@ -147,20 +147,22 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
     detail::check_execution(opt.run, fn);
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     // Pass 1: the labels' range and the bounding box of all bodies (every hole lies inside it).
+    // Per row a vectorized min / max, then the first and last body cell of rows that hold one.
     cell_box all{rows, cols, -1, -1};
     std::int32_t lowest = 0, highest = 0;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* row = labels.row(r);
-        std::ptrdiff_t first = cols, last = -1;
+        std::int32_t low = 0, high = 0;
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            lowest = std::min(lowest, row[c]);
-            highest = std::max(highest, row[c]);
-            if (row[c] > 0) {
-                first = std::min(first, c);
-                last = c;
-            }
+            low = std::min(low, row[c]);
+            high = std::max(high, row[c]);
         }
-        if (last < 0) continue;
+        lowest = std::min(lowest, low);
+        highest = std::max(highest, high);
+        if (high <= 0) continue;
+        std::ptrdiff_t first = 0, last = cols - 1;
+        while (row[first] <= 0) ++first;
+        while (row[last] <= 0) --last;
         all = {std::min(all.row_min, r), std::min(all.col_min, first), r, std::max(all.col_max, last)};
     }
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
@@ -177,10 +179,14 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
             boxes.assign(static_cast<std::size_t>(highest) + 1, cell_box{rows, cols, -1, -1});
             for (std::ptrdiff_t r = all.row_min; r <= all.row_max; ++r) {
                 const std::int32_t* row = labels.row(r);
-                for (std::ptrdiff_t c = all.col_min; c <= all.col_max; ++c) {
-                    if (row[c] <= 0) continue;
-                    auto& b = boxes[static_cast<std::size_t>(row[c])];
-                    b = {std::min(b.row_min, r), std::min(b.col_min, c), r, std::max(b.col_max, c)};
+                // Run by run: a run of one label widens its box once.
+                for (std::ptrdiff_t c = all.col_min; c <= all.col_max;) {
+                    const std::int32_t l = row[c];
+                    const std::ptrdiff_t start = c;
+                    while (c <= all.col_max && row[c] == l) ++c;
+                    if (l <= 0) continue;
+                    auto& b = boxes[static_cast<std::size_t>(l)];
+                    b = {std::min(b.row_min, r), std::min(b.col_min, start), r, std::max(b.col_max, c - 1)};
                 }
             }
             covered = 0;

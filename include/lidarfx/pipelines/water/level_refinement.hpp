@@ -62,20 +62,28 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
     for (const auto i : region) seen[i] = stamp;
     // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
     const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        if (r > 0 && c > 0 && r + 1 < rows && c + 1 < cols) {  // all 8 neighbours exist: no loop, no branch
+            const std::int32_t* up = seen + (r - 1) * cols + c;
+            const std::int32_t* mid = up + cols;
+            const std::int32_t* down = mid + cols;
+            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) |
+                    (mid[1] != stamp) | (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
+        }
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
             for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
                 if (seen[rr * cols + cc] != stamp) return true;
         return false;
     };
+    const detail::cell_splitter split(cols);
     for (const auto i : region) {
-        const std::ptrdiff_t r = i / cols, c = i % cols;
-        const float z = min_z(r, c);
-        if (std::isfinite(z) && on_edge(r, c)) frontier.push_back({i, z, 0});
+        const auto [r, c] = split(i);
+        if (!on_edge(r, c)) continue;  // first: the stamps are in cache, the heights are not
+        if (const float z = min_z(r, c); std::isfinite(z)) frontier.push_back({i, z, 0});
     }
     for (std::size_t q = 0; q < frontier.size(); ++q) {
         const entry e = frontier[q];
         if (e.depth >= opt.depth_cells) continue;
-        const std::ptrdiff_t r = e.cell / cols, c = e.cell % cols;
+        const auto [r, c] = split(e.cell);
         for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
             for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                 const std::ptrdiff_t rr = r + dr, cc = c + dc;

@@ -45,19 +45,16 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
     detail::require_same_shape(labels, in.min_z, fn, "labels", "min_z");
     detail::require_positive(cell_m, fn, "cell_m");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    std::vector<std::size_t> size(bodies.size() + 1, 0);
-    std::int32_t lowest = 0;
+    const auto [lowest, highest] = detail::label_range(labels);
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    std::vector<std::size_t> size(std::max(bodies.size(), static_cast<std::size_t>(highest)) + 1, 0);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* label = labels.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::int32_t l = label[c];
-            lowest = std::min(lowest, l);
-            if (l <= 0) continue;  // land is not counted (size[0] is never read): no chain of increments on it
-            if (static_cast<std::size_t>(l) >= size.size()) size.resize(static_cast<std::size_t>(l) + 1, 0);
-            ++size[static_cast<std::size_t>(l)];
+            // Land is not counted (size[0] is never read): no chain of increments on it.
+            if (label[c] > 0) ++size[static_cast<std::size_t>(label[c])];
         }
     }
-    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     if (bodies.size() + 1 < size.size()) bodies.resize(size.size() - 1);
     std::vector<std::int32_t> order;
     for (std::size_t b = 1; b < size.size(); ++b)
@@ -86,21 +83,33 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
     }
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::int32_t* label = labels.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (label[c] == 0) continue;  // land stays 0 (relabel[0] == 0): no load, no store
-            const auto l = label[c] = relabel[static_cast<std::size_t>(label[c])];
+        const std::uint8_t* dropout = in.dropout.row(r);
+        const float* mean = in.mean_intensity.row(r);
+        const float* low = in.min_z.row(r);
+        // Run by run: a run of one label is renumbered, counted and boxed at once; its cells with returns
+        // add their intensity and height one by one.
+        for (std::ptrdiff_t c = 0; c < cols;) {
+            const std::int32_t old = label[c];
+            const std::ptrdiff_t start = c;
+            while (c < cols && label[c] == old) ++c;
+            if (old == 0) continue;  // land stays 0 (relabel[0] == 0)
+            const std::int32_t l = relabel[static_cast<std::size_t>(old)];
+            std::fill(label + start, label + c, l);
             if (l <= 0) continue;
             const auto k = static_cast<std::size_t>(l - 1);
             auto& b = out[k];
-            ++b.cells;
+            b.cells += static_cast<std::size_t>(c - start);
             b.box.row_min = std::min(b.box.row_min, r);
             b.box.row_max = r;
-            b.box.col_min = std::min(b.box.col_min, c);
-            b.box.col_max = std::max(b.box.col_max, c);
-            if (in.dropout(r, c)) continue;
-            intensity[k] += in.mean_intensity(r, c);
-            ++with_returns[k];
-            if (const float z = in.min_z(r, c); std::isfinite(z)) heights[k].push_back(z);
+            b.box.col_min = std::min(b.box.col_min, start);
+            b.box.col_max = std::max(b.box.col_max, c - 1);
+            auto& h = heights[k];
+            for (std::ptrdiff_t x = start; x < c; ++x) {
+                if (dropout[x]) continue;
+                intensity[k] += mean[x];
+                ++with_returns[k];
+                if (std::isfinite(low[x])) h.push_back(low[x]);
+            }
         }
     }
     for (std::size_t k = 0; k < order.size(); ++k) {
