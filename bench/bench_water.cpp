@@ -60,12 +60,14 @@ const lidarfx::rasterize_result& rasters_4096()
     return big;
 }
 
-/// Args: threads (0 = all), flat seeds (1 = on, 0 = dropout seeds only, the default).
+/// Args: threads (0 = all), flat seeds (1 = on, 0 = dropout seeds only, the default; 2 = on, with the level
+/// following min z only on a level surface, grow.level_follow_max_slope = 0.008).
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();
     lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
     opt.flat_seeds = state.range(1) != 0;
+    if (state.range(1) == 2) opt.grow.level_follow_max_slope = 0.008;
     std::size_t bodies = 0;
     for (auto _ : state) {
         const auto w = lidarfx::extract_waterbodies(pr, opt);
@@ -79,6 +81,7 @@ BENCHMARK(bm_extract_waterbodies_4096)
     ->ArgNames({"threads", "flat"})
     ->Args({1, 1})
     ->Args({2, 1})
+    ->Args({1, 2})
     ->Args({1, 0})
     ->Args({2, 0})
     ->Unit(benchmark::kMillisecond)

@@ -8,7 +8,9 @@
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
 // WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
-// options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching);
+// options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching), WF_SLOPE
+// (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_FLAT_SLOPE
+// (flat.max_surface_slope);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -149,6 +151,11 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_JOINTMIN")) o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
+             if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);
+             if (const char* v = std::getenv("WF_SLOPE_BAND")) o.surface_slope.band_m = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
+             if (const char* v = std::getenv("WF_SLOPE_RAD")) o.surface_slope.radius_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_SLOPE_MIN")) o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_TOUCH")) o.bridge_join_touching = std::atoi(v) != 0;
          }},
     };
@@ -172,6 +179,12 @@ int main(int argc, char** argv)
                            [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
                                o.grow.level_rise_m = 0;
+                           }});
+        configs.push_back({"with flat seeds and a level that follows min z only on a level surface "
+                           "(grow.level_follow_max_slope = 0.008)",
+                           [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.grow.level_follow_max_slope = 0.008;
                            }});
         configs.push_back({"without bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }});
         configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});

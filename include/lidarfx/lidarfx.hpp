@@ -72,6 +72,7 @@
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
 #include "lidarfx/pipelines/water/flat_water_seeds.hpp"
+#include "lidarfx/pipelines/water/water_surface_slope.hpp"
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
 
 // tiling: surveys larger than memory (docs/scale.md)

@@ -5,6 +5,7 @@
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 #include <lidarfx/pipelines/water/flat_water_seeds.hpp>
+#include <lidarfx/pipelines/water/water_surface_slope.hpp>
 #include <lidarfx/synth/water_cases.hpp>
 
 #include <cstdint>
@@ -143,6 +144,52 @@ TEST_CASE("flat_water_seeds: a bright but very sparse pond seeds (specular echoe
     // dark_density_ratio of the ring's returns.
     pond(10, 45.0f, 0.03f);
     CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
+}
+
+TEST_CASE("flat_water_seeds: with a surface slope, a sloping sparse patch is no seed, a level pond is")
+{
+    // A sparse, dark block 0.5 m below the meadow: level (a pond), it seeds with or without the slope; tilted
+    // 3 cm per 2 m cell (1.5 %, a beach: its 3 × 3 windows span 6 cm, within level_tolerance_m), it seeds
+    // only without the slope cue.
+    auto s = flat_ground();
+    const auto block = [&](float tilt_per_cell) {
+        for (std::ptrdiff_t r = 10; r < 30; ++r) {
+            for (std::ptrdiff_t c = 10; c < 30; ++c) {
+                s.min_z(r, c) = 9.5f + tilt_per_cell * static_cast<float>(c - 10) + 0.01f * static_cast<float>((r + c) % 3);
+                s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+                s.count(r, c) = 3;
+                s.intensity(r, c) = 20.0f;
+            }
+        }
+    };
+    block(0.0f);
+    auto slope = water_surface_slope(s.min_z, 2.0);
+    CHECK(flat_water_seeds(s.view(), {}, {}, slope).view()(20, 20) == 1);
+    block(0.03f);
+    slope = water_surface_slope(s.min_z, 2.0);
+    CHECK(slope(20, 20) == doctest::Approx(0.015).epsilon(0.1));  // the 1 cm pattern tilts the fit a little
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {}, slope).view()(20, 20) == 0);
+    CHECK(flat_water_seeds(s.view(), {}, {.max_surface_slope = -1}, slope).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.max_surface_slope = 0.02}, slope).view()(20, 20) == 1);
+    // A level pond with a beach joined to it (cols 30-37 rising 3 cm per cell, as sparse and dark): one
+    // level component, level by its median; its beach cells are no seed cells, its pond cells are.
+    block(0.0f);
+    for (std::ptrdiff_t r = 10; r < 30; ++r) {
+        for (std::ptrdiff_t c = 30; c < 38; ++c) {
+            s.min_z(r, c) = 9.5f + 0.03f * static_cast<float>(c - 29) + 0.01f * static_cast<float>((r + c) % 3);
+            s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+            s.count(r, c) = 3;
+            s.intensity(r, c) = 20.0f;
+        }
+    }
+    slope = water_surface_slope(s.min_z, 2.0);
+    const auto without = flat_water_seeds(s.view());
+    const auto with = flat_water_seeds(s.view(), {}, {}, slope);
+    CHECK(without.view()(20, 20) == 1);
+    CHECK(without.view()(20, 34) == 1);
+    CHECK(with.view()(20, 20) == 1);
+    CHECK(with.view()(20, 34) == 0);
 }
 
 TEST_CASE("flat_water_seeds: options out of range and rasters of different shapes are refused")

@@ -25,6 +25,7 @@
 #include "lidarfx/pipelines/water/water_angles.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
+#include "lidarfx/pipelines/water/water_surface_slope.hpp"
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
 
 namespace lidarfx {
@@ -50,7 +51,9 @@ struct extract_waterbodies_options {
                                            ///< rivers 72 -> 94 %) but lower river specificity (99.1 -> 98.5 %) and
                                            ///< cost about 1.5x the time (docs/waterbodies.md)
     flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
-    grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples
+    grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
+    water_surface_slope_options surface_slope = {};  ///< water_surface_slope, read when grow.level_follow_max_slope
+                                           ///< >= 0 (run is ignored)
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
                                            ///< nearest, ties to even), > 0
     double level_tolerance_m = 0.15;       ///< join_level_cells: land cells next to a body whose min z is within
@@ -87,6 +90,7 @@ inline extract_waterbodies_options previous_water_method()
     o.grow.level_gate_m = 0;
     o.grow.level_ks_exempt_m = -1;
     o.grow.level_rise_m = -1;
+    o.grow.level_follow_max_slope = -1;
     o.flat_seeds = false;
     o.flat.bright_density_ratio = 0;
     o.flat.max_joint_ratio = 0;
@@ -178,6 +182,13 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         const std::uint8_t* vegetation = res.vegetation.data();
         for (std::ptrdiff_t i = 0, n = field.eligible.size(); i < n; ++i) eligible[i] = !vegetation[i];
     }
+    raster<float> surface_slope;  // the level follows min z only where the surface is level
+    if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0) {
+        auto so = opt.surface_slope;
+        so.run = kernels;
+        surface_slope = water_surface_slope(in.min_z, cell_m, so);
+        field.surface_slope = surface_slope;
+    }
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.
     raster<std::uint8_t> dropout_inside;
     if (!in.footprint.empty()) {
@@ -216,7 +227,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
         auto flat = opt.flat;
         flat.run = kernels;
-        auto mask = flat_water_seeds(in, res.vegetation, flat);
+        auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope);
         std::uint8_t* cells = mask.data();
         const std::int32_t* label = res.labels.data();
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i) cells[i] = cells[i] && label[i] == 0;

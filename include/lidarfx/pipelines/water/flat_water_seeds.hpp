@@ -62,6 +62,12 @@ struct flat_water_seeds_options {
                                       ///< water-like; land fragments of a few dozen cells scatter too much to be
                                       ///< judged so), >= 0; 0 disables. Default 0.6
     std::size_t joint_min_cells = 150; ///< see max_joint_ratio, cells. Default 150
+    double max_surface_slope = 0.008; ///< level: given a surface_slope raster (water_surface_slope), a component
+                                      ///< is a seed only when the median over its cells of the slope of the plane
+                                      ///< fitted around them is at most this, and its cells where the slope
+                                      ///< exceeds it are no seed cells, m/m (a water surface is level; a river
+                                      ///< falls a few mm per metre; a beach rising 1-6 % has level 3 × 3 windows
+                                      ///< too, and joins the water's level cells); < 0 disables. Default 0.008
     execution run = {};               ///< threads of the window filters and the labelling (same result for any count)
 };
 
@@ -112,18 +118,22 @@ inline void level_row(const float* z0, const float* z1, const float* lo, const f
 /// min z <= max_roughness_ratio · median over level cells) and lowest (<= max_lower_share of the ring more than
 /// level_tolerance_m below the component's lowest min z within ring_cells of the ring cell); the ring:
 /// cells with returns within ring_cells of the component, not in a component.
+/// With `surface_slope` (optional, same shape: water_surface_slope of min z, m/m), a component whose median
+/// slope exceeds max_surface_slope is no seed, nor is any cell where the slope exceeds it.
 /// Needs in.count (without it the mask is empty). `excluded` (optional, same shape; nonzero = never a
 /// seed, e.g. vegetation) and in.footprint keep cells out. Returns 1 = seed cell.
 /// The windows are running min/max filters (min_max_filter's strips): O(cells · log(level_radius_cells ·
 /// ring_cells)), plus (2 ring_cells + 1)² per ring cell within reach of two components or more.
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
-                                             const flat_water_seeds_options& opt = {})
+                                             const flat_water_seeds_options& opt = {},
+                                             raster_view<const float> surface_slope = {})
 {
     constexpr const char* fn = "flat_water_seeds";
     detail::validate(in, fn);
     detail::validate(opt, fn);
     if (!excluded.empty()) detail::require_same_shape(in.min_z, excluded, fn, "min_z", "excluded");
+    if (!surface_slope.empty()) detail::require_same_shape(in.min_z, surface_slope, fn, "min_z", "surface_slope");
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     if (in.count.empty()) return raster<std::uint8_t>(rows, cols, 0);
     const auto has_return = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
@@ -290,8 +300,30 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             lower[m] += in.min_z(e.r, e.c) < e.z - opt.level_tolerance_m;
         }
     }
+    // With a surface slope: per large component, the median slope around its cells (NaN, unknown, as level).
+    std::vector<std::uint8_t> sloping(n + 1, 0);
+    const bool slope_test = !surface_slope.empty() && opt.max_surface_slope >= 0;
+    if (slope_test) {
+        std::vector<std::vector<float>> slopes(n + 1);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const std::int32_t* lab = labels.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                if (lab[c] <= 0) continue;
+                const float v = surface_slope(r, c);
+                slopes[static_cast<std::size_t>(lab[c])].push_back(std::isnan(v) ? 0.0f : v);
+            }
+        }
+        for (std::size_t l = 1; l <= n; ++l) {
+            auto& v = slopes[l];
+            if (v.empty()) continue;
+            const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+            std::nth_element(v.begin(), mid, v.end());
+            sloping[l] = *mid > opt.max_surface_slope;
+        }
+    }
     std::vector<std::uint8_t> keep(n + 1, 0);
     for (std::size_t l = 1; l <= n; ++l) {
+        if (sloping[l]) continue;
         if (comps.sizes[l] < opt.min_cells || ring_cells[l] == 0) continue;
         const double size = static_cast<double>(comps.sizes[l]);
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
@@ -314,6 +346,9 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::int32_t* lab = labels.row(r);
         std::uint8_t* d = level.row(r);
         for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = lab[c] > 0 ? keep[static_cast<std::size_t>(lab[c])] : 0;
+        if (slope_test) {  // and no seed cell where the surface around it slopes (a beach joined to the water)
+            for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = d[c] && !(surface_slope(r, c) > opt.max_surface_slope);
+        }
     }
     return level;
 }

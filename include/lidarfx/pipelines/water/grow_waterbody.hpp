@@ -24,6 +24,8 @@ struct water_field {
     int bins = 1;                        ///< number of intensity bins, >= 1
     raster_view<const float> min_z = {}; ///< optional: lowest return per cell, metres, NaN = none; the level
                                          ///< gate reads it (empty = no gate). A view: keep it alive while growing
+    raster_view<const float> surface_slope = {}; ///< optional: water_surface_slope of min z, m/m, NaN = unknown;
+                                         ///< read with grow_waterbody_options::level_follow_max_slope
 };
 
 /// Which sample a growth step is compared with the previous region's sample.
@@ -55,6 +57,12 @@ struct grow_waterbody_options {
                                      ///< stay out of the KS increment sample (bright specular water near
                                      ///< nadir); metres; < 0 disables. Default 0.05 m
     seed_water_level_options seed_level = {};  ///< how the seed's level L is read from the returns around it
+    double level_follow_max_slope = -1; ///< with the gate and field.surface_slope: a joining cell passes on a
+                                     ///< level that follows its min z (the drift) only where the surface around
+                                     ///< it is level, slope <= this (m/m; NaN, unknown, follows); elsewhere it
+                                     ///< passes its level on unchanged, as a dropout does (a flood no longer
+                                     ///< ratchets up a beach or down a falling bank); < 0 disables. Default -1
+                                     ///< (0.008 with flat seeds: docs/waterbodies.md)
 };
 
 /// Result of growing one seed.
@@ -145,6 +153,10 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // Per queued cell, parallel to buckets: the level it passes on.
     std::vector<std::vector<float>> bucket_levels(gate ? static_cast<std::size_t>(last + 1) : 0);
     std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
+    const bool slope_gate = gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty();
+    if (slope_gate)
+        detail::require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
+    const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
     // Cell i = r * cols + c, reached at step from_step from a cell passing on from_level.
     const auto push = [&](std::ptrdiff_t i, std::ptrdiff_t r, std::ptrdiff_t c, int from_step, float from_level) {
@@ -160,7 +172,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
+                    if (!slope_gate || !(field.surface_slope(r, c) > max_slope))
+                        level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
             bucket_levels[static_cast<std::size_t>(k)].push_back(level);

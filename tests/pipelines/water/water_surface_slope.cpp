@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Apache-2.0
+#include <doctest/doctest.h>
+
+#include <lidarfx/core/raster.hpp>
+#include <lidarfx/pipelines/water/grow_waterbody.hpp>
+#include <lidarfx/pipelines/water/water_surface_slope.hpp>
+
+#include <cmath>
+#include <vector>
+
+using namespace lidarfx;
+
+TEST_CASE("water/water_surface_slope: the slope of a tilted plane, 0 on a level one, NaN without returns")
+{
+    // z = 100 + 0.01 x + 0.005 y (metres, cells of 2 m): slope sqrt(0.01² + 0.005²) m/m everywhere.
+    raster<float> tilted(15, 15), level(15, 15, 100.0f);
+    for (std::ptrdiff_t r = 0; r < 15; ++r)
+        for (std::ptrdiff_t c = 0; c < 15; ++c)
+            tilted.view()(r, c) = static_cast<float>(100.0 + 0.01 * 2.0 * static_cast<double>(c) + 0.005 * 2.0 * static_cast<double>(r));
+    level.view()(7, 7) = NAN;
+    const auto s = water_surface_slope(tilted, 2.0);
+    const auto f = water_surface_slope(level, 2.0);
+    for (std::ptrdiff_t r = 0; r < 15; ++r) {
+        for (std::ptrdiff_t c = 0; c < 15; ++c) {
+            // float heights near 100 m carry ~1e-5 m of rounding; over a 6-cell window that is < 1e-5 m/m
+            CHECK(s(r, c) == doctest::Approx(std::sqrt(0.01 * 0.01 + 0.005 * 0.005)).epsilon(1e-3));
+            if (r == 7 && c == 7) CHECK(std::isnan(f(r, c)));
+            else CHECK(f(r, c) == 0.0f);  // every height equal: exactly level
+        }
+    }
+    // Too few returns in the window: unknown.
+    raster<float> sparse(9, 9, NAN);
+    sparse.view()(4, 4) = 100.0f;
+    sparse.view()(4, 5) = 100.0f;
+    CHECK(std::isnan(water_surface_slope(sparse, 2.0)(4, 4)));
+    CHECK_THROWS_AS(water_surface_slope(level, 0.0), invalid_input);
+    CHECK_THROWS_AS(water_surface_slope(level, 2.0, {.radius_cells = 0}), invalid_input);
+}
+
+TEST_CASE("water/water_surface_slope: water next to a bank is level (the band keeps the bank out); strided views")
+{
+    // Water at 100 m in cols 0-9, a bank at 101.5 m from col 10: the water cell next to the bank fits the water.
+    raster<float> big(14, 24, 0.0f);
+    auto z = big.view().window(1, 2, 12, 20);  // row_stride 24 != cols 20
+    for (std::ptrdiff_t r = 0; r < 12; ++r)
+        for (std::ptrdiff_t c = 0; c < 20; ++c) z(r, c) = c < 10 ? 100.0f : 101.5f;
+    raster<float> copy(12, 20);
+    for (std::ptrdiff_t r = 0; r < 12; ++r)
+        for (std::ptrdiff_t c = 0; c < 20; ++c) copy.view()(r, c) = z(r, c);
+    const auto banded = water_surface_slope(z, 2.0);
+    const auto unbanded = water_surface_slope(z, 2.0, {.band_m = 10.0});
+    CHECK(banded(6, 9) == 0.0f);
+    CHECK(unbanded(6, 9) > 0.1f);  // the bank's 1.5 m step tilts a plane through both
+    const auto contiguous = water_surface_slope(copy, 2.0);
+    for (std::ptrdiff_t r = 0; r < 12; ++r)
+        for (std::ptrdiff_t c = 0; c < 20; ++c) CHECK(banded(r, c) == contiguous(r, c));
+}
+
+TEST_CASE("water/grow_waterbody level_follow_max_slope: the level follows a river, not a gentle beach")
+{
+    // 10 x 120, cells of 0.25 m: water at 100 m in cols 0-9 (a seed of dropouts in cols 0-3), then a beach rising
+    // 0.004 m per cell (1.6 %, slower than the 5 mm level drift per cell). Without the cue the flood's level
+    // climbs the whole beach; with it, the beach passes the level on unchanged and the gate stops the flood
+    // 0.15 m above the water.
+    const std::ptrdiff_t rows = 10, cols = 120;
+    raster<float> min_z(rows, cols);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            min_z.view()(r, c) = c < 10 ? 100.0f : 100.0f + 0.004f * static_cast<float>(c - 9);
+            if (c <= 3) {
+                min_z.view()(r, c) = NAN;
+                seed.push_back(r * cols + c);
+            }
+        }
+    }
+    const auto slope = water_surface_slope(min_z, 0.25);
+    water_field field{raster<float>(rows, cols, 0.0f), raster<std::uint8_t>(rows, cols, 1),
+                      raster<std::int32_t>(rows, cols, 0), 1, min_z, slope};
+    for (std::ptrdiff_t i = 0; i < min_z.size(); ++i)
+        if (std::isnan(min_z.data()[i])) field.intensity_bin.data()[i] = -1;
+    raster<std::int32_t> visited(rows, cols, 0);
+    const auto climbed = grow_waterbody(field, seed, {}, visited, -1);
+    CHECK(climbed.cells.size() == static_cast<std::size_t>(rows * cols));
+    grow_waterbody_options cue;
+    cue.level_follow_max_slope = 0.008;
+    const auto stopped = grow_waterbody(field, seed, cue, visited, -2);
+    // Beach cells up to 0.15 m above 100 m: cols 10-46 (0.004 · 37 = 0.148); with the water, 47 columns.
+    CHECK(stopped.cells.size() == static_cast<std::size_t>(rows * 47));
+}
