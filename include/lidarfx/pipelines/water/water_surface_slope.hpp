@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
@@ -39,7 +40,8 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
     for (std::ptrdiff_t c = 0; c < count; ++c) {
         const float d = nb[c] - z0[c];
         const bool in = std::fabs(d) <= band;
-        const float m = in ? 1.0f : 0.0f, dz = in ? d : 0.0f;
+        // Bit-mask selects: a plain `in ? d : 0` keeps the loop scalar on AVX2 (no masked arithmetic).
+        const float m = select_bits(in, 1.0f, 0.0f), dz = select_bits(in, d, 0.0f);
         n[c] += m;
         sx[c] += m * x;
         sy[c] += m * y;
