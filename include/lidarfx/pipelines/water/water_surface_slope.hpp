@@ -59,8 +59,9 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
 /// z = a + b·x + c·y through the min z of the (2·radius_cells + 1)² window (clipped at the raster border)
 /// that lie within band_m of the cell's own, sqrt(b² + c²) in metres per metre (0 = level); NaN where the
-/// cell has no return, the window holds fewer than min_cells such returns, or they lie on a line. A water surface is level to the range noise (a river falls a few mm per
-/// metre at most); beaches, banks and meadows rising from the water are not. cell_m in metres.
+/// cell has no return, the window holds fewer than min_cells such returns, or they lie on a line. A water
+/// surface is level to the range noise (a river falls a few mm per metre at most); beaches, banks and
+/// meadows rising from the water are not. cell_m in metres.
 /// O(cells · (2·radius_cells + 1)²), vectorized along rows.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 inline raster<float> water_surface_slope(raster_view<const float> min_z, double cell_m,
