@@ -314,11 +314,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             }
         }
         for (std::size_t l = 1; l <= n; ++l) {
-            auto& v = slopes[l];
-            if (v.empty()) continue;
-            const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-            std::nth_element(v.begin(), mid, v.end());
-            sloping[l] = *mid > opt.max_surface_slope;
+            if (!slopes[l].empty()) sloping[l] = detail::median(slopes[l]) > opt.max_surface_slope;
         }
     }
     std::vector<std::uint8_t> keep(n + 1, 0);
