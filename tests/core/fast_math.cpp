@@ -157,3 +157,31 @@ TEST_CASE("core/fast_math: float_at_most compares in float as the double thresho
         }
     }
 }
+
+TEST_CASE("core/fast_math: atan_deg_span equals atan_deg value by value, whichever path a block takes")
+{
+    // Blocks of 64 that are all in [0, 1] take the division-free path; any value above 1, NaN or negative
+    // sends its block to atan_deg. Mixed lengths cover whole blocks, a tail, and an empty span.
+    std::vector<float> x;
+    for (int i = 0; i < 64; ++i) x.push_back(static_cast<float>(i) / 63.0f);   // [0, 1], 1 included
+    for (int i = 0; i < 64; ++i) x.push_back(i == 17 ? 1.0000001f : 0.5f);      // one just above 1
+    for (int i = 0; i < 64; ++i) x.push_back(i == 40 ? not_a_number : 0.25f);  // one NaN
+    for (int i = 0; i < 64; ++i) x.push_back(i == 3 ? inf : 1e-30f);            // inf and a tiny value
+    for (int i = 0; i < 64; ++i) x.push_back(i == 9 ? -0.0f : 0.75f);           // signed zero
+    const auto dense = dense_non_negative_floats();
+    x.insert(x.end(), dense.begin(), dense.begin() + 1000);
+    for (std::ptrdiff_t n : {std::ptrdiff_t{0}, std::ptrdiff_t{1}, std::ptrdiff_t{63}, std::ptrdiff_t{64},
+                             std::ptrdiff_t{65}, static_cast<std::ptrdiff_t>(x.size())}) {
+        std::vector<float> got(static_cast<std::size_t>(n) + 1, 7.0f);
+        detail::atan_deg_span(x.data(), got.data(), n);
+        for (std::ptrdiff_t i = 0; i < n; ++i) {
+            INFO("n = " << n << ", i = " << i << ", x = " << x[i]);
+            CHECK(std::bit_cast<std::uint32_t>(got[i]) == std::bit_cast<std::uint32_t>(detail::atan_deg(x[i])));
+        }
+        CHECK(got[n] == 7.0f);  // nothing written past the end
+    }
+    std::vector<float> in_place(x.begin(), x.begin() + 200);
+    detail::atan_deg_span(in_place.data(), in_place.data(), 200);
+    for (std::size_t i = 0; i < in_place.size(); ++i)
+        CHECK(std::bit_cast<std::uint32_t>(in_place[i]) == std::bit_cast<std::uint32_t>(detail::atan_deg(x[i])));
+}

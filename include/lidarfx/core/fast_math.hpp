@@ -87,6 +87,31 @@ constexpr float atan_deg(float x) noexcept
     return reflect_if(x > 1.0f, 90.0f, a);
 }
 
+/// out[i] = atan_deg(x[i]) for i in [0, n), bit for bit. Blocks of 64 values all in [0, 1] (the usual case for
+/// slopes between neighbours: below 45 degrees) skip the reciprocal, whose division costs more than the rest of
+/// atan_deg: for x <= 1, t = x. The test is a maximum over the bit patterns, which order non-negative floats;
+/// NaN, negative values and x > 1 take the full atan_deg. out may equal x.
+inline void atan_deg_span(const float* x, float* out, std::ptrdiff_t n) noexcept
+{
+    constexpr std::ptrdiff_t block = 64;
+    constexpr std::uint32_t one_bits = 0x3f800000u;
+    constexpr float to_deg = static_cast<float>(180 / std::numbers::pi);
+    const std::ptrdiff_t whole = n - n % block;
+    for (std::ptrdiff_t i = 0; i < whole; i += block) {
+        std::uint32_t widest = 0;
+        for (std::ptrdiff_t k = 0; k < block; ++k) {
+            const std::uint32_t b = std::bit_cast<std::uint32_t>(x[i + k]);
+            widest = b > widest ? b : widest;
+        }
+        if (widest <= one_bits) {
+            for (std::ptrdiff_t k = 0; k < block; ++k) out[i + k] = atan_unit(x[i + k]) * to_deg;
+        } else {
+            for (std::ptrdiff_t k = 0; k < block; ++k) out[i + k] = atan_deg(x[i + k]);
+        }
+    }
+    for (std::ptrdiff_t i = whole; i < n; ++i) out[i] = atan_deg(x[i]);
+}
+
 /// x with the sign bit of `sign` (std::copysign without the libm call; compiles to bit operations).
 constexpr float with_sign_of(float x, float sign) noexcept
 {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -58,38 +59,77 @@ inline void angular_offset_pass(const float* centre, const float* other, float* 
     }
 }
 
-/// best[c] for the cells [c0, c1) of a row whose whole (2R+1)^2 window lies inside the raster (NaN for a
-/// NaN centre, so that the row needs no second pass), R known at compile time: the window is unrolled and
-/// every value stays in registers. The offsets (+-a, +-b) and (+-b, +-a) share one distance, so their
-/// largest |dz| is taken first and multiplied once: rounding is monotone, so max(|dz|) * f equals
-/// max(|dz| * f) bit for bit, and NaN differences never win.
-template <int R>
-void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
-                      const float* inv_d) noexcept
+/// best[c] = the steepest ratio |dz| / d for the cells [c0, c1) of a row whose whole (2R+1)^2 window lies
+/// inside the raster (NaN for a NaN centre), R known at compile time: the window is unrolled and every value
+/// stays in registers. The offsets (+-a, +-b) and (+-b, +-a) share one distance, so their largest |dz| is taken
+/// first and multiplied once: rounding is monotone, so max(|dz|) * f equals max(|dz| * f) bit for bit.
+/// The maxima run on the bit patterns of |dz| as unsigned integers (non-negative floats order as their bits),
+/// which takes them off the floating-point units that the subtractions and products need. A NaN difference
+/// (a NaN neighbour, or inf - inf) would win that comparison, so a valid cell whose window holds one is marked
+/// -1 instead; the return value says whether any cell was marked (the caller redoes those one at a time).
+/// With Finite (every value of the window rows known finite) that test is left out.
+template <int R, bool Finite>
+bool angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0,
+                      std::ptrdiff_t c1, const float* inv_d) noexcept
 {
+    constexpr std::uint32_t magnitude = 0x7fffffffu, infinity_bits = 0x7f800000u;
+    std::uint32_t marked = 0;
     for (std::ptrdiff_t c = c0; c < c1; ++c) {
         const float p = centre[c];
-        float largest[R + 1][R + 1] = {};  // by (min(|dr|, |dc|), max(|dr|, |dc|))
+        std::uint32_t largest[R + 1][R + 1] = {};  // by (min(|dr|, |dc|), max(|dr|, |dc|)), bits of max |dz|
 #pragma GCC unroll 8
         for (int dr = -R; dr <= R; ++dr) {
 #pragma GCC unroll 8
             for (int dc = -R; dc <= R; ++dc) {
+                if (dr == 0 && dc == 0) continue;
                 const int a = std::min(std::abs(dr), std::abs(dc)), b = std::max(std::abs(dr), std::abs(dc));
-                const float d = std::fabs(centre[dr * row_stride + c + dc] - p);
+                const std::uint32_t d = std::bit_cast<std::uint32_t>(p - centre[dr * row_stride + c + dc]) & magnitude;
                 largest[a][b] = d > largest[a][b] ? d : largest[a][b];
             }
         }
         float steepest = 0.0f;
+        std::uint32_t widest = 0;
 #pragma GCC unroll 8
         for (int a = 0; a <= R; ++a) {
 #pragma GCC unroll 8
             for (int b = a; b <= R; ++b) {
-                const float ratio = largest[a][b] * inv_d[a * (R + 1) + b];
+                if (b == 0) continue;  // the centre
+                if constexpr (!Finite) widest = largest[a][b] > widest ? largest[a][b] : widest;
+                const float ratio = std::bit_cast<float>(largest[a][b]) * inv_d[a * (R + 1) + b];
                 steepest = ratio > steepest ? ratio : steepest;
             }
         }
-        best[c] = select_bits(p == p, steepest, std::numeric_limits<float>::quiet_NaN());  // NaN centre: NaN
+        if constexpr (Finite) {
+            best[c] = steepest;
+        } else {
+            const bool valid = p == p, exact = valid && widest > infinity_bits;
+            marked |= exact ? 1u : 0u;
+            const float ratio = select_bits(valid, steepest, std::numeric_limits<float>::quiet_NaN());
+            best[c] = select_bits(exact, -1.0f, ratio);
+        }
     }
+    return marked != 0;
+}
+
+/// Whether every value of x[0, n) is finite (neither NaN nor infinite): the largest magnitude bit pattern
+/// lies below that of infinity.
+inline bool all_finite(const float* x, std::ptrdiff_t n) noexcept
+{
+    std::uint32_t widest = 0;
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        const std::uint32_t b = std::bit_cast<std::uint32_t>(x[i]) & 0x7fffffffu;
+        widest = b > widest ? b : widest;
+    }
+    return widest < 0x7f800000u;
+}
+
+/// The unrolled kernel for radius R on one row, the unchecked variant where the window rows are all finite.
+template <int R>
+bool angular_interior_row(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t cols,
+                          bool finite, const float* inv_d) noexcept
+{
+    if (finite) return angular_interior<R, true>(centre, row_stride, best, R, cols - R, inv_d);
+    return angular_interior<R, false>(centre, row_stride, best, R, cols - R, inv_d);
 }
 
 /// The steepest ratio |dz| / d of cell (r, c) over its window clipped at the raster border, one neighbour at a
@@ -118,15 +158,26 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
     const std::vector<float> inv_d = inverse_distances(cell_m, radius);
     std::vector<float> best_row(static_cast<std::size_t>(cols));
     float* best = best_row.data();
+    // Rows are checked for non-finite values once each, in order, as they enter the window (and so the cache).
+    std::ptrdiff_t next_to_check = std::max<std::ptrdiff_t>(0, r0 - rad), last_non_finite = -1;
     for (std::ptrdiff_t r = r0; r < r1; ++r) {
         const float* centre = z.row(r);
         const bool unrolled = radius <= 3 && r >= rad && r + rad < rows && cols > 2 * rad;
         if (unrolled) {
+            for (; next_to_check <= r + rad; ++next_to_check) {
+                if (!all_finite(z.row(next_to_check), cols)) last_non_finite = next_to_check;
+            }
+            const bool finite = last_non_finite < r - rad;
             const auto stride = z.row_stride();
-            if (radius == 1) angular_interior<1>(centre, stride, best, rad, cols - rad, inv_d.data());
-            if (radius == 2) angular_interior<2>(centre, stride, best, rad, cols - rad, inv_d.data());
-            if (radius == 3) angular_interior<3>(centre, stride, best, rad, cols - rad, inv_d.data());
-            // The `rad` columns at each end, cell by cell (a pass per offset would cost a call per offset).
+            bool marked = false;
+            if (radius == 1) marked = angular_interior_row<1>(centre, stride, best, cols, finite, inv_d.data());
+            if (radius == 2) marked = angular_interior_row<2>(centre, stride, best, cols, finite, inv_d.data());
+            if (radius == 3) marked = angular_interior_row<3>(centre, stride, best, cols, finite, inv_d.data());
+            // Cells next to a NaN difference, then the `rad` columns at each end, one cell at a time (a pass
+            // per offset would cost a call per offset).
+            for (std::ptrdiff_t c = rad; marked && c < cols - rad; ++c) {
+                if (best[c] < 0.0f) best[c] = angular_cell(z, r, c, rad, inv_d.data());
+            }
             for (std::ptrdiff_t c : {std::ptrdiff_t{0}, cols - rad}) {
                 for (std::ptrdiff_t cc = c; cc < c + rad; ++cc) {
                     const float steepest = angular_cell(z, r, cc, rad, inv_d.data());
@@ -148,8 +199,7 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
                 best[c] = centre[c] == centre[c] ? best[c] : std::numeric_limits<float>::quiet_NaN();
             }
         }
-        float* o = out.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) o[c] = atan_deg(best[c]);
+        atan_deg_span(best, out.row(r), cols);
     }
 }
 

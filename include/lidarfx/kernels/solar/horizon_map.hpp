@@ -64,7 +64,7 @@ template <class T>
 void tangents_to_degrees(T* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
 {
     if constexpr (std::is_same_v<T, float>) {
-        for (std::ptrdiff_t c = c0; c < c1; ++c) o[c] = atan_deg(o[c]);
+        atan_deg_span(o + c0, o + c0, c1 - c0);
     }
 }
 
