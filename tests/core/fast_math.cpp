@@ -164,10 +164,10 @@ TEST_CASE("core/fast_math: atan_deg_span equals atan_deg value by value, whichev
     // sends its block to atan_deg. Mixed lengths cover whole blocks, a tail, and an empty span.
     std::vector<float> x;
     for (int i = 0; i < 64; ++i) x.push_back(static_cast<float>(i) / 63.0f);   // [0, 1], 1 included
-    for (int i = 0; i < 64; ++i) x.push_back(i == 17 ? 1.0000001f : 0.5f);      // one just above 1
+    for (int i = 0; i < 64; ++i) x.push_back(i == 17 ? 1.0000001f : 0.5f);     // one just above 1
     for (int i = 0; i < 64; ++i) x.push_back(i == 40 ? not_a_number : 0.25f);  // one NaN
-    for (int i = 0; i < 64; ++i) x.push_back(i == 3 ? inf : 1e-30f);            // inf and a tiny value
-    for (int i = 0; i < 64; ++i) x.push_back(i == 9 ? -0.0f : 0.75f);           // signed zero
+    for (int i = 0; i < 64; ++i) x.push_back(i == 3 ? inf : 1e-30f);           // inf and a tiny value
+    for (int i = 0; i < 64; ++i) x.push_back(i == 9 ? -0.0f : 0.75f);          // signed zero
     const auto dense = dense_non_negative_floats();
     x.insert(x.end(), dense.begin(), dense.begin() + 1000);
     for (std::ptrdiff_t n : {std::ptrdiff_t{0}, std::ptrdiff_t{1}, std::ptrdiff_t{63}, std::ptrdiff_t{64},

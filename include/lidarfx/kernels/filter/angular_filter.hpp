@@ -69,8 +69,8 @@ inline void angular_offset_pass(const float* centre, const float* other, float* 
 /// -1 instead; the return value says whether any cell was marked (the caller redoes those one at a time).
 /// With Finite (every value of the window rows known finite) that test is left out.
 template <int R, bool Finite>
-bool angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0,
-                      std::ptrdiff_t c1, const float* inv_d) noexcept
+bool angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
+                      const float* inv_d) noexcept
 {
     constexpr std::uint32_t magnitude = 0x7fffffffu, infinity_bits = 0x7f800000u;
     std::uint32_t marked = 0;
@@ -125,8 +125,8 @@ inline bool all_finite(const float* x, std::ptrdiff_t n) noexcept
 
 /// The unrolled kernel for radius R on one row, the unchecked variant where the window rows are all finite.
 template <int R>
-bool angular_interior_row(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t cols,
-                          bool finite, const float* inv_d) noexcept
+bool angular_interior_row(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t cols, bool finite,
+                          const float* inv_d) noexcept
 {
     if (finite) return angular_interior<R, true>(centre, row_stride, best, R, cols - R, inv_d);
     return angular_interior<R, false>(centre, row_stride, best, R, cols - R, inv_d);
