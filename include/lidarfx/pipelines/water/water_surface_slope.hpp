@@ -3,8 +3,11 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -31,8 +34,8 @@ namespace detail {
 /// One offset (x, y) of water_surface_slope's window over `count` cells of a row: the sums of the
 /// neighbours nb[c] within ±band of the cell's own z0[c] (NaN on either side: left out). Branch-free over
 /// separate arrays, so it vectorizes.
-inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count,
-                       float x, float y, float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
+inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count, float x, float y,
+                       float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
                        float* __restrict sxx, float* __restrict syy, float* __restrict sxy, float* __restrict sz,
                        float* __restrict sxz, float* __restrict syz) noexcept
 {
@@ -54,6 +57,69 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
     }
 }
 
+/// water_surface_slope's sums for the cells [c0, c1) of row `z0` whose whole (2R+1)² window lies inside the
+/// raster, R known at compile time: the window is unrolled and the sums stay in registers (the per-offset
+/// passes of slope_sums read and write nine row arrays per offset). Same sums bit for bit: the six sums of
+/// the mask times x, y, x², y², xy are small integers, exact in float in any order, and are taken per window
+/// row; sz, sxz and syz add in the passes' order (row by row, column by column).
+template <int R>
+[[gnu::noinline]] void slope_sums_window(const float* z0, std::ptrdiff_t row_stride, std::ptrdiff_t c0,
+                                         std::ptrdiff_t c1, float band, float* __restrict n, float* __restrict sx,
+                                         float* __restrict sy, float* __restrict sxx, float* __restrict syy,
+                                         float* __restrict sxy, float* __restrict sz, float* __restrict sxz,
+                                         float* __restrict syz) noexcept
+{
+    LIDARFX_IVDEP
+    for (std::ptrdiff_t c = c0; c < c1; ++c) {
+        const float p = z0[c];
+        float a_n = 0, a_sx = 0, a_sy = 0, a_sxx = 0, a_syy = 0, a_sxy = 0, a_sz = 0, a_sxz = 0, a_syz = 0;
+#pragma GCC unroll 16
+        for (int dr = -R; dr <= R; ++dr) {
+            const auto y = static_cast<float>(dr);
+            float row_n = 0, row_sx = 0, row_sxx = 0;
+#pragma GCC unroll 16
+            for (int dc = -R; dc <= R; ++dc) {
+                const auto x = static_cast<float>(dc);
+                const float d = z0[dr * row_stride + c + dc] - p;
+                const bool in = std::fabs(d) <= band;
+                const float m = select_bits(in, 1.0f, 0.0f), dz = select_bits(in, d, 0.0f);
+                row_n += m;
+                row_sx += m * x;
+                row_sxx += m * (x * x);
+                a_sz += dz;
+                a_sxz += dz * x;
+                a_syz += dz * y;
+            }
+            a_n += row_n;
+            a_sy += row_n * y;
+            a_syy += row_n * (y * y);
+            a_sx += row_sx;
+            a_sxy += row_sx * y;
+            a_sxx += row_sxx;
+        }
+        n[c] = a_n;
+        sx[c] = a_sx;
+        sy[c] = a_sy;
+        sxx[c] = a_sxx;
+        syy[c] = a_syy;
+        sxy[c] = a_sxy;
+        sz[c] = a_sz;
+        sxz[c] = a_sxz;
+        syz[c] = a_syz;
+    }
+}
+
+/// out[c] = sqrt(squared[c]) / cell_m in float (NaN stays NaN). GCC keeps a loop of square roots scalar
+/// unless told that errno is not wanted; the squares here are >= 0 or NaN, for which sqrt sets no errno.
+#if defined(__GNUC__) && !defined(__clang__)
+__attribute__((optimize("no-math-errno")))
+#endif
+inline void
+slope_from_squares(const double* squared, float* out, std::ptrdiff_t n, double cell_m) noexcept
+{
+    for (std::ptrdiff_t c = 0; c < n; ++c) out[c] = static_cast<float>(std::sqrt(squared[c]) / cell_m);
+}
+
 }  // namespace detail
 
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
@@ -62,7 +128,7 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
 /// cell has no return, the window holds fewer than min_cells such returns, or they lie on a line. A water
 /// surface is level to the range noise (a river falls a few mm per metre at most); beaches, banks and
 /// meadows rising from the water are not. cell_m in metres.
-/// O(cells · (2·radius_cells + 1)²), vectorized along rows.
+/// O(cells · (2·radius_cells + 1)²), vectorized along rows, the window unrolled for radius_cells <= 4.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 inline raster<float> water_surface_slope(raster_view<const float> min_z, double cell_m,
                                          const water_surface_slope_options& opt = {})
@@ -74,53 +140,79 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
     detail::require(opt.band_m > 0, fn, "band_m", "> 0", opt.band_m);
     detail::check_execution(opt.run, fn);
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), k = opt.radius_cells;
-    raster<float> out(rows, cols, NAN);
+    raster<float> out(rows, cols, uninitialized);  // every cell is written
     const float band = static_cast<float>(opt.band_m);
     const auto need = static_cast<float>(opt.min_cells);
     // Per row, the window's sums are accumulated offset by offset over the whole row (contiguous, so the
     // loops vectorize), in float: heights enter relative to the cell's own, within ±band_m.
-    parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        const auto n_cols = static_cast<std::size_t>(cols);
-        std::vector<float> sums(9 * n_cols);
-        float* n = sums.data();
-        float* sx = n + n_cols;
-        float* sy = sx + n_cols;
-        float* sxx = sy + n_cols;
-        float* syy = sxx + n_cols;
-        float* sxy = syy + n_cols;
-        float* sz = sxy + n_cols;
-        float* sxz = sz + n_cols;
-        float* syz = sxz + n_cols;
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            std::fill(sums.begin(), sums.end(), 0.0f);
-            const float* z0 = min_z.row(r);
-            for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
-                if (r + dr < 0 || r + dr >= rows) continue;
-                const float* zr = min_z.row(r + dr);
-                const auto y = static_cast<float>(dr);
-                for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
-                    const auto x = static_cast<float>(dc);
-                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
-                    detail::slope_sums(zr + c0 + dc, z0 + c0, c1 - c0, x, y, band, n + c0, sx + c0, sy + c0, sxx + c0,
-                                       syy + c0, sxy + c0, sz + c0, sxz + c0, syz + c0);
+    parallel_for_rows(
+        rows, 16, opt.run.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            const auto n_cols = static_cast<std::size_t>(cols);
+            std::vector<float> sums(9 * n_cols);
+            float* n = sums.data();
+            float* sx = n + n_cols;
+            float* sy = sx + n_cols;
+            float* sxx = sy + n_cols;
+            float* syy = sxx + n_cols;
+            float* sxy = syy + n_cols;
+            float* sz = sxy + n_cols;
+            float* sxz = sz + n_cols;
+            float* syz = sxz + n_cols;
+            std::vector<double> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                std::fill(sums.begin(), sums.end(), 0.0f);
+                const float* z0 = min_z.row(r);
+                // Rows and columns whose window lies inside: the unrolled window (radii 1-4); the rest, and
+                // every cell for larger radii, by passes per offset.
+                const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
+                if (inside) {
+                    const auto stride = min_z.row_stride();
+                    const std::ptrdiff_t e = cols - k;
+                    if (k == 1)
+                        detail::slope_sums_window<1>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                    if (k == 2)
+                        detail::slope_sums_window<2>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                    if (k == 3)
+                        detail::slope_sums_window<3>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                    if (k == 4)
+                        detail::slope_sums_window<4>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
                 }
+                for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
+                    if (r + dr < 0 || r + dr >= rows) continue;
+                    const float* zr = min_z.row(r + dr);
+                    const auto y = static_cast<float>(dr);
+                    for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
+                        const auto x = static_cast<float>(dc);
+                        const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
+                        // With the window done, only the k columns at each end.
+                        for (const auto& [a, b] : inside ? std::array{std::pair{c0, k}, std::pair{cols - k, c1}}
+                                                         : std::array{std::pair{c0, c1}, std::pair{c1, c1}}) {
+                            if (b <= a) continue;
+                            detail::slope_sums(zr + a + dc, z0 + a, b - a, x, y, band, n + a, sx + a, sy + a, sxx + a,
+                                               syy + a, sxy + a, sz + a, sxz + a, syz + a);
+                        }
+                    }
+                }
+                // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances. Every
+                // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
+                // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const double w = n[c];
+                    const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
+                    const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
+                    const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
+                    const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
+                    const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
+                    const double det = cxx * cyy - cxy * cxy;
+                    const bool known = (n[c] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
+                    const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
+                    squared[c] = detail::select_bits(known, b * b + g * g, std::numeric_limits<double>::quiet_NaN());
+                }
+                detail::slope_from_squares(squared.data(), out.view().row(r), cols, cell_m);
             }
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                if (!(n[c] >= need)) continue;
-                // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances.
-                const double w = n[c];
-                const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
-                const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
-                const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
-                const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
-                const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
-                const double det = cxx * cyy - cxy * cxy;
-                if (!(det > 1e-6 * (cxx * cyy + 1))) continue;
-                const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
-                out(r, c) = static_cast<float>(std::sqrt(b * b + g * g) / cell_m);
-            }
-        }
-    }, {}, fn);
+        },
+        {}, fn);
     return out;
 }
 
