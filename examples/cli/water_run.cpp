@@ -32,8 +32,10 @@ constexpr const char* usage =
     "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
     "  --veg-height M        vegetation height h, metres [2]\n"
     "  --min-seed-cells N    smallest dropout seed, cells [100]\n"
-    "  --flat-seeds          also seed from level, sparse cells: finds turbid or specular water without\n"
-    "                        dropouts; costs about twice the time and can take some river banks [off]\n"
+    "  --flat-seeds          also seed from level, sparse cells, with the level-surface cue (the flood's\n"
+    "                        level follows min z only where the surface is level): finds turbid or specular\n"
+    "                        water without dropouts; costs about twice the time and can take some river\n"
+    "                        banks [off]\n"
     "  --theta-start D       first angular threshold, degrees [2]\n"
     "  --theta-step D        threshold step, degrees [1]\n"
     "  --theta-max D         last threshold, degrees [30]\n"
@@ -41,7 +43,8 @@ constexpr const char* usage =
     "  --one-sided           use the one-sided KS critical value sqrt(-ln(a)/2) instead of the documents' table\n"
     "  --level-tolerance M   narrow-water refinement tolerance, metres, 0 = off [0.15]\n"
     "  --island-min-area A   islands at least this large stay land, m2 [200]\n"
-    "  --bridge-span M       bridge gaps up to this long, metres, 0 = off [30]\n"
+    "  --bridge-span M       bridge gaps up to this long, metres, 0 = off [30]; also the longest deck\n"
+    "                        crossed to seed a river stretch that only the far side of a bridge reached\n"
     "  --hull-radius M       survey footprint: empty space that a disc of this radius reaches from outside\n"
     "                        was not flown (no data, never water), metres, 0 = off [25]\n"
     "  --memory SIZE         refuse grids whose estimate exceeds SIZE (4GiB, 512MiB) [half the memory]\n"
@@ -56,10 +59,22 @@ constexpr const char* usage =
 
 const std::vector<std::string>& water_value_options()
 {
-    static const std::vector<std::string> names{"cell",         "out",          "threads",         "veg-height",
-                                                "min-seed-cells", "theta-start", "theta-step",      "theta-max",
-                                                "alpha",        "level-tolerance", "island-min-area", "bridge-span",
-                                                "hull-radius",  "memory",       "crop",            "formats",
+    static const std::vector<std::string> names{"cell",
+                                                "out",
+                                                "threads",
+                                                "veg-height",
+                                                "min-seed-cells",
+                                                "theta-start",
+                                                "theta-step",
+                                                "theta-max",
+                                                "alpha",
+                                                "level-tolerance",
+                                                "island-min-area",
+                                                "bridge-span",
+                                                "hull-radius",
+                                                "memory",
+                                                "crop",
+                                                "formats",
                                                 "tile"};
     return names;
 }
@@ -95,9 +110,12 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     opt.grow.ks.alpha = a.number("alpha", opt.grow.ks.alpha);
     if (a.has("one-sided")) opt.grow.ks.critical = ks_critical::one_sided;
     opt.flat_seeds = a.has("flat-seeds");
+    if (opt.flat_seeds) opt.grow.level_follow_max_slope = 0.008;
     opt.level_tolerance_m = a.number("level-tolerance", opt.level_tolerance_m);
     opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
     opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
+    opt.bridge_seeds.max_span_m = opt.bridge_max_span_m;
+    if (opt.bridge_max_span_m == 0) opt.bridge_seed_rounds = 0;
     const double hull_radius_m = a.number("hull-radius", survey_footprint_options{}.hull_radius_m);
     opt.check_inputs = !a.has("force");
     opt.run.progress = progress_bar("waterbodies");
@@ -114,8 +132,8 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
          opt.vegetation_height_m);
     need(g.theta_start_deg >= 0 && g.theta_start_deg <= 90, "theta-start", "in [0, 90] degrees", g.theta_start_deg);
     need(g.theta_step_deg > 0 && g.theta_step_deg <= 90, "theta-step", "in (0, 90] degrees", g.theta_step_deg);
-    need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max",
-         "in [--theta-start, 90] degrees", g.theta_max_deg);
+    need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max", "in [--theta-start, 90] degrees",
+         g.theta_max_deg);
     need(g.ks.alpha > 0 && g.ks.alpha < 1, "alpha", "in (0, 1)", g.ks.alpha);
     need(opt.level_tolerance_m >= 0 && std::isfinite(opt.level_tolerance_m), "level-tolerance",
          "a finite number >= 0 (metres)", opt.level_tolerance_m);
@@ -145,7 +163,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     print_waterbodies(w);
     write_waterbodies(out, s, w, found.footprint, survey_options.formats, opt.run.threads);
     commit_and_report(out, command_line("water", args));
-    std::filesystem::remove_all(tiles_dir);   // the run is complete: its tiles are no longer needed
+    std::filesystem::remove_all(tiles_dir);  // the run is complete: its tiles are no longer needed
     return 0;
 }
 

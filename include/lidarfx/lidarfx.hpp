@@ -59,6 +59,7 @@
 #include "lidarfx/pipelines/pv/roof_yield.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
+#include "lidarfx/pipelines/water/bridge_seeds.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
 #include "lidarfx/pipelines/water/extract_waterbodies.hpp"
 #include "lidarfx/pipelines/water/grow_waterbodies.hpp"

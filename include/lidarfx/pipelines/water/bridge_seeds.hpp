@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: Apache-2.0
+// seeds_beyond_bridges: where a waterbody ends at a bridge deck, the water at its level beyond the deck.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Options of seeds_beyond_bridges.
+struct seeds_beyond_bridges_options {
+    double max_span_m = 30.0;          ///< longest deck crossed along a row, column or diagonal, metres, > 0.
+                                       ///< Default 30 (join_across_bridges' max_span_m)
+    double min_clearance_m = 2.0;      ///< every deck cell has no return or a min z at least this above the water
+                                       ///< cell the walk starts from, metres, >= 0. Default 2 (a deck stands
+                                       ///< clear of the water; join_across_bridges' min_clearance_m)
+    double level_tolerance_m = 0.15;   ///< beyond the deck, a cell is water-like when its min z lies within this
+                                       ///< of the start cell's, metres, >= 0. Default 0.15 (the level gate: a
+                                       ///< river falls a few cm across a bridge)
+    int beyond_cells = 4;              ///< a walk counts when this many consecutive water-like cells follow the
+                                       ///< deck (eligible, in no body), and marks them, >= 1. Default 4
+    int approach_cells = 2;            ///< land cells at the water's level (or without return) allowed between the
+                                       ///< body and the deck (a body may stop a cell short of it), >= 0. Default 2
+    double max_surface_slope = 0.008;  ///< given a surface_slope raster (water_surface_slope), the cells beyond the
+                                       ///< deck must be level: slope at most this (NaN: unknown, accepted), m/m;
+                                       ///< < 0 disables. Default 0.008 (flat_water_seeds' max_surface_slope)
+    int clear_cells = 4;               ///< a marked cell with a body within this Chebyshev distance is left out
+                                       ///< (it borders water already found: a walk over a deck's end lands on
+                                       ///< the bank beyond), >= 0. Default 4
+    int behind_cells = 3;              ///< the walk starts from a water cell with this many cells of its own body
+                                       ///< behind it on the line (the end of a channel, not a stray cell), >= 0.
+                                       ///< Default 3
+};
+
+namespace detail {
+
+inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
+{
+    require(o.max_span_m > 0, fn, "max_span_m", "> 0", o.max_span_m);
+    require(o.min_clearance_m >= 0, fn, "min_clearance_m", ">= 0", o.min_clearance_m);
+    require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
+    require(o.beyond_cells >= 1, fn, "beyond_cells", ">= 1", o.beyond_cells);
+    require(o.behind_cells >= 0, fn, "behind_cells", ">= 0", o.behind_cells);
+    require(o.approach_cells >= 0, fn, "approach_cells", ">= 0", o.approach_cells);
+    require(o.clear_cells >= 0, fn, "clear_cells", ">= 0", o.clear_cells);
+}
+
+}  // namespace detail
+
+/// Seed cells beyond bridge decks: from every cell of a body (label > 0, finite min z, behind_cells cells of
+/// the same body behind it) a walk goes along each of the 8 directions of the rows, columns and diagonals over
+/// a deck: after at most approach_cells land cells at the start cell's level (within level_tolerance_m) or
+/// without return, land cells (label 0) that have no return or stand min_clearance_m above the start cell's
+/// min z (at least one of them with a return), up to floor(max_span_m / step) cells from the start, step =
+/// cell_m or cell_m·√2; when the
+/// beyond_cells cells after the deck are eligible (eligible != 0, label 0) with min z within
+/// level_tolerance_m of the start cell's (and, given surface_slope, a slope of at most max_surface_slope or
+/// NaN), they are marked 1; marks within clear_cells of a body are then dropped. A river's stretch that no seed
+/// reached, cut off by a bridge from a stretch found, so gets seeds at the level the found stretch has at the deck;
+/// they grow like any seed (the level gate and the intensity test decide what joins). A walk sideways from a bank over
+/// a building only marks ground at the water's level behind it, which the same tests then judge.
+/// O(cells of bodies · 8 · (span + beyond_cells)). Elevations and cell_m in metres.
+/// @throws invalid_input on shapes that differ, cell_m <= 0 or options out of range.
+inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
+                                                 raster_view<const std::uint8_t> eligible, double cell_m,
+                                                 const seeds_beyond_bridges_options& opt = {},
+                                                 raster_view<const float> surface_slope = {})
+{
+    constexpr const char* fn = "seeds_beyond_bridges";
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    detail::require_same_shape(labels, eligible, fn, "labels", "eligible");
+    const bool sloped_out = !surface_slope.empty() && opt.max_surface_slope >= 0;
+    if (sloped_out) detail::require_same_shape(labels, surface_slope, fn, "labels", "surface_slope");
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    raster<std::uint8_t> seeds(rows, cols, 0);
+    const auto inside = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return r >= 0 && r < rows && c >= 0 && c < cols; };
+    constexpr int steps[8][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const std::int32_t body = labels(r, c);
+            const float z0 = min_z(r, c);
+            if (body <= 0 || !std::isfinite(z0)) continue;
+            for (const auto& step : steps) {
+                const std::ptrdiff_t dr = step[0], dc = step[1];
+                // Only a cell at the body's edge along this line starts a walk.
+                if (!inside(r + dr, c + dc) || labels(r + dr, c + dc) != 0) continue;
+                bool channel = true;
+                for (std::ptrdiff_t k = 1; k <= opt.behind_cells && channel; ++k)
+                    channel = inside(r - k * dr, c - k * dc) && labels(r - k * dr, c - k * dc) == body;
+                if (!channel) continue;
+                const double step_m = (dr != 0 && dc != 0) ? cell_m * std::numbers::sqrt2 : cell_m;
+                const auto span = static_cast<std::ptrdiff_t>(std::floor(opt.max_span_m / step_m));
+                // Up to the deck: a few land cells at the water's level (the body may stop short of the deck);
+                // then over it: land cells with no return or standing clear of the water.
+                const auto level_with = [&](float z) {
+                    return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m;
+                };
+                std::ptrdiff_t k = 1;
+                for (; k <= opt.approach_cells && inside(r + k * dr, c + k * dc); ++k) {
+                    const std::ptrdiff_t rr = r + k * dr, cc = c + k * dc;
+                    if (labels(rr, cc) != 0 || !(level_with(min_z(rr, cc)) || std::isnan(min_z(rr, cc)))) break;
+                }
+                const std::ptrdiff_t deck_from = k;
+                bool raised = false;
+                for (; k <= span && inside(r + k * dr, c + k * dc); ++k) {
+                    const std::ptrdiff_t rr = r + k * dr, cc = c + k * dc;
+                    if (labels(rr, cc) != 0) break;
+                    const float z = min_z(rr, cc);
+                    if (std::isfinite(z) && !(z >= z0 + opt.min_clearance_m)) break;
+                    raised |= std::isfinite(z);
+                }
+                if (!raised || k == deck_from) continue;
+                // Beyond it: beyond_cells water-like cells in a row.
+                bool water_like = true;
+                for (std::ptrdiff_t j = 0; j < opt.beyond_cells && water_like; ++j) {
+                    const std::ptrdiff_t rr = r + (k + j) * dr, cc = c + (k + j) * dc;
+                    water_like = inside(rr, cc) && labels(rr, cc) == 0 && eligible(rr, cc) != 0 &&
+                                 std::abs(static_cast<double>(min_z(rr, cc)) - z0) <= opt.level_tolerance_m &&
+                                 !(sloped_out && surface_slope(rr, cc) > opt.max_surface_slope);
+                }
+                if (!water_like) continue;
+                for (std::ptrdiff_t j = 0; j < opt.beyond_cells; ++j) seeds(r + (k + j) * dr, c + (k + j) * dc) = 1;
+            }
+        }
+    }
+    // Only where nothing was found yet: a marked cell within clear_cells of a body is the bank of water
+    // already found (a walk over a deck's end lands on it), not water cut off by the deck.
+    const std::ptrdiff_t d = opt.clear_cells;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (!seeds(r, c)) continue;
+            bool near = false;
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - d); rr <= std::min(rows - 1, r + d) && !near; ++rr)
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - d); cc <= std::min(cols - 1, c + d); ++cc)
+                    near |= labels(rr, cc) > 0;
+            if (near) seeds(r, c) = 0;
+        }
+    }
+    return seeds;
+}
+
+}  // namespace lidarfx
