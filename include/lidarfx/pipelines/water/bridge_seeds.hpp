@@ -87,8 +87,18 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const std::int32_t body = labels(r, c);
+            if (body <= 0) continue;
+            // Inside a body (all 8 neighbours its own) no walk starts: most body cells end here.
+            if (r > 0 && r + 1 < rows && c > 0 && c + 1 < cols) {
+                const std::int32_t* above = labels.row(r - 1) + c;
+                const std::int32_t* here = labels.row(r) + c;
+                const std::int32_t* below = labels.row(r + 1) + c;
+                if (((above[-1] == body) & (above[0] == body) & (above[1] == body) & (here[-1] == body) &
+                     (here[1] == body) & (below[-1] == body) & (below[0] == body) & (below[1] == body)) != 0)
+                    continue;
+            }
             const float z0 = min_z(r, c);
-            if (body <= 0 || !std::isfinite(z0)) continue;
+            if (!std::isfinite(z0)) continue;
             for (const auto& step : steps) {
                 const std::ptrdiff_t dr = step[0], dc = step[1];
                 // Only a cell at the body's edge along this line starts a walk.

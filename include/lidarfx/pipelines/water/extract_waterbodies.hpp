@@ -287,6 +287,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {
         const auto mask =
             seeds_beyond_bridges(res.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, surface_slope);
+        if (std::find(mask.begin(), mask.end(), std::uint8_t{1}) == mask.end()) break;  // none: no labelling
         const auto more =
             water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels});
         if (more.count() == 0) break;
