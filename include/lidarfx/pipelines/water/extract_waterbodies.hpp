@@ -155,7 +155,8 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
 /// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
 /// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
 /// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). With flat_seeds, after the
-/// dropout seeds: flat_water_seeds outside the bodies grown, water_seeds on them, grow_waterbodies again. With
+/// dropout seeds: flat_water_seeds outside the bodies grown, water_seeds on them, grow_waterbodies again. Then, for
+/// bridge_seed_rounds rounds, seeds_beyond_bridges (water cut off by a deck from a body) grown the same way. With
 /// in.footprint, cells outside it are no data: they neither seed nor join a body (survey_footprint tells them apart).
 /// When check_inputs is set and assess_water_inputs()
 /// reports problems, nothing is extracted (ran = false) and the diagnostics say why. cell_m in metres.
