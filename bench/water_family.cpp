@@ -15,9 +15,9 @@
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -92,16 +92,11 @@ int main(int argc, char** argv)
     unsigned first = 1001, count = 50;
     bool ablation = false, list_scenes = false;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--tuning"))
-            first = 1, count = 20;
-        else if (!std::strcmp(argv[i], "--first") && i + 1 < argc)
-            first = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--count") && i + 1 < argc)
-            count = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--ablation"))
-            ablation = true;
-        else if (!std::strcmp(argv[i], "--scenes"))
-            list_scenes = true;
+        if (!std::strcmp(argv[i], "--tuning")) first = 1, count = 20;
+        else if (!std::strcmp(argv[i], "--first") && i + 1 < argc) first = static_cast<unsigned>(std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--count") && i + 1 < argc) count = static_cast<unsigned>(std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--ablation")) ablation = true;
+        else if (!std::strcmp(argv[i], "--scenes")) list_scenes = true;
         else {
             std::fprintf(stderr, "usage: water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]\n");
             return 2;
@@ -120,25 +115,22 @@ int main(int argc, char** argv)
     const double gen_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("seeds %u-%u per kind; scenes generated and rasterized in %.1f s\n\n", first, first + count - 1, gen_s);
     if (list_scenes) {
-        std::printf(
-            "| kind | seed | size m | pts/m² | cell m | H m | angle ° | overlap | drop nadir | glint | turbid | "
-            "bridges | islands |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        std::printf("| kind | seed | size m | pts/m² | cell m | H m | angle ° | overlap | drop nadir | glint | turbid | bridges | islands |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (const auto* v : {&lakes, &rivers})
             for (const auto& p : *v) {
                 const auto& s = p.truth;
                 std::printf("| %s | %u | %.0f | %.2f | %.1f | %.0f | %.1f | %.2f | %.2f | %.2f | %d | %d | %d |\n",
                             s.kind == synth::water_family_kind::lake ? "lake" : "river", p.seed, s.size_m,
                             s.density_per_m2, s.cell_m, s.scan.flying_height_m, s.scan.max_scan_angle_deg,
-                            s.scan.overlap, s.returns.drop_nadir, s.returns.glint, s.returns.turbid ? 1 : 0, s.bridges,
-                            s.islands);
+                            s.scan.overlap, s.returns.drop_nadir, s.returns.glint, s.returns.turbid ? 1 : 0,
+                            s.bridges, s.islands);
             }
         std::printf("\n");
     }
 
     std::vector<configuration> configs{
         {"previous method (before the family)", [](extract_waterbodies_options& o) { o = previous_water_method(); }},
-        {"lidarfx defaults",
-         [](extract_waterbodies_options& o) {
+        {"lidarfx defaults", [](extract_waterbodies_options& o) {
              if (const char* v = std::getenv("WF_GATE")) o.grow.level_gate_m = std::atof(v);
              if (const char* v = std::getenv("WF_DRIFT")) o.grow.level_drift_m = std::atof(v);
              if (const char* v = std::getenv("WF_EXEMPT")) o.grow.level_ks_exempt_m = std::atof(v);
@@ -158,19 +150,16 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_LOWER")) o.flat.max_lower_share = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_BRIGHT")) o.flat.bright_density_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
-             if (const char* v = std::getenv("WF_FLAT_JOINTMIN"))
-                 o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_FLAT_JOINTMIN")) o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_BAND")) o.surface_slope.band_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_RAD")) o.surface_slope.radius_cells = std::atoi(v);
-             if (const char* v = std::getenv("WF_SLOPE_MIN"))
-                 o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_SLOPE_MIN")) o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_TOUCH")) o.bridge_join_touching = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_BSEED")) o.bridge_seed_rounds = std::atoi(v);
-             if (const char* v = std::getenv("WF_BSEED_MIN"))
-                 o.bridge_seed_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_BSEED_MIN")) o.bridge_seed_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_BSEED_BEYOND")) o.bridge_seeds.beyond_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_BEHIND")) o.bridge_seeds.behind_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_TOL")) o.bridge_seeds.level_tolerance_m = std::atof(v);
@@ -183,9 +172,10 @@ int main(int argc, char** argv)
         configs.push_back({"without the level gate", [](extract_waterbodies_options& o) { o.grow.level_gate_m = 0; }});
         configs.push_back({"without level cells exempt from KS",
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
-        configs.push_back(
-            {"with flat seeds (flat_seeds = true)", [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
-        configs.push_back({"with flat seeds, without their bright and joint paths", [](extract_waterbodies_options& o) {
+        configs.push_back({"with flat seeds (flat_seeds = true)",
+                           [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
+        configs.push_back({"with flat seeds, without their bright and joint paths",
+                           [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
                                o.flat.bright_density_ratio = 0;
                                o.flat.max_joint_ratio = 0;
@@ -199,13 +189,12 @@ int main(int argc, char** argv)
                                o.flat_seeds = true;
                                o.grow.level_rise_m = 0;
                            }});
-        configs.push_back(
-            {"with flat seeds and a level that follows min z only on a level surface "
-             "(grow.level_follow_max_slope = 0.008)",
-             [](extract_waterbodies_options& o) {
-                 o.flat_seeds = true;
-                 o.grow.level_follow_max_slope = 0.008;
-             }});
+        configs.push_back({"with flat seeds and a level that follows min z only on a level surface "
+                           "(grow.level_follow_max_slope = 0.008)",
+                           [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.grow.level_follow_max_slope = 0.008;
+                           }});
         configs.push_back({"with flat seeds and the level-surface cue, without seeds beyond bridges",
                            [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
@@ -214,17 +203,15 @@ int main(int argc, char** argv)
                            }});
         configs.push_back({"without seeds beyond bridges (bridge_seed_rounds = 0)",
                            [](extract_waterbodies_options& o) { o.bridge_seed_rounds = 0; }});
-        configs.push_back(
-            {"without bridges (no joins across decks, no seeds beyond them)", [](extract_waterbodies_options& o) {
-                 o.bridge_max_span_m = 0;
-                 o.bridge_seed_rounds = 0;
-             }});
-        configs.push_back(
-            {"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
+        configs.push_back({"without bridges (no joins across decks, no seeds beyond them)",
+                           [](extract_waterbodies_options& o) {
+                               o.bridge_max_span_m = 0;
+                               o.bridge_seed_rounds = 0;
+                           }});
+        configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
     }
-    std::printf(
-        "| configuration | kind | acc mean / 5%% / worst | sens mean / 5%% / worst | spec mean / 5%% / worst | "
-        "IoU mean / 5%% / worst | worst seed | bridges one body |\n|---|---|---|---|---|---|---|---|\n");
+    std::printf("| configuration | kind | acc mean / 5%% / worst | sens mean / 5%% / worst | spec mean / 5%% / worst | "
+                "IoU mean / 5%% / worst | worst seed | bridges one body |\n|---|---|---|---|---|---|---|---|\n");
     for (const auto& cfg : configs) {
         extract_waterbodies_options o;
         o.run.threads = 1;

@@ -59,13 +59,13 @@ inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
 /// a deck: after at most approach_cells land cells at the start cell's level (within level_tolerance_m) or
 /// without return, land cells (label 0) that have no return or stand min_clearance_m above the start cell's
 /// min z (at least one of them with a return), up to floor(max_span_m / step) cells from the start, step =
-/// cell_m or cell_m·√2; when the
-/// beyond_cells cells after the deck are eligible (eligible != 0, label 0) with min z within
-/// level_tolerance_m of the start cell's (and, given surface_slope, a slope of at most max_surface_slope or
-/// NaN), they are marked 1; marks within clear_cells of a body are then dropped. A river's stretch that no seed
-/// reached, cut off by a bridge from a stretch found, so gets seeds at the level the found stretch has at the deck;
-/// they grow like any seed (the level gate and the intensity test decide what joins). A walk sideways from a bank over
-/// a building only marks ground at the water's level behind it, which the same tests then judge.
+/// cell_m or cell_m·√2; when the beyond_cells cells after the deck are eligible (eligible != 0, label 0) with
+/// min z within level_tolerance_m of the start cell's (and, given surface_slope, a slope of at most
+/// max_surface_slope or NaN), they are marked 1; marks within clear_cells of a body are then dropped. A river's
+/// stretch that no seed reached, cut off by a bridge from a stretch found, so gets seeds at the level the found
+/// stretch has at the deck; they grow like any seed (the level gate and the intensity test decide what joins).
+/// A walk sideways from a bank over a building only marks ground at the water's level behind it, which the same
+/// tests then judge.
 /// O(cells of bodies · 8 · (span + beyond_cells)). Elevations and cell_m in metres.
 /// @throws invalid_input on shapes that differ, cell_m <= 0 or options out of range.
 inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
@@ -99,6 +99,9 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
             }
             const float z0 = min_z(r, c);
             if (!std::isfinite(z0)) continue;
+            const auto level_with = [&](float z) {
+                return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m;
+            };
             for (const auto& step : steps) {
                 const std::ptrdiff_t dr = step[0], dc = step[1];
                 // Only a cell at the body's edge along this line starts a walk.
@@ -111,9 +114,6 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
                 const auto span = static_cast<std::ptrdiff_t>(std::floor(opt.max_span_m / step_m));
                 // Up to the deck: a few land cells at the water's level (the body may stop short of the deck);
                 // then over it: land cells with no return or standing clear of the water.
-                const auto level_with = [&](float z) {
-                    return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m;
-                };
                 std::ptrdiff_t k = 1;
                 for (; k <= opt.approach_cells && inside(r + k * dr, c + k * dc); ++k) {
                     const std::ptrdiff_t rr = r + k * dr, cc = c + k * dc;
@@ -134,7 +134,7 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
                 for (std::ptrdiff_t j = 0; j < opt.beyond_cells && water_like; ++j) {
                     const std::ptrdiff_t rr = r + (k + j) * dr, cc = c + (k + j) * dc;
                     water_like = inside(rr, cc) && labels(rr, cc) == 0 && eligible(rr, cc) != 0 &&
-                                 std::abs(static_cast<double>(min_z(rr, cc)) - z0) <= opt.level_tolerance_m &&
+                                 level_with(min_z(rr, cc)) &&
                                  !(sloped_out && surface_slope(rr, cc) > opt.max_surface_slope);
                 }
                 if (!water_like) continue;

@@ -34,8 +34,8 @@ namespace detail {
 /// One offset (x, y) of water_surface_slope's window over `count` cells of a row: the sums of the
 /// neighbours nb[c] within ±band of the cell's own z0[c] (NaN on either side: left out). Branch-free over
 /// separate arrays, so it vectorizes.
-inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count, float x, float y,
-                       float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
+inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count,
+                       float x, float y, float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
                        float* __restrict sxx, float* __restrict syy, float* __restrict sxy, float* __restrict sz,
                        float* __restrict sxz, float* __restrict syz) noexcept
 {
@@ -114,8 +114,7 @@ template <int R>
 #if defined(__GNUC__) && !defined(__clang__)
 __attribute__((optimize("no-math-errno")))
 #endif
-inline void
-slope_from_squares(const double* squared, float* out, std::ptrdiff_t n, double cell_m) noexcept
+inline void slope_from_squares(const double* squared, float* out, std::ptrdiff_t n, double cell_m) noexcept
 {
     for (std::ptrdiff_t c = 0; c < n; ++c) out[c] = static_cast<float>(std::sqrt(squared[c]) / cell_m);
 }
@@ -145,74 +144,71 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
     const auto need = static_cast<float>(opt.min_cells);
     // Per row, the window's sums are accumulated offset by offset over the whole row (contiguous, so the
     // loops vectorize), in float: heights enter relative to the cell's own, within ±band_m.
-    parallel_for_rows(
-        rows, 16, opt.run.threads,
-        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            const auto n_cols = static_cast<std::size_t>(cols);
-            std::vector<float> sums(9 * n_cols);
-            float* n = sums.data();
-            float* sx = n + n_cols;
-            float* sy = sx + n_cols;
-            float* sxx = sy + n_cols;
-            float* syy = sxx + n_cols;
-            float* sxy = syy + n_cols;
-            float* sz = sxy + n_cols;
-            float* sxz = sz + n_cols;
-            float* syz = sxz + n_cols;
-            std::vector<double> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                std::fill(sums.begin(), sums.end(), 0.0f);
-                const float* z0 = min_z.row(r);
-                // Rows and columns whose window lies inside: the unrolled window (radii 1-4); the rest, and
-                // every cell for larger radii, by passes per offset.
-                const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
-                if (inside) {
-                    const auto stride = min_z.row_stride();
-                    const std::ptrdiff_t e = cols - k;
-                    if (k == 1)
-                        detail::slope_sums_window<1>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                    if (k == 2)
-                        detail::slope_sums_window<2>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                    if (k == 3)
-                        detail::slope_sums_window<3>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                    if (k == 4)
-                        detail::slope_sums_window<4>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                }
-                for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
-                    if (r + dr < 0 || r + dr >= rows) continue;
-                    const float* zr = min_z.row(r + dr);
-                    const auto y = static_cast<float>(dr);
-                    for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
-                        const auto x = static_cast<float>(dc);
-                        const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
-                        // With the window done, only the k columns at each end.
-                        for (const auto& [a, b] : inside ? std::array{std::pair{c0, k}, std::pair{cols - k, c1}}
-                                                         : std::array{std::pair{c0, c1}, std::pair{c1, c1}}) {
-                            if (b <= a) continue;
-                            detail::slope_sums(zr + a + dc, z0 + a, b - a, x, y, band, n + a, sx + a, sy + a, sxx + a,
-                                               syy + a, sxy + a, sz + a, sxz + a, syz + a);
-                        }
+    parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const auto n_cols = static_cast<std::size_t>(cols);
+        std::vector<float> sums(9 * n_cols);
+        float* n = sums.data();
+        float* sx = n + n_cols;
+        float* sy = sx + n_cols;
+        float* sxx = sy + n_cols;
+        float* syy = sxx + n_cols;
+        float* sxy = syy + n_cols;
+        float* sz = sxy + n_cols;
+        float* sxz = sz + n_cols;
+        float* syz = sxz + n_cols;
+        std::vector<double> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            std::fill(sums.begin(), sums.end(), 0.0f);
+            const float* z0 = min_z.row(r);
+            // Rows and columns whose window lies inside: the unrolled window (radii 1-4); the rest, and
+            // every cell for larger radii, by passes per offset.
+            const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
+            if (inside) {
+                const auto stride = min_z.row_stride();
+                const std::ptrdiff_t e = cols - k;
+                if (k == 1)
+                    detail::slope_sums_window<1>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                if (k == 2)
+                    detail::slope_sums_window<2>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                if (k == 3)
+                    detail::slope_sums_window<3>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+                if (k == 4)
+                    detail::slope_sums_window<4>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+            }
+            for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
+                if (r + dr < 0 || r + dr >= rows) continue;
+                const float* zr = min_z.row(r + dr);
+                const auto y = static_cast<float>(dr);
+                for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
+                    const auto x = static_cast<float>(dc);
+                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
+                    // With the window done, only the k columns at each end.
+                    for (const auto& [a, b] : inside ? std::array{std::pair{c0, k}, std::pair{cols - k, c1}}
+                                                     : std::array{std::pair{c0, c1}, std::pair{c1, c1}}) {
+                        if (b <= a) continue;
+                        detail::slope_sums(zr + a + dc, z0 + a, b - a, x, y, band, n + a, sx + a, sy + a, sxx + a,
+                                           syy + a, sxy + a, sz + a, sxz + a, syz + a);
                     }
                 }
-                // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances. Every
-                // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
-                // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    const double w = n[c];
-                    const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
-                    const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
-                    const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
-                    const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
-                    const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
-                    const double det = cxx * cyy - cxy * cxy;
-                    const bool known = (n[c] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
-                    const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
-                    squared[c] = detail::select_bits(known, b * b + g * g, std::numeric_limits<double>::quiet_NaN());
-                }
-                detail::slope_from_squares(squared.data(), out.view().row(r), cols, cell_m);
             }
-        },
-        {}, fn);
+            // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances. Every
+            // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
+            // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const double w = n[c];
+                const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
+                const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
+                const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
+                const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
+                const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
+                const double det = cxx * cyy - cxy * cxy;
+                const bool known = (n[c] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
+                const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
+                squared[c] = detail::select_bits(known, b * b + g * g, std::numeric_limits<double>::quiet_NaN());
+            }
+            detail::slope_from_squares(squared.data(), out.view().row(r), cols, cell_m);
+        }
+    }, {}, fn);
     return out;
 }
 
