@@ -233,28 +233,21 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, grow_opt);
     res.seeds_found = seeds.count();
     res.seeds = std::move(seeds.labels);
-    res.labels = std::move(grown.labels);
-    res.seeds_grown = grown.seeds_grown;
-    // Grows further seeds into the cells still eligible; their seeds and bodies follow those so far.
+    // Grows further seeds into the cells still eligible: their bodies are numbered after those so far (in
+    // the same label raster), their seeds after the seeds so far.
     const auto grow_more = [&](const components& more, double progress_from, double progress_share) {
         auto more_opt = grow_opt;
         more_opt.run.progress = [&](double f) {
             detail::report(opt.run.progress, progress_from + progress_share * f, fn);
             return true;
         };
-        auto grown_more = grow_waterbodies(field, more, in.min_z, in.max_z, more_opt);
         const auto k = static_cast<std::int32_t>(res.seeds_found);
-        const auto n = static_cast<std::int32_t>(grown.bodies.size());
-        for (std::ptrdiff_t i = 0; i < res.labels.size(); ++i) {
-            if (more.labels.data()[i] > 0) res.seeds.data()[i] = k + more.labels.data()[i];
-            if (grown_more.labels.data()[i] > 0) res.labels.data()[i] = n + grown_more.labels.data()[i];
-        }
-        for (auto b : grown_more.bodies) {
-            b.seed += k;
-            grown.bodies.push_back(b);
-        }
+        grow_waterbodies(field, more, in.min_z, in.max_z, grown, more_opt, k);
+        std::int32_t* seed = res.seeds.data();
+        const std::int32_t* more_seed = more.labels.data();
+        for (std::ptrdiff_t i = 0, n = res.seeds.size(); i < n; ++i)
+            seed[i] = more_seed[i] > 0 ? k + more_seed[i] : seed[i];
         res.seeds_found += more.count();
-        res.seeds_grown += grown_more.seeds_grown;
     };
     if (opt.flat_seeds) {
         // Then seeds from level, sparse cells (flat_water_seeds), for the water no dropout seed reached:
@@ -264,20 +257,34 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         flat.run = kernels;
         auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope);
         std::uint8_t* cells = mask.data();
-        const std::int32_t* label = res.labels.data();
-        for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i) cells[i] = cells[i] && label[i] == 0;
+        const std::int32_t* label = grown.labels.data();
+        for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
+            cells[i] = static_cast<std::uint8_t>((cells[i] != 0) & (label[i] == 0));
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end).
         if (opt.grow.level_gate_m > 0) {
             const double band = 2 * opt.grow.level_gate_m;
-            const auto band_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return std::floor(in.min_z(r, c) / band); };
-            auto cut = mask;
-            for (std::ptrdiff_t r = 0; r + 1 < rows; ++r)
-                for (std::ptrdiff_t c = 0; c + 1 < cols; ++c)
-                    if (mask(r, c) && ((mask(r, c + 1) && band_of(r, c + 1) != band_of(r, c)) ||
-                                       (mask(r + 1, c) && band_of(r + 1, c) != band_of(r, c))))
-                        cut(r, c) = 0;
-            mask = std::move(cut);
+            // Row by row, with the band index of each cell (floor(min z / band)) of this row and the next; a
+            // cell's cut reads the uncut mask to its right and below, so row r is written once r + 1 is read.
+            std::vector<double> here(static_cast<std::size_t>(cols)), below(here.size());
+            std::vector<std::uint8_t> cut_row(here.size());
+            const auto band_row = [&](std::ptrdiff_t r, double* out) {
+                const float* z = in.min_z.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) out[c] = std::floor(z[c] / band);
+            };
+            if (rows > 1) band_row(0, here.data());
+            for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
+                band_row(r + 1, below.data());
+                std::uint8_t* m = mask.view().row(r);
+                const std::uint8_t* m_below = mask.view().row(r + 1);
+                for (std::ptrdiff_t c = 0; c + 1 < cols; ++c) {
+                    const bool right = (m[c + 1] != 0) & (here[c + 1] != here[c]);
+                    const bool down = (m_below[c] != 0) & (below[c] != here[c]);
+                    cut_row[c] = static_cast<std::uint8_t>((m[c] != 0) & !(right | down));
+                }
+                std::copy(cut_row.begin(), cut_row.begin() + (cols - 1), m);
+                here.swap(below);
+            }
         }
         const auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
                                              .min_cells = opt.min_seed_cells, .run = kernels});
@@ -286,13 +293,15 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     // Seeds beyond bridge decks, round by round: each round's bodies may end at the next bridge.
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {
         const auto mask =
-            seeds_beyond_bridges(res.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, surface_slope);
+            seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, surface_slope);
         if (std::find(mask.begin(), mask.end(), std::uint8_t{1}) == mask.end()) break;  // none: no labelling
         const auto more =
             water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels});
         if (more.count() == 0) break;
         grow_more(more, 0.9, 0.0);
     }
+    res.seeds_grown = grown.seeds_grown;
+    res.labels = std::move(grown.labels);
     auto& bodies = grown.bodies;
 
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {

@@ -38,22 +38,26 @@ struct grow_waterbodies_result {
 /// Grows the seeds into waterbodies (dissertation 2.3.3), largest seed first (seed label 1 first): a seed
 /// with a cell inside an accepted body is skipped; otherwise grow_waterbody floods from its cells, and a
 /// non-empty region is extended by join_level_cells (min_z, max_z in metres) and accepted as the next body;
-/// its cells stop being eligible in `field` for the seeds that follow. `field` must have the shape of the
-/// seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). Progress: the
-/// fraction of seeds done, 0 before the first, 1 at the end.
+/// its cells stop being eligible in `field` for the seeds that follow. This form adds to `into`: its
+/// labels (the field's shape; 0 land, k + 1 for into.bodies[k]) and bodies are kept, new bodies are
+/// numbered after them and record seed label + seed_offset (so that several rounds of seeds grow into one
+/// raster without a merge). `field` must have the shape of the seeds; its eligible raster is updated.
+/// O(cells + sum over seeds of cells reached). Progress: the fraction of seeds done, 0 before the first,
+/// 1 at the end.
 /// @throws invalid_input on shapes that differ or options out of range; cancelled.
-inline grow_waterbodies_result grow_waterbodies(water_field& field, const components& seeds,
-                                                raster_view<const float> min_z, raster_view<const float> max_z,
-                                                const grow_waterbodies_options& opt = {})
+inline void grow_waterbodies(water_field& field, const components& seeds, raster_view<const float> min_z,
+                             raster_view<const float> max_z, grow_waterbodies_result& into,
+                             const grow_waterbodies_options& opt = {}, std::int32_t seed_offset = 0)
 {
     constexpr const char* fn = "grow_waterbodies";
     detail::require_same_shape(field.eligible, seeds.labels, fn, "field.eligible", "seeds.labels");
     detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
+    detail::require_same_shape(field.eligible, into.labels, fn, "field.eligible", "into.labels");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
     const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
-    grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
+    auto& out = into;
     // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
     // marks the cells it visits with its own negative stamp; the marks are cleared at the end.
     std::int32_t stamp = 0;
@@ -73,13 +77,23 @@ inline grow_waterbodies_result grow_waterbodies(water_field& field, const compon
         }
         auto& body = out.bodies.emplace_back();
         body.label = label;
-        body.seed = static_cast<std::int32_t>(s);
+        body.seed = static_cast<std::int32_t>(s) + seed_offset;
         body.theta_deg = region.theta_deg;
         body.stopped_by_ks = region.stopped_by_ks;
+        ++out.seeds_grown;
     }
-    for (auto& l : out.labels) l = std::max(l, 0);
-    out.seeds_grown = out.bodies.size();
+    if (stamp < 0)
+        for (auto& l : out.labels) l = std::max(l, 0);
     detail::report(opt.run.progress, 1.0, fn);
+}
+
+/// Grows the seeds into waterbodies on a raster of land: the form above into an empty result.
+inline grow_waterbodies_result grow_waterbodies(water_field& field, const components& seeds,
+                                                raster_view<const float> min_z, raster_view<const float> max_z,
+                                                const grow_waterbodies_options& opt = {})
+{
+    grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
+    grow_waterbodies(field, seeds, min_z, max_z, out, opt);
     return out;
 }
 
