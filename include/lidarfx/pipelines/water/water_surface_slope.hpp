@@ -109,16 +109,6 @@ template <int R>
     }
 }
 
-/// out[c] = sqrt(squared[c]) / cell_m in float (NaN stays NaN). GCC keeps a loop of square roots scalar
-/// unless told that errno is not wanted; the squares here are >= 0 or NaN, for which sqrt sets no errno.
-#if defined(__GNUC__) && !defined(__clang__)
-__attribute__((optimize("no-math-errno")))
-#endif
-inline void slope_from_squares(const double* squared, float* out, std::ptrdiff_t n, double cell_m) noexcept
-{
-    for (std::ptrdiff_t c = 0; c < n; ++c) out[c] = static_cast<float>(std::sqrt(squared[c]) / cell_m);
-}
-
 }  // namespace detail
 
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
@@ -156,7 +146,7 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
         float* sz = sxy + n_cols;
         float* sxz = sz + n_cols;
         float* syz = sxz + n_cols;
-        std::vector<double> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
+        std::vector<float> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             std::fill(sums.begin(), sums.end(), 0.0f);
             const float* z0 = min_z.row(r);
@@ -195,18 +185,21 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
             // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
             // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const double w = n[c];
-                const double cxx = sxx[c] - static_cast<double>(sx[c]) * sx[c] / w;
-                const double cyy = syy[c] - static_cast<double>(sy[c]) * sy[c] / w;
-                const double cxy = sxy[c] - static_cast<double>(sx[c]) * sy[c] / w;
-                const double cxz = sxz[c] - static_cast<double>(sx[c]) * sz[c] / w;
-                const double cyz = syz[c] - static_cast<double>(sy[c]) * sz[c] / w;
+                const double w = 1.0 / n[c];  // one division per cell, not five
+                const double mx = sx[c] * w, my = sy[c] * w;
+                const double cxx = sxx[c] - mx * sx[c];
+                const double cyy = syy[c] - my * sy[c];
+                const double cxy = sxy[c] - mx * sy[c];
+                const double cxz = sxz[c] - mx * sz[c];
+                const double cyz = syz[c] - my * sz[c];
                 const double det = cxx * cyy - cxy * cxy;
                 const bool known = (n[c] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
-                const double b = (cxz * cyy - cyz * cxy) / det, g = (cyz * cxx - cxz * cxy) / det;
-                squared[c] = detail::select_bits(known, b * b + g * g, std::numeric_limits<double>::quiet_NaN());
+                const double inv = 1.0 / det;
+                const double b = (cxz * cyy - cyz * cxy) * inv, g = (cyz * cxx - cxz * cxy) * inv;
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                squared[c] = static_cast<float>(detail::select_bits(known, b * b + g * g, nan));
             }
-            detail::slope_from_squares(squared.data(), out.view().row(r), cols, cell_m);
+            detail::sqrt_span(squared.data(), out.view().row(r), cols, static_cast<float>(1 / cell_m));
         }
     }, {}, fn);
     return out;
