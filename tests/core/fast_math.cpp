@@ -185,3 +185,27 @@ TEST_CASE("core/fast_math: atan_deg_span equals atan_deg value by value, whichev
     for (std::size_t i = 0; i < in_place.size(); ++i)
         CHECK(std::bit_cast<std::uint32_t>(in_place[i]) == std::bit_cast<std::uint32_t>(detail::atan_deg(x[i])));
 }
+
+TEST_CASE("core/fast_math: sqrt_span is the correctly rounded square root times scale, at every length")
+{
+    // All binades, the special values, and lengths that leave every remainder of the 8- and 4-lane loops.
+    std::vector<float> x = dense_non_negative_floats();
+    for (const float v : {-0.0f, -1.0f, -inf, not_a_number, 0.0f, 2.0f}) x.push_back(v);
+    std::vector<float> out(x.size());
+    for (const float scale : {1.0f, 0.5f, 0.3f}) {
+        detail::sqrt_span(x.data(), out.data(), static_cast<std::ptrdiff_t>(x.size()), scale);
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const float want = std::sqrt(x[i]) * scale;
+            differ += std::isnan(want) ? !std::isnan(out[i])
+                                       : std::bit_cast<std::uint32_t>(out[i]) != std::bit_cast<std::uint32_t>(want);
+        }
+        CHECK(differ == 0);
+    }
+    for (std::ptrdiff_t n = 0; n <= 19; ++n) {
+        std::vector<float> in(static_cast<std::size_t>(n) + 1, 4.0f), got(in.size(), -7.0f);
+        detail::sqrt_span(in.data(), got.data(), n, 1.0f);
+        for (std::ptrdiff_t i = 0; i < n; ++i) CHECK(got[static_cast<std::size_t>(i)] == 2.0f);
+        CHECK(got[static_cast<std::size_t>(n)] == -7.0f);  // nothing written past n
+    }
+}
