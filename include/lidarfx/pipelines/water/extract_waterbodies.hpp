@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
 #include "lidarfx/pipelines/water/bridge_seeds.hpp"
@@ -261,16 +263,31 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
             cells[i] = static_cast<std::uint8_t>((cells[i] != 0) & (label[i] == 0));
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
-        // falling river would otherwise take the level of its low end and gate out its high end).
+        // falling river would otherwise take the level of its low end and gate out its high end). The bands
+        // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
+        // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
         if (opt.grow.level_gate_m > 0) {
             const double band = 2 * opt.grow.level_gate_m;
-            // Row by row, with the band index of each cell (floor(min z / band)) of this row and the next; a
+            const auto parts = connected_components(mask, connected_components_options{
+                                                              .conn = connectivity::eight, .run = kernels});
+            std::vector<double> mean(parts.count() + 1, 0.0);
+            for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                const std::int32_t* part = parts.labels.row(r);
+                const float* z = in.min_z.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c)
+                    if (part[c] > 0) mean[static_cast<std::size_t>(part[c])] += z[c];
+            }
+            for (std::size_t l = 1; l < mean.size(); ++l) mean[l] /= static_cast<double>(parts.sizes[l]);
+            // Row by row, with the band index of each cell of this row and the next (NaN off the mask); a
             // cell's cut reads the uncut mask to its right and below, so row r is written once r + 1 is read.
             std::vector<double> here(static_cast<std::size_t>(cols)), below(here.size());
             std::vector<std::uint8_t> cut_row(here.size());
             const auto band_row = [&](std::ptrdiff_t r, double* out) {
+                const std::int32_t* part = parts.labels.row(r);
                 const float* z = in.min_z.row(r);
-                for (std::ptrdiff_t c = 0; c < cols; ++c) out[c] = std::floor(z[c] / band);
+                for (std::ptrdiff_t c = 0; c < cols; ++c)
+                    out[c] = part[c] > 0 ? std::floor((z[c] - mean[static_cast<std::size_t>(part[c])]) / band + 0.5)
+                                         : std::numeric_limits<double>::quiet_NaN();
             };
             if (rows > 1) band_row(0, here.data());
             for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
