@@ -6,7 +6,8 @@
 // sensitivity, specificity and IoU, and the share of rivers with bridges found as one body.
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
-// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_Q (seed level quantile), WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
+// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_FIRST (0/1, grow.test_first_step), WF_Q (seed level quantile),
+// WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
 // options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching), WF_SLOPE
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
@@ -152,6 +153,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_JOINTMIN")) o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
+             if (const char* v = std::getenv("WF_FIRST")) o.grow.test_first_step = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_BAND")) o.surface_slope.band_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
@@ -194,6 +196,14 @@ int main(int argc, char** argv)
                            [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
                                o.grow.level_follow_max_slope = 0.008;
+                           }});
+        configs.push_back({"without the first-step test (grow.test_first_step = false)",
+                           [](extract_waterbodies_options& o) { o.grow.test_first_step = false; }});
+        configs.push_back({"with flat seeds and the level-surface cue, without the first-step test",
+                           [](extract_waterbodies_options& o) {
+                               o.flat_seeds = true;
+                               o.grow.level_follow_max_slope = 0.008;
+                               o.grow.test_first_step = false;
                            }});
         configs.push_back({"with flat seeds and the level-surface cue, without seeds beyond bridges",
                            [](extract_waterbodies_options& o) {

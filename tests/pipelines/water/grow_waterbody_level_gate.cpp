@@ -100,3 +100,43 @@ TEST_CASE("water/grow_waterbody level gate: with level_rise_m 0 the level does n
     // Land joins while 0.02 + 0.004 (c − 5) <= 0.15 m above the pond: columns up to 37, not 38 and 39.
     CHECK(held.cells.size() == 40 * 38);
 }
+
+TEST_CASE("water/grow_waterbody first-step test: a bright meadow 0.1 m above the pond, within the gate, stays out")
+{
+    // 30 x 30: a pond at 100 m in rows/cols 8-21 (its middle 4 x 4 a seed of dropouts), intensity bins 0-9
+    // (dark); a flat meadow at 100.1 m around it, within the 0.15 m gate, intensity bins 30-39 (bright). The
+    // angles are 0: everything joins at the first step, which had no test before.
+    const std::ptrdiff_t n = 30;
+    raster<float> min_z(n, n, 100.1f);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 8; r <= 21; ++r) {
+        for (std::ptrdiff_t c = 8; c <= 21; ++c) {
+            const bool in_seed = r >= 13 && r <= 16 && c >= 13 && c <= 16;
+            min_z.view()(r, c) = in_seed ? NAN : 100.0f;
+            if (in_seed) seed.push_back(r * n + c);
+        }
+    }
+    auto field = flat_field(min_z);
+    field.bins = 40;
+    for (std::ptrdiff_t r = 0; r < n; ++r) {
+        for (std::ptrdiff_t c = 0; c < n; ++c) {
+            if (std::isnan(min_z(r, c))) continue;
+            const bool pond = r >= 8 && r <= 21 && c >= 8 && c <= 21;
+            field.intensity_bin.view()(r, c) = static_cast<std::int32_t>((pond ? 0 : 30) + (r * 7 + c * 3) % 10);
+        }
+    }
+    raster<std::int32_t> visited(n, n, 0);
+    const auto tested = grow_waterbody(field, seed, {}, visited, -1);
+    CHECK(tested.cells.size() == 14 * 14);  // the pond, nothing of the meadow
+
+    grow_waterbody_options untested;
+    untested.test_first_step = false;
+    const auto flooded = grow_waterbody(field, seed, untested, visited, -2);
+    CHECK(flooded.cells.size() == static_cast<std::size_t>(n * n));  // the meadow is within the gate
+
+    // A meadow as dark as the pond is the same water to the test: it joins.
+    auto dark = field;
+    for (std::ptrdiff_t i = 0; i < dark.intensity_bin.size(); ++i)
+        if (dark.intensity_bin.data()[i] >= 30) dark.intensity_bin.data()[i] -= 30;
+    CHECK(grow_waterbody(dark, seed, {}, visited, -3).cells.size() == static_cast<std::size_t>(n * n));
+}

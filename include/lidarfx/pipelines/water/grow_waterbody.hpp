@@ -63,6 +63,19 @@ struct grow_waterbody_options {
                                      ///< passes its level on unchanged, as a dropout does (a flood no longer
                                      ///< ratchets up a beach or down a falling bank); < 0 disables. Default -1
                                      ///< (0.008 with flat seeds: docs/waterbodies.md)
+    bool test_first_step = true;     ///< with the gate and level_ks_exempt_m >= 0: the first step, which has no
+                                     ///< previous region to be tested against, is tested within itself. Its
+                                     ///< cells with returns off the level they are reached at (|min z − L| >
+                                     ///< level_ks_exempt_m) wait until the cells at the level are in; then
+                                     ///< their intensity sample is tested (ks_one_sided) against the region's
+                                     ///< so far, when that has min_ks_samples values: accepted, they join and
+                                     ///< the step goes on (what they reach is tested the same way); rejected,
+                                     ///< they never join, and the step ends without what only they reach (a
+                                     ///< flat meadow or terrace next to the water, within the gate, was
+                                     ///< flooded at θ_0 without any test). The seed's own cells never wait.
+                                     ///< Default true (water family, seeds 500-599: river specificity 99.40
+                                     ///< -> 99.76 %, worst lake's 88 -> 99 %; river sensitivity 66 -> 64 %;
+                                     ///< docs/waterbodies.md)
 };
 
 /// Result of growing one seed.
@@ -190,18 +203,25 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         push(i, r, c, 0, seed_level);
     }
     const bool exempt = gate && opt.level_ks_exempt_m >= 0;
+    const std::size_t seed_entries = buckets.front().size();  // the seed's own cells never wait (test_first_step)
 
     grow_waterbody_result out;
     const auto max_bin = static_cast<std::uint32_t>(field.bins - 1);
     ks_histogram previous(max_bin), current(max_bin), added(max_bin);
     const bool increment = opt.sample == ks_sample_mode::increment;
+    // The first step's test within itself (test_first_step): its cells off the level wait here.
+    const bool first_test = exempt && opt.test_first_step;
+    std::vector<std::ptrdiff_t> waiting;
+    std::vector<float> waiting_levels;
+    ks_histogram waiting_sample(max_bin);
+    const auto at_level = [&](std::ptrdiff_t i, float level) {
+        const auto [r, c] = split(i);
+        return std::abs(field.min_z(r, c) - level) <= static_cast<float>(opt.level_ks_exempt_m);
+    };
     for (int k = 0; k <= last; ++k) {
         const std::size_t before = out.cells.size();
         auto& bucket = buckets[static_cast<std::size_t>(k)];
-        // Cells pushed into this bucket while it is being drained join at this same step.
-        for (std::size_t q = 0; q < bucket.size(); ++q) {
-            const std::ptrdiff_t i = bucket[q];
-            const float level = gate ? bucket_levels[static_cast<std::size_t>(k)][q] : NAN;
+        const auto join = [&](std::ptrdiff_t i, float level) {
             out.cells.push_back(i);
             const auto [r, c] = split(i);
             if (bin[i] >= 0) {
@@ -219,6 +239,33 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                     push(rr * cols + cc, rr, cc, k, level);
                 }
             }
+        };
+        // Cells pushed into this bucket while it is being drained join at this same step.
+        for (std::size_t q = 0;;) {
+            for (; q < bucket.size(); ++q) {
+                const std::ptrdiff_t i = bucket[q];
+                const float level = gate ? bucket_levels[static_cast<std::size_t>(k)][q] : NAN;
+                if (first_test && k == 0 && q >= seed_entries && bin[i] >= 0 && !at_level(i, level)) {
+                    waiting.push_back(i);
+                    waiting_levels.push_back(level);
+                    waiting_sample.add(bin[i]);
+                    continue;
+                }
+                join(i, level);
+            }
+            if (waiting.empty()) break;
+            if (current.size() >= opt.min_ks_samples && ks_one_sided(current, waiting_sample, opt.ks).reject) {
+                waiting.clear();  // they stay visited: no other path lets them in
+                waiting_levels.clear();
+                waiting_sample.clear();
+                break;
+            }
+            const auto cells = std::move(waiting);
+            const auto levels = std::move(waiting_levels);
+            waiting.clear();
+            waiting_levels.clear();
+            waiting_sample.clear();
+            for (std::size_t w = 0; w < cells.size(); ++w) join(cells[w], levels[w]);
         }
         cell_queue().swap(bucket);
         if (gate) std::vector<float>().swap(bucket_levels[static_cast<std::size_t>(k)]);
