@@ -31,7 +31,7 @@ constexpr const char* usage =
     "  --cell M              cell size, metres [2]\n"
     "  --threads N           threads for reading and the raster kernels, 0 = all cores [0]; same result\n"
     "  --veg-height M        vegetation height h, metres [2]\n"
-    "  --min-seed-cells N    smallest dropout seed, cells [100]\n"
+    "  --min-seed-cells N    smallest dropout seed, cells [50]\n"
     "  --flat-seeds          also seed from level, sparse cells, with the level-surface cue (the flood's\n"
     "                        level follows min z only where the surface is level): finds turbid or specular\n"
     "                        water without dropouts; costs about twice the time and can take some river\n"
@@ -87,7 +87,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     extract_waterbodies_options opt;
     opt.run.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
-    const int min_seed = a.integer("min-seed-cells", 100);
+    const int min_seed = a.integer("min-seed-cells", static_cast<int>(opt.min_seed_cells));
     if (min_seed < 1) {
         throw usage_error("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
     }
