@@ -21,11 +21,8 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <cstring>
 #include <type_traits>
-
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
 
 /// Put before a loop whose stores never feed its own loads, such as a gather from a lookup table into a
 /// raster: GCC then vectorizes the gather, which it otherwise refuses for a possible alias between the
@@ -171,17 +168,28 @@ constexpr float sqrt_one_plus(float u) noexcept
 /// out[i] = sqrt(x[i]) · scale, correctly rounded square roots (NaN and negative x give NaN, as std::sqrt,
 /// without touching errno). GCC keeps a loop of std::sqrt scalar unless the whole translation unit is built
 /// with -fno-math-errno (the optimize attribute does not reach it), so on x86-64 the square roots are taken
-/// with the vector instructions directly: 8 lanes with AVX, else 4 with SSE2.
+/// with the vector instruction directly: 8 lanes with AVX, else 4 with SSE2, through the compiler's
+/// builtins on vector types (GCC and clang; no <immintrin.h>, which triples this header's compile time).
 inline void sqrt_span(const float* x, float* out, std::ptrdiff_t n, float scale) noexcept
 {
     std::ptrdiff_t i = 0;
+#if defined(__GNUC__) && (defined(__AVX__) || defined(__SSE2__))
 #if defined(__AVX__)
-    const __m256 k8 = _mm256_set1_ps(scale);
-    for (; i + 8 <= n; i += 8) _mm256_storeu_ps(out + i, _mm256_mul_ps(_mm256_sqrt_ps(_mm256_loadu_ps(x + i)), k8));
+    typedef float lanes __attribute__((vector_size(32)));
+#else
+    typedef float lanes __attribute__((vector_size(16)));
 #endif
-#if defined(__SSE2__)
-    const __m128 k4 = _mm_set1_ps(scale);
-    for (; i + 4 <= n; i += 4) _mm_storeu_ps(out + i, _mm_mul_ps(_mm_sqrt_ps(_mm_loadu_ps(x + i)), k4));
+    constexpr std::ptrdiff_t width = sizeof(lanes) / sizeof(float);
+    for (; i + width <= n; i += width) {
+        lanes v;
+        std::memcpy(&v, x + i, sizeof v);
+#if defined(__AVX__)
+        v = __builtin_ia32_sqrtps256(v) * scale;
+#else
+        v = __builtin_ia32_sqrtps(v) * scale;
+#endif
+        std::memcpy(out + i, &v, sizeof v);
+    }
 #endif
     for (; i < n; ++i) out[i] = std::sqrt(x[i]) * scale;
 }
