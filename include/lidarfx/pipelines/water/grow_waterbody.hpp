@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -254,17 +255,12 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 join(i, level);
             }
             if (waiting.empty()) break;
-            if (current.size() >= opt.min_ks_samples && ks_one_sided(current, waiting_sample, opt.ks).reject) {
-                waiting.clear();  // they stay visited: no other path lets them in
-                waiting_levels.clear();
-                waiting_sample.clear();
-                break;
-            }
-            const auto cells = std::move(waiting);
-            const auto levels = std::move(waiting_levels);
-            waiting.clear();
-            waiting_levels.clear();
+            const bool rejected =
+                current.size() >= opt.min_ks_samples && ks_one_sided(current, waiting_sample, opt.ks).reject;
+            const auto cells = std::exchange(waiting, {});
+            const auto levels = std::exchange(waiting_levels, {});
             waiting_sample.clear();
+            if (rejected) break;  // they stay visited: no other path lets them in
             for (std::size_t w = 0; w < cells.size(); ++w) join(cells[w], levels[w]);
         }
         cell_queue().swap(bucket);
