@@ -53,7 +53,7 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     s.scan_covered = scans.take();
     s.points = sc.points.size();
     s.files = 1;
-    lidarfx::extract_waterbodies_options opt;
+    auto opt = lidarfx::flat_seed_water_method();  // what `lidarfx water` runs
     opt.run = {.threads = threads, .progress = lidarfx::cli::progress_bar("waterbodies")};
     const auto found = lidarfx::cli::find_waterbodies(s, opt);
     const auto& w = found.result;

@@ -49,3 +49,16 @@ foreach(tile 120 200 310)
         message(STATUS "--tile ${tile} --threads ${threads}: the untiled run's files, byte for byte")
     endforeach()
 endforeach()
+
+# The default is flat_seed_water_method(); --dropout-seeds-only runs the library's defaults, and the two
+# flags together are a usage error (exit code 2) that writes nothing.
+run_water("${WORK_DIR}/dropout_seeds_only" --dropout-seeds-only)
+if(NOT EXISTS "${WORK_DIR}/dropout_seeds_only/water.asc")
+    message(FATAL_ERROR "--dropout-seeds-only wrote no water.asc")
+endif()
+execute_process(COMMAND "${LIDARFX}" water "${WORK_DIR}/survey" --cell 2 --flat-seeds --dropout-seeds-only
+                        --out "${WORK_DIR}/both"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "exclude each other" OR EXISTS "${WORK_DIR}/both/water.asc")
+    message(FATAL_ERROR "--flat-seeds with --dropout-seeds-only: exit ${rc}, expected 2 and no map:\n${err}")
+endif()

@@ -111,6 +111,18 @@ inline extract_waterbodies_options previous_water_method()
     return o;
 }
 
+/// The options of the best configuration on the water family: the defaults with flat_seeds on and the
+/// level-surface cue (grow.level_follow_max_slope = 0.008 m/m, flat_water_seeds' max_surface_slope). It also
+/// finds water without dropouts (turbid, specular, dense surveys) and is what `lidarfx water` runs unless
+/// told --dropout-seeds-only; it takes about 1.7x the defaults' time on rasters (docs/waterbodies.md).
+inline extract_waterbodies_options flat_seed_water_method()
+{
+    extract_waterbodies_options o;
+    o.flat_seeds = true;
+    o.grow.level_follow_max_slope = o.flat.max_surface_slope;
+    return o;
+}
+
 /// Result of extract_waterbodies, with the intermediate rasters for inspection.
 struct extract_waterbodies_result {
     raster<std::int32_t> labels;           ///< 0 land, 1..n waterbodies by decreasing area
