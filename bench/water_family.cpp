@@ -12,7 +12,8 @@
 // options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching), WF_SLOPE
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
 // seeds beyond bridges), WF_BSEED_{MIN,BEYOND,BEHIND,TOL,CLEAR,AWAY,SLOPE} (their options), WF_FLAT_SLOPE
-// (flat.max_surface_slope);
+// (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (min_free_seed_share),
+// WF_PRESET=1 (start from flat_seed_water_method() instead of the defaults);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -132,6 +133,9 @@ int main(int argc, char** argv)
     std::vector<configuration> configs{
         {"previous method (before the family)", [](extract_waterbodies_options& o) { o = previous_water_method(); }},
         {"lidarfx defaults", [](extract_waterbodies_options& o) {
+             if (const char* v = std::getenv("WF_PRESET"); v && std::atoi(v) != 0) o = flat_seed_water_method();
+             if (const char* v = std::getenv("WF_FLAT_DROPOUTS")) o.flat_seed_dropouts = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_FREE_SHARE")) o.min_free_seed_share = std::atof(v);
              if (const char* v = std::getenv("WF_GATE")) o.grow.level_gate_m = std::atof(v);
              if (const char* v = std::getenv("WF_DRIFT")) o.grow.level_drift_m = std::atof(v);
              if (const char* v = std::getenv("WF_EXEMPT")) o.grow.level_ks_exempt_m = std::atof(v);
@@ -170,7 +174,31 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_BSEED_SLOPE")) o.bridge_seeds.max_surface_slope = std::atof(v);
          }},
     };
+    if (!std::getenv("WF_PRESET"))
+        configs.push_back({"flat_seed_water_method() (`lidarfx water`)",
+                           [](extract_waterbodies_options& o) { o = flat_seed_water_method(); }});
     if (ablation) {
+        const auto preset = [](std::function<void(extract_waterbodies_options&)> change) {
+            return [change](extract_waterbodies_options& o) {
+                o = flat_seed_water_method();
+                change(o);
+            };
+        };
+        configs.push_back({"flat_seed_water_method() without the dropouts next to flat seeds (flat_seed_dropouts = false)",
+                           preset([](extract_waterbodies_options& o) { o.flat_seed_dropouts = false; })});
+        configs.push_back({"flat_seed_water_method() skipping every seed with a cell in a body (min_free_seed_share = 1)",
+                           preset([](extract_waterbodies_options& o) { o.min_free_seed_share = 1; })});
+        configs.push_back({"flat_seed_water_method() with the default level drift (grow.level_drift_m = 0.005)",
+                           preset([](extract_waterbodies_options& o) { o.grow.level_drift_m = 0.005; })});
+        configs.push_back({"flat_seed_water_method() with bridge seeds of >= 8 cells (bridge_seed_min_cells = 8)",
+                           preset([](extract_waterbodies_options& o) { o.bridge_seed_min_cells = 8; })});
+        configs.push_back({"flat_seed_water_method() without the first-step test",
+                           preset([](extract_waterbodies_options& o) { o.grow.test_first_step = false; })});
+        configs.push_back({"flat_seed_water_method() without seeds beyond bridges",
+                           preset([](extract_waterbodies_options& o) { o.bridge_seed_rounds = 0; })});
+        configs.push_back({"flat_seed_water_method() without the level-surface cue (grow.level_follow_max_slope = -1)",
+                           preset([](extract_waterbodies_options& o) { o.grow.level_follow_max_slope = -1; })});
+
         configs.push_back({"without the level gate", [](extract_waterbodies_options& o) { o.grow.level_gate_m = 0; }});
         configs.push_back({"without level cells exempt from KS",
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
@@ -199,18 +227,6 @@ int main(int argc, char** argv)
                            }});
         configs.push_back({"without the first-step test (grow.test_first_step = false)",
                            [](extract_waterbodies_options& o) { o.grow.test_first_step = false; }});
-        configs.push_back({"with flat seeds and the level-surface cue, without the first-step test",
-                           [](extract_waterbodies_options& o) {
-                               o.flat_seeds = true;
-                               o.grow.level_follow_max_slope = 0.008;
-                               o.grow.test_first_step = false;
-                           }});
-        configs.push_back({"with flat seeds and the level-surface cue, without seeds beyond bridges",
-                           [](extract_waterbodies_options& o) {
-                               o.flat_seeds = true;
-                               o.grow.level_follow_max_slope = 0.008;
-                               o.bridge_seed_rounds = 0;
-                           }});
         configs.push_back({"without seeds beyond bridges (bridge_seed_rounds = 0)",
                            [](extract_waterbodies_options& o) { o.bridge_seed_rounds = 0; }});
         configs.push_back({"without bridges (no joins across decks, no seeds beyond them)",

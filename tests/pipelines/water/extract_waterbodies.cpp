@@ -7,6 +7,8 @@
 #include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
+#include "water_test_rasters.hpp"
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -88,6 +90,50 @@ TEST_CASE("water/extract_waterbodies: the synthetic river is one body, across it
     std::size_t water_cells = 0;
     for (const auto v : r.result.water) water_cells += v;
     CHECK(static_cast<double>(r.result.bodies[0].cells) >= 0.95 * static_cast<double>(water_cells));
+}
+
+TEST_CASE("water/extract_waterbodies: a pond with returns and 40 % scattered dropouts is seeded whole with flat_seed_dropouts")
+{
+    // 60 x 60 cells of flat land (10 m, 4 returns, intensity 50-59) around a 30 x 30 pond at 9 m: level,
+    // sparse (2 returns) and dark (20), 40 % of its cells dropouts scattered by a hash. No 3 x 3 block of
+    // dropouts survives the seed opening; the pond's level cells alone are as scattered.
+    water_test::survey s(60, 60);
+    for (std::ptrdiff_t r = 0; r < 60; ++r)
+        for (std::ptrdiff_t c = 0; c < 60; ++c) s.intensity(r, c) = 50.0f + static_cast<float>((7 * r + 3 * c) % 10);
+    long pond = 0;
+    for (std::ptrdiff_t r = 15; r < 45; ++r)
+        for (std::ptrdiff_t c = 15; c < 45; ++c) {
+            ++pond;
+            const auto h = static_cast<std::uint32_t>(r * 7919 + c * 104729) * 2654435761u;
+            if ((h >> 16) % 100 < 40) {
+                s.drop(r, c);
+                continue;
+            }
+            s.min_z(r, c) = s.max_z(r, c) = 9.0f;
+            s.count(r, c) = 2;
+            s.intensity(r, c) = 20.0f + static_cast<float>((r + c) % 3);
+        }
+    const auto found_in_pond = [&](const extract_waterbodies_result& w) {
+        long n = 0;
+        for (std::ptrdiff_t r = 15; r < 45; ++r)
+            for (std::ptrdiff_t c = 15; c < 45; ++c) n += w.water.view()(r, c);
+        return n;
+    };
+    const auto water_outside = [&](const extract_waterbodies_result& w) {
+        long n = 0;
+        for (std::ptrdiff_t r = 0; r < 60; ++r)
+            for (std::ptrdiff_t c = 0; c < 60; ++c) n += w.water.view()(r, c) && (r < 15 || r >= 45 || c < 15 || c >= 45);
+        return n;
+    };
+    auto opt = flat_seed_water_method();
+    const auto with = extract_waterbodies(s.view(), 2.0, opt);
+    REQUIRE(with.ran);
+    CHECK(found_in_pond(with) == pond);
+    CHECK(water_outside(with) == 0);
+    opt.flat_seed_dropouts = false;
+    const auto without = extract_waterbodies(s.view(), 2.0, opt);
+    REQUIRE(without.ran);
+    CHECK(found_in_pond(without) < pond / 2);  // the opened seed mask keeps too little of the pond
 }
 
 TEST_CASE("water/extract_waterbodies: same result for any thread count")

@@ -67,6 +67,35 @@ TEST_CASE("water/grow_waterbodies: seeds grow in order, a seed inside a body is 
         }
 }
 
+TEST_CASE("water/grow_waterbodies: a seed partly inside a body grows from its free cells when they are at least min_free_seed_share of it")
+{
+    // Seed 2 now also covers 3 cells of lake B: 3 of its 5 cells lie outside body 1 (60 %).
+    const auto straddling = [](two_lakes& s) {
+        s.seeds.labels(3, 7) = s.seeds.labels(3, 8) = s.seeds.labels(4, 7) = 2;
+        s.seeds.sizes = {60 - 11, 4, 5, 1, 1};
+    };
+    two_lakes s;
+    straddling(s);
+    const auto g = grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z);
+    REQUIRE(g.bodies.size() == 2);
+    CHECK(g.bodies[1].seed == 2);  // lake B grows from seed 2's free cells; seed 3 then lies in it
+    CHECK(g.labels(0, 11) == 2);
+    CHECK(g.labels(3, 3) == 1);    // its cells in lake A stay lake A's
+    two_lakes t;
+    straddling(t);
+    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {.min_free_seed_share = 1.0});
+    REQUIRE(h.bodies.size() == 2);
+    CHECK(h.bodies[1].seed == 3);  // a cell in a body skips the seed: lake B grows from seed 3
+    two_lakes u;
+    straddling(u);
+    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {.min_free_seed_share = 0.75});
+    REQUIRE(k.bodies.size() == 2);
+    CHECK(k.bodies[1].seed == 3);  // 60 % free < 75 %: skipped
+    two_lakes v;
+    CHECK_THROWS_WITH_AS(grow_waterbodies(v.field, v.seeds, v.min_z, v.max_z, {.min_free_seed_share = 0.0}),
+                         "grow_waterbodies: min_free_seed_share must be in (0, 1] (got 0)", invalid_input);
+}
+
 TEST_CASE("water/grow_waterbodies: the refinement options reach the bodies")
 {
     two_lakes s;

@@ -54,8 +54,16 @@ struct extract_waterbodies_options {
                                            ///< 0.008, they lift sensitivity (lakes 77 -> 98 %, rivers 76 -> 96 %)
                                            ///< and accuracy (lakes 97.1 -> 99.6 %, rivers 97.8 -> 99.2 %) but take
                                            ///< about 1.7x the time (docs/waterbodies.md, seventh reporting run)
+    bool flat_seed_dropouts = true;        ///< flat seeds: the dropout cells next to a seed cell (8-neighbours,
+                                           ///< eligible, in no body) join the seed mask before its opening: water
+                                           ///< with scattered dropouts keeps its seeds whole; their level ignores
+                                           ///< them (no return). Default true (water family, rivers of seeds
+                                           ///< 500-599: see docs/waterbodies.md, eighth session)
     flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
     grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
+    double min_free_seed_share = 0.5;      ///< grow_waterbodies: a seed partly inside the bodies grown before it
+                                           ///< grows from its cells outside them when they are at least this share
+                                           ///< of it, else it is skipped; in (0, 1]. Default 0.5
     water_surface_slope_options surface_slope = {};  ///< water_surface_slope, read when grow.level_follow_max_slope
                                            ///< >= 0 (run is ignored)
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
@@ -108,18 +116,26 @@ inline extract_waterbodies_options previous_water_method()
     o.flat.bright_density_ratio = 0;
     o.flat.max_joint_ratio = 0;
     o.bridge_join_touching = false;
+    o.flat_seed_dropouts = false;
+    o.min_free_seed_share = 1;
     return o;
 }
 
-/// The options of the best configuration on the water family: the defaults with flat_seeds on and the
-/// level-surface cue (grow.level_follow_max_slope = 0.008 m/m, flat_water_seeds' max_surface_slope). It also
-/// finds water without dropouts (turbid, specular, dense surveys) and is what `lidarfx water` runs unless
-/// told --dropout-seeds-only; it takes about 1.7x the defaults' time on rasters (docs/waterbodies.md).
+/// The options of the best configuration on the water family: the defaults with flat_seeds on, the
+/// level-surface cue (grow.level_follow_max_slope = 0.008 m/m, flat_water_seeds' max_surface_slope), which
+/// makes a faster level drift safe (grow.level_drift_m = 0.01 m per cell), and bridge seeds from a single
+/// walk over a deck (bridge_seed_min_cells = 4). It also finds water without dropouts (turbid, specular,
+/// dense surveys) and is what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.7x
+/// the defaults' time on rasters (docs/waterbodies.md).
 inline extract_waterbodies_options flat_seed_water_method()
 {
     extract_waterbodies_options o;
     o.flat_seeds = true;
     o.grow.level_follow_max_slope = o.flat.max_surface_slope;
+    // With the cue a level follows min z only on level ground, so it may follow a steeper river (0.5 %
+    // at 2 m cells) without climbing a beach; and a single walk over a deck (4 cells) may seed beyond it.
+    o.grow.level_drift_m = 0.01;
+    o.bridge_seed_min_cells = 4;
     return o;
 }
 
@@ -148,6 +164,8 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     require(o.seed_opening_size_cells >= 1 && o.seed_opening_size_cells % 2 == 1, fn, "seed_opening_size_cells",
             "odd and >= 1", o.seed_opening_size_cells);
     require(o.min_seed_cells >= 1, fn, "min_seed_cells", ">= 1", o.min_seed_cells);
+    require(o.min_free_seed_share > 0 && o.min_free_seed_share <= 1, fn, "min_free_seed_share", "in (0, 1]",
+            o.min_free_seed_share);
     require_positive(o.intensity_resolution, fn, "intensity_resolution");
     require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
     require(o.level_max_rise_m >= 0, fn, "level_max_rise_m", ">= 0", o.level_max_rise_m);
@@ -245,6 +263,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         .grow = opt.grow,
         .level = {.tolerance_m = opt.level_tolerance_m, .max_rise_m = opt.level_max_rise_m,
                   .depth_cells = opt.level_join_depth_cells},
+        .min_free_seed_share = opt.min_free_seed_share,
         .run = {.progress = seed_progress}};
     auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, grow_opt);
     res.seeds_found = seeds.count();
@@ -276,6 +295,30 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         const std::int32_t* label = grown.labels.data();
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
             cells[i] = static_cast<std::uint8_t>((cells[i] != 0) & (label[i] == 0));
+        if (opt.flat_seed_dropouts) {
+            // The dropouts next to the seed cells join them: water with scattered dropouts has level cells
+            // between them that the opening would otherwise break apart.
+            const raster_view<const std::uint8_t> drop =
+                in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside);
+            raster<std::uint8_t> with_dropouts(rows, cols, uninitialized);
+            for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                const std::uint8_t* above = mask.view().row(std::max<std::ptrdiff_t>(r - 1, 0));
+                const std::uint8_t* here = mask.view().row(r);
+                const std::uint8_t* below = mask.view().row(std::min(r + 1, rows - 1));
+                const std::uint8_t* d = drop.row(r);
+                const std::uint8_t* free = field.eligible.view().row(r);  // not vegetation, in no body yet
+                const std::int32_t* body = grown.labels.view().row(r);
+                std::uint8_t* out = with_dropouts.view().row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(c - 1, 0), c1 = std::min(c + 1, cols - 1);
+                    const bool near = (above[c0] | above[c] | above[c1] | here[c0] | here[c1] | below[c0] | below[c] |
+                                       below[c1]) != 0;
+                    out[c] = static_cast<std::uint8_t>((here[c] != 0) |
+                                                       ((d[c] != 0) & (free[c] != 0) & (body[c] == 0) & near));
+                }
+            }
+            mask = std::move(with_dropouts);
+        }
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end). The bands
         // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
@@ -284,14 +327,17 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
             const double band = 2 * opt.grow.level_gate_m;
             const auto parts = connected_components(mask, connected_components_options{
                                                               .conn = connectivity::eight, .run = kernels});
-            std::vector<double> mean(parts.count() + 1, 0.0);
+            std::vector<double> mean(parts.count() + 1, 0.0), finite(parts.count() + 1, 0.0);  // over returns
             for (std::ptrdiff_t r = 0; r < rows; ++r) {
                 const std::int32_t* part = parts.labels.row(r);
                 const float* z = in.min_z.row(r);
                 for (std::ptrdiff_t c = 0; c < cols; ++c)
-                    if (part[c] > 0) mean[static_cast<std::size_t>(part[c])] += z[c];
+                    if (part[c] > 0 && std::isfinite(z[c])) {
+                        mean[static_cast<std::size_t>(part[c])] += z[c];
+                        finite[static_cast<std::size_t>(part[c])] += 1;
+                    }
             }
-            for (std::size_t l = 1; l < mean.size(); ++l) mean[l] /= static_cast<double>(parts.sizes[l]);
+            for (std::size_t l = 1; l < mean.size(); ++l) mean[l] = finite[l] > 0 ? mean[l] / finite[l] : 0.0;
             // Row by row, with the band index of each cell of this row and the next (NaN off the mask); a
             // cell's cut reads the uncut mask to its right and below, so row r is written once r + 1 is read.
             std::vector<double> here(static_cast<std::size_t>(cols)), below(here.size());
@@ -309,8 +355,10 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                 std::uint8_t* m = mask.view().row(r);
                 const std::uint8_t* m_below = mask.view().row(r + 1);
                 for (std::ptrdiff_t c = 0; c + 1 < cols; ++c) {
-                    const bool right = (m[c + 1] != 0) & (here[c + 1] != here[c]);
-                    const bool down = (m_below[c] != 0) & (below[c] != here[c]);
+                    // A dropout in the mask has no band (NaN): nothing is cut next to it.
+                    const bool known = !std::isnan(here[c]);
+                    const bool right = (m[c + 1] != 0) & (here[c + 1] != here[c]) & known & !std::isnan(here[c + 1]);
+                    const bool down = (m_below[c] != 0) & (below[c] != here[c]) & known & !std::isnan(below[c]);
                     cut_row[c] = static_cast<std::uint8_t>((m[c] != 0) & !(right | down));
                 }
                 std::copy(cut_row.begin(), cut_row.begin() + (cols - 1), m);

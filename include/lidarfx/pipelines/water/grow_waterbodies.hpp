@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -23,6 +24,11 @@ namespace lidarfx {
 struct grow_waterbodies_options {
     grow_waterbody_options grow = {};     ///< θ schedule and KS stop of each flood
     join_level_cells_options level = {};  ///< narrow-water refinement of each grown region
+    double min_free_seed_share = 0.5;     ///< a seed partly inside the bodies grown before it grows from its
+                                          ///< cells outside them when they are at least this share of its
+                                          ///< cells (a seed that a body reached but stopped short of is still
+                                          ///< water beyond it), else it is skipped; in (0, 1], 1 = skip a seed
+                                          ///< with any cell in a body (before issue 17's eighth session). Default 0.5
     execution run = {};                   ///< progress per seed (fraction of seeds done); threads are not used:
                                           ///< seeds grow one after another (the order decides who owns a cell)
 };
@@ -36,7 +42,8 @@ struct grow_waterbodies_result {
 };
 
 /// Grows the seeds into waterbodies (dissertation 2.3.3), largest seed first (seed label 1 first): a seed
-/// with a cell inside an accepted body is skipped; otherwise grow_waterbody floods from its cells, and a
+/// with fewer than min_free_seed_share of its cells outside the accepted bodies is skipped; otherwise
+/// grow_waterbody floods from its cells outside them, and a
 /// non-empty region is extended by join_level_cells (min_z, max_z in metres) and accepted as the next body;
 /// its cells stop being eligible in `field` for the seeds that follow. This form adds to `into`: its
 /// labels (the field's shape; 0 land, k + 1 for into.bodies[k]) and bodies are kept, new bodies are
@@ -55,16 +62,29 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
     detail::require_same_shape(field.eligible, into.labels, fn, "field.eligible", "into.labels");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
+    detail::require(opt.min_free_seed_share > 0 && opt.min_free_seed_share <= 1, fn, "min_free_seed_share",
+                    "in (0, 1]", opt.min_free_seed_share);
     const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
     auto& out = into;
     // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
     // marks the cells it visits with its own negative stamp; the marks are cleared at the end.
     std::int32_t stamp = 0;
+    std::vector<std::ptrdiff_t> free_cells;
     for (std::size_t s = 1; s <= n; ++s) {
         detail::report(opt.run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
-        const auto cells = seed_lists.of(s);
-        if (std::any_of(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return out.labels.data()[i] > 0; })) continue;
+        // The seed's cells outside the bodies so far (all of them, mostly: then the seed's own list).
+        std::span<const std::ptrdiff_t> cells = seed_lists.of(s);
+        const auto taken = static_cast<std::size_t>(
+            std::count_if(cells.begin(), cells.end(), [&](std::ptrdiff_t i) { return out.labels.data()[i] > 0; }));
+        if (taken > 0) {
+            const auto free = static_cast<double>(cells.size() - taken);
+            if (taken == cells.size() || free < opt.min_free_seed_share * static_cast<double>(cells.size())) continue;
+            free_cells.clear();
+            for (const auto i : cells)
+                if (out.labels.data()[i] <= 0) free_cells.push_back(i);
+            cells = free_cells;
+        }
         auto region = grow_waterbody(field, cells, opt.grow, out.labels, --stamp);
         if (region.cells.empty()) continue;
         join_level_cells(region.cells, min_z, max_z, field.eligible, out.labels, --stamp, opt.level);
