@@ -106,6 +106,32 @@ inline void level_row(const float* z0, const float* z1, const float* lo, const f
     }
 }
 
+/// One row of flat_water_seeds' ring test: a cell in no component (label 0) with a large one within reach
+/// (highest label around it > 0) and a return (no dropout, finite min z, inside the footprint). Branch-free.
+inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const std::uint8_t* drop, const float* z,
+                     const std::uint8_t* inside, std::uint8_t* out, std::ptrdiff_t cols) noexcept
+{
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        out[c] = static_cast<std::uint8_t>((lab[c] == 0) & (highest[c] != 0) & (drop[c] == 0) & std::isfinite(z[c]) &
+                                           (inside[c] != 0));
+    }
+}
+
+/// The first column >= c of `row` (cols values) holding a positive value, cols if none: blocks of 16 with
+/// none are passed over by a branch-free test (labels and masks are mostly 0 or runs of one value).
+template <class T>
+std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols) noexcept
+{
+    constexpr std::ptrdiff_t block = 16;
+    for (; c + block <= cols; c += block) {
+        T high = row[c];
+        for (std::ptrdiff_t i = 1; i < block; ++i) high = std::max(high, row[c + i]);
+        if (high > 0) break;
+    }
+    while (c < cols && !(row[c] > 0)) ++c;
+    return c;
+}
+
 }  // namespace detail
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
@@ -136,9 +162,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     if (!surface_slope.empty()) detail::require_same_shape(in.min_z, surface_slope, fn, "min_z", "surface_slope");
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     if (in.count.empty()) return raster<std::uint8_t>(rows, cols, 0);
-    const auto has_return = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return !in.dropout(r, c) && std::isfinite(in.min_z(r, c)) && detail::inside_footprint(in, r, c);
-    };
+    const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1);  // the footprint when none is given
     constexpr float none = std::numeric_limits<float>::quiet_NaN();
     // Level cells: smooth, not excluded, and the lowest returns of the window around them within the tolerance.
     // The window's lowest and highest finite min z come from running min/max filters over strips of rows.
@@ -146,7 +170,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     {
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
         const std::ptrdiff_t ky = std::min<std::ptrdiff_t>(opt.level_radius_cells, rows - 1);
-        const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1), zeros(static_cast<std::size_t>(cols), 0);
+        const std::vector<std::uint8_t> zeros(static_cast<std::size_t>(cols), 0);
         const float max_rough = detail::float_at_most(opt.max_roughness_m);
         const float tolerance = detail::float_at_most(opt.level_tolerance_m);
         struct scratch {
@@ -189,28 +213,41 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         level_cells += comps.sizes[l];
     }
     // Per component: its count, intensity and roughness (summed in row order); max z − min z of every level
-    // cell: the survey's typical roughness.
+    // cell: the survey's typical roughness. Along a run of one label the sums stay in registers (the same
+    // additions in the same order as cell by cell).
     std::vector<double> count_sum(n + 1, 0), ring_count(n + 1, 0), ring_cells(n + 1, 0), light(n + 1, 0), ring_light(n + 1, 0),
         rough(n + 1, 0), lower(n + 1, 0);
-    std::vector<float> level_rough;
-    level_rough.reserve(level_cells);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        std::int32_t* lab = labels.row(r);
-        const float* z0 = in.min_z.row(r);
-        const float* z1 = in.max_z.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::int32_t l = lab[c];
-            if (l <= 0) continue;
-            const float d = z1[c] - z0[c];
-            level_rough.push_back(d);
-            const auto m = static_cast<std::size_t>(l);
-            if (!big[m]) {
-                lab[c] = -1;
-                continue;
+    std::vector<float> level_rough(level_cells);
+    {
+        float* rough_out = level_rough.data();
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            std::int32_t* lab = labels.row(r);
+            const float* z0 = in.min_z.row(r);
+            const float* z1 = in.max_z.row(r);
+            const std::uint32_t* pulses = in.count.row(r);
+            const float* intensity = in.mean_intensity.row(r);
+            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols; c = detail::next_positive(lab, c, cols)) {
+                const std::int32_t l = lab[c];
+                const auto m = static_cast<std::size_t>(l);
+                if (!big[m]) {
+                    for (; c < cols && lab[c] == l; ++c) {
+                        *rough_out++ = z1[c] - z0[c];
+                        lab[c] = -1;
+                    }
+                    continue;
+                }
+                double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
+                for (; c < cols && lab[c] == l; ++c) {
+                    const float d = z1[c] - z0[c];
+                    *rough_out++ = d;
+                    pulse_sum += pulses[c];
+                    light_sum += intensity[c];
+                    rough_sum += d;
+                }
+                count_sum[m] = pulse_sum;
+                light[m] = light_sum;
+                rough[m] = rough_sum;
             }
-            count_sum[m] += in.count(r, c);
-            light[m] += in.mean_intensity(r, c);
-            rough[m] += d;
         }
     }
     const double typical_rough = detail::median(level_rough);
@@ -234,14 +271,13 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         std::vector<std::int32_t> lowest, highest;
         std::vector<float> z_low;
         std::vector<ring_cell> near;
+        std::vector<std::uint8_t> candidate;
     };
     detail::for_each_strip<scratch>(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
         const std::ptrdiff_t nc = cols;
         bool any = false;
-        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
-            const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) any |= lab[c] > 0;
-        }
+        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r)
+            any = detail::next_positive(labels.row(r), 0, nc) < nc;
         if (!any) return;
         const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
         w.lowest.resize(cells);
@@ -265,13 +301,18 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         detail::min_max_rows<detail::min_reduce<float>>(rows, nc, qx, qy, r0, r1, load_z, w.z_low.data(), w.sf);
         auto& list = found[static_cast<std::size_t>(r0 / strip)];
         auto& near = w.near;
+        w.candidate.resize(static_cast<std::size_t>(nc));
+        std::uint8_t* candidate = w.candidate.data();
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const std::int32_t* lab = labels.row(r);
             const std::int32_t* lowest = w.lowest.data() + (r - r0) * nc;
             const std::int32_t* highest = w.highest.data() + (r - r0) * nc;
             const float* z_low = w.z_low.data() + (r - r0) * nc;
-            for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                if (lab[c] != 0 || highest[c] == 0 || !has_return(r, c)) continue;
+            // Ring cells of this row: in no component, a large one within reach, a return.
+            detail::ring_row(lab, highest, in.dropout.row(r), in.min_z.row(r),
+                             in.footprint.empty() ? ones.data() : in.footprint.row(r), candidate, nc);
+            for (std::ptrdiff_t c = detail::next_positive(candidate, 0, nc); c < nc;
+                 c = detail::next_positive(candidate, c + 1, nc)) {
                 if (lowest[c] == highest[c]) {
                     list.push_back({r, c, highest[c], z_low[c]});
                     continue;
@@ -336,14 +377,20 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
     }
-    // The seed mask takes the level mask's place (connected_components has read it).
+    // The seed mask takes the level mask's place (connected_components has read it), run by run of one label.
     const std::ptrdiff_t nc = cols;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
         std::uint8_t* d = level.row(r);
-        for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = lab[c] > 0 ? keep[static_cast<std::size_t>(lab[c])] : 0;
+        std::fill(d, d + nc, std::uint8_t{0});
+        for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc; c = detail::next_positive(lab, c, nc)) {
+            const std::int32_t l = lab[c];
+            const std::uint8_t k = keep[static_cast<std::size_t>(l)];
+            for (; c < nc && lab[c] == l; ++c) d[c] = k;
+        }
         if (slope_test) {  // and no seed cell where the surface around it slopes (a beach joined to the water)
-            for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = d[c] && !(surface_slope(r, c) > opt.max_surface_slope);
+            const float* slope = surface_slope.row(r);
+            for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = d[c] && !(slope[c] > opt.max_surface_slope);
         }
     }
     return level;
