@@ -117,15 +117,16 @@ inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const
     }
 }
 
-/// The first column >= c of `row` (cols values) holding a positive value, cols if none: blocks of 16 with
-/// none are passed over by a branch-free test (labels and masks are mostly 0 or runs of one value).
+/// The first column >= c of `row` (cols values) holding a positive value, cols if none: blocks of 64 with
+/// none are passed over by a vectorized maximum (labels and masks are mostly 0 or runs of one value; a
+/// shorter block would be unrolled into a scalar chain).
 template <class T>
 std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols) noexcept
 {
-    constexpr std::ptrdiff_t block = 16;
+    constexpr std::ptrdiff_t block = 64;
     for (; c + block <= cols; c += block) {
-        T high = row[c];
-        for (std::ptrdiff_t i = 1; i < block; ++i) high = std::max(high, row[c + i]);
+        T high = 0;
+        for (std::ptrdiff_t i = 0; i < block; ++i) high = std::max(high, row[c + i]);
         if (high > 0) break;
     }
     while (c < cols && !(row[c] > 0)) ++c;
