@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "water_test_rasters.hpp"
@@ -240,5 +241,87 @@ TEST_CASE("extract_waterbodies: a flat-seeded lake whose level lies on a multipl
                                  << " %");
         CHECK(score.sensitivity() >= 0.9);
         CHECK(score.specificity() >= 0.995);
+    }
+}
+
+TEST_CASE("flat_water_seeds' row helpers: next_positive and ring_row against plain loops")
+{
+    // Plain references: the first positive value from c on, and the ring test cell by cell.
+    const auto first_positive = [](const auto& row, std::ptrdiff_t c) {
+        const auto n = static_cast<std::ptrdiff_t>(row.size());
+        while (c < n && !(row[static_cast<std::size_t>(c)] > 0)) ++c;
+        return c;
+    };
+    std::uint32_t state = 12345;  // LCG: deterministic, no <random> distribution differences
+    const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    for (const std::ptrdiff_t n : {0, 1, 2, 15, 16, 17, 31, 32, 33, 100, 257}) {
+        for (int trial = 0; trial < 20; ++trial) {
+            // Sparse positives (1 in 40), runs of -1 and 0, or none at all (trial 0), or all positive (trial 1).
+            std::vector<std::int32_t> labels(static_cast<std::size_t>(n));
+            std::vector<std::uint8_t> bytes(labels.size());
+            for (std::size_t i = 0; i < labels.size(); ++i) {
+                const std::uint32_t x = next() % 40;
+                labels[i] = trial == 0 ? -static_cast<std::int32_t>(x % 2) : trial == 1 ? 1 + static_cast<std::int32_t>(x)
+                            : x == 0 ? static_cast<std::int32_t>(next() % 1000 + 1) : x < 10 ? -1 : 0;
+                bytes[i] = static_cast<std::uint8_t>(trial == 1 || x == 0 ? 1 + next() % 255 : 0);
+            }
+            if (trial == 2 && n > 0) labels.back() = std::numeric_limits<std::int32_t>::max();  // at the border
+            for (std::ptrdiff_t c = 0; c <= n; ++c) {
+                REQUIRE(detail::next_positive(labels.data(), c, n) == first_positive(labels, c));
+                REQUIRE(detail::next_positive(bytes.data(), c, n) == first_positive(bytes, c));
+            }
+            // ring_row: every combination of its five inputs, NaN and infinite heights among them.
+            std::vector<std::int32_t> highest(labels.size());
+            std::vector<std::uint8_t> drop(labels.size()), inside(labels.size()), out(labels.size(), 7);
+            std::vector<float> z(labels.size());
+            const float heights[] = {1.5f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                                     -std::numeric_limits<float>::infinity(), -0.0f};
+            for (std::size_t i = 0; i < labels.size(); ++i) {
+                highest[i] = next() % 3 == 0 ? 0 : static_cast<std::int32_t>(next() % 50 + 1);
+                drop[i] = static_cast<std::uint8_t>(next() % 4 == 0);
+                inside[i] = static_cast<std::uint8_t>(next() % 5 == 0 ? 0 : next() % 255 + 1);
+                z[i] = heights[next() % 5];
+            }
+            detail::ring_row(labels.data(), highest.data(), drop.data(), z.data(), inside.data(), out.data(), n);
+            for (std::size_t i = 0; i < labels.size(); ++i) {
+                const bool ring = labels[i] == 0 && highest[i] != 0 && !drop[i] && std::isfinite(z[i]) && inside[i];
+                REQUIRE(out[i] == (ring ? 1 : 0));
+            }
+        }
+    }
+}
+
+TEST_CASE("flat_water_seeds: more large components than 16-bit labels hold give the same seeds as fewer")
+{
+    // Single level cells every third row and column (each its own component, min_cells 1) among rough cells
+    // with returns: those with 2 returns against the ring's 4 are sparse seeds, those with 4 are not. 768²
+    // holds 65536 components (the ring's labels in 32 bits), 300² 10000 (in 16 bits); ring_cells 1 reaches
+    // one component, 2 several.
+    for (const std::ptrdiff_t side : {300, 768}) {
+        water_test::survey s(side, side);
+        for (std::ptrdiff_t r = 0; r < side; ++r) {
+            for (std::ptrdiff_t c = 0; c < side; ++c) {
+                const bool level = r % 3 == 0 && c % 3 == 0;
+                s.max_z(r, c) = level ? 10.0f : 11.0f;
+                s.count(r, c) = level && (r * 7 + c * 13) % 5 < 2 ? 2 : 4;
+            }
+        }
+        for (const int ring : {1, 2}) {
+            for (const int threads : {1, 2}) {
+                const auto seeds = flat_water_seeds(s.view(), {}, {.min_cells = 1, .ring_cells = ring, .run = {.threads = threads}});
+                long wrong = 0, seeded = 0;
+                for (std::ptrdiff_t r = 0; r < side; ++r) {
+                    for (std::ptrdiff_t c = 0; c < side; ++c) {
+                        const bool expected = r % 3 == 0 && c % 3 == 0 && s.count(r, c) == 2;
+                        wrong += (seeds.view()(r, c) != 0) != expected;
+                        seeded += seeds.view()(r, c) != 0;
+                    }
+                }
+                CAPTURE(side);
+                CAPTURE(ring);
+                CHECK(seeded > 0);
+                CHECK(wrong == 0);
+            }
+        }
     }
 }

@@ -204,20 +204,26 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                                                                           .run = {.threads = opt.run.threads}});
     const std::size_t n = comps.count();
     if (n == 0) return level;  // all 0
-    // From here on a label > 0 is a component large enough to be a seed and -1 marks the cells of the
-    // smaller ones (level cells all the same): later passes test the sign, not a table.
+    // From here on a label > 0 is a component large enough to be a seed, renumbered 1..nb in the order of
+    // the labels (so the smallest and largest label within reach stay those components), and -1 marks the
+    // cells of the smaller ones (level cells all the same): later passes test the sign, not a table.
     auto& labels = comps.labels;
-    std::vector<std::uint8_t> big(n + 1, 0);
+    std::vector<std::int32_t> big(n + 1, 0);  // the new label of a large component, 0 for a small one
+    std::vector<std::size_t> sizes(1, 0);     // cells per new label
     std::size_t level_cells = 0;
     for (std::size_t l = 1; l <= n; ++l) {
-        big[l] = comps.sizes[l] >= opt.min_cells;
+        if (comps.sizes[l] >= opt.min_cells) {
+            big[l] = static_cast<std::int32_t>(sizes.size());
+            sizes.push_back(comps.sizes[l]);
+        }
         level_cells += comps.sizes[l];
     }
+    const std::size_t nb = sizes.size() - 1;
     // Per component: its count, intensity and roughness (summed in row order); max z − min z of every level
     // cell: the survey's typical roughness. Along a run of one label the sums stay in registers (the same
     // additions in the same order as cell by cell).
-    std::vector<double> count_sum(n + 1, 0), ring_count(n + 1, 0), ring_cells(n + 1, 0), light(n + 1, 0), ring_light(n + 1, 0),
-        rough(n + 1, 0), lower(n + 1, 0);
+    std::vector<double> count_sum(nb + 1, 0), ring_count(nb + 1, 0), ring_cells(nb + 1, 0), light(nb + 1, 0),
+        ring_light(nb + 1, 0), rough(nb + 1, 0), lower(nb + 1, 0);
     std::vector<float> level_rough(level_cells);
     {
         float* rough_out = level_rough.data();
@@ -228,15 +234,15 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const std::uint32_t* pulses = in.count.row(r);
             const float* intensity = in.mean_intensity.row(r);
             for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols; c = detail::next_positive(lab, c, cols)) {
-                const std::int32_t l = lab[c];
-                const auto m = static_cast<std::size_t>(l);
-                if (!big[m]) {
+                const std::int32_t l = lab[c], to = big[static_cast<std::size_t>(l)];
+                if (to == 0) {
                     for (; c < cols && lab[c] == l; ++c) {
                         *rough_out++ = z1[c] - z0[c];
                         lab[c] = -1;
                     }
                     continue;
                 }
+                const auto m = static_cast<std::size_t>(to);
                 double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
                 for (; c < cols && lab[c] == l; ++c) {
                     const float d = z1[c] - z0[c];
@@ -244,6 +250,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                     pulse_sum += pulses[c];
                     light_sum += intensity[c];
                     rough_sum += d;
+                    lab[c] = to;
                 }
                 count_sum[m] = pulse_sum;
                 light[m] = light_sum;
@@ -255,7 +262,9 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows,
     // running filters over the labels of large components give the smallest and largest label within reach
     // and the lowest min z of their cells; where both labels agree that is the one component in reach,
-    // else the window is read cell by cell. Strips list their ring cells; the sums below read the lists
+    // else the window is read cell by cell. Both labels come from one running maximum over rows of twice
+    // the width, [label | ring_cells zeros | K_max + 1 − label] (0 where no large component; the zeros keep
+    // the halves apart), in 16 bits while the labels fit (twice the lanes of 32 bits). Strips list their ring cells; the sums below read the lists
     // in row order (as one pass over the raster would), whatever the thread count.
     struct ring_cell {
         std::ptrdiff_t r, c;
@@ -267,8 +276,11 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     const std::ptrdiff_t strip = detail::min_max_strip_rows(rows, cols, qy);
     std::vector<std::vector<ring_cell>> found(static_cast<std::size_t>((rows + strip - 1) / strip));
     struct scratch {
-        detail::min_max_scratch<std::int32_t> si;
+        detail::min_max_scratch<std::uint16_t> s16;
+        detail::min_max_scratch<std::uint32_t> s32;
         detail::min_max_scratch<float> sf;
+        std::vector<std::uint16_t> within16;
+        std::vector<std::uint32_t> within32;
         std::vector<std::int32_t> lowest, highest;
         std::vector<float> z_low;
         std::vector<ring_cell> near;
@@ -284,21 +296,39 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         w.lowest.resize(cells);
         w.highest.resize(cells);
         w.z_low.resize(cells);
-        const auto load_low = [&](std::ptrdiff_t r, std::int32_t* dst) {
-            const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? lab[c] : std::numeric_limits<std::int32_t>::max();
+        const std::ptrdiff_t wide = 2 * nc + qx;  // [label | qx zeros | K_max + 1 - label]
+        const auto label_range = [&]<class K>(std::vector<K>& within, detail::min_max_scratch<K>& s) {
+            constexpr auto top = static_cast<std::int64_t>(std::numeric_limits<K>::max()) + 1;
+            const auto load = [&](std::ptrdiff_t r, K* dst) {
+                const std::int32_t* lab = labels.row(r);
+                K* mirrored = dst + nc + qx;
+                for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                    const bool on = lab[c] > 0;
+                    dst[c] = static_cast<K>(on ? lab[c] : 0);
+                    mirrored[c] = static_cast<K>(on ? top - lab[c] : 0);
+                }
+                std::fill(dst + nc, mirrored, K{0});
+            };
+            within.resize(static_cast<std::size_t>((r1 - r0) * wide));
+            detail::min_max_rows<detail::max_reduce<K>>(rows, wide, qx, qy, r0, r1, load, within.data(), s);
+            for (std::ptrdiff_t i = 0; i < r1 - r0; ++i) {
+                const K* high = within.data() + i * wide;
+                const K* mirrored = high + nc + qx;
+                std::int32_t* lowest = w.lowest.data() + i * nc;
+                std::int32_t* highest = w.highest.data() + i * nc;
+                for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                    highest[c] = static_cast<std::int32_t>(high[c]);
+                    lowest[c] = static_cast<std::int32_t>(top - mirrored[c]);  // top when none: never read
+                }
+            }
         };
-        const auto load_high = [&](std::ptrdiff_t r, std::int32_t* dst) {
-            const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::max(lab[c], 0);
-        };
+        if (nb < std::numeric_limits<std::uint16_t>::max()) label_range(w.within16, w.s16);
+        else label_range(w.within32, w.s32);
         const auto load_z = [&](std::ptrdiff_t r, float* dst) {
             const std::int32_t* lab = labels.row(r);
             const float* z = in.min_z.row(r);
             for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
         };
-        detail::min_max_rows<detail::min_reduce<std::int32_t>>(rows, nc, qx, qy, r0, r1, load_low, w.lowest.data(), w.si);
-        detail::min_max_rows<detail::max_reduce<std::int32_t>>(rows, nc, qx, qy, r0, r1, load_high, w.highest.data(), w.si);
         detail::min_max_rows<detail::min_reduce<float>>(rows, nc, qx, qy, r0, r1, load_z, w.z_low.data(), w.sf);
         auto& list = found[static_cast<std::size_t>(r0 / strip)];
         auto& near = w.near;
@@ -343,27 +373,29 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         }
     }
     // With a surface slope: per large component, the median slope around its cells (NaN, unknown, as level).
-    std::vector<std::uint8_t> sloping(n + 1, 0);
+    std::vector<std::uint8_t> sloping(nb + 1, 0);
     const bool slope_test = !surface_slope.empty() && opt.max_surface_slope >= 0;
     if (slope_test) {
-        std::vector<std::vector<float>> slopes(n + 1);
+        std::vector<std::vector<float>> slopes(nb + 1);
+        for (std::size_t l = 1; l <= nb; ++l) slopes[l].reserve(sizes[l]);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                if (lab[c] <= 0) continue;
-                const float v = surface_slope(r, c);
-                slopes[static_cast<std::size_t>(lab[c])].push_back(std::isnan(v) ? 0.0f : v);
+            const float* slope = surface_slope.row(r);
+            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols; c = detail::next_positive(lab, c, cols)) {
+                const std::int32_t l = lab[c];
+                auto& list = slopes[static_cast<std::size_t>(l)];
+                for (; c < cols && lab[c] == l; ++c) list.push_back(std::isnan(slope[c]) ? 0.0f : slope[c]);
             }
         }
-        for (std::size_t l = 1; l <= n; ++l) {
+        for (std::size_t l = 1; l <= nb; ++l) {
             if (!slopes[l].empty()) sloping[l] = detail::median(slopes[l]) > opt.max_surface_slope;
         }
     }
-    std::vector<std::uint8_t> keep(n + 1, 0);
-    for (std::size_t l = 1; l <= n; ++l) {
+    std::vector<std::uint8_t> keep(nb + 1, 0);
+    for (std::size_t l = 1; l <= nb; ++l) {
         if (sloping[l]) continue;
-        if (comps.sizes[l] < opt.min_cells || ring_cells[l] == 0) continue;
-        const double size = static_cast<double>(comps.sizes[l]);
+        if (sizes[l] < opt.min_cells || ring_cells[l] == 0) continue;
+        const double size = static_cast<double>(sizes[l]);
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
         const double intensity = light[l] / size / (ring_light[l] / ring_cells[l]);
         // Sparse counts only when not brighter than the ring: a bright (specular) echo is one that arrived.
@@ -373,7 +405,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const double mean_rough = rough[l] / size;
         const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical_rough;
         const bool smooth = roughness <= opt.max_roughness_ratio;
-        const bool joint = comps.sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
+        const bool joint = sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
         if (!sparse && !((dark || smooth || joint) && density <= opt.dark_density_ratio)) continue;
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
