@@ -297,15 +297,15 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         w.highest.resize(cells);
         w.z_low.resize(cells);
         const std::ptrdiff_t wide = 2 * nc + qx;  // [label | qx zeros | K_max + 1 - label]
+        // K_max + 1 − label as K{0} − label, modulo 2^bits.
         const auto label_range = [&]<class K>(std::vector<K>& within, detail::min_max_scratch<K>& s) {
-            constexpr auto top = static_cast<std::int64_t>(std::numeric_limits<K>::max()) + 1;
             const auto load = [&](std::ptrdiff_t r, K* dst) {
                 const std::int32_t* lab = labels.row(r);
                 K* mirrored = dst + nc + qx;
                 for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                    const bool on = lab[c] > 0;
-                    dst[c] = static_cast<K>(on ? lab[c] : 0);
-                    mirrored[c] = static_cast<K>(on ? top - lab[c] : 0);
+                    const K key = static_cast<K>(lab[c] > 0 ? lab[c] : 0);
+                    dst[c] = key;
+                    mirrored[c] = static_cast<K>(K{0} - key);  // 0 stays 0
                 }
                 std::fill(dst + nc, mirrored, K{0});
             };
@@ -318,7 +318,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 std::int32_t* highest = w.highest.data() + i * nc;
                 for (std::ptrdiff_t c = 0; c < nc; ++c) {
                     highest[c] = static_cast<std::int32_t>(high[c]);
-                    lowest[c] = static_cast<std::int32_t>(top - mirrored[c]);  // top when none: never read
+                    lowest[c] = static_cast<std::int32_t>(static_cast<K>(K{0} - mirrored[c]));  // 0 when none
                 }
             }
         };
