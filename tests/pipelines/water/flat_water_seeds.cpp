@@ -261,8 +261,11 @@ TEST_CASE("flat_water_seeds' row helpers: next_positive and ring_row against pla
             std::vector<std::uint8_t> bytes(labels.size());
             for (std::size_t i = 0; i < labels.size(); ++i) {
                 const std::uint32_t x = next() % 40;
-                labels[i] = trial == 0 ? -static_cast<std::int32_t>(x % 2) : trial == 1 ? 1 + static_cast<std::int32_t>(x)
-                            : x == 0 ? static_cast<std::int32_t>(next() % 1000 + 1) : x < 10 ? -1 : 0;
+                labels[i] = trial == 0   ? -static_cast<std::int32_t>(x % 2)
+                            : trial == 1 ? 1 + static_cast<std::int32_t>(x)
+                            : x == 0     ? static_cast<std::int32_t>(next() % 1000 + 1)
+                            : x < 10     ? -1
+                                         : 0;
                 bytes[i] = static_cast<std::uint8_t>(trial == 1 || x == 0 ? 1 + next() % 255 : 0);
             }
             if (trial == 2 && n > 0) labels.back() = std::numeric_limits<std::int32_t>::max();  // at the border
@@ -274,8 +277,8 @@ TEST_CASE("flat_water_seeds' row helpers: next_positive and ring_row against pla
             std::vector<std::int32_t> highest(labels.size());
             std::vector<std::uint8_t> drop(labels.size()), inside(labels.size()), out(labels.size(), 7);
             std::vector<float> z(labels.size());
-            const float heights[] = {1.5f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-                                     -std::numeric_limits<float>::infinity(), -0.0f};
+            constexpr float inf = std::numeric_limits<float>::infinity();
+            const float heights[] = {1.5f, std::numeric_limits<float>::quiet_NaN(), inf, -inf, -0.0f};
             for (std::size_t i = 0; i < labels.size(); ++i) {
                 highest[i] = next() % 3 == 0 ? 0 : static_cast<std::int32_t>(next() % 50 + 1);
                 drop[i] = static_cast<std::uint8_t>(next() % 4 == 0);
@@ -308,7 +311,8 @@ TEST_CASE("flat_water_seeds: more large components than 16-bit labels hold give 
         }
         for (const int ring : {1, 2}) {
             for (const int threads : {1, 2}) {
-                const auto seeds = flat_water_seeds(s.view(), {}, {.min_cells = 1, .ring_cells = ring, .run = {.threads = threads}});
+                const auto seeds =
+                    flat_water_seeds(s.view(), {}, {.min_cells = 1, .ring_cells = ring, .run = {.threads = threads}});
                 long wrong = 0, seeded = 0;
                 for (std::ptrdiff_t r = 0; r < side; ++r) {
                     for (std::ptrdiff_t c = 0; c < side; ++c) {

@@ -233,7 +233,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const float* z1 = in.max_z.row(r);
             const std::uint32_t* pulses = in.count.row(r);
             const float* intensity = in.mean_intensity.row(r);
-            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols; c = detail::next_positive(lab, c, cols)) {
+            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols;
+                 c = detail::next_positive(lab, c, cols)) {
                 const std::int32_t l = lab[c], to = big[static_cast<std::size_t>(l)];
                 if (to == 0) {
                     for (; c < cols && lab[c] == l; ++c) {
@@ -259,13 +260,13 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         }
     }
     const double typical_rough = detail::median(level_rough);
-    // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows,
-    // running filters over the labels of large components give the smallest and largest label within reach
-    // and the lowest min z of their cells; where both labels agree that is the one component in reach,
-    // else the window is read cell by cell. Both labels come from one running maximum over rows of twice
-    // the width, [label | ring_cells zeros | K_max + 1 − label] (0 where no large component; the zeros keep
-    // the halves apart), in 16 bits while the labels fit (twice the lanes of 32 bits). Strips list their ring cells; the sums below read the lists
-    // in row order (as one pass over the raster would), whatever the thread count.
+    // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows, running
+    // filters over the labels of large components give the smallest and largest label within reach and the lowest min z
+    // of their cells; where both labels agree that is the one component in reach, else the window is read cell by cell.
+    // Both labels come from one running maximum over rows of twice the width, [label | ring_cells zeros | K_max + 1 −
+    // label] (0 where no large component; the zeros keep the halves apart), in 16 bits while the labels fit (twice the
+    // lanes of 32 bits). Strips list their ring cells; the sums below read the lists in row order (as one pass over the
+    // raster would), whatever the thread count.
     struct ring_cell {
         std::ptrdiff_t r, c;
         std::int32_t label;
@@ -381,7 +382,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             const std::int32_t* lab = labels.row(r);
             const float* slope = surface_slope.row(r);
-            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols; c = detail::next_positive(lab, c, cols)) {
+            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols;
+                 c = detail::next_positive(lab, c, cols)) {
                 const std::int32_t l = lab[c];
                 auto& list = slopes[static_cast<std::size_t>(l)];
                 for (; c < cols && lab[c] == l; ++c) list.push_back(std::isnan(slope[c]) ? 0.0f : slope[c]);
