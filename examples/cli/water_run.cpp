@@ -88,7 +88,8 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     if (a.has("flat-seeds") && a.has("dropout-seeds-only"))
         throw usage_error("--flat-seeds and --dropout-seeds-only exclude each other");
     // What the water family reports as the method (flat seeds and the level-surface cue) unless told otherwise.
-    extract_waterbodies_options opt = a.has("dropout-seeds-only") ? extract_waterbodies_options{} : flat_seed_water_method();
+    extract_waterbodies_options opt =
+        a.has("dropout-seeds-only") ? extract_waterbodies_options{} : flat_seed_water_method();
     opt.run.threads = a.integer("threads", 0);
     opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
     const int min_seed = a.integer("min-seed-cells", static_cast<int>(opt.min_seed_cells));

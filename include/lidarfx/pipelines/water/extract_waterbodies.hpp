@@ -13,6 +13,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
@@ -249,9 +250,10 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
             }
         }
     }
-    auto seeds = water_seeds(in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside),
-                             {.opening_size_cells = opt.seed_opening_size_cells, .min_cells = opt.min_seed_cells,
-                              .run = kernels});
+    const raster_view<const std::uint8_t> dropouts =
+        in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside);
+    auto seeds = water_seeds(dropouts, {.opening_size_cells = opt.seed_opening_size_cells,
+                                        .min_cells = opt.min_seed_cells, .run = kernels});
     // Growing is the first 0.9 of the run's progress (0.8 for the dropout seeds when flat seeds follow);
     // cancelling there throws in this function's name.
     const double share = opt.flat_seeds ? 0.8 : 0.9;
@@ -296,28 +298,20 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
             cells[i] = static_cast<std::uint8_t>((cells[i] != 0) & (label[i] == 0));
         if (opt.flat_seed_dropouts) {
-            // The dropouts next to the seed cells join them: water with scattered dropouts has level cells
-            // between them that the opening would otherwise break apart.
-            const raster_view<const std::uint8_t> drop =
-                in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside);
-            raster<std::uint8_t> with_dropouts(rows, cols, uninitialized);
+            // The dropouts next to the seed cells (3 x 3 dilation) join them: water with scattered dropouts
+            // has level cells between them that the opening would otherwise break apart. Eligible: not
+            // vegetation, in no body yet.
+            auto near = morph_dilate(mask, morphology_options{.size_cells = 3, .run = kernels});
             for (std::ptrdiff_t r = 0; r < rows; ++r) {
-                const std::uint8_t* above = mask.view().row(std::max<std::ptrdiff_t>(r - 1, 0));
-                const std::uint8_t* here = mask.view().row(r);
-                const std::uint8_t* below = mask.view().row(std::min(r + 1, rows - 1));
-                const std::uint8_t* d = drop.row(r);
-                const std::uint8_t* free = field.eligible.view().row(r);  // not vegetation, in no body yet
-                const std::int32_t* body = grown.labels.view().row(r);
-                std::uint8_t* out = with_dropouts.view().row(r);
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(c - 1, 0), c1 = std::min(c + 1, cols - 1);
-                    const bool near = (above[c0] | above[c] | above[c1] | here[c0] | here[c1] | below[c0] | below[c] |
-                                       below[c1]) != 0;
-                    out[c] = static_cast<std::uint8_t>((here[c] != 0) |
-                                                       ((d[c] != 0) & (free[c] != 0) & (body[c] == 0) & near));
-                }
+                std::uint8_t* out = near.view().row(r);
+                const std::uint8_t* seed_cell = mask.view().row(r);
+                const std::uint8_t* dropout = dropouts.row(r);
+                const std::uint8_t* free = field.eligible.view().row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c)
+                    out[c] = static_cast<std::uint8_t>((seed_cell[c] != 0) |
+                                                       ((out[c] != 0) & (dropout[c] != 0) & (free[c] != 0)));
             }
-            mask = std::move(with_dropouts);
+            mask = std::move(near);
         }
         // A seed holds one level: cut the mask where min z crosses a band of 2 level gates (a seed along a
         // falling river would otherwise take the level of its low end and gate out its high end). The bands

@@ -396,7 +396,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     std::vector<std::uint8_t> keep(nb + 1, 0);
     for (std::size_t l = 1; l <= nb; ++l) {
         if (sloping[l]) continue;
-        if (sizes[l] < opt.min_cells || ring_cells[l] == 0) continue;
+        if (ring_cells[l] == 0) continue;  // (every renumbered component has >= min_cells cells)
         const double size = static_cast<double>(sizes[l]);
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
         const double intensity = light[l] / size / (ring_light[l] / ring_cells[l]);

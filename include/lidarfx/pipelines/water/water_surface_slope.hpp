@@ -63,11 +63,13 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
 /// the mask times x, y, x², y², xy are small integers, exact in float in any order, and are taken per window
 /// row; sz, sxz and syz add in the passes' order (row by row, column by column).
 template <int R>
-[[gnu::noinline, LIDARFX_VECTORIZE]] void slope_sums_window(const float* z0, std::ptrdiff_t row_stride, std::ptrdiff_t c0,
-                                         std::ptrdiff_t c1, float band, float* __restrict n, float* __restrict sx,
-                                         float* __restrict sy, float* __restrict sxx, float* __restrict syy,
-                                         float* __restrict sxy, float* __restrict sz, float* __restrict sxz,
-                                         float* __restrict syz) noexcept
+[[gnu::noinline, LIDARFX_VECTORIZE]] void slope_sums_window(const float* z0, std::ptrdiff_t row_stride,
+                                                            std::ptrdiff_t c0, std::ptrdiff_t c1, float band,
+                                                            float* __restrict n, float* __restrict sx,
+                                                            float* __restrict sy, float* __restrict sxx,
+                                                            float* __restrict syy, float* __restrict sxy,
+                                                            float* __restrict sz, float* __restrict sxz,
+                                                            float* __restrict syz) noexcept
 {
     LIDARFX_IVDEP
     for (std::ptrdiff_t c = c0; c < c1; ++c) {
