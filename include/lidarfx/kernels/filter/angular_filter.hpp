@@ -65,15 +65,14 @@ inline void angular_offset_pass(const float* centre, const float* other, float* 
 /// first and multiplied once: rounding is monotone, so max(|dz|) * f equals max(|dz| * f) bit for bit.
 /// The maxima run on the bit patterns of |dz| as unsigned integers (non-negative floats order as their bits),
 /// which takes them off the floating-point units that the subtractions and products need. A NaN difference
-/// (a NaN neighbour, or inf - inf) would win that comparison, so a valid cell whose window holds one is marked
-/// -1 instead; the return value says whether any cell was marked (the caller redoes those one at a time).
-/// With Finite (every value of the window rows known finite) that test is left out.
+/// (a NaN neighbour, or inf - inf) would win that comparison, so its bits are replaced by 0 (+0.0, which
+/// never wins either): NaN neighbours are skipped in the vector loop itself, as the passes skip them. With
+/// Finite (every value of the window rows known finite) that select is left out.
 template <int R, bool Finite>
-bool angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
+void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t c0, std::ptrdiff_t c1,
                       const float* inv_d) noexcept
 {
     constexpr std::uint32_t magnitude = 0x7fffffffu, infinity_bits = 0x7f800000u;
-    std::uint32_t marked = 0;
     for (std::ptrdiff_t c = c0; c < c1; ++c) {
         const float p = centre[c];
         std::uint32_t largest[R + 1][R + 1] = {};  // by (min(|dr|, |dc|), max(|dr|, |dc|)), bits of max |dz|
@@ -83,32 +82,27 @@ bool angular_interior(const float* centre, std::ptrdiff_t row_stride, float* bes
             for (int dc = -R; dc <= R; ++dc) {
                 if (dr == 0 && dc == 0) continue;
                 const int a = std::min(std::abs(dr), std::abs(dc)), b = std::max(std::abs(dr), std::abs(dc));
-                const std::uint32_t d = std::bit_cast<std::uint32_t>(p - centre[dr * row_stride + c + dc]) & magnitude;
+                std::uint32_t d = std::bit_cast<std::uint32_t>(p - centre[dr * row_stride + c + dc]) & magnitude;
+                if constexpr (!Finite) d = d > infinity_bits ? 0u : d;  // a NaN difference: skipped
                 largest[a][b] = d > largest[a][b] ? d : largest[a][b];
             }
         }
         float steepest = 0.0f;
-        std::uint32_t widest = 0;
 #pragma GCC unroll 8
         for (int a = 0; a <= R; ++a) {
 #pragma GCC unroll 8
             for (int b = a; b <= R; ++b) {
                 if (b == 0) continue;  // the centre
-                if constexpr (!Finite) widest = largest[a][b] > widest ? largest[a][b] : widest;
                 const float ratio = std::bit_cast<float>(largest[a][b]) * inv_d[a * (R + 1) + b];
                 steepest = ratio > steepest ? ratio : steepest;
             }
         }
         if constexpr (Finite) {
             best[c] = steepest;
-        } else {
-            const bool valid = p == p, exact = valid && widest > infinity_bits;
-            marked |= exact ? 1u : 0u;
-            const float ratio = select_bits(valid, steepest, std::numeric_limits<float>::quiet_NaN());
-            best[c] = select_bits(exact, -1.0f, ratio);
+        } else {  // a NaN centre gives NaN
+            best[c] = select_bits(p == p, steepest, std::numeric_limits<float>::quiet_NaN());
         }
     }
-    return marked != 0;
 }
 
 /// Whether every value of x[0, n) is finite (neither NaN nor infinite): the largest magnitude bit pattern
@@ -125,11 +119,14 @@ inline bool all_finite(const float* x, std::ptrdiff_t n) noexcept
 
 /// The unrolled kernel for radius R on one row, the unchecked variant where the window rows are all finite.
 template <int R>
-bool angular_interior_row(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t cols, bool finite,
+void angular_interior_row(const float* centre, std::ptrdiff_t row_stride, float* best, std::ptrdiff_t cols, bool finite,
                           const float* inv_d) noexcept
 {
-    if (finite) return angular_interior<R, true>(centre, row_stride, best, R, cols - R, inv_d);
-    return angular_interior<R, false>(centre, row_stride, best, R, cols - R, inv_d);
+    if (finite) {
+        angular_interior<R, true>(centre, row_stride, best, R, cols - R, inv_d);
+    } else {
+        angular_interior<R, false>(centre, row_stride, best, R, cols - R, inv_d);
+    }
 }
 
 /// The steepest ratio |dz| / d of cell (r, c) over its window clipped at the raster border, one neighbour at a
@@ -169,15 +166,10 @@ inline void angular_filter_rows(raster_view<const float> z, raster_view<float> o
             }
             const bool finite = last_non_finite < r - rad;
             const auto stride = z.row_stride();
-            bool marked = false;
-            if (radius == 1) marked = angular_interior_row<1>(centre, stride, best, cols, finite, inv_d.data());
-            if (radius == 2) marked = angular_interior_row<2>(centre, stride, best, cols, finite, inv_d.data());
-            if (radius == 3) marked = angular_interior_row<3>(centre, stride, best, cols, finite, inv_d.data());
-            // Cells next to a NaN difference, then the `rad` columns at each end, one cell at a time (a pass
-            // per offset would cost a call per offset).
-            for (std::ptrdiff_t c = rad; marked && c < cols - rad; ++c) {
-                if (best[c] < 0.0f) best[c] = angular_cell(z, r, c, rad, inv_d.data());
-            }
+            if (radius == 1) angular_interior_row<1>(centre, stride, best, cols, finite, inv_d.data());
+            if (radius == 2) angular_interior_row<2>(centre, stride, best, cols, finite, inv_d.data());
+            if (radius == 3) angular_interior_row<3>(centre, stride, best, cols, finite, inv_d.data());
+            // The `rad` columns at each end, one cell at a time (a pass per offset would cost a call per offset).
             for (std::ptrdiff_t c : {std::ptrdiff_t{0}, cols - rad}) {
                 for (std::ptrdiff_t cc = c; cc < c + rad; ++cc) {
                     const float steepest = angular_cell(z, r, cc, rad, inv_d.data());
