@@ -13,6 +13,7 @@
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
 // seeds beyond bridges), WF_BSEED_{MIN,BEYOND,BEHIND,TOL,CLEAR,AWAY,SLOPE} (their options), WF_FLAT_SLOPE
 // (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (min_free_seed_share),
+// WF_SHORE (0/1, shore_cells), WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options),
 // WF_PRESET=1 (start from flat_seed_water_method() instead of the defaults);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
@@ -59,12 +60,16 @@ std::vector<score> run(const std::vector<prepared>& scenes, const extract_waterb
     for (const auto& p : scenes) {
         const auto w = extract_waterbodies(p.rasters, o);
         const auto c = confusion_counts(w.water, p.truth.water_filled, p.truth.cell_m);
-        if (std::getenv("WATER_FAMILY_VERBOSE"))
-            std::fprintf(stderr, "    seed %u ran %d seeds %zu grown %zu bodies %zu dropout %.3f\n", p.seed, w.ran,
-                         w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction);
         score s{p.seed, c.accuracy(), c.sensitivity(), c.specificity(), c.iou(), p.truth.bridges > 0, false};
         if (p.truth.kind == synth::water_family_kind::river && s.has_bridges)
             s.one_body = synth::river_found_as_one_body(p.truth, w.labels.view());
+        if (std::getenv("WATER_FAMILY_VERBOSE"))
+            std::fprintf(stderr,
+                         "    %s seed %u ran %d seeds %zu grown %zu bodies %zu dropout %.3f acc %.2f sens %.2f "
+                         "spec %.2f one %d\n",
+                         p.truth.kind == synth::water_family_kind::lake ? "lake" : "river", p.seed, w.ran,
+                         w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction,
+                         100 * s.acc, 100 * s.sens, 100 * s.spec, s.has_bridges ? int(s.one_body) : -1);
         out.push_back(s);
     }
     return out;
@@ -172,6 +177,11 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_BSEED_CLEAR")) o.bridge_seeds.min_clearance_m = std::atof(v);
              if (const char* v = std::getenv("WF_BSEED_AWAY")) o.bridge_seeds.clear_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_SLOPE")) o.bridge_seeds.max_surface_slope = std::atof(v);
+             if (const char* v = std::getenv("WF_SHORE")) o.shore_cells = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_SHORE_WIN")) o.shore.window_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_SHORE_CONTRAST")) o.shore.min_contrast = std::atof(v);
+             if (const char* v = std::getenv("WF_SHORE_SHARE")) o.shore.min_water_share = std::atof(v);
+             if (const char* v = std::getenv("WF_SHORE_NB")) o.shore.min_body_neighbours = std::atoi(v);
          }},
     };
     if (!std::getenv("WF_PRESET"))
@@ -192,6 +202,8 @@ int main(int argc, char** argv)
                            preset([](extract_waterbodies_options& o) { o.grow.level_drift_m = 0.005; })});
         configs.push_back({"flat_seed_water_method() with bridge seeds of >= 8 cells (bridge_seed_min_cells = 8)",
                            preset([](extract_waterbodies_options& o) { o.bridge_seed_min_cells = 8; })});
+        configs.push_back({"flat_seed_water_method() without shore cells (shore_cells = false)",
+                           preset([](extract_waterbodies_options& o) { o.shore_cells = false; })});
         configs.push_back({"flat_seed_water_method() without the first-step test",
                            preset([](extract_waterbodies_options& o) { o.grow.test_first_step = false; })});
         configs.push_back({"flat_seed_water_method() without seeds beyond bridges",
@@ -225,6 +237,8 @@ int main(int argc, char** argv)
                                o.flat_seeds = true;
                                o.grow.level_follow_max_slope = 0.008;
                            }});
+        configs.push_back({"without shore cells (shore_cells = false)",
+                           [](extract_waterbodies_options& o) { o.shore_cells = false; }});
         configs.push_back({"without the first-step test (grow.test_first_step = false)",
                            [](extract_waterbodies_options& o) { o.grow.test_first_step = false; }});
         configs.push_back({"without seeds beyond bridges (bridge_seed_rounds = 0)",

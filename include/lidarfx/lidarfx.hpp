@@ -69,6 +69,7 @@
 #include "lidarfx/pipelines/water/level_refinement.hpp"
 #include "lidarfx/pipelines/water/measure_waterbodies.hpp"
 #include "lidarfx/pipelines/water/seed_water_level.hpp"
+#include "lidarfx/pipelines/water/shore_cells.hpp"
 #include "lidarfx/pipelines/water/water_angles.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"

@@ -26,6 +26,7 @@
 #include "lidarfx/pipelines/water/islands.hpp"
 #include "lidarfx/pipelines/water/level_refinement.hpp"
 #include "lidarfx/pipelines/water/measure_waterbodies.hpp"
+#include "lidarfx/pipelines/water/shore_cells.hpp"
 #include "lidarfx/pipelines/water/water_angles.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
@@ -93,6 +94,10 @@ struct extract_waterbodies_options {
     bool bridge_join_touching = true;      ///< join_across_bridges: bodies that touch, at levels within
                                            ///< bridge_level_tolerance_m, merge (one surface grown from several
                                            ///< seeds); needs bridge_max_span_m > 0. Default true
+    bool shore_cells = true;               ///< join_shore_cells (needs in.count): edge cells whose count says
+                                           ///< they are mostly water join their body, after the bridges. Default
+                                           ///< true (water family, seeds 500-599: see docs/waterbodies.md)
+    join_shore_cells_options shore = {};   ///< join_shore_cells: window, contrast, water share, neighbours
     double min_points_per_cell = 2.0;      ///< assess_water_inputs: below this mean density the inputs are refused
     bool check_inputs = true;              ///< refuse inputs that cannot support the method (see diagnostics)
     execution run = {};                    ///< threads of the raster kernels (0 = all cores; same result for any
@@ -119,6 +124,7 @@ inline extract_waterbodies_options previous_water_method()
     o.bridge_join_touching = false;
     o.flat_seed_dropouts = false;
     o.min_free_seed_share = 1;
+    o.shore_cells = false;
     return o;
 }
 
@@ -179,6 +185,7 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     require(o.bridge_seed_rounds >= 0, fn, "bridge_seed_rounds", ">= 0", o.bridge_seed_rounds);
     require(o.bridge_seed_min_cells >= 1, fn, "bridge_seed_min_cells", ">= 1", o.bridge_seed_min_cells);
     if (o.bridge_seed_rounds > 0) validate(o.bridge_seeds, fn);
+    if (o.shore_cells) validate(o.shore, fn);
     check_execution(o.run, fn);
     validate(o.grow, fn);
 }
@@ -189,7 +196,8 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
 /// as a composition of the public steps: assess_water_inputs, water_vegetation, intensity_bins,
 /// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
 /// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
-/// fill_small_islands and measure_waterbodies (labels 1..n by decreasing area). With flat_seeds, after the
+/// join_shore_cells (edge cells that are mostly water by their count), fill_small_islands and
+/// measure_waterbodies (labels 1..n by decreasing area). With flat_seeds, after the
 /// dropout seeds: flat_water_seeds outside the bodies grown, water_seeds on them, grow_waterbodies again. Then,
 /// for bridge_seed_rounds rounds, seeds_beyond_bridges (water cut off by a deck from a body), grown the same
 /// way. With in.footprint, cells outside it are no data: they neither seed nor join a body (survey_footprint
@@ -383,6 +391,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                              .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m,
                              .join_touching = opt.bridge_join_touching});
     }
+    if (opt.shore_cells && !in.count.empty())
+        join_shore_cells(res.labels, in.count, res.vegetation, in.footprint, opt.shore);
     fill_small_islands(res.labels, cell_m, {.island_min_area_m2 = opt.island_min_area_m2, .run = kernels});
     if (!in.footprint.empty()) {  // neither a bridge nor a filled hole reaches beyond what was flown
         for (std::ptrdiff_t r = 0; r < rows; ++r)

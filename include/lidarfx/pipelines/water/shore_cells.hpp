@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: Apache-2.0
+// join_shore_cells: cells on a waterbody's edge that are mostly water by their share of lost pulses.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Options of join_shore_cells.
+struct join_shore_cells_options {
+    int window_cells = 3;           ///< the water and land a shore cell is compared with lie within this Chebyshev
+                                    ///< distance of it, cells, >= 1. Default 3 (a 7 × 7 window)
+    double min_contrast = 0.3;      ///< the land's mean returns per cell exceed the water's by at least this share
+                                    ///< of the land's, (n_land − n_water) / n_land (without that contrast the
+                                    ///< count says nothing of the mix), in (0, 1]. Default 0.3
+    double min_water_share = 0.5;   ///< the cell's estimated water share f = (n_land − count) / (n_land −
+                                    ///< n_water) is at least this (a cell is water when its centre is: half its
+                                    ///< area), in (0, 1]. Default 0.5
+    int min_body_neighbours = 3;    ///< the cell has at least this many body cells among its 8 neighbours (a
+                                    ///< whole side on the water, not a corner touching it), in [1, 8]. Default 3
+};
+
+namespace detail {
+
+inline void validate(const join_shore_cells_options& o, const char* fn)
+{
+    require(o.window_cells >= 1, fn, "window_cells", ">= 1", o.window_cells);
+    require(o.min_contrast > 0 && o.min_contrast <= 1, fn, "min_contrast", "in (0, 1]", o.min_contrast);
+    require(o.min_water_share > 0 && o.min_water_share <= 1, fn, "min_water_share", "in (0, 1]", o.min_water_share);
+    require(o.min_body_neighbours >= 1 && o.min_body_neighbours <= 8, fn, "min_body_neighbours", "in [1, 8]",
+            o.min_body_neighbours);
+}
+
+}  // namespace detail
+
+/// Shore refinement: a cell on a body's edge whose centre lies on the water holds more water than land, and
+/// water loses pulses (specular reflection, absorption) that land returns. So where the water around it
+/// returns clearly fewer points than the land around it, the cell's count tells its water share. For every
+/// land cell (label 0, inside the footprint, not excluded) with at least min_body_neighbours body cells
+/// among its 8 neighbours ("shore cell"): n_water = mean count over the body cells of its (2 window_cells +
+/// 1)² window (dropouts count 0), n_land = mean count over the window's land cells with a return that are
+/// neither next to a body (a body cell among their 8 neighbours) nor excluded; the cell joins when n_land
+/// > 0, (n_land − n_water) / n_land >= min_contrast and (n_land − count) / (n_land − n_water) >=
+/// min_water_share. It takes the label most frequent among its body neighbours (ties: the smallest). All
+/// decisions read the labels as given (one pass; joined cells do not feed each other). `excluded` (optional;
+/// e.g. vegetation, whose several returns per pulse would lift n_land) only keeps cells out of n_land; a
+/// shore cell may be excluded itself (a bank's edge reads as vegetation). `footprint` is optional (empty =
+/// all inside). Returns the number of cells joined.
+/// O(cells + shore cells · (2 window_cells + 1)²).
+/// @throws invalid_input on rasters of different shapes or options out of range.
+inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_view<const std::uint32_t> count,
+                                    raster_view<const std::uint8_t> excluded = {},
+                                    raster_view<const std::uint8_t> footprint = {},
+                                    const join_shore_cells_options& opt = {})
+{
+    constexpr const char* fn = "join_shore_cells";
+    detail::validate(opt, fn);
+    detail::require_same_shape(labels, count, fn, "labels", "count");
+    if (!excluded.empty()) detail::require_same_shape(labels, excluded, fn, "labels", "excluded");
+    if (!footprint.empty()) detail::require_same_shape(labels, footprint, fn, "labels", "footprint");
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    if (rows == 0 || cols == 0) return 0;
+    // Cell classes: 2 body, 1 land next to a body (8-neighbours), 0 other land. Per row, `near` marks the
+    // columns within one of a body cell in the rows above, at and below (runs of body cells marked whole).
+    enum : std::uint8_t { far_land = 0, next_to_body = 1, body = 2 };
+    raster<std::uint8_t> cls(rows, cols, uninitialized);
+    std::vector<std::uint8_t> near(static_cast<std::size_t>(cols) + 2);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        std::fill(near.begin(), near.end(), std::uint8_t{0});
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr) {
+            const std::int32_t* lab = labels.row(rr);
+            for (std::ptrdiff_t c = 0; c < cols;) {
+                if (lab[c] <= 0) {
+                    ++c;
+                    continue;
+                }
+                const std::ptrdiff_t a = c;
+                while (c < cols && lab[c] > 0) ++c;
+                std::memset(near.data() + a, 1, static_cast<std::size_t>(c - a + 2));  // columns a - 1 .. c, shifted by 1
+            }
+        }
+        const std::int32_t* lab = labels.row(r);
+        std::uint8_t* out = cls.view().row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            out[c] = lab[c] > 0 ? std::uint8_t{body} : static_cast<std::uint8_t>(near[static_cast<std::size_t>(c) + 1]);
+    }
+    struct joining {
+        std::ptrdiff_t r, c;
+        std::int32_t label;
+    };
+    std::vector<joining> joined;
+    const std::ptrdiff_t k = opt.window_cells;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::uint8_t* cl = cls.view().row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (cl[c] != next_to_body) continue;
+            if (!footprint.empty() && footprint(r, c) == 0) continue;
+            // Body neighbours and their most frequent label.
+            std::int32_t nb[8];
+            int n_nb = 0;
+            for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+                for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                    const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                    if ((dr | dc) == 0 || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                    if (labels(rr, cc) > 0) nb[n_nb++] = labels(rr, cc);
+                }
+            }
+            if (n_nb < opt.min_body_neighbours) continue;
+            double water_sum = 0, water_cells = 0, land_sum = 0, land_cells = 0;
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
+                const std::uint8_t* cw = cls.view().row(rr);
+                const std::uint32_t* n = count.row(rr);
+                const std::uint8_t* ex = excluded.empty() ? nullptr : excluded.row(rr);
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc) {
+                    if (cw[cc] == body) {
+                        water_sum += n[cc];
+                        water_cells += 1;
+                    } else if (cw[cc] == far_land && n[cc] > 0 && !(ex && ex[cc])) {
+                        land_sum += n[cc];
+                        land_cells += 1;
+                    }
+                }
+            }
+            if (land_cells == 0 || water_cells == 0) continue;
+            const double n_land = land_sum / land_cells, n_water = water_sum / water_cells;
+            if (!(n_land - n_water >= opt.min_contrast * n_land)) continue;
+            if (!((n_land - count(r, c)) >= opt.min_water_share * (n_land - n_water))) continue;
+            std::int32_t best = 0;  // the most frequent neighbour label, the smallest among equals
+            int best_votes = 0;
+            for (int i = 0; i < n_nb; ++i) {
+                const int votes = static_cast<int>(std::count(nb, nb + n_nb, nb[i]));
+                if (votes > best_votes || (votes == best_votes && nb[i] < best)) best = nb[i], best_votes = votes;
+            }
+            joined.push_back({r, c, best});
+        }
+    }
+    for (const auto& j : joined) labels(j.r, j.c) = j.label;
+    return joined.size();
+}
+
+}  // namespace lidarfx
