@@ -178,6 +178,10 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_BSEED_AWAY")) o.bridge_seeds.clear_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_SLOPE")) o.bridge_seeds.max_surface_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SHORE")) o.shore_cells = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_TRIM")) o.trim_edges = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_TRIM_MIN")) o.trim.min_rise_m = std::atof(v);
+             if (const char* v = std::getenv("WF_TRIM_MAX")) o.trim.max_rise_m = std::atof(v);
+             if (const char* v = std::getenv("WF_TRIM_WIN")) o.trim.window_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_SHORE_WIN")) o.shore.window_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_SHORE_CONTRAST")) o.shore.min_contrast = std::atof(v);
              if (const char* v = std::getenv("WF_SHORE_SHARE")) o.shore.min_water_share = std::atof(v);

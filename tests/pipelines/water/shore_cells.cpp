@@ -4,8 +4,11 @@
 #include <lidarfx/pipelines/water/shore_cells.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <random>
+#include <vector>
 
 using namespace lidarfx;
 
@@ -164,4 +167,95 @@ TEST_CASE("water/join_shore_cells: empty rasters, one cell, bad options")
     CHECK_THROWS_AS(join_shore_cells(one, raster<std::uint32_t>(1, 1, 0), {}, {}, {.min_body_neighbours = 9}),
                     invalid_input);
     CHECK_THROWS_AS(join_shore_cells(one, raster<std::uint32_t>(1, 1, 0), {}, {}, {.window_cells = 0}), invalid_input);
+}
+
+namespace {
+
+/// trim_raised_edge_cells by its definition.
+raster<std::int32_t> reference_trim(const raster<std::int32_t>& labels, const raster<float>& min_z,
+                                    const trim_raised_edge_cells_options& o)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    const auto edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        for (std::ptrdiff_t rr = r - 1; rr <= r + 1; ++rr)
+            for (std::ptrdiff_t cc = c - 1; cc <= c + 1; ++cc)
+                if (rr >= 0 && cc >= 0 && rr < rows && cc < cols && labels(rr, cc) <= 0) return true;
+        return false;
+    };
+    auto out = labels;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (labels(r, c) <= 0 || !edge(r, c) || std::isnan(min_z(r, c))) continue;
+            std::vector<float> z;
+            for (std::ptrdiff_t rr = r - o.window_cells; rr <= r + o.window_cells; ++rr)
+                for (std::ptrdiff_t cc = c - o.window_cells; cc <= c + o.window_cells; ++cc)
+                    if (rr >= 0 && cc >= 0 && rr < rows && cc < cols && labels(rr, cc) > 0 && !edge(rr, cc) &&
+                        !std::isnan(min_z(rr, cc)))
+                        z.push_back(min_z(rr, cc));
+            if (z.size() < o.min_level_cells) continue;
+            std::sort(z.begin(), z.end());
+            const double rise = static_cast<double>(min_z(r, c)) - z[z.size() / 2];
+            if (rise > o.min_rise_m && rise <= o.max_rise_m) out(r, c) = 0;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("water/trim_raised_edge_cells: a beach the level let in becomes land; water, decks and banks stay")
+{
+    // A lake (label 1) at level 10.00 in columns 0-5 of a 9 x 10 raster; column 5 is its edge.
+    raster<std::int32_t> labels(9, 10, 0);
+    raster<float> z(9, 10, 11.0f);
+    for (std::ptrdiff_t r = 0; r < 9; ++r)
+        for (std::ptrdiff_t c = 0; c < 6; ++c) labels(r, c) = 1, z(r, c) = 10.0f + 0.01f * static_cast<float>(r % 3);
+    z(2, 5) = 10.12f;  // beach 0.11 above the local median 10.01: land
+    z(4, 5) = 10.04f;  // within the noise: water
+    z(6, 5) = 12.5f;   // a deck: left as it is
+    z(7, 5) = std::numeric_limits<float>::quiet_NaN();  // a dropout: left
+    z(3, 3) = 10.3f;   // raised, but interior (no land neighbour): left
+    CHECK(trim_raised_edge_cells(labels, z) == 1);
+    CHECK(labels(2, 5) == 0);
+    CHECK(labels(4, 5) == 1);
+    CHECK(labels(6, 5) == 1);
+    CHECK(labels(7, 5) == 1);
+    CHECK(labels(3, 3) == 1);
+}
+
+TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on random rasters; bad input")
+{
+    const unsigned seed = 20261204;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> noise(-0.1f, 0.4f);
+    for (int trial = 0; trial < 40; ++trial) {
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 30), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 30);
+        INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols);
+        raster<std::int32_t> labels(rows, cols, 0);
+        raster<float> z(rows, cols);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                labels(r, c) = std::sin(0.5 * static_cast<double>(r) + trial) + std::cos(0.35 * static_cast<double>(c)) > 0.2
+                                   ? 1 + static_cast<std::int32_t>(r % 2)
+                                   : 0;
+                z(r, c) = rng() % 9 == 0 ? std::numeric_limits<float>::quiet_NaN() : 5.0f + noise(rng);
+            }
+        }
+        const trim_raised_edge_cells_options o{.window_cells = 1 + trial % 3, .min_rise_m = 0.02 * (trial % 4),
+                                               .max_rise_m = 0.3, .min_level_cells = 1 + static_cast<std::size_t>(trial % 3)};
+        const auto want = reference_trim(labels, z, o);
+        auto got = labels;
+        const auto n = trim_raised_edge_cells(got, z, o);
+        CHECK(got == want);
+        std::size_t changed = 0;
+        for (std::ptrdiff_t i = 0; i < got.size(); ++i) changed += got.data()[i] != labels.data()[i];
+        CHECK(n == changed);
+    }
+    raster<std::int32_t> one(1, 1, 1);
+    CHECK(trim_raised_edge_cells(one, raster<float>(1, 1, 3.0f)) == 0);
+    raster<std::int32_t> none(0, 0);
+    CHECK(trim_raised_edge_cells(none, raster<float>(0, 0)) == 0);
+    CHECK_THROWS_AS(trim_raised_edge_cells(one, raster<float>(2, 1, 0.0f)), invalid_input);
+    CHECK_THROWS_AS(trim_raised_edge_cells(one, raster<float>(1, 1, 0.0f), {.min_rise_m = 0.5, .max_rise_m = 0.5}),
+                    invalid_input);
 }

@@ -94,6 +94,10 @@ struct extract_waterbodies_options {
     bool bridge_join_touching = true;      ///< join_across_bridges: bodies that touch, at levels within
                                            ///< bridge_level_tolerance_m, merge (one surface grown from several
                                            ///< seeds); needs bridge_max_span_m > 0. Default true
+    bool trim_edges = true;                ///< trim_raised_edge_cells: edge cells standing 0.05-0.5 m above the
+                                           ///< local level become land, after the bridges. Default true (water
+                                           ///< family, seeds 500-599: see docs/waterbodies.md)
+    trim_raised_edge_cells_options trim = {};  ///< trim_raised_edge_cells: window, rise range
     bool shore_cells = true;               ///< join_shore_cells (needs in.count): edge cells whose count says
                                            ///< they are mostly water join their body, after the bridges. Default
                                            ///< true (water family, seeds 500-599: see docs/waterbodies.md)
@@ -125,6 +129,7 @@ inline extract_waterbodies_options previous_water_method()
     o.flat_seed_dropouts = false;
     o.min_free_seed_share = 1;
     o.shore_cells = false;
+    o.trim_edges = false;
     return o;
 }
 
@@ -391,6 +396,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                              .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m,
                              .join_touching = opt.bridge_join_touching});
     }
+    if (opt.trim_edges) trim_raised_edge_cells(res.labels, in.min_z, opt.trim);
     if (opt.shore_cells && !in.count.empty())
         join_shore_cells(res.labels, in.count, res.vegetation, in.footprint, opt.shore);
     fill_small_islands(res.labels, cell_m, {.island_min_area_m2 = opt.island_min_area_m2, .run = kernels});

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// join_shore_cells: cells on a waterbody's edge that are mostly water by their share of lost pulses.
+// join_shore_cells and trim_raised_edge_cells: the cells on a waterbody's edge, by their count and their height.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -144,6 +145,79 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     }
     for (const auto& j : joined) labels(j.r, j.c) = j.label;
     return joined.size();
+}
+
+/// Options of trim_raised_edge_cells.
+struct trim_raised_edge_cells_options {
+    int window_cells = 3;        ///< the local water level is read within this Chebyshev distance, cells, >= 1.
+                                 ///< Default 3 (a 7 × 7 window)
+    double min_rise_m = 0.05;    ///< an edge cell whose min z stands more than this above the local level is
+                                 ///< dry ground (2 σ of the 2-3 cm range noise of the lowest return), metres,
+                                 ///< >= 0. Default 0.05
+    double max_rise_m = 0.5;     ///< ... up to this; higher cells are bridge decks or bank cells that joined by
+                                 ///< their count (join_shore_cells), left as they are, metres, > min_rise_m.
+                                 ///< Default 0.5
+    std::size_t min_level_cells = 3;  ///< the local level needs at least this many interior body cells with a
+                                 ///< return in the window, >= 1. Default 3
+};
+
+/// Edge refinement: the level gate and join_level_cells let a body take ground up to their tolerance (0.15 m)
+/// above its level, a metre or two of a beach or a field; the water surface next to an edge cell is known far
+/// better than that. For every edge cell (a body cell with a land cell among its 8 neighbours) with a return,
+/// the local level is the median min z over the interior body cells (no land neighbour) with a return in its
+/// (2 window_cells + 1)² window, given at least min_level_cells of them; the cell becomes land (label 0) when
+/// min_rise_m < min z − level <= max_rise_m. One pass over the labels as given. Returns the number of cells
+/// trimmed. Elevations in metres. O(cells + edge cells · (2 window_cells + 1)²).
+/// @throws invalid_input on rasters of different shapes or options out of range.
+inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, raster_view<const float> min_z,
+                                          const trim_raised_edge_cells_options& opt = {})
+{
+    constexpr const char* fn = "trim_raised_edge_cells";
+    detail::require(opt.window_cells >= 1, fn, "window_cells", ">= 1", opt.window_cells);
+    detail::require(opt.min_rise_m >= 0, fn, "min_rise_m", ">= 0", opt.min_rise_m);
+    detail::require(opt.max_rise_m > opt.min_rise_m, fn, "max_rise_m", "> min_rise_m", opt.max_rise_m);
+    detail::require(opt.min_level_cells >= 1, fn, "min_level_cells", ">= 1", opt.min_level_cells);
+    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    if (rows == 0 || cols == 0) return 0;
+    // 0 land, 1 interior body cell, 2 edge body cell.
+    raster<std::uint8_t> cls(rows, cols, uninitialized);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* lab = labels.row(r);
+        std::uint8_t* out = cls.view().row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (lab[c] <= 0) {
+                out[c] = 0;
+                continue;
+            }
+            bool edge = false;
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr) {
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                    edge = edge || labels(rr, cc) <= 0;
+            }
+            out[c] = edge ? 2 : 1;
+        }
+    }
+    std::vector<std::ptrdiff_t> trimmed;
+    std::vector<float> level;
+    const std::ptrdiff_t k = opt.window_cells;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (cls(r, c) != 2 || !std::isfinite(min_z(r, c))) continue;
+            level.clear();
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
+                    if (cls(rr, cc) == 1 && std::isfinite(min_z(rr, cc))) level.push_back(min_z(rr, cc));
+            }
+            if (level.size() < opt.min_level_cells) continue;
+            const auto mid = level.begin() + static_cast<std::ptrdiff_t>(level.size() / 2);
+            std::nth_element(level.begin(), mid, level.end());
+            const double rise = static_cast<double>(min_z(r, c)) - static_cast<double>(*mid);
+            if (rise > opt.min_rise_m && rise <= opt.max_rise_m) trimmed.push_back(r * cols + c);
+        }
+    }
+    for (const std::ptrdiff_t i : trimmed) labels(i / cols, i % cols) = 0;
+    return trimmed.size();
 }
 
 }  // namespace lidarfx
