@@ -150,11 +150,17 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
         float* syz = sxz + n_cols;
         std::vector<float> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            std::fill(sums.begin(), sums.end(), 0.0f);
             const float* z0 = min_z.row(r);
             // Rows and columns whose window lies inside: the unrolled window (radii 1-4); the rest, and
-            // every cell for larger radii, by passes per offset.
+            // every cell for larger radii, by passes per offset. The passes add to sums that start at 0: all
+            // of them, or with the window (which writes its columns) the k at each end.
             const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
+            if (!inside) std::fill(sums.begin(), sums.end(), 0.0f);
+            else
+                for (float* s : {n, sx, sy, sxx, syy, sxy, sz, sxz, syz}) {
+                    std::fill(s, s + k, 0.0f);
+                    std::fill(s + (cols - k), s + cols, 0.0f);
+                }
             if (inside) {
                 const auto stride = min_z.row_stride();
                 const std::ptrdiff_t e = cols - k;
