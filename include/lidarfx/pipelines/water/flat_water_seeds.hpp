@@ -133,6 +133,40 @@ std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols
     return c;
 }
 
+/// flat_water_seeds' slope test of the components: keep[l] = 0 for each kept component l (labels > 0 of
+/// `labels`, sizes[l] cells) whose median surface slope over its cells (NaN counted as 0, level) exceeds
+/// max_slope (m/m). Only the kept components' slopes are gathered (into one buffer, each in row order).
+/// O(cells + kept cells).
+inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<const float> slope,
+                         const std::vector<std::size_t>& sizes, double max_slope, std::vector<std::uint8_t>& keep)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    std::vector<std::size_t> offset(keep.size() + 1, 0);  // the slopes of label l: [offset[l], offset[l + 1])
+    for (std::size_t l = 1; l < keep.size(); ++l) offset[l + 1] = offset[l] + (keep[l] ? sizes[l] : 0);
+    if (offset.back() == 0) return;
+    std::vector<float> all(offset.back());
+    std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* lab = labels.row(r);
+        const float* s = slope.row(r);
+        for (std::ptrdiff_t c = next_positive(lab, 0, cols); c < cols; c = next_positive(lab, c, cols)) {
+            const std::int32_t l = lab[c];
+            const std::ptrdiff_t from = c;
+            while (c < cols && lab[c] == l) ++c;
+            if (!keep[static_cast<std::size_t>(l)]) continue;
+            float* out = all.data() + next[static_cast<std::size_t>(l)];
+            for (std::ptrdiff_t i = from; i < c; ++i) *out++ = std::isnan(s[i]) ? 0.0f : s[i];
+            next[static_cast<std::size_t>(l)] += static_cast<std::size_t>(c - from);
+        }
+    }
+    std::vector<float> values;
+    for (std::size_t l = 1; l < keep.size(); ++l) {
+        if (offset[l + 1] == offset[l]) continue;
+        values.assign(all.begin() + static_cast<std::ptrdiff_t>(offset[l]),
+                      all.begin() + static_cast<std::ptrdiff_t>(offset[l + 1]));
+        if (median(values) > max_slope) keep[l] = 0;
+    }
+}
 }  // namespace detail
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
@@ -373,29 +407,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             lower[m] += in.min_z(e.r, e.c) < e.z - opt.level_tolerance_m;
         }
     }
-    // With a surface slope: per large component, the median slope around its cells (NaN, unknown, as level).
-    std::vector<std::uint8_t> sloping(nb + 1, 0);
-    const bool slope_test = !surface_slope.empty() && opt.max_surface_slope >= 0;
-    if (slope_test) {
-        std::vector<std::vector<float>> slopes(nb + 1);
-        for (std::size_t l = 1; l <= nb; ++l) slopes[l].reserve(sizes[l]);
-        for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            const std::int32_t* lab = labels.row(r);
-            const float* slope = surface_slope.row(r);
-            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols;
-                 c = detail::next_positive(lab, c, cols)) {
-                const std::int32_t l = lab[c];
-                auto& list = slopes[static_cast<std::size_t>(l)];
-                for (; c < cols && lab[c] == l; ++c) list.push_back(std::isnan(slope[c]) ? 0.0f : slope[c]);
-            }
-        }
-        for (std::size_t l = 1; l <= nb; ++l) {
-            if (!slopes[l].empty()) sloping[l] = detail::median(slopes[l]) > opt.max_surface_slope;
-        }
-    }
     std::vector<std::uint8_t> keep(nb + 1, 0);
     for (std::size_t l = 1; l <= nb; ++l) {
-        if (sloping[l]) continue;
         if (ring_cells[l] == 0) continue;  // (every renumbered component has >= min_cells cells)
         const double size = static_cast<double>(sizes[l]);
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
@@ -412,20 +425,27 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
         keep[l] = 1;
     }
-    // The seed mask takes the level mask's place (connected_components has read it), run by run of one label.
+    // With a surface slope: a component kept so far whose median slope around its cells (NaN, unknown, as
+    // level) exceeds max_surface_slope is no seed (only kept ones are read: most components are land).
+    const bool slope_test = !surface_slope.empty() && opt.max_surface_slope >= 0;
+    if (slope_test) detail::drop_sloping(labels, surface_slope, sizes, opt.max_surface_slope, keep);
+    // The seed mask takes the level mask's place (connected_components has read it), run by run of one label;
+    // with the slope test, no seed cell where the surface around it slopes (a beach joined to the water).
+    const float max_slope = slope_test ? detail::float_at_most(opt.max_surface_slope) : 0.0f;  // x > it: x > max
     const std::ptrdiff_t nc = cols;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
+        const float* slope = slope_test ? surface_slope.row(r) : nullptr;
         std::uint8_t* d = level.row(r);
         std::fill(d, d + nc, std::uint8_t{0});
         for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc; c = detail::next_positive(lab, c, nc)) {
             const std::int32_t l = lab[c];
-            const std::uint8_t k = keep[static_cast<std::size_t>(l)];
-            for (; c < nc && lab[c] == l; ++c) d[c] = k;
-        }
-        if (slope_test) {  // and no seed cell where the surface around it slopes (a beach joined to the water)
-            const float* slope = surface_slope.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) d[c] = d[c] && !(slope[c] > opt.max_surface_slope);
+            const std::ptrdiff_t from = c;
+            while (c < nc && lab[c] == l) ++c;
+            if (!keep[static_cast<std::size_t>(l)]) continue;
+            if (!slope) std::fill(d + from, d + c, std::uint8_t{1});
+            else
+                for (std::ptrdiff_t i = from; i < c; ++i) d[i] = static_cast<std::uint8_t>(!(slope[i] > max_slope));
         }
     }
     return level;
