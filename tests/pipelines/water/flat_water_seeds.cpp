@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "water_test_rasters.hpp"
@@ -325,6 +326,60 @@ TEST_CASE("flat_water_seeds: more large components than 16-bit labels hold give 
                 CAPTURE(ring);
                 CHECK(seeded > 0);
                 CHECK(wrong == 0);
+            }
+        }
+    }
+}
+
+TEST_CASE("flat_water_seeds' slope test: drop_sloping against a plain median per component")
+{
+    // The plain form: each kept component's slopes (NaN as 0) in a vector of its own, in row order, and its median.
+    const auto plain = [](const raster<std::int32_t>& labels, const raster<float>& slope, std::size_t count,
+                          double max_slope, std::vector<std::uint8_t> keep) {
+        std::vector<std::vector<float>> slopes(count + 1);
+        for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
+            for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
+                const std::int32_t l = labels(r, c);
+                if (l > 0) slopes[static_cast<std::size_t>(l)].push_back(std::isnan(slope(r, c)) ? 0.0f : slope(r, c));
+            }
+        }
+        for (std::size_t l = 1; l <= count; ++l)
+            if (keep[l] && !slopes[l].empty() && detail::median(slopes[l]) > max_slope) keep[l] = 0;
+        return keep;
+    };
+    std::uint32_t state = 4242;  // LCG: deterministic
+    const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    constexpr float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0}, {1, 1}, {1, 200}, {200, 1}, {3, 65}, {90, 140}};
+    for (const auto& [rows, cols] : shapes) {
+        for (int trial = 0; trial < 10; ++trial) {
+            // Runs of labels 1..count (several runs per row, labels repeating across rows), -1 (small
+            // components) and 0; slopes around the threshold, NaN among them; every size counted.
+            const std::size_t count = 1 + next() % 12;
+            raster<std::int32_t> labels(rows, cols, 0);
+            raster<float> slope(rows, cols, 0.0f);
+            std::vector<std::size_t> sizes(count + 1, 0);
+            for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                for (std::ptrdiff_t c = 0; c < cols;) {
+                    const std::uint32_t kind = next() % 4;
+                    const auto l = kind == 0 ? 0 : kind == 1 ? -1 : static_cast<std::int32_t>(1 + next() % count);
+                    for (std::ptrdiff_t e = std::min(cols, c + 1 + static_cast<std::ptrdiff_t>(next() % 90)); c < e; ++c) {
+                        labels(r, c) = trial == 0 ? 0 : l;
+                        if (labels(r, c) > 0) ++sizes[static_cast<std::size_t>(labels(r, c))];
+                        const std::uint32_t x = next() % 20;
+                        slope(r, c) = x == 0 ? nan : 0.001f * static_cast<float>(x) * (trial % 3 == 1 ? 1.0f : 0.8f);
+                    }
+                }
+            }
+            std::vector<std::uint8_t> keep(count + 1, 0);
+            for (std::size_t l = 1; l <= count; ++l) keep[l] = static_cast<std::uint8_t>(trial == 2 || next() % 3 != 0);
+            for (const double max_slope : {0.008, 0.0, 1.0}) {
+                auto got = keep;
+                detail::drop_sloping(labels, slope, sizes, max_slope, got);
+                CAPTURE(rows);
+                CAPTURE(cols);
+                CAPTURE(trial);
+                REQUIRE(got == plain(labels, slope, count, max_slope, keep));
             }
         }
     }
