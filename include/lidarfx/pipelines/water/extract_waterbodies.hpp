@@ -195,6 +195,71 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     validate(o.grow, fn);
 }
 
+/// extract_waterbodies' cut of the flat seed mask at level bands: `parts` labels the 8-connected parts of
+/// `mask` (1..count, 0 off the mask; as connected_components gives them). A mask cell with a return has the
+/// band index floor((min z − mean) / band + 0.5) in double, mean = its part's mean min z over the cells with
+/// a return (0 when none); one without a return has none. A mask cell (r, c) with c + 1 < cols and r + 1 <
+/// rows becomes 0 when its right or lower neighbour is on the mask and both have a band index and they
+/// differ (uncut neighbours: each cell reads the mask as it was); the other cells keep their value. band in
+/// metres, > 0. Only the runs of the
+/// mask are visited (stretches of 64 cells off it are passed over at once): O(cells / 64 + mask cells).
+inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const std::int32_t> parts,
+                               std::size_t count, raster_view<const float> min_z, double band)
+{
+    const std::ptrdiff_t rows = mask.rows(), cols = mask.cols();
+    std::vector<double> mean(count + 1, 0.0), finite(count + 1, 0.0);  // over returns
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* part = parts.row(r);
+        const float* z = min_z.row(r);
+        for (std::ptrdiff_t c = next_positive(part, 0, cols); c < cols; c = next_positive(part, c, cols)) {
+            const std::int32_t label = part[c];
+            const auto l = static_cast<std::size_t>(label);
+            double sum = mean[l], n = finite[l];  // along the run in registers, the same additions in order
+            for (; c < cols && part[c] == label; ++c) {
+                if (std::isfinite(z[c])) {
+                    sum += z[c];
+                    n += 1;
+                }
+            }
+            mean[l] = sum;
+            finite[l] = n;
+        }
+    }
+    for (std::size_t l = 1; l < mean.size(); ++l) mean[l] = finite[l] > 0 ? mean[l] / finite[l] : 0.0;
+    // Row by row, with the band index of each mask cell of this row and the next (NaN without a return; cells
+    // off the mask are not written and not read); a cell's cut reads the uncut mask to its right and below,
+    // which `parts` still shows, so row r is cut in place.
+    std::vector<double> here(static_cast<std::size_t>(cols)), below(here.size());
+    const auto band_row = [&](std::ptrdiff_t r, double* out) {
+        const std::int32_t* part = parts.row(r);
+        const float* z = min_z.row(r);
+        for (std::ptrdiff_t c = next_positive(part, 0, cols); c < cols; c = next_positive(part, c, cols)) {
+            const double m = mean[static_cast<std::size_t>(part[c])];
+            for (const std::int32_t l = part[c]; c < cols && part[c] == l; ++c)
+                out[c] = std::floor((z[c] - m) / band + 0.5);
+        }
+    };
+    if (rows > 1) band_row(0, here.data());
+    for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
+        band_row(r + 1, below.data());
+        const std::int32_t* part = parts.row(r);
+        const std::int32_t* part_below = parts.row(r + 1);
+        std::uint8_t* m = mask.row(r);
+        for (std::ptrdiff_t c = next_positive(part, 0, cols - 1); c < cols - 1; c = next_positive(part, c, cols - 1)) {
+            for (; c < cols - 1 && part[c] > 0; ++c) {
+                // A dropout in the mask has no band (NaN): nothing is cut next to it.
+                const double h = here[static_cast<std::size_t>(c)];
+                if (std::isnan(h)) continue;
+                const double right = here[static_cast<std::size_t>(c + 1)], down = below[static_cast<std::size_t>(c)];
+                const bool cut_right = part[c + 1] > 0 && !std::isnan(right) && right != h;
+                const bool cut_down = part_below[c] > 0 && !std::isnan(down) && down != h;
+                if (cut_right || cut_down) m[c] = 0;
+            }
+        }
+        here.swap(below);
+    }
+}
+
 }  // namespace detail
 
 /// Extracts waterbodies from the rasters of a survey (dissertation ch. 2, with DESIGN.md §5's refinements),
@@ -331,46 +396,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
         // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
         if (opt.grow.level_gate_m > 0) {
-            const double band = 2 * opt.grow.level_gate_m;
             const auto parts = connected_components(mask, connected_components_options{
                                                               .conn = connectivity::eight, .run = kernels});
-            std::vector<double> mean(parts.count() + 1, 0.0), finite(parts.count() + 1, 0.0);  // over returns
-            for (std::ptrdiff_t r = 0; r < rows; ++r) {
-                const std::int32_t* part = parts.labels.row(r);
-                const float* z = in.min_z.row(r);
-                for (std::ptrdiff_t c = 0; c < cols; ++c)
-                    if (part[c] > 0 && std::isfinite(z[c])) {
-                        mean[static_cast<std::size_t>(part[c])] += z[c];
-                        finite[static_cast<std::size_t>(part[c])] += 1;
-                    }
-            }
-            for (std::size_t l = 1; l < mean.size(); ++l) mean[l] = finite[l] > 0 ? mean[l] / finite[l] : 0.0;
-            // Row by row, with the band index of each cell of this row and the next (NaN off the mask); a
-            // cell's cut reads the uncut mask to its right and below, so row r is written once r + 1 is read.
-            std::vector<double> here(static_cast<std::size_t>(cols)), below(here.size());
-            std::vector<std::uint8_t> cut_row(here.size());
-            const auto band_row = [&](std::ptrdiff_t r, double* out) {
-                const std::int32_t* part = parts.labels.row(r);
-                const float* z = in.min_z.row(r);
-                for (std::ptrdiff_t c = 0; c < cols; ++c)
-                    out[c] = part[c] > 0 ? std::floor((z[c] - mean[static_cast<std::size_t>(part[c])]) / band + 0.5)
-                                         : std::numeric_limits<double>::quiet_NaN();
-            };
-            if (rows > 1) band_row(0, here.data());
-            for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
-                band_row(r + 1, below.data());
-                std::uint8_t* m = mask.view().row(r);
-                const std::uint8_t* m_below = mask.view().row(r + 1);
-                for (std::ptrdiff_t c = 0; c + 1 < cols; ++c) {
-                    // A dropout in the mask has no band (NaN): nothing is cut next to it.
-                    const bool known = !std::isnan(here[c]);
-                    const bool right = (m[c + 1] != 0) & (here[c + 1] != here[c]) & known & !std::isnan(here[c + 1]);
-                    const bool down = (m_below[c] != 0) & (below[c] != here[c]) & known & !std::isnan(below[c]);
-                    cut_row[c] = static_cast<std::uint8_t>((m[c] != 0) & !(right | down));
-                }
-                std::copy(cut_row.begin(), cut_row.begin() + (cols - 1), m);
-                here.swap(below);
-            }
+            detail::cut_at_level_bands(mask, parts.labels, parts.count(), in.min_z, 2 * opt.grow.level_gate_m);
         }
         const auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
                                              .min_cells = opt.min_seed_cells, .run = kernels});
