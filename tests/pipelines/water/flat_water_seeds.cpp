@@ -56,6 +56,13 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     MESSAGE("turbid lake: seed cells on water " << on_water << ", on land " << on_land);
     CHECK(on_water >= 50);
     CHECK(on_land == 0);
+    // The labels form gives the same seeds, into a buffer of another shape or one reused with garbage.
+    raster<std::int32_t> labels(2, 3, 5);
+    for (int again = 0; again < 2; ++again) {
+        CHECK(flat_water_seeds(in, {}, {}, {}, labels) == seeds);
+        CHECK((labels.rows() == seeds.rows() && labels.cols() == seeds.cols()));
+        std::fill(labels.begin(), labels.end(), 123);
+    }
 
     const auto found = extract_waterbodies(pr, {.flat_seeds = true});
     REQUIRE(found.ran);

@@ -109,6 +109,7 @@ TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definitio
 {
     std::mt19937 rng(8080);
     int kept_and_dropped = 0;
+    raster<std::int32_t> buffer(3, 5, -7);  // the labels form: a buffer of another shape, then reused with garbage
     for (int trial = 0; trial < 50; ++trial) {
         CAPTURE(trial);
         const std::ptrdiff_t rows = 1 + rng() % 50, cols = 1 + rng() % 50;
@@ -128,6 +129,11 @@ TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definitio
         const auto expected = reference_seeds(d, opening, min_cells);
         CHECK(got.labels == expected.labels);
         CHECK(got.sizes == expected.sizes);
+        auto into = water_seeds(d, {.opening_size_cells = opening, .min_cells = min_cells}, std::move(buffer));
+        CHECK(into.labels == expected.labels);
+        CHECK(into.sizes == expected.sizes);
+        buffer = std::move(into.labels);
+        std::fill(buffer.begin(), buffer.end(), trial);
         const auto all = reference_seeds(d, opening, 1);
         kept_and_dropped += got.count() > 0 && all.count() > got.count();
     }

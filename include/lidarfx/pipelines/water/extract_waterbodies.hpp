@@ -364,13 +364,14 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
             seed[i] = more_seed[i] > 0 ? k + more_seed[i] : seed[i];
         res.seeds_found += more.count();
     };
+    raster<std::int32_t> labels;  // reused by the labelling steps below (a new raster costs its first touch)
     if (opt.flat_seeds) {
         // Then seeds from level, sparse cells (flat_water_seeds), for the water no dropout seed reached:
         // their cells outside the bodies grown so far, opened and sized like the dropout seeds, largest
         // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
         auto flat = opt.flat;
         flat.run = kernels;
-        auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope);
+        auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope, labels);
         std::uint8_t* cells = mask.data();
         const std::int32_t* label = grown.labels.data();
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
@@ -396,23 +397,27 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
         // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
         if (opt.grow.level_gate_m > 0) {
-            const auto parts = connected_components(mask, connected_components_options{
-                                                              .conn = connectivity::eight, .run = kernels});
-            detail::cut_at_level_bands(mask, parts.labels, parts.count(), in.min_z, 2 * opt.grow.level_gate_m);
+            if (labels.rows() != rows || labels.cols() != cols)
+                labels = raster<std::int32_t>(rows, cols, uninitialized);  // (flat_water_seeds without counts left it)
+            const auto parts = connected_components(mask, labels, connected_components_options{
+                                                                      .conn = connectivity::eight, .run = kernels});
+            detail::cut_at_level_bands(mask, labels, parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);
         }
-        const auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
-                                             .min_cells = opt.min_seed_cells, .run = kernels});
+        auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
+                                       .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));
         grow_more(more, 0.8, 0.1);
+        labels = std::move(more.labels);
     }
     // Seeds beyond bridge decks, round by round: each round's bodies may end at the next bridge.
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {
         const auto mask =
             seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, surface_slope);
         if (std::find(mask.begin(), mask.end(), std::uint8_t{1}) == mask.end()) break;  // none: no labelling
-        const auto more =
-            water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels});
+        auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels},
+                                std::move(labels));
         if (more.count() == 0) break;
         grow_more(more, 0.9, 0.0);
+        labels = std::move(more.labels);
     }
     res.seeds_grown = grown.seeds_grown;
     res.labels = std::move(grown.labels);

@@ -185,10 +185,13 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<con
 /// seed, e.g. vegetation) and in.footprint keep cells out. Returns 1 = seed cell.
 /// The windows are running min/max filters (min_max_filter's strips): O(cells · log(level_radius_cells ·
 /// ring_cells)), plus (2 ring_cells + 1)² per ring cell within reach of two components or more.
+/// The level cells' component labels are written into `labels` (given another shape, it is replaced by one
+/// of min z's shape; its contents afterwards are unspecified): a caller that labels again reuses the memory
+/// (a new raster's pages cost their first touch).
 /// @throws invalid_input on rasters of different shapes or options out of range.
-inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
-                                             const flat_water_seeds_options& opt = {},
-                                             raster_view<const float> surface_slope = {})
+inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
+                                             const flat_water_seeds_options& opt, raster_view<const float> surface_slope,
+                                             raster<std::int32_t>& labels)
 {
     constexpr const char* fn = "flat_water_seeds";
     detail::validate(in, fn);
@@ -234,23 +237,23 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             },
             {}, fn);
     }
-    auto comps = connected_components(level, connected_components_options{.conn = connectivity::eight,
-                                                                          .run = {.threads = opt.run.threads}});
-    const std::size_t n = comps.count();
+    if (labels.rows() != rows || labels.cols() != cols) labels = raster<std::int32_t>(rows, cols, uninitialized);
+    const auto level_sizes = connected_components(
+        level, labels, connected_components_options{.conn = connectivity::eight, .run = {.threads = opt.run.threads}});
+    const std::size_t n = level_sizes.size() - 1;
     if (n == 0) return level;  // all 0
     // From here on a label > 0 is a component large enough to be a seed, renumbered 1..nb in the order of
     // the labels (so the smallest and largest label within reach stay those components), and -1 marks the
     // cells of the smaller ones (level cells all the same): later passes test the sign, not a table.
-    auto& labels = comps.labels;
     std::vector<std::int32_t> big(n + 1, 0);  // the new label of a large component, 0 for a small one
     std::vector<std::size_t> sizes(1, 0);     // cells per new label
     std::size_t level_cells = 0;
     for (std::size_t l = 1; l <= n; ++l) {
-        if (comps.sizes[l] >= opt.min_cells) {
+        if (level_sizes[l] >= opt.min_cells) {
             big[l] = static_cast<std::int32_t>(sizes.size());
-            sizes.push_back(comps.sizes[l]);
+            sizes.push_back(level_sizes[l]);
         }
-        level_cells += comps.sizes[l];
+        level_cells += level_sizes[l];
     }
     const std::size_t nb = sizes.size() - 1;
     // Per component: its count, intensity and roughness (summed in row order); max z − min z of every level
@@ -449,6 +452,15 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         }
     }
     return level;
+}
+
+/// flat_water_seeds (see above) with its component labels in a raster of its own.
+inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
+                                             const flat_water_seeds_options& opt = {},
+                                             raster_view<const float> surface_slope = {})
+{
+    raster<std::int32_t> labels;
+    return flat_water_seeds(in, excluded, opt, surface_slope, labels);
 }
 
 }  // namespace lidarfx

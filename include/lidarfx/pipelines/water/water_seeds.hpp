@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -38,17 +39,23 @@ inline void validate(const water_seeds_options& o, const char* fn)
 /// (morph_open; removes dropouts narrower than the square, as on land), its 8-connected components of at
 /// least min_cells cells, ranked by size: label 1 = largest, ties in raster-scan order of their first
 /// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
+/// The labels are written into `labels` (given another shape, it is replaced by one of the mask's), whose
+/// memory the result takes: a caller that labels again reuses it (a new raster's pages cost their first touch).
 /// O(cells). Progress: 0 on entry, 1 when done.
 /// @throws invalid_input on options out of range; cancelled when progress returns false.
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
+components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels)
 {
     constexpr const char* fn = "water_seeds";
     detail::validate(opt, fn);
     detail::report(opt.run.progress, 0.0, fn);
     const int threads = opt.run.threads;
     const auto opened = morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
-    auto seeds = connected_components(opened, connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
+    if (labels.rows() != opened.rows() || labels.cols() != opened.cols())
+        labels = raster<std::int32_t>(opened.rows(), opened.cols(), uninitialized);  // every cell is written
+    components seeds{std::move(labels), {}};
+    seeds.sizes = connected_components(opened, seeds.labels,
+                                       connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
     rank_by_size(seeds);
     // Ranked by size: the seeds to keep are the labels 1..kept.
     std::size_t kept = 0;
@@ -62,6 +69,13 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
     seeds.sizes.resize(kept + 1);
     detail::report(opt.run.progress, 1.0, fn);
     return seeds;
+}
+
+/// water_seeds (see above) with its labels in a raster of its own.
+template <raster_input Mask>
+components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
+{
+    return water_seeds(dropout, opt, raster<std::int32_t>());
 }
 
 namespace detail {
