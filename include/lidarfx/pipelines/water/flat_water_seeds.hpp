@@ -117,21 +117,6 @@ inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const
     }
 }
 
-/// The first column >= c of `row` (cols values) holding a positive value, cols if none: blocks of 64 with
-/// none are passed over by a vectorized maximum (labels and masks are mostly 0 or runs of one value; a
-/// shorter block would be unrolled into a scalar chain).
-template <class T>
-std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols) noexcept
-{
-    constexpr std::ptrdiff_t block = 64;
-    for (; c + block <= cols; c += block) {
-        T high = 0;
-        for (std::ptrdiff_t i = 0; i < block; ++i) high = std::max(high, row[c + i]);
-        if (high > 0) break;
-    }
-    while (c < cols && !(row[c] > 0)) ++c;
-    return c;
-}
 
 /// flat_water_seeds' slope test of the components: keep[l] = 0 for each kept component l (labels > 0 of
 /// `labels`, sizes[l] cells) whose median surface slope over its cells (NaN counted as 0, level) exceeds

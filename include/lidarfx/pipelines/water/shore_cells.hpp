@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
@@ -38,6 +39,44 @@ inline void validate(const join_shore_cells_options& o, const char* fn)
     require(o.min_water_share > 0 && o.min_water_share <= 1, fn, "min_water_share", "in (0, 1]", o.min_water_share);
     require(o.min_body_neighbours >= 1 && o.min_body_neighbours <= 8, fn, "min_body_neighbours", "in [1, 8]",
             o.min_body_neighbours);
+}
+
+/// Cell classes of the shore steps, per cell of labels: 2 body (label > 0); else 1 when a body cell lies among
+/// its 8 neighbours, 0 otherwise. With `edges`, body cells are split instead: 2 when a land cell lies among
+/// their 8 neighbours (an edge), 1 when none does (interior); land is 0. Cells outside the raster count as
+/// neither. Row by row, branch-free passes over three label rows (they vectorize).
+inline raster<std::uint8_t> shore_classes(raster_view<const std::int32_t> labels, bool edges)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    raster<std::uint8_t> cls(rows, cols, uninitialized);
+    // Per column, whether any / all of the rows r - 1 .. r + 1 (inside) are body cells, padded by a column
+    // that changes neither test at each end.
+    std::vector<std::uint8_t> any(static_cast<std::size_t>(cols) + 2, 0), all(any.size(), 1);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* mid = labels.row(r);
+        const std::int32_t* up = r > 0 ? labels.row(r - 1) : mid;  // the row itself changes neither test
+        const std::int32_t* down = r + 1 < rows ? labels.row(r + 1) : mid;
+        std::uint8_t* a = any.data() + 1;
+        std::uint8_t* b = all.data() + 1;
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const bool u = up[c] > 0, m = mid[c] > 0, d = down[c] > 0;
+            a[c] = static_cast<std::uint8_t>(u | m | d);
+            b[c] = static_cast<std::uint8_t>(u & m & d);
+        }
+        std::uint8_t* out = cls.view().row(r);
+        if (edges) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool interior = (b[c - 1] & b[c] & b[c + 1]) != 0;
+                out[c] = static_cast<std::uint8_t>((mid[c] > 0) * (interior ? 1 : 2));
+            }
+        } else {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool near = (a[c - 1] | a[c] | a[c + 1]) != 0;
+                out[c] = static_cast<std::uint8_t>(mid[c] > 0 ? 2 : (near ? 1 : 0));
+            }
+        }
+    }
+    return cls;
 }
 
 }  // namespace detail
@@ -69,41 +108,22 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     if (!footprint.empty()) detail::require_same_shape(labels, footprint, fn, "labels", "footprint");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     if (rows == 0 || cols == 0) return 0;
-    // Cell classes: 2 body, 1 land next to a body (8-neighbours), 0 other land. Per row, `near` marks the
-    // columns within one of a body cell in the rows above, at and below (runs of body cells marked whole).
     enum : std::uint8_t { far_land = 0, next_to_body = 1, body = 2 };
-    raster<std::uint8_t> cls(rows, cols, uninitialized);
-    std::vector<std::uint8_t> near(static_cast<std::size_t>(cols) + 2);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        std::fill(near.begin(), near.end(), std::uint8_t{0});
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr) {
-            const std::int32_t* lab = labels.row(rr);
-            for (std::ptrdiff_t c = 0; c < cols;) {
-                if (lab[c] <= 0) {
-                    ++c;
-                    continue;
-                }
-                const std::ptrdiff_t a = c;
-                while (c < cols && lab[c] > 0) ++c;
-                std::memset(near.data() + a, 1, static_cast<std::size_t>(c - a + 2));  // columns a - 1 .. c, shifted by 1
-            }
-        }
-        const std::int32_t* lab = labels.row(r);
-        std::uint8_t* out = cls.view().row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            out[c] = lab[c] > 0 ? std::uint8_t{body} : static_cast<std::uint8_t>(near[static_cast<std::size_t>(c) + 1]);
-    }
+    const auto cls = detail::shore_classes(labels, false);
     struct joining {
         std::ptrdiff_t r, c;
         std::int32_t label;
     };
     std::vector<joining> joined;
+    std::vector<std::uint8_t> candidate(static_cast<std::size_t>(cols));  // next to a body, inside
     const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::uint8_t* cl = cls.view().row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (cl[c] != next_to_body) continue;
-            if (!footprint.empty() && footprint(r, c) == 0) continue;
+        const std::uint8_t* inside = footprint.empty() ? nullptr : footprint.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            candidate[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
+        for (std::ptrdiff_t c = detail::next_positive(candidate.data(), 0, cols); c < cols;
+             c = detail::next_positive(candidate.data(), c + 1, cols)) {
             // Body neighbours and their most frequent label.
             std::int32_t nb[8];
             int n_nb = 0;
@@ -180,39 +200,29 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     if (rows == 0 || cols == 0) return 0;
-    // 0 land, 1 interior body cell, 2 edge body cell.
-    raster<std::uint8_t> cls(rows, cols, uninitialized);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* lab = labels.row(r);
-        std::uint8_t* out = cls.view().row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (lab[c] <= 0) {
-                out[c] = 0;
-                continue;
-            }
-            bool edge = false;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr) {
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
-                    edge = edge || labels(rr, cc) <= 0;
-            }
-            out[c] = edge ? 2 : 1;
-        }
-    }
+    const auto cls = detail::shore_classes(labels, true);  // 0 land, 1 interior body cell, 2 edge body cell
     std::vector<std::ptrdiff_t> trimmed;
     std::vector<float> level;
+    std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell with a return
     const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (cls(r, c) != 2 || !std::isfinite(min_z(r, c))) continue;
+        const std::uint8_t* cl = cls.view().row(r);
+        const float* z = min_z.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            edge[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == 2) & std::isfinite(z[c]));
+        for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
+             c = detail::next_positive(edge.data(), c + 1, cols)) {
             level.clear();
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
+                const std::uint8_t* cw = cls.view().row(rr);
+                const float* zw = min_z.row(rr);
                 for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
-                    if (cls(rr, cc) == 1 && std::isfinite(min_z(rr, cc))) level.push_back(min_z(rr, cc));
+                    if (cw[cc] == 1 && std::isfinite(zw[cc])) level.push_back(zw[cc]);
             }
             if (level.size() < opt.min_level_cells) continue;
             const auto mid = level.begin() + static_cast<std::ptrdiff_t>(level.size() / 2);
             std::nth_element(level.begin(), mid, level.end());
-            const double rise = static_cast<double>(min_z(r, c)) - static_cast<double>(*mid);
+            const double rise = static_cast<double>(z[c]) - static_cast<double>(*mid);
             if (rise > opt.min_rise_m && rise <= opt.max_rise_m) trimmed.push_back(r * cols + c);
         }
     }
