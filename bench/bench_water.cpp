@@ -61,13 +61,14 @@ const lidarfx::rasterize_result& rasters_4096()
 }
 
 /// Args: threads (0 = all), flat seeds (1 = on, 0 = dropout seeds only, the default; 2 = on, with the level
-/// following min z only on a level surface, grow.level_follow_max_slope = 0.008).
+/// following min z only on a level surface: flat_seed_water_method(), what `lidarfx water` runs).
 void bm_extract_waterbodies_4096(benchmark::State& state)
 {
     const auto& pr = rasters_4096();
-    lidarfx::extract_waterbodies_options opt{.run = {.threads = static_cast<int>(state.range(0))}};
+    lidarfx::extract_waterbodies_options opt;
     opt.flat_seeds = state.range(1) != 0;
-    if (state.range(1) == 2) opt.grow.level_follow_max_slope = 0.008;
+    if (state.range(1) == 2) opt = lidarfx::flat_seed_water_method();
+    opt.run.threads = static_cast<int>(state.range(0));
     std::size_t bodies = 0;
     // One untimed call first: a process's first 1-2 GB of fresh pages cost this VM several times more than
     // later ones (docs/performance.md, "Returning forms and first touch"), which would weigh on the mean of
@@ -86,6 +87,7 @@ BENCHMARK(bm_extract_waterbodies_4096)
     ->Args({1, 1})
     ->Args({2, 1})
     ->Args({1, 2})
+    ->Args({2, 2})
     ->Args({1, 0})
     ->Args({2, 0})
     ->Unit(benchmark::kMillisecond)

@@ -13,7 +13,7 @@
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
 // seeds beyond bridges), WF_BSEED_{MIN,BEYOND,BEHIND,TOL,CLEAR,AWAY,SLOPE} (their options), WF_FLAT_SLOPE
 // (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (min_free_seed_share),
-// WF_SHORE (0/1, shore_cells), WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options),
+// WF_TRIM (0/1, trim_edges), WF_TRIM_{MIN,MAX,WIN} (trim_raised_edge_cells options), WF_SHORE (0/1, shore_cells), WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options),
 // WF_PRESET=1 (start from flat_seed_water_method() instead of the defaults);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
@@ -206,6 +206,8 @@ int main(int argc, char** argv)
                            preset([](extract_waterbodies_options& o) { o.grow.level_drift_m = 0.005; })});
         configs.push_back({"flat_seed_water_method() with bridge seeds of >= 8 cells (bridge_seed_min_cells = 8)",
                            preset([](extract_waterbodies_options& o) { o.bridge_seed_min_cells = 8; })});
+        configs.push_back({"flat_seed_water_method() without edge trimming (trim_edges = false)",
+                           preset([](extract_waterbodies_options& o) { o.trim_edges = false; })});
         configs.push_back({"flat_seed_water_method() without shore cells (shore_cells = false)",
                            preset([](extract_waterbodies_options& o) { o.shore_cells = false; })});
         configs.push_back({"flat_seed_water_method() without the first-step test",
@@ -241,6 +243,8 @@ int main(int argc, char** argv)
                                o.flat_seeds = true;
                                o.grow.level_follow_max_slope = 0.008;
                            }});
+        configs.push_back({"without edge trimming (trim_edges = false)",
+                           [](extract_waterbodies_options& o) { o.trim_edges = false; }});
         configs.push_back({"without shore cells (shore_cells = false)",
                            [](extract_waterbodies_options& o) { o.shore_cells = false; }});
         configs.push_back({"without the first-step test (grow.test_first_step = false)",
