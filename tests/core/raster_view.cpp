@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 using namespace lidarfx;
@@ -261,4 +262,26 @@ TEST_CASE("core/raster_view: cell_splitter splits linear indices exactly as / an
             REQUIRE(c == i % cols);
         }
     }
+}
+
+TEST_CASE("core/raster: a moved-from raster is empty, not a shape without cells")
+{
+    raster<int> a(3, 4, 7);
+    raster<int> b(std::move(a));
+    CHECK(b.rows() == 3);
+    CHECK(b.cols() == 4);
+    CHECK(b(2, 3) == 7);
+    CHECK(a.rows() == 0);  // NOLINT(bugprone-use-after-move): the state after a move is what is tested
+    CHECK(a.cols() == 0);
+    CHECK(a.size() == 0);
+    raster<int> c(2, 2, 1);
+    c = std::move(b);
+    CHECK(c.rows() == 3);
+    CHECK(b.rows() == 0);  // NOLINT(bugprone-use-after-move)
+    CHECK(b.view().empty());
+    raster<int> d(2, 2, 5);
+    auto& self = d;
+    d = std::move(self);  // self-move leaves it whole
+    CHECK(d.rows() == 2);
+    CHECK(d(1, 1) == 5);
 }

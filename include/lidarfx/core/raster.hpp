@@ -97,6 +97,24 @@ public:
     using value_type = T;
 
     raster() = default;
+    raster(const raster&) = default;
+    raster& operator=(const raster&) = default;
+    /// A moved-from raster is empty (0 x 0), never a shape without cells.
+    raster(raster&& other) noexcept
+        : rows_(std::exchange(other.rows_, 0)), cols_(std::exchange(other.cols_, 0)), cells_(std::move(other.cells_))
+    {
+        other.cells_.clear();
+    }
+    raster& operator=(raster&& other) noexcept
+    {
+        if (this != &other) {
+            rows_ = std::exchange(other.rows_, 0);
+            cols_ = std::exchange(other.cols_, 0);
+            cells_ = std::move(other.cells_);
+            other.cells_.clear();
+        }
+        return *this;
+    }
 
     /// rows x cols cells, each set to `fill`. @throws invalid_input if rows or cols < 0 or rows x cols exceeds
     /// max_raster_cells (core/raster_view.hpp); std::bad_alloc if the memory is not there.

@@ -335,3 +335,18 @@ TEST_CASE("water/extract_waterbodies' band cut: cut_at_level_bands against the p
         }
     }
 }
+
+TEST_CASE("water/extract_waterbodies: the edge steps' options are checked up front, in extract_waterbodies' name")
+{
+    water_test::survey s(20, 20);
+    auto o = flat_seed_water_method();
+    o.trim.max_rise_m = o.trim.min_rise_m;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"), invalid_input);
+    o = flat_seed_water_method();
+    o.shore.min_water_share = 0;
+    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"), invalid_input);
+    o.shore_cells = false;  // an unused step's options are not read
+    CHECK_NOTHROW(extract_waterbodies(s.view(), 2.0, o));
+    CHECK(!previous_water_method().trim_edges);
+    CHECK(!previous_water_method().shore_cells);
+}

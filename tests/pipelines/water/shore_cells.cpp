@@ -185,12 +185,12 @@ raster<std::int32_t> reference_trim(const raster<std::int32_t>& labels, const ra
     auto out = labels;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (labels(r, c) <= 0 || !edge(r, c) || std::isnan(min_z(r, c))) continue;
-            std::vector<float> z;
+            if (labels(r, c) <= 0 || !edge(r, c) || !std::isfinite(min_z(r, c))) continue;
+            std::vector<float> z;  // the interior cells of the same body with a finite min z
             for (std::ptrdiff_t rr = r - o.window_cells; rr <= r + o.window_cells; ++rr)
                 for (std::ptrdiff_t cc = c - o.window_cells; cc <= c + o.window_cells; ++cc)
-                    if (rr >= 0 && cc >= 0 && rr < rows && cc < cols && labels(rr, cc) > 0 && !edge(rr, cc) &&
-                        !std::isnan(min_z(rr, cc)))
+                    if (rr >= 0 && cc >= 0 && rr < rows && cc < cols && labels(rr, cc) == labels(r, c) &&
+                        !edge(rr, cc) && std::isfinite(min_z(rr, cc)))
                         z.push_back(min_z(rr, cc));
             if (z.size() < o.min_level_cells) continue;
             std::sort(z.begin(), z.end());
@@ -221,6 +221,15 @@ TEST_CASE("water/trim_raised_edge_cells: a beach the level let in becomes land; 
     CHECK(labels(6, 5) == 1);
     CHECK(labels(7, 5) == 1);
     CHECK(labels(3, 3) == 1);
+
+    // A second body 0.3 m lower right next to the lake's edge: the lake's edge cells read the lake's level.
+    raster<std::int32_t> two(9, 12, 1);
+    raster<float> z2(9, 12, 10.0f);
+    for (std::ptrdiff_t r = 0; r < 9; ++r) {
+        for (std::ptrdiff_t c = 6; c < 12; ++c) two(r, c) = 2, z2(r, c) = 9.7f;
+        two(r, 5) = 0, z2(r, 5) = 11.0f;  // a land strip between them
+    }
+    CHECK(trim_raised_edge_cells(two, z2) == 0);  // against the lower body's level, 0.3 m would be trimmed
 }
 
 TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on random rasters; bad input")
@@ -238,7 +247,11 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
                 labels(r, c) = std::sin(0.5 * static_cast<double>(r) + trial) + std::cos(0.35 * static_cast<double>(c)) > 0.2
                                    ? 1 + static_cast<std::int32_t>(r % 2)
                                    : 0;
-                z(r, c) = rng() % 9 == 0 ? std::numeric_limits<float>::quiet_NaN() : 5.0f + noise(rng);
+                const auto pick = rng() % 40;
+                z(r, c) = pick < 4   ? std::numeric_limits<float>::quiet_NaN()
+                          : pick == 4 ? std::numeric_limits<float>::infinity()
+                          : pick == 5 ? -std::numeric_limits<float>::infinity()
+                                      : 5.0f + noise(rng);
             }
         }
         const trim_raised_edge_cells_options o{.window_cells = 1 + trial % 3, .min_rise_m = 0.02 * (trial % 4),

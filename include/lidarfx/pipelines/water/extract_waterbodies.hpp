@@ -191,6 +191,7 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     require(o.bridge_seed_min_cells >= 1, fn, "bridge_seed_min_cells", ">= 1", o.bridge_seed_min_cells);
     if (o.bridge_seed_rounds > 0) validate(o.bridge_seeds, fn);
     if (o.shore_cells) validate(o.shore, fn);
+    if (o.trim_edges) validate(o.trim, fn);
     check_execution(o.run, fn);
     validate(o.grow, fn);
 }
@@ -266,7 +267,8 @@ inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const
 /// as a composition of the public steps: assess_water_inputs, water_vegetation, intensity_bins,
 /// water_angles, water_seeds (>= min_seed_cells, largest first), grow_waterbodies (per seed not yet inside
 /// a body: grow_waterbody, the KS-stopped bucket-queue flood, then join_level_cells), join_across_bridges,
-/// join_shore_cells (edge cells that are mostly water by their count), fill_small_islands and
+/// trim_raised_edge_cells (edge cells standing above the local level), join_shore_cells (edge cells that
+/// are mostly water by their count), fill_small_islands and
 /// measure_waterbodies (labels 1..n by decreasing area). With flat_seeds, after the
 /// dropout seeds: flat_water_seeds outside the bodies grown, water_seeds on them, grow_waterbodies again. Then,
 /// for bridge_seed_rounds rounds, seeds_beyond_bridges (water cut off by a deck from a body), grown the same
@@ -401,7 +403,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                 labels = raster<std::int32_t>(rows, cols, uninitialized);  // (flat_water_seeds without counts left it)
             const auto parts = connected_components(mask, labels, connected_components_options{
                                                                       .conn = connectivity::eight, .run = kernels});
-            detail::cut_at_level_bands(mask, labels, parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);
+            detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);
         }
         auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
                                        .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));

@@ -174,18 +174,32 @@ struct trim_raised_edge_cells_options {
     double min_rise_m = 0.05;    ///< an edge cell whose min z stands more than this above the local level is
                                  ///< dry ground (2 σ of the 2-3 cm range noise of the lowest return), metres,
                                  ///< >= 0. Default 0.05
-    double max_rise_m = 0.5;     ///< ... up to this; higher cells are bridge decks or bank cells that joined by
-                                 ///< their count (join_shore_cells), left as they are, metres, > min_rise_m.
-                                 ///< Default 0.5
+    double max_rise_m = 0.5;     ///< ... up to this; higher cells are bridge decks or bank cells whose water
+                                 ///< returns were lost, left as they are (join_shore_cells, which runs after
+                                 ///< this step in extract_waterbodies, judges bank cells by their count),
+                                 ///< metres, > min_rise_m. Default 0.5
     std::size_t min_level_cells = 3;  ///< the local level needs at least this many interior body cells with a
                                  ///< return in the window, >= 1. Default 3
 };
 
+namespace detail {
+
+inline void validate(const trim_raised_edge_cells_options& o, const char* fn)
+{
+    require(o.window_cells >= 1, fn, "window_cells", ">= 1", o.window_cells);
+    require(o.min_rise_m >= 0, fn, "min_rise_m", ">= 0", o.min_rise_m);
+    require(o.max_rise_m > o.min_rise_m, fn, "max_rise_m", "> min_rise_m", o.max_rise_m);
+    require(o.min_level_cells >= 1, fn, "min_level_cells", ">= 1", o.min_level_cells);
+}
+
+}  // namespace detail
+
 /// Edge refinement: the level gate and join_level_cells let a body take ground up to their tolerance (0.15 m)
 /// above its level, a metre or two of a beach or a field; the water surface next to an edge cell is known far
 /// better than that. For every edge cell (a body cell with a land cell among its 8 neighbours) with a return,
-/// the local level is the median min z over the interior body cells (no land neighbour) with a return in its
-/// (2 window_cells + 1)² window, given at least min_level_cells of them; the cell becomes land (label 0) when
+/// the local level is the median min z (the upper median of an even count) over the interior cells (no
+/// land neighbour) of the same body with a finite min z in its (2 window_cells + 1)² window, given at least
+/// min_level_cells of them (a body next to another at a different level reads its own); the cell becomes land (label 0) when
 /// min_rise_m < min z − level <= max_rise_m. One pass over the labels as given. Returns the number of cells
 /// trimmed. Elevations in metres. O(cells + edge cells · (2 window_cells + 1)²).
 /// @throws invalid_input on rasters of different shapes or options out of range.
@@ -193,10 +207,7 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
                                           const trim_raised_edge_cells_options& opt = {})
 {
     constexpr const char* fn = "trim_raised_edge_cells";
-    detail::require(opt.window_cells >= 1, fn, "window_cells", ">= 1", opt.window_cells);
-    detail::require(opt.min_rise_m >= 0, fn, "min_rise_m", ">= 0", opt.min_rise_m);
-    detail::require(opt.max_rise_m > opt.min_rise_m, fn, "max_rise_m", "> min_rise_m", opt.max_rise_m);
-    detail::require(opt.min_level_cells >= 1, fn, "min_level_cells", ">= 1", opt.min_level_cells);
+    detail::validate(opt, fn);
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     if (rows == 0 || cols == 0) return 0;
@@ -213,11 +224,13 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
         for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
              c = detail::next_positive(edge.data(), c + 1, cols)) {
             level.clear();
+            const std::int32_t own = labels(r, c);
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
                 const std::uint8_t* cw = cls.view().row(rr);
                 const float* zw = min_z.row(rr);
+                const std::int32_t* lw = labels.row(rr);
                 for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
-                    if (cw[cc] == 1 && std::isfinite(zw[cc])) level.push_back(zw[cc]);
+                    if (cw[cc] == 1 && lw[cc] == own && std::isfinite(zw[cc])) level.push_back(zw[cc]);
             }
             if (level.size() < opt.min_level_cells) continue;
             const auto mid = level.begin() + static_cast<std::ptrdiff_t>(level.size() / 2);
