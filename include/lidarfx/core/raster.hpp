@@ -195,6 +195,15 @@ private:
 
 namespace detail {
 
+/// Makes `r` a rows x cols raster, keeping its memory when it already has that shape (its cells are then
+/// unspecified, as a new one's would be): for buffers that a caller passes to several steps in turn, since a
+/// new large raster's pages cost their first touch.
+template <class T>
+void ensure_shape(raster<T>& r, std::ptrdiff_t rows, std::ptrdiff_t cols)
+{
+    if (r.rows() != rows || r.cols() != cols) r = raster<T>(rows, cols, uninitialized);
+}
+
 /// Read access to any raster_input through a raster_view: strided rasters are viewed in place, other
 /// types are copied once into an owned raster. Lets kernels run on plain pointers whatever the caller's type.
 template <raster_input In>

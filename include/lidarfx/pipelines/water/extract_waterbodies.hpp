@@ -399,8 +399,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
         // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
         if (opt.grow.level_gate_m > 0) {
-            if (labels.rows() != rows || labels.cols() != cols)
-                labels = raster<std::int32_t>(rows, cols, uninitialized);  // (flat_water_seeds without counts left it)
+            detail::ensure_shape(labels, rows, cols);  // (flat_water_seeds without counts left it as it was)
             const auto parts = connected_components(mask, labels, connected_components_options{
                                                                       .conn = connectivity::eight, .run = kernels});
             detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);

@@ -117,7 +117,6 @@ inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const
     }
 }
 
-
 /// flat_water_seeds' slope test of the components: keep[l] = 0 for each kept component l (labels > 0 of
 /// `labels`, sizes[l] cells) whose median surface slope over its cells (NaN counted as 0, level) exceeds
 /// max_slope (m/m). Only the kept components' slopes are gathered (into one buffer, each in row order).
@@ -152,6 +151,7 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<con
         if (median(values) > max_slope) keep[l] = 0;
     }
 }
+
 }  // namespace detail
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
@@ -222,7 +222,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             },
             {}, fn);
     }
-    if (labels.rows() != rows || labels.cols() != cols) labels = raster<std::int32_t>(rows, cols, uninitialized);
+    detail::ensure_shape(labels, rows, cols);
     const auto level_sizes = connected_components(
         level, labels, connected_components_options{.conn = connectivity::eight, .run = {.threads = opt.run.threads}});
     const std::size_t n = level_sizes.size() - 1;

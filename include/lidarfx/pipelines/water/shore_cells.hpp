@@ -84,7 +84,7 @@ inline raster<std::uint8_t> shore_classes(raster_view<const std::int32_t> labels
 /// Shore refinement: a cell on a body's edge whose centre lies on the water holds more water than land, and
 /// water loses pulses (specular reflection, absorption) that land returns. So where the water around it
 /// returns clearly fewer points than the land around it, the cell's count tells its water share. For every
-/// land cell (label 0, inside the footprint, not excluded) with at least min_body_neighbours body cells
+/// land cell (label <= 0, inside the footprint; excluded or not) with at least min_body_neighbours body cells
 /// among its 8 neighbours ("shore cell"): n_water = mean count over the body cells of its (2 window_cells +
 /// 1)² window (dropouts count 0), n_land = mean count over the window's land cells with a return that are
 /// neither next to a body (a body cell among their 8 neighbours) nor excluded; the cell joins when n_land

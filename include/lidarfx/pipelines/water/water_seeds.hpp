@@ -51,8 +51,7 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     detail::report(opt.run.progress, 0.0, fn);
     const int threads = opt.run.threads;
     const auto opened = morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
-    if (labels.rows() != opened.rows() || labels.cols() != opened.cols())
-        labels = raster<std::int32_t>(opened.rows(), opened.cols(), uninitialized);  // every cell is written
+    detail::ensure_shape(labels, opened.rows(), opened.cols());  // every cell is written
     components seeds{std::move(labels), {}};
     seeds.sizes = connected_components(opened, seeds.labels,
                                        connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});

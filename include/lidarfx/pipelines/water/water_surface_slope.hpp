@@ -156,12 +156,11 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
             // of them, or with the window (which writes its columns) the k at each end.
             const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
             if (!inside) std::fill(sums.begin(), sums.end(), 0.0f);
-            else
+            if (inside) {
                 for (float* s : {n, sx, sy, sxx, syy, sxy, sz, sxz, syz}) {
                     std::fill(s, s + k, 0.0f);
                     std::fill(s + (cols - k), s + cols, 0.0f);
                 }
-            if (inside) {
                 const auto stride = min_z.row_stride();
                 const std::ptrdiff_t e = cols - k;
                 if (k == 1)
