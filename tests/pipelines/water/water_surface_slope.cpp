@@ -5,7 +5,9 @@
 #include <lidarfx/pipelines/water/grow_waterbody.hpp>
 #include <lidarfx/pipelines/water/water_surface_slope.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -162,4 +164,42 @@ TEST_CASE("water/water_surface_slope: equals the definition on random rasters, e
             CHECK(unequal == 0);
         }
     }
+}
+
+TEST_CASE("water/water_surface_slope: the lazy slope equals the whole raster's bit for bit, read in any order")
+{
+    // Shapes smaller than, equal to and straddling the 16 x 64 tiles, strided views, every radius; cells read
+    // in a random order, so tiles are computed in any order and some never.
+    const unsigned seed = 77;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> height(99.7f, 100.3f), share(0.0f, 1.0f);
+    int trial = 0;
+    for (const auto& [rows, cols] : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
+             {1, 1}, {3, 200}, {16, 64}, {17, 65}, {40, 130}, {70, 9}}) {
+        for (int k : {1, 3, 4, 5}) {
+            ++trial;
+            INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << ", radius " << k);
+            raster<float> big(rows + 2, cols + 3);
+            for (auto& v : big) v = share(rng) < 0.1f ? NAN : height(rng);
+            const raster_view<const float> z = big.view().window(1, 2, rows, cols);  // row_stride cols + 3
+            const water_surface_slope_options opt{.radius_cells = k, .min_cells = 5, .band_m = 0.2};
+            const auto whole = water_surface_slope(z, 2.0, opt);
+            lazy_water_surface_slope lazy(z, 2.0, opt);
+            const surface_slope_source source(lazy);
+            CHECK(source.rows() == rows);
+            CHECK(source.cols() == cols);
+            std::vector<std::ptrdiff_t> order(static_cast<std::size_t>(rows * cols));
+            for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::ptrdiff_t>(i);
+            std::shuffle(order.begin(), order.end(), rng);
+            order.resize(order.size() / 2 + 1);  // half the cells: some tiles stay unread
+            std::ptrdiff_t unequal = 0;
+            for (const auto i : order) {
+                const float got = source(i / cols, i % cols), want = whole(i / cols, i % cols);
+                unequal += std::memcmp(&got, &want, sizeof got) != 0;
+            }
+            CHECK(unequal == 0);
+        }
+    }
+    CHECK(surface_slope_source().empty());
+    CHECK_THROWS_AS(lazy_water_surface_slope(raster<float>(4, 4, 1.0f), 0.0), invalid_input);
 }

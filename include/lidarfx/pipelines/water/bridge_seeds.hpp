@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/water/water_surface_slope.hpp"
 
 namespace lidarfx {
 
@@ -71,7 +72,7 @@ inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
 inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
                                                  raster_view<const std::uint8_t> eligible, double cell_m,
                                                  const seeds_beyond_bridges_options& opt = {},
-                                                 raster_view<const float> surface_slope = {})
+                                                 surface_slope_source surface_slope = {})
 {
     constexpr const char* fn = "seeds_beyond_bridges";
     detail::require_positive(cell_m, fn, "cell_m");

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -311,11 +312,12 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         const std::uint8_t* vegetation = res.vegetation.data();
         for (std::ptrdiff_t i = 0, n = field.eligible.size(); i < n; ++i) eligible[i] = !vegetation[i];
     }
-    raster<float> surface_slope;  // the level follows min z only where the surface is level
+    // The level follows min z only where the surface is level. The slope is read around water only: it is
+    // computed tile by tile where it is read.
+    std::optional<lazy_water_surface_slope> lazy_slope;
+    surface_slope_source surface_slope;
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0) {
-        auto so = opt.surface_slope;
-        so.run = kernels;
-        surface_slope = water_surface_slope(in.min_z, cell_m, so);
+        surface_slope = lazy_slope.emplace(in.min_z, cell_m, opt.surface_slope);
         field.surface_slope = surface_slope;
     }
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.

@@ -17,6 +17,7 @@
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
+#include "lidarfx/pipelines/water/water_surface_slope.hpp"
 
 namespace lidarfx {
 
@@ -121,7 +122,7 @@ inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const
 /// `labels`, sizes[l] cells) whose median surface slope over its cells (NaN counted as 0, level) exceeds
 /// max_slope (m/m). Only the kept components' slopes are gathered (into one buffer, each in row order).
 /// O(cells + kept cells).
-inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<const float> slope,
+inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_slope_source& slope,
                          const std::vector<std::size_t>& sizes, double max_slope, std::vector<std::uint8_t>& keep)
 {
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
@@ -132,14 +133,16 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<con
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
-        const float* s = slope.row(r);
         for (std::ptrdiff_t c = next_positive(lab, 0, cols); c < cols; c = next_positive(lab, c, cols)) {
             const std::int32_t l = lab[c];
             const std::ptrdiff_t from = c;
             while (c < cols && lab[c] == l) ++c;
             if (!keep[static_cast<std::size_t>(l)]) continue;
             float* out = all.data() + next[static_cast<std::size_t>(l)];
-            for (std::ptrdiff_t i = from; i < c; ++i) *out++ = std::isnan(s[i]) ? 0.0f : s[i];
+            for (std::ptrdiff_t i = from; i < c; ++i) {
+                const float s = slope(r, i);
+                *out++ = std::isnan(s) ? 0.0f : s;
+            }
             next[static_cast<std::size_t>(l)] += static_cast<std::size_t>(c - from);
         }
     }
@@ -175,7 +178,7 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, raster_view<con
 /// (a new raster's pages cost their first touch).
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
-                                             const flat_water_seeds_options& opt, raster_view<const float> surface_slope,
+                                             const flat_water_seeds_options& opt, surface_slope_source surface_slope,
                                              raster<std::int32_t>& labels)
 {
     constexpr const char* fn = "flat_water_seeds";
@@ -423,7 +426,6 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     const std::ptrdiff_t nc = cols;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
-        const float* slope = slope_test ? surface_slope.row(r) : nullptr;
         std::uint8_t* d = level.row(r);
         std::fill(d, d + nc, std::uint8_t{0});
         for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc; c = detail::next_positive(lab, c, nc)) {
@@ -431,9 +433,10 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const std::ptrdiff_t from = c;
             while (c < nc && lab[c] == l) ++c;
             if (!keep[static_cast<std::size_t>(l)]) continue;
-            if (!slope) std::fill(d + from, d + c, std::uint8_t{1});
+            if (!slope_test) std::fill(d + from, d + c, std::uint8_t{1});
             else
-                for (std::ptrdiff_t i = from; i < c; ++i) d[i] = static_cast<std::uint8_t>(!(slope[i] > max_slope));
+                for (std::ptrdiff_t i = from; i < c; ++i)
+                    d[i] = static_cast<std::uint8_t>(!(surface_slope(r, i) > max_slope));
         }
     }
     return level;
@@ -442,7 +445,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
 /// flat_water_seeds (see above) with its component labels in a raster of its own.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
                                              const flat_water_seeds_options& opt = {},
-                                             raster_view<const float> surface_slope = {})
+                                             surface_slope_source surface_slope = {})
 {
     raster<std::int32_t> labels;
     return flat_water_seeds(in, excluded, opt, surface_slope, labels);

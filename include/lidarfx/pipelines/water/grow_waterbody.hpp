@@ -14,6 +14,7 @@
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/pipelines/water/seed_water_level.hpp"
+#include "lidarfx/pipelines/water/water_surface_slope.hpp"
 
 namespace lidarfx {
 
@@ -25,8 +26,9 @@ struct water_field {
     int bins = 1;                        ///< number of intensity bins, >= 1
     raster_view<const float> min_z = {}; ///< optional: lowest return per cell, metres, NaN = none; the level
                                          ///< gate reads it (empty = no gate). A view: keep it alive while growing
-    raster_view<const float> surface_slope = {}; ///< optional: water_surface_slope of min z, m/m, NaN = unknown;
-                                         ///< read with grow_waterbody_options::level_follow_max_slope
+    surface_slope_source surface_slope = {}; ///< optional: water_surface_slope of min z (a raster or a
+                                         ///< lazy_water_surface_slope), m/m, NaN = unknown; read with
+                                         ///< grow_waterbody_options::level_follow_max_slope
 };
 
 /// Which sample a growth step is compared with the previous region's sample.

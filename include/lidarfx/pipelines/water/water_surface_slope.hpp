@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -111,6 +112,105 @@ template <int R>
     }
 }
 
+inline void validate(const water_surface_slope_options& opt, double cell_m, const char* fn)
+{
+    require_positive(cell_m, fn, "cell_m");
+    require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
+    require(opt.min_cells >= 3, fn, "min_cells", ">= 3", opt.min_cells);
+    require(opt.band_m > 0, fn, "band_m", "> 0", opt.band_m);
+    check_execution(opt.run, fn);
+}
+
+/// Row buffers of surface_slope_block: the nine window sums and the squared slope of up to `width` cells.
+class slope_scratch {
+public:
+    explicit slope_scratch(std::ptrdiff_t width) : cells_(static_cast<std::size_t>(width)), sums_(10 * cells_) {}
+    float* sum(int k) noexcept { return sums_.data() + static_cast<std::size_t>(k) * cells_; }  // k in [0, 9]
+
+private:
+    std::size_t cells_;
+    std::vector<float> sums_;
+};
+
+/// water_surface_slope of the cells [c0, c1) of the rows [r0, r1) into the same cells of `out`; `scratch`
+/// holds at least c1 − c0 cells. Each cell's sums take the same operations in the same order whatever the
+/// block, so any tiling gives the values of the whole raster bit for bit.
+inline void surface_slope_block(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt,
+                                std::ptrdiff_t r0, std::ptrdiff_t r1, std::ptrdiff_t c0, std::ptrdiff_t c1,
+                                raster_view<float> out, slope_scratch& scratch)
+{
+    const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), k = opt.radius_cells, width = c1 - c0;
+    const float band = static_cast<float>(opt.band_m);
+    const auto need = static_cast<float>(opt.min_cells);
+    // The window's sums are accumulated offset by offset along the block's row (contiguous, so the loops
+    // vectorize), in float: heights enter relative to the cell's own, within ±band_m. Index i = c − c0.
+    float* n = scratch.sum(0);
+    float* sx = scratch.sum(1);
+    float* sy = scratch.sum(2);
+    float* sxx = scratch.sum(3);
+    float* syy = scratch.sum(4);
+    float* sxy = scratch.sum(5);
+    float* sz = scratch.sum(6);
+    float* sxz = scratch.sum(7);
+    float* syz = scratch.sum(8);
+    float* squared = scratch.sum(9);  // the squared slope per cell, NaN where unknown
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        const float* z0 = min_z.row(r);
+        // Columns whose window lies inside, [w0, w1): the unrolled window (radii 1-4); the rest, and every
+        // cell for larger radii or rows near the border, by passes per offset, which add to sums that start at 0.
+        const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
+        const std::ptrdiff_t w0 = inside ? std::clamp(k, c0, c1) : c1, w1 = inside ? std::clamp(cols - k, w0, c1) : c1;
+        for (float* s : {n, sx, sy, sxx, syy, sxy, sz, sxz, syz}) {
+            std::fill(s, s + (w0 - c0), 0.0f);
+            std::fill(s + (w1 - c0), s + width, 0.0f);
+        }
+        if (w1 > w0) {
+            const auto stride = min_z.row_stride();
+            const float* z = z0 + c0;  // the kernels index from the block's first column
+            const std::ptrdiff_t a = w0 - c0, b = w1 - c0;
+            if (k == 1) slope_sums_window<1>(z, stride, a, b, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+            if (k == 2) slope_sums_window<2>(z, stride, a, b, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+            if (k == 3) slope_sums_window<3>(z, stride, a, b, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+            if (k == 4) slope_sums_window<4>(z, stride, a, b, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
+        }
+        for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
+            if (r + dr < 0 || r + dr >= rows) continue;
+            const float* zr = min_z.row(r + dr);
+            const auto y = static_cast<float>(dr);
+            for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
+                const auto x = static_cast<float>(dc);
+                // Cells whose neighbour at this offset exists, outside the window's columns.
+                const std::ptrdiff_t lo = std::max({c0, -dc}), hi = std::min(c1, cols - dc);
+                for (const auto& [from, to] : {std::pair{lo, std::min(hi, w0)}, std::pair{std::max(lo, w1), hi}}) {
+                    if (to <= from) continue;
+                    const std::ptrdiff_t i = from - c0;
+                    slope_sums(zr + from + dc, z0 + from, to - from, x, y, band, n + i, sx + i, sy + i, sxx + i,
+                               syy + i, sxy + i, sz + i, sxz + i, syz + i);
+                }
+            }
+        }
+        // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances. Every
+        // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
+        // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
+        for (std::ptrdiff_t i = 0; i < width; ++i) {
+            const double w = 1.0 / n[i];  // one division per cell, not five
+            const double mx = sx[i] * w, my = sy[i] * w;
+            const double cxx = sxx[i] - mx * sx[i];
+            const double cyy = syy[i] - my * sy[i];
+            const double cxy = sxy[i] - mx * sy[i];
+            const double cxz = sxz[i] - mx * sz[i];
+            const double cyz = syz[i] - my * sz[i];
+            const double det = cxx * cyy - cxy * cxy;
+            const bool known = (n[i] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
+            const double inv = 1.0 / det;
+            const double b = (cxz * cyy - cyz * cxy) * inv, g = (cyz * cxx - cxz * cxy) * inv;
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            squared[i] = static_cast<float>(select_bits(known, b * b + g * g, nan));
+        }
+        sqrt_span(squared, out.row(r) + c0, width, static_cast<float>(1 / cell_m));
+    }
+}
+
 }  // namespace detail
 
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
@@ -125,91 +225,81 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
                                          const water_surface_slope_options& opt = {})
 {
     constexpr const char* fn = "water_surface_slope";
-    detail::require_positive(cell_m, fn, "cell_m");
-    detail::require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
-    detail::require(opt.min_cells >= 3, fn, "min_cells", ">= 3", opt.min_cells);
-    detail::require(opt.band_m > 0, fn, "band_m", "> 0", opt.band_m);
-    detail::check_execution(opt.run, fn);
-    const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), k = opt.radius_cells;
+    detail::validate(opt, cell_m, fn);
+    const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
     raster<float> out(rows, cols, uninitialized);  // every cell is written
-    const float band = static_cast<float>(opt.band_m);
-    const auto need = static_cast<float>(opt.min_cells);
-    // Per row, the window's sums are accumulated offset by offset over the whole row (contiguous, so the
-    // loops vectorize), in float: heights enter relative to the cell's own, within ±band_m.
     parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        const auto n_cols = static_cast<std::size_t>(cols);
-        std::vector<float> sums(9 * n_cols);
-        float* n = sums.data();
-        float* sx = n + n_cols;
-        float* sy = sx + n_cols;
-        float* sxx = sy + n_cols;
-        float* syy = sxx + n_cols;
-        float* sxy = syy + n_cols;
-        float* sz = sxy + n_cols;
-        float* sxz = sz + n_cols;
-        float* syz = sxz + n_cols;
-        std::vector<float> squared(n_cols);  // the squared slope per cell of the row, NaN where unknown
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            const float* z0 = min_z.row(r);
-            // Rows and columns whose window lies inside: the unrolled window (radii 1-4); the rest, and
-            // every cell for larger radii, by passes per offset. The passes add to sums that start at 0: all
-            // of them, or with the window (which writes its columns) the k at each end.
-            const bool inside = k <= 4 && r >= k && r + k < rows && cols > 2 * k;
-            if (!inside) std::fill(sums.begin(), sums.end(), 0.0f);
-            if (inside) {
-                for (float* s : {n, sx, sy, sxx, syy, sxy, sz, sxz, syz}) {
-                    std::fill(s, s + k, 0.0f);
-                    std::fill(s + (cols - k), s + cols, 0.0f);
-                }
-                const auto stride = min_z.row_stride();
-                const std::ptrdiff_t e = cols - k;
-                if (k == 1)
-                    detail::slope_sums_window<1>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                if (k == 2)
-                    detail::slope_sums_window<2>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                if (k == 3)
-                    detail::slope_sums_window<3>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-                if (k == 4)
-                    detail::slope_sums_window<4>(z0, stride, k, e, band, n, sx, sy, sxx, syy, sxy, sz, sxz, syz);
-            }
-            for (std::ptrdiff_t dr = -k; dr <= k; ++dr) {
-                if (r + dr < 0 || r + dr >= rows) continue;
-                const float* zr = min_z.row(r + dr);
-                const auto y = static_cast<float>(dr);
-                for (std::ptrdiff_t dc = -k; dc <= k; ++dc) {
-                    const auto x = static_cast<float>(dc);
-                    const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, -dc), c1 = std::min(cols, cols - dc);
-                    // With the window done, only the k columns at each end.
-                    for (const auto& [a, b] : inside ? std::array{std::pair{c0, k}, std::pair{cols - k, c1}}
-                                                     : std::array{std::pair{c0, c1}, std::pair{c1, c1}}) {
-                        if (b <= a) continue;
-                        detail::slope_sums(zr + a + dc, z0 + a, b - a, x, y, band, n + a, sx + a, sy + a, sxx + a,
-                                           syy + a, sxy + a, sz + a, sxz + a, syz + a);
-                    }
-                }
-            }
-            // Centre the sums on the mean position: the slopes solve the 2 × 2 system of the covariances. Every
-            // cell is computed and the unknown ones masked to NaN, so that the loop vectorizes; the square root
-            // (a libm call that compilers keep scalar for errno) runs in a loop of its own.
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const double w = 1.0 / n[c];  // one division per cell, not five
-                const double mx = sx[c] * w, my = sy[c] * w;
-                const double cxx = sxx[c] - mx * sx[c];
-                const double cyy = syy[c] - my * sy[c];
-                const double cxy = sxy[c] - mx * sy[c];
-                const double cxz = sxz[c] - mx * sz[c];
-                const double cyz = syz[c] - my * sz[c];
-                const double det = cxx * cyy - cxy * cxy;
-                const bool known = (n[c] >= need) & (det > 1e-6 * (cxx * cyy + 1));  // & not &&: no branch
-                const double inv = 1.0 / det;
-                const double b = (cxz * cyy - cyz * cxy) * inv, g = (cyz * cxx - cxz * cxy) * inv;
-                const double nan = std::numeric_limits<double>::quiet_NaN();
-                squared[c] = static_cast<float>(detail::select_bits(known, b * b + g * g, nan));
-            }
-            detail::sqrt_span(squared.data(), out.view().row(r), cols, static_cast<float>(1 / cell_m));
-        }
+        detail::slope_scratch scratch(cols);
+        detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out, scratch);
     }, {}, fn);
     return out;
 }
+
+/// water_surface_slope computed where it is read: a tile of 16 rows × 64 columns on the first read of one
+/// of its cells. Its readers (the growth's level gate, the flat and bridge seeds' slope tests) look only
+/// around water, often a fifth of a survey or less. The values are those of water_surface_slope bit for bit.
+/// Keeps a view of min z (keep it alive). Reading changes the cache: not for concurrent readers.
+/// @throws invalid_input on cell_m <= 0 or options out of range.
+class lazy_water_surface_slope {
+public:
+    static constexpr std::ptrdiff_t tile_rows = 16, tile_cols = 64;
+
+    lazy_water_surface_slope(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt = {})
+        : min_z_(min_z), cell_m_(cell_m), opt_(opt), slope_(min_z.rows(), min_z.cols(), uninitialized),
+          tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
+          done_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_), 0),
+          scratch_(tile_cols)
+    {
+        detail::validate(opt, cell_m, "lazy_water_surface_slope");
+    }
+    lazy_water_surface_slope(const lazy_water_surface_slope&) = delete;  // readers keep its address
+    lazy_water_surface_slope& operator=(const lazy_water_surface_slope&) = delete;
+
+    std::ptrdiff_t rows() const noexcept { return slope_.rows(); }
+    std::ptrdiff_t cols() const noexcept { return slope_.cols(); }
+
+    /// The slope of cell (r, c), m/m (NaN: unknown); computes its tile on first use.
+    float operator()(std::ptrdiff_t r, std::ptrdiff_t c)
+    {
+        const std::ptrdiff_t tr = r / tile_rows, tc = c / tile_cols;
+        std::uint8_t& done = done_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
+        if (!done) [[unlikely]] {
+            const std::ptrdiff_t r0 = tr * tile_rows, c0 = tc * tile_cols;
+            detail::surface_slope_block(min_z_, cell_m_, opt_, r0, std::min(rows(), r0 + tile_rows), c0,
+                                        std::min(cols(), c0 + tile_cols), slope_, scratch_);
+            done = 1;
+        }
+        return slope_.view()(r, c);
+    }
+
+private:
+    raster_view<const float> min_z_;
+    double cell_m_;
+    water_surface_slope_options opt_;
+    raster<float> slope_;  // valid in the tiles done
+    std::ptrdiff_t tiles_across_;
+    std::vector<std::uint8_t> done_;
+    detail::slope_scratch scratch_;
+};
+
+/// The surface slope a step reads: a raster's cells (water_surface_slope), a lazy_water_surface_slope, or
+/// none (empty). Converts implicitly from either; a view: keep what it shows alive while it is read.
+class surface_slope_source {
+public:
+    surface_slope_source() = default;
+    surface_slope_source(raster_view<const float> cells) noexcept : cells_(cells) {}
+    surface_slope_source(const raster<float>& cells) noexcept : cells_(cells) {}
+    surface_slope_source(lazy_water_surface_slope& lazy) noexcept : lazy_(&lazy) {}
+
+    std::ptrdiff_t rows() const noexcept { return lazy_ ? lazy_->rows() : cells_.rows(); }
+    std::ptrdiff_t cols() const noexcept { return lazy_ ? lazy_->cols() : cells_.cols(); }
+    bool empty() const noexcept { return rows() == 0 || cols() == 0; }
+    /// The slope of cell (r, c), m/m (NaN: unknown).
+    float operator()(std::ptrdiff_t r, std::ptrdiff_t c) const { return lazy_ ? (*lazy_)(r, c) : cells_(r, c); }
+
+private:
+    raster_view<const float> cells_;
+    lazy_water_surface_slope* lazy_ = nullptr;
+};
 
 }  // namespace lidarfx
