@@ -269,7 +269,7 @@ public:
                                         std::min(cols(), c0 + tile_cols), slope_, scratch_);
             done = 1;
         }
-        return slope_.view()(r, c);
+        return slope_.data()[r * slope_.cols() + c];  // contiguous; no view per read
     }
 
 private:
