@@ -15,6 +15,7 @@
 
 #include "lidarfx/core/bit_mask.hpp"
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
@@ -419,25 +420,49 @@ components connected_components(const In& m, connectivity c = connectivity::eigh
     return connected_components(m, connected_components_options{.conn = c});
 }
 
+namespace detail {
+
+/// The rank of each label 1..n by decreasing size (sizes[label]), ties in label order: rank[label] in 1..n,
+/// rank[0] = 0. O(n log n).
+inline std::vector<std::int32_t> size_ranks(const std::vector<std::size_t>& sizes)
+{
+    const std::size_t n = sizes.empty() ? 0 : sizes.size() - 1;
+    std::vector<std::int32_t> order(n);
+    std::iota(order.begin(), order.end(), 1);
+    std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+        return sizes[static_cast<std::size_t>(a)] > sizes[static_cast<std::size_t>(b)];
+    });
+    std::vector<std::int32_t> rank(n + 1, 0);
+    for (std::size_t k = 0; k < n; ++k) rank[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+    return rank;
+}
+
+/// labels[cell] = to[labels[cell]] for the labels > 0 (to[0] must be 0), one lookup per run of a label: the
+/// background, most of a raster, is passed over 64 cells at a time.
+inline void relabel_runs(raster_view<std::int32_t> labels, const std::vector<std::int32_t>& to)
+{
+    const std::ptrdiff_t cols = labels.cols();
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
+        std::int32_t* row = labels.row(r);
+        for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols)) {
+            const std::int32_t from = row[c], l = to[static_cast<std::size_t>(from)];
+            for (; c < cols && row[c] == from; ++c) row[c] = l;
+        }
+    }
+}
+
+}  // namespace detail
+
 /// Renumbers the components by decreasing size: label 1 becomes the largest; equal sizes keep their
 /// raster-scan order (the earlier first cell first). Updates labels and sizes (sizes[0] stays the
 /// background). O(rows * cols + n log n) for n components.
 inline void rank_by_size(components& comps)
 {
     const std::size_t n = comps.count();
-    std::vector<std::int32_t> order(n);
-    std::iota(order.begin(), order.end(), 1);
-    std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-        return comps.sizes[static_cast<std::size_t>(a)] > comps.sizes[static_cast<std::size_t>(b)];
-    });
-    std::vector<std::int32_t> new_label(n + 1, 0);
+    const auto rank = detail::size_ranks(comps.sizes);
     std::vector<std::size_t> new_sizes(n + 1, comps.sizes.empty() ? 0 : comps.sizes[0]);
-    for (std::size_t rank = 0; rank < n; ++rank) {
-        const auto old = static_cast<std::size_t>(order[rank]);
-        new_label[old] = static_cast<std::int32_t>(rank + 1);
-        new_sizes[rank + 1] = comps.sizes[old];
-    }
-    for (auto& v : comps.labels) v = new_label[static_cast<std::size_t>(v)];
+    for (std::size_t l = 1; l <= n; ++l) new_sizes[static_cast<std::size_t>(rank[l])] = comps.sizes[l];
+    detail::relabel_runs(comps.labels, rank);
     comps.sizes = std::move(new_sizes);
 }
 

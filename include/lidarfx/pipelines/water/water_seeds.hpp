@@ -55,17 +55,23 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     components seeds{std::move(labels), {}};
     seeds.sizes = connected_components(opened, seeds.labels,
                                        connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
-    rank_by_size(seeds);
-    // Ranked by size: the seeds to keep are the labels 1..kept.
+    // Ranked by size, the seeds to keep are the ranks 1..kept; the others become background. One pass
+    // renumbers and drops (as rank_by_size, then a pass dropping the small ones, would).
+    const std::size_t n = seeds.count();
+    auto rank = detail::size_ranks(seeds.sizes);
+    std::vector<std::size_t> ranked(n + 1, seeds.sizes[0]);
+    for (std::size_t l = 1; l <= n; ++l) ranked[static_cast<std::size_t>(rank[l])] = seeds.sizes[l];
     std::size_t kept = 0;
-    while (kept + 1 < seeds.sizes.size() && seeds.sizes[kept + 1] >= opt.min_cells) ++kept;
-    for (auto& l : seeds.labels) {
-        if (static_cast<std::size_t>(l) > kept) {
-            seeds.sizes[0] += 1;
-            l = 0;
+    while (kept + 1 < ranked.size() && ranked[kept + 1] >= opt.min_cells) ++kept;
+    for (std::size_t l = 1; l <= n; ++l) {
+        if (static_cast<std::size_t>(rank[l]) > kept) {
+            ranked[0] += seeds.sizes[l];
+            rank[l] = 0;
         }
     }
-    seeds.sizes.resize(kept + 1);
+    ranked.resize(kept + 1);
+    detail::relabel_runs(seeds.labels, rank);
+    seeds.sizes = std::move(ranked);
     detail::report(opt.run.progress, 1.0, fn);
     return seeds;
 }
