@@ -594,8 +594,11 @@ raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int thr
 void keep_freed_memory()
 {
 #if defined(__GLIBC__)
-    mallopt(M_MMAP_THRESHOLD, 64 << 20);   // blocks below 64 MiB come from the heap and are reused
-    mallopt(M_TRIM_THRESHOLD, 256 << 20);  // the heap keeps up to 256 MiB of free space at its top
+    // A survey's rasters are tens to hundreds of MiB each (4096² floats: 64 MiB and the allocator's 2 MiB
+    // of alignment); from mmap, each one's pages are new and zeroed by the kernel on first touch (~40 ms per
+    // 64 MiB on some virtual machines), from the heap they are the pages the steps before it freed.
+    mallopt(M_MMAP_THRESHOLD, 512 << 20);  // blocks below 512 MiB come from the heap and are reused
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);    // the heap keeps up to 1 GiB of free space at its top
 #endif
 }
 

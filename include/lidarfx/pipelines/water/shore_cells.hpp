@@ -52,7 +52,16 @@ inline raster<std::uint8_t> shore_classes(raster_view<const std::int32_t> labels
     // Per column, whether any / all of the rows r - 1 .. r + 1 (inside) are body cells, padded by a column
     // that changes neither test at each end.
     std::vector<std::uint8_t> any(static_cast<std::size_t>(cols) + 2, 0), all(any.size(), 1);
+    // Rows without a body cell near them are all 0: they are passed over (most rows of a survey hold no water).
+    std::vector<std::uint8_t> has_body(static_cast<std::size_t>(rows));
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        has_body[static_cast<std::size_t>(r)] = next_positive(labels.row(r), 0, cols) < cols;
+    const auto body_at = [&](std::ptrdiff_t r) { return r >= 0 && r < rows && has_body[static_cast<std::size_t>(r)]; };
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        if (!body_at(r) && (edges || (!body_at(r - 1) && !body_at(r + 1)))) {
+            std::fill(cls.view().row(r), cls.view().row(r) + cols, std::uint8_t{0});
+            continue;
+        }
         const std::int32_t* mid = labels.row(r);
         const std::int32_t* up = r > 0 ? labels.row(r - 1) : mid;  // the row itself changes neither test
         const std::int32_t* down = r + 1 < rows ? labels.row(r + 1) : mid;
