@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -129,16 +130,28 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         }
         lw = {at, l};
     };
+    // A line whose last water cell is of the same body closes nothing: it only moves on.
+    const auto pass = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r, std::ptrdiff_t c,
+                          int dr, int dc, int direction) {
+        if (lw.label == l)
+            lw.at = at;
+        else
+            close_run(lw, at, l, r, c, dr, dc, direction);
+    };
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         last_water across;
         const std::int32_t* row = labels.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        // Run by run of one label, land passed over in blocks: along the row only a run's first cell can
+        // close a land run.
+        for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols)) {
             const std::int32_t l = row[c];
-            if (l == 0) continue;
             close_run(across, c, l, r, c, 0, 1, 0);
-            close_run(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
-            close_run(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
-            close_run(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
+            for (; c < cols && row[c] == l; ++c) {
+                pass(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
+                pass(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
+                pass(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
+            }
+            across.at = c - 1;
         }
     }
     std::sort(bridged.begin(), bridged.end(), [](const bridged_cell& a, const bridged_cell& b) {
@@ -153,10 +166,13 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     bool merged = false;
     for (std::size_t b = 0; b < parent.size(); ++b) merged |= parent[b] != static_cast<std::int32_t>(b);
     if (merged) {
+        // Every label's group once, then only the water cells.
+        std::vector<std::int32_t> root(parent.size());
+        for (std::size_t b = 0; b < parent.size(); ++b) root[b] = find(static_cast<std::int32_t>(b));
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             std::int32_t* row = labels.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (row[c] > 0) row[c] = find(row[c]);
+            for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols))
+                for (; c < cols && row[c] > 0; ++c) row[c] = root[static_cast<std::size_t>(row[c])];
         }
     }
     return count;
