@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
@@ -38,6 +39,7 @@ inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::si
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     std::size_t filled = 0;
     raster<std::uint8_t> other;
+    std::vector<std::ptrdiff_t> hole_cells;  // cells (r · nc + c in the box) of the parts that may be holes
     for (std::size_t body = 1; body < boxes.size(); ++body) {
         const auto& b = boxes[body];
         if (b.empty()) continue;
@@ -48,25 +50,36 @@ inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::si
         const auto box = labels.window(r0, c0, nr, nc);
         const auto l = static_cast<std::int32_t>(body);
         other = raster<std::uint8_t>(nr, nc, uninitialized);
-        for (std::ptrdiff_t r = 0; r < nr; ++r)
-            for (std::ptrdiff_t c = 0; c < nc; ++c) other(r, c) = box(r, c) != l;
+        for (std::ptrdiff_t r = 0; r < nr; ++r) {
+            const std::int32_t* in = box.row(r);
+            std::uint8_t* out = other.row(r);
+            for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] != l;
+        }
         const auto parts = connected_components(other, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
         std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
         fill[0] = 0;
         for (std::size_t k = 1; k < parts.sizes.size(); ++k)
             if (parts.sizes[k] >= max_hole_cells) fill[k] = 0;
-        for (std::ptrdiff_t r = 0; r < nr; ++r)
+        // A part that stays a hole has all its cells listed: the fill visits only them.
+        hole_cells.clear();
+        for (std::ptrdiff_t r = 0; r < nr; ++r) {
+            const std::int32_t* part = parts.labels.row(r);
+            const std::int32_t* in = box.row(r);
             for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                const auto k = static_cast<std::size_t>(parts.labels(r, c));
+                const auto k = static_cast<std::size_t>(part[c]);
                 if (k == 0 || !fill[k]) continue;
-                if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || box(r, c) != 0) fill[k] = 0;
+                if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || in[c] != 0)
+                    fill[k] = 0;
+                else
+                    hole_cells.push_back(r * nc + c);
             }
-        for (std::ptrdiff_t r = 0; r < nr; ++r)
-            for (std::ptrdiff_t c = 0; c < nc; ++c)
-                if (fill[static_cast<std::size_t>(parts.labels(r, c))]) {
-                    box(r, c) = l;
-                    ++filled;
-                }
+        }
+        for (const std::ptrdiff_t cell : hole_cells) {
+            const std::ptrdiff_t r = cell / nc, c = cell % nc;
+            if (!fill[static_cast<std::size_t>(parts.labels(r, c))]) continue;
+            box(r, c) = l;
+            ++filled;
+        }
     }
     return filled;
 }
@@ -179,12 +192,12 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
             boxes.assign(static_cast<std::size_t>(highest) + 1, cell_box{rows, cols, -1, -1});
             for (std::ptrdiff_t r = all.row_min; r <= all.row_max; ++r) {
                 const std::int32_t* row = labels.row(r);
-                // Run by run: a run of one label widens its box once.
-                for (std::ptrdiff_t c = all.col_min; c <= all.col_max;) {
+                // Run by run, land passed over in blocks: a run of one label widens its box once.
+                for (std::ptrdiff_t c = detail::next_positive(row, all.col_min, all.col_max + 1); c <= all.col_max;
+                     c = detail::next_positive(row, c, all.col_max + 1)) {
                     const std::int32_t l = row[c];
                     const std::ptrdiff_t start = c;
                     while (c <= all.col_max && row[c] == l) ++c;
-                    if (l <= 0) continue;
                     auto& b = boxes[static_cast<std::size_t>(l)];
                     b = {std::min(b.row_min, r), std::min(b.col_min, start), r, std::max(b.col_max, c - 1)};
                 }
