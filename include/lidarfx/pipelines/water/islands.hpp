@@ -159,10 +159,17 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
     detail::require(opt.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", opt.island_min_area_m2);
     detail::check_execution(opt.run, fn);
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    // Pass 1: the labels' range and the bounding box of all bodies (every hole lies inside it).
-    // Per row a vectorized min / max, then the first and last body cell of rows that hold one.
+    // Clamped so that any area converts; no raster holds 2^60 cells.
+    const auto max_hole_cells =
+        static_cast<std::size_t>(std::min(std::ceil(opt.island_min_area_m2 / (cell_m * cell_m)), 0x1p60));
+    // One pass: the labels' range, the bounding box of all bodies (every hole lies inside it) and, while the
+    // labels are few enough to keep a box each (at most cells / 8), every body's box. Per row a vectorized
+    // min / max, then on a row that holds bodies its runs, land passed over in blocks: a run of one label
+    // widens its box once.
     cell_box all{rows, cols, -1, -1};
-    std::int32_t lowest = 0, highest = 0;
+    std::int32_t lowest = 0;
+    std::vector<cell_box> boxes;
+    bool boxed = max_hole_cells > 0;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* row = labels.row(r);
         std::int32_t low = 0, high = 0;
@@ -171,37 +178,30 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
             high = std::max(high, row[c]);
         }
         lowest = std::min(lowest, low);
-        highest = std::max(highest, high);
         if (high <= 0) continue;
-        std::ptrdiff_t first = 0, last = cols - 1;
-        while (row[first] <= 0) ++first;
-        while (row[last] <= 0) --last;
+        if (high > rows * cols / 8) boxed = false;
+        if (boxed && boxes.size() <= static_cast<std::size_t>(high))
+            boxes.resize(static_cast<std::size_t>(high) + 1, cell_box{rows, cols, -1, -1});
+        std::ptrdiff_t first = cols, last = -1;
+        for (std::ptrdiff_t c = detail::next_positive(row, 0, cols); c < cols; c = detail::next_positive(row, c, cols)) {
+            const std::int32_t l = row[c];
+            const std::ptrdiff_t start = c;
+            while (c < cols && row[c] == l) ++c;
+            first = std::min(first, start);
+            last = c - 1;
+            if (!boxed) continue;
+            auto& b = boxes[static_cast<std::size_t>(l)];
+            b = {std::min(b.row_min, r), std::min(b.col_min, start), r, std::max(b.col_max, c - 1)};
+        }
         all = {std::min(all.row_min, r), std::min(all.col_min, first), r, std::max(all.col_max, last)};
     }
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     detail::report(opt.run.progress, 0.0, fn);
-    // Clamped so that any area converts; no raster holds 2^60 cells.
-    const auto max_hole_cells =
-        static_cast<std::size_t>(std::min(std::ceil(opt.island_min_area_m2 / (cell_m * cell_m)), 0x1p60));
     std::size_t filled = 0;
     if (max_hole_cells > 0 && !all.empty()) {
-        // Pass 2, when the labels are few enough to keep a box each: the boxes, and what they cover.
-        std::vector<cell_box> boxes;
+        // What the boxes cover, when there are boxes.
         std::ptrdiff_t covered = rows * cols + 1;
-        if (highest <= rows * cols / 8) {
-            boxes.assign(static_cast<std::size_t>(highest) + 1, cell_box{rows, cols, -1, -1});
-            for (std::ptrdiff_t r = all.row_min; r <= all.row_max; ++r) {
-                const std::int32_t* row = labels.row(r);
-                // Run by run, land passed over in blocks: a run of one label widens its box once.
-                for (std::ptrdiff_t c = detail::next_positive(row, all.col_min, all.col_max + 1); c <= all.col_max;
-                     c = detail::next_positive(row, c, all.col_max + 1)) {
-                    const std::int32_t l = row[c];
-                    const std::ptrdiff_t start = c;
-                    while (c <= all.col_max && row[c] == l) ++c;
-                    auto& b = boxes[static_cast<std::size_t>(l)];
-                    b = {std::min(b.row_min, r), std::min(b.col_min, start), r, std::max(b.col_max, c - 1)};
-                }
-            }
+        if (boxed) {
             covered = 0;
             for (const auto& b : boxes)
                 if (!b.empty()) covered += (b.rows() + 2) * (b.cols() + 2);
