@@ -51,17 +51,36 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
     const auto [lowest, highest] = detail::label_range(labels);
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
-    std::vector<std::vector<float>> heights(static_cast<std::size_t>(highest) + 1);
-    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
-        const std::int32_t* label = labels.row(r);
-        const float* z = min_z.row(r);
-        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
-            const std::int32_t l = label[c];
-            if (l > 0 && std::isfinite(z[c])) heights[static_cast<std::size_t>(l)].push_back(z[c]);
+    // The finite heights of each label in one buffer, label l's at [offset[l], offset[l + 1]), in raster
+    // order: a pass counting them, a pass placing them; both read the labels run by run and pass over land
+    // 64 cells at a time.
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    const auto for_each_run = [&](auto&& visit) {
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const std::int32_t* label = labels.row(r);
+            const float* z = min_z.row(r);
+            for (std::ptrdiff_t c = next_positive(label, 0, cols); c < cols; c = next_positive(label, c, cols)) {
+                const std::int32_t l = label[c];
+                const std::ptrdiff_t from = c;
+                while (c < cols && label[c] == l) ++c;
+                visit(static_cast<std::size_t>(l), z + from, z + c);
+            }
         }
-    }
-    std::vector<double> level(heights.size(), NAN);
-    for (std::size_t l = 1; l < heights.size(); ++l) level[l] = detail::median(heights[l]);
+    };
+    std::vector<std::size_t> offset(static_cast<std::size_t>(highest) + 2, 0);
+    for_each_run([&](std::size_t l, const float* z, const float* end) {
+        offset[l + 1] += static_cast<std::size_t>(std::count_if(z, end, [](float h) { return std::isfinite(h); }));
+    });
+    for (std::size_t l = 1; l < offset.size(); ++l) offset[l] += offset[l - 1];
+    std::vector<float> heights(offset.back());
+    std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
+    for_each_run([&](std::size_t l, const float* z, const float* end) {
+        for (; z < end; ++z)
+            if (std::isfinite(*z)) heights[next[l]++] = *z;
+    });
+    std::vector<double> level(static_cast<std::size_t>(highest) + 1, NAN);
+    for (std::size_t l = 1; l < level.size(); ++l)
+        level[l] = detail::median(std::span<float>(heights).subspan(offset[l], offset[l + 1] - offset[l]));
     return level;
 }
 

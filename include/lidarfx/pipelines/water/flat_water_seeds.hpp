@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -146,12 +147,9 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_s
             next[static_cast<std::size_t>(l)] += static_cast<std::size_t>(c - from);
         }
     }
-    std::vector<float> values;
     for (std::size_t l = 1; l < keep.size(); ++l) {
         if (offset[l + 1] == offset[l]) continue;
-        values.assign(all.begin() + static_cast<std::ptrdiff_t>(offset[l]),
-                      all.begin() + static_cast<std::ptrdiff_t>(offset[l + 1]));
-        if (median(values) > max_slope) keep[l] = 0;
+        if (median(std::span<float>(all).subspan(offset[l], offset[l + 1] - offset[l])) > max_slope) keep[l] = 0;
     }
 }
 

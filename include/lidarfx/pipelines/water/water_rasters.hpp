@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -77,7 +78,7 @@ inline std::pair<std::int32_t, std::int32_t> label_range(raster_view<const std::
 /// waterbody's heights): radix selection on the 32-bit keys that order floats as numbers (ks_key), 16 bits
 /// per pass, two passes that read the values in order instead of nth_element's scattered partitioning.
 /// O(size), plus O(2^16) for the large sets.
-inline double median(std::vector<float>& values)
+inline double median(std::span<float> values)
 {
     if (values.empty()) return NAN;
     std::size_t rank = values.size() / 2;
