@@ -128,6 +128,7 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::uint8_t* cl = cls.view().row(r);
+        if (detail::next_positive(cl, 0, cols) == cols) continue;  // no body near this row
         const std::uint8_t* inside = footprint.empty() ? nullptr : footprint.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             candidate[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
@@ -227,6 +228,7 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::uint8_t* cl = cls.view().row(r);
+        if (detail::next_positive(cl, 0, cols) == cols) continue;  // no body in this row
         const float* z = min_z.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             edge[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == 2) & std::isfinite(z[c]));
