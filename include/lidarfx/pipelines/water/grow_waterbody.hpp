@@ -174,21 +174,24 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         detail::require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
     const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
-    // Cell i = r * cols + c, reached at step from_step from a cell passing on from_level.
+    // The views in locals: the queue stores could alias their members, which would then be reloaded.
+    const raster_view<const float> min_z = field.min_z, surface_slope = field.surface_slope;
+    // Cell i = r * cols + c, not seen and eligible, reached at step from_step from a cell passing on
+    // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
+    // already, and a call per neighbour would cost more than the test.
     const auto push = [&](std::ptrdiff_t i, std::ptrdiff_t r, std::ptrdiff_t c, int from_step, float from_level) {
-        if (seen[i] == stamp || !eligible[i]) return;
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
         if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
         float level = from_level;
         if (gate) {
-            const float z = field.min_z(r, c);
+            const float z = min_z(r, c);
             if (!std::isnan(z)) {
                 if (std::isnan(from_level)) {
                     level = z;
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    if (!slope_gate || !(field.surface_slope(r, c) > max_slope))
+                    if (!slope_gate || !(surface_slope(r, c) > max_slope))
                         level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
@@ -197,13 +200,14 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         seen[i] = stamp;
         buckets[static_cast<std::size_t>(k)].push_back(i);
     };
+    const auto fresh = [&](std::ptrdiff_t i) { return seen[i] != stamp && eligible[i]; };
     const float seed_level =
         gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
     for (const auto i : seed_cells) {
         if (i < 0 || i >= n) [[unlikely]]
             detail::require(false, fn, "seed cell index", "inside the field", i);
         const auto [r, c] = split(i);
-        push(i, r, c, 0, seed_level);
+        if (fresh(i)) push(i, r, c, 0, seed_level);
     }
     const bool exempt = gate && opt.level_ks_exempt_m >= 0;
     const std::size_t seed_entries = buckets.front().size();  // the seed's own cells never wait (test_first_step)
@@ -219,7 +223,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     ks_histogram waiting_sample(max_bin);
     const auto at_level = [&](std::ptrdiff_t i, float level) {
         const auto [r, c] = split(i);
-        return std::abs(field.min_z(r, c) - level) <= static_cast<float>(opt.level_ks_exempt_m);
+        return std::abs(min_z(r, c) - level) <= static_cast<float>(opt.level_ks_exempt_m);
     };
     for (int k = 0; k <= last; ++k) {
         const std::size_t before = out.cells.size();
@@ -230,7 +234,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
             if (bin[i] >= 0) {
                 current.add(bin[i]);
                 // A cell at or below the level it joined at is water by its height: no KS evidence needed.
-                const bool by_level = exempt && field.min_z(r, c) <= level + static_cast<float>(opt.level_ks_exempt_m);
+                const bool by_level = exempt && min_z(r, c) <= level + static_cast<float>(opt.level_ks_exempt_m);
                 if (increment && !by_level) added.add(bin[i]);
             }
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
@@ -239,7 +243,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t cc = c + dc;
                     if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
-                    push(rr * cols + cc, rr, cc, k, level);
+                    if (const std::ptrdiff_t j = rr * cols + cc; fresh(j)) push(j, rr, cc, k, level);
                 }
             }
         };
