@@ -175,7 +175,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
     // The views in locals: the queue stores could alias their members, which would then be reloaded.
-    const raster_view<const float> min_z = field.min_z, surface_slope = field.surface_slope;
+    const raster_view<const float> min_z = field.min_z;
+    const surface_slope_source surface_slope = field.surface_slope;
     // Cell i = r * cols + c, not seen and eligible, reached at step from_step from a cell passing on
     // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
     // already, and a call per neighbour would cost more than the test.
