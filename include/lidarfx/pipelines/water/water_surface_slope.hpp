@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -132,8 +133,8 @@ private:
     std::vector<float> sums_;
 };
 
-/// water_surface_slope of the cells [c0, c1) of the rows [r0, r1) into the same cells of `out`; `scratch`
-/// holds at least c1 − c0 cells. Each cell's sums take the same operations in the same order whatever the
+/// water_surface_slope of the cells [c0, c1) of the rows [r0, r1) into `out`, the block's shape (cell (r, c)
+/// at out(r − r0, c − c0)); `scratch` holds at least c1 − c0 cells. Each cell's sums take the same operations in the same order whatever the
 /// block, so any tiling gives the values of the whole raster bit for bit.
 inline void surface_slope_block(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt,
                                 std::ptrdiff_t r0, std::ptrdiff_t r1, std::ptrdiff_t c0, std::ptrdiff_t c1,
@@ -207,7 +208,7 @@ inline void surface_slope_block(raster_view<const float> min_z, double cell_m, c
             const double nan = std::numeric_limits<double>::quiet_NaN();
             squared[i] = static_cast<float>(select_bits(known, b * b + g * g, nan));
         }
-        sqrt_span(squared, out.row(r) + c0, width, static_cast<float>(1 / cell_m));
+        sqrt_span(squared, out.row(r - r0), width, static_cast<float>(1 / cell_m));
     }
 }
 
@@ -230,7 +231,8 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
     raster<float> out(rows, cols, uninitialized);  // every cell is written
     parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         detail::slope_scratch scratch(cols);
-        detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out, scratch);
+        detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out.view().window(r0, 0, r1 - r0, cols),
+                                    scratch);
     }, {}, fn);
     return out;
 }
@@ -238,16 +240,16 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
 /// water_surface_slope computed where it is read: a tile of 16 rows × 64 columns on the first read of one
 /// of its cells. Its readers (the growth's level gate, the flat and bridge seeds' slope tests) look only
 /// around water, often a fifth of a survey or less. The values are those of water_surface_slope bit for bit.
-/// Keeps a view of min z (keep it alive). Reading changes the cache: not for concurrent readers.
+/// Only the tiles read take memory (in chunks of 256 tiles, 1 MiB). Keeps a view of min z (keep it alive).
+/// Reading changes the cache: not for concurrent readers.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 class lazy_water_surface_slope {
 public:
     static constexpr std::ptrdiff_t tile_rows = 16, tile_cols = 64;
 
     lazy_water_surface_slope(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt = {})
-        : min_z_(min_z), cell_m_(cell_m), opt_(opt), slope_(min_z.rows(), min_z.cols(), uninitialized),
-          tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
-          done_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_), 0),
+        : min_z_(min_z), cell_m_(cell_m), opt_(opt), tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
+          tile_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_), -1),
           scratch_(tile_cols)
     {
         detail::validate(opt, cell_m, "lazy_water_surface_slope");
@@ -255,30 +257,46 @@ public:
     lazy_water_surface_slope(const lazy_water_surface_slope&) = delete;  // readers keep its address
     lazy_water_surface_slope& operator=(const lazy_water_surface_slope&) = delete;
 
-    std::ptrdiff_t rows() const noexcept { return slope_.rows(); }
-    std::ptrdiff_t cols() const noexcept { return slope_.cols(); }
+    std::ptrdiff_t rows() const noexcept { return min_z_.rows(); }
+    std::ptrdiff_t cols() const noexcept { return min_z_.cols(); }
 
     /// The slope of cell (r, c), m/m (NaN: unknown); computes its tile on first use.
     float operator()(std::ptrdiff_t r, std::ptrdiff_t c)
     {
         const std::ptrdiff_t tr = r / tile_rows, tc = c / tile_cols;
-        std::uint8_t& done = done_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
-        if (!done) [[unlikely]] {
-            const std::ptrdiff_t r0 = tr * tile_rows, c0 = tc * tile_cols;
-            detail::surface_slope_block(min_z_, cell_m_, opt_, r0, std::min(rows(), r0 + tile_rows), c0,
-                                        std::min(cols(), c0 + tile_cols), slope_, scratch_);
-            done = 1;
-        }
-        return slope_.data()[r * slope_.cols() + c];  // contiguous; no view per read
+        std::int32_t& slot = tile_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
+        if (slot < 0) [[unlikely]]
+            slot = compute(tr, tc);
+        return tile_cells(slot)[(r - tr * tile_rows) * tile_cols + (c - tc * tile_cols)];
     }
 
 private:
+    static constexpr std::size_t chunk_tiles = 256, tile_size = tile_rows * tile_cols;
+
+    float* tile_cells(std::int32_t slot) noexcept
+    {
+        const auto s = static_cast<std::size_t>(slot);
+        return chunks_[s / chunk_tiles].get() + (s % chunk_tiles) * tile_size;
+    }
+    std::int32_t compute(std::ptrdiff_t tr, std::ptrdiff_t tc)
+    {
+        const auto slot = static_cast<std::int32_t>(used_++);
+        if (static_cast<std::size_t>(slot) % chunk_tiles == 0)
+            chunks_.push_back(std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size));
+        const std::ptrdiff_t r0 = tr * tile_rows, c0 = tc * tile_cols;
+        const std::ptrdiff_t r1 = std::min(rows(), r0 + tile_rows), c1 = std::min(cols(), c0 + tile_cols);
+        detail::surface_slope_block(min_z_, cell_m_, opt_, r0, r1, c0, c1,
+                                    raster_view<float>(tile_cells(slot), r1 - r0, c1 - c0, tile_cols), scratch_);
+        return slot;
+    }
+
     raster_view<const float> min_z_;
     double cell_m_;
     water_surface_slope_options opt_;
-    raster<float> slope_;  // valid in the tiles done
     std::ptrdiff_t tiles_across_;
-    std::vector<std::uint8_t> done_;
+    std::vector<std::int32_t> tile_;  // each tile's slot in the chunks, -1 before its first read
+    std::vector<std::unique_ptr<float[]>> chunks_;
+    std::size_t used_ = 0;
     detail::slope_scratch scratch_;
 };
 
