@@ -14,6 +14,7 @@
 #include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
+#include "common.hpp"
 #include "io/las.hpp"
 #include "io/las_writer.hpp"
 #include "reference/islands.hpp"

@@ -17,6 +17,9 @@
 #include <thread>
 
 #include <benchmark/benchmark.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <lidarfx/core/raster.hpp>
 
@@ -141,6 +144,18 @@ inline bool add_build_context()
     benchmark::AddCustomContext("compiler", __VERSION__);
 #endif
     benchmark::AddCustomContext("build_flags", LIDARFX_BENCH_FLAGS);
+    // LIDARFX_BENCH_KEEP_FREED_MEMORY=1: the allocator settings of the lidarfx program (examples/cli,
+    // keep_freed_memory), under which freed rasters are reused instead of coming back as fresh pages.
+    const char* keep = std::getenv("LIDARFX_BENCH_KEEP_FREED_MEMORY");
+    bool kept = false;
+#if defined(__GLIBC__)
+    if (keep && std::string(keep) == "1") {
+        mallopt(M_MMAP_THRESHOLD, 512 << 20);
+        mallopt(M_TRIM_THRESHOLD, 1 << 30);
+        kept = true;
+    }
+#endif
+    benchmark::AddCustomContext("allocator", kept ? "freed blocks < 512 MiB kept (as the lidarfx program)" : "glibc defaults");
     return true;
 }
 
