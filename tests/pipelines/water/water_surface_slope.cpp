@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 using namespace lidarfx;
@@ -201,5 +202,18 @@ TEST_CASE("water/water_surface_slope: the lazy slope equals the whole raster's b
         }
     }
     CHECK(surface_slope_source().empty());
+    // From a raster, a view of it and a view of mutable cells (as raster::view() gives): the raster's cells.
+    raster<float> cells(3, 4, 0.5f);
+    cells(2, 3) = 0.25f;
+    raster_view<float> mutable_view = cells.view();
+    for (const surface_slope_source s : {surface_slope_source(cells), surface_slope_source(mutable_view),
+                                         surface_slope_source(raster_view<const float>(cells))}) {
+        CHECK(s.rows() == 3);
+        CHECK(s.cols() == 4);
+        CHECK(s(2, 3) == 0.25f);
+        CHECK(s(0, 0) == 0.5f);
+    }
+    static_assert(!std::is_constructible_v<surface_slope_source, raster<float>&&>,
+                  "a temporary raster's cells would be gone before they are read");
     CHECK_THROWS_AS(lazy_water_surface_slope(raster<float>(4, 4, 1.0f), 0.0), invalid_input);
 }

@@ -437,7 +437,7 @@ inline std::vector<std::int32_t> size_ranks(const std::vector<std::size_t>& size
     return rank;
 }
 
-/// labels[cell] = to[labels[cell]] for the labels > 0 (to[0] must be 0), one lookup per run of a label: the
+/// labels[cell] = to[labels[cell]] for the labels > 0 (0 and below stay), one lookup per run of a label: the
 /// background, most of a raster, is passed over 64 cells at a time.
 inline void relabel_runs(raster_view<std::int32_t> labels, const std::vector<std::int32_t>& to)
 {

@@ -31,8 +31,9 @@ struct seeds_beyond_bridges_options {
                                        ///< deck (eligible, in no body), and marks them, >= 1. Default 4
     int approach_cells = 2;            ///< land cells at the water's level (or without return) allowed between the
                                        ///< body and the deck (a body may stop a cell short of it), >= 0. Default 2
-    double max_surface_slope = 0.008;  ///< given a surface_slope raster (water_surface_slope), the cells beyond the
-                                       ///< deck must be level: slope at most this (NaN: unknown, accepted), m/m;
+    double max_surface_slope = 0.008;  ///< given a surface slope (water_surface_slope or its lazy form), the cells
+                                       ///< beyond the deck must be level: slope at most this (NaN: unknown,
+                                       ///< accepted), m/m;
                                        ///< < 0 disables. Default 0.008 (flat_water_seeds' max_surface_slope)
     int clear_cells = 4;               ///< a marked cell with a body within this Chebyshev distance is left out
                                        ///< (it borders water already found: a walk over a deck's end lands on

@@ -67,8 +67,9 @@ struct extract_waterbodies_options {
     double min_free_seed_share = 0.5;      ///< grow_waterbodies: a seed partly inside the bodies grown before it
                                            ///< grows from its cells outside them when they are at least this share
                                            ///< of it, else it is skipped; in (0, 1]. Default 0.5
-    water_surface_slope_options surface_slope = {};  ///< water_surface_slope, read when grow.level_follow_max_slope
-                                           ///< >= 0 (run is ignored)
+    water_surface_slope_options surface_slope = {};  ///< the surface slope (a lazy_water_surface_slope: tiles
+                                           ///< computed where read), used when grow.level_follow_max_slope >= 0
+                                           ///< (run is ignored)
     double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
                                            ///< nearest, ties to even), > 0
     double level_tolerance_m = 0.15;       ///< join_level_cells: land cells next to a body whose min z is within
@@ -317,7 +318,9 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     std::optional<lazy_water_surface_slope> lazy_slope;
     surface_slope_source surface_slope;
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0) {
-        surface_slope = lazy_slope.emplace(in.min_z, cell_m, opt.surface_slope);
+        auto so = opt.surface_slope;
+        so.run = {};  // ignored, as documented: tiles are computed by the one thread that reads them
+        surface_slope = lazy_slope.emplace(in.min_z, cell_m, so);
         field.surface_slope = surface_slope;
     }
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.

@@ -64,9 +64,9 @@ struct flat_water_seeds_options {
                                       ///< water-like; land fragments of a few dozen cells scatter too much to be
                                       ///< judged so), >= 0; 0 disables. Default 0.6
     std::size_t joint_min_cells = 150; ///< see max_joint_ratio, cells. Default 150
-    double max_surface_slope = 0.008; ///< level: given a surface_slope raster (water_surface_slope), a component
-                                      ///< is a seed only when the median over its cells of the slope of the plane
-                                      ///< fitted around them is at most this, and its cells where the slope
+    double max_surface_slope = 0.008; ///< level: given a surface slope (water_surface_slope or its lazy form), a
+                                      ///< component is a seed only when the median over its cells of the slope of
+                                      ///< the plane fitted around them is at most this, and its cells where the slope
                                       ///< exceeds it are no seed cells, m/m (a water surface is level; a river
                                       ///< falls a few mm per metre; a beach rising 1-6 % has level 3 × 3 windows
                                       ///< too, and joins the water's level cells); < 0 disables. Default 0.008

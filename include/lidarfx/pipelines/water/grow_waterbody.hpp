@@ -18,7 +18,8 @@
 
 namespace lidarfx {
 
-/// Per-cell inputs of the growing step, all of one shape (contiguous, owned).
+/// Per-cell inputs of the growing step, all of one shape: rasters owned (contiguous), min z and the surface
+/// slope shown (keep what they show alive while growing).
 struct water_field {
     raster<float> angle_deg;             ///< angular filter value, degrees; NaN = may join at any threshold
     raster<std::uint8_t> eligible;       ///< 1 = may join a waterbody (not vegetation, not already taken)

@@ -306,7 +306,9 @@ class surface_slope_source {
 public:
     surface_slope_source() = default;
     surface_slope_source(raster_view<const float> cells) noexcept : cells_(cells) {}
+    surface_slope_source(raster_view<float> cells) noexcept : cells_(cells) {}
     surface_slope_source(const raster<float>& cells) noexcept : cells_(cells) {}
+    surface_slope_source(raster<float>&&) = delete;  // would show a temporary's cells
     surface_slope_source(lazy_water_surface_slope& lazy) noexcept : lazy_(&lazy) {}
 
     std::ptrdiff_t rows() const noexcept { return lazy_ ? lazy_->rows() : cells_.rows(); }
