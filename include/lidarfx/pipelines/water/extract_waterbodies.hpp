@@ -315,13 +315,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     }
     // The level follows min z only where the surface is level. The slope is read around water only: it is
     // computed tile by tile where it is read.
-    std::optional<lazy_water_surface_slope> lazy_slope;
-    surface_slope_source surface_slope;
+    std::optional<lazy_water_surface_slope> lazy_slope;  // field.surface_slope reads it; empty: no slope
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0) {
         auto so = opt.surface_slope;
         so.run = {};  // ignored, as documented: tiles are computed by the one thread that reads them
-        surface_slope = lazy_slope.emplace(in.min_z, cell_m, so);
-        field.surface_slope = surface_slope;
+        field.surface_slope = lazy_slope.emplace(in.min_z, cell_m, so);
     }
     // Outside the footprint nothing was flown: no seed starts there and no body grows there.
     raster<std::uint8_t> dropout_inside;
@@ -378,7 +376,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
         auto flat = opt.flat;
         flat.run = kernels;
-        auto mask = flat_water_seeds(in, res.vegetation, flat, surface_slope, labels);
+        auto mask = flat_water_seeds(in, res.vegetation, flat, field.surface_slope, labels);
         std::uint8_t* cells = mask.data();
         const std::int32_t* label = grown.labels.data();
         for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
@@ -407,7 +405,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
             detail::ensure_shape(labels, rows, cols);  // (flat_water_seeds without counts left it as it was)
             const auto parts = connected_components(mask, labels, connected_components_options{
                                                                       .conn = connectivity::eight, .run = kernels});
-            detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);
+            detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z,
+                                       2 * opt.grow.level_gate_m);
         }
         auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
                                        .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));
@@ -417,7 +416,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     // Seeds beyond bridge decks, round by round: each round's bodies may end at the next bridge.
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {
         const auto mask =
-            seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, surface_slope);
+            seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, field.surface_slope);
         if (std::find(mask.begin(), mask.end(), std::uint8_t{1}) == mask.end()) break;  // none: no labelling
         auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels},
                                 std::move(labels));
