@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include <lidarfx/kernels/label/connected_components.hpp>
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
@@ -62,6 +63,39 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
         CHECK(flat_water_seeds(in, {}, {}, {}, labels) == seeds);
         CHECK((labels.rows() == seeds.rows() && labels.cols() == seeds.cols()));
         std::fill(labels.begin(), labels.end(), 123);
+    }
+
+    // Cells taken by bodies grown before are cleared from the mask, and nothing else changes: taken cells
+    // still count in the components, rings and slope medians. Taken: the west half (part of the lake's
+    // seeds), or every cell of the seed component holding the northernmost seed cell (a component all
+    // taken, which is not tested at all). With and without a surface slope.
+    const auto slope = water_surface_slope(in.min_z, lake.cell_m);
+    for (const bool with_slope : {false, true}) {
+        const surface_slope_source source = with_slope ? surface_slope_source(slope) : surface_slope_source();
+        raster<std::int32_t> own;
+        const auto all = flat_water_seeds(in, {}, {}, source, own);
+        const auto parts = connected_components(all, connected_components_options{.conn = connectivity::eight});
+        const auto first = std::find(all.begin(), all.end(), std::uint8_t{1}) - all.begin();
+        REQUIRE(first < all.size());
+        for (const bool west : {true, false}) {
+            raster<std::int32_t> taken(all.rows(), all.cols(), 0);
+            for (std::ptrdiff_t i = 0; i < taken.size(); ++i) {
+                const bool in_it = west ? i % taken.cols() < taken.cols() / 2
+                                        : parts.labels.data()[i] == parts.labels.data()[first];
+                taken.data()[i] = in_it ? 7 : 0;
+            }
+            const auto cleared = flat_water_seeds(in, {}, {}, source, own, taken);
+            long kept = 0, differ = 0;
+            for (std::ptrdiff_t i = 0; i < all.size(); ++i) {
+                differ += cleared.data()[i] != (taken.data()[i] > 0 ? 0 : all.data()[i]);
+                kept += cleared.data()[i];
+            }
+            CHECK(differ == 0);
+            if (west) CHECK(kept > 0);  // the east half keeps its seeds
+            const auto first_size = parts.sizes[static_cast<std::size_t>(parts.labels.data()[first])];
+            if (!west) CHECK(kept == std::count(all.begin(), all.end(), std::uint8_t{1}) - static_cast<long>(first_size));
+        }
+        CHECK_THROWS_AS(flat_water_seeds(in, {}, {}, source, own, raster<std::int32_t>(3, 3, 0)), invalid_input);
     }
 
     const auto found = extract_waterbodies(pr, {.flat_seeds = true});

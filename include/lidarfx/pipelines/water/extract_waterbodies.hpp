@@ -376,11 +376,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // first (labels k + 1.. in res.seeds), grown into the cells still eligible.
         auto flat = opt.flat;
         flat.run = kernels;
-        auto mask = flat_water_seeds(in, res.vegetation, flat, field.surface_slope, labels);
-        std::uint8_t* cells = mask.data();
-        const std::int32_t* label = grown.labels.data();
-        for (std::ptrdiff_t i = 0, n = mask.size(); i < n; ++i)
-            cells[i] = static_cast<std::uint8_t>((cells[i] != 0) & (label[i] == 0));
+        auto mask = flat_water_seeds(in, res.vegetation, flat, field.surface_slope, labels, grown.labels);
         if (opt.flat_seed_dropouts) {
             // The dropouts next to the seed cells (3 x 3 dilation) join them: water with scattered dropouts
             // has level cells between them that the opening would otherwise break apart. Eligible: not

@@ -174,16 +174,20 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_s
 /// The level cells' component labels are written into `labels` (given another shape, it is replaced by one
 /// of min z's shape; its contents afterwards are unspecified): a caller that labels again reuses the memory
 /// (a new raster's pages cost their first touch).
+/// `taken` (optional, same shape; > 0 = a cell of a body grown before) clears those cells from the mask and
+/// changes nothing else: they still count as level cells in the components, the rings and the slope
+/// medians. A component entirely taken is not tested at all (its slope is not read).
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
                                              const flat_water_seeds_options& opt, surface_slope_source surface_slope,
-                                             raster<std::int32_t>& labels)
+                                             raster<std::int32_t>& labels, raster_view<const std::int32_t> taken = {})
 {
     constexpr const char* fn = "flat_water_seeds";
     detail::validate(in, fn);
     detail::validate(opt, fn);
     if (!excluded.empty()) detail::require_same_shape(in.min_z, excluded, fn, "min_z", "excluded");
     if (!surface_slope.empty()) detail::require_same_shape(in.min_z, surface_slope, fn, "min_z", "surface_slope");
+    if (!taken.empty()) detail::require_same_shape(in.min_z, taken, fn, "min_z", "taken");
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     if (in.count.empty()) return raster<std::uint8_t>(rows, cols, 0);
     const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1);  // the footprint when none is given
@@ -248,6 +252,9 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     std::vector<double> count_sum(nb + 1, 0), ring_count(nb + 1, 0), ring_cells(nb + 1, 0), light(nb + 1, 0),
         ring_light(nb + 1, 0), rough(nb + 1, 0), lower(nb + 1, 0);
     std::vector<float> level_rough(level_cells);
+    std::vector<std::size_t> free_cells(nb + 1, 0);  // cells not taken
+    const std::vector<std::int32_t> none_taken(static_cast<std::size_t>(cols), 0);
+    const auto taken_row = [&](std::ptrdiff_t r) { return taken.empty() ? none_taken.data() : taken.row(r); };
     {
         float* rough_out = level_rough.data();
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
@@ -256,6 +263,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const float* z1 = in.max_z.row(r);
             const std::uint32_t* pulses = in.count.row(r);
             const float* intensity = in.mean_intensity.row(r);
+            const std::int32_t* body = taken_row(r);
             for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols;
                  c = detail::next_positive(lab, c, cols)) {
                 const std::int32_t l = lab[c], to = big[static_cast<std::size_t>(l)];
@@ -268,14 +276,17 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 }
                 const auto m = static_cast<std::size_t>(to);
                 double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
+                std::size_t free = 0;
                 for (; c < cols && lab[c] == l; ++c) {
                     const float d = z1[c] - z0[c];
                     *rough_out++ = d;
                     pulse_sum += pulses[c];
                     light_sum += intensity[c];
                     rough_sum += d;
+                    free += body[c] <= 0;
                     lab[c] = to;
                 }
+                free_cells[m] += free;
                 count_sum[m] = pulse_sum;
                 light[m] = light_sum;
                 rough[m] = rough_sum;
@@ -312,9 +323,17 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     };
     detail::for_each_strip<scratch>(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
         const std::ptrdiff_t nc = cols;
+        // Only rings of components with a cell not taken matter (the others are no seed whatever their ring).
         bool any = false;
-        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r)
-            any = detail::next_positive(labels.row(r), 0, nc) < nc;
+        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
+            const std::int32_t* lab = labels.row(r);
+            for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc && !any;
+                 c = detail::next_positive(lab, c, nc)) {
+                const std::int32_t l = lab[c];
+                any = free_cells[static_cast<std::size_t>(l)] > 0;
+                while (c < nc && lab[c] == l) ++c;
+            }
+        }
         if (!any) return;
         const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
         w.lowest.resize(cells);
@@ -412,18 +431,20 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const bool joint = sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
         if (!sparse && !((dark || smooth || joint) && density <= opt.dark_density_ratio)) continue;
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
-        keep[l] = 1;
+        keep[l] = free_cells[l] > 0;  // (a component all taken would leave no seed cell)
     }
     // With a surface slope: a component kept so far whose median slope around its cells (NaN, unknown, as
     // level) exceeds max_surface_slope is no seed (only kept ones are read: most components are land).
     const bool slope_test = !surface_slope.empty() && opt.max_surface_slope >= 0;
     if (slope_test) detail::drop_sloping(labels, surface_slope, sizes, opt.max_surface_slope, keep);
     // The seed mask takes the level mask's place (connected_components has read it), run by run of one label;
-    // with the slope test, no seed cell where the surface around it slopes (a beach joined to the water).
+    // with the slope test, no seed cell where the surface around it slopes (a beach joined to the water); no
+    // taken cell (its slope is not read).
     const float max_slope = slope_test ? detail::float_at_most(opt.max_surface_slope) : 0.0f;  // x > it: x > max
     const std::ptrdiff_t nc = cols;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* lab = labels.row(r);
+        const std::int32_t* body = taken_row(r);
         std::uint8_t* d = level.row(r);
         std::fill(d, d + nc, std::uint8_t{0});
         for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc; c = detail::next_positive(lab, c, nc)) {
@@ -431,10 +452,11 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const std::ptrdiff_t from = c;
             while (c < nc && lab[c] == l) ++c;
             if (!keep[static_cast<std::size_t>(l)]) continue;
-            if (!slope_test) std::fill(d + from, d + c, std::uint8_t{1});
+            if (!slope_test)
+                for (std::ptrdiff_t i = from; i < c; ++i) d[i] = static_cast<std::uint8_t>(body[i] <= 0);
             else
                 for (std::ptrdiff_t i = from; i < c; ++i)
-                    d[i] = static_cast<std::uint8_t>(!(surface_slope(r, i) > max_slope));
+                    d[i] = static_cast<std::uint8_t>(body[i] <= 0 && !(surface_slope(r, i) > max_slope));
         }
     }
     return level;
