@@ -3,6 +3,12 @@
 
 #include <lidarfx/pipelines/water/grow_waterbodies.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
 #include "water_test_rasters.hpp"
 
 using namespace lidarfx;
@@ -136,6 +142,78 @@ TEST_CASE("water/grow_waterbodies: bad arguments are refused")
     CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, small, s.min_z, s.max_z),
                          "grow_waterbodies: field.eligible and seeds.labels must have the same shape (got 5x12 and 4x12)",
                          invalid_input);
+    const raster<float> short_max_z(4, 12, 1.0f);
+    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, short_max_z),
+                         "grow_waterbodies: field.eligible and max_z must have the same shape (got 5x12 and 4x12)",
+                         invalid_input);
     CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.level = {.tolerance_m = -1}}),
                          "grow_waterbodies: tolerance_m must be >= 0 (got -1)", invalid_input);
+}
+
+TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random fields")
+{
+    // The reference: per seed in label order, its free cells (row order) grown by grow_waterbody, refined by
+    // join_level_cells with stamps of their own, then labelled and taken out of the eligible cells.
+    std::mt19937 rng(17);
+    for (int trial = 0; trial < 30; ++trial) {
+        CAPTURE(trial);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
+        std::uniform_real_distribution<float> unit(0, 1);
+        water_field field;
+        field.angle_deg = raster<float>(rows, cols);
+        field.eligible = raster<std::uint8_t>(rows, cols);
+        field.intensity_bin = raster<std::int32_t>(rows, cols);
+        field.bins = 8;
+        raster<float> min_z(rows, cols), max_z(rows, cols);
+        components seeds{raster<std::int32_t>(rows, cols, 0), {0}};
+        const int n_seeds = 1 + static_cast<int>(rng() % 5);
+        seeds.sizes.assign(static_cast<std::size_t>(n_seeds + 1), 0);
+        for (std::ptrdiff_t i = 0; i < rows * cols; ++i) {
+            field.angle_deg.data()[i] = unit(rng) < 0.2f ? NAN : 12.0f * unit(rng);
+            field.eligible.data()[i] = unit(rng) < 0.9f;
+            const bool dropout = unit(rng) < 0.3f;
+            field.intensity_bin.data()[i] = dropout ? -1 : static_cast<std::int32_t>(rng() % 8);
+            min_z.data()[i] = dropout ? NAN : 10.0f + 0.3f * unit(rng);
+            max_z.data()[i] = min_z.data()[i] + 0.6f * unit(rng);
+            if (unit(rng) < 0.05f) {
+                const auto label = 1 + static_cast<std::int32_t>(rng() % static_cast<unsigned>(n_seeds));
+                seeds.labels.data()[i] = label;
+                ++seeds.sizes[static_cast<std::size_t>(label)];
+            }
+        }
+        field.min_z = min_z;
+        const grow_waterbodies_options opt{.grow = {.min_ks_samples = 5},
+                                           .level = {.tolerance_m = 0.1, .max_rise_m = 0.4, .depth_cells = 2}};
+
+        water_field reference_field = field;
+        field.min_z = min_z;
+        raster<std::int32_t> labels(rows, cols, 0);
+        std::vector<double> thetas;
+        std::int32_t stamp = 0;
+        for (std::int32_t s = 1; s <= n_seeds; ++s) {
+            std::vector<std::ptrdiff_t> cells, free;
+            for (std::ptrdiff_t i = 0; i < rows * cols; ++i)
+                if (seeds.labels.data()[i] == s) cells.push_back(i);
+            for (const auto i : cells)
+                if (labels.data()[i] <= 0) free.push_back(i);
+            if (free.empty() || (free.size() < cells.size() &&
+                                 static_cast<double>(free.size()) < opt.min_free_seed_share * static_cast<double>(cells.size())))
+                continue;
+            auto region = grow_waterbody(reference_field, free, opt.grow, labels, --stamp);
+            if (region.cells.empty()) continue;
+            join_level_cells(region.cells, min_z, max_z, reference_field.eligible, labels, --stamp, opt.level);
+            thetas.push_back(region.theta_deg);
+            for (const auto i : region.cells) {
+                labels.data()[i] = static_cast<std::int32_t>(thetas.size());
+                reference_field.eligible.data()[i] = 0;
+            }
+        }
+        for (auto& l : labels) l = std::max(l, 0);
+
+        const auto grown = grow_waterbodies(field, seeds, min_z, max_z, opt);
+        CHECK(grown.labels == labels);
+        CHECK(field.eligible == reference_field.eligible);
+        REQUIRE(grown.bodies.size() == thetas.size());
+        for (std::size_t k = 0; k < thetas.size(); ++k) CHECK(grown.bodies[k].theta_deg == thetas[k]);
+    }
 }

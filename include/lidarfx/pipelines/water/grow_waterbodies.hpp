@@ -59,6 +59,7 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
     constexpr const char* fn = "grow_waterbodies";
     detail::require_same_shape(field.eligible, seeds.labels, fn, "field.eligible", "seeds.labels");
     detail::require_same_shape(field.eligible, min_z, fn, "field.eligible", "min_z");
+    detail::require_same_shape(field.eligible, max_z, fn, "field.eligible", "max_z");
     detail::require_same_shape(field.eligible, into.labels, fn, "field.eligible", "into.labels");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
@@ -87,7 +88,8 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
         }
         auto region = grow_waterbody(field, cells, opt.grow, out.labels, --stamp);
         if (region.cells.empty()) continue;
-        join_level_cells(region.cells, min_z, max_z, field.eligible, out.labels, --stamp, opt.level);
+        // The body's label is join_level_cells' stamp: the region is labelled and taken first, and the cells
+        // the refinement joins get the label and leave the eligible cells as they join.
         const auto label = static_cast<std::int32_t>(out.bodies.size() + 1);
         std::int32_t* labels = out.labels.data();  // in locals: the byte stores would reload them
         std::uint8_t* eligible = field.eligible.data();
@@ -95,6 +97,7 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
             labels[i] = label;
             eligible[i] = 0;
         }
+        detail::join_level_cells_stamped(region.cells, min_z, max_z, eligible, eligible, labels, label, opt.level);
         auto& body = out.bodies.emplace_back();
         body.label = label;
         body.seed = static_cast<std::int32_t>(s) + seed_offset;

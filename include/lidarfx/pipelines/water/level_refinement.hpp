@@ -35,6 +35,68 @@ inline void validate(const join_level_cells_options& o, const char* fn)
 
 }  // namespace detail
 
+namespace detail {
+
+/// join_level_cells after its checks, on a region whose cells hold `stamp` in `seen` already. Joined
+/// cells get the stamp too; with `taken` (not null) they also get taken[j] = 0 (grow_waterbodies: the
+/// labels are the stamps, the eligible raster is taken).
+inline void join_level_cells_stamped(std::vector<std::ptrdiff_t>& region, raster_view<const float> min_z,
+                                     raster_view<const float> max_z, const std::uint8_t* eligible,
+                                     std::uint8_t* taken, std::int32_t* seen, std::int32_t stamp,
+                                     const join_level_cells_options& opt)
+{
+    if (opt.tolerance_m <= 0 || opt.depth_cells <= 0) return;
+    const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
+    struct entry { std::ptrdiff_t cell; float level; int depth; };
+    std::vector<entry> frontier;
+    // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
+    const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        if (r > 0 && c > 0 && r + 1 < rows && c + 1 < cols) {  // all 8 neighbours exist: no loop, no branch
+            const std::int32_t* up = seen + (r - 1) * cols + c;
+            const std::int32_t* mid = up + cols;
+            const std::int32_t* down = mid + cols;
+            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) |
+                    (mid[1] != stamp) | (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
+        }
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
+            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                if (seen[rr * cols + cc] != stamp) return true;
+        return false;
+    };
+    const cell_splitter split(cols);
+    for (const auto i : region) {
+        const auto [r, c] = split(i);
+        if (!on_edge(r, c)) continue;  // first: the stamps are in cache, the heights are not
+        if (const float z = min_z(r, c); std::isfinite(z)) frontier.push_back({i, z, 0});
+    }
+    for (std::size_t q = 0; q < frontier.size(); ++q) {
+        const entry e = frontier[q];
+        if (e.depth >= opt.depth_cells) continue;
+        const auto [r, c] = split(e.cell);
+        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                const std::ptrdiff_t j = rr * cols + cc;
+                if (seen[j] == stamp || !eligible[j]) continue;
+                // The whole cell must lie at the water level: a shore cell holding water and bank returns
+                // has its lowest return on the water but its highest on the bank.
+                const float lo = min_z(rr, cc), hi = max_z(rr, cc);
+                if (!std::isfinite(lo) || std::abs(static_cast<double>(lo) - e.level) > opt.tolerance_m ||
+                    !(static_cast<double>(hi) - e.level <= opt.max_rise_m)) {
+                    continue;
+                }
+                seen[j] = stamp;
+                if (taken) taken[j] = 0;
+                region.push_back(j);
+                frontier.push_back({j, e.level, e.depth + 1});
+            }
+        }
+    }
+}
+
+}  // namespace detail
+
 /// Narrow-water refinement (DESIGN.md §5): a breadth-first walk from the region's edge cells with a return
 /// adds every eligible cell within depth_cells steps (8-neighbourhood) whose returns all lie at the water
 /// level, that is |min z − L| <= tolerance_m and max z − L <= max_rise_m, where L is the min z of the region
@@ -53,59 +115,15 @@ inline void join_level_cells(std::vector<std::ptrdiff_t>& region, raster_view<co
     detail::require_same_shape(min_z, eligible, fn, "min_z", "eligible");
     detail::require_same_shape(min_z, visited, fn, "min_z", "visited");
     detail::validate(opt, fn);
-    const std::ptrdiff_t rows = eligible.rows(), cols = eligible.cols();
+    const std::ptrdiff_t n = eligible.size();
     for (const auto i : region) {
-        if (i < 0 || i >= rows * cols) [[unlikely]]
+        if (i < 0 || i >= n) [[unlikely]]
             detail::require(false, fn, "region cell index", "inside the rasters", i);
     }
     if (opt.tolerance_m <= 0 || opt.depth_cells <= 0) return;
-    struct entry { std::ptrdiff_t cell; float level; int depth; };
-    std::vector<entry> frontier;
     std::int32_t* seen = visited.data();
     for (const auto i : region) seen[i] = stamp;
-    // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
-    const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        if (r > 0 && c > 0 && r + 1 < rows && c + 1 < cols) {  // all 8 neighbours exist: no loop, no branch
-            const std::int32_t* up = seen + (r - 1) * cols + c;
-            const std::int32_t* mid = up + cols;
-            const std::int32_t* down = mid + cols;
-            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) |
-                    (mid[1] != stamp) | (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
-        }
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
-            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
-                if (seen[rr * cols + cc] != stamp) return true;
-        return false;
-    };
-    const detail::cell_splitter split(cols);
-    for (const auto i : region) {
-        const auto [r, c] = split(i);
-        if (!on_edge(r, c)) continue;  // first: the stamps are in cache, the heights are not
-        if (const float z = min_z(r, c); std::isfinite(z)) frontier.push_back({i, z, 0});
-    }
-    for (std::size_t q = 0; q < frontier.size(); ++q) {
-        const entry e = frontier[q];
-        if (e.depth >= opt.depth_cells) continue;
-        const auto [r, c] = split(e.cell);
-        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
-            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
-                const std::ptrdiff_t rr = r + dr, cc = c + dc;
-                if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
-                const std::ptrdiff_t j = rr * cols + cc;
-                if (seen[j] == stamp || !eligible.data()[j]) continue;
-                // The whole cell must lie at the water level: a shore cell holding water and bank returns
-                // has its lowest return on the water but its highest on the bank.
-                const float lo = min_z(rr, cc), hi = max_z(rr, cc);
-                if (!std::isfinite(lo) || std::abs(static_cast<double>(lo) - e.level) > opt.tolerance_m ||
-                    !(static_cast<double>(hi) - e.level <= opt.max_rise_m)) {
-                    continue;
-                }
-                seen[j] = stamp;
-                region.push_back(j);
-                frontier.push_back({j, e.level, e.depth + 1});
-            }
-        }
-    }
+    detail::join_level_cells_stamped(region, min_z, max_z, eligible.data(), nullptr, seen, stamp, opt);
 }
 
 }  // namespace lidarfx
