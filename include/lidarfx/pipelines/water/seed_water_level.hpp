@@ -3,8 +3,10 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -35,26 +37,43 @@ inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view
     detail::require(opt.quantile >= 0 && opt.quantile <= 1, fn, "quantile", "in [0, 1]", opt.quantile);
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols(), n = rows * cols;
     const std::ptrdiff_t k = opt.ring_cells;
-    std::vector<std::ptrdiff_t> ring;
+    if (seed.empty()) return NAN;
     const detail::cell_splitter split(cols);
+    // The ring's cells, each once, marked in a bit raster over the seed's bounding box grown by k (in row
+    // order, as sorting their indices would list them). Seed cells are dropouts (no return), so finite
+    // cells are never seed cells.
+    std::ptrdiff_t r_lo = rows, r_hi = -1, c_lo = cols, c_hi = -1;
     for (const auto i : seed) {
         if (i < 0 || i >= n) [[unlikely]]
             detail::require(false, fn, "seed cell index", "inside min_z", i);
         const auto [r, c] = split(i);
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr)
-            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
-                if (std::isfinite(min_z(rr, cc))) ring.push_back(rr * cols + cc);
+        r_lo = std::min(r_lo, r);
+        r_hi = std::max(r_hi, r);
+        c_lo = std::min(c_lo, c);
+        c_hi = std::max(c_hi, c);
     }
-    // Seed cells are dropouts (no return), so finite cells are never seed cells; count each once.
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    if (ring.empty()) return NAN;
-    std::vector<float> z;
-    z.reserve(ring.size());
-    for (const auto i : ring) {
+    r_lo = std::max<std::ptrdiff_t>(0, r_lo - k);
+    r_hi = std::min(rows - 1, r_hi + k);
+    c_lo = std::max<std::ptrdiff_t>(0, c_lo - k);
+    c_hi = std::min(cols - 1, c_hi + k);
+    const std::ptrdiff_t box_cols = c_hi - c_lo + 1, words_per_row = (box_cols + 63) / 64;
+    std::vector<std::uint64_t> in_ring(static_cast<std::size_t>((r_hi - r_lo + 1) * words_per_row), 0);
+    for (const auto i : seed) {
         const auto [r, c] = split(i);
-        z.push_back(min_z(r, c));
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
+            std::uint64_t* bits = in_ring.data() + (rr - r_lo) * words_per_row;
+            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
+                if (std::isfinite(min_z(rr, cc))) bits[(cc - c_lo) / 64] |= std::uint64_t{1} << ((cc - c_lo) % 64);
+        }
     }
+    std::vector<float> z;
+    for (std::ptrdiff_t rr = r_lo; rr <= r_hi; ++rr) {
+        const std::uint64_t* bits = in_ring.data() + (rr - r_lo) * words_per_row;
+        for (std::ptrdiff_t w = 0; w < words_per_row; ++w)
+            for (std::uint64_t word = bits[w]; word != 0; word &= word - 1)
+                z.push_back(min_z(rr, c_lo + w * 64 + std::countr_zero(word)));
+    }
+    if (z.empty()) return NAN;
     const auto at = z.begin() + static_cast<std::ptrdiff_t>(std::floor(opt.quantile * static_cast<double>(z.size() - 1)));
     std::nth_element(z.begin(), at, z.end());
     return *at;
