@@ -363,10 +363,13 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         };
         const auto k = static_cast<std::int32_t>(res.seeds_found);
         grow_waterbodies(field, more, in.min_z, in.max_z, grown, more_opt, k);
-        std::int32_t* seed = res.seeds.data();
-        const std::int32_t* more_seed = more.labels.data();
-        for (std::ptrdiff_t i = 0, n = res.seeds.size(); i < n; ++i)
-            seed[i] = more_seed[i] > 0 ? k + more_seed[i] : seed[i];
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {  // (the new seeds are few: land is passed over)
+            std::int32_t* seed = res.seeds.view().row(r);
+            const std::int32_t* more_seed = more.labels.view().row(r);
+            for (std::ptrdiff_t c = detail::next_positive(more_seed, 0, cols); c < cols;
+                 c = detail::next_positive(more_seed, c + 1, cols))
+                seed[c] = k + more_seed[c];
+        }
         res.seeds_found += more.count();
     };
     raster<std::int32_t> labels;  // reused by the labelling steps below (a new raster costs its first touch)
