@@ -231,6 +231,20 @@ std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols
     return c;
 }
 
+/// Calls visit(value, from, to) for each run [from, to) of one positive value in row[0, cols), left to
+/// right; values <= 0 (land, background) are passed over by next_positive. Each run is found before it is
+/// visited, so visit may rewrite row[from, to).
+template <class T, class Visit>
+void for_each_run(const T* row, std::ptrdiff_t cols, Visit&& visit)
+{
+    for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols)) {
+        const T value = row[c];
+        const std::ptrdiff_t from = c;
+        while (c < cols && row[c] == value) ++c;
+        visit(value, from, c);
+    }
+}
+
 }  // namespace lidarfx::detail
 
 namespace lidarfx {

@@ -444,10 +444,9 @@ inline void relabel_runs(raster_view<std::int32_t> labels, const std::vector<std
     const std::ptrdiff_t cols = labels.cols();
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
         std::int32_t* row = labels.row(r);
-        for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols)) {
-            const std::int32_t from = row[c], l = to[static_cast<std::size_t>(from)];
-            for (; c < cols && row[c] == from; ++c) row[c] = l;
-        }
+        for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t end) {
+            std::fill(row + from, row + end, to[static_cast<std::size_t>(l)]);
+        });
     }
 }
 

@@ -55,26 +55,22 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
     // order: a pass counting them, a pass placing them; both read the labels run by run and pass over land
     // 64 cells at a time.
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    const auto for_each_run = [&](auto&& visit) {
+    const auto for_each_height_run = [&](auto&& visit) {  // visit(label, heights of the run)
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            const std::int32_t* label = labels.row(r);
             const float* z = min_z.row(r);
-            for (std::ptrdiff_t c = next_positive(label, 0, cols); c < cols; c = next_positive(label, c, cols)) {
-                const std::int32_t l = label[c];
-                const std::ptrdiff_t from = c;
-                while (c < cols && label[c] == l) ++c;
-                visit(static_cast<std::size_t>(l), z + from, z + c);
-            }
+            for_each_run(labels.row(r), cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+                visit(static_cast<std::size_t>(l), z + from, z + to);
+            });
         }
     };
     std::vector<std::size_t> offset(static_cast<std::size_t>(highest) + 2, 0);
-    for_each_run([&](std::size_t l, const float* z, const float* end) {
+    for_each_height_run([&](std::size_t l, const float* z, const float* end) {
         offset[l + 1] += static_cast<std::size_t>(std::count_if(z, end, [](float h) { return std::isfinite(h); }));
     });
     for (std::size_t l = 1; l < offset.size(); ++l) offset[l] += offset[l - 1];
     std::vector<float> heights(offset.back());
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
-    for_each_run([&](std::size_t l, const float* z, const float* end) {
+    for_each_height_run([&](std::size_t l, const float* z, const float* end) {
         for (; z < end; ++z)
             if (std::isfinite(*z)) heights[next[l]++] = *z;
     });
@@ -162,16 +158,15 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         const std::int32_t* row = labels.row(r);
         // Run by run of one label, land passed over in blocks: along the row only a run's first cell can
         // close a land run.
-        for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols)) {
-            const std::int32_t l = row[c];
-            close_run(across, c, l, r, c, 0, 1, 0);
-            for (; c < cols && row[c] == l; ++c) {
+        for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+            close_run(across, from, l, r, from, 0, 1, 0);
+            for (std::ptrdiff_t c = from; c < to; ++c) {
                 pass(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
                 pass(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
                 pass(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
             }
-            across.at = c - 1;
-        }
+            across.at = to - 1;
+        });
     }
     std::sort(bridged.begin(), bridged.end(), [](const bridged_cell& a, const bridged_cell& b) {
         return a.cell != b.cell ? a.cell < b.cell : a.direction < b.direction;

@@ -214,11 +214,10 @@ inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* part = parts.row(r);
         const float* z = min_z.row(r);
-        for (std::ptrdiff_t c = next_positive(part, 0, cols); c < cols; c = next_positive(part, c, cols)) {
-            const std::int32_t label = part[c];
+        for_each_run(part, cols, [&](std::int32_t label, std::ptrdiff_t from, std::ptrdiff_t to) {
             const auto l = static_cast<std::size_t>(label);
             double sum = mean[l], n = finite[l];  // along the run in registers, the same additions in order
-            for (; c < cols && part[c] == label; ++c) {
+            for (std::ptrdiff_t c = from; c < to; ++c) {
                 if (std::isfinite(z[c])) {
                     sum += z[c];
                     n += 1;
@@ -226,7 +225,7 @@ inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const
             }
             mean[l] = sum;
             finite[l] = n;
-        }
+        });
     }
     for (std::size_t l = 1; l < mean.size(); ++l) mean[l] = finite[l] > 0 ? mean[l] / finite[l] : 0.0;
     // Row by row, with the band index of each mask cell of this row and the next (NaN without a return; cells
@@ -236,11 +235,10 @@ inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const
     const auto band_row = [&](std::ptrdiff_t r, double* out) {
         const std::int32_t* part = parts.row(r);
         const float* z = min_z.row(r);
-        for (std::ptrdiff_t c = next_positive(part, 0, cols); c < cols; c = next_positive(part, c, cols)) {
-            const double m = mean[static_cast<std::size_t>(part[c])];
-            for (const std::int32_t l = part[c]; c < cols && part[c] == l; ++c)
-                out[c] = std::floor((z[c] - m) / band + 0.5);
-        }
+        for_each_run(part, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+            const double m = mean[static_cast<std::size_t>(l)];
+            for (std::ptrdiff_t c = from; c < to; ++c) out[c] = std::floor((z[c] - m) / band + 0.5);
+        });
     };
     if (rows > 1) band_row(0, here.data());
     for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {

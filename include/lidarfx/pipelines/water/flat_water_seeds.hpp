@@ -133,19 +133,15 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_s
     std::vector<float> all(offset.back());
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* lab = labels.row(r);
-        for (std::ptrdiff_t c = next_positive(lab, 0, cols); c < cols; c = next_positive(lab, c, cols)) {
-            const std::int32_t l = lab[c];
-            const std::ptrdiff_t from = c;
-            while (c < cols && lab[c] == l) ++c;
-            if (!keep[static_cast<std::size_t>(l)]) continue;
+        for_each_run(labels.row(r), cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+            if (!keep[static_cast<std::size_t>(l)]) return;
             float* out = all.data() + next[static_cast<std::size_t>(l)];
-            for (std::ptrdiff_t i = from; i < c; ++i) {
+            for (std::ptrdiff_t i = from; i < to; ++i) {
                 const float s = slope(r, i);
                 *out++ = std::isnan(s) ? 0.0f : s;
             }
-            next[static_cast<std::size_t>(l)] += static_cast<std::size_t>(c - from);
-        }
+            next[static_cast<std::size_t>(l)] += static_cast<std::size_t>(to - from);
+        });
     }
     for (std::size_t l = 1; l < keep.size(); ++l) {
         if (offset[l + 1] == offset[l]) continue;
@@ -264,20 +260,19 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             const std::uint32_t* pulses = in.count.row(r);
             const float* intensity = in.mean_intensity.row(r);
             const std::int32_t* body = taken_row(r);
-            for (std::ptrdiff_t c = detail::next_positive(lab, 0, cols); c < cols;
-                 c = detail::next_positive(lab, c, cols)) {
-                const std::int32_t l = lab[c], to = big[static_cast<std::size_t>(l)];
+            detail::for_each_run(lab, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t end) {
+                const std::int32_t to = big[static_cast<std::size_t>(l)];
                 if (to == 0) {
-                    for (; c < cols && lab[c] == l; ++c) {
+                    for (std::ptrdiff_t c = from; c < end; ++c) {
                         *rough_out++ = z1[c] - z0[c];
                         lab[c] = -1;
                     }
-                    continue;
+                    return;
                 }
                 const auto m = static_cast<std::size_t>(to);
                 double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
                 std::size_t free = 0;
-                for (; c < cols && lab[c] == l; ++c) {
+                for (std::ptrdiff_t c = from; c < end; ++c) {
                     const float d = z1[c] - z0[c];
                     *rough_out++ = d;
                     pulse_sum += pulses[c];
@@ -290,7 +285,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 count_sum[m] = pulse_sum;
                 light[m] = light_sum;
                 rough[m] = rough_sum;
-            }
+            });
         }
     }
     const double typical_rough = detail::median(level_rough);
@@ -326,13 +321,9 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         // Only rings of components with a cell not taken matter (the others are no seed whatever their ring).
         bool any = false;
         for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
-            const std::int32_t* lab = labels.row(r);
-            for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc && !any;
-                 c = detail::next_positive(lab, c, nc)) {
-                const std::int32_t l = lab[c];
-                any = free_cells[static_cast<std::size_t>(l)] > 0;
-                while (c < nc && lab[c] == l) ++c;
-            }
+            detail::for_each_run(labels.row(r), nc, [&](std::int32_t l, std::ptrdiff_t, std::ptrdiff_t) {
+                any = any || free_cells[static_cast<std::size_t>(l)] > 0;
+            });
         }
         if (!any) return;
         const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
@@ -447,17 +438,14 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::int32_t* body = taken_row(r);
         std::uint8_t* d = level.row(r);
         std::fill(d, d + nc, std::uint8_t{0});
-        for (std::ptrdiff_t c = detail::next_positive(lab, 0, nc); c < nc; c = detail::next_positive(lab, c, nc)) {
-            const std::int32_t l = lab[c];
-            const std::ptrdiff_t from = c;
-            while (c < nc && lab[c] == l) ++c;
-            if (!keep[static_cast<std::size_t>(l)]) continue;
+        detail::for_each_run(lab, nc, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+            if (!keep[static_cast<std::size_t>(l)]) return;
             if (!slope_test)
-                for (std::ptrdiff_t i = from; i < c; ++i) d[i] = static_cast<std::uint8_t>(body[i] <= 0);
+                for (std::ptrdiff_t i = from; i < to; ++i) d[i] = static_cast<std::uint8_t>(body[i] <= 0);
             else
-                for (std::ptrdiff_t i = from; i < c; ++i)
+                for (std::ptrdiff_t i = from; i < to; ++i)
                     d[i] = static_cast<std::uint8_t>(body[i] <= 0 && !(surface_slope(r, i) > max_slope));
-        }
+        });
     }
     return level;
 }

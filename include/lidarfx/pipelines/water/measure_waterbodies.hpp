@@ -63,12 +63,9 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         if (size.size() <= static_cast<std::size_t>(high)) size.resize(static_cast<std::size_t>(high) + 1, 0);
         first_row = std::min(first_row, r);
         last_row = r;
-        for (std::ptrdiff_t c = detail::next_positive(label, 0, cols); c < cols; c = detail::next_positive(label, c, cols)) {
-            const std::int32_t l = label[c];
-            const std::ptrdiff_t start = c;
-            while (c < cols && label[c] == l) ++c;
-            size[static_cast<std::size_t>(l)] += static_cast<std::size_t>(c - start);
-        }
+        detail::for_each_run(label, cols, [&](std::int32_t l, std::ptrdiff_t start, std::ptrdiff_t end) {
+            size[static_cast<std::size_t>(l)] += static_cast<std::size_t>(end - start);
+        });
     }
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     if (bodies.size() + 1 < size.size()) bodies.resize(size.size() - 1);
@@ -106,10 +103,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         const float* low = in.min_z.row(r);
         // Run by run, land passed over in blocks: a run of one label is renumbered, counted and boxed at once;
         // its cells with returns add their intensity and height one by one.
-        for (std::ptrdiff_t c = detail::next_positive(label, 0, cols); c < cols; c = detail::next_positive(label, c, cols)) {
-            const std::int32_t old = label[c];
-            const std::ptrdiff_t start = c;
-            while (c < cols && label[c] == old) ++c;
+        detail::for_each_run(label, cols, [&](std::int32_t old, std::ptrdiff_t start, std::ptrdiff_t c) {
             const std::int32_t l = relabel[static_cast<std::size_t>(old)];
             std::fill(label + start, label + c, l);
             const auto k = static_cast<std::size_t>(l - 1);
@@ -132,7 +126,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
             height_end[k] = h;
             intensity[k] = sum;
             with_returns[k] = returns;
-        }
+        });
     }
     for (std::size_t k = 0; k < order.size(); ++k) {
         auto& b = out[k];
