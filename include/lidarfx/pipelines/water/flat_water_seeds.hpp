@@ -172,7 +172,8 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_s
 /// (a new raster's pages cost their first touch).
 /// `taken` (optional, same shape; > 0 = a cell of a body grown before) clears those cells from the mask and
 /// changes nothing else: they still count as level cells in the components, the rings and the slope
-/// medians. A component entirely taken is not tested at all (its slope is not read).
+/// medians. A component entirely taken is not tested at all (its slope is not read). `taken` must not show
+/// the cells of `labels` (they are overwritten before it is read).
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
                                              const flat_water_seeds_options& opt, surface_slope_source surface_slope,

@@ -68,8 +68,9 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
     const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
     auto& out = into;
-    // The label raster doubles as the floods' scratch: bodies are > 0, each flood (and each refinement)
-    // marks the cells it visits with its own negative stamp; the marks are cleared at the end.
+    // The label raster doubles as the floods' scratch: bodies are > 0, each flood marks the cells it visits
+    // with its own negative stamp (cleared at the end), and each refinement uses its body's new label as its
+    // stamp (no cell holds it before: the labels so far are 1 .. bodies.size(), as documented).
     std::int32_t stamp = 0;
     std::vector<std::ptrdiff_t> free_cells;
     for (std::size_t s = 1; s <= n; ++s) {

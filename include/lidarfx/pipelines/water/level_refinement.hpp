@@ -37,9 +37,10 @@ inline void validate(const join_level_cells_options& o, const char* fn)
 
 namespace detail {
 
-/// join_level_cells after its checks, on a region whose cells hold `stamp` in `seen` already. Joined
-/// cells get the stamp too; with `taken` (not null) they also get taken[j] = 0 (grow_waterbodies: the
-/// labels are the stamps, the eligible raster is taken).
+/// join_level_cells after its checks, on a region whose cells hold `stamp` in `seen` already, and only
+/// they: every other cell must differ from `stamp` on entry. Joined cells get the stamp too; with `taken`
+/// (not null) they also get taken[j] = 0 (grow_waterbodies: a new body's label is the stamp, the eligible
+/// raster is taken).
 inline void join_level_cells_stamped(std::vector<std::ptrdiff_t>& region, raster_view<const float> min_z,
                                      raster_view<const float> max_z, const std::uint8_t* eligible,
                                      std::uint8_t* taken, std::int32_t* seen, std::int32_t stamp,

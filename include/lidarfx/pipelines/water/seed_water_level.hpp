@@ -22,12 +22,14 @@ struct seed_water_level_options {
                              ///< surroundings are water and bank; the water's returns are the lowest.
 };
 
-/// Water level of a seed (a component of dropout cells, as linear indices r * cols + c): the `quantile`
-/// of the finite min z of the cells within ring_cells of a seed cell that are not seed cells (each cell
-/// once; the element at position ⌊quantile · (n − 1)⌋ of the n sorted values), metres; NaN when no such
-/// cell has a return. A seed lies on water, so its ring holds the water's returns at the level and, where
-/// the seed reaches the shore, the bank's returns above it: a low quantile is the water's level even
-/// when most of the ring is bank. O(seed boundary cells · (2 ring + 1)²).
+/// Water level of a seed (a component of cells, as linear indices r * cols + c): the `quantile` of the
+/// finite min z of the cells within ring_cells of a seed cell (each cell once; the element at position
+/// ⌊quantile · (n − 1)⌋ of the n sorted values), metres; NaN when no such cell has a return. A dropout
+/// seed's own cells have none, so its level comes from the ring around it; a seed with returns (flat seeds)
+/// counts its own cells too. A seed lies on water, so its ring holds the water's returns at the level and,
+/// where the seed reaches the shore, the bank's returns above it: a low quantile is the water's level even
+/// when most of the ring is bank. O(seed cells · (2 ring + 1)² + box / 64) time, O(box / 64) words of
+/// memory, box = the cells of the seed's bounding box grown by ring_cells.
 /// @throws invalid_input on options out of range or a seed index outside min_z.
 inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view<const float> min_z,
                                const seed_water_level_options& opt = {})
@@ -40,8 +42,7 @@ inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view
     if (seed.empty()) return NAN;
     const detail::cell_splitter split(cols);
     // The ring's cells, each once, marked in a bit raster over the seed's bounding box grown by k (in row
-    // order, as sorting their indices would list them). Seed cells are dropouts (no return), so finite
-    // cells are never seed cells.
+    // order, as sorting their indices would list them).
     std::ptrdiff_t r_lo = rows, r_hi = -1, c_lo = cols, c_hi = -1;
     for (const auto i : seed) {
         if (i < 0 || i >= n) [[unlikely]]
