@@ -363,10 +363,10 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         grow_waterbodies(field, more, in.min_z, in.max_z, grown, more_opt, k);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {  // (the new seeds are few: land is passed over)
             std::int32_t* seed = res.seeds.view().row(r);
-            const std::int32_t* more_seed = more.labels.view().row(r);
-            for (std::ptrdiff_t c = detail::next_positive(more_seed, 0, cols); c < cols;
-                 c = detail::next_positive(more_seed, c + 1, cols))
-                seed[c] = k + more_seed[c];
+            const auto copy = [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+                std::fill(seed + from, seed + to, k + l);
+            };
+            detail::for_each_run(more.labels.view().row(r), cols, copy);
         }
         res.seeds_found += more.count();
     };
