@@ -425,3 +425,56 @@ TEST_CASE("flat_water_seeds' slope test: drop_sloping against a plain median per
         }
     }
 }
+
+TEST_CASE("flat_water_seeds' level window (radii 1 and 2) against the window read cell by cell")
+{
+    // The level test of every cell from its clipped (2k + 1)² window of finite min z, by plain loops.
+    std::uint32_t state = 777;
+    const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    constexpr float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float heights[] = {10.0f, 10.04f, 10.1f, 10.11f, 9.95f, 0.0f, -0.0f, nan, inf, -inf, 3e38f, -3e38f};
+    const float max_rough = 0.2f, tolerance = 0.1f;
+    for (const auto& [rows, cols] : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
+             {1, 1}, {1, 7}, {7, 1}, {2, 2}, {3, 5}, {5, 3}, {17, 33}, {64, 70}}) {
+        for (int k = 1; k <= 2; ++k) {
+            for (int trial = 0; trial < 6; ++trial) {
+                raster<float> z0(rows, cols), z1(rows, cols);
+                raster<std::uint8_t> drop(rows, cols), inside(rows, cols), ex(rows, cols);
+                for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        // Mostly level heights (trial 0: all finite), some no-data and extreme ones.
+                        const auto pick = next() % (trial == 0 ? 5 : std::size(heights));
+                        z0(r, c) = heights[pick] + (trial == 1 ? 0.001f * static_cast<float>(next() % 50) : 0.0f);
+                        z1(r, c) = z0(r, c) + 0.1f * static_cast<float>(next() % 3);
+                        drop(r, c) = static_cast<std::uint8_t>(next() % 9 == 0);
+                        inside(r, c) = static_cast<std::uint8_t>(next() % 11 == 0 ? 0 : 1 + next() % 200);
+                        ex(r, c) = static_cast<std::uint8_t>(next() % 7 == 0 ? 1 + next() % 200 : 0);
+                    }
+                }
+                const std::vector<float> nan_row(static_cast<std::size_t>(cols), nan);
+                std::vector<float> low(static_cast<std::size_t>(cols + 2 * k)), high(low.size());
+                std::vector<std::uint8_t> out(static_cast<std::size_t>(cols));
+                for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                    const float* window[5];
+                    for (std::ptrdiff_t d = -k; d <= k; ++d)
+                        window[d + k] = r + d >= 0 && r + d < rows ? z0.view().row(r + d) : nan_row.data();
+                    (k == 1 ? detail::level_window_row<1> : detail::level_window_row<2>)(
+                        window, low.data(), high.data(), z0.view().row(r), z1.view().row(r), drop.view().row(r),
+                        inside.view().row(r), ex.view().row(r), out.data(), cols, max_rough, tolerance);
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        float lo = inf, hi = -inf;
+                        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr)
+                            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
+                                if (std::isfinite(z0(rr, cc))) {
+                                    lo = std::min(lo, z0(rr, cc));
+                                    hi = std::max(hi, z0(rr, cc));
+                                }
+                        const bool level = !drop(r, c) && std::isfinite(z0(r, c)) && inside(r, c) && !ex(r, c) &&
+                                           z1(r, c) - z0(r, c) <= max_rough && hi - lo <= tolerance;
+                        REQUIRE(out[static_cast<std::size_t>(c)] == (level ? 1 : 0));
+                    }
+                }
+            }
+        }
+    }
+}

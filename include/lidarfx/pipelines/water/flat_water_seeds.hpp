@@ -108,6 +108,48 @@ inline void level_row(const float* z0, const float* z1, const float* lo, const f
     }
 }
 
+/// flat_water_seeds' level test for the window radii 1 and 2 (K), one output row per call, in two passes
+/// that read the rows of min z in place: the column minimum and maximum of the finite min z over the
+/// 2K + 1 rows `rows` (a row of NaN for those outside the raster) into `low` and `high`, padded by K cells
+/// of ±inf on each side; then level_row's test with the window's minimum and maximum taken from K columns
+/// on either side. The same minima and maxima as the running filters (up to the sign of a zero, which
+/// high − low does not see), without their strips of rows in memory.
+template <int K>
+void level_window_row(const float* const* rows, float* low, float* high, const float* z0, const float* z1,
+                      const std::uint8_t* drop, const std::uint8_t* inside, const std::uint8_t* ex, std::uint8_t* out,
+                      std::ptrdiff_t cols, float max_rough, float tolerance) noexcept
+{
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    std::fill(low, low + K, inf);
+    std::fill(high, high + K, -inf);
+    float* lo = low + K;
+    float* hi = high + K;
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        float l = inf, h = -inf;
+#pragma GCC unroll 5
+        for (int d = 0; d <= 2 * K; ++d) {
+            const float x = rows[d][c];
+            const bool finite = std::isfinite(x);
+            l = finite & (x < l) ? x : l;
+            h = finite & (x > h) ? x : h;
+        }
+        lo[c] = l;
+        hi[c] = h;
+    }
+    std::fill(lo + cols, lo + cols + K, inf);
+    std::fill(hi + cols, hi + cols + K, -inf);
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        float l = low[c], h = high[c];
+#pragma GCC unroll 4
+        for (int d = 1; d <= 2 * K; ++d) {
+            l = low[c + d] < l ? low[c + d] : l;
+            h = high[c + d] > h ? high[c + d] : h;
+        }
+        out[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) & (ex[c] == 0) &
+                                           (z1[c] - z0[c] <= max_rough) & (h - l <= tolerance));
+    }
+}
+
 /// One row of flat_water_seeds' ring test: a cell in no component (label 0) with a large one within reach
 /// (highest label around it > 0) and a return (no dropout, finite min z, inside the footprint). Branch-free.
 inline void ring_row(const std::int32_t* lab, const std::int32_t* highest, const std::uint8_t* drop, const float* z,
@@ -165,8 +207,9 @@ inline void drop_sloping(raster_view<const std::int32_t> labels, const surface_s
 /// slope exceeds max_surface_slope is no seed, nor is any cell where the slope exceeds it.
 /// Needs in.count (without it the mask is empty). `excluded` (optional, same shape; nonzero = never a
 /// seed, e.g. vegetation) and in.footprint keep cells out. Returns 1 = seed cell.
-/// The windows are running min/max filters (min_max_filter's strips): O(cells · log(level_radius_cells ·
-/// ring_cells)), plus (2 ring_cells + 1)² per ring cell within reach of two components or more.
+/// The windows are running min/max filters (min_max_filter's strips; the level window of radius 1 or 2 is
+/// read in place, level_window_row): O(cells · log(level_radius_cells · ring_cells)), plus (2 ring_cells +
+/// 1)² per ring cell within reach of two components or more.
 /// The level cells' component labels are written into `labels` (given another shape, it is replaced by one
 /// of min z's shape; its contents afterwards are unspecified): a caller that labels again reuses the memory
 /// (a new raster's pages cost their first touch).
@@ -198,6 +241,23 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         const std::vector<std::uint8_t> zeros(static_cast<std::size_t>(cols), 0);
         const float max_rough = detail::float_at_most(opt.max_roughness_m);
         const float tolerance = detail::float_at_most(opt.level_tolerance_m);
+        if (opt.level_radius_cells <= 2) {
+            // Small windows row by row, in place (level_window_row); rows outside the raster read as NaN.
+            const int k = opt.level_radius_cells;
+            const std::vector<float> nan_row(static_cast<std::size_t>(cols), none);
+            parallel_for_rows(rows, 256, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                std::vector<float> low(static_cast<std::size_t>(cols + 2 * k)), high(low.size());
+                const float* window[5];
+                for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                    for (std::ptrdiff_t d = -k; d <= k; ++d)
+                        window[d + k] = r + d >= 0 && r + d < rows ? in.min_z.row(r + d) : nan_row.data();
+                    const auto test = k == 1 ? detail::level_window_row<1> : detail::level_window_row<2>;
+                    test(window, low.data(), high.data(), in.min_z.row(r), in.max_z.row(r), in.dropout.row(r),
+                         in.footprint.empty() ? ones.data() : in.footprint.row(r),
+                         excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), cols, max_rough, tolerance);
+                }
+            }, {}, fn);
+        } else {
         struct scratch {
             detail::min_max_scratch<float> s;
             std::vector<float> lows, highs;
@@ -223,6 +283,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 }
             },
             {}, fn);
+        }
     }
     detail::ensure_shape(labels, rows, cols);
     const auto level_sizes = connected_components(
