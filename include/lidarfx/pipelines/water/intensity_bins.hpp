@@ -65,8 +65,8 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
     // Presence is marked while the row is in L1, in a table over the window [0, window) of values (LAS
     // intensities at resolution 1); values outside it, and none, land in the extra slot seen[window]. Stores
     // are what costs here (a byte store per cell, or an AVX-512 scatter, takes ~3 cycles a cell on Zen 4;
-    // loads ~0.3), and the values of a survey repeat: blocks of 64 cells are first checked against the table
-    // with loads only, and only a block holding a value not yet seen is marked. When all samples fall in the
+    // loads ~0.3), and the values of a survey repeat: each row is first checked against the table with loads
+    // only, and only a row holding a value not yet seen is marked. When all samples fall in the
     // window (lo >= 0, hi < window), no presence pass over the raster follows.
     constexpr std::uint32_t window = std::uint32_t{1} << 16;
     std::vector<std::uint32_t> seen(std::size_t{window} + 1, 0);
