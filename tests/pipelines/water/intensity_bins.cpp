@@ -95,6 +95,30 @@ TEST_CASE("water/intensity_bins: small, negative and very wide ranges all equal 
     }
 }
 
+TEST_CASE("water/intensity_bins: values on both sides of the 16-bit presence window equal the definition")
+{
+    // Presence is marked while rounding when every sample lies in [0, 2^16); one value just outside (-1 or
+    // 65536 after rounding), in the first, a middle or the last row, sends the whole raster the other way.
+    std::mt19937 rng(7);
+    for (const float outside : {-1.0f, -0.6f, 65535.6f, 65536.0f, 70000.0f}) {
+        for (int where = 0; where < 4; ++where) {
+            raster<float> v(9, 13);
+            raster<std::uint8_t> d(9, 13, 0);
+            for (std::ptrdiff_t i = 0; i < v.size(); ++i) v.data()[i] = static_cast<float>(rng() % 65536);
+            v.data()[0] = 0.0f;
+            v.data()[1] = 65535.0f;
+            const std::ptrdiff_t at = where == 0 ? 5 : where == 1 ? 60 : where == 2 ? v.size() - 1 : -1;
+            if (at >= 0) v.data()[at] = outside;
+            CAPTURE(outside);
+            CAPTURE(where);
+            const auto got = intensity_bins(v, d);
+            const auto expected = reference_bins(v, d, 1.0);
+            CHECK(got.bins == expected.bins);
+            CHECK(got.bin == expected.bin);
+        }
+    }
+}
+
 TEST_CASE("water/intensity_bins: strided views read only their cells")
 {
     raster<float> big(6, 9, 1000.0f);
