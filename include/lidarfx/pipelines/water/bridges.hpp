@@ -49,31 +49,53 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
                                         const char* fn)
 {
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    const auto [lowest, highest] = detail::label_range(labels);
-    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
-    // The finite heights of each label in one buffer, label l's at [offset[l], offset[l + 1]), in raster
-    // order: a pass counting them, a pass placing them; both read the labels run by run and pass over land
-    // 64 cells at a time.
+    // One pass over the labels: per row their range by a vectorized min / max (the row then stays in
+    // cache), then on a row that holds bodies its runs, land passed over 64 cells at a time. Each run's
+    // finite heights are appended to `found` in raster order (branch-free: water cells without a return
+    // are scattered, a branch on them mispredicts) and the run is noted as (label, heights appended).
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    const auto for_each_height_run = [&](auto&& visit) {  // visit(label, heights of the run)
-        for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            const float* z = min_z.row(r);
-            for_each_run(labels.row(r), cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
-                visit(static_cast<std::size_t>(l), z + from, z + to);
-            });
+    std::int32_t lowest = 0, highest = 0;
+    struct run_heights { std::int32_t label; std::size_t count; };
+    std::vector<run_heights> runs;
+    std::vector<float> found;
+    std::size_t used = 0;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* row = labels.row(r);
+        std::int32_t low = 0, high = 0;
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            low = std::min(low, row[c]);
+            high = std::max(high, row[c]);
         }
-    };
+        lowest = std::min(lowest, low);
+        highest = std::max(highest, high);
+        if (high <= 0) continue;
+        if (found.size() < used + static_cast<std::size_t>(cols))
+            found.resize(std::max(2 * found.size(), used + static_cast<std::size_t>(cols)));
+        const float* z = min_z.row(r);
+        float* out = found.data();
+        for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+            std::size_t n = used;
+            for (std::ptrdiff_t c = from; c < to; ++c) {
+                out[n] = z[c];
+                n += std::isfinite(z[c]);
+            }
+            runs.push_back({l, n - used});
+            used = n;
+        });
+    }
+    detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
+    // The heights of each label in one buffer, label l's at [offset[l], offset[l + 1]), in raster order.
     std::vector<std::size_t> offset(static_cast<std::size_t>(highest) + 2, 0);
-    for_each_height_run([&](std::size_t l, const float* z, const float* end) {
-        offset[l + 1] += static_cast<std::size_t>(std::count_if(z, end, [](float h) { return std::isfinite(h); }));
-    });
+    for (const auto& run : runs) offset[static_cast<std::size_t>(run.label) + 1] += run.count;
     for (std::size_t l = 1; l < offset.size(); ++l) offset[l] += offset[l - 1];
     std::vector<float> heights(offset.back());
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
-    for_each_height_run([&](std::size_t l, const float* z, const float* end) {
-        for (; z < end; ++z)
-            if (std::isfinite(*z)) heights[next[l]++] = *z;
-    });
+    const float* from = found.data();
+    for (const auto& run : runs) {
+        std::copy(from, from + run.count, heights.begin() + static_cast<std::ptrdiff_t>(next[static_cast<std::size_t>(run.label)]));
+        next[static_cast<std::size_t>(run.label)] += run.count;
+        from += run.count;
+    }
     std::vector<double> level(static_cast<std::size_t>(highest) + 1, NAN);
     for (std::size_t l = 1; l < level.size(); ++l)
         level[l] = detail::median(std::span<float>(heights).subspan(offset[l], offset[l + 1] - offset[l]));
