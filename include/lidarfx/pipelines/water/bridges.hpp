@@ -139,55 +139,79 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         const double below = std::min(la, lb) - static_cast<double>(z);
         return above >= opt.min_clearance_m || (above <= opt.water_tolerance_m && below <= opt.water_tolerance_m);
     };
-    // Last water cell on each line: its row (for rows: its column) and label; -1 = none yet.
-    struct last_water { std::ptrdiff_t at = -1; std::int32_t label = 0; };
-    std::vector<last_water> down(static_cast<std::size_t>(cols)), diag(static_cast<std::size_t>(rows + cols)),
-        anti(static_cast<std::size_t>(rows + cols));
+    // Last water cell on each line: its row (for rows: its column) and label; -1 = none yet. The lines of
+    // the columns, diagonals and anti-diagonals each in two arrays (rows and labels), so that a run of
+    // cells moves its stretch of lines on in a loop that vectorizes (below).
+    const auto n_lines = static_cast<std::size_t>(cols + 2 * (rows + cols));
+    std::vector<std::ptrdiff_t> last_at(n_lines, -1);
+    std::vector<std::int32_t> last_label(n_lines, 0);
     // Bridged cells are recorded and written after the pass, so every decision reads the original labels.
     struct bridged_cell { std::ptrdiff_t cell; int direction; std::int32_t label; };
     std::vector<bridged_cell> bridged;
-    const auto close_run = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r,
-                               std::ptrdiff_t c, int dr, int dc, int direction) {
-        const std::ptrdiff_t gap = at - lw.at - 1;
-        if (opt.join_touching && lw.at >= 0 && lw.label != l && gap == 0 &&
-            std::abs(level[static_cast<std::size_t>(lw.label)] - level[static_cast<std::size_t>(l)]) <= opt.level_tolerance_m) {
-            const auto ra = find(lw.label), rb = find(l);
+    const auto close_run = [&](std::ptrdiff_t& lw_at, std::int32_t& lw_label, std::ptrdiff_t at, std::int32_t l,
+                               std::ptrdiff_t r, std::ptrdiff_t c, int dr, int dc, int direction) {
+        const std::ptrdiff_t gap = at - lw_at - 1;
+        if (opt.join_touching && lw_at >= 0 && lw_label != l && gap == 0 &&
+            std::abs(level[static_cast<std::size_t>(lw_label)] - level[static_cast<std::size_t>(l)]) <= opt.level_tolerance_m) {
+            const auto ra = find(lw_label), rb = find(l);
             if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
-        if (lw.at >= 0 && lw.label != l && gap >= 1 && gap <= span_cells) {
+        if (lw_at >= 0 && lw_label != l && gap >= 1 && gap <= span_cells) {
             bool any = false;
             for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
                 const std::ptrdiff_t rr = r - k * dr, cc = c - k * dc;
-                if (!bridge_ok(rr, cc, lw.label, l)) continue;
-                bridged.push_back({rr * cols + cc, direction, std::min(lw.label, l)});
+                if (!bridge_ok(rr, cc, lw_label, l)) continue;
+                bridged.push_back({rr * cols + cc, direction, std::min(lw_label, l)});
                 any = true;
             }
-            const auto ra = find(lw.label), rb = find(l);
+            const auto ra = find(lw_label), rb = find(l);
             if (any && ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
-        lw = {at, l};
+        lw_at = at;
+        lw_label = l;
     };
-    // A line whose last water cell is of the same body closes nothing: it only moves on.
-    const auto pass = [&](last_water& lw, std::ptrdiff_t at, std::int32_t l, std::ptrdiff_t r, std::ptrdiff_t c,
-                          int dr, int dc, int direction) {
-        if (lw.label == l)
-            lw.at = at;
-        else
-            close_run(lw, at, l, r, c, dr, dc, direction);
-    };
+    // The columns that hold water (or a bridged cell) in each row, [first, last): the merge below reads
+    // only them.
+    std::vector<std::ptrdiff_t> first_water(static_cast<std::size_t>(rows), cols), last_water(static_cast<std::size_t>(rows), 0);
+    std::vector<std::uint8_t> other_body(static_cast<std::size_t>(cols));
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        last_water across;
+        std::ptrdiff_t across_at = -1;
+        std::int32_t across_label = 0;
         const std::int32_t* row = labels.row(r);
         // Run by run of one label, land passed over in blocks: along the row only a run's first cell can
         // close a land run.
         for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
-            close_run(across, from, l, r, from, 0, 1, 0);
-            for (std::ptrdiff_t c = from; c < to; ++c) {
-                pass(down[static_cast<std::size_t>(c)], r, l, r, c, 1, 0, 1);
-                pass(diag[static_cast<std::size_t>(c - r + rows)], r, l, r, c, 1, 1, 2);
-                pass(anti[static_cast<std::size_t>(c + r)], r, l, r, c, 1, -1, 3);
-            }
-            across.at = to - 1;
+            close_run(across_at, across_label, from, l, r, from, 0, 1, 0);
+            across_at = to - 1;
+            first_water[static_cast<std::size_t>(r)] = std::min(first_water[static_cast<std::size_t>(r)], from);
+            last_water[static_cast<std::size_t>(r)] = to;
+            // Down the columns, diagonals and anti-diagonals (the lines of cell (r, c) are c, cols + rows +
+            // c − r and cols + 2 rows + cols + c + r: a run meets a stretch of to − from lines of each): a
+            // line whose last water cell is of this body closes nothing and only moves on, a select over
+            // the stretch that vectorizes; the others close a run, cell by cell (the order of closings does
+            // not matter: bridged cells are sorted, and a merged group's root is its smallest label). The
+            // loop's bounds are block-locals: captured ones might change under a store, as far as the
+            // compiler knows, and keep it scalar.
+            const auto advance = [&](std::ptrdiff_t first_line, int dc, int direction) {
+                std::ptrdiff_t* at = last_at.data() + first_line;
+                std::int32_t* label = last_label.data() + first_line;
+                const std::ptrdiff_t n = to - from, row_at = r;
+                const std::int32_t body = l;
+                std::uint8_t* other = other_body.data();  // 1: the line's last water cell is of another body
+                std::ptrdiff_t others = 0;
+                for (std::ptrdiff_t k = 0; k < n; ++k) {
+                    const bool same = label[k] == body;
+                    others += !same;
+                    other[k] = !same;
+                    at[k] = same ? row_at : at[k];
+                }
+                if (others == 0) return;
+                for (std::ptrdiff_t k = next_positive(other, 0, n); k < n; k = next_positive(other, k + 1, n))
+                    close_run(at[k], label[k], r, l, r, from + k, 1, dc, direction);
+            };
+            advance(from, 0, 1);
+            advance(cols + from - r + rows, 1, 2);
+            advance(cols + (rows + cols) + from + r, -1, 3);
         });
     }
     std::sort(bridged.begin(), bridged.end(), [](const bridged_cell& a, const bridged_cell& b) {
@@ -196,19 +220,27 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     std::size_t count = 0;
     for (std::size_t k = 0; k < bridged.size(); ++k) {
         if (k > 0 && bridged[k].cell == bridged[k - 1].cell) continue;
-        labels(bridged[k].cell / cols, bridged[k].cell % cols) = bridged[k].label;
+        const std::ptrdiff_t r = bridged[k].cell / cols, c = bridged[k].cell % cols;
+        labels(r, c) = bridged[k].label;
+        first_water[static_cast<std::size_t>(r)] = std::min(first_water[static_cast<std::size_t>(r)], c);
+        last_water[static_cast<std::size_t>(r)] = std::max(last_water[static_cast<std::size_t>(r)], c + 1);
         ++count;
     }
     bool merged = false;
     for (std::size_t b = 0; b < parent.size(); ++b) merged |= parent[b] != static_cast<std::int32_t>(b);
     if (merged) {
-        // Every label's group once, then only the water cells.
+        // Every label's group once, then only the water cells: the runs of the rows' water columns, those of
+        // a label that keeps its number passed over.
         std::vector<std::int32_t> root(parent.size());
         for (std::size_t b = 0; b < parent.size(); ++b) root[b] = find(static_cast<std::int32_t>(b));
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            std::int32_t* row = labels.row(r);
-            for (std::ptrdiff_t c = next_positive(row, 0, cols); c < cols; c = next_positive(row, c, cols))
-                for (; c < cols && row[c] > 0; ++c) row[c] = root[static_cast<std::size_t>(row[c])];
+            const std::ptrdiff_t first = first_water[static_cast<std::size_t>(r)], last = last_water[static_cast<std::size_t>(r)];
+            if (first >= last) continue;
+            std::int32_t* row = labels.row(r) + first;
+            for_each_run(row, last - first, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+                const std::int32_t to_label = root[static_cast<std::size_t>(l)];
+                if (to_label != l) std::fill(row + from, row + to, to_label);
+            });
         }
     }
     return count;
