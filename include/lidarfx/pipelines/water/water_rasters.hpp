@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -75,9 +76,12 @@ inline std::pair<std::int32_t, std::int32_t> label_range(raster_view<const std::
 
 /// Median of `values` (no NaN; may be reordered; NaN when empty): the element at position size / 2 of the
 /// sorted values (-0 and +0 count as one value, +0). Small sets: nth_element. From 2^16 values on (a large
-/// waterbody's heights): radix selection on the 32-bit keys that order floats as numbers (ks_key), 16 bits
-/// per pass, two passes that read the values in order instead of nth_element's scattered partitioning.
-/// O(size), plus O(2^16) for the large sets.
+/// waterbody's heights): radix selection on the 32-bit keys that order floats as numbers (ks_key), offset by
+/// the smallest key: the high bits of the offsets that span their range, at most 16, in one counting pass,
+/// then the remaining low bits among the values of the bucket holding the median. Heights of one level share
+/// their top bits, so counting on fixed top bits would send nearly every value to one counter (each increment
+/// waiting on the last); the offsets spread them. Three passes that read the values in order (smallest key,
+/// high bits, low bits), instead of nth_element's scattered partitioning. O(size), plus O(2^16).
 inline double median(std::span<float> values)
 {
     if (values.empty()) return NAN;
@@ -87,18 +91,29 @@ inline double median(std::span<float> values)
         std::nth_element(values.begin(), mid, values.end());
         return *mid == 0 ? 0.0 : *mid;
     }
-    std::vector<std::uint32_t> histogram(std::size_t{1} << 16, 0);
-    for (const float x : values) ++histogram[ks_key(x) >> 16];
+    std::uint32_t lowest = std::numeric_limits<std::uint32_t>::max(), highest = 0;
+    for (const float x : values) {
+        lowest = std::min(lowest, ks_key(x));
+        highest = std::max(highest, ks_key(x));
+    }
+    // Offsets k − lowest in [0, highest − lowest]: `shift` low bits below the (at most 16) counted ones.
+    const int span_bits = static_cast<int>(std::bit_width(highest - lowest));
+    const int shift = std::max(0, span_bits - 16);
+    std::vector<std::uint32_t> histogram((std::size_t{1} << 16), 0);
+    for (const float x : values) ++histogram[(ks_key(x) - lowest) >> shift];
     std::uint32_t high = 0;
     while (rank >= histogram[high]) rank -= histogram[high++];
-    std::fill(histogram.begin(), histogram.end(), 0);
-    for (const float x : values) {
-        const std::uint32_t k = ks_key(x);
-        if ((k >> 16) == high) ++histogram[k & 0xFFFFu];
-    }
     std::uint32_t low = 0;
-    while (rank >= histogram[low]) rank -= histogram[low++];
-    const float m = ks_value<float>(high << 16 | low);
+    if (shift > 0) {
+        std::fill(histogram.begin(), histogram.end(), 0);
+        const std::uint32_t mask = (std::uint32_t{1} << shift) - 1;
+        for (const float x : values) {
+            const std::uint32_t k = ks_key(x) - lowest;
+            if ((k >> shift) == high) ++histogram[k & mask];
+        }
+        while (rank >= histogram[low]) rank -= histogram[low++];
+    }
+    const float m = ks_value<float>(lowest + (high << shift | low));
     return m == 0 ? 0.0 : m;
 }
 
