@@ -24,6 +24,7 @@
 #include <numbers>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 /// Put before a loop whose stores never feed its own loads, such as a gather from a lookup table into a
 /// raster: GCC then vectorizes the gather, which it otherwise refuses for a possible alias between the
@@ -229,6 +230,18 @@ std::ptrdiff_t next_positive(const T* row, std::ptrdiff_t c, std::ptrdiff_t cols
     }
     while (c < cols && !(row[c] > 0)) ++c;
     return c;
+}
+
+/// min(0, smallest label) and max(0, largest label) of one row of `cols` labels: a vectorized min / max
+/// (a caller then reads the row's runs while it is in cache, or passes over a row of land).
+inline std::pair<std::int32_t, std::int32_t> row_label_range(const std::int32_t* row, std::ptrdiff_t cols) noexcept
+{
+    std::int32_t lo = 0, hi = 0;
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        lo = std::min(lo, row[c]);
+        hi = std::max(hi, row[c]);
+    }
+    return {lo, hi};
 }
 
 /// Calls visit(value, from, to) for each run [from, to) of one positive value in row[0, cols), left to

@@ -61,11 +61,7 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
     std::size_t used = 0;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* row = labels.row(r);
-        std::int32_t low = 0, high = 0;
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            low = std::min(low, row[c]);
-            high = std::max(high, row[c]);
-        }
+        const auto [low, high] = detail::row_label_range(row, cols);
         lowest = std::min(lowest, low);
         highest = std::max(highest, high);
         if (high <= 0) continue;

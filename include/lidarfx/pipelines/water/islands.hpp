@@ -172,11 +172,7 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
     bool boxed = max_hole_cells > 0;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* row = labels.row(r);
-        std::int32_t low = 0, high = 0;
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            low = std::min(low, row[c]);
-            high = std::max(high, row[c]);
-        }
+        const auto [low, high] = detail::row_label_range(row, cols);
         lowest = std::min(lowest, low);
         if (high <= 0) continue;
         if (high > rows * cols / 8) boxed = false;

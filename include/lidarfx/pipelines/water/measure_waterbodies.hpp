@@ -53,11 +53,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
     std::ptrdiff_t first_row = rows, last_row = -1;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* label = labels.row(r);
-        std::int32_t low = 0, high = 0;
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            low = std::min(low, label[c]);
-            high = std::max(high, label[c]);
-        }
+        const auto [low, high] = detail::row_label_range(label, cols);
         lowest = std::min(lowest, low);
         if (high <= 0) continue;
         if (size.size() <= static_cast<std::size_t>(high)) size.resize(static_cast<std::size_t>(high) + 1, 0);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
@@ -65,11 +66,9 @@ inline std::pair<std::int32_t, std::int32_t> label_range(raster_view<const std::
 {
     std::int32_t lo = 0, hi = 0;
     for (std::ptrdiff_t r = 0; r < labels.rows(); ++r) {
-        const std::int32_t* row = labels.row(r);
-        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c) {
-            lo = std::min(lo, row[c]);
-            hi = std::max(hi, row[c]);
-        }
+        const auto [row_lo, row_hi] = row_label_range(labels.row(r), labels.cols());
+        lo = std::min(lo, row_lo);
+        hi = std::max(hi, row_hi);
     }
     return {lo, hi};
 }
