@@ -44,36 +44,64 @@ inline void validate(const join_shore_cells_options& o, const char* fn)
 /// Cell classes of the shore steps, per cell of labels: 2 body (label > 0); else 1 when a body cell lies among
 /// its 8 neighbours, 0 otherwise. With `edges`, body cells are split instead: 2 when a land cell lies among
 /// their 8 neighbours (an edge), 1 when none does (interior); land is 0. Cells outside the raster count as
-/// neither. Row by row, branch-free passes over three label rows (they vectorize).
-inline raster<std::uint8_t> shore_classes(raster_view<const std::int32_t> labels, bool edges)
-{
-    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    raster<std::uint8_t> cls(rows, cols, uninitialized);
-    // Per column, whether any / all of the rows r - 1 .. r + 1 (inside) are body cells, padded by a column
-    // that changes neither test at each end.
-    std::vector<std::uint8_t> any(static_cast<std::size_t>(cols) + 2, 0), all(any.size(), 1);
-    // Rows without a body cell near them are all 0: they are passed over (most rows of a survey hold no water).
-    std::vector<std::uint8_t> has_body(static_cast<std::size_t>(rows));
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        has_body[static_cast<std::size_t>(r)] = next_positive(labels.row(r), 0, cols) < cols;
-    const auto body_at = [&](std::ptrdiff_t r) { return r >= 0 && r < rows && has_body[static_cast<std::size_t>(r)]; };
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        if (!body_at(r) && (edges || (!body_at(r - 1) && !body_at(r + 1)))) {
-            std::fill(cls.view().row(r), cls.view().row(r) + cols, std::uint8_t{0});
-            continue;
+/// neither. The steps read them in windows of rows r - k .. r + k as r moves down, so the rows are built as
+/// they come into reach, in a ring of 2k + 1 rows that stays in cache (a class raster of the whole labels
+/// cost more to write, page by page, than the windows cost to read). Each row by branch-free passes over
+/// three label rows (they vectorize).
+class shore_class_rows {
+public:
+    shore_class_rows(raster_view<const std::int32_t> labels, std::ptrdiff_t k, bool edges)
+        : labels_(labels), rows_(labels.rows()), cols_(labels.cols()), k_(k), edges_(edges),
+          slots_(std::min(rows_, 2 * k + 1)), ring_(static_cast<std::size_t>(slots_ * cols_)),
+          zero_(static_cast<std::size_t>(cols_), 0), any_(static_cast<std::size_t>(cols_) + 2, 0),
+          all_(any_.size(), 1), has_body_(static_cast<std::size_t>(rows_)),
+          row_of_slot_(static_cast<std::size_t>(slots_))
+    {
+        for (std::ptrdiff_t r = 0; r < rows_; ++r)
+            has_body_[static_cast<std::size_t>(r)] = next_positive(labels.row(r), 0, cols_) < cols_;
+    }
+
+    /// Whether row r holds a body cell.
+    bool has_body(std::ptrdiff_t r) const { return r >= 0 && r < rows_ && has_body_[static_cast<std::size_t>(r)]; }
+
+    /// Builds the rows r - k .. r + k not built yet; r only grows from call to call.
+    void reach(std::ptrdiff_t r)
+    {
+        for (std::ptrdiff_t rr = std::max(built_, r - k_), last = std::min(rows_ - 1, r + k_); rr <= last; ++rr)
+            build(rr);
+        built_ = std::max(built_, std::min(rows_, r + k_ + 1));
+    }
+
+    /// The classes of row r, within k of the row last reached; nullptr when all are 0.
+    const std::uint8_t* row(std::ptrdiff_t r) const { return row_of_slot_[static_cast<std::size_t>(r % slots_)]; }
+
+    /// A row of 0s, cols long, for rows whose classes are all 0.
+    const std::uint8_t* zero_row() const { return zero_.data(); }
+
+private:
+    void build(std::ptrdiff_t r)
+    {
+        const std::size_t slot = static_cast<std::size_t>(r % slots_);
+        // Rows without a body cell near them are all 0: they are passed over (most rows of a survey hold no water).
+        if (!has_body(r) && (edges_ || (!has_body(r - 1) && !has_body(r + 1)))) {
+            row_of_slot_[slot] = nullptr;
+            return;
         }
-        const std::int32_t* mid = labels.row(r);
-        const std::int32_t* up = r > 0 ? labels.row(r - 1) : mid;  // the row itself changes neither test
-        const std::int32_t* down = r + 1 < rows ? labels.row(r + 1) : mid;
-        std::uint8_t* a = any.data() + 1;
-        std::uint8_t* b = all.data() + 1;
+        const std::ptrdiff_t cols = cols_;
+        const std::int32_t* mid = labels_.row(r);
+        const std::int32_t* up = r > 0 ? labels_.row(r - 1) : mid;  // the row itself changes neither test
+        const std::int32_t* down = r + 1 < rows_ ? labels_.row(r + 1) : mid;
+        // Per column, whether any / all of the rows r - 1 .. r + 1 (inside) are body cells, padded by a column
+        // that changes neither test at each end.
+        std::uint8_t* a = any_.data() + 1;
+        std::uint8_t* b = all_.data() + 1;
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const bool u = up[c] > 0, m = mid[c] > 0, d = down[c] > 0;
             a[c] = static_cast<std::uint8_t>(u | m | d);
             b[c] = static_cast<std::uint8_t>(u & m & d);
         }
-        std::uint8_t* out = cls.view().row(r);
-        if (edges) {
+        std::uint8_t* out = ring_.data() + slot * static_cast<std::size_t>(cols);
+        if (edges_) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
                 const bool interior = (b[c - 1] & b[c] & b[c + 1]) != 0;
                 out[c] = static_cast<std::uint8_t>((mid[c] > 0) * (interior ? 1 : 2));
@@ -84,9 +112,16 @@ inline raster<std::uint8_t> shore_classes(raster_view<const std::int32_t> labels
                 out[c] = static_cast<std::uint8_t>(mid[c] > 0 ? 2 : (near ? 1 : 0));
             }
         }
+        row_of_slot_[slot] = out;
     }
-    return cls;
-}
+
+    raster_view<const std::int32_t> labels_;
+    std::ptrdiff_t rows_, cols_, k_;
+    bool edges_;
+    std::ptrdiff_t slots_, built_ = 0;
+    std::vector<std::uint8_t> ring_, zero_, any_, all_, has_body_;
+    std::vector<const std::uint8_t*> row_of_slot_;
+};
 
 }  // namespace detail
 
@@ -118,17 +153,18 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     if (rows == 0 || cols == 0) return 0;
     enum : std::uint8_t { far_land = 0, next_to_body = 1, body = 2 };
-    const auto cls = detail::shore_classes(labels, false);
+    const std::ptrdiff_t k = opt.window_cells;
+    detail::shore_class_rows cls(labels, k, false);
     struct joining {
         std::ptrdiff_t r, c;
         std::int32_t label;
     };
     std::vector<joining> joined;
     std::vector<std::uint8_t> candidate(static_cast<std::size_t>(cols));  // next to a body, inside
-    const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::uint8_t* cl = cls.view().row(r);
-        if (detail::next_positive(cl, 0, cols) == cols) continue;  // no body near this row
+        if (!cls.has_body(r - 1) && !cls.has_body(r) && !cls.has_body(r + 1)) continue;  // no body near this row
+        cls.reach(r);
+        const std::uint8_t* cl = cls.row(r);
         const std::uint8_t* inside = footprint.empty() ? nullptr : footprint.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             candidate[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
@@ -147,7 +183,7 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
             if (n_nb < opt.min_body_neighbours) continue;
             double water_sum = 0, water_cells = 0, land_sum = 0, land_cells = 0;
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                const std::uint8_t* cw = cls.view().row(rr);
+                const std::uint8_t* cw = cls.row(rr) ? cls.row(rr) : cls.zero_row();
                 const std::uint32_t* n = count.row(rr);
                 const std::uint8_t* ex = excluded.empty() ? nullptr : excluded.row(rr);
                 for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc) {
@@ -221,14 +257,15 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     if (rows == 0 || cols == 0) return 0;
-    const auto cls = detail::shore_classes(labels, true);  // 0 land, 1 interior body cell, 2 edge body cell
+    const std::ptrdiff_t k = opt.window_cells;
+    detail::shore_class_rows cls(labels, k, true);  // 0 land, 1 interior body cell, 2 edge body cell
     std::vector<std::ptrdiff_t> trimmed;
     std::vector<float> level;
     std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell with a return
-    const std::ptrdiff_t k = opt.window_cells;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::uint8_t* cl = cls.view().row(r);
-        if (detail::next_positive(cl, 0, cols) == cols) continue;  // no body in this row
+        if (!cls.has_body(r)) continue;
+        cls.reach(r);
+        const std::uint8_t* cl = cls.row(r);
         const float* z = min_z.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             edge[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == 2) & std::isfinite(z[c]));
@@ -237,7 +274,8 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
             level.clear();
             const std::int32_t own = labels(r, c);
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                const std::uint8_t* cw = cls.view().row(rr);
+                const std::uint8_t* cw = cls.row(rr);
+                if (!cw) continue;  // no body in this row
                 const float* zw = min_z.row(rr);
                 const std::int32_t* lw = labels.row(rr);
                 for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
