@@ -88,31 +88,43 @@ private:
             return;
         }
         const std::ptrdiff_t cols = cols_;
-        const std::int32_t* mid = labels_.row(r);
-        const std::int32_t* up = r > 0 ? labels_.row(r - 1) : mid;  // the row itself changes neither test
-        const std::int32_t* down = r + 1 < rows_ ? labels_.row(r + 1) : mid;
+        const std::uint8_t* m = body_mask(r);
+        const std::uint8_t* u = r > 0 ? body_mask(r - 1) : m;  // the row itself changes neither test
+        const std::uint8_t* d = r + 1 < rows_ ? body_mask(r + 1) : m;
         // Per column, whether any / all of the rows r - 1 .. r + 1 (inside) are body cells, padded by a column
         // that changes neither test at each end.
         std::uint8_t* a = any_.data() + 1;
         std::uint8_t* b = all_.data() + 1;
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const bool u = up[c] > 0, m = mid[c] > 0, d = down[c] > 0;
-            a[c] = static_cast<std::uint8_t>(u | m | d);
-            b[c] = static_cast<std::uint8_t>(u & m & d);
+            a[c] = static_cast<std::uint8_t>(u[c] | m[c] | d[c]);
+            b[c] = static_cast<std::uint8_t>(u[c] & m[c] & d[c]);
         }
         std::uint8_t* out = ring_.data() + slot * static_cast<std::size_t>(cols);
+        // In 0 / 1 bytes: a body cell is 2 less 1 when interior; a cell near a body is 1 plus 1 when a body
+        // cell itself (it is then near one).
         if (edges_) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const bool interior = (b[c - 1] & b[c] & b[c + 1]) != 0;
-                out[c] = static_cast<std::uint8_t>((mid[c] > 0) * (interior ? 1 : 2));
-            }
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                out[c] = static_cast<std::uint8_t>(2 * m[c] - (b[c - 1] & b[c] & b[c + 1]));
         } else {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const bool near = (a[c - 1] | a[c] | a[c + 1]) != 0;
-                out[c] = static_cast<std::uint8_t>(mid[c] > 0 ? 2 : (near ? 1 : 0));
-            }
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                out[c] = static_cast<std::uint8_t>(m[c] + (a[c - 1] | a[c] | a[c + 1]));
         }
         row_of_slot_[slot] = out;
+    }
+
+    /// Row r of labels as 0 / 1 bytes (body or not), from a ring of three: each row is read as labels once
+    /// (bytes pass 64 columns a vector, labels 16).
+    const std::uint8_t* body_mask(std::ptrdiff_t r)
+    {
+        const std::size_t slot = static_cast<std::size_t>(r % 3);
+        std::uint8_t* mask = masks_.data() + slot * static_cast<std::size_t>(cols_);
+        if (mask_row_[slot] != r) {
+            const std::int32_t* l = labels_.row(r);
+            const std::ptrdiff_t cols = cols_;
+            for (std::ptrdiff_t c = 0; c < cols; ++c) mask[c] = l[c] > 0;
+            mask_row_[slot] = r;
+        }
+        return mask;
     }
 
     raster_view<const std::int32_t> labels_;
@@ -121,6 +133,8 @@ private:
     std::ptrdiff_t slots_, built_ = 0;
     std::vector<std::uint8_t> ring_, zero_, any_, all_, has_body_;
     std::vector<const std::uint8_t*> row_of_slot_;
+    std::vector<std::uint8_t> masks_ = std::vector<std::uint8_t>(3 * static_cast<std::size_t>(cols_));
+    std::ptrdiff_t mask_row_[3] = {-1, -1, -1};
 };
 
 }  // namespace detail
@@ -261,29 +275,36 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     detail::shore_class_rows cls(labels, k, true);  // 0 land, 1 interior body cell, 2 edge body cell
     std::vector<std::ptrdiff_t> trimmed;
     std::vector<float> level;
-    std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell with a return
+    std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         if (!cls.has_body(r)) continue;
         cls.reach(r);
         const std::uint8_t* cl = cls.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) edge[static_cast<std::size_t>(c)] = cl[c] == 2;
         const float* z = min_z.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            edge[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == 2) & std::isfinite(z[c]));
         for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
              c = detail::next_positive(edge.data(), c + 1, cols)) {
-            level.clear();
+            // Heights are read at edge cells and in their windows only: a row of them is not in cache.
+            if (!std::isfinite(z[c])) continue;
             const std::int32_t own = labels(r, c);
+            const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, c - k), c1 = std::min(cols - 1, c + k);
+            std::size_t n = 0;
             for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
                 const std::uint8_t* cw = cls.row(rr);
                 if (!cw) continue;  // no body in this row
                 const float* zw = min_z.row(rr);
                 const std::int32_t* lw = labels.row(rr);
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
-                    if (cw[cc] == 1 && lw[cc] == own && std::isfinite(zw[cc])) level.push_back(zw[cc]);
+                if (level.size() < n + static_cast<std::size_t>(c1 - c0 + 1)) level.resize(n + static_cast<std::size_t>(c1 - c0 + 1));
+                float* out = level.data();
+                // Every height is written and kept when it counts (no branch on the mix of cells).
+                for (std::ptrdiff_t cc = c0; cc <= c1; ++cc) {
+                    out[n] = zw[cc];
+                    n += static_cast<std::size_t>((cw[cc] == 1) & (lw[cc] == own) & std::isfinite(zw[cc]));
+                }
             }
-            if (level.size() < opt.min_level_cells) continue;
-            const auto mid = level.begin() + static_cast<std::ptrdiff_t>(level.size() / 2);
-            std::nth_element(level.begin(), mid, level.end());
+            if (n < opt.min_level_cells) continue;
+            const auto mid = level.begin() + static_cast<std::ptrdiff_t>(n / 2);
+            std::nth_element(level.begin(), mid, level.begin() + static_cast<std::ptrdiff_t>(n));
             const double rise = static_cast<double>(z[c]) - static_cast<double>(*mid);
             if (rise > opt.min_rise_m && rise <= opt.max_rise_m) trimmed.push_back(r * cols + c);
         }
