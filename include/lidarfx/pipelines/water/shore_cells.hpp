@@ -276,30 +276,37 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     std::vector<std::ptrdiff_t> trimmed;
     std::vector<float> level;
     std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell
+    struct window_row {
+        const std::uint8_t* cls;
+        const float* z;
+        const std::int32_t* labels;
+    };
+    std::vector<window_row> window;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         if (!cls.has_body(r)) continue;
         cls.reach(r);
         const std::uint8_t* cl = cls.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c) edge[static_cast<std::size_t>(c)] = cl[c] == 2;
-        const float* z = min_z.row(r);
+        const float* z = min_z.row(r);  // read at edge cells and in their windows only
+        // The window rows holding a body cell, the same for every edge cell of the row: found once.
+        window.clear();
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k), last = std::min(rows - 1, r + k); rr <= last; ++rr)
+            if (const std::uint8_t* cw = cls.row(rr))
+                window.push_back({cw, min_z.row(rr), labels.row(rr)});
         for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
              c = detail::next_positive(edge.data(), c + 1, cols)) {
-            // Heights are read at edge cells and in their windows only: a row of them is not in cache.
             if (!std::isfinite(z[c])) continue;
             const std::int32_t own = labels(r, c);
             const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, c - k), c1 = std::min(cols - 1, c + k);
+            const std::size_t width = static_cast<std::size_t>(c1 - c0 + 1);
+            if (level.size() < window.size() * width) level.resize(window.size() * width);
+            float* out = level.data();
             std::size_t n = 0;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                const std::uint8_t* cw = cls.row(rr);
-                if (!cw) continue;  // no body in this row
-                const float* zw = min_z.row(rr);
-                const std::int32_t* lw = labels.row(rr);
-                if (level.size() < n + static_cast<std::size_t>(c1 - c0 + 1)) level.resize(n + static_cast<std::size_t>(c1 - c0 + 1));
-                float* out = level.data();
+            for (const auto& w : window) {
                 // Every height is written and kept when it counts (no branch on the mix of cells).
                 for (std::ptrdiff_t cc = c0; cc <= c1; ++cc) {
-                    out[n] = zw[cc];
-                    n += static_cast<std::size_t>((cw[cc] == 1) & (lw[cc] == own) & std::isfinite(zw[cc]));
+                    out[n] = w.z[cc];
+                    n += static_cast<std::size_t>((w.cls[cc] == 1) & (w.labels[cc] == own) & std::isfinite(w.z[cc]));
                 }
             }
             if (n < opt.min_level_cells) continue;
