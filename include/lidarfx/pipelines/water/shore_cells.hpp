@@ -175,6 +175,12 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     };
     std::vector<joining> joined;
     std::vector<std::uint8_t> candidate(static_cast<std::size_t>(cols));  // next to a body, inside
+    struct window_row {
+        const std::uint8_t* cls;
+        const std::uint32_t* count;
+        const std::uint8_t* excluded;  // nullptr: none
+    };
+    std::vector<window_row> window;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         if (!cls.has_body(r - 1) && !cls.has_body(r) && !cls.has_body(r + 1)) continue;  // no body near this row
         cls.reach(r);
@@ -182,6 +188,11 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
         const std::uint8_t* inside = footprint.empty() ? nullptr : footprint.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             candidate[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
+        // The window rows, the same for every candidate of the row: found once.
+        window.clear();
+        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k), last = std::min(rows - 1, r + k); rr <= last; ++rr)
+            window.push_back({cls.row(rr) ? cls.row(rr) : cls.zero_row(), count.row(rr),
+                              excluded.empty() ? nullptr : excluded.row(rr)});
         for (std::ptrdiff_t c = detail::next_positive(candidate.data(), 0, cols); c < cols;
              c = detail::next_positive(candidate.data(), c + 1, cols)) {
             // Body neighbours and their most frequent label.
@@ -195,17 +206,15 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
                 }
             }
             if (n_nb < opt.min_body_neighbours) continue;
+            const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, c - k), c1 = std::min(cols - 1, c + k);
             double water_sum = 0, water_cells = 0, land_sum = 0, land_cells = 0;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr) {
-                const std::uint8_t* cw = cls.row(rr) ? cls.row(rr) : cls.zero_row();
-                const std::uint32_t* n = count.row(rr);
-                const std::uint8_t* ex = excluded.empty() ? nullptr : excluded.row(rr);
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc) {
-                    if (cw[cc] == body) {
-                        water_sum += n[cc];
+            for (const auto& w : window) {
+                for (std::ptrdiff_t cc = c0; cc <= c1; ++cc) {
+                    if (w.cls[cc] == body) {
+                        water_sum += w.count[cc];
                         water_cells += 1;
-                    } else if (cw[cc] == far_land && n[cc] > 0 && !(ex && ex[cc])) {
-                        land_sum += n[cc];
+                    } else if (w.cls[cc] == far_land && w.count[cc] > 0 && !(w.excluded && w.excluded[cc])) {
+                        land_sum += w.count[cc];
                         land_cells += 1;
                     }
                 }
