@@ -41,6 +41,14 @@ inline void validate(const join_shore_cells_options& o, const char* fn)
             o.min_body_neighbours);
 }
 
+/// Hints that *p will soon be read (no-op where the compiler has no prefetch builtin).
+inline void prefetch_read([[maybe_unused]] const void* p) noexcept
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 0);
+#endif
+}
+
 /// Cell classes of the shore steps, per cell of labels: 2 body (label > 0); else 1 when a body cell lies among
 /// its 8 neighbours, 0 otherwise. With `edges`, body cells are split instead: 2 when a land cell lies among
 /// their 8 neighbours (an edge), 1 when none does (interior); land is 0. Cells outside the raster count as
@@ -302,6 +310,16 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k), last = std::min(rows - 1, r + k); rr <= last; ++rr)
             if (const std::uint8_t* cw = cls.row(rr))
                 window.push_back({cw, min_z.row(rr), labels.row(rr)});
+        // Row r + k enters the windows here, its heights not in cache: their loads (at both ends of each
+        // window) are all started first, not one window after the other.
+        if (r + k < rows) {
+            const float* z_new = min_z.row(r + k);
+            for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
+                 c = detail::next_positive(edge.data(), c + 1, cols)) {
+                detail::prefetch_read(z_new + std::max<std::ptrdiff_t>(0, c - k));
+                detail::prefetch_read(z_new + std::min(cols - 1, c + k));
+            }
+        }
         for (std::ptrdiff_t c = detail::next_positive(edge.data(), 0, cols); c < cols;
              c = detail::next_positive(edge.data(), c + 1, cols)) {
             if (!std::isfinite(z[c])) continue;
