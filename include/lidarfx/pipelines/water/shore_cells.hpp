@@ -55,7 +55,7 @@ inline void prefetch_read([[maybe_unused]] const void* p) noexcept
 /// neither. The steps read them in windows of rows r - k .. r + k as r moves down, so the rows are built as
 /// they come into reach, in a ring of 2k + 1 rows that stays in cache (a class raster of the whole labels
 /// cost more to write, page by page, than the windows cost to read). Each row by branch-free passes over
-/// three label rows (they vectorize).
+/// three rows of body bytes (they vectorize).
 class shore_class_rows {
 public:
     shore_class_rows(raster_view<const std::int32_t> labels, std::ptrdiff_t k, bool edges)
@@ -64,13 +64,17 @@ public:
           zero_(static_cast<std::size_t>(cols_), 0), any_(static_cast<std::size_t>(cols_) + 2, 0),
           all_(any_.size(), 1), has_body_(static_cast<std::size_t>(rows_)),
           row_of_slot_(static_cast<std::size_t>(slots_))
-    {
-        for (std::ptrdiff_t r = 0; r < rows_; ++r)
-            has_body_[static_cast<std::size_t>(r)] = next_positive(labels.row(r), 0, cols_) < cols_;
-    }
+    {}
 
-    /// Whether row r holds a body cell.
-    bool has_body(std::ptrdiff_t r) const { return r >= 0 && r < rows_ && has_body_[static_cast<std::size_t>(r)]; }
+    /// Whether row r holds a body cell. Found as the rows are asked for, in order, a few rows before they are
+    /// built: the part of a row read to find its first body cell is still in cache when the row is built.
+    bool has_body(std::ptrdiff_t r)
+    {
+        if (r < 0 || r >= rows_) return false;
+        for (; scanned_ <= r; ++scanned_)
+            has_body_[static_cast<std::size_t>(scanned_)] = next_positive(labels_.row(scanned_), 0, cols_) < cols_;
+        return has_body_[static_cast<std::size_t>(r)];
+    }
 
     /// Builds the rows r - k .. r + k not built yet; r only grows from call to call.
     void reach(std::ptrdiff_t r)
@@ -138,7 +142,7 @@ private:
     raster_view<const std::int32_t> labels_;
     std::ptrdiff_t rows_, cols_, k_;
     bool edges_;
-    std::ptrdiff_t slots_, built_ = 0;
+    std::ptrdiff_t slots_, built_ = 0, scanned_ = 0;
     std::vector<std::uint8_t> ring_, zero_, any_, all_, has_body_;
     std::vector<const std::uint8_t*> row_of_slot_;
     std::vector<std::uint8_t> masks_ = std::vector<std::uint8_t>(3 * static_cast<std::size_t>(cols_));
