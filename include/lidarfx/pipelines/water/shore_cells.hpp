@@ -49,6 +49,29 @@ inline void prefetch_read([[maybe_unused]] const void* p) noexcept
 #endif
 }
 
+/// The upper median of v[0, n) (n >= 1, no NaN), the value nth_element puts at n / 2 (or the other zero when
+/// -0 and +0 are both there: equal, so a height compares alike against either). A window holds a few dozen
+/// heights: the first value with at most n / 2 below it and more at or below is found by counts, branch-free
+/// (they vectorize), where nth_element mispredicts at most of its steps.
+inline float upper_median(float* v, std::size_t n)
+{
+    constexpr std::size_t small = 64;
+    if (n > small) {
+        std::nth_element(v, v + n / 2, v + n);
+        return v[n / 2];
+    }
+    const std::size_t half = n / 2;
+    for (std::size_t i = 0;; ++i) {
+        const float x = v[i];
+        std::size_t below = 0, at_or_below = 0;
+        for (std::size_t j = 0; j < n; ++j) {
+            below += v[j] < x;
+            at_or_below += v[j] <= x;
+        }
+        if (below <= half && at_or_below > half) return x;
+    }
+}
+
 /// Cell classes of the shore steps, per cell of labels: 2 body (label > 0); else 1 when a body cell lies among
 /// its 8 neighbours, 0 otherwise. With `edges`, body cells are split instead: 2 when a land cell lies among
 /// their 8 neighbours (an edge), 1 when none does (interior); land is 0. Cells outside the raster count as
@@ -341,9 +364,7 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
                 }
             }
             if (n < opt.min_level_cells) continue;
-            const auto mid = level.begin() + static_cast<std::ptrdiff_t>(n / 2);
-            std::nth_element(level.begin(), mid, level.begin() + static_cast<std::ptrdiff_t>(n));
-            const double rise = static_cast<double>(z[c]) - static_cast<double>(*mid);
+            const double rise = static_cast<double>(z[c]) - static_cast<double>(detail::upper_median(level.data(), n));
             if (rise > opt.min_rise_m && rise <= opt.max_rise_m) trimmed.push_back(r * cols + c);
         }
     }
