@@ -272,3 +272,40 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
     CHECK_THROWS_AS(trim_raised_edge_cells(one, raster<float>(1, 1, 0.0f), {.min_rise_m = 0.5, .max_rise_m = 0.5}),
                     invalid_input);
 }
+
+TEST_CASE("water/shore steps: windows of more than 64 cells or past the raster, repeated heights and ±0, match the references")
+{
+    // The class rows are kept for the rows in reach (all of them when the window is taller than the raster);
+    // the level of up to 64 heights is found by counts, of more by nth_element; -0 and +0 are one height.
+    const unsigned seed = 20261205;
+    std::mt19937 rng(seed);
+    for (int trial = 0; trial < 30; ++trial) {
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 25), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 25);
+        const int window = std::vector<int>{4, 5, 7, 12, 40}[static_cast<std::size_t>(trial % 5)];
+        INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << ", window " << window);
+        raster<std::int32_t> labels(rows, cols, 0);
+        raster<float> z(rows, cols);
+        raster<std::uint32_t> count(rows, cols);
+        raster<std::uint8_t> excluded(rows, cols), footprint(rows, cols, 1);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool wet = std::sin(0.3 * static_cast<double>(r) + trial) + std::cos(0.25 * static_cast<double>(c)) > 0;
+                labels(r, c) = wet ? 1 + static_cast<std::int32_t>(rng() % 8 == 0) : 0;
+                const auto step = static_cast<int>(rng() % 5) - 1;  // heights -0.05 .. 0.15 in steps of 0.05, ±0
+                z(r, c) = step == 0 ? (rng() % 2 ? 0.0f : -0.0f) : 0.05f * static_cast<float>(step);
+                count(r, c) = wet ? static_cast<std::uint32_t>(rng() % 3) : static_cast<std::uint32_t>(rng() % 12);
+                excluded(r, c) = rng() % 9 == 0;
+            }
+        }
+        const trim_raised_edge_cells_options t{.window_cells = window, .min_rise_m = trial % 2 ? 0.0 : 0.04,
+                                               .max_rise_m = 0.3, .min_level_cells = 1};
+        auto got = labels;
+        trim_raised_edge_cells(got, z, t);
+        CHECK(got == reference_trim(labels, z, t));
+        const join_shore_cells_options j{.window_cells = window, .min_contrast = 0.2, .min_water_share = 0.4,
+                                         .min_body_neighbours = 1 + trial % 3};
+        got = labels;
+        join_shore_cells(got, count, excluded, footprint, j);
+        CHECK(got == reference_shore(labels, count, excluded, footprint, j));
+    }
+}
