@@ -353,10 +353,10 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
             const std::int32_t own = labels(r, c);
             const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, c - k), c1 = std::min(cols - 1, c + k);
             const std::size_t width = static_cast<std::size_t>(c1 - c0 + 1);
-            if (level.size() < window.size() * width) level.resize(window.size() * width);
-            float* out = level.data();
             std::size_t n = 0;
             for (const auto& w : window) {
+                if (level.size() < n + width) level.resize(n + width);  // grows with the heights kept
+                float* out = level.data();
                 // Every height is written and kept when it counts (no branch on the mix of cells).
                 for (std::ptrdiff_t cc = c0; cc <= c1; ++cc) {
                     out[n] = w.z[cc];
