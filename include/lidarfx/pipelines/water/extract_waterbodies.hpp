@@ -56,7 +56,8 @@ struct extract_waterbodies_options {
                                            ///< default: on the water family, with grow.level_follow_max_slope =
                                            ///< 0.008, they lift sensitivity (lakes 77 -> 98 %, rivers 76 -> 96 %)
                                            ///< and accuracy (lakes 97.1 -> 99.6 %, rivers 97.8 -> 99.2 %) but take
-                                           ///< about 1.7x the time (docs/waterbodies.md, seventh reporting run)
+                                           ///< about 1.4x the time (docs/waterbodies.md, seventh reporting run;
+                                           ///< docs/performance.md)
     bool flat_seed_dropouts = true;        ///< flat seeds: the dropout cells next to a seed cell (8-neighbours,
                                            ///< eligible, in no body) join the seed mask before its opening: water
                                            ///< with scattered dropouts keeps its seeds whole; their level ignores
@@ -139,8 +140,8 @@ inline extract_waterbodies_options previous_water_method()
 /// level-surface cue (grow.level_follow_max_slope = 0.008 m/m, flat_water_seeds' max_surface_slope), which
 /// makes a faster level drift safe (grow.level_drift_m = 0.01 m per cell), and bridge seeds from a single
 /// walk over a deck (bridge_seed_min_cells = 4). It also finds water without dropouts (turbid, specular,
-/// dense surveys) and is what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.7x
-/// the defaults' time on rasters (docs/waterbodies.md).
+/// dense surveys) and is what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.4x
+/// the defaults' time on rasters (docs/performance.md).
 inline extract_waterbodies_options flat_seed_water_method()
 {
     extract_waterbodies_options o;
