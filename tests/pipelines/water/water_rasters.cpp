@@ -122,7 +122,7 @@ TEST_CASE("water/median: the element at position n / 2 of the sorted values, bel
     const std::size_t radix_from = std::size_t{1} << 16;
     for (const std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{7}, radix_from - 1, radix_from,
                                 radix_from + 1, 3 * radix_from + 5}) {
-        for (int kind = 0; kind < 7; ++kind) {
+        for (int kind = 0; kind < 8; ++kind) {
             std::vector<float> v(n);
             std::normal_distribution<float> level(12.5f, 0.3f);
             std::uniform_int_distribution<int> few(-3, 3);
@@ -135,7 +135,8 @@ TEST_CASE("water/median: the element at position n / 2 of the sorted values, bel
                 case 5: v[i] = i % 3 == 0 ? std::numeric_limits<float>::max()     // the widest finite range,
                              : i % 3 == 1 ? -std::numeric_limits<float>::max()     // and subnormals
                                           : std::numeric_limits<float>::denorm_min() * static_cast<float>(i % 5); break;
-                case 6: v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -20); break;  // a 2^16 + 1 key span
+                case 6: v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -20); break;  // 2^17 keys (2 ulps a step)
+                case 7: v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -21); break;  // 2^16 + 1 keys: shift 1
                 default: v[i] = i % 97 == 0 ? std::numeric_limits<float>::infinity() : -level(rng);  // inf, < 0
                 }
             }

@@ -182,7 +182,7 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
             first_water[static_cast<std::size_t>(r)] = std::min(first_water[static_cast<std::size_t>(r)], from);
             last_water[static_cast<std::size_t>(r)] = to;
             // Down the columns, diagonals and anti-diagonals (the lines of cell (r, c) are c, cols + rows +
-            // c − r and cols + 2 rows + cols + c + r: a run meets a stretch of to − from lines of each): a
+            // c − r and cols + (rows + cols) + c + r: a run meets a stretch of to − from lines of each): a
             // line whose last water cell is of this body closes nothing and only moves on, a select over
             // the stretch that vectorizes; the others close a run, cell by cell (the order of closings does
             // not matter: bridged cells are sorted, and a merged group's root is its smallest label). The

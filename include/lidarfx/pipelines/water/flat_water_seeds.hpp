@@ -97,14 +97,21 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
 
 /// One row of flat_water_seeds' level test: a return (no dropout, finite min z, inside the footprint), not
 /// excluded, smooth (max z − min z <= max_rough) and level (window max − min of min z <= tolerance).
-/// Branch-free (& rather than &&) so that it vectorizes.
+/// Branch-free (& rather than &&) so that it vectorizes. One cell: level_cell; the window's min z span is
+/// hi − lo.
+inline std::uint8_t level_cell(float z0, float z1, float lo, float hi, std::uint8_t drop, std::uint8_t inside,
+                               std::uint8_t ex, float max_rough, float tolerance) noexcept
+{
+    return static_cast<std::uint8_t>((drop == 0) & std::isfinite(z0) & (inside != 0) & (ex == 0) &
+                                     (z1 - z0 <= max_rough) & (hi - lo <= tolerance));
+}
+
 inline void level_row(const float* z0, const float* z1, const float* lo, const float* hi, const std::uint8_t* drop,
                       const std::uint8_t* inside, const std::uint8_t* ex, std::uint8_t* out, std::ptrdiff_t cols,
                       float max_rough, float tolerance) noexcept
 {
     for (std::ptrdiff_t c = 0; c < cols; ++c) {
-        out[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) & (ex[c] == 0) &
-                                           (z1[c] - z0[c] <= max_rough) & (hi[c] - lo[c] <= tolerance));
+        out[c] = level_cell(z0[c], z1[c], lo[c], hi[c], drop[c], inside[c], ex[c], max_rough, tolerance);
     }
 }
 
@@ -145,8 +152,7 @@ void level_window_row(const float* const* rows, float* low, float* high, const f
             l = low[c + d] < l ? low[c + d] : l;
             h = high[c + d] > h ? high[c + d] : h;
         }
-        out[c] = static_cast<std::uint8_t>((drop[c] == 0) & std::isfinite(z0[c]) & (inside[c] != 0) & (ex[c] == 0) &
-                                           (z1[c] - z0[c] <= max_rough) & (h - l <= tolerance));
+        out[c] = level_cell(z0[c], z1[c], l, h, drop[c], inside[c], ex[c], max_rough, tolerance);
     }
 }
 
@@ -233,7 +239,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     const std::vector<std::uint8_t> ones(static_cast<std::size_t>(cols), 1);  // the footprint when none is given
     constexpr float none = std::numeric_limits<float>::quiet_NaN();
     // Level cells: smooth, not excluded, and the lowest returns of the window around them within the tolerance.
-    // The window's lowest and highest finite min z come from running min/max filters over strips of rows.
+    // The window's lowest and highest finite min z: read in place for radii 1 and 2 (level_window_row), else
+    // from running min/max filters over strips of rows.
     raster<std::uint8_t> level(rows, cols, uninitialized);
     {
         const std::ptrdiff_t kx = std::min<std::ptrdiff_t>(opt.level_radius_cells, cols - 1);
@@ -258,31 +265,33 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                 }
             }, {}, fn);
         } else {
-        struct scratch {
-            detail::min_max_scratch<float> s;
-            std::vector<float> lows, highs;
-        };
-        detail::for_each_strip<scratch>(
-            rows, detail::min_max_strip_rows(rows, cols, ky), opt.run.threads,
-            [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
-                const std::ptrdiff_t nc = cols;
-                w.lows.resize(static_cast<std::size_t>((r1 - r0) * nc));
-                w.highs.resize(w.lows.size());
-                const auto load = [&](std::ptrdiff_t r, float* dst) {
-                    const float* z = in.min_z.row(r);
-                    for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
-                };
-                detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(), w.s);
-                detail::min_max_rows<detail::max_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.highs.data(), w.s);
-                for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                    detail::level_row(in.min_z.row(r), in.max_z.row(r), w.lows.data() + (r - r0) * nc,
-                                      w.highs.data() + (r - r0) * nc, in.dropout.row(r),
-                                      in.footprint.empty() ? ones.data() : in.footprint.row(r),
-                                      excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), nc, max_rough,
-                                      tolerance);
-                }
-            },
-            {}, fn);
+            struct scratch {
+                detail::min_max_scratch<float> s;
+                std::vector<float> lows, highs;
+            };
+            detail::for_each_strip<scratch>(
+                rows, detail::min_max_strip_rows(rows, cols, ky), opt.run.threads,
+                [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
+                    const std::ptrdiff_t nc = cols;
+                    w.lows.resize(static_cast<std::size_t>((r1 - r0) * nc));
+                    w.highs.resize(w.lows.size());
+                    const auto load = [&](std::ptrdiff_t r, float* dst) {
+                        const float* z = in.min_z.row(r);
+                        for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
+                    };
+                    detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(),
+                                                                    w.s);
+                    detail::min_max_rows<detail::max_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.highs.data(),
+                                                                    w.s);
+                    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                        detail::level_row(in.min_z.row(r), in.max_z.row(r), w.lows.data() + (r - r0) * nc,
+                                          w.highs.data() + (r - r0) * nc, in.dropout.row(r),
+                                          in.footprint.empty() ? ones.data() : in.footprint.row(r),
+                                          excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), nc,
+                                          max_rough, tolerance);
+                    }
+                },
+                {}, fn);
         }
     }
     detail::ensure_shape(labels, rows, cols);

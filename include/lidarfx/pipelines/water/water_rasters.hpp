@@ -79,8 +79,9 @@ inline std::pair<std::int32_t, std::int32_t> label_range(raster_view<const std::
 /// the smallest key: the high bits of the offsets that span their range, at most 16, in one counting pass,
 /// then the remaining low bits among the values of the bucket holding the median. Heights of one level share
 /// their top bits, so counting on fixed top bits would send nearly every value to one counter (each increment
-/// waiting on the last); the offsets spread them. Three passes that read the values in order (smallest key,
-/// high bits, low bits), instead of nth_element's scattered partitioning. O(size), plus O(2^16).
+/// waiting on the last); the offsets spread them. Two or three passes that read the values in order (smallest
+/// key, high bits, low bits when the span exceeds 2^16), instead of nth_element's scattered partitioning.
+/// O(size), plus O(2^16).
 inline double median(std::span<float> values)
 {
     if (values.empty()) return NAN;
