@@ -216,6 +216,22 @@ inline float float_at_most(double t) noexcept
     return static_cast<double>(f) > t ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
 
+/// Hints that *p will soon be read (no-op where the compiler has no prefetch builtin).
+inline void prefetch_read([[maybe_unused]] const void* p) noexcept
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 0);
+#endif
+}
+
+/// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
+inline void prefetch_write([[maybe_unused]] const void* p) noexcept
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 1);
+#endif
+}
+
 /// The first column >= c of `row` (cols values) holding a positive value, cols if none: blocks of 64 with
 /// none are passed over by a vectorized maximum (labels and masks are mostly 0 or runs of one value; a
 /// shorter block would be unrolled into a scalar chain).

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/point_cloud.hpp"
@@ -97,14 +98,6 @@ inline float stored_z(double z) noexcept
 {
     constexpr auto float_max = static_cast<double>(std::numeric_limits<float>::max());
     return static_cast<float>(std::clamp(z, -float_max, float_max)) + 0.0f;
-}
-
-/// Hints that *p will soon be written (no-op where the compiler has no prefetch builtin).
-inline void prefetch([[maybe_unused]] const void* p) noexcept
-{
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p, 1);
-#endif
 }
 
 }  // namespace detail
@@ -312,7 +305,7 @@ private:
                 zs[j] = detail::stored_z(z);
                 const auto cell = g.cell_of(x, y);
                 at[j] = cell ? cell->row * g.cols + cell->col : outside_cell;
-                if (cell) detail::prefetch(cells + at[j]);
+                if (cell) detail::prefetch_write(cells + at[j]);
             }
             for (std::size_t j = 0; j < m; ++j) {
                 if (at[j] < 0) {
@@ -358,7 +351,7 @@ private:
                 detail::cell_stats* tile = tiles_[t].get();
                 if (!tile) [[unlikely]] tile = new_tile(t);
                 at[j] = tile + (((r & mask_r) << col_bits) | (c & mask_c));
-                detail::prefetch(at[j]);
+                detail::prefetch_write(at[j]);
             }
             for (std::size_t j = 0; j < m; ++j) {
                 if (!at[j]) continue;

@@ -41,14 +41,6 @@ inline void validate(const join_shore_cells_options& o, const char* fn)
             o.min_body_neighbours);
 }
 
-/// Hints that *p will soon be read (no-op where the compiler has no prefetch builtin).
-inline void prefetch_read([[maybe_unused]] const void* p) noexcept
-{
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p, 0);
-#endif
-}
-
 /// The upper median of v[0, n) (n >= 1, no NaN), the value nth_element puts at n / 2 (or the other zero when
 /// -0 and +0 are both there: equal, so a height compares alike against either). A window holds a few dozen
 /// heights: the first value with at most n / 2 below it and more at or below is found by counts, branch-free
