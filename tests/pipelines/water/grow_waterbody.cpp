@@ -136,6 +136,13 @@ TEST_CASE("water/grow_waterbody: bad options and fields are refused")
     CHECK_THROWS_AS(grow_waterbody(f, seed, bad_alpha, visited, 1), invalid_input);
     const std::vector<std::ptrdiff_t> outside{4};
     CHECK_THROWS_AS(grow_waterbody(f, outside, {}, visited, 1), invalid_input);
+    // Intensity bins outside [-1, bins): one past the last, and one with the bits above 2^24 set.
+    std::int32_t stamp = 10;  // a fresh stamp per call: the cells are unvisited
+    for (const std::int32_t bad : {1, std::int32_t{1} << 24, std::int32_t{1} << 29, std::int32_t{1} << 30}) {
+        f.intensity_bin(0, 1) = bad;
+        CHECK_THROWS_AS(grow_waterbody(f, seed, {}, visited, ++stamp), invalid_input);
+    }
+    f.intensity_bin(0, 1) = 0;
     f.eligible = raster<std::uint8_t>(3, 2);
     CHECK_THROWS_AS(grow_waterbody(f, seed, {}, visited, 1), invalid_input);
 }

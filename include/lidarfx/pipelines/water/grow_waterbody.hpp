@@ -142,7 +142,8 @@ inline int step_of_angle(const grow_waterbody_options& o, float angle, int last)
 /// minimax of steps along its best path), so each cell enters the queue once, with a cumulative intensity
 /// histogram per step. O(cells reached + steps * bins). `visited` is scratch of the field's shape whose
 /// cells must differ from `stamp` on entry (pass a fresh stamp per call to reuse it without clearing).
-/// @throws invalid_input on a field of mismatched shapes, bins < 1, or options out of range.
+/// @throws invalid_input on a field of mismatched shapes, bins < 1, options out of range, or an intensity bin
+/// outside [-1, bins) in a cell the flood reaches.
 inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
                                             const grow_waterbody_options& opt, raster<std::int32_t>& visited,
                                             std::int32_t stamp)
@@ -165,10 +166,21 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
     const detail::cell_splitter split(cols);
+    const bool exempt = gate && opt.level_ks_exempt_m >= 0;
+    const auto exempt_m = static_cast<float>(opt.level_ks_exempt_m);
+    // A queued cell: its index, the level it passes on (gate; NaN: unknown yet) and its intensity sample
+    // (bin, -1 for none) with two bits read when it joins, all found while its row is in cache at the push.
+    struct queued {
+        std::ptrdiff_t cell;
+        float level;
+        std::int32_t sample;
+    };
+    constexpr std::int32_t by_level_bit = 1 << 30;  // min z <= level + exempt: water by its height
+    constexpr std::int32_t at_level_bit = 1 << 29;  // |min z − level| <= exempt (test_first_step)
+    constexpr std::int32_t bin_bits = (1 << 24) - 1; // bins <= ks_histogram::largest_max_value + 1
+    static_assert(ks_histogram::largest_max_value <= static_cast<std::uint32_t>(bin_bits));
     // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
-    using cell_queue = std::vector<std::ptrdiff_t, detail::raster_allocator<std::ptrdiff_t>>;
-    // Per queued cell, parallel to buckets: the level it passes on.
-    std::vector<std::vector<float>> bucket_levels(gate ? static_cast<std::size_t>(last + 1) : 0);
+    using cell_queue = std::vector<queued, detail::raster_allocator<queued>>;
     std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
     const bool slope_gate = gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty();
     if (slope_gate)
@@ -185,6 +197,9 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
         if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
         float level = from_level;
+        std::int32_t sample = bin[i];
+        if (sample > bin_bits) [[unlikely]]
+            detail::require(false, fn, "field.intensity_bin", "in [-1, bins)", sample);
         if (gate) {
             const float z = min_z(r, c);
             if (!std::isnan(z)) {
@@ -197,10 +212,13 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                         level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
-            bucket_levels[static_cast<std::size_t>(k)].push_back(level);
+            if (exempt && sample >= 0) {
+                if (z <= level + exempt_m) sample |= by_level_bit;
+                if (std::abs(z - level) <= exempt_m) sample |= at_level_bit;
+            }
         }
         seen[i] = stamp;
-        buckets[static_cast<std::size_t>(k)].push_back(i);
+        buckets[static_cast<std::size_t>(k)].push_back({i, level, sample});
     };
     const auto fresh = [&](std::ptrdiff_t i) { return seen[i] != stamp && eligible[i]; };
     const float seed_level =
@@ -211,7 +229,6 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         const auto [r, c] = split(i);
         if (fresh(i)) push(i, r, c, 0, seed_level);
     }
-    const bool exempt = gate && opt.level_ks_exempt_m >= 0;
     const std::size_t seed_entries = buckets.front().size();  // the seed's own cells never wait (test_first_step)
 
     grow_waterbody_result out;
@@ -220,59 +237,50 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     const bool increment = opt.sample == ks_sample_mode::increment;
     // The first step's test within itself (test_first_step): its cells off the level wait here.
     const bool first_test = exempt && opt.test_first_step;
-    std::vector<std::ptrdiff_t> waiting;
-    std::vector<float> waiting_levels;
+    std::vector<queued> waiting;
     ks_histogram waiting_sample(max_bin);
-    const auto at_level = [&](std::ptrdiff_t i, float level) {
-        const auto [r, c] = split(i);
-        return std::abs(min_z(r, c) - level) <= static_cast<float>(opt.level_ks_exempt_m);
-    };
     for (int k = 0; k <= last; ++k) {
         const std::size_t before = out.cells.size();
         auto& bucket = buckets[static_cast<std::size_t>(k)];
-        const auto join = [&](std::ptrdiff_t i, float level) {
+        const auto join = [&](const queued& q) {
+            const std::ptrdiff_t i = q.cell;
             out.cells.push_back(i);
-            const auto [r, c] = split(i);
-            if (bin[i] >= 0) {
-                current.add(bin[i]);
+            if (q.sample >= 0) {
+                current.add(q.sample & bin_bits);
                 // A cell at or below the level it joined at is water by its height: no KS evidence needed.
-                const bool by_level = exempt && min_z(r, c) <= level + static_cast<float>(opt.level_ks_exempt_m);
-                if (increment && !by_level) added.add(bin[i]);
+                if (increment && !(q.sample & by_level_bit)) added.add(q.sample & bin_bits);
             }
+            const auto [r, c] = split(i);
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
                 const std::ptrdiff_t rr = r + dr;
                 if (rr < 0 || rr >= rows) continue;
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t cc = c + dc;
                     if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
-                    if (const std::ptrdiff_t j = rr * cols + cc; fresh(j)) push(j, rr, cc, k, level);
+                    if (const std::ptrdiff_t j = rr * cols + cc; fresh(j)) push(j, rr, cc, k, q.level);
                 }
             }
         };
         // Cells pushed into this bucket while it is being drained join at this same step.
         for (std::size_t q = 0;;) {
             for (; q < bucket.size(); ++q) {
-                const std::ptrdiff_t i = bucket[q];
-                const float level = gate ? bucket_levels[static_cast<std::size_t>(k)][q] : NAN;
-                if (first_test && k == 0 && q >= seed_entries && bin[i] >= 0 && !at_level(i, level)) {
-                    waiting.push_back(i);
-                    waiting_levels.push_back(level);
-                    waiting_sample.add(bin[i]);
+                const queued entry = bucket[q];
+                if (first_test && k == 0 && q >= seed_entries && entry.sample >= 0 && !(entry.sample & at_level_bit)) {
+                    waiting.push_back(entry);
+                    waiting_sample.add(entry.sample & bin_bits);
                     continue;
                 }
-                join(i, level);
+                join(entry);
             }
             if (waiting.empty()) break;
             const bool rejected =
                 current.size() >= opt.min_ks_samples && ks_one_sided(current, waiting_sample, opt.ks).reject;
             const auto cells = std::exchange(waiting, {});
-            const auto levels = std::exchange(waiting_levels, {});
             waiting_sample.clear();
             if (rejected) break;  // they stay visited: no other path lets them in
-            for (std::size_t w = 0; w < cells.size(); ++w) join(cells[w], levels[w]);
+            for (const auto& w : cells) join(w);
         }
         cell_queue().swap(bucket);
-        if (gate) std::vector<float>().swap(bucket_levels[static_cast<std::size_t>(k)]);
         const bool grew = out.cells.size() > before;
         if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&
             current.size() > previous.size() && (!increment || !added.empty())) {
