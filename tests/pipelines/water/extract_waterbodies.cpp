@@ -140,6 +140,31 @@ TEST_CASE("water/extract_waterbodies: a pond with returns and 40 % scattered dro
     CHECK(found_in_pond(without) < pond / 2);  // the opened seed mask keeps too little of the pond
 }
 
+TEST_CASE("water/extract_waterbodies: a mask is found empty or not wherever its one set cell lies")
+{
+    // any_set decides whether the flat and bridge seeds' steps run: it must see a cell anywhere, in
+    // rows shorter and longer than its 64-cell blocks, and in a strided view.
+    for (const auto& [rows, cols] : {std::pair{1, 1}, std::pair{1, 64}, std::pair{3, 65}, std::pair{5, 200}}) {
+        raster<std::uint8_t> mask(rows, cols, 0);
+        CHECK_FALSE(detail::any_set(mask));
+        for (int r = 0; r < rows; ++r) {
+            for (int c = 0; c < cols; ++c) {
+                mask(r, c) = 7;
+                const bool seen = detail::any_set(mask);
+                mask(r, c) = 0;
+                REQUIRE(seen);
+            }
+        }
+    }
+    CHECK_FALSE(detail::any_set(raster<std::uint8_t>()));
+    raster<std::uint8_t> padded(4, 100, 0);
+    padded(2, 90) = 1;  // outside the view's 80 columns: not seen
+    const raster_view<const std::uint8_t> view(padded.data(), 4, 80, 100);
+    CHECK_FALSE(detail::any_set(view));
+    padded(3, 79) = 1;
+    CHECK(detail::any_set(view));
+}
+
 TEST_CASE("water/extract_waterbodies: same result for any thread count")
 {
     synth::scene_options so;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/filter/morphology.hpp"
@@ -168,6 +169,14 @@ struct extract_waterbodies_result {
 };
 
 namespace detail {
+
+/// Whether a mask has a nonzero cell (each row passed over 64 cells at a time, as next_positive does).
+inline bool any_set(raster_view<const std::uint8_t> mask) noexcept
+{
+    for (std::ptrdiff_t r = 0; r < mask.rows(); ++r)
+        if (next_positive(mask.row(r), 0, mask.cols()) < mask.cols()) return true;
+    return false;
+}
 
 inline void validate(const extract_waterbodies_options& o, double cell_m, const char* fn)
 {
@@ -383,7 +392,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         auto flat = opt.flat;
         flat.run = kernels;
         auto mask = flat_water_seeds(in, res.vegetation, flat, field.surface_slope, labels, grown.labels);
-        if (opt.flat_seed_dropouts) {
+        // Without a flat seed cell (all water found already, or none without dropouts) the steps below find
+        // no seed: they are passed over, and their progress reported as done.
+        const bool any_flat = detail::any_set(mask);
+        if (!any_flat) detail::report(opt.run.progress, 0.9, fn);
+        if (any_flat && opt.flat_seed_dropouts) {
             // The dropouts next to the seed cells (3 x 3 dilation) join them: water with scattered dropouts
             // has level cells between them that the opening would otherwise break apart. Eligible: not
             // vegetation, in no body yet.
@@ -407,23 +420,25 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // falling river would otherwise take the level of its low end and gate out its high end). The bands
         // are centred on each connected part's mean min z, band index round((min z − mean) / band): a lake
         // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
-        if (opt.grow.level_gate_m > 0) {
+        if (any_flat && opt.grow.level_gate_m > 0) {
             detail::ensure_shape(labels, rows, cols);  // (flat_water_seeds without counts left it as it was)
             const auto parts = connected_components(mask, labels, connected_components_options{
                                                                       .conn = connectivity::eight, .run = kernels});
             detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z,
                                        2 * opt.grow.level_gate_m);
         }
-        auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
-                                       .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));
-        grow_more(more, 0.8, 0.1);
-        labels = std::move(more.labels);
+        if (any_flat) {
+            auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
+                                           .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));
+            grow_more(more, 0.8, 0.1);
+            labels = std::move(more.labels);
+        }
     }
     // Seeds beyond bridge decks, round by round: each round's bodies may end at the next bridge.
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {
         const auto mask =
             seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, field.surface_slope);
-        if (std::find(mask.begin(), mask.end(), std::uint8_t{1}) == mask.end()) break;  // none: no labelling
+        if (!detail::any_set(mask)) break;  // none: no labelling
         auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = kernels},
                                 std::move(labels));
         if (more.count() == 0) break;
