@@ -313,23 +313,23 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         level_cells += level_sizes[l];
     }
     const std::size_t nb = sizes.size() - 1;
-    // Per component: its count, intensity and roughness (summed in row order); max z − min z of every level
-    // cell: the survey's typical roughness. Along a run of one label the sums stay in registers (the same
-    // additions in the same order as cell by cell).
+    // Per component: its count, intensity and roughness (summed in row order), needed only for those with a
+    // cell not taken (the others are no seed); max z − min z of every level cell: the survey's typical
+    // roughness. First the renumbering, the roughness of every level cell, the free cells and the rows of
+    // each component; then the sums of the components with free cells, over their rows.
     std::vector<double> count_sum(nb + 1, 0), ring_count(nb + 1, 0), ring_cells(nb + 1, 0), light(nb + 1, 0),
         ring_light(nb + 1, 0), rough(nb + 1, 0), lower(nb + 1, 0);
     std::vector<float> level_rough(level_cells);
     std::vector<std::size_t> free_cells(nb + 1, 0);  // cells not taken
     const std::vector<std::int32_t> none_taken(static_cast<std::size_t>(cols), 0);
     const auto taken_row = [&](std::ptrdiff_t r) { return taken.empty() ? none_taken.data() : taken.row(r); };
+    std::vector<std::ptrdiff_t> first_row(nb + 1, rows), last_row(nb + 1, -1);
     {
         float* rough_out = level_rough.data();
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             std::int32_t* lab = labels.row(r);
             const float* z0 = in.min_z.row(r);
             const float* z1 = in.max_z.row(r);
-            const std::uint32_t* pulses = in.count.row(r);
-            const float* intensity = in.mean_intensity.row(r);
             const std::int32_t* body = taken_row(r);
             detail::for_each_run(lab, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t end) {
                 const std::int32_t to = big[static_cast<std::size_t>(l)];
@@ -340,26 +340,47 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                     }
                     return;
                 }
-                const auto m = static_cast<std::size_t>(to);
-                double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
                 std::size_t free = 0;
                 for (std::ptrdiff_t c = from; c < end; ++c) {
-                    const float d = z1[c] - z0[c];
-                    *rough_out++ = d;
-                    pulse_sum += pulses[c];
-                    light_sum += intensity[c];
-                    rough_sum += d;
+                    *rough_out++ = z1[c] - z0[c];
                     free += body[c] <= 0;
                     lab[c] = to;
                 }
+                const auto m = static_cast<std::size_t>(to);
                 free_cells[m] += free;
-                count_sum[m] = pulse_sum;
-                light[m] = light_sum;
-                rough[m] = rough_sum;
+                first_row[m] = std::min(first_row[m], r);
+                last_row[m] = r;
             });
         }
     }
-    const double typical_rough = detail::median(level_rough);
+    std::ptrdiff_t free_first = rows, free_last = -1;  // the rows of the components with free cells
+    for (std::size_t m = 1; m <= nb; ++m) {
+        if (free_cells[m] == 0) continue;
+        free_first = std::min(free_first, first_row[m]);
+        free_last = std::max(free_last, last_row[m]);
+    }
+    for (std::ptrdiff_t r = free_first; r <= free_last; ++r) {
+        const std::int32_t* lab = labels.row(r);
+        const float* z0 = in.min_z.row(r);
+        const float* z1 = in.max_z.row(r);
+        const std::uint32_t* pulses = in.count.row(r);
+        const float* intensity = in.mean_intensity.row(r);
+        // Along a run of one label the sums stay in registers (the same additions in the same order as cell
+        // by cell, and as one pass over the raster in row order).
+        detail::for_each_run(lab, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t end) {
+            const auto m = static_cast<std::size_t>(l);
+            if (free_cells[m] == 0) return;
+            double pulse_sum = count_sum[m], light_sum = light[m], rough_sum = rough[m];
+            for (std::ptrdiff_t c = from; c < end; ++c) {
+                pulse_sum += pulses[c];
+                light_sum += intensity[c];
+                rough_sum += z1[c] - z0[c];
+            }
+            count_sum[m] = pulse_sum;
+            light[m] = light_sum;
+            rough[m] = rough_sum;
+        });
+    }
     // The ring: cells with returns, in no component, within ring_cells of a large one. Per strip of rows, running
     // filters over the labels of large components give the smallest and largest label within reach and the lowest min z
     // of their cells; where both labels agree that is the one component in reach, else the window is read cell by cell.
@@ -477,23 +498,38 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             lower[m] += in.min_z(e.r, e.c) < e.z - opt.level_tolerance_m;
         }
     }
+    // A component is a seed when sparse, or a few % sparser and dark, smooth or all three cues together
+    // (the roughness, against the median over all level cells, is found when first needed), and lowest.
     std::vector<std::uint8_t> keep(nb + 1, 0);
+    double typical_rough = NAN;
+    bool typical_known = false;
     for (std::size_t l = 1; l <= nb; ++l) {
-        if (ring_cells[l] == 0) continue;  // (every renumbered component has >= min_cells cells)
+        // A component all taken leaves no seed cell. (Every renumbered component has >= min_cells cells.)
+        if (free_cells[l] == 0 || ring_cells[l] == 0) continue;
         const double size = static_cast<double>(sizes[l]);
         const double density = count_sum[l] / size / (ring_count[l] / ring_cells[l]);
         const double intensity = light[l] / size / (ring_light[l] / ring_cells[l]);
         // Sparse counts only when not brighter than the ring: a bright (specular) echo is one that arrived.
         const bool sparse = (density <= opt.max_density_ratio && intensity <= 1) || density <= opt.bright_density_ratio;
         const bool dark = intensity <= opt.max_intensity_ratio;
-        // Against the typical roughness; on perfectly smooth data (typical 0) a smooth component is 0, not 0 / 0.
-        const double mean_rough = rough[l] / size;
-        const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical_rough;
-        const bool smooth = roughness <= opt.max_roughness_ratio;
-        const bool joint = sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
-        if (!sparse && !((dark || smooth || joint) && density <= opt.dark_density_ratio)) continue;
+        if (!sparse) {
+            if (!(density <= opt.dark_density_ratio)) continue;
+            if (!dark) {
+                if (!typical_known) {
+                    typical_rough = detail::median(level_rough);
+                    typical_known = true;
+                }
+                // On perfectly smooth data (typical 0) a smooth component is 0, not 0 / 0.
+                const double mean_rough = rough[l] / size;
+                const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical_rough;
+                const bool smooth = roughness <= opt.max_roughness_ratio;
+                const bool joint =
+                    sizes[l] >= opt.joint_min_cells && density * intensity * roughness <= opt.max_joint_ratio;
+                if (!smooth && !joint) continue;
+            }
+        }
         if (!(lower[l] <= opt.max_lower_share * ring_cells[l])) continue;
-        keep[l] = free_cells[l] > 0;  // (a component all taken would leave no seed cell)
+        keep[l] = 1;
     }
     // With a surface slope: a component kept so far whose median slope around its cells (NaN, unknown, as
     // level) exceeds max_surface_slope is no seed (only kept ones are read: most components are land).
