@@ -131,9 +131,11 @@ TEST_CASE("water/join_level_cells: starting from edge cells equals starting from
     std::mt19937 rng(3131);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     int grew = 0;
-    for (int trial = 0; trial < 60; ++trial) {
+    for (int trial = 0; trial < 180; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 2 + rng() % 25, cols = 2 + rng() % 25;
+        // One row or one column now and then; the region a blob (it fills its box: the edge is flagged by a
+        // pass over the box), scattered cells or two blobs far apart (cell by cell).
+        const std::ptrdiff_t rows = 1 + rng() % 25, cols = 1 + rng() % 25;
         raster<float> lo(rows, cols), hi(rows, cols);
         raster<std::uint8_t> eligible(rows, cols);
         for (std::ptrdiff_t i = 0; i < lo.size(); ++i) {
@@ -142,14 +144,21 @@ TEST_CASE("water/join_level_cells: starting from edge cells equals starting from
             hi.data()[i] = lo.data()[i] + (u(rng) < 0.8f ? 0.3f * u(rng) : 3.0f);
             eligible.data()[i] = u(rng) < 0.9f;
         }
-        // A blob region around a random centre.
         cells region;
+        const int shape = trial % 3;
         const auto r0 = static_cast<std::ptrdiff_t>(rng() % static_cast<unsigned>(rows));
         const auto c0 = static_cast<std::ptrdiff_t>(rng() % static_cast<unsigned>(cols));
         const double radius = 1.0 + 4.0 * u(rng);
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (std::hypot(static_cast<double>(r - r0), static_cast<double>(c - c0)) <= radius) region.push_back(r * cols + c);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const double near = std::hypot(static_cast<double>(r - r0), static_cast<double>(c - c0));
+                const double far = std::hypot(static_cast<double>(r - (rows - 1 - r0)), static_cast<double>(c - (cols - 1 - c0)));
+                const bool in = shape == 0 ? near <= radius
+                              : shape == 1 ? u(rng) < 0.08f
+                                           : near <= 1.0 || far <= 1.0;
+                if (in) region.push_back(r * cols + c);
+            }
+        }
         std::shuffle(region.begin(), region.end(), rng);
         const join_level_cells_options o{.tolerance_m = 0.05 + 0.2 * u(rng), .max_rise_m = 0.5 * u(rng),
                                          .depth_cells = static_cast<int>(rng() % 4)};
@@ -159,7 +168,7 @@ TEST_CASE("water/join_level_cells: starting from edge cells equals starting from
         CHECK(got == reference_join(region, lo, hi, eligible, o));
         grew += got.size() > region.size();
     }
-    CHECK(grew > 15);
+    CHECK(grew > 45);
 }
 
 TEST_CASE("water/join_level_cells: bad arguments are refused")
