@@ -411,7 +411,7 @@ void ks_refine(std::span<const K> p, std::span<const K> c, std::uint64_t i0, std
     const int shift = std::max(0, static_cast<int>(std::bit_width(static_cast<K>(hi - lo))) - wanted_bits);
     const std::size_t buckets = static_cast<std::size_t>(static_cast<K>(hi - lo) >> shift) + 1;
     ks_refine_buckets<K>(p, c, i0, j0, t, buckets,
-                         [lo, shift](K k) { return static_cast<std::size_t>(static_cast<K>(k - lo) >> shift); });
+                         [lo = lo, shift](K k) { return static_cast<std::size_t>(static_cast<K>(k - lo) >> shift); });
 }
 
 /// The value of a key of ks_key<T> (T float or double): its inverse.

@@ -175,7 +175,10 @@ inline void reassign_cells(const roof_box_surface& s, std::vector<std::vector<st
     // A (cell, plane) entry has one residual, so pushing it again changes nothing: skip repeats by one plane.
     std::vector<std::int32_t> last_pushed(assign.size(), 0);
     while (!queue.empty()) {
-        const auto [r, i, p] = queue.top();
+        // Plain variables, not a structured binding: the lambda below captures them (C++20 allows capturing a
+        // binding, Clang 14 does not).
+        const std::ptrdiff_t i = std::get<1>(queue.top());
+        const std::int32_t p = std::get<2>(queue.top());
         queue.pop();
         if (assign[static_cast<std::size_t>(i)] != 0) continue;
         assign[static_cast<std::size_t>(i)] = p;

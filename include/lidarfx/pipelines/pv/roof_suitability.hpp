@@ -259,7 +259,9 @@ inline building_outcome building_paper(const slope_aspect_result& sa, const std:
     pv.tilt_deg = slope_sum / static_cast<double>(slopes);  // step 4: mean slope = tilt
     const bool flat = pv.tilt_deg < o.flat_below_deg;
     std::vector<std::ptrdiff_t> chosen;
-    const auto [r0, c0, h, w] = cells_box(first, last, g.cols);
+    // Plain variables, not a structured binding: drop_small below captures h and w (Clang 14 cannot).
+    const auto box = cells_box(first, last, g.cols);
+    const std::ptrdiff_t r0 = box[0], c0 = box[1], h = box[2], w = box[3];
     std::vector<std::uint8_t> mask(static_cast<std::size_t>(h * w), 0);
     if (flat) {
         // Flat roofs are treated separately (paper section 3): every roof cell is a candidate.

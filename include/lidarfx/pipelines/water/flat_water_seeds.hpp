@@ -137,8 +137,8 @@ void level_window_row(const float* const* rows, float* low, float* high, const f
         for (int d = 0; d <= 2 * K; ++d) {
             const float x = rows[d][c];
             const bool finite = std::isfinite(x);
-            l = finite & (x < l) ? x : l;
-            h = finite & (x > h) ? x : h;
+            l = (finite & (x < l)) ? x : l;
+            h = (finite & (x > h)) ? x : h;
         }
         lo[c] = l;
         hi[c] = h;
