@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/tmy3.hpp"
 
+#include <lidarfx/core/error.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstddef>
 #include <fstream>
 #include <sstream>
@@ -56,6 +59,11 @@ bool to_number(std::string_view s, double& v)
     return ec == std::errc{} && end == s.data() + s.size() && std::isfinite(v);
 }
 
+std::string fixed0(double v)
+{
+    return std::to_string(std::llround(v));
+}
+
 bool to_int(std::string_view s, int& v)
 {
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -72,7 +80,20 @@ std::string_view column_name(std::string_view header)
 
 [[noreturn]] void fail_at(const std::string& source, std::size_t line_no, const std::string& what)
 {
-    throw std::runtime_error(source + ": line " + std::to_string(line_no) + ": " + what);
+    throw invalid_input(source + ": line " + std::to_string(line_no) + ": " + what);
+}
+
+// Days before each month in a year of 365 days (a TMY year).
+constexpr int days_before_month[13] = {0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334, 365};
+
+// "MM/DD HH:00" of hour `index` (0 .. 8759) of a TMY year, hour-ending like the rows' stamps (01:00 .. 24:00).
+std::string hour_stamp(int index)
+{
+    const int day = index / 24, hour = index % 24 + 1;
+    int month = 1;
+    while (days_before_month[month] <= day) ++month;
+    const auto two = [](int v) { return std::string(v < 10 ? "0" : "") + std::to_string(v); };
+    return two(month) + "/" + two(day - days_before_month[month - 1] + 1) + " " + two(hour) + ":00";
 }
 
 }  // namespace
@@ -129,6 +150,8 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
     }
     const std::ptrdiff_t needed = std::max({col_date, col_time, col_ghi, col_dni, col_dhi}) + 1;
     const auto offset = std::chrono::seconds{std::llround(out.station.utc_offset_h * 3600.0)};
+    // The line of the row of each hour of the year: 0 none yet, negative when the row is marked missing.
+    std::vector<std::ptrdiff_t> line_of_hour(static_cast<std::size_t>(tmy3_hours_of_year), 0);
     while (next_line(line)) {
         if (trim(line).empty()) continue;
         const auto f = csv_fields(trim(line));
@@ -146,22 +169,88 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
         if (time.size() != 5 || time[2] != ':' || !to_int(time.substr(0, 2), hh) || !to_int(time.substr(3, 2), mi) ||
             hh < 0 || hh > 24 || mi < 0 || mi > 59 || (hh == 24 && mi != 0))
             fail("bad time '" + std::string(time) + "' (expected HH:MM, 01:00 .. 24:00, hour-ending)");
+        if (mi != 0) fail("bad time '" + std::string(time) + "' (TMY3 rows are hourly: expected HH:00)");
+        // The hour of the TMY year the row describes: its written month, day and hour-ending stamp, the year
+        // ignored (a TMY takes each month from a different year); 00:00 is the previous day's 24:00.
+        if (mm == 2 && dd == 29) {
+            fail("'" + std::string(date) + "' is 29 February, which a TMY year (365 days, " +
+                 std::to_string(tmy3_hours_of_year) + " hours) does not have");
+        }
+        const int hour_index = (days_before_month[mm - 1] + dd - 1) * 24 + hh - 1;
+        const int hour = (hour_index + tmy3_hours_of_year) % tmy3_hours_of_year;
+        std::ptrdiff_t& row_of_hour = line_of_hour[static_cast<std::size_t>(hour)];
+        if (row_of_hour != 0) {
+            fail("the hour " + hour_stamp(hour) + " ('" + std::string(date) + "," + std::string(time) +
+                 "') is already on line " + std::to_string(std::abs(row_of_hour)) +
+                 ": each hour of the year may be on one row only (is the year repeated, or a row copied?)");
+        }
+        row_of_hour = static_cast<std::ptrdiff_t>(line_no);
         irradiance_record rec;
         const std::chrono::sys_seconds stamp_local =
             std::chrono::sys_days{ymd} + std::chrono::hours{hh} + std::chrono::minutes{mi};
         rec.interval = std::chrono::seconds{3600};
         rec.start_utc = stamp_local - rec.interval - offset;
-        const std::pair<std::ptrdiff_t, double*> values[] = {
-            {col_ghi, &rec.ghi_w_m2}, {col_dni, &rec.dni_w_m2}, {col_dhi, &rec.dhi_w_m2}};
-        for (const auto& [col, value] : values) {
-            const std::string_view s = f[static_cast<std::size_t>(col)];
-            if (!to_number(s, *value) || *value < 0.0)
-                fail("bad irradiance '" + std::string(s) + "' (W/m^2, a number >= 0)");
+        struct column {
+            std::ptrdiff_t index;
+            const char* name;
+            double* value;
+            double max_w_m2;
+            const char* why;
+        };
+        const column values[] = {
+            {col_ghi, "GHI", &rec.ghi_w_m2, tmy3_max_ghi_dhi_w_m2, "no clear sky gives that as an hourly mean"},
+            {col_dni, "DNI", &rec.dni_w_m2, tmy3_max_dni_w_m2, "the solar constant 1367 W/m^2 x 1.035 at perihelion"},
+            {col_dhi, "DHI", &rec.dhi_w_m2, tmy3_max_ghi_dhi_w_m2, "no clear sky gives that as an hourly mean"}};
+        bool marked_missing = false;
+        for (const column& c : values) {
+            const std::string_view s = trim(f[static_cast<std::size_t>(c.index)]);
+            if (!to_number(s, *c.value)) {
+                fail("bad irradiance '" + std::string(s) + "': " + c.name + " must be a number (W/m^2)");
+            }
+            if (*c.value == tmy3_missing_value) {
+                marked_missing = true;
+            } else if (*c.value < 0.0) {
+                fail("bad irradiance '" + std::string(s) + "': " + c.name + " must be >= 0 W/m^2 (or -9900, missing)");
+            } else if (*c.value > c.max_w_m2) {
+                fail(std::string(c.name) + " " + std::string(s) + " W/m^2 is above " + fixed0(c.max_w_m2) + " W/m^2 (" +
+                     c.why + ")");
+            }
         }
-        out.records.push_back(rec);
+        if (marked_missing) {
+            ++out.coverage.rows_marked_missing;
+            row_of_hour = -row_of_hour;  // on a row, but without values
+        } else {
+            out.records.push_back(rec);
+        }
     }
-    if (out.records.empty()) fail("no data rows after the two header lines");
+    if (out.records.empty() && out.coverage.rows_marked_missing == 0) fail("no data rows after the two header lines");
+    tmy3_coverage& cov = out.coverage;
+    cov.hours_present = static_cast<int>(out.records.size());
+    cov.hours_missing = tmy3_hours_of_year - cov.hours_present;
+    for (int h = 0; h < tmy3_hours_of_year && cov.first_missing.empty(); ++h) {
+        if (line_of_hour[static_cast<std::size_t>(h)] <= 0) cov.first_missing = hour_stamp(h);
+    }
+    if (cov.hours_missing > tmy3_max_missing_hours) {
+        throw invalid_input(source + ": " + std::to_string(cov.hours_present) + " of " +
+                            std::to_string(tmy3_hours_of_year) + " hours of the year have values, " +
+                            std::to_string(cov.hours_missing) + " are missing (the first " + cov.first_missing +
+                            ", " + std::to_string(cov.rows_marked_missing) + " marked -9900): at most " +
+                            std::to_string(tmy3_max_missing_hours) + " (1 %) may be missing");
+    }
     return out;
+}
+
+std::string coverage_line(const tmy3_data& data, const std::string& source)
+{
+    const tmy3_coverage& c = data.coverage;
+    std::string line = "weather: " + source + " covers " + std::to_string(c.hours_present) + " of " +
+                       std::to_string(tmy3_hours_of_year) + " hours of the year";
+    if (c.hours_missing > 0) {
+        line += " (" + std::to_string(c.hours_missing) + " missing, the first " + c.first_missing;
+        if (c.rows_marked_missing > 0) line += ", " + std::to_string(c.rows_marked_missing) + " marked -9900";
+        line += ": they add nothing; at most " + std::to_string(tmy3_max_missing_hours) + " may be missing)";
+    }
+    return line;
 }
 
 tmy3_data read_tmy3(const std::string& path)
