@@ -134,7 +134,15 @@ int run_roofs(const std::vector<std::string>& args)
     if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw usage_error("--lat must be in [-90, 90] degrees");
     if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) throw usage_error("--lon must be in [-180, 180] degrees");
     if (a.has("tmy")) {
-        const auto tmy = io::read_tmy3(a.text("tmy", ""));
+        const std::string tmy_file = a.text("tmy", "");
+        const auto tmy = [&] {
+            try {
+                return io::read_tmy3(tmy_file);
+            } catch (const invalid_input& e) {
+                throw usage_error(e.what());  // the file breaks the rules of a weather year: exit code 2
+            }
+        }();
+        std::cerr << io::coverage_line(tmy, tmy_file) << "\n";
         records = tmy.records;
         if (!a.has("lat")) {
             lat = tmy.station.latitude_deg;

@@ -202,7 +202,15 @@ int run_solar(const std::vector<std::string>& args)
     double station_lat = nan, station_lon = nan;
     double zone_h = 0.0;
     if (a.has("tmy")) {
-        const auto tmy = lidarfx::io::read_tmy3(a.text("tmy", ""));
+        const std::string tmy_file = a.text("tmy", "");
+        const auto tmy = [&] {
+            try {
+                return lidarfx::io::read_tmy3(tmy_file);
+            } catch (const lidarfx::invalid_input& e) {
+                throw cli::usage_error(e.what());  // the file breaks the rules of a weather year: exit code 2
+            }
+        }();
+        std::cerr << lidarfx::io::coverage_line(tmy, tmy_file) << "\n";
         records = tmy.records;
         zone_h = tmy.station.utc_offset_h;
         station_lat = tmy.station.latitude_deg;
