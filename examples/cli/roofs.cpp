@@ -155,7 +155,9 @@ int run_roofs(const std::vector<std::string>& args)
     // Footprints first: a bad file fails before the survey is read and before the output folder exists.
     io::footprint_collection footprints;
     try {
-        footprints = io::read_footprints_geojson(footprint_file);
+        // The read counts against --memory on its own (0 = half the physical memory), before the grid exists.
+        const std::uint64_t budget = a.has("memory") ? parse_bytes(a.text("memory", ""), "--memory") : 0;
+        footprints = io::read_footprints_geojson(footprint_file, {.memory_budget_bytes = budget});
     } catch (const invalid_input& e) {
         throw usage_error(e.what());
     }

@@ -2,16 +2,18 @@
 #include "io/footprints.hpp"
 
 #include <algorithm>
-#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
-#include <variant>
+#include <system_error>
+
+#include <unistd.h>
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
@@ -22,54 +24,186 @@
 namespace lidarfx::io {
 namespace {
 
-// A small JSON document model: enough for GeoJSON (RFC 8259 values; numbers as double).
-struct json;
-using json_object = std::vector<std::pair<std::string, json>>;
-using json_array = std::vector<json>;
-struct json {
-    std::variant<std::nullptr_t, bool, double, std::string, std::shared_ptr<json_array>, std::shared_ptr<json_object>> v;
-    const json* member(std::string_view name) const
-    {
-        if (const auto* o = std::get_if<std::shared_ptr<json_object>>(&v)) {
-            for (const auto& [k, value] : **o)
-                if (k == name) return &value;
-        }
-        return nullptr;
+namespace bg = boost::geometry;
+using bg_point = bg::model::d2::point_xy<double>;
+using bg_polygon = bg::model::polygon<bg_point>;  // clockwise outer rings, closed
+
+bg_polygon to_boost(const polygon& p)
+{
+    bg_polygon b;
+    for (std::size_t k = 0; k < p.rings.size(); ++k) {
+        auto& ring = k == 0 ? b.outer() : (b.inners().emplace_back(), b.inners().back());
+        for (const auto& v : p.rings[k]) ring.push_back(bg_point(v[0], v[1]));
     }
-    const json_array* array() const
-    {
-        const auto* a = std::get_if<std::shared_ptr<json_array>>(&v);
-        return a ? a->get() : nullptr;
+    bg::correct(b);  // orientation and closure as Boost expects
+    return b;
+}
+
+// Outer ring counter-clockwise, holes clockwise (RFC 7946), as lidarfx::polygon documents.
+void orient(polygon& p)
+{
+    for (std::size_t k = 0; k < p.rings.size(); ++k) {
+        auto& ring = p.rings[k];
+        double area2 = 0;
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1];
+        if ((k == 0) != (area2 > 0)) std::reverse(ring.begin(), ring.end());
     }
-    const std::string* string() const { return std::get_if<std::string>(&v); }
-    const double* number() const { return std::get_if<double>(&v); }
+}
+
+
+// Why the footprint cannot be used as drawn ("" when it can): a ring crossing itself, zero area, or another
+// reason of Boost.Geometry's is_valid.
+std::string geometry_problem(const footprint& fp)
+{
+    bg::model::multi_polygon<bg_polygon> shape;
+    for (const polygon& p : fp.parts) shape.push_back(to_boost(p));
+    for (const bg_polygon& part : shape)
+        if (bg::intersects(part)) return "invalid polygon: a ring crosses itself (self-intersection)";
+    if (!(bg::area(shape) > 0)) return "empty (zero area)";
+    std::string reason;
+    if (!bg::is_valid(shape, reason)) return "invalid polygon: " + reason;
+    return {};
+}
+
+std::uint64_t budget_of(const footprint_read_options& opt)
+{
+    if (opt.memory_budget_bytes) return opt.memory_budget_bytes;
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
+}
+
+std::string size_text(double bytes)
+{
+    std::ostringstream s;
+    s << std::setprecision(3);
+    if (bytes >= 1073741824.0) s << bytes / 1073741824.0 << " GiB";
+    else s << bytes / 1048576.0 << " MiB";
+    return s.str();
+}
+
+// What one feature of the file says, as far as footprints need it: its building_id (as written), its
+// geometry's type, and its coordinates flattened (vertices, the end of each ring, the end of each part).
+struct feature_text {
+    bool object = true;
+    int id_kind = 0;  // 0: no building_id, 1: a number, 2: something else
+    double id = 0;
+    std::string id_token;
+    bool have_type = false, have_coordinates = false;
+    std::string type;
+    int height = 0;   // nesting of the coordinates: 1 a position, 2 a ring, 3 a Polygon, 4 a MultiPolygon
+    std::vector<std::array<double, 2>> vertices;
+    std::vector<std::size_t> ring_end, part_end;  // vertices before each ring's end, rings before each part's end
+    std::string shape_error, bad_value;           // the first of each, if any
+
+    void clear()
+    {
+        object = true;
+        id_kind = 0;
+        id = 0;
+        id_token.clear();
+        have_type = have_coordinates = false;
+        type.clear();
+        height = 0;
+        vertices.clear();
+        ring_end.clear();
+        part_end.clear();
+        shape_error.clear();
+        bad_value.clear();
+    }
+    void shape(const char* what)
+    {
+        if (shape_error.empty()) shape_error = what;
+    }
 };
 
-class json_parser {
+// One pass over GeoJSON text that keeps only what footprints need: no document tree, one feature's
+// coordinates at a time. Values it does not need are checked for syntax and passed over.
+class geojson_reader {
 public:
-    json_parser(std::string_view text, const std::string& source) : s_(text), source_(source) {}
-
-    json document()
+    geojson_reader(std::string_view text, const std::string& source, std::uint64_t budget)
+        : s_(text), source_(source), budget_(budget), text_bytes_(static_cast<double>(text.size()))
     {
-        json value = parse(0);
+    }
+
+    footprint_collection read()
+    {
+        if (s_.substr(0, 3) == "\xEF\xBB\xBF") i_ = 3;  // a UTF-8 byte order mark, as some GIS tools write
+        charge(0);
         skip_space();
-        if (i_ != s_.size()) fail("unexpected text after the JSON value");
-        return value;
+        const auto not_a_collection = [&] {
+            return invalid_input(source_ + ": expected a GeoJSON FeatureCollection of building footprints");
+        };
+        if (i_ >= s_.size() || s_[i_] != '{') {
+            skip_value(0);
+            end_of_text();
+            throw not_a_collection();
+        }
+        ++i_;
+        bool type_seen = false, features_seen = false;
+        if (!take('}')) {
+            do {
+                skip_space();
+                const std::string key = string();
+                expect(':');
+                skip_space();
+                if (key == "type" && !type_seen) {
+                    type_seen = true;
+                    if (!(peek('"') && string() == "FeatureCollection")) throw not_a_collection();
+                } else if (key == "features" && !features_seen) {
+                    features_seen = true;
+                    if (!peek('[')) throw invalid_input(source_ + ": the FeatureCollection has no \"features\" array");
+                    features();
+                } else {
+                    skip_value(1);
+                }
+            } while (take(','));
+            expect('}');
+        }
+        end_of_text();
+        if (!type_seen) throw not_a_collection();
+        if (!features_seen) throw invalid_input(source_ + ": the FeatureCollection has no \"features\" array");
+        out_.peak_bytes = static_cast<std::uint64_t>(peak_);
+        return std::move(out_);
     }
 
 private:
+    static constexpr int max_depth = 64;
+
+    // ---- memory ----
+
+    // Counts `transient` bytes (the feature being read) on top of what is held, against the budget.
+    void charge(double transient)
+    {
+        const double need = text_bytes_ + kept_bytes_ + transient;
+        peak_ = std::max(peak_, need);
+        if (budget_ > 0 && need > static_cast<double>(budget_)) {
+            // What the whole file would need if the rest is like what was read so far.
+            const double read = std::max(1.0, static_cast<double>(i_)), share = std::min(1.0, read / text_bytes_);
+            const double projected = std::max(need, text_bytes_ + (need - text_bytes_) / share);
+            throw invalid_input(detail::concat(
+                source_, ": reading the footprints needs about ", size_text(projected), " (the file's ",
+                size_text(text_bytes_), ", and ", kept_vertices_, " vertices kept by feature ", feature_, " in its first ",
+                std::floor(100 * share), " %), over the memory budget of ", size_text(static_cast<double>(budget_)),
+                "; split the file into smaller ones or use a larger --memory"));
+        }
+    }
+
+    // ---- syntax ----
+
     [[noreturn]] void fail(const std::string& what) const
     {
-        throw invalid_input(detail::concat(source_, ": not valid JSON at byte ", i_, ": ", what));
+        const auto line = 1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(std::min(i_, s_.size())), '\n');
+        throw invalid_input(detail::concat(source_, ": not valid JSON at byte ", i_, " (line ", line, "): ", what));
     }
     void skip_space()
     {
         while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\n' || s_[i_] == '\r')) ++i_;
     }
+    bool peek(char c) const { return i_ < s_.size() && s_[i_] == c; }
     bool take(char c)
     {
         skip_space();
-        if (i_ < s_.size() && s_[i_] == c) {
+        if (peek(c)) {
             ++i_;
             return true;
         }
@@ -79,60 +213,44 @@ private:
     {
         if (!take(c)) fail(std::string("expected '") + c + "'");
     }
-    json parse(int depth)
+    void end_of_text()
     {
-        if (depth > 64) fail("nesting deeper than 64 levels");
         skip_space();
-        if (i_ >= s_.size()) fail("unexpected end");
-        const char c = s_[i_];
-        if (c == '{') {
-            ++i_;
-            auto o = std::make_shared<json_object>();
-            if (!take('}')) {
-                do {
-                    skip_space();
-                    std::string key = string();
-                    expect(':');
-                    o->emplace_back(std::move(key), parse(depth + 1));
-                } while (take(','));
-                expect('}');
-            }
-            return {o};
-        }
-        if (c == '[') {
-            ++i_;
-            auto a = std::make_shared<json_array>();
-            if (!take(']')) {
-                do a->push_back(parse(depth + 1));
-                while (take(','));
-                expect(']');
-            }
-            return {a};
-        }
-        if (c == '"') return {string()};
-        if (s_.substr(i_, 4) == "true") return i_ += 4, json{true};
-        if (s_.substr(i_, 5) == "false") return i_ += 5, json{false};
-        if (s_.substr(i_, 4) == "null") return i_ += 4, json{nullptr};
-        return {number()};
+        if (i_ != s_.size()) fail("unexpected text after the JSON value");
     }
-    double number()
+    bool number_next() const
+    {
+        return i_ < s_.size() && (s_[i_] == '-' || (s_[i_] >= '0' && s_[i_] <= '9'));
+    }
+
+    // A number as written, and its value: +-inf beyond a double's range (`in_range` false), 0 below it.
+    struct number_text {
+        std::string_view token;
+        double value = 0;
+        bool in_range = true;
+    };
+    number_text number()
     {
         const std::size_t start = i_;
-        while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '-' || s_[i_] == '+' ||
+        while (i_ < s_.size() && ((s_[i_] >= '0' && s_[i_] <= '9') || s_[i_] == '-' || s_[i_] == '+' ||
                                   s_[i_] == '.' || s_[i_] == 'e' || s_[i_] == 'E'))
             ++i_;
-        const std::string token(s_.substr(start, i_ - start));
-        char* end = nullptr;
-        const double v = token.empty() ? 0.0 : std::strtod(token.c_str(), &end);
-        if (token.empty() || end != token.c_str() + token.size()) {
+        number_text n{s_.substr(start, i_ - start)};
+        const auto [end, ec] = std::from_chars(n.token.data(), n.token.data() + n.token.size(), n.value);
+        if (n.token.empty() || end != n.token.data() + n.token.size() ||
+            (ec != std::errc{} && ec != std::errc::result_out_of_range)) {
             i_ = start;
             fail("expected a value");
         }
-        return v;
+        if (ec == std::errc::result_out_of_range) {
+            n.value = std::strtod(std::string(n.token).c_str(), nullptr);  // +-HUGE_VAL, or 0 / subnormal
+            n.in_range = !std::isinf(n.value);
+        }
+        return n;
     }
     std::string string()
     {
-        if (i_ >= s_.size() || s_[i_] != '"') fail("expected a string");
+        if (!peek('"')) fail("expected a string");
         ++i_;
         std::string out;
         while (true) {
@@ -171,136 +289,308 @@ private:
             }
         }
     }
-
-    std::string_view s_;
-    const std::string& source_;
-    std::size_t i_ = 0;
-};
-
-namespace bg = boost::geometry;
-using bg_point = bg::model::d2::point_xy<double>;
-using bg_polygon = bg::model::polygon<bg_point>;  // clockwise outer rings, closed
-
-// The rings of a GeoJSON Polygon's coordinates, checked; throws naming the feature.
-polygon polygon_of(const json& coordinates, const std::string& where)
-{
-    const json_array* rings = coordinates.array();
-    if (!rings || rings->empty()) throw invalid_input(where + ": a Polygon needs at least its exterior ring");
-    polygon p;
-    for (const json& ring : *rings) {
-        const json_array* positions = ring.array();
-        if (!positions || positions->size() < 4)
-            throw invalid_input(where + ": every ring needs at least 4 positions (closed, 3 distinct corners)");
-        std::vector<std::array<double, 2>> out;
-        for (const json& position : *positions) {
-            const json_array* xy = position.array();
-            if (!xy || xy->size() < 2 || !(*xy)[0].number() || !(*xy)[1].number())
-                throw invalid_input(where + ": a position must be an array of numbers [x, y]");
-            const double x = *(*xy)[0].number(), y = *(*xy)[1].number();
-            if (!std::isfinite(x) || !std::isfinite(y)) throw invalid_input(where + ": a coordinate is not finite");
-            out.push_back({x, y});
+    void skip_string()
+    {
+        if (!peek('"')) fail("expected a string");
+        ++i_;
+        while (true) {
+            if (i_ >= s_.size()) fail("unterminated string");
+            const char c = s_[i_++];
+            if (c == '"') return;
+            if (c == '\\') {
+                if (i_ >= s_.size()) fail("unterminated escape");
+                if (s_[i_++] == 'u') {
+                    if (i_ + 4 > s_.size()) fail("short \\u escape");
+                    i_ += 4;
+                }
+            }
         }
-        if (out.front() != out.back()) out.push_back(out.front());
-        p.rings.push_back(std::move(out));
     }
-    return p;
-}
-
-bg_polygon to_boost(const polygon& p)
-{
-    bg_polygon b;
-    for (std::size_t k = 0; k < p.rings.size(); ++k) {
-        auto& ring = k == 0 ? b.outer() : (b.inners().emplace_back(), b.inners().back());
-        for (const auto& v : p.rings[k]) ring.push_back(bg_point(v[0], v[1]));
+    // Checks one value's syntax and passes over it, keeping nothing.
+    void skip_value(int depth)
+    {
+        if (depth > max_depth) fail("nesting deeper than 64 levels");
+        skip_space();
+        if (i_ >= s_.size()) fail("unexpected end");
+        const char c = s_[i_];
+        if (c == '{') {
+            ++i_;
+            if (!take('}')) {
+                do {
+                    skip_space();
+                    skip_string();
+                    expect(':');
+                    skip_value(depth + 1);
+                } while (take(','));
+                expect('}');
+            }
+        } else if (c == '[') {
+            ++i_;
+            if (!take(']')) {
+                do skip_value(depth + 1);
+                while (take(','));
+                expect(']');
+            }
+        } else if (c == '"') {
+            skip_string();
+        } else if (s_.substr(i_, 4) == "true" || s_.substr(i_, 4) == "null") {
+            i_ += 4;
+        } else if (s_.substr(i_, 5) == "false") {
+            i_ += 5;
+        } else {
+            (void)number();
+        }
     }
-    bg::correct(b);  // orientation and closure as Boost expects
-    return b;
-}
 
-// Outer ring counter-clockwise, holes clockwise (RFC 7946), as lidarfx::polygon documents.
-void orient(polygon& p)
-{
-    for (std::size_t k = 0; k < p.rings.size(); ++k) {
-        auto& ring = p.rings[k];
-        double area2 = 0;
-        for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1];
-        if ((k == 0) != (area2 > 0)) std::reverse(ring.begin(), ring.end());
+    // ---- structure ----
+
+    void features()
+    {
+        ++i_;  // '['
+        if (take(']')) return;
+        do {
+            feature();
+            finish();
+            ++feature_;
+        } while (take(','));
+        expect(']');
     }
-}
 
-}  // namespace
+    void feature()
+    {
+        feature_text& t = text_;
+        t.clear();
+        skip_space();
+        if (!peek('{')) {
+            t.object = false;
+            skip_value(2);
+            return;
+        }
+        ++i_;
+        bool properties_seen = false, geometry_seen = false;
+        if (take('}')) return;
+        do {
+            skip_space();
+            const std::string key = string();
+            expect(':');
+            skip_space();
+            if (key == "properties" && !properties_seen && peek('{')) {
+                properties_seen = true;
+                object_members(3, [&](const std::string& name) {
+                    if (name != "building_id" || t.id_kind != 0) return false;
+                    if (number_next()) {
+                        const number_text n = number();
+                        t.id_kind = 1;
+                        t.id = n.value;
+                        t.id_token = n.token;
+                    } else {
+                        t.id_kind = 2;
+                        skip_value(4);
+                    }
+                    return true;
+                });
+            } else if (key == "geometry" && !geometry_seen && peek('{')) {
+                geometry_seen = true;
+                object_members(3, [&](const std::string& name) {
+                    if (name == "type" && !t.have_type && peek('"')) {
+                        t.have_type = true;
+                        t.type = string();
+                        return true;
+                    }
+                    if (name == "coordinates" && !t.have_coordinates) {
+                        t.have_coordinates = true;
+                        if (peek('[')) t.height = coordinates(4, true);
+                        else t.shape("the coordinates must be an array");
+                        return true;
+                    }
+                    return false;
+                });
+            } else {
+                skip_value(3);
+            }
+        } while (take(','));
+        expect('}');
+    }
 
-footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source)
-{
-    const json doc = json_parser(text, source).document();
-    const json* type = doc.member("type");
-    if (!type || !type->string() || *type->string() != "FeatureCollection")
-        throw invalid_input(source + ": expected a GeoJSON FeatureCollection of building footprints");
-    const json* features = doc.member("features");
-    if (!features || !features->array()) throw invalid_input(source + ": the FeatureCollection has no \"features\" array");
-    footprint_collection out;
-    std::map<std::int32_t, std::size_t> first_feature_of;
-    const json_array& list = *features->array();
-    for (std::size_t f = 0; f < list.size(); ++f) {
-        const std::string where = detail::concat(source, ": feature ", f);
-        const json* properties = list[f].member("properties");
-        const json* id = properties ? properties->member("building_id") : nullptr;
-        if (!id || !id->number())
+    // The members of the object at '{': `use(key)` reads the value it wants (and returns true), the rest are
+    // passed over.
+    template <class Use>
+    void object_members(int depth, Use use)
+    {
+        ++i_;  // '{'
+        if (take('}')) return;
+        do {
+            skip_space();
+            const std::string key = string();
+            expect(':');
+            skip_space();
+            if (!use(key)) skip_value(depth + 1);
+        } while (take(','));
+        expect('}');
+    }
+
+    // One array of coordinates at '[': its height (1 for a position of numbers, 1 + its elements' height
+    // above them, 0 for an empty array), its vertices and ring and part ends appended to the feature's.
+    int coordinates(int depth, bool top)
+    {
+        if (depth > max_depth) fail("nesting deeper than 64 levels");
+        feature_text& t = text_;
+        ++i_;  // '['
+        if (take(']')) {
+            if (!top) t.shape("an empty ring or part (every ring needs at least 4 positions)");
+            return 0;
+        }
+        skip_space();
+        if (peek('[')) {
+            int height = -1;
+            do {
+                skip_space();
+                if (!peek('[')) {
+                    t.shape("a ring or part mixes positions [x, y] with numbers or other values");
+                    skip_value(depth + 1);
+                    continue;
+                }
+                const int h = coordinates(depth + 1, false);
+                if (height < 0) height = h;
+                else if (h != height) t.shape("the coordinates mix arrays of different depths");
+            } while (take(','));
+            expect(']');
+            if (height == 1) t.ring_end.push_back(t.vertices.size());
+            else if (height == 2) t.part_end.push_back(t.ring_end.size());
+            else if (height > 3) t.shape("the coordinates are nested deeper than a MultiPolygon's");
+            return height < 0 ? 0 : height + 1;
+        }
+        // A position: x, y and maybe more numbers (z, m), which are not kept.
+        std::array<double, 2> xy{};
+        std::size_t n = 0;
+        do {
+            skip_space();
+            if (!number_next()) {
+                t.shape("a position must be an array of numbers [x, y]");
+                skip_value(depth + 1);
+                continue;
+            }
+            const number_text v = number();
+            if (n < 2) {
+                xy[n] = v.value;
+                if (t.bad_value.empty() && (!v.in_range || !(std::abs(v.value) <= footprint_max_abs_coordinate))) {
+                    t.bad_value = detail::concat(n == 0 ? "x" : "y", " = ", v.token, " of vertex ", t.vertices.size(),
+                                                 v.in_range ? " is beyond +-1e9, the largest magnitude a footprint"
+                                                              " coordinate may have (units of the file's CRS)"
+                                                            : " is beyond the range of a double");
+                }
+            }
+            ++n;
+        } while (take(','));
+        expect(']');
+        if (n < 2) t.shape("a position must be an array of numbers [x, y]");
+        if (t.vertices.size() == t.vertices.capacity())
+            charge(16.0 * (3.0 * static_cast<double>(t.vertices.capacity()) + 16.0));  // old and grown buffer
+        t.vertices.push_back(xy);
+        return 1;
+    }
+
+    // Checks the feature just read and keeps its footprint (or its problem), in the order of the file.
+    void finish()
+    {
+        feature_text& t = text_;
+        const std::string where = detail::concat(source_, ": feature ", feature_);
+        if (!t.object) throw invalid_input(where + ": not a GeoJSON Feature object");
+        if (t.id_kind != 1)
             throw invalid_input(where + ": no integer \"building_id\" property (every footprint needs one)");
-        const double idv = *id->number();
-        if (idv != std::floor(idv) || idv < 1 || idv > 2147483647.0)
-            throw invalid_input(detail::concat(where, ": building_id ", idv, " is not an integer in 1 .. 2147483647"));
-        const auto building = static_cast<std::int32_t>(idv);
-        if (const auto [it, fresh] = first_feature_of.emplace(building, f); !fresh)
+        if (t.id != std::floor(t.id) || t.id < 1 || t.id > 2147483647.0)
+            throw invalid_input(detail::concat(where, ": building_id ", t.id_token, " is not an integer in 1 .. 2147483647"));
+        const auto building = static_cast<std::int32_t>(t.id);
+        if (const auto [it, fresh] = first_feature_of_.emplace(building, feature_); !fresh)
             throw invalid_input(detail::concat(where, ": building_id ", building, " is used by feature ", it->second,
                                                " too; ids must be unique"));
         const std::string at = detail::concat(where, " (building_id ", building, ")");
-        const json* geometry = list[f].member("geometry");
-        const json* gtype = geometry ? geometry->member("type") : nullptr;
-        const json* coordinates = geometry ? geometry->member("coordinates") : nullptr;
-        if (!gtype || !gtype->string() || !coordinates)
-            throw invalid_input(at + ": no Polygon or MultiPolygon geometry");
-        footprint fp{building, {}, f};
-        if (*gtype->string() == "Polygon") {
-            fp.parts.push_back(polygon_of(*coordinates, at));
-        } else if (*gtype->string() == "MultiPolygon") {
-            const json_array* parts = coordinates->array();
-            if (!parts || parts->empty()) throw invalid_input(at + ": an empty MultiPolygon");
-            for (const json& part : *parts) fp.parts.push_back(polygon_of(part, at));
-        } else {
-            throw invalid_input(at + ": geometry type " + *gtype->string() + " is not Polygon or MultiPolygon");
+        if (!t.have_type || !t.have_coordinates) throw invalid_input(at + ": no Polygon or MultiPolygon geometry");
+        const bool multi = t.type == "MultiPolygon";
+        if (!multi && t.type != "Polygon")
+            throw invalid_input(at + ": geometry type " + t.type + " is not Polygon or MultiPolygon");
+        if (!t.bad_value.empty()) throw invalid_input(at + ": coordinate " + t.bad_value);
+        if (!t.shape_error.empty()) throw invalid_input(at + ": " + t.shape_error);
+        if (t.height == 0)
+            throw invalid_input(at + (multi ? ": an empty MultiPolygon" : ": a Polygon needs at least its exterior ring"));
+        if (t.height != (multi ? 4 : 3))
+            throw invalid_input(at + (multi ? ": a MultiPolygon's coordinates must be polygons of rings of positions [x, y]"
+                                            : ": a Polygon's coordinates must be rings of positions [x, y]"));
+        charge(16.0 * (static_cast<double>(t.vertices.capacity()) + 2.0 * static_cast<double>(t.vertices.size())));
+        footprint fp{building, {}, feature_};
+        std::size_t ring = 0;
+        for (const std::size_t part_end : t.part_end) {
+            polygon p;
+            for (; ring < part_end; ++ring) {
+                const std::size_t a = ring == 0 ? 0 : t.ring_end[ring - 1], b = t.ring_end[ring];
+                if (b - a < 4) throw invalid_input(at + ": every ring needs at least 4 positions (closed, 3 distinct corners)");
+                std::vector<std::array<double, 2>> r;
+                r.reserve(b - a + 1);
+                r.assign(t.vertices.begin() + static_cast<std::ptrdiff_t>(a), t.vertices.begin() + static_cast<std::ptrdiff_t>(b));
+                if (r.front() != r.back()) r.push_back(r.front());
+                p.rings.push_back(std::move(r));
+            }
+            fp.parts.push_back(std::move(p));
         }
-        bg::model::multi_polygon<bg_polygon> shape;
-        for (const polygon& p : fp.parts) shape.push_back(to_boost(p));
-        std::string reason;
-        bool crossing = false;
-        for (const bg_polygon& part : shape) crossing = crossing || bg::intersects(part);  // a ring crosses itself
-        if (crossing) {
-            out.problems.push_back({building, f, "invalid polygon: a ring crosses itself (self-intersection)"});
-            continue;
+        std::string problem;
+        try {
+            problem = geometry_problem(fp);
+        } catch (const std::exception& e) {  // Boost.Geometry's own exceptions (e.g. a numeric cast)
+            throw invalid_input(at + ": the polygon checks failed: " + e.what());
         }
-        if (!(bg::area(shape) > 0)) {
-            out.problems.push_back({building, f, "empty (zero area)"});
-            continue;
+        if (!problem.empty()) {
+            kept_bytes_ += 64.0 + static_cast<double>(problem.size());
+            out_.problems.push_back({building, feature_, std::move(problem)});
+            return;
         }
-        if (!bg::is_valid(shape, reason)) {
-            out.problems.push_back({building, f, "invalid polygon: " + reason});
-            continue;
+        for (polygon& p : fp.parts) {
+            orient(p);
+            for (const auto& r : p.rings) {
+                kept_vertices_ += r.size();
+                kept_bytes_ += 64.0 + 16.0 * static_cast<double>(r.size());
+            }
         }
-        for (polygon& p : fp.parts) orient(p);
-        out.footprints.push_back(std::move(fp));
+        kept_bytes_ += 64.0;
+        out_.footprints.push_back(std::move(fp));
     }
-    return out;
+
+    std::string_view s_;
+    const std::string& source_;
+    std::uint64_t budget_;
+    std::size_t i_ = 0;
+    std::size_t feature_ = 0;
+    double text_bytes_, kept_bytes_ = 0, peak_ = 0;
+    std::size_t kept_vertices_ = 0;
+    feature_text text_;
+    std::map<std::int32_t, std::size_t> first_feature_of_;
+    footprint_collection out_;
+};
+
+}  // namespace
+
+footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source,
+                                              const footprint_read_options& opt)
+{
+    return geojson_reader(text, source, budget_of(opt)).read();
 }
 
-footprint_collection read_footprints_geojson(const std::string& path)
+footprint_collection read_footprints_geojson(const std::string& path, const footprint_read_options& opt)
 {
-    std::ifstream in(path, std::ios::binary);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw std::runtime_error(path + ": cannot open the footprint file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in.good() && !in.eof()) throw std::runtime_error(path + ": cannot read the footprint file");
-    return parse_footprints_geojson(text.str(), path);
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw std::runtime_error(path + ": cannot read the footprint file");
+    const std::uint64_t budget = budget_of(opt);
+    if (budget > 0 && static_cast<std::uint64_t>(size) > budget) {
+        throw invalid_input(detail::concat(path, ": reading the footprints needs more than the file's ",
+                                           size_text(static_cast<double>(size)), ", over the memory budget of ",
+                                           size_text(static_cast<double>(budget)),
+                                           "; split the file into smaller ones or use a larger --memory"));
+    }
+    std::string text(static_cast<std::size_t>(size), '\0');
+    in.seekg(0);
+    if (!in.read(text.data(), size)) throw std::runtime_error(path + ": cannot read the footprint file");
+    return parse_footprints_geojson(text, path, {.memory_budget_bytes = budget});
 }
 
 }  // namespace lidarfx::io

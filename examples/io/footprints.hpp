@@ -12,6 +12,11 @@
 
 namespace lidarfx::io {
 
+/// The largest |x| or |y| a footprint vertex may have, in the units of the file's CRS: 1e9 is 25 times the
+/// Earth's circumference in metres (no projected CRS comes near it), a double still resolves 1e-7 there, and
+/// the validity checks (Boost.Geometry) stay far from their integer overflow near 1e19.
+inline constexpr double footprint_max_abs_coordinate = 1e9;
+
 /// One building footprint: its id and parts (each an exterior ring and holes, closed, in file coordinates).
 struct footprint {
     std::int32_t building_id = 0;
@@ -30,19 +35,35 @@ struct footprint_problem {
 struct footprint_collection {
     std::vector<footprint> footprints;
     std::vector<footprint_problem> problems;
+    std::uint64_t peak_bytes = 0;  ///< the read's memory estimate at its peak (text, kept footprints, one feature)
 };
 
-/// Parses GeoJSON text. Structural errors throw invalid_input naming `source`, the feature index and what to
-/// fix: not JSON or not a FeatureCollection, a feature without a Polygon/MultiPolygon geometry (null
-/// geometries included), a missing or non-integer `building_id` (or one outside 1 .. 2^31 - 1), an id used
-/// by two features, a non-finite or non-numeric coordinate, a ring with fewer than 4 positions. Geometric
-/// faults are reported per building in `problems` and the footprint is left out: zero area, a
-/// self-intersecting or otherwise invalid polygon (Boost.Geometry's is_valid, with its reason). Ring order and
-/// orientation are normalised (outer counter-clockwise, holes clockwise, closed).
-footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source);
+/// How a footprint file is read.
+struct footprint_read_options {
+    /// Memory budget of the read, bytes; 0 = half the physical memory (as --memory). The estimate counted
+    /// against it: the file's text, plus 16 bytes per kept vertex and 64 per kept ring, plus three times the
+    /// vertices of the feature being read (its coordinates, its rings and the validity check's copy).
+    std::uint64_t memory_budget_bytes = 0;
+};
 
-/// parse_footprints_geojson on the contents of `path`. @throws std::runtime_error naming the file when it
-/// cannot be read.
-footprint_collection read_footprints_geojson(const std::string& path);
+/// Parses GeoJSON text in one pass that keeps only the footprints (one feature's coordinates at a time, no
+/// document tree), so memory follows the vertices kept: about the text plus 16 bytes per vertex. A UTF-8
+/// byte order mark at the start is skipped. Structural errors throw invalid_input naming `source`, the
+/// feature index (and building_id once read) and what to fix: not JSON (with byte and line) or not a
+/// FeatureCollection, a feature without a Polygon/MultiPolygon geometry (null geometries included), a
+/// missing or non-integer `building_id` (or one outside 1 .. 2^31 - 1, the value as written), an id used by
+/// two features, a coordinate that is not a number or whose magnitude is beyond footprint_max_abs_coordinate
+/// or a double's range (the value as written, its axis and vertex), a ring with fewer than 4 positions; and a
+/// read whose estimate exceeds the budget (naming the budget and the feature reached). Geometric faults are
+/// reported per building in `problems` and the footprint is left out: zero area, a self-intersecting or
+/// otherwise invalid polygon (Boost.Geometry's is_valid, with its reason). Ring order and orientation are
+/// normalised (outer counter-clockwise, holes clockwise, closed).
+footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source,
+                                              const footprint_read_options& opt = {});
+
+/// parse_footprints_geojson on the contents of `path`, read into one buffer of the file's size (refused
+/// before reading when the file alone exceeds the budget). @throws std::runtime_error naming the file when
+/// it cannot be read.
+footprint_collection read_footprints_geojson(const std::string& path, const footprint_read_options& opt = {});
 
 }  // namespace lidarfx::io
