@@ -276,7 +276,8 @@ void outlier_bins::merge(const outlier_bins& other)
     for (std::size_t i = 0; i < count.size(); ++i) count[i] += other.count[i];
 }
 
-outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads)
+outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads,
+                                std::uint64_t memory_budget_bytes)
 {
     // One histogram per group of files, read on its own thread; counts are integers, so the sum does not
     // depend on the grouping.
@@ -290,6 +291,7 @@ outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bou
             std::vector<double> x, y;
             for (std::size_t f = g; f < paths.size(); f += groups) {
                 io::las_reader r(paths[f]);
+                r.set_memory_budget(memory_budget_bytes);   // LAZ chunks within --memory
                 while (r.position() < r.point_count()) {   // an empty read would shrink the chunk's buffers
                     const std::size_t n = r.read(chunk, std::size_t{1} << 20);
                     x.resize(n), y.resize(n);
@@ -455,7 +457,8 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     // passes them, the reader may count the points as it reads them instead of in a pass of their own.
     if (!opt.crop && !opt.force) {
         if (over_budget || too_sparse || !reader_checks_outliers)
-            refuse_outliers(count_outlier_bins(paths, header_box, unit_xy, opt.threads), total, unit_xy);
+            refuse_outliers(count_outlier_bins(paths, header_box, unit_xy, opt.threads, opt.memory_budget_bytes), total,
+                            unit_xy);
         else
             layout.outliers_unchecked = true;
     }
@@ -481,6 +484,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     }
     layout.g = snapped_grid(box, cell_m);
     layout.header_box = header_box;
+    layout.memory_budget_bytes = opt.memory_budget_bytes;
     layout.total = total;
     layout.unit_xy = unit_xy;
     layout.unit_z = unit_z;
@@ -523,6 +527,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
                 reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
+                reader->set_memory_budget(opt.memory_budget_bytes);   // ... within --memory
             }
             dst.file = file - 1;
             // Stopping at the last point, not at an empty read, keeps the chunk's buffers for the next file.

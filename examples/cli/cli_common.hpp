@@ -130,7 +130,8 @@ void refuse_outliers(const outlier_bins& bins, std::uint64_t total, double unit_
 
 /// outlier_bins over `box` (metres) of every point of the files, read in a pass of their own on `threads`
 /// threads; unit_m converts the files' x and y to metres.
-outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads);
+outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bounds& box, double unit_m, int threads,
+                                std::uint64_t memory_budget_bytes = 0);
 
 /// What read_survey learns from the files' headers before reading any point, everything in metres.
 struct survey_layout {
@@ -144,6 +145,7 @@ struct survey_layout {
     /// The outlier check is left to the reader: it counts outlier_bins over header_box as it reads every
     /// point once and calls refuse_outliers before returning (survey_layout_of with reader_checks_outliers).
     bool outliers_unchecked = false;
+    std::uint64_t memory_budget_bytes = 0;   ///< --memory (0: half the physical memory), for the LAZ readers
 };
 
 /// The header checks of read_survey, before any point is read: the same file twice, CRS and units

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <lidarfx/core/error.hpp>
+
 #include "cli_common.hpp"
 #include "command.hpp"
 
@@ -35,6 +37,9 @@ int main(int argc, char** argv)
     try {
         return it->second.run(std::vector<std::string>(argv + 2, argv + argc));
     } catch (const lidarfx::cli::usage_error& e) {
+        std::cerr << "lidarfx " << it->first << ": " << e.what() << '\n';
+        return 2;
+    } catch (const lidarfx::invalid_input& e) {   // input refused before it is read (a LAZ chunk over --memory)
         std::cerr << "lidarfx " << it->first << ": " << e.what() << '\n';
         return 2;
     } catch (const std::exception& e) {

@@ -218,6 +218,7 @@ file_counts read_file_into(const survey_layout& layout, const std::string& path,
 {
     file_counts counts;
     io::las_reader reader(path);
+    reader.set_memory_budget(layout.memory_budget_bytes);   // LAZ chunks within --memory
     cell_box all = cores[0];
     std::vector<grid> windows;
     for (const cell_box& c : cores) {
@@ -463,8 +464,8 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     survey_layout layout = survey_layout_of(paths, opt, true);
     const int threads = detail::resolve_threads(opt.threads, "--threads");
     const auto check_outliers_now = [&] {
-        refuse_outliers(count_outlier_bins(paths, layout.header_box, layout.unit_xy, opt.threads), layout.total,
-                        layout.unit_xy);
+        refuse_outliers(count_outlier_bins(paths, layout.header_box, layout.unit_xy, opt.threads, opt.memory_budget_bytes),
+                        layout.total, layout.unit_xy);
     };
     const tile_plan plan = [&] {
         try {

@@ -6,8 +6,12 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <iomanip>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 #include <lidarfx/core/error.hpp>
 #include <lidarfx/core/parallel.hpp>
@@ -24,6 +28,14 @@ namespace {
 [[noreturn]] void fail(const std::string& path, const std::string& what)
 {
     throw std::runtime_error(path + ": " + what);
+}
+
+/// Bytes as MiB with up to 4 significant digits ("256 MiB", "1032 MiB", "0.5 MiB").
+std::string mib(double bytes)
+{
+    std::ostringstream s;
+    s << std::setprecision(4) << bytes / 1048576.0 << " MiB";
+    return s.str();
 }
 
 std::string fixed_string(const std::uint8_t* p, std::size_t n)
@@ -386,6 +398,7 @@ void las_reader::parse()
 struct las_reader::laz_state {
     laz_vlr vlr;
     std::vector<laz_chunk> chunks;
+    std::uint64_t largest_points = 0;   // of a chunk
     std::mutex file_mutex;   // guards the file stream when worker threads fetch chunks
     /// What one thread needs to decode a chunk; kept in a pool so decoders are reused across reads.
     struct worker {
@@ -459,6 +472,16 @@ void las_reader::open_laz()
     const std::vector<std::uint8_t> copy(t, t + table_bytes);
     laz_->chunks = parse_laz_chunk_table(copy, laz_->vlr, first_chunk, table_offset, h.point_count,
                                          h.point_record_length, path_);
+    for (const laz_chunk& c : laz_->chunks) laz_->largest_points = std::max(laz_->largest_points, c.point_count);
+}
+
+std::uint64_t las_reader::memory_budget() const noexcept
+{
+    if (memory_budget_ != 0) return memory_budget_;
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    const std::uint64_t physical =
+        pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+    return physical > 0 ? physical / 2 : std::uint64_t{1} << 31;   // 2 GiB when the system does not say
 }
 
 void las_reader::set_threads(int threads)
@@ -474,6 +497,26 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     const std::size_t stride = h.point_record_length;
     const std::uint64_t begin = next_, end = next_ + n;
     const std::size_t c0 = z.chunk_of(begin), c1 = z.chunk_of(end - 1);
+    // The memory budget, before anything is decoded: each chunk of the read (its decoded records) within
+    // half of it, and as many chunks in flight as fit beside the one kept for the next read.
+    const std::uint64_t budget = memory_budget();
+    for (std::size_t c = c0; c <= c1; ++c) {
+        const laz_chunk& k = z.chunks[c];
+        const double decoded = static_cast<double>(k.point_count) * static_cast<double>(stride);
+        if (decoded > static_cast<double>(budget) / 2) {
+            throw invalid_input(path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()) +
+                                " (first point " + std::to_string(k.first_point) + ") claims " +
+                                std::to_string(k.point_count) + " points in " + std::to_string(k.byte_count) +
+                                " compressed bytes: " + mib(decoded) + " decoded (" + std::to_string(stride) +
+                                " bytes a point), over half the memory budget of " + mib(static_cast<double>(budget)) +
+                                " (a chunk decoding and the one kept must fit); raise the memory budget (--memory) "
+                                "to at least " + mib(2 * decoded) + ", or check the file (a corrupt chunk table "
+                                "claims more points than its chunk holds)");
+        }
+    }
+    const std::uint64_t largest = std::max<std::uint64_t>(1, z.largest_points * stride);
+    const std::uint64_t in_budget = budget / largest;   // chunks of the largest size
+    const auto fit = static_cast<int>(std::min<std::uint64_t>(in_budget > 1 ? in_budget - 1 : 1, 1024));
     // Converts the part of chunk c inside [begin, end) from its decoded records into `chunk`.
     const auto take_points = [&](std::size_t c, const std::uint8_t* records) {
         const laz_chunk& k = z.chunks[c];
@@ -503,18 +546,19 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
             } else {
                 data = bytes_at(k.offset, bytes);
             }
-            std::vector<std::uint8_t>& records = c == c1 ? next_cache : w->records;
-            w->decoder.decode({data, bytes}, k.point_count, records,
+            w->decoder.decode({data, bytes}, k.point_count, w->records,
                               path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
-            take_points(c, records.data());
+            take_points(c, w->records.data());
+            if (c == c1) next_cache.swap(w->records);   // kept for the next read: moved, not copied
             z.give(std::move(w));
         } catch (...) {
             errors[static_cast<std::size_t>(b)] = std::current_exception();
         }
     };
     // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
-    // before its claimed count is allocated), and each batch runs in parallel.
-    const int threads = lidarfx::detail::resolve_threads(threads_, "las_reader");
+    // before its claimed count is allocated), and each batch runs in parallel on at most `threads` workers,
+    // each holding one chunk: (threads + 1) x the largest chunk within the budget.
+    const int threads = std::clamp(fit, 1, lidarfx::detail::resolve_threads(threads_, "las_reader"));
     const std::size_t batch = threads == 1 ? 1 : 2 * static_cast<std::size_t>(threads);
     for (; first <= c1; first += batch) {
         const std::size_t last = std::min(c1, first + batch - 1);
@@ -529,6 +573,11 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     if (z.cached != c1) {
         z.cached_records.swap(next_cache);
         z.cached = c1;
+    }
+    // Workers beyond this read's threads (from reads on more threads) would keep their chunks' memory.
+    {
+        std::lock_guard lock(z.pool_mutex);
+        if (z.pool.size() > static_cast<std::size_t>(threads)) z.pool.resize(static_cast<std::size_t>(threads));
     }
     next_ = end;
 }

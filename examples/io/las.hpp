@@ -135,10 +135,13 @@ las_points las_points_from(const PointSet& p)
 /// id, record length, point-data offset, counts against the file size, VLR extents, GeoKeys; for LAZ the
 /// laszip VLR and the chunk table. Reads then decode large blocks (one read call each) with fixed field
 /// offsets per format, O(points); LAZ chunks are decoded one at a time (memory of one chunk) or, with
-/// set_threads(), several chunks of one read in parallel, with identical results.
+/// set_threads(), several chunks of one read in parallel, with identical results, all within the memory
+/// budget of set_memory_budget().
 /// Every error is a std::runtime_error whose message starts with the file path (or the buffer's name):
 /// "<path>: not a LAS file ...", "<path>: truncated ...", "<path>: LAZ chunk 3 of 9: the compressed data
 /// ends early ...", and so on for each inconsistent header field.
+/// The one exception is a LAZ chunk over the memory budget (set_memory_budget), refused with a
+/// lidarfx::invalid_input naming the chunk, its claimed points and the budget.
 class las_reader {
 public:
     /// Opens and validates `path`. @throws std::runtime_error naming the file.
@@ -178,6 +181,18 @@ public:
     /// depend on it. No effect on uncompressed files. @throws std::runtime_error if threads < 0.
     void set_threads(int threads);
 
+    /// Memory the decoded LAZ chunks may take at once, in bytes (0, the default: half the physical memory);
+    /// a chunk's decoded records take its point count x point_record_length bytes. A read refuses at once,
+    /// before decoding anything, a chunk over half the budget (the chunk decoding and the one kept for the
+    /// next read must fit), throwing lidarfx::invalid_input "<path>: LAZ chunk 3 of 9 (first point ...)
+    /// claims N points ... over half the memory budget ...; raise the memory budget (--memory) to at least
+    /// ...". Chunks decode on as many threads as keep the largest chunk of the file in flight, plus the kept
+    /// one, within the budget: (k + 1) x largest <= budget, so large chunks decode on fewer threads (results
+    /// do not change). No effect on uncompressed files.
+    void set_memory_budget(std::uint64_t bytes) noexcept { memory_budget_ = bytes; }
+    /// The budget in bytes (0 resolved to half the physical memory).
+    std::uint64_t memory_budget() const noexcept;
+
 private:
     struct laz_state;
     const std::uint8_t* bytes_at(std::uint64_t offset, std::size_t size);
@@ -199,6 +214,7 @@ private:
     std::uint64_t next_ = 0;
     std::unique_ptr<laz_state> laz_;           // LAZ only: chunk table, decoders, the last chunk decoded
     int threads_ = 1;
+    std::uint64_t memory_budget_ = 0;          // 0: half the physical memory
 };
 
 /// Reads every point of a LAS file. @throws std::runtime_error naming the file.

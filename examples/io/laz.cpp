@@ -198,7 +198,9 @@ std::vector<laz_chunk> parse_laz_chunk_table(std::span<const std::uint8_t> table
         }
         if (c.point_count == 0 || c.point_count > laz_max_points_per_byte * c.byte_count + 1) {
             fail(name, which + " claims " + std::to_string(c.point_count) + " points in " +
-                           std::to_string(c.byte_count) + " bytes");
+                           std::to_string(c.byte_count) + " compressed bytes, which hold at most " +
+                           std::to_string(laz_max_points_per_byte * c.byte_count + 1) +
+                           " (the chunk table is corrupt)");
         }
         first += c.point_count;
         offset += c.byte_count;

@@ -47,10 +47,23 @@ struct laz_chunk {
     std::uint64_t offset = 0, byte_count = 0;
 };
 
-/// Most points a chunk may hold per compressed byte (+1 for its raw first point). LASzip's adaptive
-/// models give a symbol at least ~0.0015 bits, and a point takes at least 4 symbols, so no valid chunk
-/// comes near; the bound turns a corrupt count into an error before anything is allocated.
-inline constexpr std::uint64_t laz_max_points_per_byte = 4096;
+/// Most points a chunk may hold per compressed byte, after its raw first point: a chunk of B bytes holds at
+/// most 1 + laz_max_points_per_byte * B points. Derived from the arithmetic decoder, not measured:
+///  - a symbol of an n-symbol model (counts >= 1, total <= 2^15 after each update, distribution in units of
+///    2^-15, n <= 513) leaves at most 1 - (n - 2) / 2^15 of the coder's interval, the truncations included,
+///    so it costs at least -log2(1 - (n - 2) / 2^15) bits; bits (2^-13 models) and raw bits cost more than
+///    nothing and are not counted;
+///  - every point after the first decodes at least its changed-values symbol (POINT10: 64 symbols) and the
+///    bit count k of dx, dy and z (33 symbols each): 0.0027323 + 3 x 0.0013655 = 0.0068288 bits. POINT14
+///    decodes 128-symbol changed values and 33-symbol dx, dy in its XY layer alone (0.0082892 bits); other
+///    items only add symbols;
+///  - a stream of B bytes read with no byte past its end shrinks the interval from 2^32 to no less than
+///    2^24 with at most B - 4 renormalisations, so its symbols cost less than 8 B bits in all.
+/// Hence at most 8 / 0.0068288 = 1171.5 points per byte. A chunk of all-zero bytes (the cheapest symbols
+/// every time) decodes far fewer before it runs out; real files take a few bytes per point.
+/// The bound turns a corrupt count into an error before anything is allocated; the memory budget of
+/// las_reader::set_memory_budget bounds what a chunk under it may take.
+inline constexpr std::uint64_t laz_max_points_per_byte = 1172;
 
 /// Parses and checks the laszip VLR payload against the point format and record length of the header.
 /// @throws std::runtime_error "<name>: ..." for an unknown compressor, item or item version, or items

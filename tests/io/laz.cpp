@@ -9,14 +9,27 @@
 #include "io/laz.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
 #include <tuple>
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <lidarfx/core/error.hpp>
 
 #include "io_test_util.hpp"
 
 using namespace lidarfx::io;
+using io_test::contains;
+using io_test::error_of;
 using io_test::read_bytes;
 using io_test::runtime_error_of;
 using io_test::starts_with;
@@ -360,4 +373,247 @@ TEST_CASE("io/laz: unknown compressors, coders and item versions are refused by 
     CHECK(error(v, 3, 36) == "<no error>");
     v.chunk_size = 0;
     CHECK(error(v, 3, 36) == "f.laz: the laszip VLR gives a chunk size of 0 points");
+}
+
+namespace {
+
+/// simple.laz (format 3, one chunk of 1065 points) whose chunk claims `claimed` points: the laszip VLR's
+/// chunk size and the header's point count say so, and the chunk's compressed bytes after its raw first
+/// point are zeroed (the cheapest symbols every time: the most points a byte can give).
+std::vector<std::uint8_t> chunk_bomb(std::uint32_t claimed)
+{
+    auto b = read_bytes(fixture("simple.laz"));
+    const las_reader r(b, "simple.laz");
+    const las_header& h = r.header();
+    REQUIRE(h.version_minor < 4);   // the 32-bit legacy count is the count
+    for (const las_vlr& v : h.vlrs) {
+        if (v.user_id == "laszip encoded") std::memcpy(b.data() + v.data_offset + 12, &claimed, 4);
+    }
+    std::memcpy(b.data() + 107, &claimed, 4);
+    std::int64_t table = 0;
+    std::memcpy(&table, b.data() + h.offset_to_point_data, 8);
+    const std::size_t from = h.offset_to_point_data + 8 + h.point_record_length;
+    std::fill(b.begin() + static_cast<std::ptrdiff_t>(from), b.begin() + table, std::uint8_t{0});
+    return b;
+}
+
+/// Compressed bytes of simple.laz's one chunk (its raw first point included).
+std::uint64_t simple_chunk_bytes()
+{
+    const auto b = read_bytes(fixture("simple.laz"));
+    const las_reader r(b, "simple.laz");
+    std::int64_t table = 0;
+    std::memcpy(&table, b.data() + r.header().offset_to_point_data, 8);
+    return static_cast<std::uint64_t>(table) - r.header().offset_to_point_data - 8;
+}
+
+}  // namespace
+
+TEST_CASE("io/laz: no chunk decodes more points than laz_max_points_per_byte allows, whatever its bytes")
+{
+    // POINT10 alone is the cheapest item set the bound is derived for; POINT10 + GPSTIME11 + RGB12 (format 3)
+    // codes more symbols a point. Every chunk claims the most points the bound lets through; all-zero, all-one
+    // and random bytes (the adaptive models then learn the cheapest symbols) must run out of bytes first.
+    struct item_set {
+        int format;
+        std::uint16_t length;
+        std::vector<laz_item> items;
+    };
+    const std::vector<item_set> sets{{0, 20, {{6, 20, 2}}}, {3, 34, {{6, 20, 2}, {7, 8, 2}, {8, 6, 2}}}};
+    for (const item_set& set : sets) {
+        laz_vlr vlr;
+        vlr.compressor = 2;
+        vlr.chunk_size = laz_vlr::variable_chunk_size;
+        vlr.items = set.items;
+        laz_chunk_decoder dec(vlr, set.length);
+        for (const int fill : {0x00, 0xFF, 0x55, -1}) {
+            CAPTURE(set.format);
+            CAPTURE(fill);
+            const std::size_t bytes = 600;
+            std::vector<std::uint8_t> chunk(bytes, static_cast<std::uint8_t>(fill));
+            if (fill < 0) {
+                std::mt19937 rng(7);
+                for (auto& c : chunk) c = static_cast<std::uint8_t>(rng());
+            }
+            std::fill(chunk.begin(), chunk.begin() + set.length, std::uint8_t{0});   // the raw first point
+            const std::uint64_t claim = 1 + laz_max_points_per_byte * bytes;
+            std::vector<std::uint8_t> records;
+            const std::string e = runtime_error_of([&] { dec.decode(chunk, claim, records, "bomb"); });
+            CHECK(starts_with(e, "bomb: the compressed data ends early, after "));
+            // The error comes within 65536 points of where the bytes ran out (the decoder checks in steps).
+            const std::uint64_t decoded = records.size() / set.length;
+            MESSAGE("format " << set.format << ", bytes " << (fill < 0 ? std::string("random") : std::to_string(fill))
+                              << ": ran out within " << decoded << " points of " << bytes << " bytes ("
+                              << decoded / bytes << " a byte at most; the bound " << laz_max_points_per_byte << ")");
+        }
+    }
+}
+
+TEST_CASE("io/laz: the chunk table refuses a chunk claiming more points than its bytes can hold")
+{
+    const std::uint64_t bytes = simple_chunk_bytes();
+    const std::uint64_t most = 1 + laz_max_points_per_byte * bytes;
+    REQUIRE(most < 0xFFFFFFFFu);
+    // 1e9 points in some 18 KB, as the reported bomb claimed (it named 1e9 a chunk): refused on opening.
+    const std::string e = runtime_error_of([&] { las_reader r(chunk_bomb(1000000000u), "bomb.laz"); });
+    CHECK(e == "bomb.laz: LAZ chunk 1 of 1 claims 1000000000 points in " + std::to_string(bytes) +
+                   " compressed bytes, which hold at most " + std::to_string(most) + " (the chunk table is corrupt)");
+    CHECK(starts_with(runtime_error_of([&] { las_reader r(chunk_bomb(static_cast<std::uint32_t>(most + 1)), "b"); }),
+                      "b: LAZ chunk 1 of 1 claims " + std::to_string(most + 1) + " points"));
+    // The bound itself opens (and fails on decoding, or on the budget).
+    CHECK(runtime_error_of([&] { las_reader r(chunk_bomb(static_cast<std::uint32_t>(most)), "b"); }) == "<no error>");
+}
+
+TEST_CASE("io/laz: a chunk over half the memory budget is refused before decoding, naming it and the budget")
+{
+    // 10 M points of 34 bytes (340 MB decoded) in one 18 KB chunk of zeros: within the bytes' bound, over
+    // half of a 256 MiB budget. Without the budget it decodes millions of points before it runs out.
+    const auto bomb = chunk_bomb(10000000u);
+    for (const int threads : {1, 2}) {
+        CAPTURE(threads);
+        las_reader r(bomb, "bomb.laz");
+        r.set_threads(threads);
+        r.set_memory_budget(std::uint64_t{256} << 20);
+        las_points p;
+        const auto start = std::chrono::steady_clock::now();
+        std::string e = "<no error>";
+        try {
+            r.read(p, 1 << 16);
+        } catch (const lidarfx::invalid_input& x) {
+            e = x.what();
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        CHECK(e == "bomb.laz: LAZ chunk 1 of 1 (first point 0) claims 10000000 points in " +
+                       std::to_string(simple_chunk_bytes()) +
+                       " compressed bytes: 324.2 MiB decoded (34 bytes a point), over half the memory budget of "
+                       "256 MiB (a chunk decoding and the one kept must fit); raise the memory budget (--memory) to "
+                       "at least 648.5 MiB, or check the file (a corrupt chunk table claims more points than its "
+                       "chunk holds)");
+        CHECK(seconds < 0.5);   // nothing decoded
+        CHECK(p.size() == 0);
+    }
+    // read_records and read_all refuse the same way; a budget over twice the chunk lets it decode (and fail
+    // on its zeros, as a corrupt chunk).
+    las_reader r(bomb, "bomb.laz");
+    r.set_memory_budget(std::uint64_t{256} << 20);
+    std::vector<std::uint8_t> records;
+    CHECK(contains(error_of([&] { r.read_records(records, 10); }), "over half the memory budget of 256 MiB"));
+    CHECK(contains(error_of([&] { r.read_all(); }), "over half the memory budget of 256 MiB"));
+    CHECK(r.memory_budget() == std::uint64_t{256} << 20);
+    r.set_memory_budget(0);
+    CHECK(r.memory_budget() > 0);   // half the physical memory
+}
+
+TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: the same records")
+{
+    // The COPC fixture's variable chunks (the largest decides how many decode at once) and simple.laz's one.
+    for (const char* name : {"1.2-with-color.copc.laz", "simple.laz"}) {
+        CAPTURE(name);
+        las_reader r(fixture(name));
+        const std::vector<std::uint8_t> want = all_records(r);
+        const std::uint64_t whole = want.size();   // every chunk is at most this
+        for (const std::uint64_t budget : {2 * whole, 3 * whole, 5 * whole + 7, std::uint64_t{1} << 30}) {
+            for (const int threads : {1, 2, 3, 0}) {
+                CAPTURE(budget);
+                CAPTURE(threads);
+                r.set_memory_budget(budget);
+                CHECK(all_records(r, threads) == want);
+                r.set_threads(threads);
+                CHECK(io_test::identical(io_test::read_in_chunks(r, 211), las_reader(fixture(name)).read_all()));
+            }
+        }
+        // A budget that cannot hold two of its largest chunk: refused on the first read.
+        r.set_memory_budget(64);
+        r.seek(0);
+        las_points p;
+        CHECK(contains(error_of([&] { r.read(p, 10); }), ": LAZ chunk 1 of "));
+    }
+}
+
+namespace {
+
+/// Runs `args` (argv[0] the program), its stdout and stderr into `log`; the exit code, wall seconds and peak
+/// resident memory (ru_maxrss, bytes) of the child.
+struct child_run {
+    int code = -1;
+    double seconds = 0;
+    std::uint64_t peak_rss = 0;
+    std::string output;
+};
+
+child_run run_child(const std::vector<std::string>& args, const std::string& log)
+{
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) {
+            ::dup2(fd, 1);
+            ::dup2(fd, 2);
+        }
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    int status = 0;
+    rusage use{};
+    REQUIRE(::wait4(pid, &status, 0, &use) == pid);
+    child_run out;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    out.peak_rss = static_cast<std::uint64_t>(use.ru_maxrss) * 1024;
+    std::ifstream in(log);
+    std::ostringstream text;
+    text << in.rdbuf();
+    out.output = text.str();
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("io/laz: the program refuses a LAZ chunk bomb within --memory, fast (LIDARFX_CLI)")
+{
+    // Run by the cli_laz_bomb test, which names the program in LIDARFX_CLI; skipped otherwise.
+    const char* cli = std::getenv("LIDARFX_CLI");
+    if (cli == nullptr || *cli == 0) {
+        MESSAGE("LIDARFX_CLI is not set: skipped (run by the cli_laz_bomb test)");
+        return;
+    }
+    io_test::temp_dir dir;
+    const std::string bomb = dir.file("bomb.laz");
+    // 10 M points claimed in one 18 KB chunk of zeros (340 MB decoded; before the budget it decoded millions
+    // of points, some 7 s and 240+ MB, before "ends early").
+    io_test::write_bytes(bomb, chunk_bomb(10000000u));
+    const std::uint64_t budget = std::uint64_t{256} << 20;
+    for (const std::string threads : {"1", "2"}) {
+        for (const std::string command : {"rasterize", "water"}) {
+            CAPTURE(threads);
+            CAPTURE(command);
+            const child_run run = run_child({cli, command, bomb, "--memory", "256MiB", "--threads", threads, "--out",
+                                             dir.file("out_" + command + threads)},
+                                            dir.file("log.txt"));
+            CAPTURE(run.output);
+            MESSAGE(command << " --threads " << threads << ": exit " << run.code << " after " << run.seconds
+                            << " s, peak RSS " << static_cast<double>(run.peak_rss) / 1048576.0 << " MiB");
+            CHECK(run.code == 2);
+            CHECK(contains(run.output, "bomb.laz: LAZ chunk 1 of 1 (first point 0) claims 10000000 points"));
+            CHECK(contains(run.output, "over half the memory budget of 256 MiB"));
+            CHECK(contains(run.output, "raise the memory budget (--memory)"));
+            CHECK(run.seconds < 5);
+            CHECK(run.peak_rss < budget / 2);
+            CHECK_FALSE(std::filesystem::exists(dir.file("out_" + command + threads)));
+        }
+    }
+    // The 1e9-point claim of the report: refused as a corrupt chunk table when the file is opened.
+    io_test::write_bytes(bomb, chunk_bomb(1000000000u));
+    const child_run run =
+        run_child({cli, "rasterize", bomb, "--memory", "256MiB", "--out", dir.file("out")}, dir.file("log.txt"));
+    CAPTURE(run.output);
+    CHECK(run.code != 0);
+    CHECK(contains(run.output, "LAZ chunk 1 of 1 claims 1000000000 points in "));
+    CHECK(run.seconds < 5);
+    CHECK(run.peak_rss < budget / 2);
 }
