@@ -235,7 +235,9 @@ TEST_CASE("core/grid: one rounding rule - every point of the bounds lands in the
             const double ly = std::clamp(g.y0 - std::floor(u(rng) * static_cast<double>(g.rows)) * cell, b.ymin, b.ymax);
             points.push_back({lx, ly});
         }
-        for (const auto& [x, y] : points) {
+        for (const auto& item : points) {
+            const auto& x = std::get<0>(item);
+            const auto& y = std::get<1>(item);
             CAPTURE(x);
             CAPTURE(y);
             const auto at = g.cell_of(x, y);

@@ -163,7 +163,9 @@ TEST_CASE("io/write_png_gray: the file decodes back to the pixels (strided views
 {
     io_test::temp_dir dir;
     std::mt19937 rng(8);
-    for (auto [rows, cols] : {std::pair{1, 1}, {1, 9}, {9, 1}, {7, 13}, {257, 131}, {300, 700}}) {
+    for (const auto& item : {std::pair{1, 1}, {1, 9}, {9, 1}, {7, 13}, {257, 131}, {300, 700}}) {
+        const auto& rows = std::get<0>(item);
+        const auto& cols = std::get<1>(item);
         CAPTURE(rows);
         CAPTURE(cols);
         raster<std::uint8_t> big(rows + 2, cols + 5);

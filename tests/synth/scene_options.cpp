@@ -29,7 +29,9 @@ const named_scene all_scenes[] = {{"lake_scene", [](const scene_options& o) { re
 
 TEST_CASE("synth/scenes: the same seed gives the same scene, another seed another one")
 {
-    for (const auto& [name, make] : all_scenes) {
+    for (const auto& item : all_scenes) {
+        const auto& name = item.name;
+        const auto& make = item.make;
         CAPTURE(name);
         const scene a = make({.seed = 7, .size_m = 200});
         const scene b = make({.seed = 7, .size_m = 200});
@@ -43,7 +45,9 @@ TEST_CASE("synth/scenes: the same seed gives the same scene, another seed anothe
 
 TEST_CASE("synth/scenes: size and density options are honoured")
 {
-    for (const auto& [name, make] : all_scenes) {
+    for (const auto& item : all_scenes) {
+        const auto& name = item.name;
+        const auto& make = item.make;
         CAPTURE(name);
         for (const auto& [size, density] : {std::array<double, 2>{150, 4.0}, {300, 0.5}, {101, 2.0}}) {
             const scene s = make({.seed = 3, .size_m = size, .density_per_m2 = density});
@@ -96,7 +100,9 @@ TEST_CASE("synth/scenes: the truth cell option sets the truth grid, not the poin
 
 TEST_CASE("synth/scenes: bad options are refused with the option named")
 {
-    for (const auto& [name, make] : all_scenes) {
+    for (const auto& item : all_scenes) {
+        const auto& name = item.name;
+        const auto& make = item.make;
         const std::string fn = name;
         CHECK_THROWS_WITH_AS(make({.size_m = 0}), (fn + ": size_m must be finite and > 0 (got 0)").c_str(),
                              invalid_input);

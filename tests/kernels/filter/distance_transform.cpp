@@ -32,7 +32,9 @@ TEST_CASE("filter/squared_distance_transform: equals the brute-force distance on
 {
     std::mt19937 rng(20261201);
     for (const double density : {0.0, 0.001, 0.02, 0.2, 0.7, 1.0}) {
-        for (const auto& [rows, cols] : {std::pair{1, 1}, {1, 37}, {41, 1}, {23, 31}, {64, 9}}) {
+        for (const auto& item : {std::pair{1, 1}, {1, 37}, {41, 1}, {23, 31}, {64, 9}}) {
+            const auto& rows = std::get<0>(item);
+            const auto& cols = std::get<1>(item);
             const auto m = reference::random_mask(rng, rows, cols, density);
             CAPTURE(density);
             CAPTURE(rows);

@@ -183,7 +183,6 @@ void check_sparse_levels(const town_score& s)
 
 TEST_CASE("extract_buildings/towns: the randomized family, seeds 4-9 (parameters chosen on 1-3)")
 {
-    town_score total;
     for (unsigned seed = 1; seed <= 9; ++seed) {
         CAPTURE(seed);
         synth::town_family_options o;

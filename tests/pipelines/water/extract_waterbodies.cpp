@@ -341,7 +341,9 @@ TEST_CASE("water/extract_waterbodies' band cut: cut_at_level_bands against the p
     constexpr float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0}, {1, 1}, {1, 70}, {70, 1}, {2, 2},
                                                                 {3, 64}, {5, 65}, {40, 130}, {64, 129}};
-    for (const auto& [rows, cols] : shapes) {
+    for (const auto& item : shapes) {
+        const auto& rows = std::get<0>(item);
+        const auto& cols = std::get<1>(item);
         for (int trial = 0; trial < 12; ++trial) {
             // Mask densities from empty to full; heights on a slope (several bands per part), NaN and inf among them.
             const std::uint32_t density = trial == 0 ? 0 : trial == 1 ? 100 : next() % 100;

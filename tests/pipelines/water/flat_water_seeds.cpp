@@ -392,7 +392,9 @@ TEST_CASE("flat_water_seeds' slope test: drop_sloping against a plain median per
     const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
     constexpr float nan = std::numeric_limits<float>::quiet_NaN();
     const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0}, {1, 1}, {1, 200}, {200, 1}, {3, 65}, {90, 140}};
-    for (const auto& [rows, cols] : shapes) {
+    for (const auto& item : shapes) {
+        const auto& rows = std::get<0>(item);
+        const auto& cols = std::get<1>(item);
         for (int trial = 0; trial < 10; ++trial) {
             // Runs of labels 1..count (several runs per row, labels repeating across rows), -1 (small
             // components) and 0; slopes around the threshold, NaN among them; every size counted.

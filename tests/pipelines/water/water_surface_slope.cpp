@@ -142,8 +142,10 @@ TEST_CASE("water/water_surface_slope: equals the definition on random rasters, e
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> height(99.7f, 100.3f), share(0.0f, 1.0f);
     int trial = 0;
-    for (const auto& [rows, cols] : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
+    for (const auto& item : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
              {1, 1}, {1, 30}, {30, 1}, {5, 7}, {9, 9}, {23, 41}, {64, 37}}) {
+        const auto& rows = std::get<0>(item);
+        const auto& cols = std::get<1>(item);
         for (int k : {1, 2, 3, 4, 5}) {
             ++trial;
             INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << ", radius " << k);
@@ -175,8 +177,10 @@ TEST_CASE("water/water_surface_slope: the lazy slope equals the whole raster's b
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> height(99.7f, 100.3f), share(0.0f, 1.0f);
     int trial = 0;
-    for (const auto& [rows, cols] : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
+    for (const auto& item : std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>>{
              {1, 1}, {3, 200}, {16, 64}, {17, 65}, {40, 130}, {70, 9}}) {
+        const auto& rows = std::get<0>(item);
+        const auto& cols = std::get<1>(item);
         for (int k : {1, 3, 4, 5}) {
             ++trial;
             INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << ", radius " << k);
