@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Builds the library's tests, the examples and the program with Debian's Clang (14 on Debian 12), warnings as
+# errors, without running the tests (CI runs them once, with GCC). Usage: scripts/build-clang.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --clang --mpi --gdal
+echo "build-clang.sh: configuring build/clang with $(clang++ --version | head -1)"
+CC=clang CXX=clang++ cmake -S . -B build/clang -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DLIDARFX_BUILD_TESTS=ON -DLIDARFX_BUILD_EXAMPLES=ON -DCMAKE_CXX_FLAGS=-Werror >/dev/null
+cmake --build build/clang
+echo "build-clang.sh: every target built with clang++, no warning"
