@@ -490,6 +490,15 @@ void las_reader::set_threads(int threads)
     threads_ = threads;
 }
 
+int las_reader::decode_threads() const
+{
+    if (!laz_) return 1;
+    const std::uint64_t largest = std::max<std::uint64_t>(1, laz_->largest_points * header_.point_record_length);
+    const std::uint64_t in_budget = memory_budget() / largest;   // chunks of the largest size
+    const auto fit = static_cast<int>(std::min<std::uint64_t>(in_budget > 1 ? in_budget - 1 : 1, 1024));
+    return std::clamp(fit, 1, lidarfx::detail::resolve_threads(threads_, "las_reader"));
+}
+
 void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink)
 {
     const las_header& h = header_;
@@ -514,9 +523,6 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
                                 "claims more points than its chunk holds)");
         }
     }
-    const std::uint64_t largest = std::max<std::uint64_t>(1, z.largest_points * stride);
-    const std::uint64_t in_budget = budget / largest;   // chunks of the largest size
-    const auto fit = static_cast<int>(std::min<std::uint64_t>(in_budget > 1 ? in_budget - 1 : 1, 1024));
     // Converts the part of chunk c inside [begin, end) from its decoded records into `chunk`.
     const auto take_points = [&](std::size_t c, const std::uint8_t* records) {
         const laz_chunk& k = z.chunks[c];
@@ -558,7 +564,7 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
     // before its claimed count is allocated), and each batch runs in parallel on at most `threads` workers,
     // each holding one chunk: (threads + 1) x the largest chunk within the budget.
-    const int threads = std::clamp(fit, 1, lidarfx::detail::resolve_threads(threads_, "las_reader"));
+    const int threads = decode_threads();
     const std::size_t batch = threads == 1 ? 1 : 2 * static_cast<std::size_t>(threads);
     for (; first <= c1; first += batch) {
         const std::size_t last = std::min(c1, first + batch - 1);

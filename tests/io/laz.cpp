@@ -507,7 +507,7 @@ TEST_CASE("io/laz: a chunk over half the memory budget is refused before decodin
 TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: the same records")
 {
     // The COPC fixture's variable chunks (the largest decides how many decode at once) and simple.laz's one.
-    for (const char* name : {"1.2-with-color.copc.laz", "simple.laz"}) {
+    for (const std::string name : {"1.2-with-color.copc.laz", "simple.laz"}) {
         CAPTURE(name);
         las_reader r(fixture(name));
         const std::vector<std::uint8_t> want = all_records(r);
@@ -522,6 +522,30 @@ TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: th
                 CHECK(io_test::identical(io_test::read_in_chunks(r, 211), las_reader(fixture(name)).read_all()));
             }
         }
+        // Chunks in flight: (k + 1) x the largest within the budget, k at most the threads asked for.
+        const std::uint64_t largest = [&] {   // decoded bytes of the largest chunk, found as the budget's edge
+            std::uint64_t lo = 1, hi = whole;
+            while (lo < hi) {
+                const std::uint64_t mid = (lo + hi) / 2;
+                r.set_memory_budget(2 * mid);
+                r.seek(0);
+                las_points p;
+                if (error_of([&] { r.read_all(); }) == "<no error>") hi = mid; else lo = mid + 1;
+            }
+            return lo;
+        }();
+        MESSAGE(name << ": largest chunk " << largest << " bytes decoded");
+        r.set_threads(4);
+        for (std::uint64_t k = 1; k <= 5; ++k) {
+            r.set_memory_budget((k + 1) * largest);
+            CHECK(r.decode_threads() == static_cast<int>(std::min<std::uint64_t>(k, 4)));
+            r.set_memory_budget((k + 1) * largest - 1);
+            CHECK(r.decode_threads() == static_cast<int>(std::max<std::uint64_t>(1, std::min<std::uint64_t>(k - 1, 4))));
+        }
+        r.set_memory_budget(std::uint64_t{1} << 30);
+        CHECK(r.decode_threads() == 4);
+        r.set_threads(1);
+        CHECK(r.decode_threads() == 1);
         // A budget that cannot hold two of its largest chunk: refused on the first read.
         r.set_memory_budget(64);
         r.seek(0);
