@@ -62,6 +62,7 @@
 #include "lidarfx/pipelines/water/bridge_seeds.hpp"
 #include "lidarfx/pipelines/water/bridges.hpp"
 #include "lidarfx/pipelines/water/extract_waterbodies.hpp"
+#include "lidarfx/pipelines/water/flat_water_seeds.hpp"
 #include "lidarfx/pipelines/water/grow_waterbodies.hpp"
 #include "lidarfx/pipelines/water/grow_waterbody.hpp"
 #include "lidarfx/pipelines/water/intensity_bins.hpp"
@@ -73,7 +74,6 @@
 #include "lidarfx/pipelines/water/water_angles.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
-#include "lidarfx/pipelines/water/flat_water_seeds.hpp"
 #include "lidarfx/pipelines/water/water_surface_slope.hpp"
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
 

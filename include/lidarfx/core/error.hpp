@@ -35,8 +35,8 @@ template <class... Parts>
 
 /// Throws invalid_input with "<function>: <argument> must be <requirement> (got <value>)" unless `ok`.
 template <class Value>
-void require(bool ok, std::string_view function, std::string_view argument,
-             std::string_view requirement, const Value& value)
+void require(bool ok, std::string_view function, std::string_view argument, std::string_view requirement,
+             const Value& value)
 {
     if (!ok) {
         throw invalid_input(concat(function, ": ", argument, " must be ", requirement, " (got ", value, ")"));
@@ -70,8 +70,8 @@ void require_same_shape(const A& a, const B& b, std::string_view function, std::
                         std::string_view b_name)
 {
     if (a.rows() != b.rows() || a.cols() != b.cols()) {
-        throw invalid_input(concat(function, ": ", a_name, " and ", b_name, " must have the same shape (got ",
-                                   a.rows(), "x", a.cols(), " and ", b.rows(), "x", b.cols(), ")"));
+        throw invalid_input(concat(function, ": ", a_name, " and ", b_name, " must have the same shape (got ", a.rows(),
+                                   "x", a.cols(), " and ", b.rows(), "x", b.cols(), ")"));
     }
 }
 

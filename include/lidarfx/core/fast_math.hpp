@@ -20,9 +20,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
-#include <cstring>
 #include <type_traits>
 #include <utility>
 
@@ -65,9 +65,9 @@ constexpr T horner(T x, const T (&c)[N]) noexcept
 constexpr float atan_unit(float t) noexcept
 {
     const float s = t * t;
-    return t * horner(s, {0.0029035008046776056f, -0.01628280244767666f, 0.04303903877735138f,
-                          -0.07533648610115051f, 0.10654664784669876f, -0.14207130670547485f,
-                          0.19993053376674652f, -0.3333309292793274f, 1.0f});
+    return t *
+           horner(s, {0.0029035008046776056f, -0.01628280244767666f, 0.04303903877735138f, -0.07533648610115051f,
+                      0.10654664784669876f, -0.14207130670547485f, 0.19993053376674652f, -0.3333309292793274f, 1.0f});
 }
 
 /// `c ? a : b` for two values already computed (float or double), as a bit mask: a plain select lets compilers
@@ -174,8 +174,8 @@ constexpr float fast_atan2(float y, float x) noexcept
 /// do not vectorize the loop.
 constexpr float sqrt_one_plus(float u) noexcept
 {
-    return horner(u, {0.0014404128305613995f, -0.0075965444557368755f, 0.019566621631383896f,
-                      -0.036124978214502335f, 0.0618608333170414f, -0.12492980808019638f, 0.4999970495700836f, 1.0f});
+    return horner(u, {0.0014404128305613995f, -0.0075965444557368755f, 0.019566621631383896f, -0.036124978214502335f,
+                      0.0618608333170414f, -0.12492980808019638f, 0.4999970495700836f, 1.0f});
 }
 
 /// out[i] = sqrt(x[i]) · scale, correctly rounded square roots (NaN and negative x give NaN, as std::sqrt,

@@ -69,11 +69,11 @@ struct bounds {
 /// so a point on an interior horizontal lattice line goes to the cell north of it there, and a maximum on
 /// a lattice line opens an extra, otherwise empty column or row, where lidarfx folds it into the last one.
 struct grid {
-    double x0 = 0;              ///< world x of the west edge of column 0, metres
-    double y0 = 0;              ///< world y of the north edge of row 0, metres
-    double cell = 1;            ///< cell size, metres, > 0
-    std::ptrdiff_t rows = 0;    ///< number of rows (north to south), >= 0
-    std::ptrdiff_t cols = 0;    ///< number of columns (west to east), >= 0
+    double x0 = 0;            ///< world x of the west edge of column 0, metres
+    double y0 = 0;            ///< world y of the north edge of row 0, metres
+    double cell = 1;          ///< cell size, metres, > 0
+    std::ptrdiff_t rows = 0;  ///< number of rows (north to south), >= 0
+    std::ptrdiff_t cols = 0;  ///< number of columns (west to east), >= 0
 
     /// Throws invalid_input naming `function` if cell is not finite and > 0, rows or cols < 0, rows x cols
     /// exceeds max_raster_cells (2^40, core/raster_view.hpp), or the corners (x0, y0), (x1(), y1()) are not
@@ -207,15 +207,21 @@ inline grid snapped_grid(const bounds& b, double cell_m)
     // |xmin / cell_m| and the rest are now <= 2^36: every quotient below is finite and far from overflow, and
     // one step corrects what rounding did to the quotient or the product.
     double kx = std::floor(b.xmin / cell_m), ky = std::ceil(b.ymax / cell_m);
-    if (kx * cell_m > b.xmin) kx -= 1;
-    else if ((kx + 1) * cell_m <= b.xmin) kx += 1;
-    if (ky * cell_m < b.ymax) ky += 1;
-    else if ((ky - 1) * cell_m >= b.ymax) ky -= 1;
+    if (kx * cell_m > b.xmin)
+        kx -= 1;
+    else if ((kx + 1) * cell_m <= b.xmin)
+        kx += 1;
+    if (ky * cell_m < b.ymax)
+        ky += 1;
+    else if ((ky - 1) * cell_m >= b.ymax)
+        ky -= 1;
     grid g{kx * cell_m, ky * cell_m, cell_m, 0, 0};
     const cell_coords far = g.to_cell_coords(b.xmax, b.ymin);
     // Only bounds within a cell of the largest double, or spanning more than it, fail this: their corners or
     // their distance to the far edge do not exist in double.
-    const auto beyond = [&] { return detail::concat(box(), " at cell_m ", cell_m, " give a grid beyond the double range"); };
+    const auto beyond = [&] {
+        return detail::concat(box(), " at cell_m ", cell_m, " give a grid beyond the double range");
+    };
     detail::require(std::isfinite(g.x0) && std::isfinite(g.y0) && std::isfinite(far.col) && std::isfinite(far.row),
                     function, beyond());
     const double cols = std::max(1.0, std::ceil(far.col)), rows = std::max(1.0, std::ceil(far.row));
@@ -242,6 +248,9 @@ inline grid from_gdal(const std::array<double, 6>& gt, std::ptrdiff_t rows, std:
 }
 
 /// GDAL geotransform of a grid: {x0, cell, 0, y0, 0, -cell}.
-constexpr std::array<double, 6> to_gdal(const grid& g) noexcept { return {g.x0, g.cell, 0.0, g.y0, 0.0, -g.cell}; }
+constexpr std::array<double, 6> to_gdal(const grid& g) noexcept
+{
+    return {g.x0, g.cell, 0.0, g.y0, 0.0, -g.cell};
+}
 
 }  // namespace lidarfx

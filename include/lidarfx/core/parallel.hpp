@@ -35,8 +35,8 @@ using progress_callback = std::function<bool(double fraction_done)>;
 /// How an algorithm runs (see the header comment): thread count, and progress with cancellation.
 /// Default: the caller's thread only, no reports. Never changes a result.
 struct execution {
-    int threads = 1;                   ///< worker threads; 0 = std::thread::hardware_concurrency(); >= 0
-    progress_callback progress = {};   ///< optional progress / cancellation callback (empty = no reports)
+    int threads = 1;                  ///< worker threads; 0 = std::thread::hardware_concurrency(); >= 0
+    progress_callback progress = {};  ///< optional progress / cancellation callback (empty = no reports)
 };
 
 namespace detail {
@@ -90,9 +90,7 @@ void parallel_for_rows(std::ptrdiff_t rows, std::ptrdiff_t block_rows, int threa
         return;
     }
     const std::ptrdiff_t blocks = (rows + block_rows - 1) / block_rows;
-    const auto run_block = [&](std::ptrdiff_t b) {
-        body(b * block_rows, std::min(rows, (b + 1) * block_rows));
-    };
+    const auto run_block = [&](std::ptrdiff_t b) { body(b * block_rows, std::min(rows, (b + 1) * block_rows)); };
     if (threads == 1 || blocks == 1) {
         for (std::ptrdiff_t b = 0; b < blocks; ++b) {
             run_block(b);

@@ -45,9 +45,9 @@ struct plane_sums {
 
 /// A fitted plane z = a x + b y + c (x east, y north) with its rms residual (metres when z is).
 struct plane_fit {
-    double a = 0, b = 0, c = 0;  ///< slope east, slope north, height at the reference
+    double a = 0, b = 0, c = 0;                            ///< slope east, slope north, height at the reference
     double rms = std::numeric_limits<double>::infinity();  ///< sqrt(mean squared residual)
-    bool ok = false;             ///< false for fewer than 3 points or collinear ones (then a = b = 0, c = mean z)
+    bool ok = false;  ///< false for fewer than 3 points or collinear ones (then a = b = 0, c = mean z)
     double at(double x, double y) const noexcept { return a * x + b * y + c; }
     /// Angle from horizontal, degrees: atan(|grad z|).
     double tilt_deg() const noexcept { return std::atan(std::hypot(a, b)) * 180.0 / std::numbers::pi; }

@@ -15,23 +15,44 @@ namespace lidarfx {
 
 /// Index-based point access: x, y, z in projected metres. SoA buffers, AoS structs and matrices all fit.
 template <class C>
-concept point_cloud = requires(const C& c, std::size_t i) {
-    { c.size() } -> std::convertible_to<std::size_t>;
-    { c.x(i) } -> std::convertible_to<double>;
-    { c.y(i) } -> std::convertible_to<double>;
-    { c.z(i) } -> std::convertible_to<double>;
+concept point_cloud = requires(const C& c, std::size_t i)
+{
+    {
+        c.size()
+        } -> std::convertible_to<std::size_t>;
+    {
+        c.x(i)
+        } -> std::convertible_to<double>;
+    {
+        c.y(i)
+        } -> std::convertible_to<double>;
+    {
+        c.z(i)
+        } -> std::convertible_to<double>;
 };
 
 /// Optional attributes, detected at compile time and never required by point_cloud itself: each reads as
 /// a number for every point index (intensity as double; return number, number of returns, class as int).
 template <class C>
-concept has_intensity = point_cloud<C> && requires(const C& c, std::size_t i) { double(c.intensity(i)); };
+concept has_intensity = point_cloud<C> && requires(const C& c, std::size_t i)
+{
+    double(c.intensity(i));
+};
 template <class C>
-concept has_return_number = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.return_number(i)); };
+concept has_return_number = point_cloud<C> && requires(const C& c, std::size_t i)
+{
+    int(c.return_number(i));
+};
 template <class C>
-concept has_number_of_returns = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.number_of_returns(i)); };
+concept has_number_of_returns = point_cloud<C> && requires(const C& c, std::size_t i)
+{
+    int(c.number_of_returns(i));
+};
 template <class C>
-concept has_classification = point_cloud<C> && requires(const C& c, std::size_t i) { int(c.classification(i)); };
+concept has_classification = point_cloud<C> && requires(const C& c, std::size_t i)
+{
+    int(c.classification(i));
+};
 
 /// Struct-of-arrays cloud over caller spans (no copy). x, y, z are required and of equal length; each
 /// optional span is either empty (attribute absent: intensity 0, return 1 of 1, class 0) or of that length.
@@ -48,8 +69,8 @@ public:
         const auto optional_ok = [n](std::size_t k) { return k == 0 || k == n; };
         detail::require(optional_ok(intensity.size()), "soa_cloud", "intensity", "empty or of length x.size()",
                         intensity.size());
-        detail::require(optional_ok(return_number.size()), "soa_cloud", "return_number",
-                        "empty or of length x.size()", return_number.size());
+        detail::require(optional_ok(return_number.size()), "soa_cloud", "return_number", "empty or of length x.size()",
+                        return_number.size());
         detail::require(optional_ok(number_of_returns.size()), "soa_cloud", "number_of_returns",
                         "empty or of length x.size()", number_of_returns.size());
         detail::require(optional_ok(classification.size()), "soa_cloud", "classification",
@@ -84,14 +105,15 @@ concept given_attribute = !std::is_same_v<A, no_attribute>;  // an aos_cloud pro
 
 /// Array-of-structs cloud: reads attributes of P through projections (member pointers or callables),
 /// without copying. Attributes given as no_attribute are absent (and not detected by the concepts).
-template <class P, class X, class Y, class Z, class I = no_attribute, class R = no_attribute,
-          class N = no_attribute, class K = no_attribute>
+template <class P, class X, class Y, class Z, class I = no_attribute, class R = no_attribute, class N = no_attribute,
+          class K = no_attribute>
 class aos_cloud {
 public:
     aos_cloud(std::span<const P> points, X x, Y y, Z z, I intensity = {}, R return_number = {},
               N number_of_returns = {}, K classification = {})
-        : pts_(points), x_(x), y_(y), z_(z), i_(intensity), r_(return_number), n_(number_of_returns),
-          k_(classification) {}
+        : pts_(points), x_(x), y_(y), z_(z), i_(intensity), r_(return_number), n_(number_of_returns), k_(classification)
+    {
+    }
 
     std::size_t size() const noexcept { return pts_.size(); }
     double x(std::size_t i) const { return static_cast<double>(std::invoke(x_, pts_[i])); }
@@ -105,7 +127,10 @@ public:
 
 private:
     template <class T, class Projection>
-    T read(const Projection& p, std::size_t i) const { return static_cast<T>(std::invoke(p, pts_[i])); }
+    T read(const Projection& p, std::size_t i) const
+    {
+        return static_cast<T>(std::invoke(p, pts_[i]));
+    }
 
     std::span<const P> pts_;
     [[no_unique_address]] X x_;
@@ -126,17 +151,26 @@ aos_cloud(std::span<P>, Proj...) -> aos_cloud<P, Proj...>;
 template <point_cloud C>
 double intensity_of(const C& c, std::size_t i)
 {
-    if constexpr (has_intensity<C>) return c.intensity(i); else return 0.0;
+    if constexpr (has_intensity<C>)
+        return c.intensity(i);
+    else
+        return 0.0;
 }
 template <point_cloud C>
 int return_number_of(const C& c, std::size_t i)
 {
-    if constexpr (has_return_number<C>) return c.return_number(i); else return 1;
+    if constexpr (has_return_number<C>)
+        return c.return_number(i);
+    else
+        return 1;
 }
 template <point_cloud C>
 int number_of_returns_of(const C& c, std::size_t i)
 {
-    if constexpr (has_number_of_returns<C>) return c.number_of_returns(i); else return 1;
+    if constexpr (has_number_of_returns<C>)
+        return c.number_of_returns(i);
+    else
+        return 1;
 }
 
 }  // namespace lidarfx

@@ -35,7 +35,9 @@ struct raster_allocator {
 
     raster_allocator() noexcept = default;
     template <class U>
-    raster_allocator(const raster_allocator<U>&) noexcept {}
+    raster_allocator(const raster_allocator<U>&) noexcept
+    {
+    }
 
     T* allocate(std::size_t n)
     {
@@ -54,7 +56,8 @@ struct raster_allocator {
     }
     void deallocate(T* p, std::size_t n) noexcept
     {
-        if (n * sizeof(T) < 2 * huge) std::allocator<T>().deallocate(p, n);
+        if (n * sizeof(T) < 2 * huge)
+            std::allocator<T>().deallocate(p, n);
         else {
             void* block = nullptr;
             std::memcpy(&block, block_slot(p), sizeof block);
@@ -78,7 +81,10 @@ struct raster_allocator {
     {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
-    friend bool operator==(const raster_allocator&, const raster_allocator&) noexcept { return true; }
+    friend bool operator==(const raster_allocator&, const raster_allocator&) noexcept
+    {
+        return true;
+    }
 };
 
 }  // namespace detail
@@ -119,7 +125,9 @@ public:
     /// rows x cols cells, each set to `fill`. @throws invalid_input if rows or cols < 0 or rows x cols exceeds
     /// max_raster_cells (core/raster_view.hpp); std::bad_alloc if the memory is not there.
     raster(std::ptrdiff_t rows, std::ptrdiff_t cols, T fill = T{})
-        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")), cells_(cell_count(rows, cols), fill) {}
+        : rows_(checked(rows, "rows")), cols_(checked(cols, "cols")), cells_(cell_count(rows, cols), fill)
+    {
+    }
 
     /// rows x cols cells left default-initialized (indeterminate for arithmetic T): for outputs that are
     /// written in full before being read, which saves zeroing a large block. @throws as the filling form.
@@ -131,7 +139,7 @@ public:
 
     /// Deep copy of any raster-like input.
     template <raster_input V>
-        requires std::convertible_to<typename V::value_type, T>
+    requires std::convertible_to<typename V::value_type, T>
     explicit raster(const V& source) : raster(source.rows(), source.cols())
     {
         for (std::ptrdiff_t r = 0; r < rows_; ++r) {
@@ -268,7 +276,8 @@ void write_through(Out&& out, Compute&& compute)
         raster<T> scratch(out.rows(), out.cols());
         compute(scratch.view());
         for (std::ptrdiff_t r = 0; r < scratch.rows(); ++r) {
-            for (std::ptrdiff_t c = 0; c < scratch.cols(); ++c) out(r, c) = static_cast<typename O::value_type>(scratch(r, c));
+            for (std::ptrdiff_t c = 0; c < scratch.cols(); ++c)
+                out(r, c) = static_cast<typename O::value_type>(scratch(r, c));
         }
     }
 }

@@ -54,7 +54,9 @@ struct cell_splitter {
     double inverse = 1.0;
 
     explicit cell_splitter(std::ptrdiff_t columns) noexcept
-        : cols(columns), inverse(columns > 0 ? 1.0 / static_cast<double>(columns) : 0.0) {}
+        : cols(columns), inverse(columns > 0 ? 1.0 / static_cast<double>(columns) : 0.0)
+    {
+    }
 
     std::pair<std::ptrdiff_t, std::ptrdiff_t> operator()(std::ptrdiff_t i) const noexcept
     {
@@ -75,24 +77,39 @@ struct cell_splitter {
 
 /// Anything with rows(), cols() and (r, c) indexing yielding its value_type: algorithms accept it.
 template <class V>
-concept raster_input = requires(const V& v, std::ptrdiff_t i) {
+concept raster_input = requires(const V& v, std::ptrdiff_t i)
+{
     typename V::value_type;
-    { v.rows() } -> std::convertible_to<std::ptrdiff_t>;
-    { v.cols() } -> std::convertible_to<std::ptrdiff_t>;
-    { v(i, i) } -> std::convertible_to<typename V::value_type>;
+    {
+        v.rows()
+        } -> std::convertible_to<std::ptrdiff_t>;
+    {
+        v.cols()
+        } -> std::convertible_to<std::ptrdiff_t>;
+    {
+        v(i, i)
+        } -> std::convertible_to<typename V::value_type>;
 };
 
 /// A raster_input whose cells can be assigned a T through an lvalue: algorithms write results into it.
 /// (raster_view<T> and raster<T>& both qualify; pass outputs as `Out&&`.)
 template <class V, class T>
-concept raster_output_of = raster_input<std::remove_cvref_t<V>> && requires(V& v, T x) { v(0, 0) = x; };
+concept raster_output_of = raster_input<std::remove_cvref_t<V>> && requires(V& v, T x)
+{
+    v(0, 0) = x;
+};
 
 /// A raster whose cells sit in memory as rows of contiguous cells `row_stride()` apart: it can be viewed
 /// without copying (raster, raster_view, or a host type such as a wrapped cv::Mat or GDAL buffer).
 template <class V>
-concept strided_raster = raster_input<V> && requires(const V& v) {
-    { v.data() } -> std::convertible_to<const typename V::value_type*>;
-    { v.row_stride() } -> std::convertible_to<std::ptrdiff_t>;
+concept strided_raster = raster_input<V> && requires(const V& v)
+{
+    {
+        v.data()
+        } -> std::convertible_to<const typename V::value_type*>;
+    {
+        v.row_stride()
+        } -> std::convertible_to<std::ptrdiff_t>;
 };
 
 /// Non-owning view of `rows` x `cols` cells; cell (r, c) is at data[r * row_stride + c] (row 0 = north).
@@ -106,8 +123,7 @@ public:
     constexpr raster_view() noexcept = default;
 
     /// View of contiguous rows (row_stride = cols).
-    constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols)
-        : raster_view(data, rows, cols, cols) {}
+    constexpr raster_view(T* data, std::ptrdiff_t rows, std::ptrdiff_t cols) : raster_view(data, rows, cols, cols) {}
 
     /// View with an explicit row stride in elements. @throws invalid_input unless rows, cols >= 0,
     /// rows x cols <= max_raster_cells, row_stride >= cols, the cells addressed ((rows - 1) * row_stride + cols
@@ -119,7 +135,8 @@ public:
         detail::require_raster_cells(rows, cols, "raster_view", "rows x cols");
         detail::require(row_stride >= cols, "raster_view", "row_stride", ">= cols", row_stride);
         if (rows > 0 && cols > 0) {
-            constexpr std::ptrdiff_t most = std::numeric_limits<std::ptrdiff_t>::max() / static_cast<std::ptrdiff_t>(sizeof(T));
+            constexpr std::ptrdiff_t most =
+                std::numeric_limits<std::ptrdiff_t>::max() / static_cast<std::ptrdiff_t>(sizeof(T));
             // The message is made only on failure: views are made in hot loops (per row, per tile).
             detail::require(rows - 1 <= (most - cols) / row_stride, "raster_view", [&] {
                 return detail::concat("(rows - 1) * row_stride + cols cells must fit in the address space (got ", rows,
@@ -132,9 +149,11 @@ public:
 
     /// Converts a mutable view to a read-only one.
     template <class U>
-        requires(std::is_const_v<T> && std::is_same_v<std::remove_cv_t<T>, U>)
-    constexpr raster_view(const raster_view<U>& other) noexcept
-        : data_(other.data()), rows_(other.rows()), cols_(other.cols()), stride_(other.row_stride()) {}
+    requires(std::is_const_v<T>&& std::is_same_v<std::remove_cv_t<T>, U>) constexpr raster_view(
+        const raster_view<U>& other) noexcept
+        : data_(other.data()), rows_(other.rows()), cols_(other.cols()), stride_(other.row_stride())
+    {
+    }
 
     constexpr T& operator()(std::ptrdiff_t r, std::ptrdiff_t c) const noexcept
     {
@@ -162,8 +181,8 @@ public:
     constexpr raster_view window(std::ptrdiff_t r0, std::ptrdiff_t c0, std::ptrdiff_t nr, std::ptrdiff_t nc) const
     {
         if (r0 < 0 || c0 < 0 || nr < 0 || nc < 0 || r0 > rows_ || c0 > cols_ || nr > rows_ - r0 || nc > cols_ - c0) {
-            throw invalid_input(detail::concat("raster_view::window: window (", r0, ", ", c0, ") of ", nr, "x",
-                                               nc, " does not fit in a ", rows_, "x", cols_, " view"));
+            throw invalid_input(detail::concat("raster_view::window: window (", r0, ", ", c0, ") of ", nr, "x", nc,
+                                               " does not fit in a ", rows_, "x", cols_, " view"));
         }
         return raster_view(nr == 0 || nc == 0 ? data_ : data_ + r0 * stride_ + c0, nr, nc, stride_);
     }

@@ -44,7 +44,10 @@ inline std::ptrdiff_t morphology_reach(const morphology_options& opt, int steps 
 }
 
 /// Reach of slope_aspect: Horn's 3 x 3 window, so 1.
-constexpr std::ptrdiff_t slope_aspect_reach() noexcept { return 1; }
+constexpr std::ptrdiff_t slope_aspect_reach() noexcept
+{
+    return 1;
+}
 
 /// Reach of idw_fill: the largest whole number of cells n with n <= radius_m / cell_m + 1e-9 (idw_fill's own
 /// inclusive radius test); every data cell a hole can use lies within it.

@@ -32,9 +32,9 @@ struct stitch_labels_options {
 /// background.
 struct stitched_components {
     raster<std::int32_t> labels;
-    std::vector<std::size_t> sizes;    ///< cells per label (sizes[0] = background cells)
-    std::vector<cell_box> boxes;       ///< bounding box per label, as component_bounds (empty box if no cell)
-    std::vector<std::int64_t> sums;    ///< sum of `values` over each label's cells (empty without values)
+    std::vector<std::size_t> sizes;  ///< cells per label (sizes[0] = background cells)
+    std::vector<cell_box> boxes;     ///< bounding box per label, as component_bounds (empty box if no cell)
+    std::vector<std::int64_t> sums;  ///< sum of `values` over each label's cells (empty without values)
 
     std::size_t count() const noexcept { return sizes.empty() ? 0 : sizes.size() - 1; }
 };
@@ -57,8 +57,10 @@ public:
     {
         a = find(a);
         b = find(b);
-        if (a < b) parent_[b] = a;
-        else if (b < a) parent_[a] = b;
+        if (a < b)
+            parent_[b] = a;
+        else if (b < a)
+            parent_[a] = b;
     }
 
 private:
@@ -68,7 +70,7 @@ private:
 /// What a tile knows of one of its pieces (index 0: the tile's background cells).
 struct piece_stats {
     std::size_t cells = 0;
-    cell_box box;                                             ///< whole-raster cells
+    cell_box box;  ///< whole-raster cells
     std::int64_t sum = 0;
     std::ptrdiff_t first = std::numeric_limits<std::ptrdiff_t>::max();  ///< row-major index of its first cell
 };
@@ -163,7 +165,8 @@ stitched_components stitch_labels_view(raster_view<const T> m, const raster_view
             if (forest.find(offset[i] + l) == offset[i] + l) roots.push_back(offset[i] + l);
         }
     }
-    std::sort(roots.begin(), roots.end(), [&](std::size_t a, std::size_t b) { return merged[a].first < merged[b].first; });
+    std::sort(roots.begin(), roots.end(),
+              [&](std::size_t a, std::size_t b) { return merged[a].first < merged[b].first; });
     detail::require(roots.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()), function,
                     "the mask has more components than int32 labels can number");
     std::vector<std::int32_t> final_label(offset[tiles], 0);
@@ -231,8 +234,8 @@ stitched_components stitch_labels(const In& m, const stitch_labels_options& opt 
 /// order of tiles). values holds integers (e.g. intensity in fixed point, counts) and has m's shape.
 /// @throws invalid_input as stitch_labels, or if the shapes differ.
 template <raster_input In, raster_input Values>
-    requires std::is_integral_v<typename Values::value_type>
-stitched_components stitch_labels(const In& m, const Values& values, const stitch_labels_options& opt = {})
+requires std::is_integral_v<typename Values::value_type> stitched_components
+stitch_labels(const In& m, const Values& values, const stitch_labels_options& opt = {})
 {
     constexpr const char* function = "stitch_labels";
     detail::check_stitch_labels(m, opt, function);

@@ -20,8 +20,8 @@ namespace lidarfx {
 
 /// One file of a survey as its header describes it: the extent of its points and how many there are.
 struct survey_file_extent {
-    bounds box;                  ///< extent of the file's points (LAS header min/max), projected metres
-    std::uint64_t points = 0;    ///< number of points in the file
+    bounds box;                ///< extent of the file's points (LAS header min/max), projected metres
+    std::uint64_t points = 0;  ///< number of points in the file
 };
 
 /// Settings of make_tile_plan. The byte counts are the host's model of its own memory use (docs/scale.md);
@@ -50,12 +50,12 @@ struct survey_tile {
 
 /// A tiling of a survey grid (make_tile_plan).
 struct tile_plan {
-    grid g;                             ///< the survey grid that is tiled
-    std::ptrdiff_t tile_cells = 1;      ///< core edge, cells (the last row / column of tiles may be smaller)
-    std::ptrdiff_t tile_rows = 0;       ///< tiles from north to south
-    std::ptrdiff_t tile_cols = 0;       ///< tiles from west to east
-    std::vector<survey_tile> tiles;     ///< tile_rows x tile_cols tiles, row-major
-    double peak_bytes_estimate = 0;     ///< the memory model's peak for this plan, bytes (see make_tile_plan)
+    grid g;                          ///< the survey grid that is tiled
+    std::ptrdiff_t tile_cells = 1;   ///< core edge, cells (the last row / column of tiles may be smaller)
+    std::ptrdiff_t tile_rows = 0;    ///< tiles from north to south
+    std::ptrdiff_t tile_cols = 0;    ///< tiles from west to east
+    std::vector<survey_tile> tiles;  ///< tile_rows x tile_cols tiles, row-major
+    double peak_bytes_estimate = 0;  ///< the memory model's peak for this plan, bytes (see make_tile_plan)
 };
 
 namespace detail {
@@ -150,8 +150,8 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
     detail::require(opt.halo_cells >= 0, function, "halo_cells", ">= 0", opt.halo_cells);
     detail::require(opt.bytes_per_cell >= 0 && opt.bytes_per_cell <= 1.0e300, function, "bytes_per_cell",
                     "finite and >= 0", opt.bytes_per_cell);
-    detail::require(opt.bytes_per_tile_cell >= 0 && opt.bytes_per_tile_cell <= 1.0e300, function,
-                    "bytes_per_tile_cell", "finite and >= 0", opt.bytes_per_tile_cell);
+    detail::require(opt.bytes_per_tile_cell >= 0 && opt.bytes_per_tile_cell <= 1.0e300, function, "bytes_per_tile_cell",
+                    "finite and >= 0", opt.bytes_per_tile_cell);
     detail::require(opt.bytes_per_point >= 0 && opt.bytes_per_point <= 1.0e300, function, "bytes_per_point",
                     "finite and >= 0", opt.bytes_per_point);
     detail::require(opt.tiles_in_flight >= 1, function, "tiles_in_flight", ">= 1", opt.tiles_in_flight);
@@ -177,8 +177,10 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
         std::ptrdiff_t lo = 1, hi = longest;
         while (lo < hi) {
             const std::ptrdiff_t mid = lo + (hi - lo + 1) / 2;
-            if (fits(mid)) lo = mid;
-            else hi = mid - 1;
+            if (fits(mid))
+                lo = mid;
+            else
+                hi = mid - 1;
         }
         return lo;
     };
@@ -207,12 +209,11 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
         const double room = (budget - buffers) / opt.bytes_per_cell;
         double c = g.cell * std::sqrt(static_cast<double>(g.size()) / std::max(room, 1.0));
         while ((std::ceil(width / c) + 1) * (std::ceil(height / c) + 1) > room) c *= 1.01;
-        throw invalid_input(detail::concat(function, ": the survey grid alone (", g.rows, " x ", g.cols,
-                                           " cells x bytes_per_cell ", opt.bytes_per_cell, " = ", grid_bytes,
-                                           " bytes) does not fit memory_budget_bytes ", budget,
-                                           " with the chunk buffers (", buffers, " bytes); a cell of ",
-                                           detail::round_up_3_digits(c), " m instead of ", g.cell,
-                                           " m would fit, or raise the budget"));
+        throw invalid_input(
+            detail::concat(function, ": the survey grid alone (", g.rows, " x ", g.cols, " cells x bytes_per_cell ",
+                           opt.bytes_per_cell, " = ", grid_bytes, " bytes) does not fit memory_budget_bytes ", budget,
+                           " with the chunk buffers (", buffers, " bytes); a cell of ", detail::round_up_3_digits(c),
+                           " m instead of ", g.cell, " m would fit, or raise the budget"));
     }
 
     tile_plan plan;
@@ -228,7 +229,8 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
         cell_box box;
     };
     std::vector<file_cells> reach(files.size());
-    for (std::size_t i = 0; i < files.size(); ++i) reach[i].inside = detail::file_cell_range(g, files[i].box, reach[i].box);
+    for (std::size_t i = 0; i < files.size(); ++i)
+        reach[i].inside = detail::file_cell_range(g, files[i].box, reach[i].box);
 
     double largest_halo = 0;
     const std::ptrdiff_t h = opt.halo_cells;
@@ -242,8 +244,8 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
                               std::max<std::ptrdiff_t>(0, tile.core.col_min - std::min(h, tile.core.col_min)),
                               tile.core.row_max + std::min(h, g.rows - 1 - tile.core.row_max),
                               tile.core.col_max + std::min(h, g.cols - 1 - tile.core.col_max)};
-            largest_halo = std::max(largest_halo, static_cast<double>(tile.with_halo.rows()) *
-                                                      static_cast<double>(tile.with_halo.cols()));
+            largest_halo = std::max(
+                largest_halo, static_cast<double>(tile.with_halo.rows()) * static_cast<double>(tile.with_halo.cols()));
             const bounds core_m = g.extent(tile.core);
             double expected = 0;
             for (std::size_t i = 0; i < files.size(); ++i) {
@@ -277,19 +279,18 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
             auto_edge.tile_edge_m = 0;
             return make_tile_plan(g, files, auto_edge);
         }
-        throw invalid_input(detail::concat(function, ": tile_edge_m ", opt.tile_edge_m, " m (", t,
-                                           " cells, halo ", h, ") needs ", plan.peak_bytes_estimate,
-                                           " bytes, more than memory_budget_bytes ", budget,
-                                           "; the largest tile edge that fits is ",
-                                           static_cast<double>(fit) * g.cell, " m (", fit, " cells)"));
+        throw invalid_input(detail::concat(
+            function, ": tile_edge_m ", opt.tile_edge_m, " m (", t, " cells, halo ", h, ") needs ",
+            plan.peak_bytes_estimate, " bytes, more than memory_budget_bytes ", budget,
+            "; the largest tile edge that fits is ", static_cast<double>(fit) * g.cell, " m (", fit, " cells)"));
     }
     return plan;
 }
 
 /// Who reads one file of a tile plan (assign_file_readers).
 struct file_readers {
-    std::size_t home = 0;                 ///< the tile that reads the file; tiles.size() when no tile lists it
-    std::vector<std::size_t> handed_to;   ///< tiles next to home that home hands their points instead
+    std::size_t home = 0;                ///< the tile that reads the file; tiles.size() when no tile lists it
+    std::vector<std::size_t> handed_to;  ///< tiles next to home that home hands their points instead
 };
 
 /// Lets most files be read once instead of by every tile they touch. A file whose box ends on a tile border
@@ -335,8 +336,8 @@ inline std::vector<file_readers> assign_file_readers(const tile_plan& plan, std:
         if (max_handed_points == 0) continue;
         for (const std::size_t t : listing[f]) {
             if (t == r.home || !next_to(t, r.home)) continue;
-            const double share = static_cast<double>(files[f].points) *
-                                 detail::shared_cells(range, plan.tiles[t].with_halo) / cells;
+            const double share =
+                static_cast<double>(files[f].points) * detail::shared_cells(range, plan.tiles[t].with_halo) / cells;
             if (share <= static_cast<double>(max_handed_points)) {
                 r.handed_to.push_back(t);
                 handed[t] += share;

@@ -31,9 +31,8 @@ decltype(auto) call_local_step(Step& step, raster_view<const T> window, const ce
 }
 
 template <class T, class Step>
-using local_step_result = std::remove_cvref_t<decltype(call_local_step<T>(std::declval<Step&>(),
-                                                                           std::declval<raster_view<const T>>(),
-                                                                           std::declval<const cell_box&>()))>;
+using local_step_result = std::remove_cvref_t<decltype(call_local_step<T>(
+    std::declval<Step&>(), std::declval<raster_view<const T>>(), std::declval<const cell_box&>()))>;
 
 }  // namespace detail
 
@@ -49,7 +48,7 @@ using local_step_result = std::remove_cvref_t<decltype(call_local_step<T>(std::d
 /// @throws invalid_input if reach < 0, tile_cells < 1 or run.threads < 0, or a step's result has not the
 /// window's shape; whatever `step` throws; cancelled if run.progress returns false.
 template <class T, class Step>
-    requires raster_input<detail::local_step_result<T, Step>>
+requires raster_input<detail::local_step_result<T, Step>>
 auto tiled_local(raster_view<const T> in, std::ptrdiff_t reach, std::ptrdiff_t tile_cells, Step step,
                  execution run = {})
 {

@@ -85,7 +85,8 @@ void angular_interior(const float* centre, std::ptrdiff_t row_stride, float* bes
                 if (dr == 0 && dc == 0) continue;
                 const int a = std::min(std::abs(dr), std::abs(dc)), b = std::max(std::abs(dr), std::abs(dc));
                 if constexpr (Finite) {
-                    const std::uint32_t d = std::bit_cast<std::uint32_t>(p - centre[dr * row_stride + c + dc]) & magnitude;
+                    const std::uint32_t d =
+                        std::bit_cast<std::uint32_t>(p - centre[dr * row_stride + c + dc]) & magnitude;
                     largest[a][b] = d > largest[a][b] ? d : largest[a][b];
                 } else {  // d > l ? d : l is one float max, false for a NaN d: skipped without a select
                     const float d = std::fabs(p - centre[dr * row_stride + c + dc]);

@@ -17,7 +17,7 @@ namespace lidarfx {
 
 /// Settings of squared_distance_transform.
 struct distance_transform_options {
-    execution run = {};   ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    execution run = {};  ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// The value squared_distance_transform gives every cell of a raster without features.
@@ -93,7 +93,8 @@ inline raster<float> squared_distance_transform(raster_view<const std::uint8_t> 
             const std::uint8_t* f = features.row(r);
             float* o = out.view().row(r);
             const float* above = r > 0 ? out.view().row(r - 1) : nullptr;
-            for (std::ptrdiff_t c = c0; c < c1; ++c) o[c] = f[c] ? 0.0f : (above ? above[c] + 1.0f : no_feature_distance);
+            for (std::ptrdiff_t c = c0; c < c1; ++c)
+                o[c] = f[c] ? 0.0f : (above ? above[c] + 1.0f : no_feature_distance);
         }
         for (std::ptrdiff_t r = rows - 2; r >= 0; --r) {
             float* o = out.view().row(r);

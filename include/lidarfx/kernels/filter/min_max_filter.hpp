@@ -37,14 +37,14 @@ namespace detail {
 /// with it is exactly "ignored". For floating-point T the neutrals are ±infinity.
 template <class T>
 struct min_reduce {
-    static constexpr T neutral = std::numeric_limits<T>::has_infinity ? std::numeric_limits<T>::infinity()
-                                                                       : std::numeric_limits<T>::max();
+    static constexpr T neutral =
+        std::numeric_limits<T>::has_infinity ? std::numeric_limits<T>::infinity() : std::numeric_limits<T>::max();
     static constexpr T apply(T a, T b) noexcept { return b < a ? b : a; }
 };
 template <class T>
 struct max_reduce {
-    static constexpr T neutral = std::numeric_limits<T>::has_infinity ? -std::numeric_limits<T>::infinity()
-                                                                       : std::numeric_limits<T>::lowest();
+    static constexpr T neutral =
+        std::numeric_limits<T>::has_infinity ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::lowest();
     static constexpr T apply(T a, T b) noexcept { return a < b ? b : a; }
 };
 
@@ -164,7 +164,8 @@ void min_max_rows(std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t kx, s
 /// stays near cache size, and the rows recomputed around a strip stay a small share.
 inline std::ptrdiff_t min_max_strip_rows(std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t radius)
 {
-    const std::ptrdiff_t fit = std::max<std::ptrdiff_t>(16, (std::ptrdiff_t{1} << 17) / std::max<std::ptrdiff_t>(cols, 1));
+    const std::ptrdiff_t fit =
+        std::max<std::ptrdiff_t>(16, (std::ptrdiff_t{1} << 17) / std::max<std::ptrdiff_t>(cols, 1));
     return std::min(std::max<std::ptrdiff_t>(rows, 1), std::max(fit, 8 * radius));
 }
 

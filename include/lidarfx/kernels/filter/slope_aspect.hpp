@@ -78,10 +78,10 @@ inline void slope_aspect_cell(float east, float north, float flat_slope_deg, flo
     // Degrees from the nearer of the two axes, [0, 45]: t <= 1, so atan_unit directly (atan_deg's reflection
     // for t > 1 would repeat the comparison ax > ay, and compilers then branch and stop vectorizing).
     float a = atan_unit(t) * static_cast<float>(180 / std::numbers::pi);
-    a = reflect_if(ax > ay, 90.0f, a);               // from north, down-slope direction in the NE quadrant
-    a = reflect_if(north > 0, 180.0f, a);            // down-slope points south
-    a = reflect_if(east > 0, 360.0f, a);             // down-slope points west
-    a = select_bits(a >= 360.0f, 0.0f, a);           // 360 - tiny rounds to 360
+    a = reflect_if(ax > ay, 90.0f, a);      // from north, down-slope direction in the NE quadrant
+    a = reflect_if(north > 0, 180.0f, a);   // down-slope points south
+    a = reflect_if(east > 0, 360.0f, a);    // down-slope points west
+    a = select_bits(a >= 360.0f, 0.0f, a);  // 360 - tiny rounds to 360
     const bool is_flat = s <= flat_slope_deg;
     // NaN aspect for flat cells and NaN slopes, by adding NaN or 0 (s - s) rather than selecting: a select
     // against a constant makes compilers branch around the atan, and the loop no longer vectorizes.
@@ -149,11 +149,11 @@ inline void slope_aspect_rows(raster_view<const float> z, raster_view<float> slo
             const float* so = z.row(r + 1);
             for (std::ptrdiff_t c = 1; c + 1 < cols; ++c) {
                 // (m[c] - m[c]) is 0, or NaN for a NaN centre, which sends the cell to the general path.
-                east[c] = static_cast<float>(
-                    ((static_cast<double>(n[c + 1]) - n[c - 1]) + 2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
-                     (static_cast<double>(so[c + 1]) - so[c - 1])) *
-                        scale +
-                    (static_cast<double>(m[c]) - m[c]));
+                east[c] = static_cast<float>(((static_cast<double>(n[c + 1]) - n[c - 1]) +
+                                              2.0 * (static_cast<double>(m[c + 1]) - m[c - 1]) +
+                                              (static_cast<double>(so[c + 1]) - so[c - 1])) *
+                                                 scale +
+                                             (static_cast<double>(m[c]) - m[c]));
                 north[c] = static_cast<float>(((static_cast<double>(n[c - 1]) - so[c - 1]) +
                                                2.0 * (static_cast<double>(n[c]) - so[c]) +
                                                (static_cast<double>(n[c + 1]) - so[c + 1])) *

@@ -22,7 +22,7 @@ struct survey_footprint_options {
     /// empty space wider than it that opens to the outside (unflown corners, a tile clipped to a circle)
     /// is outside. 50 m keeps rivers up to 100 m wide inside even where no scan line crosses them.
     double hull_radius_m = 50.0;
-    execution run = {};   ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    execution run = {};  ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 namespace detail {

@@ -17,9 +17,9 @@ namespace lidarfx {
 
 /// Settings of vegetation_mask.
 struct vegetation_mask_options {
-    double height_m = 2.0;        ///< vegetation where max_z - min_z > height_m (strictly), metres; finite, >= 0
-    int closing_size_cells = 5;   ///< side of the square closing the mask, cells; odd, >= 1 (1 = no closing)
-    execution run = {};           ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    double height_m = 2.0;       ///< vegetation where max_z - min_z > height_m (strictly), metres; finite, >= 0
+    int closing_size_cells = 5;  ///< side of the square closing the mask, cells; odd, >= 1 (1 = no closing)
+    execution run = {};          ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// Vegetation mask of a survey (dissertation 2.3.1): 1 where the vertical spread of a cell's points,
@@ -30,8 +30,8 @@ struct vegetation_mask_options {
 /// @throws invalid_input if the shapes of min_z, max_z and out differ, height_m is negative or not
 /// finite, closing_size_cells is even or < 1, or run.threads < 0; cancelled if run.progress returns false.
 template <raster_input MinZ, raster_input MaxZ, class Out>
-    requires raster_output_of<Out, std::uint8_t> && std::is_arithmetic_v<typename MinZ::value_type> &&
-             std::is_arithmetic_v<typename MaxZ::value_type>
+requires raster_output_of<Out, std::uint8_t> && std::is_arithmetic_v<typename MinZ::value_type> &&
+    std::is_arithmetic_v<typename MaxZ::value_type>
 void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vegetation_mask_options& opt = {})
 {
     constexpr const char* function = "vegetation_mask";
@@ -50,25 +50,28 @@ void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vege
         const bool close = opt.closing_size_cells > 1;
         // The threshold goes to scratch when a closing follows: closing in place would run as one strip
         // (morph_* reads every row before writing when out is m), with neither threads nor progress.
-        raster<std::uint8_t> spread_mask = close ? raster<std::uint8_t>(o.rows(), o.cols(), uninitialized)
-                                                 : raster<std::uint8_t>();
+        raster<std::uint8_t> spread_mask =
+            close ? raster<std::uint8_t>(o.rows(), o.cols(), uninitialized) : raster<std::uint8_t>();
         const raster_view<std::uint8_t> t = close ? spread_mask.view() : o;
-        parallel_for_rows(o.rows(), 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            // Row pointers and the threshold in locals: a byte store may alias the views' own fields, which
-            // would be reloaded per cell and keep the loop scalar.
-            const std::ptrdiff_t cols = o.cols();
-            const double height = opt.height_m;
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                const auto* low = a.row(r);
-                const auto* high = b.row(r);
-                std::uint8_t* mask = t.row(r);
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    // A NaN on either side makes the comparison false: no return, no vegetation.
-                    const double spread = static_cast<double>(high[c]) - static_cast<double>(low[c]);
-                    mask[c] = static_cast<std::uint8_t>(spread > height);
+        parallel_for_rows(
+            o.rows(), 64, opt.run.threads,
+            [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                // Row pointers and the threshold in locals: a byte store may alias the views' own fields, which
+                // would be reloaded per cell and keep the loop scalar.
+                const std::ptrdiff_t cols = o.cols();
+                const double height = opt.height_m;
+                for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                    const auto* low = a.row(r);
+                    const auto* high = b.row(r);
+                    std::uint8_t* mask = t.row(r);
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        // A NaN on either side makes the comparison false: no return, no vegetation.
+                        const double spread = static_cast<double>(high[c]) - static_cast<double>(low[c]);
+                        mask[c] = static_cast<std::uint8_t>(spread > height);
+                    }
                 }
-            }
-        }, detail::progress_phase(opt.run.progress, 0.0, close ? 0.2 : 1.0), function);
+            },
+            detail::progress_phase(opt.run.progress, 0.0, close ? 0.2 : 1.0), function);
         if (close) {  // morph_close under this function's name (for a cancellation's message)
             const morphology_options closing{
                 .size_cells = opt.closing_size_cells,
@@ -80,8 +83,8 @@ void vegetation_mask(const MinZ& min_z, const MaxZ& max_z, Out&& out, const vege
 
 /// Returning form of vegetation_mask: a new 0/1 raster of min_z's shape.
 template <raster_input MinZ, raster_input MaxZ>
-    requires std::is_arithmetic_v<typename MinZ::value_type> && std::is_arithmetic_v<typename MaxZ::value_type>
-raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_mask_options& opt = {})
+requires std::is_arithmetic_v<typename MinZ::value_type> && std::is_arithmetic_v<typename MaxZ::value_type>
+    raster<std::uint8_t> vegetation_mask(const MinZ& min_z, const MaxZ& max_z, const vegetation_mask_options& opt = {})
 {
     raster<std::uint8_t> out(min_z.rows(), min_z.cols(), uninitialized);  // every cell is written
     vegetation_mask(min_z, max_z, out, opt);

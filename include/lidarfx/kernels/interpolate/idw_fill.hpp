@@ -19,10 +19,10 @@ namespace lidarfx {
 
 /// Settings of idw_fill (the cell size is an argument of idw_fill, cell_m).
 struct idw_fill_options {
-    int k = 8;              ///< data cells averaged per hole, >= 1
-    double radius_m = 0;    ///< search radius, metres between cell centres (inclusive, 1e-9 cell slack); 0 = unlimited
-    double power = 1.0;     ///< weight exponent: w = 1 / d^power (1 = dissertation eq. 3); finite, > 0
-    execution run = {};     ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    int k = 8;            ///< data cells averaged per hole, >= 1
+    double radius_m = 0;  ///< search radius, metres between cell centres (inclusive, 1e-9 cell slack); 0 = unlimited
+    double power = 1.0;   ///< weight exponent: w = 1 / d^power (1 = dissertation eq. 3); finite, > 0
+    execution run = {};   ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// What idw_fill did to the holes (NaN cells) of its input.
@@ -132,17 +132,20 @@ struct idw_index {
         : next_in_row(z.rows(), z.cols()), next_in_col(z.rows(), z.cols()), first_ring(z.rows(), z.cols())
     {
         const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-        parallel_for_rows(rows, 64, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                const T* in = z.row(r);
-                std::int32_t* next = next_in_row.row(r);
-                auto at = static_cast<std::int32_t>(cols);
-                for (std::ptrdiff_t c = cols - 1; c >= 0; --c) {
-                    if (std::isfinite(in[c])) at = static_cast<std::int32_t>(c);
-                    next[c] = at;
+        parallel_for_rows(
+            rows, 64, threads,
+            [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                    const T* in = z.row(r);
+                    std::int32_t* next = next_in_row.row(r);
+                    auto at = static_cast<std::int32_t>(cols);
+                    for (std::ptrdiff_t c = cols - 1; c >= 0; --c) {
+                        if (std::isfinite(in[c])) at = static_cast<std::int32_t>(c);
+                        next[c] = at;
+                    }
                 }
-            }
-        }, progress, "idw_fill");
+            },
+            progress, "idw_fill");
         for (std::ptrdiff_t r = rows - 1; r >= 0; --r) {
             const T* in = z.row(r);
             std::int32_t* next = next_in_col.row(r);
@@ -169,7 +172,8 @@ private:
                 if (v != 0) {
                     if (c > 0) v = std::min(v, d(r, c - 1) + 1);
                     if (r > 0) {
-                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1);
+                             ++cc)
                             v = std::min(v, d(r - 1, cc) + 1);
                     }
                 }
@@ -206,7 +210,8 @@ void idw_search(raster_view<const T> z, const idw_index& index, std::ptrdiff_t r
     const auto offer_row = [&](std::ptrdiff_t rr, std::ptrdiff_t c0, std::ptrdiff_t c1, std::int64_t dr2) {
         const std::int32_t* next = index.next_in_row.row(rr);
         c1 = std::min(c1, cols - 1);
-        for (std::ptrdiff_t cc = next[std::max<std::ptrdiff_t>(c0, 0)]; cc <= c1; cc = cc + 1 < cols ? next[cc + 1] : cols) {
+        for (std::ptrdiff_t cc = next[std::max<std::ptrdiff_t>(c0, 0)]; cc <= c1;
+             cc = cc + 1 < cols ? next[cc + 1] : cols) {
             const std::int64_t dc = cc - c, d2 = dr2 + dc * dc;
             if (best.may_take(d2)) best.offer({d2, rr, cc, static_cast<double>(z(rr, cc))});
         }
@@ -242,28 +247,31 @@ idw_fill_counts idw_fill_view(raster_view<const T> z, raster_view<float> out, do
     const idw_index index(z, opt.run.threads, progress_phase(opt.run.progress, 0.0, 0.05));
     constexpr std::ptrdiff_t block = 8;
     std::vector<idw_fill_counts> per_block(static_cast<std::size_t>((rows + block - 1) / block));
-    parallel_for_rows(rows, block, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        idw_best best(static_cast<std::size_t>(opt.k));
-        idw_fill_counts& counts = per_block[static_cast<std::size_t>(r0 / block)];
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            const T* in = z.row(r);
-            float* o = out.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                if (!std::isnan(in[c])) {
-                    o[c] = static_cast<float>(in[c]);
-                    continue;
-                }
-                idw_search(z, index, r, c, reach_d2, best);
-                if (best.empty()) {
-                    o[c] = std::numeric_limits<float>::quiet_NaN();
-                    ++counts.unfilled_cells;
-                } else {
-                    o[c] = idw_mean(best.items(), cell_m, opt.power);
-                    ++counts.filled_cells;
+    parallel_for_rows(
+        rows, block, opt.run.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            idw_best best(static_cast<std::size_t>(opt.k));
+            idw_fill_counts& counts = per_block[static_cast<std::size_t>(r0 / block)];
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                const T* in = z.row(r);
+                float* o = out.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    if (!std::isnan(in[c])) {
+                        o[c] = static_cast<float>(in[c]);
+                        continue;
+                    }
+                    idw_search(z, index, r, c, reach_d2, best);
+                    if (best.empty()) {
+                        o[c] = std::numeric_limits<float>::quiet_NaN();
+                        ++counts.unfilled_cells;
+                    } else {
+                        o[c] = idw_mean(best.items(), cell_m, opt.power);
+                        ++counts.filled_cells;
+                    }
                 }
             }
-        }
-    }, progress_phase(opt.run.progress, 0.05, 1.0), "idw_fill");
+        },
+        progress_phase(opt.run.progress, 0.05, 1.0), "idw_fill");
     idw_fill_counts total;
     for (const idw_fill_counts& b : per_block) {
         total.filled_cells += b.filled_cells;
@@ -316,8 +324,8 @@ void validate_idw_extent(const In& z)
 /// overlaps z, or z has no finite cell ("idw_fill: z has no finite cell to interpolate from"); cancelled if
 /// run.progress returns false.
 template <raster_input In, class Out>
-    requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type>
-idw_fill_counts idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_options& opt = {})
+requires raster_output_of<Out, float> && std::is_floating_point_v<typename In::value_type> idw_fill_counts
+idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_options& opt = {})
 {
     detail::validate_idw(cell_m, opt);
     detail::require_same_shape(z, out, "idw_fill", "z", "out");
@@ -336,8 +344,8 @@ idw_fill_counts idw_fill(const In& z, Out&& out, double cell_m, const idw_fill_o
 /// Returning form of idw_fill: a new raster<float> with the holes of `z` (cells of cell_m metres) filled,
 /// and the counts.
 template <raster_input In>
-    requires std::is_floating_point_v<typename In::value_type>
-idw_fill_result idw_fill(const In& z, double cell_m, const idw_fill_options& opt = {})
+requires std::is_floating_point_v<typename In::value_type> idw_fill_result idw_fill(const In& z, double cell_m,
+                                                                                    const idw_fill_options& opt = {})
 {
     idw_fill_result result{raster<float>(z.rows(), z.cols()), 0, 0};
     const idw_fill_counts counts = idw_fill(z, result.filled, cell_m, opt);

@@ -14,8 +14,8 @@ namespace lidarfx {
 /// Confusion counts (cells) and the scores derived from them; areas in m² from the cell size.
 struct confusion {
     std::size_t true_positive = 0, false_positive = 0, true_negative = 0, false_negative = 0;
-    std::size_t ignored = 0;     ///< cells excluded by the `valid` mask
-    double cell_area_m2 = 1.0;   ///< area of one cell, m² (cell_m² in confusion_counts)
+    std::size_t ignored = 0;    ///< cells excluded by the `valid` mask
+    double cell_area_m2 = 1.0;  ///< area of one cell, m² (cell_m² in confusion_counts)
 
     std::size_t total() const noexcept { return true_positive + false_positive + true_negative + false_negative; }
     /// (TP + TN) / all; 0 when there is no cell.
@@ -56,10 +56,14 @@ confusion confusion_counts(const Pred& predicted, const Truth& truth, double cel
                 continue;
             }
             const bool p = predicted(r, col) != 0, t = truth(r, col) != 0;
-            if (p && t) ++c.true_positive;
-            else if (p) ++c.false_positive;
-            else if (t) ++c.false_negative;
-            else ++c.true_negative;
+            if (p && t)
+                ++c.true_positive;
+            else if (p)
+                ++c.false_positive;
+            else if (t)
+                ++c.false_negative;
+            else
+                ++c.true_negative;
         }
     }
     return c;

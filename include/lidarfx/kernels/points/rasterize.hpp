@@ -43,12 +43,12 @@ struct class_selection {
 
 /// Settings of rasterize.
 struct rasterize_options {
-    std::size_t chunk_points = 1 << 20;   ///< points per work unit (progress step and parallel split); >= 1
+    std::size_t chunk_points = 1 << 20;  ///< points per work unit (progress step and parallel split); >= 1
     /// Returns binned (default all). first / last need return numbers (has_return_number; last also
     /// has_number_of_returns) in the cloud type.
     return_selection returns = return_selection::all;
-    class_selection classes = {};         ///< classes binned (default all); a choice needs has_classification
-    execution run = {};                   ///< threads, progress, cancellation (core/parallel.hpp); same result
+    class_selection classes = {};  ///< classes binned (default all); a choice needs has_classification
+    execution run = {};            ///< threads, progress, cancellation (core/parallel.hpp); same result
 };
 
 /// The per-cell rasters of a point cloud, all on the grid `g`, plus what happened to the points.
@@ -121,7 +121,7 @@ public:
     explicit raster_accumulator(const grid& g) : g_(g)
     {
         g.validate("raster_accumulator");
-        const auto bits = [](std::ptrdiff_t n) {   // ceil(log2(n)), at most tile_bits
+        const auto bits = [](std::ptrdiff_t n) {  // ceil(log2(n)), at most tile_bits
             int k = 0;
             while (k < tile_bits && (std::ptrdiff_t{1} << k) < n) ++k;
             return k;
@@ -136,10 +136,18 @@ public:
     }
 
     raster_accumulator(const raster_accumulator& other)
-        : g_(other.g_), row_bits_(other.row_bits_), col_bits_(other.col_bits_), tile_rows_(other.tile_rows_),
-          tile_cols_(other.tile_cols_), tiles_(other.tiles_.size()), held_tiles_(other.held_tiles_),
-          dense_(other.dense_), is_dense_(other.is_dense_), points_used_(other.points_used_),
-          points_outside_(other.points_outside_), points_nan_(other.points_nan_)
+        : g_(other.g_),
+          row_bits_(other.row_bits_),
+          col_bits_(other.col_bits_),
+          tile_rows_(other.tile_rows_),
+          tile_cols_(other.tile_cols_),
+          tiles_(other.tiles_.size()),
+          held_tiles_(other.held_tiles_),
+          dense_(other.dense_),
+          is_dense_(other.is_dense_),
+          points_used_(other.points_used_),
+          points_outside_(other.points_outside_),
+          points_nan_(other.points_nan_)
     {
         for (std::size_t t = 0; t < tiles_.size(); ++t) {
             if (other.tiles_[t]) tiles_[t] = copy_tile(other.tiles_[t].get());
@@ -193,8 +201,10 @@ public:
     {
         require_same_grid(other, "raster_accumulator::merge");
         if (other.is_dense_ && !is_dense_) make_dense();
-        if (other.is_dense_) merge_dense_rows(other, 0, g_.rows);
-        else held_tiles_ += merge_tiles(other, 0, tile_rows_);
+        if (other.is_dense_)
+            merge_dense_rows(other, 0, g_.rows);
+        else
+            held_tiles_ += merge_tiles(other, 0, tile_rows_);
         merge_counters(other);
         if (!is_dense_ && dense_is_due()) make_dense();
     }
@@ -208,7 +218,7 @@ public:
         return out;
     }
 
-    const grid& target_grid() const noexcept { return g_; }   ///< the grid the points are binned on
+    const grid& target_grid() const noexcept { return g_; }  ///< the grid the points are binned on
     std::size_t points_used() const noexcept { return points_used_; }
     std::size_t points_outside() const noexcept { return points_outside_; }
     std::size_t points_nan() const noexcept { return points_nan_; }
@@ -219,7 +229,7 @@ public:
 private:
     friend struct detail::accumulator_access;
     using tile_ptr = std::unique_ptr<detail::cell_stats[]>;
-    static constexpr int tile_bits = 10;   // a tile holds 2^10 cells: 32 x 32, or 1024 x 1 on a thin grid
+    static constexpr int tile_bits = 10;  // a tile holds 2^10 cells: 32 x 32, or 1024 x 1 on a thin grid
 
     static void fold(detail::cell_stats& s, const detail::cell_stats& o) noexcept
     {
@@ -248,7 +258,8 @@ private:
 #if defined(__GNUC__) || defined(__clang__)
     __attribute__((noinline))
 #endif
-    detail::cell_stats* new_tile(std::size_t t)
+    detail::cell_stats*
+    new_tile(std::size_t t)
     {
         tiles_[t] = std::make_unique<detail::cell_stats[]>(tile_cells());
         ++held_tiles_;
@@ -349,7 +360,8 @@ private:
                 const std::ptrdiff_t r = cell->row, c = cell->col;
                 const auto t = static_cast<std::size_t>((r >> row_bits) * tile_cols + (c >> col_bits));
                 detail::cell_stats* tile = tiles_[t].get();
-                if (!tile) [[unlikely]] tile = new_tile(t);
+                if (!tile) [[unlikely]]
+                    tile = new_tile(t);
                 at[j] = tile + (((r & mask_r) << col_bits) | (c & mask_c));
                 detail::prefetch_write(at[j]);
             }
@@ -411,8 +423,10 @@ private:
             }
             tile_ptr& mine = tiles_[t];
             if (!mine) {
-                if constexpr (take) mine = std::move(theirs);
-                else mine = copy_tile(theirs.get());
+                if constexpr (take)
+                    mine = std::move(theirs);
+                else
+                    mine = copy_tile(theirs.get());
                 ++added;
                 continue;
             }
@@ -438,14 +452,16 @@ private:
     }
 
     /// Writes cells [i0, i0 + n) of `out` from `cells` (branch-free: empty cells get NaN, 0 and dropout 1).
-    static void finish_cells(rasterize_result& out, std::size_t i0, std::size_t n, const detail::cell_stats* cells) noexcept
+    static void finish_cells(rasterize_result& out, std::size_t i0, std::size_t n,
+                             const detail::cell_stats* cells) noexcept
     {
         constexpr float nan = std::numeric_limits<float>::quiet_NaN();
         for (std::size_t j = 0; j < n; ++j) {
             const detail::cell_stats& s = cells[j];
             const std::size_t i = i0 + j;
             const bool any = s.count != 0;
-            const double sum = static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
+            const double sum =
+                static_cast<double>(static_cast<std::int64_t>(s.intensity_sum)) / detail::intensity_units_per_1;
             out.min_z.data()[i] = any ? s.min_z : nan;
             out.max_z.data()[i] = any ? s.max_z : nan;
             out.mean_intensity.data()[i] = any ? static_cast<float>(sum / static_cast<double>(s.count)) : 0.0f;
@@ -493,11 +509,11 @@ private:
     }
 
     grid g_;
-    int row_bits_ = 0, col_bits_ = 0;          // a tile is 2^row_bits_ x 2^col_bits_ cells, row-major
+    int row_bits_ = 0, col_bits_ = 0;  // a tile is 2^row_bits_ x 2^col_bits_ cells, row-major
     std::ptrdiff_t tile_rows_ = 0, tile_cols_ = 0;
-    std::vector<tile_ptr> tiles_;              // tile (tr, tc) at tr * tile_cols_ + tc; null until touched
-    std::size_t held_tiles_ = 0;               // non-null tiles
-    std::vector<detail::cell_stats> dense_;    // every cell, row-major, once is_dense_
+    std::vector<tile_ptr> tiles_;            // tile (tr, tc) at tr * tile_cols_ + tc; null until touched
+    std::size_t held_tiles_ = 0;             // non-null tiles
+    std::vector<detail::cell_stats> dense_;  // every cell, row-major, once is_dense_
     bool is_dense_ = false;
     std::size_t points_used_ = 0, points_outside_ = 0, points_nan_ = 0;
 };
@@ -507,13 +523,17 @@ namespace detail {
 /// What rasterize needs beyond the public interface: start dense when the points outnumber the cells,
 /// and merge per-thread accumulators by bands of whole tile rows in parallel.
 struct accumulator_access {
-    static void make_dense(raster_accumulator& acc) { if (!acc.is_dense_) acc.make_dense(); }
+    static void make_dense(raster_accumulator& acc)
+    {
+        if (!acc.is_dense_) acc.make_dense();
+    }
     static bool is_dense(const raster_accumulator& acc) noexcept { return acc.is_dense_; }
     static std::ptrdiff_t tile_height(const raster_accumulator& acc) noexcept { return acc.tile_height(); }
     /// Folds rows [r0, r1) of `from` into `into` (dense unless both are sparse), taking the tiles only
     /// `from` holds; r0 and r1 start tile rows (or r1 ends the grid). Returns the tiles `into` newly holds,
     /// to be added with add_held once the parallel bands are done.
-    static std::size_t take_rows(raster_accumulator& into, raster_accumulator& from, std::ptrdiff_t r0, std::ptrdiff_t r1)
+    static std::size_t take_rows(raster_accumulator& into, raster_accumulator& from, std::ptrdiff_t r0,
+                                 std::ptrdiff_t r1)
     {
         if (from.is_dense_) {
             into.merge_dense_rows(from, r0, r1);
@@ -523,10 +543,7 @@ struct accumulator_access {
         return into.merge_tiles(from, r0 / h, (r1 + h - 1) / h);
     }
     static void add_held(raster_accumulator& acc, std::size_t tiles) noexcept { acc.held_tiles_ += tiles; }
-    static void merge_counters(raster_accumulator& into, const raster_accumulator& from)
-    {
-        into.merge_counters(from);
-    }
+    static void merge_counters(raster_accumulator& into, const raster_accumulator& from) { into.merge_counters(from); }
     static rasterize_result unfinished(const raster_accumulator& acc) { return acc.unfinished(); }
     static void finish_rows(const raster_accumulator& acc, rasterize_result& out, std::ptrdiff_t r0, std::ptrdiff_t r1)
     {
@@ -584,8 +601,9 @@ std::vector<std::size_t> select_points(const C& cloud, const rasterize_options& 
                 "all or first, or a cloud with the number of returns");
     }
     if constexpr (!has_classification<C>) {
-        require(!by_class, function, "classes needs classification codes, and this point cloud type has none "
-                                     "(no classification(i)): leave classes empty or pass a classified cloud");
+        require(!by_class, function,
+                "classes needs classification codes, and this point cloud type has none "
+                "(no classification(i)): leave classes empty or pass a classified cloud");
     }
     std::array<std::uint8_t, 256> keep{};
     keep.fill(opt.classes.include.empty() ? 1 : 0);
@@ -669,7 +687,7 @@ rasterize_result rasterize_selected(const C& cloud, const grid& g, const rasteri
 
     using access = detail::accumulator_access;
     raster_accumulator total(g);
-    if (n >= static_cast<std::size_t>(g.size())) access::make_dense(total);   // dense data: the dense layout at once
+    if (n >= static_cast<std::size_t>(g.size())) access::make_dense(total);  // dense data: the dense layout at once
     if (workers == 1) {
         for (std::size_t k = 0; k < chunks; ++k) {
             const auto [first, last] = chunk_range(k);
@@ -682,28 +700,31 @@ rasterize_result rasterize_selected(const C& cloud, const grid& g, const rasteri
     // One block per worker, each with its own accumulator; the workers pull chunks in turn, so a thread
     // that the system slows down takes fewer (which accumulator got which chunk never matters). The
     // caller's thread reports progress (and may cancel) after each of its chunks.
-    std::vector<raster_accumulator> parts(workers - 1, total);   // empty, in total's layout
+    std::vector<raster_accumulator> parts(workers - 1, total);  // empty, in total's layout
     std::atomic<std::size_t> next{0}, done{0};
     std::atomic<bool> stop{false};
     const auto caller = std::this_thread::get_id();
-    parallel_for_rows(static_cast<std::ptrdiff_t>(workers), 1, threads, [&](std::ptrdiff_t w, std::ptrdiff_t) {
-        raster_accumulator& acc = w == 0 ? total : parts[static_cast<std::size_t>(w - 1)];
-        for (std::size_t k = next.fetch_add(1); k < chunks; k = next.fetch_add(1)) {
-            if (stop.load(std::memory_order_relaxed)) return;
-            const auto [first, last] = chunk_range(k);
-            acc.add(cloud, first, last);
-            const auto finished = done.fetch_add(1) + 1;
-            if (std::this_thread::get_id() == caller) {
-                try {
-                    detail::report(opt.run.progress, static_cast<double>(finished) / static_cast<double>(chunks + 1),
-                                   function);
-                } catch (...) {
-                    stop = true;
-                    throw;
+    parallel_for_rows(
+        static_cast<std::ptrdiff_t>(workers), 1, threads,
+        [&](std::ptrdiff_t w, std::ptrdiff_t) {
+            raster_accumulator& acc = w == 0 ? total : parts[static_cast<std::size_t>(w - 1)];
+            for (std::size_t k = next.fetch_add(1); k < chunks; k = next.fetch_add(1)) {
+                if (stop.load(std::memory_order_relaxed)) return;
+                const auto [first, last] = chunk_range(k);
+                acc.add(cloud, first, last);
+                const auto finished = done.fetch_add(1) + 1;
+                if (std::this_thread::get_id() == caller) {
+                    try {
+                        detail::report(opt.run.progress,
+                                       static_cast<double>(finished) / static_cast<double>(chunks + 1), function);
+                    } catch (...) {
+                        stop = true;
+                        throw;
+                    }
                 }
             }
-        }
-    }, {}, function);
+        },
+        {}, function);
 
     // Merge and finish by bands of whole tile rows in parallel: each band folds every part in worker order,
     // taking the tiles that only a part holds. Dense parts make the total dense first.
@@ -713,13 +734,18 @@ rasterize_result rasterize_selected(const C& cloud, const grid& g, const rasteri
     }
     rasterize_result out = access::unfinished(total);
     const std::ptrdiff_t h = access::tile_height(total);
-    const std::ptrdiff_t rows_wanted = std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
+    const std::ptrdiff_t rows_wanted =
+        std::max<std::ptrdiff_t>(1, (std::ptrdiff_t{1} << 16) / std::max<std::ptrdiff_t>(1, g.cols));
     const std::ptrdiff_t band = (rows_wanted + h - 1) / h * h;
     std::vector<std::size_t> taken(static_cast<std::size_t>((g.rows + band - 1) / band), 0);
-    parallel_for_rows(g.rows, band, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        for (auto& part : parts) taken[static_cast<std::size_t>(r0 / band)] += access::take_rows(total, part, r0, r1);
-        access::finish_rows(total, out, r0, r1);
-    }, {}, function);
+    parallel_for_rows(
+        g.rows, band, threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (auto& part : parts)
+                taken[static_cast<std::size_t>(r0 / band)] += access::take_rows(total, part, r0, r1);
+            access::finish_rows(total, out, r0, r1);
+        },
+        {}, function);
     for (const std::size_t t : taken) access::add_held(total, t);
     detail::report(opt.run.progress, 1.0, function);
     return out;

@@ -122,7 +122,7 @@ private:
 
     grid g_;
     scan_coverage_options opt_;
-    cell_box window_;   // the cells of g_ that covered_ holds
+    cell_box window_;  // the cells of g_ that covered_ holds
     raster<std::uint8_t> covered_;
     std::optional<point> previous_;
 };

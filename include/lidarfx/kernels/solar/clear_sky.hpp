@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <vector>
 

@@ -71,7 +71,7 @@ void tangents_to_degrees(T* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
 /// Steep lines [k0, k1): a sweep over rows in walk order with one hull per line (cache-friendly reads).
 template <class T>
 void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l, double cell_m,
-                                std::ptrdiff_t k0, std::ptrdiff_t k1)
+                         std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
     std::vector<hull_point> hulls(static_cast<std::size_t>(lines * rows));
@@ -92,7 +92,7 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
             }
             const std::ptrdiff_t line = c - s - k0;
             o[c] = static_cast<T>(horizon_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
-                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+                                               (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
@@ -101,9 +101,8 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
 /// Shallow lines [k0, k1): a sweep over rows and, within a row, over the lines' columns in walk order (as in
 /// raylines_shadow), one hull per line.
 template <class T>
-void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l,
-                                  double cell_m, const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0,
-                                  std::ptrdiff_t k1)
+void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l, double cell_m,
+                           const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
     std::vector<hull_point> hulls(static_cast<std::size_t>(lines * cols));
@@ -126,7 +125,7 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
             }
             const std::ptrdiff_t line = r - sh[static_cast<std::size_t>(c)] - k0;
             o[c] = static_cast<T>(horizon_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
-                                (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+                                               (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
@@ -135,7 +134,7 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
 /// Horizon angles in degrees (T = float) or horizon tangents (T = double) of every cell towards azimuth_deg.
 template <class T>
 void horizon_map_view(raster_view<const float> z, raster_view<T> out, double cell_m, double azimuth_deg,
-                             const horizon_map_options& opt, const char* fn)
+                      const horizon_map_options& opt, const char* fn)
 {
     const ray_lines l = make_ray_lines(azimuth_deg, z.rows(), z.cols());
     const std::ptrdiff_t first = l.first_line();

@@ -55,8 +55,8 @@ inline double enu_dot(const enu_vector& u, const enu_vector& v) noexcept
 /// @throws invalid_input if the azimuth is not finite or the elevation is outside [-90, 90].
 inline enu_vector sun_vector(double sun_azimuth_deg, double sun_elevation_deg)
 {
-    detail::require_incidence_angles(sun_azimuth_deg, sun_elevation_deg, -90.0, 90.0, "sun_vector",
-                                     "sun_azimuth_deg", "sun_elevation_deg");
+    detail::require_incidence_angles(sun_azimuth_deg, sun_elevation_deg, -90.0, 90.0, "sun_vector", "sun_azimuth_deg",
+                                     "sun_elevation_deg");
     return detail::sun_vector_unchecked(sun_azimuth_deg, sun_elevation_deg);
 }
 
@@ -66,8 +66,8 @@ inline enu_vector sun_vector(double sun_azimuth_deg, double sun_elevation_deg)
 /// @throws invalid_input if the azimuth is not finite or the tilt is outside [0, 180].
 inline enu_vector surface_normal(double tilt_deg, double surface_azimuth_deg)
 {
-    detail::require_incidence_angles(surface_azimuth_deg, tilt_deg, 0.0, 180.0, "surface_normal",
-                                     "surface_azimuth_deg", "tilt_deg");
+    detail::require_incidence_angles(surface_azimuth_deg, tilt_deg, 0.0, 180.0, "surface_normal", "surface_azimuth_deg",
+                                     "tilt_deg");
     return detail::surface_normal_unchecked(tilt_deg, surface_azimuth_deg);
 }
 

@@ -75,8 +75,8 @@ inline constexpr double perez_cos_85 = 0.08715574274765814;  // cos(85 deg)
 inline double extraterrestrial_unchecked(int day_of_year, double solar_constant) noexcept
 {
     const double g = 2.0 * std::numbers::pi * (day_of_year - 1) / 365.0;
-    return solar_constant * (1.00011 + 0.034221 * std::cos(g) + 0.00128 * std::sin(g) +
-                             0.000719 * std::cos(2.0 * g) + 0.000077 * std::sin(2.0 * g));
+    return solar_constant * (1.00011 + 0.034221 * std::cos(g) + 0.00128 * std::sin(g) + 0.000719 * std::cos(2.0 * g) +
+                             0.000077 * std::sin(2.0 * g));
 }
 
 inline double kasten_young_unchecked(double sun_elevation_deg) noexcept
@@ -96,8 +96,9 @@ inline perez_sky perez_sky_unchecked(double dhi, double dni, double sun_elevatio
     s.clearness = ((dhi + dni) / dhi + kz3) / (1.0 + kz3);
     s.brightness = dhi * kasten_young_unchecked(sun_elevation_deg) /
                    extraterrestrial_unchecked(day_of_year, opt.solar_constant_w_m2);
-    s.bin = 1 + static_cast<int>(std::upper_bound(perez_1990_bin_edges.begin(), perez_1990_bin_edges.end(),
-                                                  s.clearness) - perez_1990_bin_edges.begin());
+    s.bin =
+        1 + static_cast<int>(std::upper_bound(perez_1990_bin_edges.begin(), perez_1990_bin_edges.end(), s.clearness) -
+                             perez_1990_bin_edges.begin());
     const auto& f = perez_1990_coefficients[static_cast<std::size_t>(s.bin - 1)];
     s.f1 = std::max(0.0, f[0] + f[1] * s.brightness + f[2] * z);
     s.f2 = f[3] + f[4] * s.brightness + f[5] * z;
@@ -126,8 +127,8 @@ inline void require_perez_inputs(double dhi, double dni, double sun_elevation_de
 {
     require(dhi >= 0.0 && dhi <= 1.0e6, fn, "dhi_w_m2", "in [0, 1e6] W/m^2", dhi);
     require(dni >= 0.0 && dni <= 1.0e6, fn, "dni_w_m2", "in [0, 1e6] W/m^2", dni);
-    require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg",
-            "in [-90, 90] degrees", sun_elevation_deg);
+    require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg", "in [-90, 90] degrees",
+            sun_elevation_deg);
     require(day_of_year >= 1 && day_of_year <= 366, fn, "day_of_year", "in [1, 366]", day_of_year);
     require(opt.solar_constant_w_m2 > 0.0 && opt.solar_constant_w_m2 <= 1.0e6, fn, "solar_constant_w_m2",
             "in (0, 1e6] W/m^2", opt.solar_constant_w_m2);
@@ -153,8 +154,8 @@ inline double extraterrestrial_normal_w_m2(int day_of_year, double solar_constan
 /// [0, 90].
 inline double kasten_young_air_mass(double sun_elevation_deg)
 {
-    detail::require(sun_elevation_deg >= 0.0 && sun_elevation_deg <= 90.0, "kasten_young_air_mass",
-                    "sun_elevation_deg", "in [0, 90] degrees", sun_elevation_deg);
+    detail::require(sun_elevation_deg >= 0.0 && sun_elevation_deg <= 90.0, "kasten_young_air_mass", "sun_elevation_deg",
+                    "in [0, 90] degrees", sun_elevation_deg);
     return detail::kasten_young_unchecked(sun_elevation_deg);
 }
 
@@ -187,9 +188,8 @@ inline perez_sky perez_sky_coefficients(double dhi_w_m2, double dni_w_m2, double
 /// DHI (1 + cos b) / 2. Irradiances in W/m^2, angles in degrees.
 /// @throws invalid_input as perez_sky_coefficients, or if cos_theta is outside [-1, 1] or tilt_deg outside
 /// [0, 180].
-inline perez_diffuse_result perez_diffuse(double dhi_w_m2, double dni_w_m2, double sun_elevation_deg,
-                                          double cos_theta, double tilt_deg, int day_of_year,
-                                          const perez_diffuse_options& opt = {})
+inline perez_diffuse_result perez_diffuse(double dhi_w_m2, double dni_w_m2, double sun_elevation_deg, double cos_theta,
+                                          double tilt_deg, int day_of_year, const perez_diffuse_options& opt = {})
 {
     constexpr const char* fn = "perez_diffuse";
     detail::require_perez_inputs(dhi_w_m2, dni_w_m2, sun_elevation_deg, day_of_year, opt, fn);

@@ -11,7 +11,8 @@
 // line. A *phase* phi moves every line across itself: shift(i) = floor(phi + i * slope) renders the straight
 // line offset by phi - 0.5 cells; phi = 0.5 (the default) puts a line through the centre of every cell of
 // major index 0, and a cell of major index i lies exactly on its line's straight line when
-// frac(phi + i * slope) = 0.5 (see line_phase_of). Along a line the walk visits rows (steep) or columns (shallow) in the order that increases
+// frac(phi + i * slope) = 0.5 (see line_phase_of). Along a line the walk visits rows (steep) or columns (shallow) in
+// the order that increases
 //   t(r, c) = ((c + 0.5) * dcol + (r + 0.5) * drow) * cell_m,
 // the projection of the cell centre on the walk direction (metres); t grows strictly along every line.
 #pragma once
@@ -81,9 +82,8 @@ struct ray_lines {
                                           std::ptrdiff_t k1) const
     {
         const auto first_true = [&](auto pred) {
-            return static_cast<std::ptrdiff_t>(std::partition_point(sh.begin(), sh.end(), [&](std::ptrdiff_t v) {
-                                                   return !pred(v);
-                                               }) - sh.begin());
+            return static_cast<std::ptrdiff_t>(
+                std::partition_point(sh.begin(), sh.end(), [&](std::ptrdiff_t v) { return !pred(v); }) - sh.begin());
         };
         if (slope >= 0) {
             return {first_true([&](std::ptrdiff_t v) { return v > r - k1; }),

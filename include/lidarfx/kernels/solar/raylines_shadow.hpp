@@ -30,7 +30,7 @@ struct raylines_shadow_options {
     /// half a cell off, so the lateral edges of shadows can be one cell away from a per-cell ray march); each
     /// family costs one more sweep, except along the grid axes and diagonals, where one family is exact.
     int line_phases = 4;
-    execution run = {};           ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
+    execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
 namespace detail {
@@ -46,18 +46,20 @@ inline shadow_lifts make_shadow_lifts(const ray_lines& l, double cell_m, double 
     shadow_lifts s{std::vector<double>(static_cast<std::size_t>(l.cols)),
                    std::vector<double>(static_cast<std::size_t>(l.rows))};
     const double a = l.dcol * cell_m * tan_elevation, b = l.drow * cell_m * tan_elevation;
-    for (std::ptrdiff_t c = 0; c < l.cols; ++c) s.col_lift[static_cast<std::size_t>(c)] = (static_cast<double>(c) + 0.5) * a;
-    for (std::ptrdiff_t r = 0; r < l.rows; ++r) s.row_lift[static_cast<std::size_t>(r)] = (static_cast<double>(r) + 0.5) * b;
+    for (std::ptrdiff_t c = 0; c < l.cols; ++c)
+        s.col_lift[static_cast<std::size_t>(c)] = (static_cast<double>(c) + 0.5) * a;
+    for (std::ptrdiff_t r = 0; r < l.rows; ++r)
+        s.row_lift[static_cast<std::size_t>(r)] = (static_cast<double>(r) + 0.5) * b;
     return s;
 }
 
 /// The line families of one sun position (see raylines_shadow_options::line_phases): the families in use, and
 /// for every major index (row if steep, column if shallow) the family that writes its cells.
 struct shadow_families {
-    std::vector<ray_lines> lines;                    ///< the families some major index uses
-    std::vector<std::vector<std::ptrdiff_t>> shifts; ///< shifts() of each
-    std::vector<std::uint8_t> owner;                 ///< per major index: position of its family in `lines`
-    std::ptrdiff_t first = 0, last = 0;              ///< line indices [first, last) holding a cell in any family
+    std::vector<ray_lines> lines;                     ///< the families some major index uses
+    std::vector<std::vector<std::ptrdiff_t>> shifts;  ///< shifts() of each
+    std::vector<std::uint8_t> owner;                  ///< per major index: position of its family in `lines`
+    std::ptrdiff_t first = 0, last = 0;               ///< line indices [first, last) holding a cell in any family
 };
 
 inline shadow_families make_shadow_families(const ray_lines& l, int phases)
@@ -79,7 +81,8 @@ inline shadow_families make_shadow_families(const ray_lines& l, int phases)
         f.lines.push_back(lf);
     }
     f.owner.resize(of.size());
-    for (std::size_t i = 0; i < of.size(); ++i) f.owner[i] = static_cast<std::uint8_t>(slot[static_cast<std::size_t>(of[i])]);
+    for (std::size_t i = 0; i < of.size(); ++i)
+        f.owner[i] = static_cast<std::uint8_t>(slot[static_cast<std::size_t>(of[i])]);
     return f;
 }
 
@@ -133,9 +136,8 @@ inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint
 /// within a row, over each family's columns of these lines in walk order; a line crosses a row in a run of
 /// adjacent columns, so every line still meets its cells in walk order. A column's cells are written by the
 /// family that owns the column.
-inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::uint8_t> out,
-                                 const shadow_families& fam, const shadow_lifts& lift, std::uint8_t nan_cell,
-                                 std::ptrdiff_t k0, std::ptrdiff_t k1)
+inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::uint8_t> out, const shadow_families& fam,
+                                 const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
     const std::size_t families = fam.lines.size();
@@ -166,7 +168,8 @@ inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::ui
             }
         }
         double* key = keys.data();
-        for (std::ptrdiff_t c = lo; c < hi; ++c) key[c] = static_cast<double>(zr[c]) + (lift.col_lift[static_cast<std::size_t>(c)] + rl);
+        for (std::ptrdiff_t c = lo; c < hi; ++c)
+            key[c] = static_cast<double>(zr[c]) + (lift.col_lift[static_cast<std::size_t>(c)] + rl);
         if (families == 1) {  // one chain per line: the plain walk
             double* lim = limits.data() - k0;
             for (std::ptrdiff_t j = lo; j < hi; ++j) {
@@ -185,8 +188,7 @@ inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::ui
             const std::size_t own = fam.owner[static_cast<std::size_t>(c)];
             for (std::size_t f = 0; f < families; ++f) {
                 if (c < span[f][0] || c >= span[f][1]) continue;
-                double& m = limits[f * static_cast<std::size_t>(n) +
-                                   static_cast<std::size_t>(r - shift[f][c] - k0)];
+                double& m = limits[f * static_cast<std::size_t>(n) + static_cast<std::size_t>(r - shift[f][c] - k0)];
                 if (f == own) o[c] = zr[c] != zr[c] ? nan_cell : (m > kc ? 0 : 1);
                 m = kc > m ? kc : m;  // false for a NaN key: NaN cells cast no shadow
             }
@@ -238,10 +240,11 @@ inline void raylines_shadow_view(raster_view<const float> z, raster_view<std::ui
 /// direction in metres. Computed as key = z + t tan(e) (evaluated as z + (col_lift[c] + row_lift[r])) against
 /// the running maximum key of the line. With opt.line_phases = P families of lines (phases 0.5 + j / P), cell p
 /// takes its line from family line_phase_of(slope, major index of p, P), the one nearest its centre:
-/// O(P * rows * cols) at most, O(rows * cols) along the axes and diagonals. Azimuth clockwise from north (row 0 north, columns
-/// east); elevation above the horizon, degrees: e <= 0 -> all shadow, e >= 90 -> all lit. NaN cells cast no
+/// O(P * rows * cols) at most, O(rows * cols) along the axes and diagonals. Azimuth clockwise from north (row 0 north,
+/// columns east); elevation above the horizon, degrees: e <= 0 -> all shadow, e >= 90 -> all lit. NaN cells cast no
 /// shadow. @throws invalid_input if shapes differ, cell_m is not finite and > 0, an angle is not finite,
-/// elevation is outside [-90, 90], line_phases is outside [1, 64], run.threads < 0 or out overlaps dsm; cancelled if run.progress says stop.
+/// elevation is outside [-90, 90], line_phases is outside [1, 64], run.threads < 0 or out overlaps dsm; cancelled if
+/// run.progress says stop.
 template <raster_input In, class Out>
 requires raster_output_of<Out, std::uint8_t>
 void raylines_shadow(const In& dsm, Out&& lit, double cell_m, double sun_azimuth_deg, double sun_elevation_deg,
@@ -250,8 +253,8 @@ void raylines_shadow(const In& dsm, Out&& lit, double cell_m, double sun_azimuth
     constexpr const char* fn = "raylines_shadow";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(std::isfinite(sun_azimuth_deg), fn, "sun_azimuth_deg", "finite", sun_azimuth_deg);
-    detail::require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg",
-                    "in [-90, 90]", sun_elevation_deg);
+    detail::require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg", "in [-90, 90]",
+                    sun_elevation_deg);
     detail::require(opt.line_phases >= 1 && opt.line_phases <= 64, fn, "line_phases", "in [1, 64]", opt.line_phases);
     detail::check_execution(opt.run, fn);
     detail::require_same_shape(dsm, lit, fn, "dsm", "lit");

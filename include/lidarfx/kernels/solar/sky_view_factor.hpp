@@ -72,9 +72,9 @@ void sky_view_factor(const In& dsm, Out&& svf, double cell_m, const sky_view_fac
             const int n = opt.directions;
             for (int i = 0; i < n; ++i) {
                 const double from = static_cast<double>(i) / n, to = static_cast<double>(i + 1) / n;
-                horizon_map_options sweep{.run = {.threads = opt.run.threads,
-                                                  .progress = detail::progress_phase(opt.run.progress, from,
-                                                                                     from + 0.9 * (to - from))}};
+                horizon_map_options sweep{
+                    .run = {.threads = opt.run.threads,
+                            .progress = detail::progress_phase(opt.run.progress, from, from + 0.9 * (to - from))}};
                 detail::horizon_map_view(z, tangent.view(), cell_m, 360.0 * i / n, sweep, fn);
                 parallel_for_rows(
                     rows, 64, opt.run.threads,

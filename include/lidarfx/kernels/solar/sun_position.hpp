@@ -120,11 +120,11 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
 
     // 3.4 Nutation in longitude and obliquity from the Moon's and Sun's fundamental arguments (degrees).
     const double x[5] = {
-        spa_cubic(jce, 297.85036, 445267.111480, -0.0019142, 189474.0),   // mean elongation of the Moon
-        spa_cubic(jce, 357.52772, 35999.050340, -0.0001603, -300000.0),   // mean anomaly of the Sun
-        spa_cubic(jce, 134.96298, 477198.867398, 0.0086972, 56250.0),     // mean anomaly of the Moon
-        spa_cubic(jce, 93.27191, 483202.017538, -0.0036825, 327270.0),    // Moon's argument of latitude
-        spa_cubic(jce, 125.04452, -1934.136261, 0.0020708, 450000.0),     // longitude of the Moon's node
+        spa_cubic(jce, 297.85036, 445267.111480, -0.0019142, 189474.0),  // mean elongation of the Moon
+        spa_cubic(jce, 357.52772, 35999.050340, -0.0001603, -300000.0),  // mean anomaly of the Sun
+        spa_cubic(jce, 134.96298, 477198.867398, 0.0086972, 56250.0),    // mean anomaly of the Moon
+        spa_cubic(jce, 93.27191, 483202.017538, -0.0036825, 327270.0),   // Moon's argument of latitude
+        spa_cubic(jce, 125.04452, -1934.136261, 0.0020708, 450000.0),    // longitude of the Moon's node
     };
     double dpsi = 0.0, deps = 0.0;
     for (const auto& t : spa_nutation) {
@@ -146,17 +146,17 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
 
     // 3.6-3.7 Aberration; apparent longitude. 3.8 Apparent sidereal time at Greenwich.
     const double lambda = theta + dpsi - 20.4898 / (3600.0 * r_au);
-    const double nu0 = spa_limit_degrees(280.46061837 + 360.98564736629 * jd_days + 0.000387933 * jc * jc -
-                                     jc * jc * jc / 38710000.0);
+    const double nu0 =
+        spa_limit_degrees(280.46061837 + 360.98564736629 * jd_days + 0.000387933 * jc * jc - jc * jc * jc / 38710000.0);
     const double nu = nu0 + dpsi * std::cos(spa_rad_per_deg * eps);
 
     // 3.9-3.10 Geocentric right ascension and declination.
     const double lambda_r = spa_rad_per_deg * lambda, eps_r = spa_rad_per_deg * eps, beta_r = spa_rad_per_deg * beta;
-    const double alpha = spa_limit_degrees(spa_deg_per_rad * std::atan2(std::sin(lambda_r) * std::cos(eps_r) -
-                                                                    std::tan(beta_r) * std::sin(eps_r),
-                                                                std::cos(lambda_r)));
-    const double delta_r = std::asin(std::sin(beta_r) * std::cos(eps_r) +
-                                     std::cos(beta_r) * std::sin(eps_r) * std::sin(lambda_r));
+    const double alpha = spa_limit_degrees(
+        spa_deg_per_rad *
+        std::atan2(std::sin(lambda_r) * std::cos(eps_r) - std::tan(beta_r) * std::sin(eps_r), std::cos(lambda_r)));
+    const double delta_r =
+        std::asin(std::sin(beta_r) * std::cos(eps_r) + std::cos(beta_r) * std::sin(eps_r) * std::sin(lambda_r));
 
     // 3.11 Observer local hour angle. 3.12 Topocentric right ascension and declination (parallax).
     const double h_r = spa_rad_per_deg * spa_limit_degrees(nu + longitude_deg - alpha);
@@ -172,10 +172,10 @@ inline sun_position_result sun_position_spa(double days, double latitude_deg, do
 
     // 3.14 Topocentric elevation, refraction, zenith. 3.15 Azimuth, from north clockwise.
     const double e0 = spa_deg_per_rad * std::asin(std::sin(phi_r) * std::sin(delta_t_r) +
-                                              std::cos(phi_r) * std::cos(delta_t_r) * std::cos(ht_r));
+                                                  std::cos(phi_r) * std::cos(delta_t_r) * std::cos(ht_r));
     const double e = e0 + (opt.refraction ? spa_refraction_deg(e0, opt.pressure_mbar, opt.temperature_c) : 0.0);
     const double gamma = spa_deg_per_rad * std::atan2(std::sin(ht_r), std::cos(ht_r) * std::sin(phi_r) -
-                                                                      std::tan(delta_t_r) * std::cos(phi_r));
+                                                                          std::tan(delta_t_r) * std::cos(phi_r));
     return {spa_limit_degrees(gamma + 180.0), e, 90.0 - e};
 }
 
@@ -194,8 +194,8 @@ inline sun_position_result sun_position_simple(double days, double latitude_deg,
     namespace chr = std::chrono;
     const chr::sys_days day{chr::sys_days{chr::year{2000} / chr::January / 1} +
                             chr::days{static_cast<chr::days::rep>(local_day)}};
-    const double d = static_cast<double>((day - chr::sys_days{chr::year_month_day{day}.year() / chr::January / 1})
-                                             .count()) + 1.0;
+    const double d =
+        static_cast<double>((day - chr::sys_days{chr::year_month_day{day}.year() / chr::January / 1}).count()) + 1.0;
     const double b_r = spa_rad_per_deg * 360.0 / 365.0 * (d - 81.0);
     const double eot_min = 9.87 * std::sin(2.0 * b_r) - 7.53 * std::cos(b_r) - 1.5 * std::sin(b_r);
     const double decl_r = spa_rad_per_deg * 23.45 * std::sin(b_r);
@@ -219,12 +219,11 @@ inline sun_position_result sun_position_simple(double days, double latitude_deg,
 /// Latitude in degrees north [-90, 90], longitude in degrees east [-180, 180]; azimuth clockwise from true north.
 /// O(1) (SPA: about 200 sines); throws invalid_input naming the argument for a place, option or year out of range.
 template <class Duration>
-sun_position_result sun_position(std::chrono::sys_time<Duration> time_utc, double latitude_deg,
-                                 double longitude_deg, const sun_position_options& opt = {})
+sun_position_result sun_position(std::chrono::sys_time<Duration> time_utc, double latitude_deg, double longitude_deg,
+                                 const sun_position_options& opt = {})
 {
     constexpr auto fn = "sun_position";
-    detail::require(latitude_deg >= -90.0 && latitude_deg <= 90.0, fn, "latitude_deg", "in [-90, 90]",
-                    latitude_deg);
+    detail::require(latitude_deg >= -90.0 && latitude_deg <= 90.0, fn, "latitude_deg", "in [-90, 90]", latitude_deg);
     detail::require(longitude_deg >= -180.0 && longitude_deg <= 180.0, fn, "longitude_deg", "in [-180, 180]",
                     longitude_deg);
     detail::require(opt.model == sun_model::spa || opt.model == sun_model::simple, fn, "options.model",

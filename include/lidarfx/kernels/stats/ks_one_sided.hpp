@@ -204,8 +204,8 @@ std::vector<T> ks_values(const R& values)
 
 /// Types whose values ks_key maps to unsigned keys: float, double and integers of up to 64 bits.
 template <class T>
-inline constexpr bool ks_keyed =
-    std::is_same_v<T, float> || std::is_same_v<T, double> || (std::is_integral_v<T> && sizeof(T) <= 8);
+inline constexpr bool ks_keyed = std::is_same_v<T, float> || std::is_same_v<T, double> ||
+                                 (std::is_integral_v<T> && sizeof(T) <= 8);
 
 template <class T>
 using ks_key_t = std::conditional_t<sizeof(T) <= 4, std::uint32_t, std::uint64_t>;
@@ -459,8 +459,8 @@ double ks_statistic_keys(std::span<const ks_key_t<T>> previous, std::span<const 
 
 /// Value types both of whose values a double holds exactly (so comparing as double changes no order).
 template <class V>
-inline constexpr bool ks_exact_in_double =
-    std::is_same_v<V, float> || std::is_same_v<V, double> || (std::is_integral_v<V> && sizeof(V) <= 4);
+inline constexpr bool ks_exact_in_double = std::is_same_v<V, float> || std::is_same_v<V, double> ||
+                                           (std::is_integral_v<V> && sizeof(V) <= 4);
 
 template <class A, class B>
 ks_result ks_sorted_path(const A& previous, const B& current, const ks_one_sided_options& opt)
@@ -469,9 +469,9 @@ ks_result ks_sorted_path(const A& previous, const B& current, const ks_one_sided
     using VB = std::ranges::range_value_t<B>;
     // Mixed value types compare as double when it holds both exactly, else as long double, which holds every
     // float, double and 64-bit integer exactly on x86-64 and AArch64 Linux.
-    using T = std::conditional_t<std::is_same_v<VA, VB>, VA,
-                                 std::conditional_t<ks_exact_in_double<VA> && ks_exact_in_double<VB>, double,
-                                                    long double>>;
+    using T =
+        std::conditional_t<std::is_same_v<VA, VB>, VA,
+                           std::conditional_t<ks_exact_in_double<VA> && ks_exact_in_double<VB>, double, long double>>;
     if constexpr (ks_keyed<T>) {
         const auto p = ks_keys<T>(previous);
         const auto c = ks_keys<T>(current);

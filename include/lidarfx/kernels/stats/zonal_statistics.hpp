@@ -41,7 +41,7 @@ struct zone_statistics {
     double mean = NAN;      ///< NaN when count = 0
     double std = NAN;       ///< population standard deviation sqrt(sum (v - mean)^2 / count); NaN when count = 0
     double min = NAN, max = NAN;
-    double median = NAN;    ///< middle value; the mean of the two middle values for an even count
+    double median = NAN;  ///< middle value; the mean of the two middle values for an even count
 };
 
 /// Per-label statistics of `values` over `labels` (same shape): result[k] describes label k for k in
@@ -85,25 +85,26 @@ std::vector<zone_statistics> zonal_statistics(const Labels& labels, const Values
         s.min = *first;
         s.max = *(last - 1);
         const std::size_t h = s.count / 2;
-        s.median = s.count % 2 ? first[static_cast<std::ptrdiff_t>(h)]
-                               : 0.5 * (first[static_cast<std::ptrdiff_t>(h) - 1] + first[static_cast<std::ptrdiff_t>(h)]);
+        s.median = s.count % 2
+                       ? first[static_cast<std::ptrdiff_t>(h)]
+                       : 0.5 * (first[static_cast<std::ptrdiff_t>(h) - 1] + first[static_cast<std::ptrdiff_t>(h)]);
     }
     return out;
 }
 
 /// Settings of zonal_circular_statistics.
 struct zonal_circular_statistics_options {
-    double bin_width_deg = 1.0;  ///< histogram bin width, degrees; 360 / bin_width_deg must be a whole number
-    bool keep_histograms = true; ///< fill circular_zone_statistics::histogram (360 / bin_width_deg counts per label)
+    double bin_width_deg = 1.0;   ///< histogram bin width, degrees; 360 / bin_width_deg must be a whole number
+    bool keep_histograms = true;  ///< fill circular_zone_statistics::histogram (360 / bin_width_deg counts per label)
 };
 
 /// Circular statistics of the finite angles (degrees, any range: taken modulo 360) of one label.
 struct circular_zone_statistics {
     std::size_t count = 0;
-    double mean_deg = NAN;           ///< atan2(sum sin, sum cos) in [0, 360); NaN when count = 0 or the resultant is 0
-    double resultant_length = NAN;   ///< |sum of unit vectors| / count in [0, 1]: 1 = all equal, 0 = spread evenly
-    double mode_deg = NAN;           ///< centre k * w of the fullest bin [k w - w/2, k w + w/2); ties: smallest k
-    std::size_t mode_count = 0;      ///< angles in that bin
+    double mean_deg = NAN;          ///< atan2(sum sin, sum cos) in [0, 360); NaN when count = 0 or the resultant is 0
+    double resultant_length = NAN;  ///< |sum of unit vectors| / count in [0, 1]: 1 = all equal, 0 = spread evenly
+    double mode_deg = NAN;          ///< centre k * w of the fullest bin [k w - w/2, k w + w/2); ties: smallest k
+    std::size_t mode_count = 0;     ///< angles in that bin
     std::vector<std::uint32_t> histogram;  ///< bin k = [k w - w/2, k w + w/2) modulo 360; empty unless kept
 };
 

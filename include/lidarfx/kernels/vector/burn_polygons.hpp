@@ -35,8 +35,9 @@ struct burn_account {
 
 /// A label raster and the per-footprint account.
 struct burn_result {
-    raster<std::int32_t> labels;          ///< 0 = no footprint, else the label of the first footprint containing the cell centre
-    std::vector<burn_account> footprints; ///< one per input footprint, in input order
+    raster<std::int32_t>
+        labels;  ///< 0 = no footprint, else the label of the first footprint containing the cell centre
+    std::vector<burn_account> footprints;  ///< one per input footprint, in input order
 };
 
 namespace detail {
@@ -74,10 +75,10 @@ inline void burn_row_spans(const std::vector<polygon>& parts, const grid& g, std
 
 /// Burns footprints into a label raster on grid `g` (cell-centre rule): cell (r, c) gets the label of the
 /// first footprint in `footprints` whose parts contain its centre g.center(r, c) by the even-odd rule over all
-/// its rings: holes stay out; parts of one footprint must not overlap (overlaps cancel). A centre exactly on an edge belongs to the footprint west of a vertical
-/// edge and north of a horizontal one (half-open crossing test), so footprints sharing an edge never share
-/// a cell. Later footprints never overwrite earlier ones; their lost cells are counted in `contested`.
-/// Coordinates in the grid's world units. O(sum over footprints of rows spanned * vertices).
+/// its rings: holes stay out; parts of one footprint must not overlap (overlaps cancel). A centre exactly on an edge
+/// belongs to the footprint west of a vertical edge and north of a horizontal one (half-open crossing test), so
+/// footprints sharing an edge never share a cell. Later footprints never overwrite earlier ones; their lost cells are
+/// counted in `contested`. Coordinates in the grid's world units. O(sum over footprints of rows spanned * vertices).
 /// @throws invalid_input if g is invalid, a label is <= 0, or a vertex is not finite.
 inline burn_result burn_polygons(std::span<const labelled_polygon> footprints, const grid& g)
 {

@@ -504,7 +504,8 @@ extract_buildings_result extract_buildings(const In& dsm, double cell_m, raster_
                     if (g == h) continue;
                     plane_sums joint = sums[static_cast<std::size_t>(g)];
                     joint.add(sums[static_cast<std::size_t>(h)]);
-                    const auto f = detail::plane_abc_rms(joint);  // RMS relative to the tolerance of planar cells at its slope
+                    const auto f =
+                        detail::plane_abc_rms(joint);  // RMS relative to the tolerance of planar cells at its slope
                     const double rise =
                         f[3] / detail::plane_tolerance(opt, f[0] * f[0] + f[1] * f[1], cell_m) * opt.plane_rms_m;
                     if (rise < least || (rise == least && std::pair{std::min(g, h), std::max(g, h)} < chosen)) {

@@ -17,8 +17,8 @@ namespace lidarfx {
 
 /// Settings of facade_patches.
 struct facade_patches_options {
-    int levels = 8;              ///< sub-patches stacked on each wall, >= 1 (the dissertation's 8)
-    double min_height_m = 1.0;   ///< a wall needs roof - ground > this many metres, >= 0
+    int levels = 8;             ///< sub-patches stacked on each wall, >= 1 (the dissertation's 8)
+    double min_height_m = 1.0;  ///< a wall needs roof - ground > this many metres, >= 0
 };
 
 /// One facade sub-patch: level `level` of the wall on the border between building cell (row, col) and the
@@ -29,16 +29,17 @@ struct facade_patch {
     int level = 0;                    ///< 0 at the bottom .. levels - 1 at the roof edge
     std::ptrdiff_t row = 0, col = 0;  ///< the building cell whose edge the wall hangs from
     std::ptrdiff_t front_row = 0, front_col = 0;  ///< the ground cell the wall faces (4-neighbour of (row, col))
-    double facing_azimuth_deg = 0;    ///< outward normal, clockwise from north: 0 N, 90 E, 180 S, 270 W
-    double bottom_m = 0, top_m = 0;   ///< the wall's foot (front cell height) and top (roof cell height), m
-    double height_m = 0;              ///< centre height of this sub-patch, m
-    double area_m2 = 0;               ///< cell_m * (top_m - bottom_m) / levels, m^2
+    double facing_azimuth_deg = 0;                ///< outward normal, clockwise from north: 0 N, 90 E, 180 S, 270 W
+    double bottom_m = 0, top_m = 0;               ///< the wall's foot (front cell height) and top (roof cell height), m
+    double height_m = 0;                          ///< centre height of this sub-patch, m
+    double area_m2 = 0;                           ///< cell_m * (top_m - bottom_m) / levels, m^2
 };
 
 namespace detail {
 
 /// The four outward directions of a cell's edges: (drow, dcol, facing azimuth) for N, E, S, W.
-inline constexpr std::array<std::array<int, 3>, 4> facade_directions{{{-1, 0, 0}, {0, 1, 90}, {1, 0, 180}, {0, -1, 270}}};
+inline constexpr std::array<std::array<int, 3>, 4> facade_directions{
+    {{-1, 0, 0}, {0, 1, 90}, {1, 0, 180}, {0, -1, 270}}};
 
 }  // namespace detail
 
@@ -60,8 +61,8 @@ std::vector<facade_patch> facade_patches(const Dsm& dsm, const Ids& building_id,
     constexpr const char* fn = "facade_patches";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(opt.levels >= 1, fn, "levels", ">= 1", opt.levels);
-    detail::require(opt.min_height_m >= 0.0 && std::isfinite(opt.min_height_m), fn, "min_height_m",
-                    "finite and >= 0", opt.min_height_m);
+    detail::require(opt.min_height_m >= 0.0 && std::isfinite(opt.min_height_m), fn, "min_height_m", "finite and >= 0",
+                    opt.min_height_m);
     detail::require_same_shape(dsm, building_id, fn, "dsm", "building_id");
     std::vector<facade_patch> out;
     const std::ptrdiff_t rows = dsm.rows(), cols = dsm.cols();

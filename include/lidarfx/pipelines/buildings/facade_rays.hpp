@@ -18,7 +18,7 @@ namespace lidarfx::detail {
 /// The cells in front of walls (a wall's sub-patches are seen from the centre of its front cell), and which
 /// sub-patches each one serves: observer o holds patches[first[o] .. first[o + 1]).
 struct facade_observers {
-    raster<std::int32_t> index;        ///< observer number of a cell, -1 where no wall faces it
+    raster<std::int32_t> index;  ///< observer number of a cell, -1 where no wall faces it
     std::vector<std::ptrdiff_t> row, col;
     std::vector<std::size_t> first;    ///< size observers + 1
     std::vector<std::size_t> patches;  ///< indices into the sub-patch list, grouped by observer

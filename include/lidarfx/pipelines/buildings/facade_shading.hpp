@@ -116,8 +116,8 @@ struct facade_cos_table {
 
 /// Lit state of every facade sub-patch for one sun position: 1 lit, 0 shadow. A sub-patch is seen from its
 /// observer point, the centre of its front cell (half a cell in front of the wall) at height_m. It is lit iff
-/// the sun is in front of the wall plane (cos e cos(A_sun - A_facing) > 0, exactly 0 in the plane) and no non-NaN cell q before the
-/// front cell on its ray line (raylines_shadow's lines along the sun azimuth, kernels/solar/ray_lines.hpp)
+/// the sun is in front of the wall plane (cos e cos(A_sun - A_facing) > 0, exactly 0 in the plane) and no non-NaN cell
+/// q before the front cell on its ray line (raylines_shadow's lines along the sun azimuth, kernels/solar/ray_lines.hpp)
 /// rises above the sun ray: z_q + t_q tan e <= height_m + t_p tan e for all such q (t the projection on the walk
 /// away from the sun, metres) -- raylines_shadow's test with the observer's height in place of the cell's. Sun
 /// at or below the horizon: nothing lit; at the zenith: nothing (the sun is in the wall plane). One sweep over
@@ -131,8 +131,8 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
     constexpr const char* fn = "facade_lit";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(std::isfinite(sun_azimuth_deg), fn, "sun_azimuth_deg", "finite", sun_azimuth_deg);
-    detail::require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg",
-                    "in [-90, 90]", sun_elevation_deg);
+    detail::require(sun_elevation_deg >= -90.0 && sun_elevation_deg <= 90.0, fn, "sun_elevation_deg", "in [-90, 90]",
+                    sun_elevation_deg);
     detail::check_execution(opt.run, fn);
     detail::require_facade_cells(patches, dsm.rows(), dsm.cols(), fn);
     std::vector<std::uint8_t> out(patches.size(), 0);

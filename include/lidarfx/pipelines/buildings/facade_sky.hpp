@@ -76,7 +76,8 @@ inline void facade_horizon_sweep(raster_view<const float> z, const facade_observ
                 const double t = (static_cast<double>(c) + 0.5) * a + (static_cast<double>(r) + 0.5) * b;
                 const std::int32_t o = obs.index(r, c);
                 if (o >= 0) {
-                    for (std::size_t k = obs.first[static_cast<std::size_t>(o)]; k < obs.first[static_cast<std::size_t>(o) + 1]; ++k) {
+                    for (std::size_t k = obs.first[static_cast<std::size_t>(o)];
+                         k < obs.first[static_cast<std::size_t>(o) + 1]; ++k) {
                         const std::size_t i = obs.patches[k];
                         tangent[i] = hull_tangent_at(hull, n, t, subs[i].height_m);
                     }
@@ -143,7 +144,8 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
     const bool share = opt.method == sky_view_factor_method::source_share;
     std::vector<double> sum(patches.size(), 0.0), weight(patches.size(), 0.0);
     double tan_e[detail::sky_source_elevations];
-    for (int j = 0; j < detail::sky_source_elevations; ++j) tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
+    for (int j = 0; j < detail::sky_source_elevations; ++j)
+        tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);

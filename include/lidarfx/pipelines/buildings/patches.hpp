@@ -28,11 +28,11 @@ struct surface_patch {
     std::ptrdiff_t row = 0, col = 0;  ///< the quad's top-left (north-west) cell
     std::int32_t building_id = 0;     ///< the building of all four cells (roof), 0 for ground
     patch_kind kind = patch_kind::ground;
-    enu_vector normal{};              ///< area-weighted unit normal of the two triangles, pointing up (up > 0)
-    double tilt_deg = 0;              ///< angle of the normal from the vertical: 0 flat, < 90 for any quad
-    double azimuth_deg = 0;           ///< direction the surface faces (down-slope), clockwise from north; 0 if flat
-    double area_m2 = 0;               ///< 3D area of the two triangles, m^2 (cell_m^2 when flat)
-    double height_m = 0;              ///< mean height of the four corners, m
+    enu_vector normal{};     ///< area-weighted unit normal of the two triangles, pointing up (up > 0)
+    double tilt_deg = 0;     ///< angle of the normal from the vertical: 0 flat, < 90 for any quad
+    double azimuth_deg = 0;  ///< direction the surface faces (down-slope), clockwise from north; 0 if flat
+    double area_m2 = 0;      ///< 3D area of the two triangles, m^2 (cell_m^2 when flat)
+    double height_m = 0;     ///< mean height of the four corners, m
 };
 
 /// Settings of surface_patches.
@@ -75,7 +75,9 @@ std::vector<surface_patch> surface_patches(const Dsm& dsm, const Ids& building_i
             };
             const enu_vector a = cross(0.0, -d, z10 - z00, d, -d, z11 - z00);
             const enu_vector b = cross(d, -d, z11 - z00, d, 0.0, z01 - z00);
-            const auto norm = [](const enu_vector& v) { return std::sqrt(v.east * v.east + v.north * v.north + v.up * v.up); };
+            const auto norm = [](const enu_vector& v) {
+                return std::sqrt(v.east * v.east + v.north * v.north + v.up * v.up);
+            };
             const enu_vector sum{a.east + b.east, a.north + b.north, a.up + b.up};
             const double len = norm(sum);
             surface_patch p;

@@ -36,8 +36,8 @@ struct surface_energy_options {
     /// Sky view factor for the diffuse part: source_share (the dissertation's 1,081 sources, default) or
     /// cosine_weighted; roofs use sky_view_factor of their cells, facades facade_sky_view.
     sky_view_factor_method svf_method = sky_view_factor_method::source_share;
-    int svf_directions = 72;          ///< azimuths of the sky view sweeps, >= 4
-    sun_position_options sun = {};    ///< sun model (default NREL SPA with refraction at sea level)
+    int svf_directions = 72;        ///< azimuths of the sky view sweeps, >= 4
+    sun_position_options sun = {};  ///< sun model (default NREL SPA with refraction at sea level)
     /// Quarters are those of local standard time UTC + this many hours (TMY3's zone), in [-14, 14]; 0 = UTC.
     double month_utc_offset_h = 0.0;
     /// Meridian convergence of the grid at the site, degrees (> 0: grid north east of true north): sun azimuths
@@ -48,22 +48,22 @@ struct surface_energy_options {
 
 /// Irradiation received by one patch per square metre of its surface.
 struct patch_energy {
-    double annual_kwh_m2 = 0;                  ///< sum over all records, kWh/m^2
-    std::array<double, 4> quarter_kwh_m2_day{};///< Jan-Mar, Apr-Jun, Jul-Sep, Oct-Dec: sum / days of the quarter
+    double annual_kwh_m2 = 0;                    ///< sum over all records, kWh/m^2
+    std::array<double, 4> quarter_kwh_m2_day{};  ///< Jan-Mar, Apr-Jun, Jul-Sep, Oct-Dec: sum / days of the quarter
 };
 
 /// The patches of a surface model and what each receives.
 struct surface_energy_result {
-    std::vector<surface_patch> roofs;          ///< roof quad patches (surface_patches, ground left out)
-    std::vector<double> roof_sky_view;         ///< per roof patch: mean SVF of its 4 cells * (1 + cos tilt) / 2
-    std::vector<patch_energy> roof_energy;     ///< per roof patch
-    std::vector<facade_patch> facades;         ///< facade sub-patches (facade_patches)
-    std::vector<double> facade_sky_view;       ///< per sub-patch: facade_sky_view
-    std::vector<patch_energy> facade_energy;   ///< per sub-patch
-    double ghi_kwh_m2 = 0;                     ///< sum of GHI * interval over all records (open flat ground)
+    std::vector<surface_patch> roofs;                ///< roof quad patches (surface_patches, ground left out)
+    std::vector<double> roof_sky_view;               ///< per roof patch: mean SVF of its 4 cells * (1 + cos tilt) / 2
+    std::vector<patch_energy> roof_energy;           ///< per roof patch
+    std::vector<facade_patch> facades;               ///< facade sub-patches (facade_patches)
+    std::vector<double> facade_sky_view;             ///< per sub-patch: facade_sky_view
+    std::vector<patch_energy> facade_energy;         ///< per sub-patch
+    double ghi_kwh_m2 = 0;                           ///< sum of GHI * interval over all records (open flat ground)
     std::array<double, 4> quarter_ghi_kwh_m2_day{};  ///< the same per quarter, per day
-    std::array<double, 4> quarter_days{};      ///< days of records in each quarter (sum of intervals / 86400)
-    std::size_t sun_up_records = 0;            ///< records with the sun above the horizon at their middle
+    std::array<double, 4> quarter_days{};            ///< days of records in each quarter (sum of intervals / 86400)
+    std::size_t sun_up_records = 0;                  ///< records with the sun above the horizon at their middle
 };
 
 namespace detail {
@@ -132,7 +132,8 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         res.ghi_kwh_m2 += r.ghi_w_m2 * hours / 1000.0;
         const sun_position_result sun = sun_position(r.middle_utc(), latitude_deg, longitude_deg, opt.sun);
         if (sun.elevation_deg > 0.0)
-            days.push_back({i, q, to_grid_azimuth_deg(sun.azimuth_deg, opt.meridian_convergence_deg), sun.elevation_deg});
+            days.push_back(
+                {i, q, to_grid_azimuth_deg(sun.azimuth_deg, opt.meridian_convergence_deg), sun.elevation_deg});
     }
     for (std::size_t q = 0; q < 4; ++q) {
         if (res.quarter_days[q] > 0.0) res.quarter_ghi_kwh_m2_day[q] /= res.quarter_days[q];
@@ -144,15 +145,18 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const std::ptrdiff_t rows = z.rows(), cols = z.cols();
         const double sky_share = 0.1;  // share of the progress taken by the two sky views
-        const raster<float> svf = sky_view_factor(
-            z, cell_m, {.method = opt.svf_method, .directions = opt.svf_directions,
-                        .run = {.threads = opt.run.threads,
-                                .progress = detail::progress_phase(opt.run.progress, 0.0, sky_share / 2)}});
-        res.facade_sky_view = facade_sky_view(
-            z, std::span<const facade_patch>(res.facades), cell_m,
-            {.method = opt.svf_method, .directions = opt.svf_directions,
-             .run = {.threads = opt.run.threads,
-                     .progress = detail::progress_phase(opt.run.progress, sky_share / 2, sky_share)}});
+        const raster<float> svf =
+            sky_view_factor(z, cell_m,
+                            {.method = opt.svf_method,
+                             .directions = opt.svf_directions,
+                             .run = {.threads = opt.run.threads,
+                                     .progress = detail::progress_phase(opt.run.progress, 0.0, sky_share / 2)}});
+        res.facade_sky_view =
+            facade_sky_view(z, std::span<const facade_patch>(res.facades), cell_m,
+                            {.method = opt.svf_method,
+                             .directions = opt.svf_directions,
+                             .run = {.threads = opt.run.threads,
+                                     .progress = detail::progress_phase(opt.run.progress, sky_share / 2, sky_share)}});
         res.roof_sky_view.resize(res.roofs.size());
         for (std::size_t i = 0; i < res.roofs.size(); ++i) {
             const surface_patch& p = res.roofs[i];
@@ -183,13 +187,12 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
             parallel_for_rows(nroof, 4096, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
                 for (std::ptrdiff_t i = i0; i < i1; ++i) {
                     const surface_patch& p = res.roofs[static_cast<std::size_t>(i)];
-                    const double share =
-                        zenith ? 1.0
-                               : 0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) + lit(p.row + 1, p.col) +
-                                         lit(p.row + 1, p.col + 1));
+                    const double share = zenith ? 1.0
+                                                : 0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) +
+                                                          lit(p.row + 1, p.col) + lit(p.row + 1, p.col + 1));
                     const double cos_t = detail::enu_dot(sun, p.normal);
-                    roof_sum[static_cast<std::size_t>(i)][q] +=
-                        (cos_t > 0.0 ? dni * cos_t * share : 0.0) + dhi * res.roof_sky_view[static_cast<std::size_t>(i)];
+                    roof_sum[static_cast<std::size_t>(i)][q] += (cos_t > 0.0 ? dni * cos_t * share : 0.0) +
+                                                                dhi * res.roof_sky_view[static_cast<std::size_t>(i)];
                 }
             });
             parallel_for_rows(nfacade, 4096, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
@@ -201,12 +204,13 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                         const double cos_t = cos_theta(p.facing_azimuth_deg);
                         if (detail::facade_patch_lit(p, cos_t, limit[o], lift) == 1) beam = dni * cos_t;
                     }
-                    facade_sum[static_cast<std::size_t>(i)][q] += beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
+                    facade_sum[static_cast<std::size_t>(i)][q] +=
+                        beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
                 }
             });
-            detail::report(opt.run.progress,
-                           sky_share + (1.0 - sky_share) * static_cast<double>(d + 1) / static_cast<double>(days.size() + 1),
-                           fn);
+            detail::report(
+                opt.run.progress,
+                sky_share + (1.0 - sky_share) * static_cast<double>(d + 1) / static_cast<double>(days.size() + 1), fn);
         }
         res.roof_energy = detail::to_patch_energy(roof_sum, res.quarter_days);
         res.facade_energy = detail::to_patch_energy(facade_sum, res.quarter_days);

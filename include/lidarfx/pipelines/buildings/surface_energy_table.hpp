@@ -101,8 +101,8 @@ inline std::array<bill_savings_row, 5> bill_savings(const std::array<surface_cla
     detail::require(opt.tariff_per_kwh >= 0.0 && std::isfinite(opt.tariff_per_kwh), fn, "tariff_per_kwh",
                     "finite and >= 0", opt.tariff_per_kwh);
     const double area_m2 = opt.modules * (opt.module_width_in * 0.0254) * (opt.module_height_in * 0.0254);
-    const double factor = area_m2 * opt.module_efficiency * opt.inverter_efficiency * (1.0 - opt.temperature_loss) *
-                          opt.tariff_per_kwh;
+    const double factor =
+        area_m2 * opt.module_efficiency * opt.inverter_efficiency * (1.0 - opt.temperature_loss) * opt.tariff_per_kwh;
     std::array<bill_savings_row, 5> out{};
     for (std::size_t k = 0; k < 5; ++k) {
         out[k].kind = table[k].kind;

@@ -17,10 +17,10 @@ namespace lidarfx {
 
 /// Settings of azimuth_mode_select. Angles in degrees clockwise from north.
 struct azimuth_mode_select_options {
-    double window_deg = 10.0;           ///< a plane "has cells near" an azimuth when some aspect lies within this
-    double four_plane_low_deg = 90.0;   ///< four/three-plane turn applies to modes in [low, high] ...
-    double four_plane_high_deg = 160.0; ///< ... (the paper's text says 180; DESIGN.md and the issue 160: a mode
-                                        ///< in (160, 180] already faces south and is kept)
+    double window_deg = 10.0;            ///< a plane "has cells near" an azimuth when some aspect lies within this
+    double four_plane_low_deg = 90.0;    ///< four/three-plane turn applies to modes in [low, high] ...
+    double four_plane_high_deg = 160.0;  ///< ... (the paper's text says 180; DESIGN.md and the issue 160: a mode
+                                         ///< in (160, 180] already faces south and is kept)
     /// Plane detection: the histogram is smoothed by a circular box of +-smooth_deg, and a plane is a local
     /// maximum holding at least min_plane_share of the building's cells within +-plane_halfwidth_deg, at
     /// least min_plane_separation_deg from a larger plane.
@@ -51,7 +51,7 @@ struct azimuth_selection {
     int planes = 0;            ///< major planes found
     roof_form form = roof_form::no_cells;
     azimuth_reason reason = azimuth_reason::no_cells;
-    bool suitable = false;     ///< false for no_cells and too_many_planes
+    bool suitable = false;  ///< false for no_cells and too_many_planes
 };
 
 namespace detail {
@@ -76,7 +76,9 @@ inline int count_aspect_planes(std::span<const std::uint32_t> h, const azimuth_m
     double total = 0;
     for (const auto v : h) total += v;
     if (total <= 0) return 0;
-    const auto at = [&](std::ptrdiff_t i) { return static_cast<double>(h[static_cast<std::size_t>(((i % n) + n) % n)]); };
+    const auto at = [&](std::ptrdiff_t i) {
+        return static_cast<double>(h[static_cast<std::size_t>(((i % n) + n) % n)]);
+    };
     const auto half = static_cast<std::ptrdiff_t>(std::lround(o.smooth_deg));
     const auto wide = static_cast<std::ptrdiff_t>(std::lround(o.plane_halfwidth_deg));
     std::vector<double> smooth(static_cast<std::size_t>(n)), mass(static_cast<std::size_t>(n));
@@ -130,7 +132,8 @@ inline azimuth_selection azimuth_mode_select(std::span<const std::uint32_t> aspe
                                              const azimuth_mode_select_options& opt = {})
 {
     constexpr const char* fn = "azimuth_mode_select";
-    detail::require(aspect_histogram.size() == 360, fn, "aspect_histogram", "360 one-degree bins", aspect_histogram.size());
+    detail::require(aspect_histogram.size() == 360, fn, "aspect_histogram", "360 one-degree bins",
+                    aspect_histogram.size());
     detail::require(opt.window_deg >= 0 && opt.window_deg <= 180, fn, "window_deg", "in [0, 180]", opt.window_deg);
     detail::require(opt.four_plane_low_deg <= opt.four_plane_high_deg, fn, "four_plane_low_deg",
                     "<= four_plane_high_deg", opt.four_plane_low_deg);
@@ -149,7 +152,8 @@ inline azimuth_selection azimuth_mode_select(std::span<const std::uint32_t> aspe
     s.suitable = true;
     const auto has_aspect_near = [&](double a) {
         for (std::size_t k = 0; k < 360; ++k)
-            if (aspect_histogram[k] > 0 && detail::azimuth_gap_deg(static_cast<double>(k), a) <= opt.window_deg) return true;
+            if (aspect_histogram[k] > 0 && detail::azimuth_gap_deg(static_cast<double>(k), a) <= opt.window_deg)
+                return true;
         return false;
     };
     const double m = s.mode_deg;

@@ -24,13 +24,13 @@ namespace lidarfx {
 /// degrees. Noise-dependent tolerances are set per building from sigma, the building's elevation noise
 /// estimated as sqrt(1.5) x the median rms residual of the 3x3 plane fits around its cells.
 struct roof_planes_options {
-    double min_angle_deg = 5.0;       ///< smallest normal tolerance of region growing and merging
-    double max_angle_deg = 20.0;      ///< largest normal tolerance (tolerance = 2.5 x the normal noise of a 3x3 fit)
-    double min_distance_m = 0.15;     ///< smallest distance of a cell from its plane (tolerance = max(this, 3 sigma))
-    int min_seed_cells = 6;           ///< a grown region smaller than this is released (clutter, ridges)
-    double min_plane_m2 = 3.0;        ///< final planes of a smaller horizontal area are clutter (cells left out)
-    double max_plane_rms_m = 0.6;     ///< final planes with a larger rms residual are clutter (tree crowns)
-    int reassign_rounds = 3;          ///< rounds of cell reassignment and refit
+    double min_angle_deg = 5.0;    ///< smallest normal tolerance of region growing and merging
+    double max_angle_deg = 20.0;   ///< largest normal tolerance (tolerance = 2.5 x the normal noise of a 3x3 fit)
+    double min_distance_m = 0.15;  ///< smallest distance of a cell from its plane (tolerance = max(this, 3 sigma))
+    int min_seed_cells = 6;        ///< a grown region smaller than this is released (clutter, ridges)
+    double min_plane_m2 = 3.0;     ///< final planes of a smaller horizontal area are clutter (cells left out)
+    double max_plane_rms_m = 0.6;  ///< final planes with a larger rms residual are clutter (tree crowns)
+    int reassign_rounds = 3;       ///< rounds of cell reassignment and refit
 };
 
 namespace detail {
@@ -66,7 +66,8 @@ struct roof_planes_result {
 
 /// Robust refit of a plane to `members`: least squares, then twice without the cells farther than
 /// max(2.5 x 1.4826 MAD, 0.05 m) from the fit. Returns the fit and the inliers' sums.
-inline std::pair<plane_fit, plane_sums> robust_plane(const roof_box_surface& s, const std::vector<std::ptrdiff_t>& members)
+inline std::pair<plane_fit, plane_sums> robust_plane(const roof_box_surface& s,
+                                                     const std::vector<std::ptrdiff_t>& members)
 {
     plane_sums sums;
     for (const auto i : members) sums.add(s.x(i), s.y(i), s.z[static_cast<std::size_t>(i)]);
@@ -148,7 +149,9 @@ inline void merge_coplanar(const roof_box_surface& s, std::vector<std::vector<st
         }
     for (std::size_t k = 0; k < count; ++k) {
         const auto p = index_of[root(k)];
-        if (p >= 0) out[static_cast<std::size_t>(p)].insert(out[static_cast<std::size_t>(p)].end(), planes[k].begin(), planes[k].end());
+        if (p >= 0)
+            out[static_cast<std::size_t>(p)].insert(out[static_cast<std::size_t>(p)].end(), planes[k].begin(),
+                                                    planes[k].end());
     }
     planes = std::move(out);
     fits.assign(planes.size(), plane_fit{});
@@ -193,7 +196,8 @@ inline void reassign_cells(const roof_box_surface& s, std::vector<std::vector<st
     for (auto& m : planes) m.clear();
     const auto n = static_cast<std::ptrdiff_t>(assign.size());
     for (std::ptrdiff_t i = 0; i < n; ++i)
-        if (assign[static_cast<std::size_t>(i)] > 0) planes[static_cast<std::size_t>(assign[static_cast<std::size_t>(i)] - 1)].push_back(i);
+        if (assign[static_cast<std::size_t>(i)] > 0)
+            planes[static_cast<std::size_t>(assign[static_cast<std::size_t>(i)] - 1)].push_back(i);
     for (std::size_t p = 0; p < planes.size(); ++p)
         if (planes[p].size() >= 3) {
             const plane_fit g = robust_plane(s, planes[p]).first;
@@ -232,7 +236,9 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
                 const std::ptrdiff_t rr = r + dr, cc = c + dc;
                 if (rr < 0 || rr >= s.h || cc < 0 || cc >= s.w) continue;
                 const std::ptrdiff_t j = rr * s.w + cc;
-                if (s.in(j)) sums.add(static_cast<double>(dc) * s.cell_m, -static_cast<double>(dr) * s.cell_m, s.z[static_cast<std::size_t>(j)]);
+                if (s.in(j))
+                    sums.add(static_cast<double>(dc) * s.cell_m, -static_cast<double>(dr) * s.cell_m,
+                             s.z[static_cast<std::size_t>(j)]);
             }
         if (sums.n < 4) continue;
         const plane_fit f = fit_plane(sums);
@@ -244,14 +250,16 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
         rms_values.push_back(lrms[static_cast<std::size_t>(i)]);
     }
     if (order.empty()) return out;
-    std::nth_element(rms_values.begin(), rms_values.begin() + static_cast<std::ptrdiff_t>(rms_values.size() / 2), rms_values.end());
+    std::nth_element(rms_values.begin(), rms_values.begin() + static_cast<std::ptrdiff_t>(rms_values.size() / 2),
+                     rms_values.end());
     const double sigma = std::max(0.02, rms_values[rms_values.size() / 2]);
     out.sigma_m = sigma;
     const double slope_noise_deg = std::atan(sigma / (s.cell_m * std::sqrt(6.0))) * 180.0 / std::numbers::pi;
     const double angle_tol = std::clamp(2.5 * slope_noise_deg, o.min_angle_deg, o.max_angle_deg);
     const double dist_tol = std::max(o.min_distance_m, 3.0 * sigma);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::ptrdiff_t p, std::ptrdiff_t q) { return lrms[static_cast<std::size_t>(p)] < lrms[static_cast<std::size_t>(q)]; });
+    std::stable_sort(order.begin(), order.end(), [&](std::ptrdiff_t p, std::ptrdiff_t q) {
+        return lrms[static_cast<std::size_t>(p)] < lrms[static_cast<std::size_t>(q)];
+    });
 
     // 2. Region growing. lab: 0 free, > 0 region, -1 released.
     std::vector<std::int32_t> lab(static_cast<std::size_t>(n), 0);
@@ -312,7 +320,9 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
         std::vector<std::ptrdiff_t> interior;
         for (const auto i : planes[p]) {
             int same = 0;
-            s.for_neighbours(i, [&](std::ptrdiff_t j) { same += assign[static_cast<std::size_t>(j)] == assign[static_cast<std::size_t>(i)]; });
+            s.for_neighbours(i, [&](std::ptrdiff_t j) {
+                same += assign[static_cast<std::size_t>(j)] == assign[static_cast<std::size_t>(i)];
+            });
             if (same == 4) interior.push_back(i);
         }
         if (interior.size() >= 8) {

@@ -36,18 +36,18 @@ enum class roof_mode {
 /// Settings of roof_suitability. Angles in degrees, azimuths clockwise from north; areas in m^2.
 struct roof_suitability_options {
     roof_mode mode = roof_mode::planes;
-    double min_height_m = 2.0;     ///< nDSM = DSM - DTM cut: lower cells are not roof (paper step 1)
-    double min_patch_m2 = 8.0;     ///< a suitable patch has at least this sloped area (1 kWp minimum system)
-    double m2_per_kwp = 8.0;       ///< system size: 1 kWp per this many m^2 of (sloped) patch area, > 0
-    double min_tilt_deg = 15, max_tilt_deg = 60;      ///< suitable tilts (pitched roofs), inclusive
+    double min_height_m = 2.0;  ///< nDSM = DSM - DTM cut: lower cells are not roof (paper step 1)
+    double min_patch_m2 = 8.0;  ///< a suitable patch has at least this sloped area (1 kWp minimum system)
+    double m2_per_kwp = 8.0;    ///< system size: 1 kWp per this many m^2 of (sloped) patch area, > 0
+    double min_tilt_deg = 15, max_tilt_deg = 60;         ///< suitable tilts (pitched roofs), inclusive
     double min_azimuth_deg = 90, max_azimuth_deg = 270;  ///< suitable facings (east-south-west), inclusive
     /// Flat roofs: a patch tilted less than this is flat. Its own rule: suitable when its sloped area is at
     /// least min_patch_m2 whatever its facing (panels stand on racks facing south at their own tilt); its kWp
     /// counts that area.
     double flat_below_deg = 15;
     azimuth_mode_select_options azimuth = {};  ///< paper mode: the step-5 rules
-    int paper_min_patch_cells = 10;  ///< paper mode: smaller 4-connected patches are dropped (step 9, 1 m cells)
-    int paper_boundary_cleans = 2;   ///< paper mode: boundary cleans (3x3 closing then opening; step 10)
+    int paper_min_patch_cells = 10;   ///< paper mode: smaller 4-connected patches are dropped (step 9, 1 m cells)
+    int paper_boundary_cleans = 2;    ///< paper mode: boundary cleans (3x3 closing then opening; step 10)
     roof_planes_options planes = {};  ///< planes mode: the segmentation
     execution run = {};               ///< threads, progress and cancellation; never changes the result
 };
@@ -62,15 +62,15 @@ struct roof_patch {
     double kwp = 0;             ///< sloped_area_m2 / m2_per_kwp
     bool suitable = false, flat = false;
     double centroid_x = 0, centroid_y = 0;  ///< mean of the cell centres, world coordinates (grid units)
-    double rms_m = 0;           ///< planes mode: rms residual of the cells about the fitted plane
-    std::string reason;         ///< why (un)suitable
+    double rms_m = 0;                       ///< planes mode: rms residual of the cells about the fitted plane
+    std::string reason;                     ///< why (un)suitable
 };
 
 /// What happened to one building (every label of building_id, in increasing order).
 struct roof_building {
     std::int32_t building_id = 0;
-    std::size_t cells = 0;           ///< roof cells: inside the footprint, finite, nDSM >= min_height_m
-    azimuth_selection selection;     ///< paper mode: the step-5 decision
+    std::size_t cells = 0;        ///< roof cells: inside the footprint, finite, nDSM >= min_height_m
+    azimuth_selection selection;  ///< paper mode: the step-5 decision
     std::string note;
 };
 
@@ -96,18 +96,18 @@ inline void judge_patch(roof_patch& p, const roof_suitability_options& o)
     const bool tilt_ok = p.tilt_deg >= o.min_tilt_deg && p.tilt_deg <= o.max_tilt_deg;
     const bool facing_ok = p.azimuth_deg >= o.min_azimuth_deg && p.azimuth_deg <= o.max_azimuth_deg;
     p.suitable = big && tilt_ok && facing_ok;
-    p.reason = p.suitable                          ? "suitable"
-               : !facing_ok                        ? "faces north"
-               : p.tilt_deg > o.max_tilt_deg       ? "too steep"
-               : !tilt_ok                          ? "too shallow"
-                                                   : "under the minimum area";
+    p.reason = p.suitable                    ? "suitable"
+               : !facing_ok                  ? "faces north"
+               : p.tilt_deg > o.max_tilt_deg ? "too steep"
+               : !tilt_ok                    ? "too shallow"
+                                             : "under the minimum area";
 }
 
 /// Footprint cells grouped by building id (raster order inside a group).
 struct building_groups {
     std::vector<std::int32_t> ids;
-    std::vector<std::size_t> start;          ///< group k = cells[start[k] .. start[k + 1])
-    std::vector<std::ptrdiff_t> cells;       ///< r * cols + c
+    std::vector<std::size_t> start;     ///< group k = cells[start[k] .. start[k + 1])
+    std::vector<std::ptrdiff_t> cells;  ///< r * cols + c
 };
 
 template <class Ids>
@@ -134,7 +134,8 @@ building_groups group_buildings(const Ids& ids, const char* fn)
 }
 
 /// The cells' bounding box as (r0, c0, h, w).
-inline std::array<std::ptrdiff_t, 4> cells_box(const std::ptrdiff_t* first, const std::ptrdiff_t* last, std::ptrdiff_t cols)
+inline std::array<std::ptrdiff_t, 4> cells_box(const std::ptrdiff_t* first, const std::ptrdiff_t* last,
+                                               std::ptrdiff_t cols)
 {
     std::ptrdiff_t r0 = first[0] / cols, r1 = r0, c0 = first[0] % cols, c1 = c0;
     for (const std::ptrdiff_t* p = first; p != last; ++p) {

@@ -28,9 +28,9 @@ struct roof_yield_options {
     sun_position_options sun = {};          ///< sun model (default NREL SPA with refraction at sea level)
     double meridian_convergence_deg = 0.0;  ///< sun azimuths turned to grid north (to_grid_azimuth_deg), [-90, 90]
     sky_view_factor_method svf_method = sky_view_factor_method::source_share;  ///< as irradiance_maps
-    int svf_directions = 72;                ///< azimuths of the sky view factor sweep, >= 4
-    double performance_ratio = 0.8;         ///< system losses: energy = H_plane * kWp * ratio / (1 kW/m^2), (0, 1]
-    execution run = {};                     ///< threads, progress and cancellation; never changes the result
+    int svf_directions = 72;         ///< azimuths of the sky view factor sweep, >= 4
+    double performance_ratio = 0.8;  ///< system losses: energy = H_plane * kWp * ratio / (1 kW/m^2), (0, 1]
+    execution run = {};              ///< threads, progress and cancellation; never changes the result
 };
 
 /// Irradiation and energy of one roof patch.
@@ -60,8 +60,8 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
     detail::check_execution(opt.run, fn);
     detail::require_same_shape(dsm, roofs.patch_id, fn, "dsm", "roofs.patch_id");
     detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
-    detail::require(opt.performance_ratio > 0.0 && opt.performance_ratio <= 1.0, fn, "performance_ratio",
-                    "in (0, 1]", opt.performance_ratio);
+    detail::require(opt.performance_ratio > 0.0 && opt.performance_ratio <= 1.0, fn, "performance_ratio", "in (0, 1]",
+                    opt.performance_ratio);
     detail::require(opt.meridian_convergence_deg >= -90.0 && opt.meridian_convergence_deg <= 90.0, fn,
                     "meridian_convergence_deg", "in [-90, 90] degrees", opt.meridian_convergence_deg);
     detail::require_records(records, fn);
@@ -77,7 +77,8 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const auto id = static_cast<std::size_t>(std::max(0, roofs.patch_id(r, c)));
-            if (id > 0 && id < index_of.size() && index_of[id] < cells.size()) cells[index_of[id]].push_back(r * cols + c);
+            if (id > 0 && id < index_of.size() && index_of[id] < cells.size())
+                cells[index_of[id]].push_back(r * cols + c);
         }
     struct daylight {
         std::size_t record;
@@ -91,8 +92,9 @@ std::vector<roof_patch_yield> roof_yield(const Dsm& dsm, double cell_m, const ro
     }
     std::vector<roof_patch_yield> out(roofs.patches.size());
     return detail::with_float_view(dsm, [&](raster_view<const float> z) {
-        const raster<float> svf = sky_view_factor(z, cell_m, {.method = opt.svf_method, .directions = opt.svf_directions,
-                                                              .run = {.threads = opt.run.threads}});
+        const raster<float> svf = sky_view_factor(
+            z, cell_m,
+            {.method = opt.svf_method, .directions = opt.svf_directions, .run = {.threads = opt.run.threads}});
         // Per patch: sky factor sum over its cells (constant over the year) and the plane's normal.
         std::vector<double> sky(roofs.patches.size(), 0.0), beam(roofs.patches.size(), 0.0);
         double dhi_kwh = 0.0;  // the year's DHI sum, kWh/m^2: the same for every patch

@@ -44,7 +44,7 @@ struct irradiance_maps_options {
     raster_view<const float> surface_azimuth_deg = {};
     sun_position_options sun = {};  ///< sun model (default NREL SPA with refraction at sea level)
     sky_view_factor_method svf_method = sky_view_factor_method::source_share;  ///< the dissertation's by default
-    int svf_directions = 72;        ///< azimuths of the sky view factor sweep, >= 4
+    int svf_directions = 72;  ///< azimuths of the sky view factor sweep, >= 4
     /// Line families of the hourly shadows (raylines_shadow_options::line_phases), in [1, 64]: 4 (default) puts
     /// every cell's ray within 1/8 cell of its own centre; 1 is the dissertation's single family, up to 3 times
     /// faster for azimuths off the axes and diagonals.
@@ -68,12 +68,12 @@ struct irradiance_maps_options {
 
 /// Irradiation maps of a surface model, kWh/m^2 per cell (NaN on NaN cells), with their ingredients.
 struct irradiance_maps_result {
-    raster<float> annual_kwh_m2;                  ///< sum over all records
-    std::array<raster<float>, 12> month_kwh_m2;   ///< [0] January ... [11] December; they sum to annual_kwh_m2
-    raster<float> sky_view_factor;                ///< the SVF used for the diffuse part, [0, 1]
-    double ghi_kwh_m2 = 0;                        ///< sum of GHI * interval over all records (open flat ground)
-    std::array<double, 12> month_ghi_kwh_m2 = {}; ///< the same per month
-    std::size_t sun_up_records = 0;               ///< records with the sun above the horizon at their middle
+    raster<float> annual_kwh_m2;                   ///< sum over all records
+    std::array<raster<float>, 12> month_kwh_m2;    ///< [0] January ... [11] December; they sum to annual_kwh_m2
+    raster<float> sky_view_factor;                 ///< the SVF used for the diffuse part, [0, 1]
+    double ghi_kwh_m2 = 0;                         ///< sum of GHI * interval over all records (open flat ground)
+    std::array<double, 12> month_ghi_kwh_m2 = {};  ///< the same per month
+    std::size_t sun_up_records = 0;                ///< records with the sun above the horizon at their middle
 };
 
 namespace detail {
@@ -87,12 +87,12 @@ struct cell_surface {
 
 /// One record's Perez-sky terms, each already times DHI (or DNI, GHI) and the interval in kWh (W h / 1000).
 struct perez_record_terms {
-    double dni = 0, beam_flat = 0;   ///< DNI, and DNI sin e for horizontal cells
-    double isotropic = 0;            ///< DHI (1 - F1): times (1 + cos b) / 2 and SVF
-    double horizon = 0;              ///< DHI F2: times sin b and SVF
-    double circumsolar = 0;          ///< DHI F1 / max(cos 85, sin e): times max(0, cos theta) and lit
-    double reflected = 0;            ///< GHI albedo: times (1 - cos b) / 2
-    bool clamp = false;              ///< clamp the diffuse sum at 0 (components may be < 0)
+    double dni = 0, beam_flat = 0;  ///< DNI, and DNI sin e for horizontal cells
+    double isotropic = 0;           ///< DHI (1 - F1): times (1 + cos b) / 2 and SVF
+    double horizon = 0;             ///< DHI F2: times sin b and SVF
+    double circumsolar = 0;         ///< DHI F1 / max(cos 85, sin e): times max(0, cos theta) and lit
+    double reflected = 0;           ///< GHI albedo: times (1 - cos b) / 2
+    bool clamp = false;             ///< clamp the diffuse sum at 0 (components may be < 0)
 };
 
 /// Adds one record's beam, Perez diffuse and reflected irradiation to one row (acc) of cols cells: lit and svf
@@ -114,8 +114,8 @@ inline void add_perez_row(double* acc, const std::uint8_t* lit, const float* svf
         const std::size_t k = k0 + static_cast<std::size_t>(c);
         const double cos_t = enu_dot(sun, surf->normal[k]);
         const bool sunny = lit[c] == 1 && cos_t > 0.0;
-        const double sky = t.isotropic * static_cast<double>(surf->sky[k]) +
-                           t.horizon * static_cast<double>(surf->sin_tilt[k]);
+        const double sky =
+            t.isotropic * static_cast<double>(surf->sky[k]) + t.horizon * static_cast<double>(surf->sin_tilt[k]);
         double diffuse = sky * static_cast<double>(svf[c]) + (sunny ? t.circumsolar * cos_t : 0.0);
         if (t.clamp) diffuse = std::max(0.0, diffuse);
         acc[c] += (sunny ? t.dni * cos_t : 0.0) + diffuse + t.reflected * static_cast<double>(surf->ground[k]);
@@ -149,10 +149,10 @@ inline int record_day_of_year(const irradiance_record& rec)
 /// (the circumsolar part comes from around the sun's disc, so the cell's shadow hides it; the horizon band takes
 /// the SVF as the isotropic part does; with opt.perez.nonnegative = false the sum is clamped at 0).
 /// On open horizontal ground a record adds DNI sin e + DHI (either sky model, for e >= 5 deg), which is GHI for
-/// consistent records, so the annual map equals ghi_kwh_m2 there. Records may come in any order; each goes to the month of its middle (in UTC +
-/// month_utc_offset_h). dsm heights and cell_m in metres; latitude/longitude in degrees (north, east). Cost per
-/// daylight record O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky view factor
-/// (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell
+/// consistent records, so the annual map equals ghi_kwh_m2 there. Records may come in any order; each goes to the month
+/// of its middle (in UTC + month_utc_offset_h). dsm heights and cell_m in metres; latitude/longitude in degrees (north,
+/// east). Cost per daylight record O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky
+/// view factor (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell
 /// surfaces, 36 with the Perez sky). Results are the same for any thread count.
 /// @throws invalid_input if cell_m is not finite and > 0, a record has a non-positive interval or a negative or
 /// non-finite irradiance, the surface rasters' shapes differ from the DSM's or only one is given, an option is
@@ -166,11 +166,11 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
     detail::require_positive(cell_m, fn, "cell_m");
     detail::check_execution(opt.run, fn);
     detail::require(opt.svf_directions >= 4, fn, "svf_directions", ">= 4", opt.svf_directions);
-    detail::require(opt.shadow_line_phases >= 1 && opt.shadow_line_phases <= 64, fn, "shadow_line_phases",
-                    "in [1, 64]", opt.shadow_line_phases);
+    detail::require(opt.shadow_line_phases >= 1 && opt.shadow_line_phases <= 64, fn, "shadow_line_phases", "in [1, 64]",
+                    opt.shadow_line_phases);
     detail::require(opt.albedo >= 0.0 && opt.albedo <= 1.0, fn, "albedo", "in [0, 1]", opt.albedo);
-    detail::require(opt.diffuse == diffuse_model::isotropic || opt.diffuse == diffuse_model::perez, fn,
-                    "diffuse", "isotropic or perez", static_cast<int>(opt.diffuse));
+    detail::require(opt.diffuse == diffuse_model::isotropic || opt.diffuse == diffuse_model::perez, fn, "diffuse",
+                    "isotropic or perez", static_cast<int>(opt.diffuse));
     detail::require_positive(opt.perez.solar_constant_w_m2, fn, "perez.solar_constant_w_m2");
     detail::require(opt.month_utc_offset_h >= -14.0 && opt.month_utc_offset_h <= 14.0, fn, "month_utc_offset_h",
                     "in [-14, 14] hours", opt.month_utc_offset_h);
@@ -245,7 +245,8 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
         const double svf_share = 0.1;  // share of the progress taken by the sky view factor
         res.sky_view_factor = raster<float>(rows, cols);
         sky_view_factor(z, res.sky_view_factor, cell_m,
-                        {.method = opt.svf_method, .directions = opt.svf_directions,
+                        {.method = opt.svf_method,
+                         .directions = opt.svf_directions,
                          .run = {.threads = opt.run.threads,
                                  .progress = detail::progress_phase(opt.run.progress, 0.0, svf_share)}});
 
@@ -259,8 +260,9 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
             for (const daylight& d : by_month[m]) {
                 const irradiance_record& rec = records[d.record];
                 const double hours_k = static_cast<double>(rec.interval.count()) / 3600.0 / 1000.0;
-                raylines_shadow(z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
-                                {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = opt.run.threads}});
+                raylines_shadow(
+                    z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
+                    {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = opt.run.threads}});
                 const enu_vector sun = detail::sun_vector_unchecked(d.azimuth_deg, d.elevation_deg);
                 const double beam_flat = rec.dni_w_m2 * (sun.up > 0.0 ? sun.up : 0.0) * hours_k;
                 const double dni = rec.dni_w_m2 * hours_k, dhi = rec.dhi_w_m2 * hours_k;
@@ -270,8 +272,12 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
                                                                           d.day_of_year, opt.perez)
                                             : perez_sky{};
                 const detail::perez_record_terms terms{
-                    .dni = dni, .beam_flat = beam_flat, .isotropic = dhi * (1.0 - sky.f1), .horizon = dhi * sky.f2,
-                    .circumsolar = dhi * sky.f1 / std::max(detail::perez_cos_85, sun.up), .reflected = reflected,
+                    .dni = dni,
+                    .beam_flat = beam_flat,
+                    .isotropic = dhi * (1.0 - sky.f1),
+                    .horizon = dhi * sky.f2,
+                    .circumsolar = dhi * sky.f1 / std::max(detail::perez_cos_85, sun.up),
+                    .reflected = reflected,
                     .clamp = !opt.perez.nonnegative};
                 parallel_for_rows(rows, 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
                     for (std::ptrdiff_t r = r0; r < r1; ++r) {
@@ -295,8 +301,8 @@ irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, double lati
                             const std::size_t k = k0 + static_cast<std::size_t>(c);
                             const double cos_t = detail::enu_dot(sun, surf.normal[k]);
                             const double beam = l[c] == 1 && cos_t > 0.0 ? dni * cos_t : 0.0;
-                            acc[c] += beam + dhi * static_cast<double>(svf[c]) * surf.sky[k] +
-                                      reflected * surf.ground[k];
+                            acc[c] +=
+                                beam + dhi * static_cast<double>(svf[c]) * surf.sky[k] + reflected * surf.ground[k];
                         }
                     }
                 });

@@ -51,12 +51,12 @@ struct water_issue {
 
 /// What the inputs can support. Issues come in the order they are checked: intensity, density, returns.
 struct water_diagnostics {
-    double points_per_cell = NAN;          ///< mean points per cell over the grid (needs the count raster)
-    double dropout_fraction = NAN;         ///< share of cells without returns
-    bool has_intensity = false;            ///< intensity varies between cells with returns
-    bool has_multiple_returns = false;     ///< some cell has a multiple-return pulse
-    double suggested_cell_m = NAN;         ///< smallest cell (0.5 m steps) reaching min_points_per_cell
-    std::vector<water_issue> issues;       ///< problems and warnings found
+    double points_per_cell = NAN;       ///< mean points per cell over the grid (needs the count raster)
+    double dropout_fraction = NAN;      ///< share of cells without returns
+    bool has_intensity = false;         ///< intensity varies between cells with returns
+    bool has_multiple_returns = false;  ///< some cell has a multiple-return pulse
+    double suggested_cell_m = NAN;      ///< smallest cell (0.5 m steps) reaching min_points_per_cell
+    std::vector<water_issue> issues;    ///< problems and warnings found
 
     /// True when no issue is a problem.
     bool usable() const noexcept
@@ -101,22 +101,23 @@ inline std::string water_issue::message() const
 {
     using detail::fixed;
     switch (kind) {
-    case water_issue_kind::no_returns:
-        return "no cell has a return: nothing to analyse";
-    case water_issue_kind::intensity_constant:
-        return "intensity is the same (" + fixed(intensity, 0) +
-               ") in every cell with returns: the KS test that stops region growing compares intensity "
-               "distributions and cannot work";
-    case water_issue_kind::density_too_low:
-        return "point density " + fixed(points_per_m2) + " points/m² gives " + fixed(points_per_cell) +
-               " points per " + fixed(cell_m, 1) + " m cell (below " + fixed(min_points_per_cell, 1) + "): " +
-               fixed(100 * dropout_fraction, 0) +
-               " % of cells are empty by sparse sampling, so dropouts no longer mark water; use a cell of at "
-               "least " + fixed(suggested_cell_m, 1) + " m";
-    case water_issue_kind::density_unchecked:
-        return "no count raster: point density was not checked";
-    case water_issue_kind::no_multiple_returns:
-        return "no pulse has multiple returns: vegetation comes from max z - min z alone";
+        case water_issue_kind::no_returns:
+            return "no cell has a return: nothing to analyse";
+        case water_issue_kind::intensity_constant:
+            return "intensity is the same (" + fixed(intensity, 0) +
+                   ") in every cell with returns: the KS test that stops region growing compares intensity "
+                   "distributions and cannot work";
+        case water_issue_kind::density_too_low:
+            return "point density " + fixed(points_per_m2) + " points/m² gives " + fixed(points_per_cell) +
+                   " points per " + fixed(cell_m, 1) + " m cell (below " + fixed(min_points_per_cell, 1) +
+                   "): " + fixed(100 * dropout_fraction, 0) +
+                   " % of cells are empty by sparse sampling, so dropouts no longer mark water; use a cell of at "
+                   "least " +
+                   fixed(suggested_cell_m, 1) + " m";
+        case water_issue_kind::density_unchecked:
+            return "no count raster: point density was not checked";
+        case water_issue_kind::no_multiple_returns:
+            return "no pulse has multiple returns: vegetation comes from max z - min z alone";
     }
     return "unknown issue";
 }
@@ -166,8 +167,10 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
                 hi_key = std::max(hi_key, (k & mask) | (least & ~mask));
             }
         };
-        if (footprint) scan(std::true_type{});
-        else scan(std::false_type{});
+        if (footprint)
+            scan(std::true_type{});
+        else
+            scan(std::false_type{});
         if (!in.multiple_returns.empty() && !d.has_multiple_returns) {
             const std::uint8_t* multiple = in.multiple_returns.row(r);
             for (std::ptrdiff_t c = 0; c < cols; ++c) d.has_multiple_returns |= multiple[c] && !dropout[c];

@@ -93,9 +93,7 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     const auto walk_from = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t body) {
         const float z0 = min_z(r, c);
         if (!std::isfinite(z0)) return;
-        const auto level_with = [&](float z) {
-            return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m;
-        };
+        const auto level_with = [&](float z) { return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m; };
         for (const auto& step : steps) {
             const std::ptrdiff_t dr = step[0], dc = step[1];
             // Only a cell at the body's edge along this line starts a walk.
@@ -146,7 +144,8 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         const std::int32_t* here = labels.row(r);
         // Land is passed over in blocks; each stretch of body cells is flagged in one vectorized loop.
-        for (std::ptrdiff_t c = detail::next_positive(here, 0, cols); c < cols; c = detail::next_positive(here, c, cols)) {
+        for (std::ptrdiff_t c = detail::next_positive(here, 0, cols); c < cols;
+             c = detail::next_positive(here, c, cols)) {
             const std::ptrdiff_t from = c;
             while (c < cols && here[c] > 0) ++c;
             std::fill(start + from, start + c, std::uint8_t{1});  // the raster's border: all may start
@@ -162,7 +161,8 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
                                                          (below[x] != b) | (below[x + 1] != b));
                 }
             }
-            for (std::ptrdiff_t x = detail::next_positive(start, from, c); x < c; x = detail::next_positive(start, x + 1, c))
+            for (std::ptrdiff_t x = detail::next_positive(start, from, c); x < c;
+                 x = detail::next_positive(start, x + 1, c))
                 walk_from(r, x, here[x]);
         }
     }

@@ -55,7 +55,10 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
     // are scattered, a branch on them mispredicts) and the run is noted as (label, heights appended).
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     std::int32_t lowest = 0, highest = 0;
-    struct run_heights { std::int32_t label; std::size_t count; };
+    struct run_heights {
+        std::int32_t label;
+        std::size_t count;
+    };
     std::vector<run_heights> runs;
     std::vector<float> found;
     std::size_t used = 0;
@@ -88,7 +91,8 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
     const float* from = found.data();
     for (const auto& run : runs) {
-        std::copy(from, from + run.count, heights.begin() + static_cast<std::ptrdiff_t>(next[static_cast<std::size_t>(run.label)]));
+        std::copy(from, from + run.count,
+                  heights.begin() + static_cast<std::ptrdiff_t>(next[static_cast<std::size_t>(run.label)]));
         next[static_cast<std::size_t>(run.label)] += run.count;
         from += run.count;
     }
@@ -117,8 +121,8 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
 {
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     // No straight run of cells is longer than rows + cols: clamping there keeps huge or infinite spans exact.
-    const int span_cells = static_cast<int>(
-        std::min(std::floor(opt.max_span_m / cell_m), static_cast<double>(std::min<std::ptrdiff_t>(rows + cols, 1 << 30))));
+    const int span_cells = static_cast<int>(std::min(
+        std::floor(opt.max_span_m / cell_m), static_cast<double>(std::min<std::ptrdiff_t>(rows + cols, 1 << 30))));
     if (span_cells <= 0 && !opt.join_touching) return 0;
     std::vector<std::int32_t> parent(level.size());
     std::iota(parent.begin(), parent.end(), 0);
@@ -142,13 +146,18 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     std::vector<std::ptrdiff_t> last_at(n_lines, -1);
     std::vector<std::int32_t> last_label(n_lines, 0);
     // Bridged cells are recorded and written after the pass, so every decision reads the original labels.
-    struct bridged_cell { std::ptrdiff_t cell; int direction; std::int32_t label; };
+    struct bridged_cell {
+        std::ptrdiff_t cell;
+        int direction;
+        std::int32_t label;
+    };
     std::vector<bridged_cell> bridged;
     const auto close_run = [&](std::ptrdiff_t& lw_at, std::int32_t& lw_label, std::ptrdiff_t at, std::int32_t l,
                                std::ptrdiff_t r, std::ptrdiff_t c, int dr, int dc, int direction) {
         const std::ptrdiff_t gap = at - lw_at - 1;
         if (opt.join_touching && lw_at >= 0 && lw_label != l && gap == 0 &&
-            std::abs(level[static_cast<std::size_t>(lw_label)] - level[static_cast<std::size_t>(l)]) <= opt.level_tolerance_m) {
+            std::abs(level[static_cast<std::size_t>(lw_label)] - level[static_cast<std::size_t>(l)]) <=
+                opt.level_tolerance_m) {
             const auto ra = find(lw_label), rb = find(l);
             if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
@@ -168,7 +177,8 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     };
     // The columns that hold water (or a bridged cell) in each row, [first, last): the merge below reads
     // only them.
-    std::vector<std::ptrdiff_t> first_water(static_cast<std::size_t>(rows), cols), last_water(static_cast<std::size_t>(rows), 0);
+    std::vector<std::ptrdiff_t> first_water(static_cast<std::size_t>(rows), cols),
+        last_water(static_cast<std::size_t>(rows), 0);
     std::vector<std::uint8_t> other_body(static_cast<std::size_t>(cols));
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         std::ptrdiff_t across_at = -1;
@@ -230,7 +240,8 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         std::vector<std::int32_t> root(parent.size());
         for (std::size_t b = 0; b < parent.size(); ++b) root[b] = find(static_cast<std::int32_t>(b));
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            const std::ptrdiff_t first = first_water[static_cast<std::size_t>(r)], last = last_water[static_cast<std::size_t>(r)];
+            const std::ptrdiff_t first = first_water[static_cast<std::size_t>(r)],
+                                 last = last_water[static_cast<std::size_t>(r)];
             if (first >= last) continue;
             std::int32_t* row = labels.row(r) + first;
             for_each_run(row, last - first, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
@@ -242,7 +253,6 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
     return count;
 }
 
-
 }  // namespace detail
 
 /// Joins waterbodies across bridges: a land cell (label 0) lying on a straight run (row, column or
@@ -250,12 +260,11 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
 /// |level[a] − level[b]| <= level_tolerance_m, becomes water when its min z is NaN (no return), at least
 /// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
 /// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in
-/// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every label of a
-/// merged group becomes its smallest), and with join_touching so do bodies with 8-adjacent cells and levels
-/// within level_tolerance_m. Every decision reads the labels as given. Elevations in metres.
-/// One row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined
-/// when a water cell of another body closes it. O(cells + cells of examined runs).
-/// Returns the number of bridged cells.
+/// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged
+/// cell merge (every label of a merged group becomes its smallest), and with join_touching so do bodies with 8-adjacent
+/// cells and levels within level_tolerance_m. Every decision reads the labels as given. Elevations in metres. One
+/// row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined when a water cell of
+/// another body closes it. O(cells + cells of examined runs). Returns the number of bridged cells.
 /// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or a
 /// label without an entry in `level`.
 inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z,

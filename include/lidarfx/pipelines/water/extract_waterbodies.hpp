@@ -40,76 +40,76 @@ namespace lidarfx {
 /// Options of extract_waterbodies; defaults follow the dissertation where it gives a value. Each group
 /// is passed to one step (see that step's options for the details).
 struct extract_waterbodies_options {
-    double vegetation_height_m = 2.0;      ///< water_vegetation: max z − min z above this is vegetation, metres
-    int vegetation_closing_size_cells = 5; ///< water_vegetation: closing of the vegetation mask, cells (odd)
+    double vegetation_height_m = 2.0;       ///< water_vegetation: max z − min z above this is vegetation, metres
+    int vegetation_closing_size_cells = 5;  ///< water_vegetation: closing of the vegetation mask, cells (odd)
     bool vegetation_from_multiple_returns = true;  ///< water_vegetation: multiple-return cells are vegetation too
-    int angular_radius_cells = 2;          ///< water_angles: angular filter window radius, cells ("two tiers")
+    int angular_radius_cells = 2;                  ///< water_angles: angular filter window radius, cells ("two tiers")
     angular_input angular_on = angular_input::returns_only;  ///< water_angles: elevation read by the filter
     bool dropouts_join_any_threshold = true;  ///< water_angles: dropout cells join a region at any θ (their
                                               ///< angle is unknown); false = the dissertation's literal behaviour
-    int seed_opening_size_cells = 3;       ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
-    std::size_t min_seed_cells = 50;       ///< water_seeds: smallest seed component kept, cells (>= it is kept)
-    bool flat_seeds = false;               ///< flat_water_seeds: also seed from level, low cells with fewer returns
-                                           ///< than the land around them (or a few % fewer and dark or smooth):
-                                           ///< water without dropouts (turbid, specular, dense surveys). These
-                                           ///< seeds (their cells outside the bodies of the dropout seeds; same
-                                           ///< opening and min_seed_cells) grow after the dropout seeds. Off by
-                                           ///< default: on the water family, with grow.level_follow_max_slope =
-                                           ///< 0.008, they lift sensitivity (lakes 77 -> 98 %, rivers 76 -> 96 %)
-                                           ///< and accuracy (lakes 97.1 -> 99.6 %, rivers 97.8 -> 99.2 %) but take
-                                           ///< about 1.4x the time (docs/waterbodies.md, seventh reporting run;
-                                           ///< docs/performance.md)
-    bool flat_seed_dropouts = true;        ///< flat seeds: the dropout cells next to a seed cell (8-neighbours,
-                                           ///< eligible, in no body) join the seed mask before its opening: water
-                                           ///< with scattered dropouts keeps its seeds whole; their level ignores
-                                           ///< them (no return). Default true (water family, rivers of seeds
-                                           ///< 500-599: see docs/waterbodies.md, eighth session)
-    flat_water_seeds_options flat = {};    ///< flat_water_seeds: its thresholds (run is ignored)
-    grow_waterbody_options grow = {};      ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
-    double min_free_seed_share = 0.5;      ///< grow_waterbodies: a seed partly inside the bodies grown before it
-                                           ///< grows from its cells outside them when they are at least this share
-                                           ///< of it, else it is skipped; in (0, 1]. Default 0.5
+    int seed_opening_size_cells = 3;          ///< water_seeds: opening of the dropout mask before seeding, cells (odd)
+    std::size_t min_seed_cells = 50;          ///< water_seeds: smallest seed component kept, cells (>= it is kept)
+    bool flat_seeds = false;                  ///< flat_water_seeds: also seed from level, low cells with fewer returns
+                                              ///< than the land around them (or a few % fewer and dark or smooth):
+                                              ///< water without dropouts (turbid, specular, dense surveys). These
+                                              ///< seeds (their cells outside the bodies of the dropout seeds; same
+                                              ///< opening and min_seed_cells) grow after the dropout seeds. Off by
+                                              ///< default: on the water family, with grow.level_follow_max_slope =
+                                              ///< 0.008, they lift sensitivity (lakes 77 -> 98 %, rivers 76 -> 96 %)
+                                              ///< and accuracy (lakes 97.1 -> 99.6 %, rivers 97.8 -> 99.2 %) but take
+                                              ///< about 1.4x the time (docs/waterbodies.md, seventh reporting run;
+                                              ///< docs/performance.md)
+    bool flat_seed_dropouts = true;           ///< flat seeds: the dropout cells next to a seed cell (8-neighbours,
+                                              ///< eligible, in no body) join the seed mask before its opening: water
+                                              ///< with scattered dropouts keeps its seeds whole; their level ignores
+                                              ///< them (no return). Default true (water family, rivers of seeds
+                                              ///< 500-599: see docs/waterbodies.md, eighth session)
+    flat_water_seeds_options flat = {};       ///< flat_water_seeds: its thresholds (run is ignored)
+    grow_waterbody_options grow = {};         ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
+    double min_free_seed_share = 0.5;         ///< grow_waterbodies: a seed partly inside the bodies grown before it
+                                              ///< grows from its cells outside them when they are at least this share
+                                              ///< of it, else it is skipped; in (0, 1]. Default 0.5
     water_surface_slope_options surface_slope = {};  ///< the surface slope (a lazy_water_surface_slope: tiles
-                                           ///< computed where read), used when grow.level_follow_max_slope >= 0
-                                           ///< (run is ignored)
-    double intensity_resolution = 1.0;     ///< intensity_bins: intensity quantum of the KS samples (rounded to
-                                           ///< nearest, ties to even), > 0
-    double level_tolerance_m = 0.15;       ///< join_level_cells: land cells next to a body whose min z is within
-                                           ///< this of the adjacent water level join it; 0 disables. Also
-                                           ///< join_across_bridges' water_tolerance_m
-    double level_max_rise_m = 0.5;         ///< join_level_cells: ... and whose highest return is at most this
-                                           ///< above that level (a cell mostly on the bank is not water), metres
-    int level_join_depth_cells = 2;        ///< join_level_cells: how far (cells) from the grown region it reaches
-    double island_min_area_m2 = 200.0;     ///< fill_small_islands: holes in a body at least this large stay
-                                           ///< land; smaller ones become water, m²
-    double bridge_max_span_m = 30.0;       ///< join_across_bridges: gaps up to this long between two bodies at
-                                           ///< one water level are bridged (decks become water, bodies merge),
-                                           ///< metres; 0 disables
-    double bridge_level_tolerance_m = 1.0; ///< join_across_bridges: water levels on both sides differ by at most this
-    double bridge_min_clearance_m = 2.0;   ///< join_across_bridges: a deck cell's lowest return stands at least
-                                           ///< this high above the water on both sides, metres
-    int bridge_seed_rounds = 3;            ///< seeds_beyond_bridges: rounds of seeds beyond the decks that end
-                                           ///< bodies (a river's stretches one bridge further per round), each
-                                           ///< grown like the flat seeds; 0 disables. Default 3 (water family,
-                                           ///< rivers of seeds 500-599 with flat seeds: 92.9 -> 95.2 % mean
-                                           ///< sensitivity, 99.49 -> 99.48 % specificity; docs/waterbodies.md)
+                                                     ///< computed where read), used when grow.level_follow_max_slope >=
+                                                     ///< 0 (run is ignored)
+    double intensity_resolution = 1.0;      ///< intensity_bins: intensity quantum of the KS samples (rounded to
+                                            ///< nearest, ties to even), > 0
+    double level_tolerance_m = 0.15;        ///< join_level_cells: land cells next to a body whose min z is within
+                                            ///< this of the adjacent water level join it; 0 disables. Also
+                                            ///< join_across_bridges' water_tolerance_m
+    double level_max_rise_m = 0.5;          ///< join_level_cells: ... and whose highest return is at most this
+                                            ///< above that level (a cell mostly on the bank is not water), metres
+    int level_join_depth_cells = 2;         ///< join_level_cells: how far (cells) from the grown region it reaches
+    double island_min_area_m2 = 200.0;      ///< fill_small_islands: holes in a body at least this large stay
+                                            ///< land; smaller ones become water, m²
+    double bridge_max_span_m = 30.0;        ///< join_across_bridges: gaps up to this long between two bodies at
+                                            ///< one water level are bridged (decks become water, bodies merge),
+                                            ///< metres; 0 disables
+    double bridge_level_tolerance_m = 1.0;  ///< join_across_bridges: water levels on both sides differ by at most this
+    double bridge_min_clearance_m = 2.0;    ///< join_across_bridges: a deck cell's lowest return stands at least
+                                            ///< this high above the water on both sides, metres
+    int bridge_seed_rounds = 3;             ///< seeds_beyond_bridges: rounds of seeds beyond the decks that end
+                                            ///< bodies (a river's stretches one bridge further per round), each
+                                            ///< grown like the flat seeds; 0 disables. Default 3 (water family,
+                                            ///< rivers of seeds 500-599 with flat seeds: 92.9 -> 95.2 % mean
+                                            ///< sensitivity, 99.49 -> 99.48 % specificity; docs/waterbodies.md)
     seeds_beyond_bridges_options bridge_seeds = {};  ///< seeds_beyond_bridges: deck and level tests
-    std::size_t bridge_seed_min_cells = 8; ///< seeds_beyond_bridges: smallest seed component kept, cells
-    bool bridge_join_touching = true;      ///< join_across_bridges: bodies that touch, at levels within
-                                           ///< bridge_level_tolerance_m, merge (one surface grown from several
-                                           ///< seeds); needs bridge_max_span_m > 0. Default true
-    bool trim_edges = true;                ///< trim_raised_edge_cells: edge cells standing 0.05-0.5 m above the
-                                           ///< local level become land, after the bridges. Default true (water
-                                           ///< family, seeds 500-599: see docs/waterbodies.md)
+    std::size_t bridge_seed_min_cells = 8;           ///< seeds_beyond_bridges: smallest seed component kept, cells
+    bool bridge_join_touching = true;                ///< join_across_bridges: bodies that touch, at levels within
+                                                     ///< bridge_level_tolerance_m, merge (one surface grown from
+                                                     ///< several seeds); needs bridge_max_span_m > 0. Default true
+    bool trim_edges = true;                    ///< trim_raised_edge_cells: edge cells standing 0.05-0.5 m above the
+                                               ///< local level become land, after the bridges. Default true (water
+                                               ///< family, seeds 500-599: see docs/waterbodies.md)
     trim_raised_edge_cells_options trim = {};  ///< trim_raised_edge_cells: window, rise range
-    bool shore_cells = true;               ///< join_shore_cells (needs in.count): edge cells whose count says
-                                           ///< they are mostly water join their body, after the bridges. Default
-                                           ///< true (water family, seeds 500-599: see docs/waterbodies.md)
-    join_shore_cells_options shore = {};   ///< join_shore_cells: window, contrast, water share, neighbours
-    double min_points_per_cell = 2.0;      ///< assess_water_inputs: below this mean density the inputs are refused
-    bool check_inputs = true;              ///< refuse inputs that cannot support the method (see diagnostics)
-    execution run = {};                    ///< threads of the raster kernels (0 = all cores; same result for any
-                                           ///< count); progress over seeds, returning false cancels
+    bool shore_cells = true;                   ///< join_shore_cells (needs in.count): edge cells whose count says
+                                               ///< they are mostly water join their body, after the bridges. Default
+                                               ///< true (water family, seeds 500-599: see docs/waterbodies.md)
+    join_shore_cells_options shore = {};       ///< join_shore_cells: window, contrast, water share, neighbours
+    double min_points_per_cell = 2.0;          ///< assess_water_inputs: below this mean density the inputs are refused
+    bool check_inputs = true;                  ///< refuse inputs that cannot support the method (see diagnostics)
+    execution run = {};                        ///< threads of the raster kernels (0 = all cores; same result for any
+                                               ///< count); progress over seeds, returning false cancels
 };
 
 /// The options of the method before the water family (issue 17): no level gate (grow.level_gate_m = 0),
@@ -157,15 +157,15 @@ inline extract_waterbodies_options flat_seed_water_method()
 
 /// Result of extract_waterbodies, with the intermediate rasters for inspection.
 struct extract_waterbodies_result {
-    raster<std::int32_t> labels;           ///< 0 land, 1..n waterbodies by decreasing area
-    raster<std::uint8_t> water;            ///< 1 water, 0 land
-    std::vector<waterbody> bodies;         ///< bodies[i].label == i + 1
+    raster<std::int32_t> labels;    ///< 0 land, 1..n waterbodies by decreasing area
+    raster<std::uint8_t> water;     ///< 1 water, 0 land
+    std::vector<waterbody> bodies;  ///< bodies[i].label == i + 1
     water_diagnostics diagnostics;
-    raster<std::uint8_t> vegetation;       ///< vegetation mask used
-    raster<float> angle_deg;               ///< angular filter output as growing saw it (NaN: joins at any θ)
-    raster<std::int32_t> seeds;            ///< seed components, 1 = largest
+    raster<std::uint8_t> vegetation;  ///< vegetation mask used
+    raster<float> angle_deg;          ///< angular filter output as growing saw it (NaN: joins at any θ)
+    raster<std::int32_t> seeds;       ///< seed components, 1 = largest
     std::size_t seeds_found = 0, seeds_grown = 0;
-    bool ran = false;                      ///< false when check_inputs refused the data
+    bool ran = false;  ///< false when check_inputs refused the data
 };
 
 namespace detail {
@@ -216,8 +216,8 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
 /// differ (uncut neighbours: each cell reads the mask as it was); the other cells keep their value. band in
 /// metres, > 0. Only the runs of the
 /// mask are visited (stretches of 64 cells off it are passed over at once): O(cells / 64 + mask cells).
-inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const std::int32_t> parts,
-                               std::size_t count, raster_view<const float> min_z, double band)
+inline void cut_at_level_bands(raster_view<std::uint8_t> mask, raster_view<const std::int32_t> parts, std::size_t count,
+                               raster_view<const float> min_z, double band)
 {
     const std::ptrdiff_t rows = mask.rows(), cols = mask.cols();
     std::vector<double> mean(count + 1, 0.0), finite(count + 1, 0.0);  // over returns
@@ -312,9 +312,11 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
                                            .from_multiple_returns = opt.vegetation_from_multiple_returns,
                                            .run = kernels});
     auto bins = intensity_bins(in.mean_intensity, in.dropout, {.resolution = opt.intensity_resolution});
-    water_field field{water_angles(in, cell_m, {.radius_cells = opt.angular_radius_cells, .input = opt.angular_on,
-                                                .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
-                                                .run = kernels}),
+    water_field field{water_angles(in, cell_m,
+                                   {.radius_cells = opt.angular_radius_cells,
+                                    .input = opt.angular_on,
+                                    .dropouts_join_any_threshold = opt.dropouts_join_any_threshold,
+                                    .run = kernels}),
                       raster<std::uint8_t>(rows, cols), std::move(bins.bin), bins.bins, in.min_z};
     {  // byte stores may alias anything: with the pointers in locals the loop vectorizes
         std::uint8_t* eligible = field.eligible.data();
@@ -347,8 +349,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     }
     const raster_view<const std::uint8_t> dropouts =
         in.footprint.empty() ? in.dropout : raster_view<const std::uint8_t>(dropout_inside);
-    auto seeds = water_seeds(dropouts, {.opening_size_cells = opt.seed_opening_size_cells,
-                                        .min_cells = opt.min_seed_cells, .run = kernels});
+    auto seeds = water_seeds(
+        dropouts, {.opening_size_cells = opt.seed_opening_size_cells, .min_cells = opt.min_seed_cells, .run = kernels});
     // Growing is the first 0.9 of the run's progress (0.8 for the dropout seeds when flat seeds follow);
     // cancelling there throws in this function's name.
     const double share = opt.flat_seeds ? 0.8 : 0.9;
@@ -356,12 +358,12 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         detail::report(opt.run.progress, share * f, fn);
         return true;
     };
-    const grow_waterbodies_options grow_opt{
-        .grow = opt.grow,
-        .level = {.tolerance_m = opt.level_tolerance_m, .max_rise_m = opt.level_max_rise_m,
-                  .depth_cells = opt.level_join_depth_cells},
-        .min_free_seed_share = opt.min_free_seed_share,
-        .run = {.progress = seed_progress}};
+    const grow_waterbodies_options grow_opt{.grow = opt.grow,
+                                            .level = {.tolerance_m = opt.level_tolerance_m,
+                                                      .max_rise_m = opt.level_max_rise_m,
+                                                      .depth_cells = opt.level_join_depth_cells},
+                                            .min_free_seed_share = opt.min_free_seed_share,
+                                            .run = {.progress = seed_progress}};
     auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, grow_opt);
     res.seeds_found = seeds.count();
     res.seeds = std::move(seeds.labels);
@@ -422,14 +424,16 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         // whose level happens to lie on a fixed band boundary (a multiple of the band) stays whole.
         if (any_flat && opt.grow.level_gate_m > 0) {
             detail::ensure_shape(labels, rows, cols);  // (flat_water_seeds without counts left it as it was)
-            const auto parts = connected_components(mask, labels, connected_components_options{
-                                                                      .conn = connectivity::eight, .run = kernels});
+            const auto parts = connected_components(
+                mask, labels, connected_components_options{.conn = connectivity::eight, .run = kernels});
             detail::cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z,
                                        2 * opt.grow.level_gate_m);
         }
         if (any_flat) {
-            auto more = water_seeds(mask, {.opening_size_cells = opt.seed_opening_size_cells,
-                                           .min_cells = opt.min_seed_cells, .run = kernels}, std::move(labels));
+            auto more = water_seeds(
+                mask,
+                {.opening_size_cells = opt.seed_opening_size_cells, .min_cells = opt.min_seed_cells, .run = kernels},
+                std::move(labels));
             grow_more(more, 0.8, 0.1);
             labels = std::move(more.labels);
         }
@@ -451,8 +455,10 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
 
     if (opt.bridge_max_span_m > 0 && bodies.size() > 1) {
         join_across_bridges(res.labels, in.min_z, cell_m,
-                            {.max_span_m = opt.bridge_max_span_m, .level_tolerance_m = opt.bridge_level_tolerance_m,
-                             .min_clearance_m = opt.bridge_min_clearance_m, .water_tolerance_m = opt.level_tolerance_m,
+                            {.max_span_m = opt.bridge_max_span_m,
+                             .level_tolerance_m = opt.bridge_level_tolerance_m,
+                             .min_clearance_m = opt.bridge_min_clearance_m,
+                             .water_tolerance_m = opt.level_tolerance_m,
                              .join_touching = opt.bridge_join_touching});
     }
     if (opt.trim_edges) trim_raised_edge_cells(res.labels, in.min_z, opt.trim);
@@ -478,7 +484,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
 }
 
 /// extract_waterbodies on the output of rasterize(), at its grid's cell size.
-inline extract_waterbodies_result extract_waterbodies(const rasterize_result& pr, const extract_waterbodies_options& opt = {})
+inline extract_waterbodies_result extract_waterbodies(const rasterize_result& pr,
+                                                      const extract_waterbodies_options& opt = {})
 {
     return extract_waterbodies(to_water_rasters(pr), pr.g.cell, opt);
 }

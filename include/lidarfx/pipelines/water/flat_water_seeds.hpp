@@ -26,51 +26,52 @@ namespace lidarfx {
 /// a water surface is level to the range noise of the scanner (2-3 cm per return), returns fewer pulses
 /// than the land around it (specular reflection away from the sensor, absorption), and lies below its banks.
 struct flat_water_seeds_options {
-    int level_radius_cells = 1;       ///< the level test reads the (2 r + 1)² window around a cell (3 × 3: a
-                                      ///< river a few cells wide still has level cells), >= 1. Default 1
-    double level_tolerance_m = 0.10;  ///< the window's min z spans at most this, metres (≈ 4 σ of 2-3 cm range
-                                      ///< noise on the lowest return), >= 0. Default 0.10
-    double max_roughness_m = 0.2;     ///< a cell's max z − min z is at most this (several σ of range noise plus
-                                      ///< waves; low vegetation and edges are rougher), metres, >= 0. Default 0.2
-    std::size_t min_cells = 50;       ///< a seed keeps components of at least this many cells, >= 1. Default 50
-    int ring_cells = 4;               ///< the land a component is compared with lies within this Chebyshev
-                                      ///< distance of it, cells, >= 1. Default 4
-    double max_density_ratio = 0.85;  ///< sparse: a component's mean returns per cell is at most this share of its
-                                      ///< ring's (water loses pulses; flat land, asphalt and roofs do not), in
-                                      ///< (0, 1]. Default 0.85
-    double dark_density_ratio = 0.97; ///< dark and sparse: ... or at most this share when it is also dark (then
-                                      ///< a few % fewer returns suffice: asphalt is dark but returns every
-                                      ///< pulse), in (0, 1]. Default 0.97
-    double max_intensity_ratio = 0.6; ///< dark: its mean intensity is at most this share of its ring's (water
-                                      ///< absorbs the near infrared), >= 0; 0 disables the dark path. Default 0.6
-    double max_roughness_ratio = 0.6; ///< smooth and sparse: ... or at most dark_density_ratio of it when its mean
-                                      ///< max z − min z is at most this share of the median over all level cells
-                                      ///< (calm water is smoother than grass, soil and asphalt with their
-                                      ///< micro-relief), >= 0; 0 disables the smooth path. Default 0.6
-    double max_lower_share = 0.1;     ///< lowest: at most this share of its ring lies more than level_tolerance_m
-                                      ///< below the component's lowest cell within ring_cells of it (water fills
-                                      ///< the lowest ground around it; roofs and lots on sloping ground have
-                                      ///< lower ground next to them), in [0, 1].
-                                      ///< Default 0.1
-    double bright_density_ratio = 0.72; ///< sparse and bright: at most this share of the ring's returns makes a
-                                      ///< component sparse whatever its intensity (specular echoes near nadir
-                                      ///< are brighter than a dark ring while the pulses around them are lost;
-                                      ///< no flat land loses a quarter of its pulses), in [0, 1]; 0 disables.
-                                      ///< Default 0.72
-    double max_joint_ratio = 0.6;     ///< weak cues together: ... or at most dark_density_ratio of the ring's
-                                      ///< returns when density ratio × intensity ratio × roughness ratio (as
-                                      ///< above; roughness against the median of level cells) is at most this,
-                                      ///< for a component of at least joint_min_cells (each cue a little
-                                      ///< water-like; land fragments of a few dozen cells scatter too much to be
-                                      ///< judged so), >= 0; 0 disables. Default 0.6
-    std::size_t joint_min_cells = 150; ///< see max_joint_ratio, cells. Default 150
-    double max_surface_slope = 0.008; ///< level: given a surface slope (water_surface_slope or its lazy form), a
-                                      ///< component is a seed only when the median over its cells of the slope of
-                                      ///< the plane fitted around them is at most this, and its cells where the slope
-                                      ///< exceeds it are no seed cells, m/m (a water surface is level; a river
-                                      ///< falls a few mm per metre; a beach rising 1-6 % has level 3 × 3 windows
-                                      ///< too, and joins the water's level cells); < 0 disables. Default 0.008
-    execution run = {};               ///< threads of the window filters and the labelling (same result for any count)
+    int level_radius_cells = 1;          ///< the level test reads the (2 r + 1)² window around a cell (3 × 3: a
+                                         ///< river a few cells wide still has level cells), >= 1. Default 1
+    double level_tolerance_m = 0.10;     ///< the window's min z spans at most this, metres (≈ 4 σ of 2-3 cm range
+                                         ///< noise on the lowest return), >= 0. Default 0.10
+    double max_roughness_m = 0.2;        ///< a cell's max z − min z is at most this (several σ of range noise plus
+                                         ///< waves; low vegetation and edges are rougher), metres, >= 0. Default 0.2
+    std::size_t min_cells = 50;          ///< a seed keeps components of at least this many cells, >= 1. Default 50
+    int ring_cells = 4;                  ///< the land a component is compared with lies within this Chebyshev
+                                         ///< distance of it, cells, >= 1. Default 4
+    double max_density_ratio = 0.85;     ///< sparse: a component's mean returns per cell is at most this share of its
+                                         ///< ring's (water loses pulses; flat land, asphalt and roofs do not), in
+                                         ///< (0, 1]. Default 0.85
+    double dark_density_ratio = 0.97;    ///< dark and sparse: ... or at most this share when it is also dark (then
+                                         ///< a few % fewer returns suffice: asphalt is dark but returns every
+                                         ///< pulse), in (0, 1]. Default 0.97
+    double max_intensity_ratio = 0.6;    ///< dark: its mean intensity is at most this share of its ring's (water
+                                         ///< absorbs the near infrared), >= 0; 0 disables the dark path. Default 0.6
+    double max_roughness_ratio = 0.6;    ///< smooth and sparse: ... or at most dark_density_ratio of it when its mean
+                                         ///< max z − min z is at most this share of the median over all level cells
+                                         ///< (calm water is smoother than grass, soil and asphalt with their
+                                         ///< micro-relief), >= 0; 0 disables the smooth path. Default 0.6
+    double max_lower_share = 0.1;        ///< lowest: at most this share of its ring lies more than level_tolerance_m
+                                         ///< below the component's lowest cell within ring_cells of it (water fills
+                                         ///< the lowest ground around it; roofs and lots on sloping ground have
+                                         ///< lower ground next to them), in [0, 1].
+                                         ///< Default 0.1
+    double bright_density_ratio = 0.72;  ///< sparse and bright: at most this share of the ring's returns makes a
+                                         ///< component sparse whatever its intensity (specular echoes near nadir
+                                         ///< are brighter than a dark ring while the pulses around them are lost;
+                                         ///< no flat land loses a quarter of its pulses), in [0, 1]; 0 disables.
+                                         ///< Default 0.72
+    double max_joint_ratio = 0.6;        ///< weak cues together: ... or at most dark_density_ratio of the ring's
+                                         ///< returns when density ratio × intensity ratio × roughness ratio (as
+                                         ///< above; roughness against the median of level cells) is at most this,
+                                         ///< for a component of at least joint_min_cells (each cue a little
+                                         ///< water-like; land fragments of a few dozen cells scatter too much to be
+                                         ///< judged so), >= 0; 0 disables. Default 0.6
+    std::size_t joint_min_cells = 150;   ///< see max_joint_ratio, cells. Default 150
+    double max_surface_slope = 0.008;    ///< level: given a surface slope (water_surface_slope or its lazy form), a
+                                         ///< component is a seed only when the median over its cells of the slope
+                                         ///< of the plane fitted around them is at most this, and its cells where
+                                         ///< the slope exceeds it are no seed cells, m/m (a water surface is level;
+                                         ///< a river falls a few mm per metre; a beach rising 1-6 % has level 3 × 3
+                                         ///< windows too, and joins the water's level cells); < 0 disables.
+                                         ///< Default 0.008
+    execution run = {};  ///< threads of the window filters and the labelling (same result for any count)
 };
 
 namespace detail {
@@ -252,18 +253,22 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
             // Small windows row by row, in place (level_window_row); rows outside the raster read as NaN.
             const int k = opt.level_radius_cells;
             const std::vector<float> nan_row(static_cast<std::size_t>(cols), none);
-            parallel_for_rows(rows, 256, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-                std::vector<float> low(static_cast<std::size_t>(cols + 2 * k)), high(low.size());
-                const float* window[5];
-                for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                    for (std::ptrdiff_t d = -k; d <= k; ++d)
-                        window[d + k] = r + d >= 0 && r + d < rows ? in.min_z.row(r + d) : nan_row.data();
-                    const auto test = k == 1 ? detail::level_window_row<1> : detail::level_window_row<2>;
-                    test(window, low.data(), high.data(), in.min_z.row(r), in.max_z.row(r), in.dropout.row(r),
-                         in.footprint.empty() ? ones.data() : in.footprint.row(r),
-                         excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), cols, max_rough, tolerance);
-                }
-            }, {}, fn);
+            parallel_for_rows(
+                rows, 256, opt.run.threads,
+                [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                    std::vector<float> low(static_cast<std::size_t>(cols + 2 * k)), high(low.size());
+                    const float* window[5];
+                    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                        for (std::ptrdiff_t d = -k; d <= k; ++d)
+                            window[d + k] = r + d >= 0 && r + d < rows ? in.min_z.row(r + d) : nan_row.data();
+                        const auto test = k == 1 ? detail::level_window_row<1> : detail::level_window_row<2>;
+                        test(window, low.data(), high.data(), in.min_z.row(r), in.max_z.row(r), in.dropout.row(r),
+                             in.footprint.empty() ? ones.data() : in.footprint.row(r),
+                             excluded.empty() ? zeros.data() : excluded.row(r), level.row(r), cols, max_rough,
+                             tolerance);
+                    }
+                },
+                {}, fn);
         } else {
             struct scratch {
                 detail::min_max_scratch<float> s;
@@ -279,8 +284,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
                         const float* z = in.min_z.row(r);
                         for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = std::isfinite(z[c]) ? z[c] : none;
                     };
-                    detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(),
-                                                                    w.s);
+                    detail::min_max_rows<detail::min_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.lows.data(), w.s);
                     detail::min_max_rows<detail::max_reduce<float>>(rows, nc, kx, ky, r0, r1, load, w.highs.data(),
                                                                     w.s);
                     for (std::ptrdiff_t r = r0; r < r1; ++r) {
@@ -408,87 +412,96 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
         std::vector<ring_cell> near;
         std::vector<std::uint8_t> candidate;
     };
-    detail::for_each_strip<scratch>(rows, strip, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
-        const std::ptrdiff_t nc = cols;
-        // Only rings of components with a cell not taken matter (the others are no seed whatever their ring).
-        bool any = false;
-        for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
-            detail::for_each_run(labels.row(r), nc, [&](std::int32_t l, std::ptrdiff_t, std::ptrdiff_t) {
-                any = any || free_cells[static_cast<std::size_t>(l)] > 0;
-            });
-        }
-        if (!any) return;
-        const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
-        w.lowest.resize(cells);
-        w.highest.resize(cells);
-        w.z_low.resize(cells);
-        const std::ptrdiff_t wide = 2 * nc + qx;  // [label | qx zeros | K_max + 1 - label]
-        // K_max + 1 − label as K{0} − label, modulo 2^bits.
-        const auto label_range = [&]<class K>(std::vector<K>& within, detail::min_max_scratch<K>& s) {
-            const auto load = [&](std::ptrdiff_t r, K* dst) {
-                const std::int32_t* lab = labels.row(r);
-                K* mirrored = dst + nc + qx;
-                for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                    const K key = static_cast<K>(lab[c] > 0 ? lab[c] : 0);
-                    dst[c] = key;
-                    mirrored[c] = static_cast<K>(K{0} - key);  // 0 stays 0
-                }
-                std::fill(dst + nc, mirrored, K{0});
-            };
-            within.resize(static_cast<std::size_t>((r1 - r0) * wide));
-            detail::min_max_rows<detail::max_reduce<K>>(rows, wide, qx, qy, r0, r1, load, within.data(), s);
-            for (std::ptrdiff_t i = 0; i < r1 - r0; ++i) {
-                const K* high = within.data() + i * wide;
-                const K* mirrored = high + nc + qx;
-                std::int32_t* lowest = w.lowest.data() + i * nc;
-                std::int32_t* highest = w.highest.data() + i * nc;
-                for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                    highest[c] = static_cast<std::int32_t>(high[c]);
-                    lowest[c] = static_cast<std::int32_t>(static_cast<K>(K{0} - mirrored[c]));  // 0 when none
-                }
+    detail::for_each_strip<scratch>(
+        rows, strip, opt.run.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1, scratch& w) {
+            const std::ptrdiff_t nc = cols;
+            // Only rings of components with a cell not taken matter (the others are no seed whatever their ring).
+            bool any = false;
+            for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(0, r0 - qy); r < std::min(rows, r1 + qy) && !any; ++r) {
+                detail::for_each_run(labels.row(r), nc, [&](std::int32_t l, std::ptrdiff_t, std::ptrdiff_t) {
+                    any = any || free_cells[static_cast<std::size_t>(l)] > 0;
+                });
             }
-        };
-        if (nb < std::numeric_limits<std::uint16_t>::max()) label_range(w.within16, w.s16);
-        else label_range(w.within32, w.s32);
-        const auto load_z = [&](std::ptrdiff_t r, float* dst) {
-            const std::int32_t* lab = labels.row(r);
-            const float* z = in.min_z.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
-        };
-        detail::min_max_rows<detail::min_reduce<float>>(rows, nc, qx, qy, r0, r1, load_z, w.z_low.data(), w.sf);
-        auto& list = found[static_cast<std::size_t>(r0 / strip)];
-        auto& near = w.near;
-        w.candidate.resize(static_cast<std::size_t>(nc));
-        std::uint8_t* candidate = w.candidate.data();
-        for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            const std::int32_t* lab = labels.row(r);
-            const std::int32_t* lowest = w.lowest.data() + (r - r0) * nc;
-            const std::int32_t* highest = w.highest.data() + (r - r0) * nc;
-            const float* z_low = w.z_low.data() + (r - r0) * nc;
-            // Ring cells of this row: in no component, a large one within reach, a return.
-            detail::ring_row(lab, highest, in.dropout.row(r), in.min_z.row(r),
-                             in.footprint.empty() ? ones.data() : in.footprint.row(r), candidate, nc);
-            for (std::ptrdiff_t c = detail::next_positive(candidate, 0, nc); c < nc;
-                 c = detail::next_positive(candidate, c + 1, nc)) {
-                if (lowest[c] == highest[c]) {
-                    list.push_back({r, c, highest[c], z_low[c]});
-                    continue;
-                }
-                near.clear();  // two components or more within reach: each with its own lowest min z
-                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q); ++rr) {
-                    const std::int32_t* row = labels.row(rr);
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(nc - 1, c + q); ++cc) {
-                        if (row[cc] <= 0) continue;
-                        const auto it = std::find_if(near.begin(), near.end(),
-                                                     [&](const ring_cell& e) { return e.label == row[cc]; });
-                        if (it == near.end()) near.push_back({r, c, row[cc], in.min_z(rr, cc)});
-                        else it->z = std::min(it->z, in.min_z(rr, cc));
+            if (!any) return;
+            const auto cells = static_cast<std::size_t>((r1 - r0) * nc);
+            w.lowest.resize(cells);
+            w.highest.resize(cells);
+            w.z_low.resize(cells);
+            const std::ptrdiff_t wide = 2 * nc + qx;  // [label | qx zeros | K_max + 1 - label]
+            // K_max + 1 − label as K{0} − label, modulo 2^bits.
+            const auto label_range = [&]<class K>(std::vector<K>& within, detail::min_max_scratch<K>& s) {
+                const auto load = [&](std::ptrdiff_t r, K* dst) {
+                    const std::int32_t* lab = labels.row(r);
+                    K* mirrored = dst + nc + qx;
+                    for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                        const K key = static_cast<K>(lab[c] > 0 ? lab[c] : 0);
+                        dst[c] = key;
+                        mirrored[c] = static_cast<K>(K{0} - key);  // 0 stays 0
+                    }
+                    std::fill(dst + nc, mirrored, K{0});
+                };
+                within.resize(static_cast<std::size_t>((r1 - r0) * wide));
+                detail::min_max_rows<detail::max_reduce<K>>(rows, wide, qx, qy, r0, r1, load, within.data(), s);
+                for (std::ptrdiff_t i = 0; i < r1 - r0; ++i) {
+                    const K* high = within.data() + i * wide;
+                    const K* mirrored = high + nc + qx;
+                    std::int32_t* lowest = w.lowest.data() + i * nc;
+                    std::int32_t* highest = w.highest.data() + i * nc;
+                    for (std::ptrdiff_t c = 0; c < nc; ++c) {
+                        highest[c] = static_cast<std::int32_t>(high[c]);
+                        lowest[c] = static_cast<std::int32_t>(static_cast<K>(K{0} - mirrored[c]));  // 0 when none
                     }
                 }
-                list.insert(list.end(), near.begin(), near.end());
+            };
+            if (nb < std::numeric_limits<std::uint16_t>::max())
+                label_range(w.within16, w.s16);
+            else
+                label_range(w.within32, w.s32);
+            const auto load_z = [&](std::ptrdiff_t r, float* dst) {
+                const std::int32_t* lab = labels.row(r);
+                const float* z = in.min_z.row(r);
+                for (std::ptrdiff_t c = 0; c < nc; ++c) dst[c] = lab[c] > 0 ? z[c] : none;
+            };
+            detail::min_max_rows<detail::min_reduce<float>>(rows, nc, qx, qy, r0, r1, load_z, w.z_low.data(), w.sf);
+            auto& list = found[static_cast<std::size_t>(r0 / strip)];
+            auto& near = w.near;
+            w.candidate.resize(static_cast<std::size_t>(nc));
+            std::uint8_t* candidate = w.candidate.data();
+            for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                const std::int32_t* lab = labels.row(r);
+                const std::int32_t* lowest = w.lowest.data() + (r - r0) * nc;
+                const std::int32_t* highest = w.highest.data() + (r - r0) * nc;
+                const float* z_low = w.z_low.data() + (r - r0) * nc;
+                // Ring cells of this row: in no component, a large one within reach, a return.
+                detail::ring_row(lab, highest, in.dropout.row(r), in.min_z.row(r),
+                                 in.footprint.empty() ? ones.data() : in.footprint.row(r), candidate, nc);
+                for (std::ptrdiff_t c = detail::next_positive(candidate, 0, nc); c < nc;
+                     c = detail::next_positive(candidate, c + 1, nc)) {
+                    if (lowest[c] == highest[c]) {
+                        list.push_back({r, c, highest[c], z_low[c]});
+                        continue;
+                    }
+                    near.clear();  // two components or more within reach: each with its own lowest min z
+                    for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - q); rr <= std::min(rows - 1, r + q);
+                         ++rr) {
+                        const std::int32_t* row = labels.row(rr);
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - q); cc <= std::min(nc - 1, c + q);
+                             ++cc) {
+                            if (row[cc] <= 0) continue;
+                            const auto it = std::find_if(near.begin(), near.end(),
+                                                         [&](const ring_cell& e) { return e.label == row[cc]; });
+                            if (it == near.end())
+                                near.push_back({r, c, row[cc], in.min_z(rr, cc)});
+                            else
+                                it->z = std::min(it->z, in.min_z(rr, cc));
+                        }
+                    }
+                    list.insert(list.end(), near.begin(), near.end());
+                }
             }
-        }
-    }, {}, fn);
+        },
+        {}, fn);
     for (const auto& list : found) {
         for (const auto& e : list) {
             const auto m = static_cast<std::size_t>(e.label);

@@ -63,8 +63,8 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
     detail::require_same_shape(field.eligible, into.labels, fn, "field.eligible", "into.labels");
     detail::validate(opt.grow, fn);
     detail::validate(opt.level, fn);
-    detail::require(opt.min_free_seed_share > 0 && opt.min_free_seed_share <= 1, fn, "min_free_seed_share",
-                    "in (0, 1]", opt.min_free_seed_share);
+    detail::require(opt.min_free_seed_share > 0 && opt.min_free_seed_share <= 1, fn, "min_free_seed_share", "in (0, 1]",
+                    opt.min_free_seed_share);
     const auto seed_lists = detail::seed_cells_flat(seeds, fn);
     const std::size_t n = seeds.count();
     auto& out = into;

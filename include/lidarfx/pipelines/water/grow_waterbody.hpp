@@ -21,15 +21,15 @@ namespace lidarfx {
 /// Per-cell inputs of the growing step, all of one shape: rasters owned (contiguous), min z and the surface
 /// slope shown (keep what they show alive while growing).
 struct water_field {
-    raster<float> angle_deg;             ///< angular filter value, degrees; NaN = may join at any threshold
-    raster<std::uint8_t> eligible;       ///< 1 = may join a waterbody (not vegetation, not already taken)
-    raster<std::int32_t> intensity_bin;  ///< intensity sample of the cell as a bin in [0, bins); -1 = none
-    int bins = 1;                        ///< number of intensity bins, >= 1
-    raster_view<const float> min_z = {}; ///< optional: lowest return per cell, metres, NaN = none; the level
-                                         ///< gate reads it (empty = no gate). A view: keep it alive while growing
-    surface_slope_source surface_slope = {}; ///< optional: water_surface_slope of min z (a raster or a
-                                         ///< lazy_water_surface_slope), m/m, NaN = unknown; read with
-                                         ///< grow_waterbody_options::level_follow_max_slope
+    raster<float> angle_deg;                  ///< angular filter value, degrees; NaN = may join at any threshold
+    raster<std::uint8_t> eligible;            ///< 1 = may join a waterbody (not vegetation, not already taken)
+    raster<std::int32_t> intensity_bin;       ///< intensity sample of the cell as a bin in [0, bins); -1 = none
+    int bins = 1;                             ///< number of intensity bins, >= 1
+    raster_view<const float> min_z = {};      ///< optional: lowest return per cell, metres, NaN = none; the level
+                                              ///< gate reads it (empty = no gate). A view: keep it alive while growing
+    surface_slope_source surface_slope = {};  ///< optional: water_surface_slope of min z (a raster or a
+                                              ///< lazy_water_surface_slope), m/m, NaN = unknown; read with
+                                              ///< grow_waterbody_options::level_follow_max_slope
 };
 
 /// Which sample a growth step is compared with the previous region's sample.
@@ -40,54 +40,54 @@ enum class ks_sample_mode {
 
 /// Threshold schedule and stopping rule of the growing step (dissertation §2.3.3, DESIGN.md §5).
 struct grow_waterbody_options {
-    double theta_start_deg = 2.0;        ///< first angular threshold θ_0, degrees, >= 0
-    double theta_step_deg = 1.0;         ///< increment of θ per step, degrees, > 0
-    double theta_max_deg = 30.0;         ///< last threshold, degrees, >= theta_start_deg, <= 90
-    ks_one_sided_options ks = {};        ///< one-sided KS test between consecutive regions (α, critical value)
-    std::size_t min_ks_samples = 30;     ///< steps are accepted untested until the reference sample has this
-                                         ///< many intensity values (a seed of dropouts has none)
+    double theta_start_deg = 2.0;     ///< first angular threshold θ_0, degrees, >= 0
+    double theta_step_deg = 1.0;      ///< increment of θ per step, degrees, > 0
+    double theta_max_deg = 30.0;      ///< last threshold, degrees, >= theta_start_deg, <= 90
+    ks_one_sided_options ks = {};     ///< one-sided KS test between consecutive regions (α, critical value)
+    std::size_t min_ks_samples = 30;  ///< steps are accepted untested until the reference sample has this
+                                      ///< many intensity values (a seed of dropouts has none)
     ks_sample_mode sample = ks_sample_mode::increment;  ///< what each step's sample holds (cumulative =
                                                         ///< the dissertation's literal test)
-    double level_gate_m = 0.15;      ///< level gate (needs field.min_z): a cell with a return joins only when
-                                     ///< |min z − L| <= level_gate_m, L the level it is reached from (the
-                                     ///< seed's: seed_water_level); metres; 0 disables. Default 0.15 m
-    double level_drift_m = 0.005;    ///< the level a joining cell passes on follows its min z by at most this
-                                     ///< (L' = L + clamp(min z − L, ±drift)): rivers fall, beaches rise
-                                     ///< faster; metres per cell, >= 0. Default 0.005 m
-    double level_rise_m = -1;        ///< upward drift: the level a joining cell passes on rises by at most this
-                                     ///< per cell (L' = L + clamp(min z − L, −level_drift_m, level_rise_m));
-                                     ///< metres per cell; < 0 = level_drift_m. Default -1
-    double level_ks_exempt_m = 0.05; ///< with the gate: cells with min z <= L + this are water by level and
-                                     ///< stay out of the KS increment sample (bright specular water near
-                                     ///< nadir); metres; < 0 disables. Default 0.05 m
+    double level_gate_m = 0.15;       ///< level gate (needs field.min_z): a cell with a return joins only when
+                                      ///< |min z − L| <= level_gate_m, L the level it is reached from (the
+                                      ///< seed's: seed_water_level); metres; 0 disables. Default 0.15 m
+    double level_drift_m = 0.005;     ///< the level a joining cell passes on follows its min z by at most this
+                                      ///< (L' = L + clamp(min z − L, ±drift)): rivers fall, beaches rise
+                                      ///< faster; metres per cell, >= 0. Default 0.005 m
+    double level_rise_m = -1;         ///< upward drift: the level a joining cell passes on rises by at most this
+                                      ///< per cell (L' = L + clamp(min z − L, −level_drift_m, level_rise_m));
+                                      ///< metres per cell; < 0 = level_drift_m. Default -1
+    double level_ks_exempt_m = 0.05;  ///< with the gate: cells with min z <= L + this are water by level and
+                                      ///< stay out of the KS increment sample (bright specular water near
+                                      ///< nadir); metres; < 0 disables. Default 0.05 m
     seed_water_level_options seed_level = {};  ///< how the seed's level L is read from the returns around it
-    double level_follow_max_slope = -1; ///< with the gate and field.surface_slope: a joining cell passes on a
-                                     ///< level that follows its min z (the drift) only where the surface around
-                                     ///< it is level, slope <= this (m/m; NaN, unknown, follows); elsewhere it
-                                     ///< passes its level on unchanged, as a dropout does (a flood no longer
-                                     ///< ratchets up a beach or down a falling bank); < 0 disables. Default -1
-                                     ///< (0.008 with flat seeds: docs/waterbodies.md)
-    bool test_first_step = true;     ///< with the gate and level_ks_exempt_m >= 0: the first step, which has no
-                                     ///< previous region to be tested against, is tested within itself. Its
-                                     ///< cells with returns off the level they are reached at (|min z − L| >
-                                     ///< level_ks_exempt_m) wait until the cells at the level are in; then
-                                     ///< their intensity sample is tested (ks_one_sided) against the region's
-                                     ///< so far, when that has min_ks_samples values: accepted, they join and
-                                     ///< the step goes on (what they reach is tested the same way); rejected,
-                                     ///< they never join, and the step ends without what only they reach (a
-                                     ///< flat meadow or terrace next to the water, within the gate, was
-                                     ///< flooded at θ_0 without any test). The seed's own cells never wait.
-                                     ///< Default true (water family, seeds 500-599: river specificity 99.40
-                                     ///< -> 99.76 %, worst lake's 88 -> 99 %; river sensitivity 66 -> 64 %;
-                                     ///< docs/waterbodies.md)
+    double level_follow_max_slope = -1;        ///< with the gate and field.surface_slope: a joining cell passes on a
+                                               ///< level that follows its min z (the drift) only where the surface
+                                               ///< around it is level, slope <= this (m/m; NaN, unknown, follows);
+                                               ///< elsewhere it passes its level on unchanged, as a dropout does (a
+                                               ///< flood no longer ratchets up a beach or down a falling bank); < 0
+                                               ///< disables. Default -1 (0.008 with flat seeds: docs/waterbodies.md)
+    bool test_first_step = true;  ///< with the gate and level_ks_exempt_m >= 0: the first step, which has no
+                                  ///< previous region to be tested against, is tested within itself. Its
+                                  ///< cells with returns off the level they are reached at (|min z − L| >
+                                  ///< level_ks_exempt_m) wait until the cells at the level are in; then
+                                  ///< their intensity sample is tested (ks_one_sided) against the region's
+                                  ///< so far, when that has min_ks_samples values: accepted, they join and
+                                  ///< the step goes on (what they reach is tested the same way); rejected,
+                                  ///< they never join, and the step ends without what only they reach (a
+                                  ///< flat meadow or terrace next to the water, within the gate, was
+                                  ///< flooded at θ_0 without any test). The seed's own cells never wait.
+                                  ///< Default true (water family, seeds 500-599: river specificity 99.40
+                                  ///< -> 99.76 %, worst lake's 88 -> 99 %; river sensitivity 66 -> 64 %;
+                                  ///< docs/waterbodies.md)
 };
 
 /// Result of growing one seed.
 struct grow_waterbody_result {
-    std::vector<std::ptrdiff_t> cells;   ///< linear cell indices r * cols + c, in the order they joined
-    int steps_accepted = -1;             ///< last accepted step k (θ_k = θ_0 + k·Δθ); -1 when nothing joined
-    double theta_deg = NAN;              ///< θ of the last accepted step
-    bool stopped_by_ks = false;          ///< true when the KS test rejected step steps_accepted + 1
+    std::vector<std::ptrdiff_t> cells;  ///< linear cell indices r * cols + c, in the order they joined
+    int steps_accepted = -1;            ///< last accepted step k (θ_k = θ_0 + k·Δθ); -1 when nothing joined
+    double theta_deg = NAN;             ///< θ of the last accepted step
+    bool stopped_by_ks = false;         ///< true when the KS test rejected step steps_accepted + 1
 };
 
 namespace detail {
@@ -96,8 +96,7 @@ inline void validate(const grow_waterbody_options& o, const char* function)
 {
     require(o.theta_start_deg >= 0 && o.theta_start_deg <= 90, function, "theta_start_deg", "in [0, 90]",
             o.theta_start_deg);
-    require(o.theta_step_deg > 0 && o.theta_step_deg <= 90, function, "theta_step_deg", "in (0, 90]",
-            o.theta_step_deg);
+    require(o.theta_step_deg > 0 && o.theta_step_deg <= 90, function, "theta_step_deg", "in (0, 90]", o.theta_step_deg);
     require(o.theta_max_deg >= o.theta_start_deg && o.theta_max_deg <= 90, function, "theta_max_deg",
             ">= theta_start_deg and <= 90", o.theta_max_deg);
     require(o.ks.alpha > 0 && o.ks.alpha < 1, function, "ks.alpha", "in (0, 1)", o.ks.alpha);
@@ -175,9 +174,9 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         float level;
         std::int32_t sample;
     };
-    constexpr std::int32_t by_level_bit = 1 << 30;  // min z <= level + exempt: water by its height
-    constexpr std::int32_t at_level_bit = 1 << 29;  // |min z − level| <= exempt (test_first_step)
-    constexpr std::int32_t bin_bits = (1 << 24) - 1; // bins <= ks_histogram::largest_max_value + 1
+    constexpr std::int32_t by_level_bit = 1 << 30;    // min z <= level + exempt: water by its height
+    constexpr std::int32_t at_level_bit = 1 << 29;    // |min z − level| <= exempt (test_first_step)
+    constexpr std::int32_t bin_bits = (1 << 24) - 1;  // bins <= ks_histogram::largest_max_value + 1
     static_assert(ks_histogram::largest_max_value <= static_cast<std::uint32_t>(bin_bits));
     // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
     using cell_queue = std::vector<queued, detail::raster_allocator<queued>>;
@@ -221,8 +220,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         buckets[static_cast<std::size_t>(k)].push_back({i, level, sample});
     };
     const auto fresh = [&](std::ptrdiff_t i) { return seen[i] != stamp && eligible[i]; };
-    const float seed_level =
-        gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
+    const float seed_level = gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
     for (const auto i : seed_cells) {
         if (i < 0 || i >= n) [[unlikely]]
             detail::require(false, fn, "seed cell index", "inside the field", i);

@@ -85,7 +85,7 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
         for (std::ptrdiff_t c = 0; c < width; ++c) {
             const auto bits = std::bit_cast<std::int32_t>(mean[c]);
             const bool finite = (bits & 0x7f800000) != 0x7f800000;
-            const std::int32_t sample = -static_cast<std::int32_t>(finite & (d[c] == 0));  // all ones or 0
+            const std::int32_t sample = -static_cast<std::int32_t>(finite & (d[c] == 0));   // all ones or 0
             double x = static_cast<double>(std::bit_cast<float>(bits & sample)) * inverse;  // 0 without sample
             x = x < -limit ? -limit : x;  // clamping before rounding gives the same integer as after
             x = x > limit ? limit : x;
@@ -144,9 +144,10 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
     result.bins = std::max(1, static_cast<int>(distinct.size()));
     for (std::ptrdiff_t i = 0; i < n; ++i)
-        cell[i] = cell[i] == none ? -1
-                                  : static_cast<std::int32_t>(std::lower_bound(distinct.begin(), distinct.end(), value(i)) -
-                                                              distinct.begin());
+        cell[i] = cell[i] == none
+                      ? -1
+                      : static_cast<std::int32_t>(std::lower_bound(distinct.begin(), distinct.end(), value(i)) -
+                                                  distinct.begin());
     return result;
 }
 

@@ -43,7 +43,8 @@ inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::si
     for (std::size_t body = 1; body < boxes.size(); ++body) {
         const auto& b = boxes[body];
         if (b.empty()) continue;
-        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b.row_min - 1), c0 = std::max<std::ptrdiff_t>(0, b.col_min - 1);
+        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b.row_min - 1),
+                             c0 = std::max<std::ptrdiff_t>(0, b.col_min - 1);
         const std::ptrdiff_t r1 = std::min(rows - 1, b.row_max + 1), c1 = std::min(cols - 1, b.col_max + 1);
         const std::ptrdiff_t nr = r1 - r0 + 1, nc = c1 - c0 + 1;
         if (nr < 3 || nc < 3) continue;
@@ -55,7 +56,8 @@ inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::si
             std::uint8_t* out = other.row(r);
             for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] != l;
         }
-        const auto parts = connected_components(other, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
+        const auto parts = connected_components(
+            other, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
         std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
         fill[0] = 0;
         for (std::size_t k = 1; k < parts.sizes.size(); ++k)
@@ -100,7 +102,8 @@ inline std::size_t fill_holes_at_once(raster_view<std::int32_t> labels, std::siz
         std::uint8_t* out = land.row(r);
         for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] == 0;
     }
-    const auto parts = connected_components(land, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
+    const auto parts = connected_components(
+        land, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
     // owner[k]: the body around part k while it may be a hole; 0 = none seen yet, -1 = not a hole (too
     // large, on the box's edge, or next to two bodies).
     std::vector<std::int32_t> owner(parts.sizes.size(), 0);
@@ -108,9 +111,11 @@ inline std::size_t fill_holes_at_once(raster_view<std::int32_t> labels, std::siz
     for (std::size_t k = 1; k < parts.sizes.size(); ++k)
         if (parts.sizes[k] >= max_hole_cells) owner[k] = -1;
     for (std::ptrdiff_t c = 0; c < nc; ++c)
-        owner[static_cast<std::size_t>(parts.labels(0, c))] = owner[static_cast<std::size_t>(parts.labels(nr - 1, c))] = -1;
+        owner[static_cast<std::size_t>(parts.labels(0, c))] = owner[static_cast<std::size_t>(parts.labels(nr - 1, c))] =
+            -1;
     for (std::ptrdiff_t r = 0; r < nr; ++r)
-        owner[static_cast<std::size_t>(parts.labels(r, 0))] = owner[static_cast<std::size_t>(parts.labels(r, nc - 1))] = -1;
+        owner[static_cast<std::size_t>(parts.labels(r, 0))] = owner[static_cast<std::size_t>(parts.labels(r, nc - 1))] =
+            -1;
     const auto meet = [](std::int32_t& o, std::int32_t l) {
         if (l > 0 && o >= 0) o = o == 0 || o == l ? l : -1;
     };
@@ -179,7 +184,8 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
         if (boxed && boxes.size() <= static_cast<std::size_t>(high))
             boxes.resize(static_cast<std::size_t>(high) + 1, cell_box{rows, cols, -1, -1});
         std::ptrdiff_t first = cols, last = -1;
-        for (std::ptrdiff_t c = detail::next_positive(row, 0, cols); c < cols; c = detail::next_positive(row, c, cols)) {
+        for (std::ptrdiff_t c = detail::next_positive(row, 0, cols); c < cols;
+             c = detail::next_positive(row, c, cols)) {
             const std::int32_t l = row[c];
             const std::ptrdiff_t start = c;
             while (c < cols && row[c] == l) ++c;
@@ -205,8 +211,9 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
         if (covered <= rows * cols) {
             filled = detail::fill_holes_per_body(labels, max_hole_cells, boxes, opt.run.threads);
         } else {
-            const cell_box grown{std::max<std::ptrdiff_t>(0, all.row_min - 1), std::max<std::ptrdiff_t>(0, all.col_min - 1),
-                                 std::min(rows - 1, all.row_max + 1), std::min(cols - 1, all.col_max + 1)};
+            const cell_box grown{std::max<std::ptrdiff_t>(0, all.row_min - 1),
+                                 std::max<std::ptrdiff_t>(0, all.col_min - 1), std::min(rows - 1, all.row_max + 1),
+                                 std::min(cols - 1, all.col_max + 1)};
             filled = detail::fill_holes_at_once(labels, max_hole_cells, grown, opt.run.threads);
         }
     }

@@ -42,13 +42,16 @@ namespace detail {
 /// (not null) they also get taken[j] = 0 (grow_waterbodies: a new body's label is the stamp, the eligible
 /// raster is taken).
 inline void join_level_cells_stamped(std::vector<std::ptrdiff_t>& region, raster_view<const float> min_z,
-                                     raster_view<const float> max_z, const std::uint8_t* eligible,
-                                     std::uint8_t* taken, std::int32_t* seen, std::int32_t stamp,
-                                     const join_level_cells_options& opt)
+                                     raster_view<const float> max_z, const std::uint8_t* eligible, std::uint8_t* taken,
+                                     std::int32_t* seen, std::int32_t stamp, const join_level_cells_options& opt)
 {
     if (opt.tolerance_m <= 0 || opt.depth_cells <= 0) return;
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
-    struct entry { std::ptrdiff_t cell; float level; int depth; };
+    struct entry {
+        std::ptrdiff_t cell;
+        float level;
+        int depth;
+    };
     std::vector<entry> frontier;
     // Only region cells on the region's edge can reach a new cell: interior ones start nothing.
     const auto on_edge = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
@@ -56,8 +59,8 @@ inline void join_level_cells_stamped(std::vector<std::ptrdiff_t>& region, raster
             const std::int32_t* up = seen + (r - 1) * cols + c;
             const std::int32_t* mid = up + cols;
             const std::int32_t* down = mid + cols;
-            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) |
-                    (mid[1] != stamp) | (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
+            return ((up[-1] != stamp) | (up[0] != stamp) | (up[1] != stamp) | (mid[-1] != stamp) | (mid[1] != stamp) |
+                    (down[-1] != stamp) | (down[0] != stamp) | (down[1] != stamp)) != 0;
         }
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
             for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)

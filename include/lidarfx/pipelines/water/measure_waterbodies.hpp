@@ -18,16 +18,16 @@ namespace lidarfx {
 
 /// One extracted waterbody.
 struct waterbody {
-    std::int32_t label = 0;                ///< 1..n by decreasing area
+    std::int32_t label = 0;  ///< 1..n by decreasing area
     std::size_t cells = 0;
     double area_m2 = 0;
-    cell_box box;                          ///< bounding box, cells (inclusive)
-    std::int32_t seed = 0;                 ///< rank of the seed it grew from (1 = largest seed)
-    double theta_deg = NAN;                ///< angular threshold reached when growth stopped
-    bool stopped_by_ks = false;            ///< false: θ_max reached without a KS rejection
-    double mean_intensity = NAN;           ///< mean intensity of its cells with returns (NaN if none)
-    double water_level_m = NAN;            ///< median min z of its cells with returns, metres (NaN if none)
-    double dropout_fraction = 0;           ///< share of its cells without returns
+    cell_box box;                 ///< bounding box, cells (inclusive)
+    std::int32_t seed = 0;        ///< rank of the seed it grew from (1 = largest seed)
+    double theta_deg = NAN;       ///< angular threshold reached when growth stopped
+    bool stopped_by_ks = false;   ///< false: θ_max reached without a KS rejection
+    double mean_intensity = NAN;  ///< mean intensity of its cells with returns (NaN if none)
+    double water_level_m = NAN;   ///< median min z of its cells with returns, metres (NaN if none)
+    double dropout_fraction = 0;  ///< share of its cells without returns
 };
 
 /// Numbers the bodies of `labels` by decreasing area and measures them. On entry, label l > 0 marks body l
@@ -72,7 +72,8 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         return size[static_cast<std::size_t>(a)] > size[static_cast<std::size_t>(b)];
     });
     std::vector<std::int32_t> relabel(size.size(), 0);
-    for (std::size_t k = 0; k < order.size(); ++k) relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+    for (std::size_t k = 0; k < order.size(); ++k)
+        relabel[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
 
     // One row-major pass gathers every body's extent, intensity and the heights for its water level.
     std::vector<waterbody> out(order.size());

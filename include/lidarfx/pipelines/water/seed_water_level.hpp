@@ -17,9 +17,9 @@ namespace lidarfx {
 
 /// Options of seed_water_level.
 struct seed_water_level_options {
-    int ring_cells = 2;      ///< cells within this Chebyshev distance of the seed are read, >= 1. Default 2.
-    double quantile = 0.1;   ///< the level is this quantile of their min z, in [0, 1]. Default 0.1: a seed's
-                             ///< surroundings are water and bank; the water's returns are the lowest.
+    int ring_cells = 2;     ///< cells within this Chebyshev distance of the seed are read, >= 1. Default 2.
+    double quantile = 0.1;  ///< the level is this quantile of their min z, in [0, 1]. Default 0.1: a seed's
+                            ///< surroundings are water and bank; the water's returns are the lowest.
 };
 
 /// Water level of a seed (a component of cells, as linear indices r * cols + c): the `quantile` of the
@@ -75,7 +75,8 @@ inline double seed_water_level(std::span<const std::ptrdiff_t> seed, raster_view
                 z.push_back(min_z(rr, c_lo + w * 64 + std::countr_zero(word)));
     }
     if (z.empty()) return NAN;
-    const auto at = z.begin() + static_cast<std::ptrdiff_t>(std::floor(opt.quantile * static_cast<double>(z.size() - 1)));
+    const auto at =
+        z.begin() + static_cast<std::ptrdiff_t>(std::floor(opt.quantile * static_cast<double>(z.size() - 1)));
     std::nth_element(z.begin(), at, z.end());
     return *at;
 }

@@ -18,16 +18,16 @@ namespace lidarfx {
 
 /// Options of join_shore_cells.
 struct join_shore_cells_options {
-    int window_cells = 3;           ///< the water and land a shore cell is compared with lie within this Chebyshev
-                                    ///< distance of it, cells, >= 1. Default 3 (a 7 × 7 window)
-    double min_contrast = 0.3;      ///< the land's mean returns per cell exceed the water's by at least this share
-                                    ///< of the land's, (n_land − n_water) / n_land (without that contrast the
-                                    ///< count says nothing of the mix), in (0, 1]. Default 0.3
-    double min_water_share = 0.5;   ///< the cell's estimated water share f = (n_land − count) / (n_land −
-                                    ///< n_water) is at least this (a cell is water when its centre is: half its
-                                    ///< area), in (0, 1]. Default 0.5
-    int min_body_neighbours = 3;    ///< the cell has at least this many body cells among its 8 neighbours (a
-                                    ///< whole side on the water, not a corner touching it), in [1, 8]. Default 3
+    int window_cells = 3;          ///< the water and land a shore cell is compared with lie within this Chebyshev
+                                   ///< distance of it, cells, >= 1. Default 3 (a 7 × 7 window)
+    double min_contrast = 0.3;     ///< the land's mean returns per cell exceed the water's by at least this share
+                                   ///< of the land's, (n_land − n_water) / n_land (without that contrast the
+                                   ///< count says nothing of the mix), in (0, 1]. Default 0.3
+    double min_water_share = 0.5;  ///< the cell's estimated water share f = (n_land − count) / (n_land −
+                                   ///< n_water) is at least this (a cell is water when its centre is: half its
+                                   ///< area), in (0, 1]. Default 0.5
+    int min_body_neighbours = 3;   ///< the cell has at least this many body cells among its 8 neighbours (a
+                                   ///< whole side on the water, not a corner touching it), in [1, 8]. Default 3
 };
 
 namespace detail {
@@ -74,12 +74,20 @@ inline float upper_median(float* v, std::size_t n)
 class shore_class_rows {
 public:
     shore_class_rows(raster_view<const std::int32_t> labels, std::ptrdiff_t k, bool edges)
-        : labels_(labels), rows_(labels.rows()), cols_(labels.cols()), k_(k), edges_(edges),
-          slots_(std::min(rows_, 2 * k + 1)), ring_(static_cast<std::size_t>(slots_ * cols_)),
-          zero_(static_cast<std::size_t>(cols_), 0), any_(static_cast<std::size_t>(cols_) + 2, 0),
-          all_(any_.size(), 1), has_body_(static_cast<std::size_t>(rows_)),
+        : labels_(labels),
+          rows_(labels.rows()),
+          cols_(labels.cols()),
+          k_(k),
+          edges_(edges),
+          slots_(std::min(rows_, 2 * k + 1)),
+          ring_(static_cast<std::size_t>(slots_ * cols_)),
+          zero_(static_cast<std::size_t>(cols_), 0),
+          any_(static_cast<std::size_t>(cols_) + 2, 0),
+          all_(any_.size(), 1),
+          has_body_(static_cast<std::size_t>(rows_)),
           row_of_slot_(static_cast<std::size_t>(slots_))
-    {}
+    {
+    }
 
     /// Whether row r holds a body cell. Found as the rows are asked for, in order, a few rows before they are
     /// built: the part of a row read to find its first body cell is still in cache when the row is built.
@@ -214,7 +222,8 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
         const std::uint8_t* cl = cls.row(r);
         const std::uint8_t* inside = footprint.empty() ? nullptr : footprint.row(r);
         for (std::ptrdiff_t c = 0; c < cols; ++c)
-            candidate[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
+            candidate[static_cast<std::size_t>(c)] =
+                static_cast<std::uint8_t>((cl[c] == next_to_body) & (!inside || inside[c] != 0));
         // The window rows, the same for every candidate of the row: found once.
         window.clear();
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k), last = std::min(rows - 1, r + k); rr <= last; ++rr)
@@ -265,17 +274,17 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
 
 /// Options of trim_raised_edge_cells.
 struct trim_raised_edge_cells_options {
-    int window_cells = 3;        ///< the local water level is read within this Chebyshev distance, cells, >= 1.
-                                 ///< Default 3 (a 7 × 7 window)
-    double min_rise_m = 0.05;    ///< an edge cell whose min z stands more than this above the local level is
-                                 ///< dry ground (2 σ of the 2-3 cm range noise of the lowest return), metres,
-                                 ///< >= 0. Default 0.05
-    double max_rise_m = 0.5;     ///< ... up to this; higher cells are bridge decks or bank cells whose water
-                                 ///< returns were lost, left as they are (join_shore_cells, which runs after
-                                 ///< this step in extract_waterbodies, judges bank cells by their count),
-                                 ///< metres, > min_rise_m. Default 0.5
+    int window_cells = 3;             ///< the local water level is read within this Chebyshev distance, cells, >= 1.
+                                      ///< Default 3 (a 7 × 7 window)
+    double min_rise_m = 0.05;         ///< an edge cell whose min z stands more than this above the local level is
+                                      ///< dry ground (2 σ of the 2-3 cm range noise of the lowest return), metres,
+                                      ///< >= 0. Default 0.05
+    double max_rise_m = 0.5;          ///< ... up to this; higher cells are bridge decks or bank cells whose water
+                                      ///< returns were lost, left as they are (join_shore_cells, which runs after
+                                      ///< this step in extract_waterbodies, judges bank cells by their count),
+                                      ///< metres, > min_rise_m. Default 0.5
     std::size_t min_level_cells = 3;  ///< the local level needs at least this many interior body cells with a
-                                 ///< return in the window, >= 1. Default 3
+                                      ///< return in the window, >= 1. Default 3
 };
 
 namespace detail {
@@ -295,8 +304,8 @@ inline void validate(const trim_raised_edge_cells_options& o, const char* fn)
 /// better than that. For every edge cell (a body cell with a land cell among its 8 neighbours) with a return,
 /// the local level is the median min z (the upper median of an even count) over the interior cells (no
 /// land neighbour) of the same body with a finite min z in its (2 window_cells + 1)² window, given at least
-/// min_level_cells of them (a body next to another at a different level reads its own); the cell becomes land (label 0) when
-/// min_rise_m < min z − level <= max_rise_m. One pass over the labels as given. Returns the number of cells
+/// min_level_cells of them (a body next to another at a different level reads its own); the cell becomes land (label 0)
+/// when min_rise_m < min z − level <= max_rise_m. One pass over the labels as given. Returns the number of cells
 /// trimmed. Elevations in metres. O(cells + edge cells · (2 window_cells + 1)²).
 /// @throws invalid_input on rasters of different shapes or options out of range.
 inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, raster_view<const float> min_z,
@@ -327,8 +336,7 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
         // The window rows holding a body cell, the same for every edge cell of the row: found once.
         window.clear();
         for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k), last = std::min(rows - 1, r + k); rr <= last; ++rr)
-            if (const std::uint8_t* cw = cls.row(rr))
-                window.push_back({cw, min_z.row(rr), labels.row(rr)});
+            if (const std::uint8_t* cw = cls.row(rr)) window.push_back({cw, min_z.row(rr), labels.row(rr)});
         // Row r + k enters the windows here, its heights not in cache: their loads (at both ends of each
         // window) are all started first, not one window after the other.
         if (r + k < rows) {

@@ -24,13 +24,13 @@ enum class angular_input {
 
 /// Options of water_angles.
 struct water_angles_options {
-    int radius_cells = 2;                         ///< angular filter window radius, cells; >= 1. Default 2
-                                                  ///< ("two tiers": a 5 x 5 window).
+    int radius_cells = 2;                               ///< angular filter window radius, cells; >= 1. Default 2
+                                                        ///< ("two tiers": a 5 x 5 window).
     angular_input input = angular_input::returns_only;  ///< elevation the filter reads. Default returns_only.
-    bool dropouts_join_any_threshold = true;      ///< dropout cells get NaN (join at any θ: their angle is
-                                                  ///< unknown); false = the dissertation's literal behaviour
-                                                  ///< (a dropout the filter gave no angle gets 90°)
-    execution run = {};                           ///< threads of the kernels (same result for any count), progress
+    bool dropouts_join_any_threshold = true;            ///< dropout cells get NaN (join at any θ: their angle is
+                                                        ///< unknown); false = the dissertation's literal behaviour
+                                                        ///< (a dropout the filter gave no angle gets 90°)
+    execution run = {};  ///< threads of the kernels (same result for any count), progress
 };
 
 /// Angles for region growing: angular_filter of min z (DESIGN.md §4: per cell the largest
@@ -53,7 +53,8 @@ inline raster<float> water_angles(const water_rasters& in, double cell_m, const 
     const angular_filter_options af{.radius_cells = opt.radius_cells, .run = {.threads = threads}};
     raster<float> angle =
         opt.input == angular_input::idw_filled
-            ? angular_filter(idw_fill(in.min_z, cell_m, idw_fill_options{.run = {.threads = threads}}).filled, cell_m, af)
+            ? angular_filter(idw_fill(in.min_z, cell_m, idw_fill_options{.run = {.threads = threads}}).filled, cell_m,
+                             af)
             : angular_filter(in.min_z, cell_m, af);
     for (std::ptrdiff_t r = 0; r < angle.rows(); ++r) {
         float* a = angle.row(r);

@@ -23,15 +23,15 @@ namespace lidarfx {
 /// The rasters of a survey that the waterbody steps read, all of one shape on one grid (see rasterize()).
 /// Views: the caller keeps the rasters alive while a step runs.
 struct water_rasters {
-    raster_view<const float> min_z;                          ///< lowest return, metres; NaN = no return
-    raster_view<const float> max_z;                          ///< highest return, metres; NaN = no return
-    raster_view<const float> mean_intensity;                 ///< mean return intensity; ignored where dropout
-    raster_view<const std::uint8_t> dropout;                 ///< 1 = no return in the cell
-    raster_view<const std::uint8_t> multiple_returns = {};   ///< optional: 1 = a pulse with several returns
-    raster_view<const std::uint32_t> count = {};             ///< optional: points per cell (density checks)
-    raster_view<const std::uint8_t> footprint = {};          ///< optional: 1 = inside the surveyed area (see
-                                                             ///< survey_footprint); cells outside are no
-                                                             ///< data, never dropouts. Empty = all inside
+    raster_view<const float> min_z;                         ///< lowest return, metres; NaN = no return
+    raster_view<const float> max_z;                         ///< highest return, metres; NaN = no return
+    raster_view<const float> mean_intensity;                ///< mean return intensity; ignored where dropout
+    raster_view<const std::uint8_t> dropout;                ///< 1 = no return in the cell
+    raster_view<const std::uint8_t> multiple_returns = {};  ///< optional: 1 = a pulse with several returns
+    raster_view<const std::uint32_t> count = {};            ///< optional: points per cell (density checks)
+    raster_view<const std::uint8_t> footprint = {};         ///< optional: 1 = inside the surveyed area (see
+                                                            ///< survey_footprint); cells outside are no
+                                                            ///< data, never dropouts. Empty = all inside
 };
 
 /// Views of the output of rasterize() (all six rasters); `pr` must outlive the result.

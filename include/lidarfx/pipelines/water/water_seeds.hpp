@@ -18,9 +18,9 @@ namespace lidarfx {
 
 /// Options of water_seeds.
 struct water_seeds_options {
-    int opening_size_cells = 5;    ///< side of the square opening the dropout mask, cells; odd, >= 1. Default 5.
-    std::size_t min_cells = 100;   ///< seeds keep components of at least this many cells; >= 1. Default 100.
-    execution run = {};            ///< threads of the kernels (same result for any count), progress
+    int opening_size_cells = 5;   ///< side of the square opening the dropout mask, cells; odd, >= 1. Default 5.
+    std::size_t min_cells = 100;  ///< seeds keep components of at least this many cells; >= 1. Default 100.
+    execution run = {};           ///< threads of the kernels (same result for any count), progress
 };
 
 namespace detail {
@@ -50,11 +50,12 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     detail::validate(opt, fn);
     detail::report(opt.run.progress, 0.0, fn);
     const int threads = opt.run.threads;
-    const auto opened = morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
+    const auto opened =
+        morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
     detail::ensure_shape(labels, opened.rows(), opened.cols());  // every cell is written
     components seeds{std::move(labels), {}};
-    seeds.sizes = connected_components(opened, seeds.labels,
-                                       connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
+    seeds.sizes = connected_components(
+        opened, seeds.labels, connected_components_options{.conn = connectivity::eight, .run = {.threads = threads}});
     // Ranked by size, the seeds to keep are the ranks 1..kept; the others become background. One pass
     // renumbers and drops (as rank_by_size, then a pass dropping the small ones, would).
     const std::size_t n = seeds.count();
@@ -129,8 +130,10 @@ inline seed_cell_runs seed_cells_flat(const components& seeds, const char* fn = 
             if (l < 0 || static_cast<std::size_t>(l) > count) [[unlikely]]
                 require(false, fn, "seeds.labels", "in [0, count()]", l);
             const auto k = static_cast<std::size_t>(l);
-            if (next[k] < out.offset[k + 1]) out.cells[next[k]++] = i;
-            else fits = false;
+            if (next[k] < out.offset[k + 1])
+                out.cells[next[k]++] = i;
+            else
+                fits = false;
         });
         for (std::size_t l = 1; l <= count; ++l) fits = fits && next[l] == out.offset[l + 1];
         return fits;

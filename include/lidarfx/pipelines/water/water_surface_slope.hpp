@@ -36,8 +36,8 @@ namespace detail {
 /// One offset (x, y) of water_surface_slope's window over `count` cells of a row: the sums of the
 /// neighbours nb[c] within ±band of the cell's own z0[c] (NaN on either side: left out). Branch-free over
 /// separate arrays, so it vectorizes.
-inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count,
-                       float x, float y, float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
+inline void slope_sums(const float* __restrict nb, const float* __restrict z0, std::ptrdiff_t count, float x, float y,
+                       float band, float* __restrict n, float* __restrict sx, float* __restrict sy,
                        float* __restrict sxx, float* __restrict syy, float* __restrict sxy, float* __restrict sz,
                        float* __restrict sxz, float* __restrict syz) noexcept
 {
@@ -65,13 +65,10 @@ inline void slope_sums(const float* __restrict nb, const float* __restrict z0, s
 /// the mask times x, y, x², y², xy are small integers, exact in float in any order, and are taken per window
 /// row; sz, sxz and syz add in the passes' order (row by row, column by column).
 template <int R>
-[[gnu::noinline, LIDARFX_VECTORIZE]] void slope_sums_window(const float* z0, std::ptrdiff_t row_stride,
-                                                            std::ptrdiff_t c0, std::ptrdiff_t c1, float band,
-                                                            float* __restrict n, float* __restrict sx,
-                                                            float* __restrict sy, float* __restrict sxx,
-                                                            float* __restrict syy, float* __restrict sxy,
-                                                            float* __restrict sz, float* __restrict sxz,
-                                                            float* __restrict syz) noexcept
+[[gnu::noinline, LIDARFX_VECTORIZE]] void slope_sums_window(
+    const float* z0, std::ptrdiff_t row_stride, std::ptrdiff_t c0, std::ptrdiff_t c1, float band, float* __restrict n,
+    float* __restrict sx, float* __restrict sy, float* __restrict sxx, float* __restrict syy, float* __restrict sxy,
+    float* __restrict sz, float* __restrict sxz, float* __restrict syz) noexcept
 {
     LIDARFX_IVDEP
     for (std::ptrdiff_t c = c0; c < c1; ++c) {
@@ -134,8 +131,8 @@ private:
 };
 
 /// water_surface_slope of the cells [c0, c1) of the rows [r0, r1) into `out`, the block's shape (cell (r, c)
-/// at out(r − r0, c − c0)); `scratch` holds at least c1 − c0 cells. Each cell's sums take the same operations in the same order whatever the
-/// block, so any tiling gives the values of the whole raster bit for bit.
+/// at out(r − r0, c − c0)); `scratch` holds at least c1 − c0 cells. Each cell's sums take the same operations in the
+/// same order whatever the block, so any tiling gives the values of the whole raster bit for bit.
 inline void surface_slope_block(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt,
                                 std::ptrdiff_t r0, std::ptrdiff_t r1, std::ptrdiff_t c0, std::ptrdiff_t c1,
                                 raster_view<float> out, slope_scratch& scratch)
@@ -229,11 +226,14 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
     detail::validate(opt, cell_m, fn);
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
     raster<float> out(rows, cols, uninitialized);  // every cell is written
-    parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        detail::slope_scratch scratch(cols);
-        detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out.view().window(r0, 0, r1 - r0, cols),
-                                    scratch);
-    }, {}, fn);
+    parallel_for_rows(
+        rows, 16, opt.run.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            detail::slope_scratch scratch(cols);
+            detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out.view().window(r0, 0, r1 - r0, cols),
+                                        scratch);
+        },
+        {}, fn);
     return out;
 }
 
@@ -248,7 +248,10 @@ public:
     static constexpr std::ptrdiff_t tile_rows = 16, tile_cols = 64;
 
     lazy_water_surface_slope(raster_view<const float> min_z, double cell_m, const water_surface_slope_options& opt = {})
-        : min_z_(min_z), cell_m_(cell_m), opt_(opt), tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
+        : min_z_(min_z),
+          cell_m_(cell_m),
+          opt_(opt),
+          tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
           tile_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_), -1),
           scratch_(tile_cols)
     {
