@@ -59,8 +59,9 @@ struct laz_chunk {
 ///    items only add symbols;
 ///  - a stream of B bytes read with no byte past its end shrinks the interval from 2^32 to no less than
 ///    2^24 with at most B - 4 renormalisations, so its symbols cost less than 8 B bits in all.
-/// Hence at most 8 / 0.0068288 = 1171.5 points per byte. A chunk of all-zero bytes (the cheapest symbols
-/// every time) decodes far fewer before it runs out; real files take a few bytes per point.
+/// Hence at most 8 / 0.0068288 = 1171.5 points per byte. A POINT10 chunk of all-zero bytes (symbol 0 every
+/// time, the models learn it) runs out after 340 to 452 points a byte (tests/io/laz.cpp); real files take a
+/// few bytes per point.
 /// The bound turns a corrupt count into an error before anything is allocated; the memory budget of
 /// las_reader::set_memory_budget bounds what a chunk under it may take.
 inline constexpr std::uint64_t laz_max_points_per_byte = 1172;
