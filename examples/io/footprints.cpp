@@ -110,7 +110,7 @@ struct feature_text {
         shape_error.clear();
         bad_value.clear();
     }
-    void shape(const char* what)
+    void shape(const std::string& what)
     {
         if (shape_error.empty()) shape_error = what;
     }
@@ -342,6 +342,15 @@ private:
         }
     }
 
+    // Passes over one value; returns its text (the first 40 bytes) for a message.
+    std::string skipped(int depth)
+    {
+        skip_space();
+        const std::size_t start = i_;
+        skip_value(depth);
+        return i_ - start <= 40 ? std::string(s_.substr(start, i_ - start)) : std::string(s_.substr(start, 40)) + "...";
+    }
+
     // ---- structure ----
 
     void features()
@@ -385,7 +394,7 @@ private:
                         t.id_token = n.token;
                     } else {
                         t.id_kind = 2;
-                        skip_value(4);
+                        t.id_token = skipped(4);
                     }
                     return true;
                 });
@@ -466,8 +475,9 @@ private:
         do {
             skip_space();
             if (!number_next()) {
-                t.shape("a position must be an array of numbers [x, y]");
-                skip_value(depth + 1);
+                const std::string value = skipped(depth + 1);
+                t.shape(detail::concat("a position must be an array of numbers [x, y] (vertex ", t.vertices.size(),
+                                       " has ", value, ")"));
                 continue;
             }
             const number_text v = number();
@@ -496,8 +506,10 @@ private:
         feature_text& t = text_;
         const std::string where = detail::concat(source_, ": feature ", feature_);
         if (!t.object) throw invalid_input(where + ": not a GeoJSON Feature object");
-        if (t.id_kind != 1)
+        if (t.id_kind == 0)
             throw invalid_input(where + ": no integer \"building_id\" property (every footprint needs one)");
+        if (t.id_kind == 2)
+            throw invalid_input(where + ": building_id " + t.id_token + " is not an integer (every footprint needs one)");
         if (t.id != std::floor(t.id) || t.id < 1 || t.id > 2147483647.0)
             throw invalid_input(detail::concat(where, ": building_id ", t.id_token, " is not an integer in 1 .. 2147483647"));
         const auto building = static_cast<std::int32_t>(t.id);

@@ -81,14 +81,16 @@ TEST_CASE("io/footprints: missing, fractional and duplicated ids and wrong struc
     };
     refused(collection(R"({"type":"Feature","properties":{},"geometry":)" + square + "}"), "building_id");
     refused(collection(R"({"type":"Feature","properties":null,"geometry":)" + square + "}"), "building_id");
-    refused(collection(feature("\"12\"", square)), "building_id");
+    refused(collection(feature("\"12\"", square)), "feature 0: building_id \"12\" is not an integer");
+    refused(collection(feature("[1]", square)), "building_id [1] is not an integer");
     refused(collection(feature("2.5", square)), "not an integer");
     refused(collection(feature("0", square)), "not an integer");
     refused(collection(feature("4", square) + "," + feature("4", square)), "used by feature 0");
     refused(collection(feature("4", "null")), "no Polygon");
     refused(collection(feature("4", R"({"type":"Point","coordinates":[1,2]})")), "Point");
     refused(collection(feature("4", R"({"type":"Polygon","coordinates":[[[0,0],[1,1],[0,0]]]})")), "4 positions");
-    refused(collection(feature("4", R"({"type":"Polygon","coordinates":[[[0,0],[1,"a"],[1,0],[0,0]]]})")), "numbers");
+    refused(collection(feature("4", R"({"type":"Polygon","coordinates":[[[0,0],[1,"a"],[1,0],[0,0]]]})")),
+            "feature 0 (building_id 4): a position must be an array of numbers [x, y] (vertex 1 has \"a\")");
     refused(R"({"type":"Feature"})", "FeatureCollection");
     refused(R"({"type":"FeatureCollection"})", "features");
     refused(R"({"type":"FeatureCollection","features":[)", "not valid JSON");
