@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstddef>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -257,6 +258,12 @@ tmy3_data read_tmy3(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot open (expected a TMY3 CSV file)");
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+    if (!ec && bytes > tmy3_max_file_bytes) {
+        throw invalid_input(path + ": " + std::to_string(bytes) + " bytes, more than one TMY3 year can hold (at most " +
+                            std::to_string(tmy3_max_file_bytes >> 20) + " MiB; a year is about 1.7 MB)");
+    }
     std::ostringstream text;
     text << in.rdbuf();
     return parse_tmy3(text.str(), path);

@@ -2,6 +2,7 @@
 // TMY3 weather files (NREL's Typical Meteorological Year, version 3) read into UTC irradiance records.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,9 @@ inline constexpr double tmy3_max_dni_w_m2 = 1367.0 * 1.035;
 /// The largest GHI and DHI taken, W/m^2: an hourly mean above it exceeds any clear sky (at most about
 /// 1100 W/m^2 at sea level) even with cloud-edge enhancement (peaks of minutes, not hours); refused.
 inline constexpr double tmy3_max_ghi_dhi_w_m2 = 1500.0;
+/// The largest weather file read, bytes: NREL's 71-column TMY3 year is about 1.7 MB, and a year holds 8760
+/// rows at most, so a larger file cannot be one year; it is refused before it is read (whatever --memory).
+inline constexpr std::uintmax_t tmy3_max_file_bytes = 64ull << 20;
 /// The TMY3 manual's marker of a missing value (Wilcox & Marion 2008): an hour with GHI, DNI or DHI = -9900
 /// is a missing hour (no record).
 inline constexpr double tmy3_missing_value = -9900.0;

@@ -213,6 +213,16 @@ TEST_CASE("io/tmy3: bad files are refused with the file, the line and what is wr
                    "line 3: bad time '12:30' (TMY3 rows are hourly"));
 }
 
+TEST_CASE("io/tmy3: a file larger than any year is refused before it is read")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("huge.csv");
+    std::ofstream(path, std::ios::binary) << station_line << header_line;
+    std::filesystem::resize_file(path, tmy3_max_file_bytes + 1);  // sparse: no disk, and nothing to read
+    const std::string e = invalid_input_of([&] { read_tmy3(path); });
+    CHECK(contains(e, "huge.csv: " + std::to_string(tmy3_max_file_bytes + 1) + " bytes, more than one TMY3 year"));
+}
+
 TEST_CASE("io/tmy3: a year given twice (or twelve times) is refused at its first repeated hour")
 {
     const std::vector<std::string> year = year_rows();
