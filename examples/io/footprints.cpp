@@ -551,18 +551,22 @@ private:
             throw invalid_input(at + ": the polygon checks failed: " + e.what());
         }
         if (!problem.empty()) {
-            kept_bytes_ += 64.0 + static_cast<double>(problem.size());
+            // Its entry in the list (which grows by doubling), its id in first_feature_of_, the reason.
+            kept_bytes_ += 2.0 * sizeof(footprint_problem) + 64.0 + static_cast<double>(problem.size());
             out_.problems.push_back({building, feature_, std::move(problem)});
             return;
         }
+        // Per vertex 16 bytes, per ring and part a vector and its allocation (48), per footprint its entry in
+        // the list (which grows by doubling) and its id in first_feature_of_ (64).
         for (polygon& p : fp.parts) {
             orient(p);
+            kept_bytes_ += 48.0;
             for (const auto& r : p.rings) {
                 kept_vertices_ += r.size();
-                kept_bytes_ += 64.0 + 16.0 * static_cast<double>(r.size());
+                kept_bytes_ += 48.0 + 16.0 * static_cast<double>(r.size());
             }
         }
-        kept_bytes_ += 64.0;
+        kept_bytes_ += 2.0 * sizeof(footprint) + 64.0;
         out_.footprints.push_back(std::move(fp));
     }
 

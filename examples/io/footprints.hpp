@@ -41,8 +41,9 @@ struct footprint_collection {
 /// How a footprint file is read.
 struct footprint_read_options {
     /// Memory budget of the read, bytes; 0 = half the physical memory (as --memory). The estimate counted
-    /// against it: the file's text, plus 16 bytes per kept vertex and 64 per kept ring, plus three times the
-    /// vertices of the feature being read (its coordinates, its rings and the validity check's copy).
+    /// against it: the file's text; per kept footprint 16 bytes a vertex, 48 a ring and a part, and about 150
+    /// (its entry in the list and its id); and 48 bytes a vertex of the feature being read (its coordinates,
+    /// its rings and the validity check's copy).
     std::uint64_t memory_budget_bytes = 0;
 };
 

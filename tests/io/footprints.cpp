@@ -202,12 +202,12 @@ TEST_CASE("io/footprints: memory follows the footprints kept and is held to the 
     const std::string text = many_squares(2000);  // ~250 KB
     const auto c = io::parse_footprints_geojson(text, "many.geojson");
     REQUIRE(c.footprints.size() == 2000);
-    // The text plus, per 222-byte feature, 5 vertices of 16 bytes and 64 per ring and per footprint: 1.94x
-    // the text (the document tree of the parser before took about 11x).
+    // The text plus, per 222-byte feature, 5 vertices of 16 bytes, 48 per ring and part and 144 per footprint:
+    // 2.45x the text (the document tree of the parser before took about 11x).
     const double ratio = static_cast<double>(c.peak_bytes) / static_cast<double>(text.size());
     INFO("peak " << c.peak_bytes << " bytes for " << text.size() << " bytes of text");
     CHECK(ratio > 1.0);
-    CHECK(ratio < 2.5);
+    CHECK(ratio < 2.6);
     // A budget between the text and the peak: refused part way, naming the budget and the feature reached.
     const std::uint64_t budget = text.size() + (c.peak_bytes - text.size()) / 2;
     const std::string m = refusal(text, {.memory_budget_bytes = budget});
