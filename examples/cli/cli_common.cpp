@@ -280,9 +280,20 @@ outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bou
                                 std::uint64_t memory_budget_bytes)
 {
     // One histogram per group of files, read on its own thread; counts are integers, so the sum does not
-    // depend on the grouping.
-    const std::size_t groups = std::min<std::size_t>(
+    // depend on the grouping. A LAZ reader holds up to two chunks (one decoding, one kept): as many groups as
+    // hold two of the largest chunk within --memory.
+    std::size_t groups = std::min<std::size_t>(
         paths.size(), static_cast<std::size_t>(lidarfx::detail::resolve_threads(threads, "refuse_outliers")));
+    if (groups > 1) {
+        std::uint64_t largest = 0, budget = memory_budget_bytes;
+        for (const auto& p : paths) {
+            io::las_reader r(p);
+            r.set_memory_budget(memory_budget_bytes);
+            largest = std::max(largest, r.largest_chunk_bytes());
+            budget = r.memory_budget();   // 0 resolved
+        }
+        if (largest > 0) groups = std::clamp<std::size_t>(static_cast<std::size_t>(budget / (2 * largest)), 1, groups);
+    }
     std::vector<outlier_bins> counts(groups, outlier_bins(box));
     std::vector<std::function<void()>> jobs;
     for (std::size_t g = 0; g < groups; ++g) {

@@ -490,10 +490,15 @@ void las_reader::set_threads(int threads)
     threads_ = threads;
 }
 
+std::uint64_t las_reader::largest_chunk_bytes() const noexcept
+{
+    return laz_ ? laz_->largest_points * header_.point_record_length : 0;
+}
+
 int las_reader::decode_threads() const
 {
     if (!laz_) return 1;
-    const std::uint64_t largest = std::max<std::uint64_t>(1, laz_->largest_points * header_.point_record_length);
+    const std::uint64_t largest = std::max<std::uint64_t>(1, largest_chunk_bytes());
     const std::uint64_t in_budget = memory_budget() / largest;   // chunks of the largest size
     const auto fit = static_cast<int>(std::min<std::uint64_t>(in_budget > 1 ? in_budget - 1 : 1, 1024));
     return std::clamp(fit, 1, lidarfx::detail::resolve_threads(threads_, "las_reader"));

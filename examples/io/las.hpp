@@ -192,6 +192,8 @@ public:
     void set_memory_budget(std::uint64_t bytes) noexcept { memory_budget_ = bytes; }
     /// The budget in bytes (0 resolved to half the physical memory).
     std::uint64_t memory_budget() const noexcept;
+    /// Decoded bytes of the largest LAZ chunk (its points x point_record_length); 0 for uncompressed files.
+    std::uint64_t largest_chunk_bytes() const noexcept;
     /// Threads a LAZ read decodes on: set_threads() (0 resolved to the cores), lowered to the k with
     /// (k + 1) x the largest chunk's decoded records within the budget, at least 1; 1 for uncompressed files.
     int decode_threads() const;

@@ -535,6 +535,7 @@ TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: th
             return lo;
         }();
         MESSAGE(name << ": largest chunk " << largest << " bytes decoded");
+        CHECK(r.largest_chunk_bytes() == largest);
         r.set_threads(4);
         for (std::uint64_t k = 1; k <= 5; ++k) {
             r.set_memory_budget((k + 1) * largest);
