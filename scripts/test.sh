@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
-bash scripts/install-deps.sh --mpi   # the MPI driver and its test (mpi_tiled_water)
+bash scripts/install-deps.sh --mpi --gdal   # the MPI driver and its test; GeoTIFF in and out (GDAL, PROJ)
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"
 ctest --preset "$preset"

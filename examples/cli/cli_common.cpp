@@ -251,6 +251,31 @@ double round_cell_up(double cell_m)
 
 }  // namespace
 
+std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes)
+{
+    return memory_budget_bytes ? memory_budget_bytes : physical_memory_bytes() / 2;
+}
+
+void report_non_finite_heights(const std::string& path, std::size_t cells)
+{
+    if (cells > 0) std::cerr << "lidarfx: " << path << ": " << cells << " cells hold inf, -inf or nan: no data (NaN)\n";
+}
+
+void refuse_grid_over_budget(const std::string& path, const grid& g, double bytes_per_cell,
+                             std::uint64_t memory_budget_bytes)
+{
+    const std::uint64_t budget = memory_budget_of(memory_budget_bytes);
+    const double cells = static_cast<double>(g.rows) * static_cast<double>(g.cols);
+    const double need = cells * bytes_per_cell;
+    if (budget == 0 || need <= static_cast<double>(budget)) return;
+    std::ostringstream why;
+    why << path << ": a grid of " << g.rows << " x " << g.cols << " cells needs about " << gib(need) << " ("
+        << bytes_per_cell << " bytes a cell), over the memory budget of " << gib(static_cast<double>(budget))
+        << "; cut it into smaller pieces (gdal_translate -srcwin), resample it to larger cells (gdalwarp -tr), "
+        << "or give a larger --memory";
+    throw usage_error(why.str());
+}
+
 outlier_bins::outlier_bins(const bounds& b)
     : box(b), bw(std::max(b.xmax - b.xmin, 1e-9) / bins), bh(std::max(b.ymax - b.ymin, 1e-9) / bins),
       count(static_cast<std::size_t>(bins) * bins, 0)
@@ -459,7 +484,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     const double width = box.xmax - box.xmin, height = box.ymax - box.ymin;
     const double cells = (std::floor(width / cell_m) + 1) * (std::floor(height / cell_m) + 1);
     const double area = std::max(width, cell_m) * std::max(height, cell_m);
-    const std::uint64_t budget = opt.memory_budget_bytes ? opt.memory_budget_bytes : physical_memory_bytes() / 2;
+    const std::uint64_t budget = memory_budget_of(opt.memory_budget_bytes);
     const double need = cells * opt.bytes_per_cell;
     const double points_per_cell = static_cast<double>(total) / area * cell_m * cell_m;
     const bool over_budget = budget > 0 && need > static_cast<double>(budget);

@@ -160,6 +160,19 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
 /// Multiplies a chunk's x, y and z by the layout's units (metres per unit).
 void to_metres(io::las_points& points, const survey_layout& layout);
 
+/// The memory budget of a run: `memory_budget_bytes` (--memory), or half the physical memory when it is 0.
+std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes);
+
+/// Refuses (usage_error, exit code 2) a grid read from `path` (a DSM or DTM, from its header, before any value
+/// is read) whose memory estimate, g.rows x g.cols x bytes_per_cell (what the command keeps per cell), exceeds
+/// the budget (memory_budget_of): the message names the grid, the estimate, the budget and what to do.
+void refuse_grid_over_budget(const std::string& path, const grid& g, double bytes_per_cell,
+                             std::uint64_t memory_budget_bytes);
+
+/// Says on stderr how many cells of the grid read from `path` held no finite height (inf, -inf, nan: they are no
+/// data now), when there were any.
+void report_non_finite_heights(const std::string& path, std::size_t cells);
+
 /// Reads every point of `paths` in chunks and rasterizes them on the snapped grid covering the union of
 /// the files' header bounds (or the crop box); points outside those bounds (a header that lies) are reported
 /// as an error naming the file. Coordinates are converted to metres by the units of each file's CRS (io::crs_of,

@@ -49,6 +49,10 @@ constexpr const char* usage =
 namespace lidarfx::cli {
 namespace {
 
+/// What lidarfx roofs keeps per grid cell, bytes: the survey rasters (or the DSM and DTM), the buildings' labels,
+/// planes and patches (its memory estimate for --memory).
+constexpr double roofs_bytes_per_cell = 64;
+
 // The surface models of the run, in metres, on one grid.
 struct roof_inputs {
     raster<float> dsm, dtm;
@@ -63,18 +67,24 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
 {
     roof_inputs in;
     if (inputs.size() == 2 && has_extension(inputs[0], ".asc") && has_extension(inputs[1], ".asc")) {
-        grid g2;
-        in.dsm = io::read_ascii_grid(inputs[0], in.g);
-        in.dtm = io::read_ascii_grid(inputs[1], g2);
-        if (g2.rows != in.g.rows || g2.cols != in.g.cols || g2.x0 != in.g.x0 || g2.y0 != in.g.y0 || g2.cell != in.g.cell)
+        // Both headers first: the grids must agree and fit --memory before any cell is allocated.
+        const grid g1 = io::read_ascii_grid_header(inputs[0]).g, g2 = io::read_ascii_grid_header(inputs[1]).g;
+        if (g2.rows != g1.rows || g2.cols != g1.cols || g2.x0 != g1.x0 || g2.y0 != g1.y0 || g2.cell != g1.cell)
             throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
+        const std::uint64_t budget = a.has("memory") ? parse_bytes(a.text("memory", ""), "--memory") : 0;
+        refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
+        for (const auto& [path, target] : {std::pair{inputs[0], &in.dsm}, std::pair{inputs[1], &in.dtm}}) {
+            std::size_t non_finite = 0;
+            *target = io::read_ascii_grid(path, in.g, &non_finite);
+            report_non_finite_heights(path, non_finite);
+        }
         in.out_grid = in.g;
         return in;
     }
     for (const std::string& f : inputs) {
         if (has_extension(f, ".asc")) throw usage_error(f + ": give either LAS/LAZ files or exactly DSM.asc DTM.asc");
     }
-    auto survey_opts = survey_options_from(a, 64);
+    auto survey_opts = survey_options_from(a, roofs_bytes_per_cell);
     if (!a.has("cell")) survey_opts.cell_m = 1.0;  // roofs' default: 1 m cells
     const survey s = read_survey(inputs, survey_opts);
     print_survey(s);

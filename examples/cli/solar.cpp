@@ -141,7 +141,11 @@ struct geotiff_dsm {
     lidarfx::io::survey_crs crs;
 };
 
-geotiff_dsm read_geotiff_dsm(const std::string& path)
+/// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
+/// view, shadows and the outputs' buffers (its memory estimate for --memory).
+constexpr double solar_bytes_per_cell = 96;
+
+geotiff_dsm read_geotiff_dsm(const std::string& path, std::uint64_t memory_budget_bytes)
 {
     namespace io = lidarfx::io;
     if (!io::geotiff_available()) {
@@ -149,7 +153,9 @@ geotiff_dsm read_geotiff_dsm(const std::string& path)
                                         "it: convert it to ESRI ASCII (gdal_translate -of AAIGrid DSM.tif DSM.asc, "
                                         "heights and cells in metres) or install libgdal-dev and rebuild");
     }
+    lidarfx::cli::refuse_grid_over_budget(path, io::read_geotiff_grid(path), solar_bytes_per_cell, memory_budget_bytes);
     io::geotiff_raster t = io::read_geotiff(path);
+    lidarfx::cli::report_non_finite_heights(path, t.non_finite_cells);
     geotiff_dsm d;
     d.crs = io::crs_of_wkt(t.crs_wkt);
     for (const auto& w : d.crs.warnings) std::cerr << "lidarfx: warning: " << path << ": " << w << '\n';
@@ -239,11 +245,17 @@ int run_solar(const std::vector<std::string>& args)
     double cell_m = 0.0;
     std::string crs_wkt, place_crs;
     int epsg = 0;
+    const std::uint64_t memory_budget = a.has("memory") ? cli::parse_bytes(a.text("memory", ""), "--memory") : 0;
     if (single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
-        dsm = lidarfx::io::read_ascii_grid(inputs[0], g);
+        // The header against --memory before any cell is allocated, as for a survey's grid.
+        cli::refuse_grid_over_budget(inputs[0], lidarfx::io::read_ascii_grid_header(inputs[0]).g, solar_bytes_per_cell,
+                                     memory_budget);
+        std::size_t non_finite = 0;
+        dsm = lidarfx::io::read_ascii_grid(inputs[0], g, &non_finite);
+        lidarfx::cli::report_non_finite_heights(inputs[0], non_finite);
         cell_m = g.cell;  // taken as metres
     } else if (single_grid) {
-        auto t = read_geotiff_dsm(inputs[0]);
+        auto t = read_geotiff_dsm(inputs[0], memory_budget);
         dsm = std::move(t.values);
         g = t.g;
         cell_m = t.cell_m;
@@ -251,7 +263,7 @@ int run_solar(const std::vector<std::string>& args)
         epsg = t.crs.epsg;
         place_crs = t.crs.for_outputs();
     } else {
-        auto survey_options = cli::survey_options_from(a, 96);
+        auto survey_options = cli::survey_options_from(a, solar_bytes_per_cell);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
         const auto s = cli::read_survey(inputs, survey_options);
         cli::print_survey(s);

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/ascii_grid.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -57,9 +59,65 @@ public:
         return t;
     }
 
+    /// Bytes from the text's start to the end of the last token taken.
+    std::size_t position() const { return at_; }
+
 private:
     std::string_view text_;
     std::size_t at_ = 0;
+};
+
+/// Bytes of a file's start read for its header; cells a grid may declare (2^40).
+constexpr std::size_t header_bytes_max = 64 * 1024;
+constexpr double max_cells = 1099511627776.0;
+
+/// Whitespace-separated tokens of a stream, read in blocks of 1 MiB: memory of one block, whatever the file.
+/// A token longer than 256 bytes is no number: `fail` is called with what is wrong.
+template <class Fail>
+class streamed_tokens {
+public:
+    streamed_tokens(std::istream& in, const Fail& fail) : in_(in), fail_(fail) {}
+    std::string_view next()
+    {
+        for (;;) {
+            while (at_ < buffer_.size() && std::isspace(static_cast<unsigned char>(buffer_[at_]))) ++at_;
+            if (at_ == buffer_.size()) {
+                if (!refill()) return {};
+                continue;  // the new block may start with white space
+            }
+            std::size_t end = at_;
+            while (end < buffer_.size() && !std::isspace(static_cast<unsigned char>(buffer_[end]))) ++end;
+            if (end - at_ > longest_token) fail_(detail::concat("a value of more than ", longest_token, " characters"));
+            if (end == buffer_.size() && refill()) continue;  // the token may go on in the next block
+            const std::string_view token(buffer_.data() + at_, end - at_);
+            at_ = end;
+            return token;
+        }
+    }
+
+private:
+    static constexpr std::size_t block_bytes = 1 << 20, longest_token = 256;
+
+    /// Keeps the unread part and appends the next block; false at the end of the stream.
+    bool refill()
+    {
+        if (done_) return false;
+        buffer_.erase(0, at_);
+        at_ = 0;
+        const std::size_t kept = buffer_.size();
+        buffer_.resize(kept + block_bytes);
+        in_.read(buffer_.data() + kept, static_cast<std::streamsize>(block_bytes));
+        const auto got = static_cast<std::size_t>(in_.gcount());
+        buffer_.resize(kept + got);
+        done_ = got < block_bytes;
+        return got > 0;
+    }
+
+    std::istream& in_;
+    const Fail& fail_;
+    std::string buffer_;
+    std::size_t at_ = 0;
+    bool done_ = false;
 };
 
 template <class T>
@@ -105,23 +163,28 @@ void write_ascii_grid(const std::string& path, raster_view<const float> values, 
     if (!out) throw std::runtime_error(path + ": write failed");
 }
 
-raster<float> read_ascii_grid(const std::string& path, grid& g)
+ascii_grid_header read_ascii_grid_header(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(path + ": cannot open");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
     const auto fail = [&path](const std::string& what) { throw std::runtime_error(path + ": " + what); };
+    std::error_code ec;
+    ascii_grid_header h;
+    h.file_bytes = std::filesystem::file_size(path, ec);
+    if (ec) fail("cannot read its size: " + ec.message());
+    // The header's at most 8 lines fit in its first 64 KiB (longer lines hold no valid number).
+    std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(h.file_bytes, header_bytes_max)), '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
 
-    tokens tok(text);
+    tokens tok(head);
     std::map<std::string, double> header;
     while (!tok.peek().empty() && std::isalpha(static_cast<unsigned char>(tok.peek().front()))) {
         std::string key(tok.peek());
         for (auto& ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
         if (key != "ncols" && key != "nrows" && key != "xllcorner" && key != "yllcorner" && key != "xllcenter" &&
             key != "yllcenter" && key != "cellsize" && key != "nodata_value") {
-            if (header.count("cellsize") != 0) break;   // a complete header: data may start with "nan" or "inf"
+            if (header.count("cellsize") != 0) break;  // a complete header: data may start with "nan" or "inf"
             fail("unexpected header key '" + key + "'");
         }
         tok.next();
@@ -130,6 +193,7 @@ raster<float> read_ascii_grid(const std::string& path, grid& g)
         if (!parse(value_text, value)) fail("header key " + key + " has a bad value '" + std::string(value_text) + "'");
         if (!header.emplace(key, value).second) fail("header key " + key + " appears twice");
     }
+    h.data_offset = tok.position();
     const auto has = [&](const char* k) { return header.count(k) != 0; };
     for (const char* k : {"ncols", "nrows", "cellsize"}) {
         if (!has(k)) fail(std::string("header has no ") + k);
@@ -137,9 +201,11 @@ raster<float> read_ascii_grid(const std::string& path, grid& g)
     if (has("xllcorner") == has("xllcenter")) fail("header needs exactly one of xllcorner and xllcenter");
     if (has("yllcorner") == has("yllcenter")) fail("header needs exactly one of yllcorner and yllcenter");
     const double ncols = header["ncols"], nrows = header["nrows"], cell = header["cellsize"];
-    if (!(ncols >= 1 && nrows >= 1 && ncols == std::floor(ncols) && nrows == std::floor(nrows) &&
-          ncols * nrows <= 1e12)) {
+    if (!(ncols >= 1 && nrows >= 1 && ncols == std::floor(ncols) && nrows == std::floor(nrows))) {
         fail("ncols and nrows must be positive integers");
+    }
+    if (!(ncols * nrows <= max_cells)) {
+        fail(detail::concat("ncols ", ncols, " x nrows ", nrows, " is more than 2^40 cells"));
     }
     if (!(cell > 0 && std::isfinite(cell))) fail("cellsize must be finite and > 0");
     // Centre registration names the centre of the lower-left cell: move to its corner.
@@ -147,10 +213,30 @@ raster<float> read_ascii_grid(const std::string& path, grid& g)
     const double yll = has("yllcorner") ? header["yllcorner"] : header["yllcenter"] - cell / 2;
     if (!std::isfinite(xll) || !std::isfinite(yll)) fail("the lower-left corner must be finite");
     const auto rows = static_cast<std::ptrdiff_t>(nrows), cols = static_cast<std::ptrdiff_t>(ncols);
-    const bool has_nodata = has("nodata_value");
-    const double nodata = has_nodata ? header["nodata_value"] : 0.0;
-    const auto nodata_float = static_cast<float>(nodata);
+    h.has_nodata = has("nodata_value");
+    h.nodata = h.has_nodata ? header["nodata_value"] : 0.0;
+    h.g = grid{xll, yll + nrows * cell, cell, rows, cols};
+    return h;
+}
 
+raster<float> read_ascii_grid(const std::string& path, grid& g, std::size_t* non_finite_cells)
+{
+    const ascii_grid_header h = read_ascii_grid_header(path);
+    const auto fail = [&path](const std::string& what) { throw std::runtime_error(path + ": " + what); };
+    // Before the grid is allocated: every value takes at least one character and all but the last a separator.
+    const std::uintmax_t cells = static_cast<std::uintmax_t>(h.g.rows) * static_cast<std::uintmax_t>(h.g.cols);
+    const std::uintmax_t data_bytes = h.file_bytes - h.data_offset;
+    if (data_bytes < 2 * cells - 1) {
+        fail(detail::concat("truncated data: expected ", cells, " values, but the ", data_bytes,
+                            " bytes after the header hold at most ", (data_bytes + 1) / 2));
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open");
+    in.seekg(static_cast<std::streamoff>(h.data_offset));
+    streamed_tokens tok(in, fail);
+    const std::ptrdiff_t rows = h.g.rows, cols = h.g.cols;
+    const auto nodata_float = static_cast<float>(h.nodata);
+    std::size_t non_finite = 0;
     raster<float> values(rows, cols);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         float* row = values.row(r);
@@ -163,12 +249,18 @@ raster<float> read_ascii_grid(const std::string& path, grid& g)
             // Parsing straight to float avoids double rounding; NoData is compared at double precision.
             if (!parse(t, v)) fail(detail::concat("bad value '", t, "' at row ", r, ", column ", c));
             double d = 0;
-            if (has_nodata && v == nodata_float && parse(t, d) && d == nodata) v = NAN;
+            if (h.has_nodata && v == nodata_float && parse(t, d) && d == h.nodata) {
+                v = NAN;
+            } else if (!std::isfinite(v)) {
+                ++non_finite;  // inf, -inf or nan in the file: no height, so no data
+                v = NAN;
+            }
             row[c] = v;
         }
     }
     if (!tok.next().empty()) fail(detail::concat("more values than nrows x ncols = ", rows * cols));
-    g = grid{xll, yll + nrows * cell, cell, rows, cols};
+    if (non_finite_cells) *non_finite_cells = non_finite;
+    g = h.g;
     return values;
 }
 

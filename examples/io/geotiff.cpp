@@ -121,24 +121,44 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     if (CPLGetLastErrorType() >= CE_Failure) throw std::runtime_error(path + ": closing the GeoTIFF failed" + gdal_message());
 }
 
+namespace {
+
+/// The grid of an open dataset's band 1. @throws std::runtime_error naming the file.
+grid grid_of(GDALDatasetH ds, const std::string& path)
+{
+    const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
+    if (GDALGetRasterCount(ds) < 1) throw std::runtime_error(path + ": the file has no raster band");
+    std::array<double, 6> gt{};
+    if (GDALGetGeoTransform(ds, gt.data()) != CE_None) throw std::runtime_error(path + ": the file has no geotransform");
+    try {
+        return from_gdal(gt, rows, cols);
+    } catch (const invalid_input& e) {
+        throw std::runtime_error(path + ": unsupported georeferencing: " + e.what() +
+                                 "; lidarfx reads north-up grids of square cells only: resample it first, e.g. "
+                                 "gdalwarp -tr CELL CELL IN.tif OUT.tif");
+    }
+}
+
+}  // namespace
+
+grid read_geotiff_grid(const std::string& path)
+{
+    register_drivers();
+    const quiet_gdal quiet;
+    dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
+    if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
+    return grid_of(ds.get(), path);
+}
+
 geotiff_raster read_geotiff(const std::string& path)
 {
     register_drivers();
     const quiet_gdal quiet;
     dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
     if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
-    const int cols = GDALGetRasterXSize(ds.get()), rows = GDALGetRasterYSize(ds.get());
-    if (GDALGetRasterCount(ds.get()) < 1) throw std::runtime_error(path + ": the file has no raster band");
-    std::array<double, 6> gt{};
-    if (GDALGetGeoTransform(ds.get(), gt.data()) != CE_None) throw std::runtime_error(path + ": the file has no geotransform");
     geotiff_raster out;
-    try {
-        out.g = from_gdal(gt, rows, cols);
-    } catch (const invalid_input& e) {
-        throw std::runtime_error(path + ": unsupported georeferencing: " + e.what() +
-                                 "; lidarfx reads north-up grids of square cells only: resample it first, e.g. "
-                                 "gdalwarp -tr CELL CELL IN.tif OUT.tif");
-    }
+    out.g = grid_of(ds.get(), path);
+    const auto rows = static_cast<int>(out.g.rows), cols = static_cast<int>(out.g.cols);
     const char* wkt = GDALGetProjectionRef(ds.get());
     out.crs_wkt = wkt != nullptr ? wkt : "";
     out.values = raster<float>(rows, cols);
@@ -148,10 +168,13 @@ geotiff_raster read_geotiff(const std::string& path)
     }
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
-    if (has_nodata) {
-        const auto as_float = static_cast<float>(nodata);
-        for (float& v : out.values) {
-            if (v == as_float || (std::isnan(nodata) && std::isnan(v))) v = NAN;
+    const auto as_float = static_cast<float>(nodata);
+    for (float& v : out.values) {
+        if (has_nodata && (v == as_float || (std::isnan(nodata) && std::isnan(v)))) {
+            v = NAN;
+        } else if (!std::isfinite(v)) {
+            ++out.non_finite_cells;  // no height: no data
+            v = NAN;
         }
     }
     return out;
@@ -191,6 +214,8 @@ void write_geotiff(const std::string& path, raster_view<const float>, const grid
 }
 
 geotiff_raster read_geotiff(const std::string& path) { no_gdal(path); }
+
+grid read_geotiff_grid(const std::string& path) { no_gdal(path); }
 
 #endif
 

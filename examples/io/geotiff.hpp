@@ -2,6 +2,7 @@
 // Float32 GeoTIFF output and input through GDAL, when lidarfx_io was built with it (LIDARFX_HAVE_GDAL).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include <lidarfx/core/grid.hpp>
@@ -29,12 +30,17 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
 
 /// A raster read from a GeoTIFF (or any single-band raster GDAL reads), with its georeferencing.
 struct geotiff_raster {
-    raster<float> values;   ///< band 1 as float; NoData cells are NaN
-    grid g;                 ///< from the geotransform (north-up, square cells)
-    std::string crs_wkt;    ///< the file's CRS as WKT, empty when it has none
+    raster<float> values;              ///< band 1 as float; NoData cells are NaN
+    grid g;                            ///< from the geotransform (north-up, square cells)
+    std::string crs_wkt;               ///< the file's CRS as WKT, empty when it has none
+    std::size_t non_finite_cells = 0;  ///< cells holding inf, -inf (or NaN when NaN is not the NoData value): NaN now
 };
 
-/// Reads band 1 of a raster file through GDAL. @throws std::runtime_error naming the file when it cannot be
+/// The grid of band 1 of a raster file (size and geotransform), read from its header without its values, so that
+/// a caller can check it against a memory budget first. @throws as read_geotiff.
+grid read_geotiff_grid(const std::string& path);
+
+/// Reads band 1 of a raster file through GDAL (memory: the grid). Non-finite values are no data (NaN), counted. @throws std::runtime_error naming the file when it cannot be
 /// read, its geotransform is rotated or its cells are not square, or GDAL is not available.
 geotiff_raster read_geotiff(const std::string& path);
 

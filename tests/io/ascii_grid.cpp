@@ -150,3 +150,69 @@ TEST_CASE("io/write_ascii_grid: every value is written as std::to_chars writes i
     const auto last_line = text.substr(text.rfind('\n', text.size() - 2) + 1);
     CHECK(last_line == expected + "\n");
 }
+
+TEST_CASE("io/read_ascii_grid: values straddling the 1 MiB read blocks come back bit for bit")
+{
+    io_test::temp_dir dir;
+    std::mt19937 rng(2026);
+    // 640 x 700 cells of up to 15 characters: about 4 MB of text, so tokens cross three block edges somewhere.
+    raster<float> values(640, 700);
+    for (auto& v : values) {
+        float f;
+        do {
+            f = std::bit_cast<float>(static_cast<std::uint32_t>(rng()));
+        } while (!std::isfinite(f));
+        v = rng() % 7 == 0 ? NAN : f;
+    }
+    const grid g{500000, 4000640, 1.0, values.rows(), values.cols()};
+    const std::string path = dir.file("big.asc");
+    write_ascii_grid(path, values, g);
+    grid back_grid;
+    std::size_t non_finite = 99;
+    const auto back = read_ascii_grid(path, back_grid, &non_finite);
+    CHECK(io_test::same_cells(back, values));
+    CHECK(non_finite == 0);  // NaN cells were written as NODATA_value, which is no data, not a non-finite height
+}
+
+TEST_CASE("io/read_ascii_grid: inf, -inf and nan heights are no data, counted")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("inf.asc");
+    write_text(path, "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n"
+                     "inf 1 -9999\n-inf nan 2\n");
+    grid g;
+    std::size_t non_finite = 0;
+    const auto v = read_ascii_grid(path, g, &non_finite);
+    CHECK(non_finite == 3);
+    CHECK(std::isnan(v(0, 0)));
+    CHECK(v(0, 1) == 1.0f);
+    CHECK(std::isnan(v(0, 2)));  // NODATA_value: no data, not counted
+    CHECK(std::isnan(v(1, 0)));
+    CHECK(std::isnan(v(1, 1)));
+    CHECK(v(1, 2) == 2.0f);
+}
+
+TEST_CASE("io/read_ascii_grid: a header promising more cells than its file holds fails before the grid exists")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("huge.asc");
+    grid g;
+    // 20000 x 20000 cells (1.6 GB of floats) declared in a 100-byte file: the header reads, the grid is refused.
+    write_text(path, "ncols 20000\nnrows 20000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n");
+    const ascii_grid_header h = read_ascii_grid_header(path);
+    CHECK(h.g.rows == 20000);
+    CHECK(h.g.cols == 20000);
+    CHECK(h.file_bytes == 65);
+    CHECK(h.data_offset == 58);
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid(path, g); }) ==
+          path + ": truncated data: expected 400000000 values, but the 7 bytes after the header hold at most 4");
+    write_text(path, "ncols 2147483648\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n");
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid(path, g); }) ==
+          path + ": truncated data: expected 2147483648 values, but the 7 bytes after the header hold at most 4");
+    write_text(path, "ncols 2000000\nnrows 2000000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1\n");
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid_header(path); }) ==
+          path + ": ncols 2000000 x nrows 2000000 is more than 2^40 cells");
+    // A value of 300 characters is no number (and is not held whole, whatever its length).
+    write_text(path, "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 " + std::string(300, '7') + "\n");
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid(path, g); }) == path + ": a value of more than 256 characters");
+}
