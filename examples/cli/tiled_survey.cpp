@@ -16,7 +16,9 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <lidarfx/kernels/points/scan_coverage.hpp>
 
@@ -423,6 +425,42 @@ survey tiled_survey_assembly::finish()
     return std::move(s_);
 }
 
+namespace {
+
+/// FNV-1a 64 of a file's header and sampled blocks: its first and last 64 KiB and 16 evenly spaced 4 KiB blocks
+/// (the whole file when it is smaller than that), so that an input edited in place is noticed even when its
+/// size and modification time were kept.
+std::uint64_t sampled_hash(const std::string& path, std::uint64_t size)
+{
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+    constexpr std::uint64_t edge = 64 * 1024, block = 4 * 1024, blocks = 16;
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> spans;   // offset, length
+    if (size <= 2 * edge + blocks * block) spans.push_back({0, size});
+    else {
+        spans.push_back({0, edge});
+        for (std::uint64_t k = 0; k < blocks; ++k) spans.push_back({edge + (size - 2 * edge - block) * k / (blocks - 1), block});
+        spans.push_back({size - edge, edge});
+    }
+    std::uint64_t h = fnv1a64(nullptr, 0);
+    std::vector<std::uint8_t> buffer;
+    for (const auto& [offset, length] : spans) {
+        buffer.resize(length);
+        std::size_t got = 0;
+        while (got < length) {
+            const ssize_t n = ::pread(fd, buffer.data() + got, length - got, static_cast<off_t>(offset + got));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            got += static_cast<std::size_t>(n);
+        }
+        h = fnv1a64(buffer.data(), got, h);
+    }
+    ::close(fd);
+    return h;
+}
+
+}  // namespace
+
 std::string tiled_fingerprint(const std::vector<std::string>& paths, const survey_options& opt, double tile_edge_m)
 {
     std::ostringstream f;
@@ -433,7 +471,8 @@ std::string tiled_fingerprint(const std::vector<std::string>& paths, const surve
         struct stat st {};
         if (::stat(p.c_str(), &st) != 0) throw std::runtime_error(p + ": cannot open: " + std::strerror(errno));
         f << "file " << std::filesystem::absolute(p).string() << " size " << st.st_size << " mtime "
-          << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec << "\n";
+          << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec << " sampled_fnv1a64 " << std::hex
+          << sampled_hash(p, static_cast<std::uint64_t>(st.st_size)) << std::dec << "\n";
     }
     return f.str();
 }
@@ -495,6 +534,8 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     std::mutex bar_mutex;
     std::size_t finished = 0;
     std::atomic<long> recorded{0};
+    std::atomic<bool> stop{false};          // set by the first failure: no tile starts after it
+    std::atomic<std::size_t> file_reads{0};  // files read by this run's tiles (not those taken from the store)
     const auto placed = [&](const tile_rasters& t) {
         assembly.place(t);
         const std::lock_guard lock(bar_mutex);
@@ -532,7 +573,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
         o.acc.reset();
         o.handed = {};
         if (store) {
-            store->save(t, pack_tile(r));
+            store->save(t, pack_tile(r));   // a failure stops the run (below), keeping the tiles saved before
             if (recorded.fetch_add(1) + 1 == kill_after) std::raise(SIGKILL);
         }
         placed(r);
@@ -571,8 +612,12 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     for (const auto& tile : plan.tiles) {
         jobs.push_back([&, index = tile.index] {
             if (done(index)) {
-                const std::string where = (resume_dir / ("tile_" + std::to_string(index))).string();
-                placed(unpack_tile(store->load(index), plan, where));
+                const std::string where = (resume_dir / ("tile_" + std::to_string(index) + ".bin")).string();
+                tile_rasters saved = unpack_tile(store->load(index), plan, where);
+                if (saved.index != index)
+                    throw std::runtime_error(where + ": holds tile " + std::to_string(saved.index) + ", not tile " +
+                                             std::to_string(index));
+                placed(saved);
                 return;
             }
             const cell_box& core = tile.core;
@@ -584,6 +629,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
             std::vector<core_points>& kept = buffers->kept;
             for (const std::size_t f : tile.files) {
                 if (!reads_itself(f, index)) continue;   // handed to this tile
+                ++file_reads;
                 const bool home = readers[f].home == index;
                 const auto& to = hands[f];
                 // The reading tile first, then the tiles this home hands the file to.
@@ -628,6 +674,17 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     }
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
+    for (auto& job : jobs) {   // the first failure (a write on a full disk, a bad file) ends the run
+        job = [&stop, body = std::move(job)] {
+            if (stop) return;
+            try {
+                body();
+            } catch (...) {
+                stop = true;
+                throw;
+            }
+        };
+    }
     run_jobs(jobs, threads);
     if (count_outliers) {
         outlier_bins all(L.header_box);
@@ -637,10 +694,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     if (opt.show_progress) {
         const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
         const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-        std::size_t reads = 0;   // files read by the tiles this run read (not those taken from the store)
-        for (const auto& t : plan.tiles)
-            if (!done(t.index))
-                for (const std::size_t f : t.files) reads += reads_itself(f, t.index);
+        const std::size_t reads = file_reads;
         std::cerr << "tiles: " << plan.tiles.size() << " tiles of " << plan.tile_cells << " x " << plan.tile_cells
                   << " cells read in " << took.count() << " s (CPU " << cpu << " s); " << reads << " file reads for "
                   << paths.size() << " files"

@@ -82,8 +82,9 @@ private:
     std::mutex mutex_;
 };
 
-/// A fingerprint of a tiled run's inputs and settings: each file's path, size and modification time, the
-/// cell, tile edge and crop. Two runs with the same fingerprint produce the same tiles.
+/// A fingerprint of a tiled run's inputs and settings: each file's path, size, modification time and an FNV-1a 64
+/// hash of its first and last 64 KiB and 16 evenly spaced 4 KiB blocks (the whole file up to 192 KiB), the cell,
+/// tile edge and crop. Two runs with the same fingerprint produce the same tiles.
 std::string tiled_fingerprint(const std::vector<std::string>& paths, const survey_options& opt, double tile_edge_m);
 
 /// read_survey, tile by tile: stage A of a tiled run on opt.threads threads (one tile, one accumulator per

@@ -12,6 +12,7 @@
 #include <lidarfx/lidarfx.hpp>
 
 #include "outputs.hpp"
+#include "tile_store.hpp"
 #include "tiled_survey.hpp"
 
 namespace lidarfx::cli {
@@ -154,7 +155,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     print_waterbodies(w);
     write_waterbodies(out, s, w, found.footprint, survey_options.formats, opt.run.threads);
     commit_and_report(out, command_line("water", args));
-    std::filesystem::remove_all(tiles_dir);   // the run is complete: its tiles are no longer needed
+    if (tile_edge_m > 0) remove_tile_folder(tiles_dir);   // the run is complete: its tiles are no longer needed
     return 0;
 }
 

@@ -2,7 +2,9 @@
 // Whole-file output with errors that name the file (internal to the I/O examples).
 #pragma once
 
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -18,7 +20,7 @@ inline void write_file(const std::string& path, const void* data, std::size_t si
     if (!out) throw std::runtime_error(path + ": cannot open for writing");
     out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
     out.close();
-    if (!out) throw std::runtime_error(path + ": write failed");
+    if (!out) throw std::runtime_error(path + ": write failed (" + std::strerror(errno) + ")");
 }
 
 inline void write_file(const std::string& path, const std::vector<std::uint8_t>& bytes)

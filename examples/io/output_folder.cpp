@@ -49,6 +49,19 @@ std::string temporary_name(const std::string& name)
     return t;
 }
 
+/// True for a name of the form temporary_name gives: ".<name>.<decimal pid>.lidarfx-tmp", <name> not empty.
+bool is_temporary_name(const std::string& t)
+{
+    const std::size_t suffix = std::strlen(temporary_suffix);
+    if (t.size() <= suffix + 3 || t[0] != '.' || t.compare(t.size() - suffix, suffix, temporary_suffix) != 0) return false;
+    const std::string rest = t.substr(1, t.size() - suffix - 1);   // <name>.<pid>
+    const auto dot = rest.rfind('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == rest.size()) return false;
+    for (std::size_t i = dot + 1; i < rest.size(); ++i)
+        if (rest[i] < '0' || rest[i] > '9') return false;
+    return true;
+}
+
 /// lstat of `path`: nullopt-like false when nothing is there.
 bool entry_at(const std::filesystem::path& path, struct stat& st)
 {
@@ -198,10 +211,11 @@ output_folder::output_folder(std::filesystem::path dir, std::vector<std::filesys
         throw failure(dir_, "another lidarfx run is writing into this folder; wait for it or choose another --out");
     }
     // Holding the lock, no other run is active: temporary files here are leftovers of killed runs.
+    // Only names of the exact form temporary_name gives, and only regular files (a link is never removed).
     for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
-        const auto name = entry.path().filename().string();
-        if (name.size() > std::strlen(temporary_suffix) &&
-            name.compare(name.size() - std::strlen(temporary_suffix), std::string::npos, temporary_suffix) == 0) {
+        struct stat e {};
+        if (is_temporary_name(entry.path().filename().string()) && ::lstat(entry.path().c_str(), &e) == 0 &&
+            S_ISREG(e.st_mode)) {
             std::filesystem::remove(entry.path(), ec);
         }
     }

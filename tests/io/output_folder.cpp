@@ -162,3 +162,24 @@ TEST_CASE("io/output_folder: leftovers of killed runs are removed; bad names are
     write_file((dir / "plain.txt").string(), std::string("a file"));
     CHECK(contains(io_test::runtime_error_of([&] { output_folder bad(dir / "plain.txt"); }), "plain.txt: exists and is not a folder"));
 }
+
+TEST_CASE("io/output_folder: only regular files named as this program names its temporaries are removed as leftovers")
+{
+    temp_dir tmp;
+    const std::filesystem::path dir = tmp.file("out");
+    const std::filesystem::path theirs = tmp.file("theirs.lidarfx-tmp");
+    std::filesystem::create_directories(dir);
+    write_file(theirs.string(), std::string("someone's"));
+    write_file((dir / ".a.txt.77.lidarfx-tmp").string(), std::string("ours"));                  // a leftover
+    for (const char* foreign : {"notes.lidarfx-tmp", ".a.txt.lidarfx-tmp", ".a.txt.7x.lidarfx-tmp", "..1.lidarfx-tmp"})
+        write_file((dir / foreign).string(), std::string("theirs"));
+    std::filesystem::create_symlink(theirs, dir / ".b.txt.78.lidarfx-tmp");                       // a link at our form
+    {
+        output_folder out(dir);
+    }
+    CHECK_FALSE(std::filesystem::exists(dir / ".a.txt.77.lidarfx-tmp"));
+    for (const char* foreign : {"notes.lidarfx-tmp", ".a.txt.lidarfx-tmp", ".a.txt.7x.lidarfx-tmp", "..1.lidarfx-tmp"})
+        CHECK(text_of(dir / foreign) == "theirs");
+    CHECK(std::filesystem::is_symlink(dir / ".b.txt.78.lidarfx-tmp"));
+    CHECK(text_of(theirs) == "someone's");
+}

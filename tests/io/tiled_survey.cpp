@@ -6,12 +6,17 @@
 #include "cli/tiled_survey.hpp"
 #include "io/las_writer.hpp"
 
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <lidarfx/synth/scenes.hpp>
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 
 #include "io_test_util.hpp"
 
@@ -184,9 +189,8 @@ TEST_CASE("io/tile_store: finished tiles survive a reopen with the same fingerpr
         store.save(7, {4});
         CHECK(store.done_count() == 2);
     }
-    // What a killed run may leave besides finished tiles: a temporary file, and names that are no tile.
-    for (const char* stray : {"tile_4.bin.tmp99", "tile_x.bin", "tile_5.binx", "notes"})
-        io_test::write_bytes((folder / stray).string(), {9});
+    CHECK(std::filesystem::is_regular_file(folder / ".lidarfx-tile-store"));
+    io_test::write_bytes((folder / "tile_4.bin.tmp99").string(), {9});   // a temporary of a killed run
     {
         cli::tile_store store(folder, "inputs A\n");
         CHECK(store.done(3));
@@ -194,7 +198,6 @@ TEST_CASE("io/tile_store: finished tiles survive a reopen with the same fingerpr
         CHECK(!store.done(4));
         CHECK(store.done_count() == 2);
         CHECK(!std::filesystem::exists(folder / "tile_4.bin.tmp99"));
-        CHECK(!std::filesystem::exists(folder / "notes"));
         CHECK(store.load(3) == std::vector<std::uint8_t>{1, 2, 3});
     }
     {
@@ -204,6 +207,115 @@ TEST_CASE("io/tile_store: finished tiles survive a reopen with the same fingerpr
         store.remove();
     }
     CHECK(!std::filesystem::exists(folder));
+}
+
+TEST_CASE("io/tile_store: a link, a file or a folder lidarfx did not make is refused and nothing in it is touched")
+{
+    io_test::temp_dir dir;
+    const std::filesystem::path theirs = dir.file("theirs");
+    std::filesystem::create_directories(theirs);
+    const std::vector<std::uint8_t> precious{'k', 'e', 'e', 'p'};
+    for (const char* name : {"tile_0.bin", "manifest.txt", "notes"}) io_test::write_bytes((theirs / name).string(), precious);
+    const auto untouched = [&] {
+        for (const char* name : {"tile_0.bin", "manifest.txt", "notes"})
+            CHECK(io_test::read_bytes((theirs / name).string()) == precious);
+    };
+    // A symlink at the store's name, to a folder of someone's files.
+    const std::filesystem::path link = dir.file("link");
+    std::filesystem::create_directory_symlink(theirs, link);
+    CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(link, "A\n"); }), "is a symbolic link"));
+    CHECK_THROWS_AS(cli::tile_store(link, "A\n"), cli::usage_error);
+    cli::remove_tile_folder(link);
+    untouched();
+    // The folder itself, without the marker.
+    CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(theirs, "A\n"); }), "not a lidarfx tile folder"));
+    cli::remove_tile_folder(theirs);
+    untouched();
+    // A file at the store's name.
+    const std::filesystem::path file = dir.file("file");
+    io_test::write_bytes(file.string(), precious);
+    CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(file, "A\n"); }), "is not a folder"));
+    CHECK(io_test::read_bytes(file.string()) == precious);
+    // A store of ours holding a file it did not write: refused, under either fingerprint; the file stays.
+    const std::filesystem::path ours = dir.file("ours");
+    {
+        cli::tile_store s(ours, "A\n");
+        s.save(1, {1});
+    }
+    io_test::write_bytes((ours / "notes").string(), precious);
+    for (const char* fingerprint : {"A\n", "B\n"})
+        CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(ours, fingerprint); }), "notes, which lidarfx did not write"));
+    CHECK(std::filesystem::exists(ours / "tile_1.bin"));
+    cli::remove_tile_folder(ours);   // removes its own files only, and keeps the folder for the foreign one
+    CHECK(io_test::read_bytes((ours / "notes").string()) == precious);
+    CHECK(!std::filesystem::exists(ours / "tile_1.bin"));
+}
+
+TEST_CASE("io/tiled_survey: tiles altered between runs are recomputed; the resumed survey is a clean run's, bit for bit")
+{
+    io_test::temp_dir dir;
+    const auto paths = write_lake_survey(dir);
+    const auto o = quiet(2.0, 2);
+    const auto want = cli::read_survey(paths, o);
+    const std::filesystem::path kept = dir.file("kept");
+    check_same_survey(want, cli::read_survey_tiled(paths, o, 60.0, kept));   // 25 tiles, all kept
+    const auto tile = [&](int t) { return (kept / ("tile_" + std::to_string(t) + ".bin")).string(); };
+    REQUIRE(std::filesystem::is_regular_file(tile(24)));
+    auto flipped = io_test::read_bytes(tile(3));
+    flipped[flipped.size() / 2] ^= 0x10;                                    // one bit of a raster cell
+    io_test::write_bytes(tile(3), flipped);
+    std::filesystem::copy_file(tile(5), tile(4), std::filesystem::copy_options::overwrite_existing);  // a neighbour's copy
+    std::filesystem::remove(tile(6));
+    std::filesystem::create_symlink(tile(7), tile(6));                      // a link to a neighbour
+    std::filesystem::remove(tile(8));
+    REQUIRE(::mkfifo(tile(8).c_str(), 0644) == 0);                          // would block a plain open
+    for (const int threads : {1, 2}) {
+        CAPTURE(threads);
+        check_same_survey(want, cli::read_survey_tiled(paths, quiet(2.0, threads), 60.0, kept));
+    }
+    CHECK(std::filesystem::is_symlink(tile(6)));   // not ours: left as it was
+    CHECK(std::filesystem::is_fifo(tile(8)));
+    cli::tile_store store(kept, cli::tiled_fingerprint(paths, o, 60.0));
+    CHECK(store.done_count() == 23);                // 3 and 4 recomputed and saved again; 6 and 8 not saved
+}
+
+TEST_CASE("io/tiled_fingerprint: an input edited in place, its size and modification time kept, is another input")
+{
+    io_test::temp_dir dir;
+    const auto paths = write_lake_survey(dir);
+    const auto o = quiet(2.0, 1);
+    const auto before = cli::tiled_fingerprint(paths, o, 60.0);
+    struct stat st {};
+    REQUIRE(::stat(paths[4].c_str(), &st) == 0);
+    auto bytes = io_test::read_bytes(paths[4]);
+    REQUIRE(bytes.size() > 20000);
+    bytes[bytes.size() - 3000] ^= 0x01;   // a point's coordinate, in the last 64 KiB
+    io_test::write_bytes(paths[4], bytes);
+    const struct timespec times[2] = {st.st_atim, st.st_mtim};
+    REQUIRE(::utimensat(AT_FDCWD, paths[4].c_str(), times, 0) == 0);
+    CHECK(cli::tiled_fingerprint(paths, o, 60.0) != before);
+}
+
+TEST_CASE("io/write_file_atomically: a failed write names the system's reason and leaves no temporary")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("tile_1.bin");
+    io_test::write_bytes(path, {7, 7});
+    // A file size limit makes write() fail (EFBIG) as a full disk makes it fail (ENOSPC); the signal is ignored.
+    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit old_limit {};
+    REQUIRE(::getrlimit(RLIMIT_FSIZE, &old_limit) == 0);
+    struct rlimit small = old_limit;
+    small.rlim_cur = 4096;
+    REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+    const auto error = io_test::error_of([&] { cli::write_file_atomically(path, std::vector<std::uint8_t>(100000, 1)); });
+    ::setrlimit(RLIMIT_FSIZE, &old_limit);
+    std::signal(SIGXFSZ, old_handler);
+    CHECK(io_test::contains(error, "write failed (File too large)"));
+    CHECK(io_test::read_bytes(path) == std::vector<std::uint8_t>{7, 7});   // the earlier file as it was
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.file(""))) ++entries;
+    CHECK(entries == 1);   // no temporary left
 }
 
 TEST_CASE("io/survey_files: a folder stands for its LAS and LAZ files sorted by name; files pass as they are")
