@@ -42,6 +42,9 @@ constexpr const char* usage =
     "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches; the\n"
     "                 station gives the place unless --lat/--lon are given\n"
     "  --lat/--lon    the place in degrees; without --tmy, the yields of a clear-sky year there\n"
+    "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and DTM, the footprints\n"
+    "                 and the weather file are checked against before they are read (exit code 2) [half the\n"
+    "                 memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 }  // namespace

@@ -62,6 +62,8 @@ constexpr const char* usage =
     "                 south/east/west facades and rooftops: quarterly kWh/m2/day, annual kWh/m2/yr),\n"
     "                 bill_savings.csv (12 modules of 65x39 in, 16 %, inverter 95 %, -6 %, 0.11 per kWh) and\n"
     "                 buildings_energy.png (roofs and walls coloured by annual kWh/m2)\n"
+    "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and the\n"
+    "                 weather file are checked against before they are read (exit code 2) [half the memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
 
 // Mean, min and max of the finite cells.
