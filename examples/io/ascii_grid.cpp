@@ -88,7 +88,10 @@ public:
             std::size_t end = at_;
             while (end < buffer_.size() && !std::isspace(static_cast<unsigned char>(buffer_[end]))) ++end;
             if (end - at_ > longest_token) fail_(detail::concat("a value of more than ", longest_token, " characters"));
-            if (end == buffer_.size() && refill()) continue;  // the token may go on in the next block
+            if (end == buffer_.size()) {
+                if (refill()) continue;  // the token may go on in the next block
+                end = buffer_.size();    // the file ended with it (refill may have moved it to the start)
+            }
             const std::string_view token(buffer_.data() + at_, end - at_);
             at_ = end;
             return token;

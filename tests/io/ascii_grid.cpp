@@ -216,3 +216,19 @@ TEST_CASE("io/read_ascii_grid: a header promising more cells than its file holds
     write_text(path, "ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 " + std::string(300, '7') + "\n");
     CHECK(runtime_error_of([&] { (void)read_ascii_grid(path, g); }) == path + ": a value of more than 256 characters");
 }
+
+TEST_CASE("io/read_ascii_grid: a file whose last value ends exactly at a 1 MiB block, without a newline")
+{
+    io_test::temp_dir dir;
+    const std::string path = dir.file("edge.asc");
+    // The data after "cellsize 1" is "\n1 1 ... 1": 1 + (2 x 2^19 - 1) = 2^20 bytes, the last value the block's end.
+    const std::ptrdiff_t cols = 1 << 19;
+    std::string text = "ncols " + std::to_string(cols) + "\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+    for (std::ptrdiff_t c = 0; c < cols; ++c) text += c + 1 < cols ? "1 " : "2";
+    write_text(path, text);
+    grid g;
+    const auto v = read_ascii_grid(path, g);
+    REQUIRE(v.cols() == cols);
+    CHECK(v(0, 0) == 1.0f);
+    CHECK(v(0, cols - 1) == 2.0f);
+}
