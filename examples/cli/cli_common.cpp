@@ -207,7 +207,7 @@ survey_options survey_options_from(const arguments& a, double bytes_per_cell)
     }
     o.threads = a.integer("threads", o.threads);
     if (o.threads < 0) throw usage_error("--threads must be >= 0 (got " + std::to_string(o.threads) + ")");
-    if (a.has("memory")) o.memory_budget_bytes = parse_bytes(a.text("memory", ""), "--memory");
+    o.memory_budget_bytes = memory_option(a);
     if (a.has("crop")) {
         const std::string text = a.text("crop", "");
         bounds b{};
@@ -250,6 +250,23 @@ double round_cell_up(double cell_m)
 }
 
 }  // namespace
+
+std::uint64_t memory_option(const arguments& a)
+{
+    return a.has("memory") ? parse_bytes(a.text("memory", ""), "--memory") : 0;
+}
+
+io::tmy3_data read_weather_year(const std::string& path)
+{
+    io::tmy3_data tmy;
+    try {
+        tmy = io::read_tmy3(path);
+    } catch (const invalid_input& e) {
+        throw usage_error(e.what());  // the file breaks the rules of a weather year: exit code 2
+    }
+    std::cerr << io::coverage_line(tmy, path) << "\n";
+    return tmy;
+}
 
 std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes)
 {

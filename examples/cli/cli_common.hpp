@@ -20,6 +20,7 @@
 #include "io/crs.hpp"
 #include "io/las.hpp"
 #include "io/output_folder.hpp"
+#include "io/tmy3.hpp"
 
 namespace lidarfx::cli {
 
@@ -159,6 +160,14 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
 
 /// Multiplies a chunk's x, y and z by the layout's units (metres per unit).
 void to_metres(io::las_points& points, const survey_layout& layout);
+
+/// --memory of `a` in bytes, 0 when it is not given (then memory_budget_of takes half the physical memory).
+/// @throws usage_error for a size that does not parse.
+std::uint64_t memory_option(const arguments& a);
+
+/// The TMY3 year of --tmy FILE (io::read_tmy3), its coverage said on stderr as one line. A file that breaks the
+/// rules of a weather year is a usage_error (exit code 2). What `solar` and `roofs` share of their weather.
+io::tmy3_data read_weather_year(const std::string& path);
 
 /// The memory budget of a run: `memory_budget_bytes` (--memory), or half the physical memory when it is 0.
 std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes);

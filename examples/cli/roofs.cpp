@@ -74,7 +74,7 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
         const grid g1 = io::read_ascii_grid_header(inputs[0]).g, g2 = io::read_ascii_grid_header(inputs[1]).g;
         if (g2.rows != g1.rows || g2.cols != g1.cols || g2.x0 != g1.x0 || g2.y0 != g1.y0 || g2.cell != g1.cell)
             throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
-        const std::uint64_t budget = a.has("memory") ? parse_bytes(a.text("memory", ""), "--memory") : 0;
+        const std::uint64_t budget = memory_option(a);
         refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
         for (const auto& [path, target] : {std::pair{inputs[0], &in.dsm}, std::pair{inputs[1], &in.dtm}}) {
             std::size_t non_finite = 0;
@@ -147,15 +147,7 @@ int run_roofs(const std::vector<std::string>& args)
     if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw usage_error("--lat must be in [-90, 90] degrees");
     if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) throw usage_error("--lon must be in [-180, 180] degrees");
     if (a.has("tmy")) {
-        const std::string tmy_file = a.text("tmy", "");
-        const auto tmy = [&] {
-            try {
-                return io::read_tmy3(tmy_file);
-            } catch (const invalid_input& e) {
-                throw usage_error(e.what());  // the file breaks the rules of a weather year: exit code 2
-            }
-        }();
-        std::cerr << io::coverage_line(tmy, tmy_file) << "\n";
+        const auto tmy = read_weather_year(a.text("tmy", ""));
         records = tmy.records;
         if (!a.has("lat")) {
             lat = tmy.station.latitude_deg;
@@ -169,7 +161,7 @@ int run_roofs(const std::vector<std::string>& args)
     io::footprint_collection footprints;
     try {
         // The read counts against --memory on its own (0 = half the physical memory), before the grid exists.
-        const std::uint64_t budget = a.has("memory") ? parse_bytes(a.text("memory", ""), "--memory") : 0;
+        const std::uint64_t budget = memory_option(a);
         footprints = io::read_footprints_geojson(footprint_file, {.memory_budget_bytes = budget});
     } catch (const invalid_input& e) {
         throw usage_error(e.what());

@@ -210,15 +210,7 @@ int run_solar(const std::vector<std::string>& args)
     double station_lat = nan, station_lon = nan;
     double zone_h = 0.0;
     if (a.has("tmy")) {
-        const std::string tmy_file = a.text("tmy", "");
-        const auto tmy = [&] {
-            try {
-                return lidarfx::io::read_tmy3(tmy_file);
-            } catch (const lidarfx::invalid_input& e) {
-                throw cli::usage_error(e.what());  // the file breaks the rules of a weather year: exit code 2
-            }
-        }();
-        std::cerr << lidarfx::io::coverage_line(tmy, tmy_file) << "\n";
+        const auto tmy = cli::read_weather_year(a.text("tmy", ""));
         records = tmy.records;
         zone_h = tmy.station.utc_offset_h;
         station_lat = tmy.station.latitude_deg;
@@ -247,7 +239,7 @@ int run_solar(const std::vector<std::string>& args)
     double cell_m = 0.0;
     std::string crs_wkt, place_crs;
     int epsg = 0;
-    const std::uint64_t memory_budget = a.has("memory") ? cli::parse_bytes(a.text("memory", ""), "--memory") : 0;
+    const std::uint64_t memory_budget = cli::memory_option(a);
     if (single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
         // The header against --memory before any cell is allocated, as for a survey's grid.
         cli::refuse_grid_over_budget(inputs[0], lidarfx::io::read_ascii_grid_header(inputs[0]).g, solar_bytes_per_cell,
