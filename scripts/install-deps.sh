@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages lidarfx needs (only those missing). Usage: install-deps.sh [--peers] [--gdal] [--mpi]
 set -euo pipefail
-packages=(cmake ninja-build g++ clang-format time libeigen3-dev libboost-dev doctest-dev libbenchmark-dev zlib1g-dev)
+packages=(cmake ninja-build g++ clang-format time python3 libeigen3-dev libboost-dev doctest-dev libbenchmark-dev zlib1g-dev)
 for arg in "$@"; do
     case "$arg" in
         --peers) packages+=(python3-numpy python3-scipy python3-opencv) ;;

@@ -5,6 +5,8 @@
 #   layer 1  adapters/ and kernels/<area>/   (kernel areas never include each other)
 #   layer 2  pipelines/<area>/               (pipelines never include each other): water, solar, buildings
 #   layer 3  tiling/
+# An area's detail/ folder (e.g. kernels/filter/detail/) belongs to its area: it holds the implementation behind the
+# area's public headers, which the umbrella does not include directly.
 # lidarfx.hpp (the umbrella) may include anything. A folder that is not in this table fails the check, so a new
 # module has to be placed in a layer (here and in docs/architecture.md) before it can exist.
 # Usage: cmake -DINCLUDE_DIR=<dir holding lidarfx/> -P check_layers.cmake
@@ -39,6 +41,7 @@ foreach(header IN LISTS headers)
         continue()
     endif()
     get_filename_component(dir "${header}" DIRECTORY)
+    string(REGEX REPLACE "/detail$" "" dir "${dir}")  # <area>/detail/ holds the area's implementation
     layer_of("${dir}" layer)
     if(layer EQUAL -1)
         string(APPEND violations "\nlidarfx/${header}:1: folder '${dir}' has no layer (add it to docs/architecture.md and tests/layering/check_layers.cmake)")
@@ -54,6 +57,7 @@ foreach(header IN LISTS headers)
         math(EXPR includes_checked "${includes_checked} + 1")
         set(target "${CMAKE_MATCH_1}")
         get_filename_component(target_dir "${target}" DIRECTORY)
+        string(REGEX REPLACE "/detail$" "" target_dir "${target_dir}")
         layer_of("${target_dir}" target_layer)
         set(why "")
         if(target STREQUAL "lidarfx.hpp")
@@ -78,7 +82,7 @@ endforeach()
 if(EXISTS "${INCLUDE_DIR}/lidarfx/lidarfx.hpp")
     file(READ "${INCLUDE_DIR}/lidarfx/lidarfx.hpp" umbrella)
     foreach(header IN LISTS headers)
-        if(header STREQUAL "lidarfx.hpp" OR header MATCHES "^adapters/")
+        if(header STREQUAL "lidarfx.hpp" OR header MATCHES "^adapters/" OR header MATCHES "/detail/")
             continue()
         endif()
         string(FIND "${umbrella}" "\"lidarfx/${header}\"" at)

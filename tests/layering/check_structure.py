@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Structure rules of docs/architecture.md that the include-line check (check_layers.cmake) cannot see.
+
+  check_structure.py detail <include dir>     a header uses `detail::name` only when `name` is declared in its own
+                                              area (core/, adapters/, tiling/, kernels/<area>/, pipelines/<area>/,
+                                              each with its detail/ folder) or in core/, the library's shared base
+  check_structure.py length <include dir> N   no function body in a header is longer than N lines
+  check_structure.py diary <docs dir> <file>…  user docs state the current truth: no work-log dates, sessions or
+                                              numbered runs outside docs/history/
+
+Each violation is printed as "<file>:<line>: <what>"; the exit status is 1 when there is one.
+"""
+import pathlib
+import re
+import sys
+
+
+def strip_comments_and_strings(text):
+    """The text with comments and string/char literals blanked (newlines kept, so line numbers hold)."""
+    out = []
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if text.startswith("//", i):
+            j = text.find("\n", i)
+            j = n if j < 0 else j
+            i = j
+        elif text.startswith("/*", i):
+            j = text.find("*/", i + 2)
+            j = n if j < 0 else j + 2
+            out.append("\n" * text.count("\n", i, j))
+            i = j
+        elif c == '"' or c == "'":
+            j = i + 1
+            while j < n and text[j] != c:
+                j += 2 if text[j] == "\\" else 1
+            out.append(c + c)
+            i = j + 1
+        else:
+            out.append(c)
+            i += 1
+    return "".join(out)
+
+
+def area_of(header, root):
+    parts = header.relative_to(root).parts
+    if parts[0] in ("kernels", "pipelines"):
+        return parts[0] + "/" + parts[1]
+    return parts[0]
+
+
+def check_detail(include_dir):
+    root = pathlib.Path(include_dir) / "lidarfx"
+    headers = sorted(p for p in root.rglob("*.hpp") if p.name != "lidarfx.hpp")
+    code = {h: strip_comments_and_strings(h.read_text()) for h in headers}
+    declared = {}  # area -> set of names written unqualified (declarations and same-namespace uses)
+    for h, text in code.items():
+        names = declared.setdefault(area_of(h, root), set())
+        for m in re.finditer(r"(?<![\w:.>])([A-Za-z_]\w*)\s*(?=[(<{=;,\[])", text):
+            names.add(m.group(1))
+        for m in re.finditer(r"\b(?:struct|class|using|enum|concept)\s+([A-Za-z_]\w*)", text):
+            names.add(m.group(1))
+    violations = []
+    for h, text in code.items():
+        area = area_of(h, root)
+        for m in re.finditer(r"\bdetail::([A-Za-z_]\w*)", text):
+            name = m.group(1)
+            if name in declared.get(area, set()) or name in declared.get("core", set()):
+                continue
+            owners = sorted(a for a, names in declared.items() if name in names)
+            line = text.count("\n", 0, m.start()) + 1
+            violations.append(f"lidarfx/{h.relative_to(root)}:{line}: detail::{name} belongs to "
+                              f"{', '.join(owners) or 'no area'}, not {area}: make it a documented public "
+                              "kernel in the right layer, or keep it inside its area")
+    return violations
+
+
+def check_length(include_dir, limit):
+    violations = []
+    root = pathlib.Path(include_dir)
+    for h in sorted(root.rglob("*.hpp")):
+        text = strip_comments_and_strings(h.read_text())
+        stack = []  # (line of '{', is a function body)
+        line = 1
+        for i, c in enumerate(text):
+            if c == "\n":
+                line += 1
+            elif c == "{":
+                head = text[max(0, i - 300):i]
+                head = head[max(head.rfind(";"), head.rfind("{"), head.rfind("}")) + 1:]
+                is_function = (re.search(r"\)\s*(const\s*)?(noexcept(\([^)]*\))?\s*)?(->[^{]*)?(requires[^{]*)?$", head)
+                               and not re.search(r"\b(if|for|while|switch|catch)\s*\(", head)
+                               and not re.search(r"\[[^\]]*\]\s*(\([^)]*\))?\s*(mutable\s*)?(->[^{]*)?$", head))
+                stack.append((line, bool(is_function)))
+            elif c == "}" and stack:
+                start, is_function = stack.pop()
+                if is_function and line - start + 1 > limit:
+                    violations.append(f"{h}:{start}: function body of {line - start + 1} lines (at most {limit}): "
+                                      "split it into named steps")
+    return violations
+
+
+DIARY = [
+    (re.compile(r"\b20\d\d-\d\d-\d\d\b"), "a work-log date"),
+    (re.compile(r"\b(first|second|third|fourth|fifth|sixth|seventh|eighth|ninth|tenth|\d+(st|nd|rd|th))\s+"
+                r"(reporting|tuning)\s+run\b", re.I), "a numbered run"),
+    (re.compile(r"\b(reporting|tuning)\s+run\s+\d+\b", re.I), "a numbered run"),
+    (re.compile(r"\b(this|last|previous|next)\s+session\b", re.I), "a session"),
+    (re.compile(r"DESIGN\.md|\.\./shared\b"), "a file outside the repository"),
+]
+
+
+def check_diary(docs_dir, files):
+    violations = []
+    paths = [pathlib.Path(f) for f in files] + sorted(pathlib.Path(docs_dir).rglob("*.md"))
+    for p in paths:
+        if "history" in p.parts:
+            continue
+        for number, text in enumerate(p.read_text().split("\n"), 1):
+            for pattern, what in DIARY:
+                if pattern.search(text):
+                    violations.append(f"{p}:{number}: {what} in a user doc: state the current truth "
+                                      "(history belongs in git or docs/history/)")
+    return violations
+
+
+def main(argv):
+    if len(argv) >= 2 and argv[0] == "detail":
+        violations = check_detail(argv[1])
+    elif len(argv) == 3 and argv[0] == "length":
+        violations = check_length(argv[1], int(argv[2]))
+    elif len(argv) >= 2 and argv[0] == "diary":
+        violations = check_diary(argv[1], argv[2:])
+    else:
+        print(__doc__, file=sys.stderr)
+        return 2
+    for v in violations:
+        print(v)
+    print(f"{len(violations)} violation(s)")
+    return 1 if violations else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
