@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
 # Builds lidarfx with its tests and examples (Release) and runs every test; ends with ctest's summary.
 # Usage: scripts/test.sh [preset]   (default preset: release; asan = AddressSanitizer + UBSan)
+# Each step is announced with the time it starts, so a slow machine is never silent for long.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
+step() { echo "test.sh [$(date +%H:%M:%S)] $*"; }
+step "1/4 Debian packages (compiler, CMake, Eigen, Boost, doctest, MPI, GDAL/PROJ): installing those missing"
 bash scripts/install-deps.sh --mpi --gdal   # the MPI driver and its test; GeoTIFF in and out (GDAL, PROJ)
+step "2/4 configuring build/$preset (cmake --preset $preset)"
 cmake --preset "$preset" >/dev/null
+step "2/4 configured; 3/4 building the library's tests, examples and the program"
 cmake --build --preset "$preset"
+step "4/4 running the tests, two at a time (ctest --preset $preset)"
 ctest --preset "$preset"
+step "done"
