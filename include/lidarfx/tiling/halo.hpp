@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <numbers>
 
 #include "lidarfx/core/error.hpp"
@@ -49,21 +48,13 @@ constexpr std::ptrdiff_t slope_aspect_reach() noexcept
     return 1;
 }
 
-/// Reach of idw_fill: the largest whole number of cells n with n <= radius_m / cell_m + 1e-9 (idw_fill's own
-/// inclusive radius test); every data cell a hole can use lies within it.
-/// @throws invalid_input if radius_m is 0 (unlimited: idw_fill is then not local; give a radius) or not
-/// finite and > 0, or cell_m is not finite and > 0.
+/// Reach of idw_fill with a finite radius: idw_fill_reach_cells(opt, cell_m) (kernels/interpolate/idw_fill.hpp),
+/// the largest whole number of cells n with n <= radius_m / cell_m + 1e-9.
+/// @throws invalid_input as idw_fill_reach_cells: radius_m 0 (unlimited, not local) or not finite and > 0, or
+/// cell_m not finite and > 0.
 inline std::ptrdiff_t idw_fill_reach(const idw_fill_options& opt, double cell_m)
 {
-    constexpr const char* fn = "idw_fill_reach";
-    detail::require_positive(cell_m, fn, "cell_m");
-    detail::require(opt.radius_m > 0 && opt.radius_m <= 1.0e300, fn, [&] {
-        return detail::concat("radius_m must be finite and > 0 (got ", opt.radius_m,
-                              "); with radius_m 0 (unlimited) idw_fill is not local");
-    });
-    const std::int64_t span = std::int64_t{1} << 30;  // beyond any raster: only the radius limits the reach
-    const std::int64_t d2 = detail::idw_reach_d2(opt.radius_m, cell_m, span, span);
-    return static_cast<std::ptrdiff_t>(detail::isqrt(d2));
+    return idw_fill_reach_cells(opt, cell_m);
 }
 
 /// Reach of a cast shadow (raylines_shadow) or of a horizon above an elevation (horizon_map where only angles

@@ -278,3 +278,28 @@ TEST_CASE("raster/idw_fill: bad arguments throw invalid_input")
     CHECK_THROWS_WITH_AS(idw_fill(all_nan, 1.0), "idw_fill: z has no finite cell to interpolate from", invalid_input);
     CHECK_THROWS_AS(idw_fill(raster<float>(0, 0), 1.0), invalid_input);
 }
+
+TEST_CASE("raster/idw_fill_reach_cells: the farthest hole a data cell fills along a row")
+{
+    // One data cell at column 0 of a row of holes: idw_fill fills exactly the holes within the reach.
+    const struct {
+        double radius_m, cell_m;
+        std::ptrdiff_t reach;
+    } cases[] = {{1.0, 1.0, 1}, {0.3, 0.1, 3}, {2.5, 0.5, 5}, {0.7, 0.25, 2}, {3.99, 1.0, 3}, {0.5, 1.0, 0}};
+    for (const auto& k : cases) {
+        CAPTURE(k.radius_m);
+        CAPTURE(k.cell_m);
+        const idw_fill_options opt{.k = 1, .radius_m = k.radius_m};
+        CHECK(idw_fill_reach_cells(opt, k.cell_m) == k.reach);
+        raster<float> row(1, k.reach + 3, nan_f);
+        row(0, 0) = 7.0f;
+        const raster<float> filled = idw_fill(row, k.cell_m, opt).filled;
+        for (std::ptrdiff_t c = 1; c < row.cols(); ++c) CHECK(std::isnan(filled(0, c)) == (c > k.reach));
+    }
+    CHECK_THROWS_WITH_AS(idw_fill_reach_cells({.radius_m = 0}, 1.0),
+                         "idw_fill_reach_cells: radius_m must be finite and > 0 (got 0); with radius_m 0 (unlimited) "
+                         "idw_fill is not local",
+                         invalid_input);
+    CHECK_THROWS_AS(idw_fill_reach_cells({.radius_m = 1}, 0.0), invalid_input);
+    CHECK_THROWS_AS(idw_fill_reach_cells({.radius_m = std::numeric_limits<double>::infinity()}, 1.0), invalid_input);
+}
