@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/water/shore_cells.hpp>
+#include <lidarfx/pipelines/water/join_shore_cells.hpp>
+#include <lidarfx/pipelines/water/trim_raised_edge_cells.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/pipelines/water/grow_waterbody.hpp"
-#include "lidarfx/pipelines/water/level_refinement.hpp"
+#include "lidarfx/pipelines/water/join_level_cells.hpp"
 #include "lidarfx/pipelines/water/measure_waterbodies.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/water/level_refinement.hpp>
+#include <lidarfx/pipelines/water/join_level_cells.hpp>
 
 #include <cmath>
 #include <deque>

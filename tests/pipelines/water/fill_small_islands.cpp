@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/water/islands.hpp>
+#include <lidarfx/pipelines/water/fill_small_islands.hpp>
 
 #include "reference/islands.hpp"
 #include "water_test_rasters.hpp"

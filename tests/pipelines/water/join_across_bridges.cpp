@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/water/bridges.hpp>
+#include <lidarfx/pipelines/water/join_across_bridges.hpp>
 
 #include "reference/bridges.hpp"
 #include "water_test_rasters.hpp"
