@@ -39,179 +39,6 @@ struct stitched_components {
     std::size_t count() const noexcept { return sizes.empty() ? 0 : sizes.size() - 1; }
 };
 
-namespace detail {
-
-/// Union-find over the pieces (tile-local components) of all tiles; the root of a set is its smallest id.
-class piece_forest {
-public:
-    explicit piece_forest(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::size_t{0}); }
-    std::size_t find(std::size_t x) noexcept
-    {
-        while (parent_[x] != x) {
-            parent_[x] = parent_[parent_[x]];  // path halving
-            x = parent_[x];
-        }
-        return x;
-    }
-    void join(std::size_t a, std::size_t b) noexcept
-    {
-        a = find(a);
-        b = find(b);
-        if (a < b)
-            parent_[b] = a;
-        else if (b < a)
-            parent_[a] = b;
-    }
-
-private:
-    std::vector<std::size_t> parent_;
-};
-
-/// What a tile knows of one of its pieces (index 0: the tile's background cells).
-struct piece_stats {
-    std::size_t cells = 0;
-    cell_box box;  ///< whole-raster cells
-    std::int64_t sum = 0;
-    std::ptrdiff_t first = std::numeric_limits<std::ptrdiff_t>::max();  ///< row-major index of its first cell
-};
-
-template <class T, class V>
-stitched_components stitch_labels_view(raster_view<const T> m, const raster_view<const V>* values,
-                                       const stitch_labels_options& opt, const char* function)
-{
-    const std::ptrdiff_t rows = m.rows(), cols = m.cols();
-    stitched_components out{raster<std::int32_t>(rows, cols, uninitialized), {}, {}, {}};
-    const std::ptrdiff_t t = std::min(opt.tile_cells, std::max<std::ptrdiff_t>({rows, cols, 1}));
-    const std::ptrdiff_t tile_rows = (rows + t - 1) / t, tile_cols = (cols + t - 1) / t;
-    const auto tiles = static_cast<std::size_t>(tile_rows * tile_cols);
-    std::vector<std::vector<piece_stats>> pieces(tiles);
-    const raster_view<std::int32_t> labels = out.labels.view();
-
-    // Stage 1, per tile and independent: local labels (1..n in the tile's raster-scan order) written into the
-    // tile's cells of `labels`, and each piece's cells, box, sum and first cell.
-    parallel_for_rows(
-        static_cast<std::ptrdiff_t>(tiles), 1, opt.run.threads,
-        [&](std::ptrdiff_t first, std::ptrdiff_t last) {
-            for (std::ptrdiff_t i = first; i < last; ++i) {
-                const std::ptrdiff_t r0 = i / tile_cols * t, c0 = i % tile_cols * t;
-                const std::ptrdiff_t nr = std::min(t, rows - r0), nc = std::min(t, cols - c0);
-                const raster_view<std::int32_t> local = labels.window(r0, c0, nr, nc);
-                const std::vector<std::size_t> sizes =
-                    connected_components(m.window(r0, c0, nr, nc), local, {.conn = opt.conn});
-                std::vector<piece_stats>& p = pieces[static_cast<std::size_t>(i)];
-                p.resize(sizes.size());
-                for (std::ptrdiff_t r = 0; r < nr; ++r) {
-                    for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                        piece_stats& s = p[static_cast<std::size_t>(local(r, c))];
-                        if (s.cells == 0) s.first = (r0 + r) * cols + c0 + c;
-                        ++s.cells;
-                        s.box.extend(r0 + r, c0 + c);
-                        if (values) s.sum += static_cast<std::int64_t>((*values)(r0 + r, c0 + c));
-                    }
-                }
-            }
-        },
-        detail::progress_phase(opt.run.progress, 0.0, 0.8), function);
-
-    // Stage 2: global piece ids (tile offset + local label; local 0 = that tile's background), then the seams.
-    std::vector<std::size_t> offset(tiles + 1, 0);
-    for (std::size_t i = 0; i < tiles; ++i) offset[i + 1] = offset[i] + pieces[i].size();
-    piece_forest forest(offset[tiles]);
-    const auto id = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return offset[static_cast<std::size_t>(r / t * tile_cols + c / t)] + static_cast<std::size_t>(labels(r, c));
-    };
-    const std::ptrdiff_t diag = opt.conn == connectivity::eight ? 1 : 0;
-    // Vertical seams: cell (r, c - 1) and the cells (r + d, c) of the next tile, |d| <= diag. The diagonal pairs
-    // that also cross a horizontal seam (tile corners) are among them.
-    for (std::ptrdiff_t c = t; c < cols; c += t) {
-        for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            if (labels(r, c - 1) == 0) continue;
-            for (std::ptrdiff_t d = -diag; d <= diag; ++d) {
-                if (r + d < 0 || r + d >= rows || labels(r + d, c) == 0) continue;
-                forest.join(id(r, c - 1), id(r + d, c));
-            }
-        }
-    }
-    // Horizontal seams: cell (r - 1, c) and the cells (r, c + d) below it.
-    for (std::ptrdiff_t r = t; r < rows; r += t) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (labels(r - 1, c) == 0) continue;
-            for (std::ptrdiff_t d = -diag; d <= diag; ++d) {
-                if (c + d < 0 || c + d >= cols || labels(r, c + d) == 0) continue;
-                forest.join(id(r - 1, c), id(r, c + d));
-            }
-        }
-    }
-
-    // Stage 3: merge the statistics of every set (exact: counts, boxes and integer sums), order the sets by their
-    // first cell in raster-scan order, as connected_components numbers them, and relabel.
-    std::vector<piece_stats> merged(offset[tiles]);
-    piece_stats background;
-    for (std::size_t i = 0; i < tiles; ++i) {
-        for (std::size_t l = 0; l < pieces[i].size(); ++l) {
-            const piece_stats& s = pieces[i][l];
-            piece_stats& into = l == 0 ? background : merged[forest.find(offset[i] + l)];
-            if (s.cells == 0) continue;
-            into.cells += s.cells;
-            into.sum += s.sum;
-            into.first = std::min(into.first, s.first);
-            into.box.extend(s.box.row_min, s.box.col_min);
-            into.box.extend(s.box.row_max, s.box.col_max);
-        }
-    }
-    std::vector<std::size_t> roots;
-    for (std::size_t i = 0; i < tiles; ++i) {
-        for (std::size_t l = 1; l < pieces[i].size(); ++l) {
-            if (forest.find(offset[i] + l) == offset[i] + l) roots.push_back(offset[i] + l);
-        }
-    }
-    std::sort(roots.begin(), roots.end(),
-              [&](std::size_t a, std::size_t b) { return merged[a].first < merged[b].first; });
-    detail::require(roots.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()), function,
-                    "the mask has more components than int32 labels can number");
-    std::vector<std::int32_t> final_label(offset[tiles], 0);
-    out.sizes.assign(roots.size() + 1, 0);
-    out.boxes.assign(roots.size() + 1, cell_box{});
-    if (values) out.sums.assign(roots.size() + 1, 0);
-    out.sizes[0] = background.cells;
-    out.boxes[0] = background.box;
-    if (values) out.sums[0] = background.sum;
-    for (std::size_t k = 0; k < roots.size(); ++k) {
-        const piece_stats& s = merged[roots[k]];
-        final_label[roots[k]] = static_cast<std::int32_t>(k + 1);
-        out.sizes[k + 1] = s.cells;
-        out.boxes[k + 1] = s.box;
-        if (values) out.sums[k + 1] = s.sum;
-    }
-    for (std::size_t i = 0; i < tiles; ++i) {
-        for (std::size_t l = 1; l < pieces[i].size(); ++l) {
-            final_label[offset[i] + l] = final_label[forest.find(offset[i] + l)];
-        }
-    }
-    parallel_for_rows(
-        rows, 64, opt.run.threads,
-        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            for (std::ptrdiff_t r = r0; r < r1; ++r) {
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    if (labels(r, c) != 0) labels(r, c) = final_label[id(r, c)];
-                }
-            }
-        },
-        detail::progress_phase(opt.run.progress, 0.8, 1.0), function);
-    return out;
-}
-
-template <class In>
-void check_stitch_labels(const In& m, const stitch_labels_options& opt, const char* function)
-{
-    static_assert(std::is_arithmetic_v<typename In::value_type>, "a mask holds numbers (nonzero = foreground)");
-    detail::check_execution(opt.run, function);
-    detail::require(opt.tile_cells >= 1, function, "tile_cells", ">= 1", opt.tile_cells);
-    detail::require(m.rows() >= 0 && m.cols() >= 0, function, "the mask extents must be >= 0");
-}
-
-}  // namespace detail
-
 /// Connected components of a mask (nonzero = foreground) computed tile by tile: each tile of tile_cells x
 /// tile_cells is labelled on its own (connected_components), pieces that touch across a tile border (edge
 /// neighbours, and diagonal ones under 8-connectivity, tile corners included) are joined with union-find, and
@@ -222,29 +49,15 @@ void check_stitch_labels(const In& m, const stitch_labels_options& opt, const ch
 /// @throws invalid_input if tile_cells < 1, run.threads < 0, a tile is wider than 2^24 columns, or there are
 /// more components than int32 labels; cancelled if run.progress returns false.
 template <raster_input In>
-stitched_components stitch_labels(const In& m, const stitch_labels_options& opt = {})
-{
-    constexpr const char* function = "stitch_labels";
-    detail::check_stitch_labels(m, opt, function);
-    const detail::readable<In> in(m);
-    return detail::stitch_labels_view<typename In::value_type, std::int64_t>(in.view(), nullptr, opt, function);
-}
+stitched_components stitch_labels(const In& m, const stitch_labels_options& opt = {});
 
 /// stitch_labels with sums: sums[label] = sum of values(r, c) over the label's cells, in int64 (exact, in any
 /// order of tiles). values holds integers (e.g. intensity in fixed point, counts) and has m's shape.
 /// @throws invalid_input as stitch_labels, or if the shapes differ.
 template <raster_input In, raster_input Values>
 requires std::is_integral_v<typename Values::value_type> stitched_components
-stitch_labels(const In& m, const Values& values, const stitch_labels_options& opt = {})
-{
-    constexpr const char* function = "stitch_labels";
-    detail::check_stitch_labels(m, opt, function);
-    detail::require_same_shape(m, values, function, "m", "values");
-    const detail::readable<In> in(m);
-    const detail::readable<Values> v(values);
-    const auto view = v.view();
-    return detail::stitch_labels_view<typename In::value_type, typename Values::value_type>(in.view(), &view, opt,
-                                                                                            function);
-}
+stitch_labels(const In& m, const Values& values, const stitch_labels_options& opt = {});
 
 }  // namespace lidarfx
+
+#include "lidarfx/tiling/detail/stitch_labels_impl.hpp"
