@@ -126,11 +126,7 @@ private:
     std::ptrdiff_t tile_height() const noexcept { return std::ptrdiff_t{1} << row_bits_; }
     bool dense_is_due() const noexcept;
     tile_ptr copy_tile(const detail::cell_stats* from) const;
-#if defined(__GNUC__) || defined(__clang__)
-    __attribute__((noinline))
-#endif
-    detail::cell_stats*
-    new_tile(std::size_t t);
+    detail::cell_stats* new_tile(std::size_t t);  // never inlined: kept off the hot loop of add_sparse
     void fold_tile_into_dense(std::size_t t, const detail::cell_stats* tile) noexcept;
     void make_dense();
     template <point_cloud C>

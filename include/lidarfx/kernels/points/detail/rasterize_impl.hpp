@@ -176,7 +176,11 @@ inline raster_accumulator::tile_ptr raster_accumulator::copy_tile(const detail::
 }
 
 /// Allocates tile t (empty statistics) on the first point that falls in it.
-inline detail::cell_stats* raster_accumulator::new_tile(std::size_t t)
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+inline detail::cell_stats*
+raster_accumulator::new_tile(std::size_t t)
 {
     tiles_[t] = std::make_unique<detail::cell_stats[]>(tile_cells());
     ++held_tiles_;
