@@ -83,83 +83,139 @@ inline double overlap_fraction(double a, double b, double lo, double hi, bool in
     return std::max(0.0, std::min(b, hi) - std::max(a, lo)) / (b - a);
 }
 
+/// Validates make_tile_plan's arguments. @throws invalid_input as make_tile_plan documents.
+inline void check_tile_plan(const grid& g, std::span<const survey_file_extent> files, const tile_plan_options& opt,
+                            const char* function)
+{
+    g.validate(function);
+    require(g.rows >= 1 && g.cols >= 1, function, "the survey grid must have at least one cell");
+    require(opt.tile_edge_m >= 0 && opt.tile_edge_m <= 1.0e300, function, "tile_edge_m", "finite and >= 0",
+            opt.tile_edge_m);
+    require(opt.halo_cells >= 0, function, "halo_cells", ">= 0", opt.halo_cells);
+    require(opt.bytes_per_cell >= 0 && opt.bytes_per_cell <= 1.0e300, function, "bytes_per_cell", "finite and >= 0",
+            opt.bytes_per_cell);
+    require(opt.bytes_per_tile_cell >= 0 && opt.bytes_per_tile_cell <= 1.0e300, function, "bytes_per_tile_cell",
+            "finite and >= 0", opt.bytes_per_tile_cell);
+    require(opt.bytes_per_point >= 0 && opt.bytes_per_point <= 1.0e300, function, "bytes_per_point", "finite and >= 0",
+            opt.bytes_per_point);
+    require(opt.tiles_in_flight >= 1, function, "tiles_in_flight", ">= 1", opt.tiles_in_flight);
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const bounds& b = files[i].box;
+        require(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) && std::isfinite(b.ymax) &&
+                    b.xmin <= b.xmax && b.ymin <= b.ymax,
+                function, [&] {
+                    return concat("file ", i, ": extent must be finite with min <= max (got (", b.xmin, ", ", b.ymin,
+                                  ", ", b.xmax, ", ", b.ymax, "))");
+                });
+    }
+}
+
+/// The largest tile edge in [1, longest grid side] cells whose memory bound fits opt.memory_budget_bytes (the
+/// bound grows with the edge: a bisection), 0 if none does.
+inline std::ptrdiff_t largest_fitting_tile_edge(const grid& g, const tile_plan_options& opt)
+{
+    const double budget = static_cast<double>(opt.memory_budget_bytes);
+    const auto fits = [&](std::ptrdiff_t t) {
+        return tile_plan_peak(g, tile_halo_cells_bound(g, t, opt.halo_cells), opt) <= budget;
+    };
+    if (!fits(1)) return 0;
+    std::ptrdiff_t lo = 1, hi = std::max(g.rows, g.cols);
+    while (lo < hi) {
+        const std::ptrdiff_t mid = lo + (hi - lo + 1) / 2;
+        if (fits(mid))
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return lo;
+}
+
+/// Throws the refusal for a budget that not even 1-cell tiles fit: the chunk buffers alone exceed it, or the
+/// survey grid does not fit beside them (the message then names the cell size at which it would).
+[[noreturn]] inline void refuse_tile_plan_budget(const grid& g, const tile_plan_options& opt, const char* function)
+{
+    const double budget = static_cast<double>(opt.memory_budget_bytes);
+    const double buffers = static_cast<double>(opt.tiles_in_flight) *
+                           (tile_halo_cells_bound(g, 1, opt.halo_cells) * opt.bytes_per_tile_cell +
+                            static_cast<double>(opt.chunk_points) * opt.bytes_per_point);
+    const double grid_bytes = static_cast<double>(g.size()) * opt.bytes_per_cell;
+    if (buffers >= budget || opt.bytes_per_cell <= 0) {
+        throw invalid_input(concat(function, ": the chunk buffers alone (", buffers, " bytes for tiles_in_flight ",
+                                   opt.tiles_in_flight, " x chunk_points ", opt.chunk_points,
+                                   ") exceed memory_budget_bytes ", budget,
+                                   ": lower chunk_points or tiles_in_flight, or raise the budget"));
+    }
+    // The cell size c at which (ceil(width / c) + 1) x (ceil(height / c) + 1) cells fit the rest.
+    const double width = static_cast<double>(g.cols) * g.cell, height = static_cast<double>(g.rows) * g.cell;
+    const double room = (budget - buffers) / opt.bytes_per_cell;
+    double c = g.cell * std::sqrt(static_cast<double>(g.size()) / std::max(room, 1.0));
+    while ((std::ceil(width / c) + 1) * (std::ceil(height / c) + 1) > room) c *= 1.01;
+    throw invalid_input(concat(function, ": the survey grid alone (", g.rows, " x ", g.cols, " cells x bytes_per_cell ",
+                               opt.bytes_per_cell, " = ", grid_bytes, " bytes) does not fit memory_budget_bytes ",
+                               budget, " with the chunk buffers (", buffers, " bytes); a cell of ",
+                               round_up_3_digits(c), " m instead of ", g.cell, " m would fit, or raise the budget"));
+}
+
+/// The cells a file's box can land in (file_cell_range), false in `inside` when it misses the grid.
+struct file_cells {
+    bool inside = false;
+    cell_box box;
+};
+
+/// Tile (tr, tc) of a plan with edge t cells and halo h: its core, its with_halo (clipped to g), the files whose
+/// cells meet with_halo and its points estimate.
+inline survey_tile make_survey_tile(const grid& g, std::ptrdiff_t tr, std::ptrdiff_t tc, std::ptrdiff_t t,
+                                    std::ptrdiff_t h, std::span<const survey_file_extent> files,
+                                    const std::vector<file_cells>& reach)
+{
+    survey_tile tile;
+    tile.core = {tr * t, tc * t, std::min(tr * t + t, g.rows) - 1, std::min(tc * t + t, g.cols) - 1};
+    // Clipping first keeps huge halos from overflowing.
+    tile.with_halo = {std::max<std::ptrdiff_t>(0, tile.core.row_min - std::min(h, tile.core.row_min)),
+                      std::max<std::ptrdiff_t>(0, tile.core.col_min - std::min(h, tile.core.col_min)),
+                      tile.core.row_max + std::min(h, g.rows - 1 - tile.core.row_max),
+                      tile.core.col_max + std::min(h, g.cols - 1 - tile.core.col_max)};
+    const bounds core_m = g.extent(tile.core);
+    double expected = 0;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const file_cells& f = reach[i];
+        if (!f.inside) continue;
+        const cell_box& w = tile.with_halo;
+        if (f.box.row_max < w.row_min || f.box.row_min > w.row_max || f.box.col_max < w.col_min ||
+            f.box.col_min > w.col_max) {
+            continue;
+        }
+        tile.files.push_back(i);
+        const bounds& b = files[i].box;
+        // A degenerate axis (all points on one line) belongs to the core holding its cell.
+        const bool row_in = f.box.row_min >= tile.core.row_min && f.box.row_min <= tile.core.row_max;
+        const bool col_in = f.box.col_min >= tile.core.col_min && f.box.col_min <= tile.core.col_max;
+        expected += static_cast<double>(files[i].points) *
+                    overlap_fraction(b.xmin, b.xmax, core_m.xmin, core_m.xmax, col_in) *
+                    overlap_fraction(b.ymin, b.ymax, core_m.ymin, core_m.ymax, row_in);
+    }
+    tile.points_estimate = static_cast<std::uint64_t>(std::llround(expected));
+    return tile;
+}
+
 }  // namespace detail
 
 inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_extent> files, const tile_plan_options& opt)
 {
     constexpr const char* function = "make_tile_plan";
-    g.validate(function);
-    detail::require(g.rows >= 1 && g.cols >= 1, function, "the survey grid must have at least one cell");
-    detail::require(opt.tile_edge_m >= 0 && opt.tile_edge_m <= 1.0e300, function, "tile_edge_m", "finite and >= 0",
-                    opt.tile_edge_m);
-    detail::require(opt.halo_cells >= 0, function, "halo_cells", ">= 0", opt.halo_cells);
-    detail::require(opt.bytes_per_cell >= 0 && opt.bytes_per_cell <= 1.0e300, function, "bytes_per_cell",
-                    "finite and >= 0", opt.bytes_per_cell);
-    detail::require(opt.bytes_per_tile_cell >= 0 && opt.bytes_per_tile_cell <= 1.0e300, function, "bytes_per_tile_cell",
-                    "finite and >= 0", opt.bytes_per_tile_cell);
-    detail::require(opt.bytes_per_point >= 0 && opt.bytes_per_point <= 1.0e300, function, "bytes_per_point",
-                    "finite and >= 0", opt.bytes_per_point);
-    detail::require(opt.tiles_in_flight >= 1, function, "tiles_in_flight", ">= 1", opt.tiles_in_flight);
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        const bounds& b = files[i].box;
-        detail::require(std::isfinite(b.xmin) && std::isfinite(b.xmax) && std::isfinite(b.ymin) &&
-                            std::isfinite(b.ymax) && b.xmin <= b.xmax && b.ymin <= b.ymax,
-                        function, [&] {
-                            return detail::concat("file ", i, ": extent must be finite with min <= max (got (", b.xmin,
-                                                  ", ", b.ymin, ", ", b.xmax, ", ", b.ymax, "))");
-                        });
-    }
-
+    detail::check_tile_plan(g, files, opt, function);
     const std::ptrdiff_t longest = std::max(g.rows, g.cols);
     const double budget = static_cast<double>(opt.memory_budget_bytes);
     const bool limited = opt.memory_budget_bytes > 0;
-    const auto fits = [&](std::ptrdiff_t t) {
-        return detail::tile_plan_peak(g, detail::tile_halo_cells_bound(g, t, opt.halo_cells), opt) <= budget;
-    };
-    // Largest edge in [1, longest] whose bound fits (the bound grows with t), 0 if none.
-    const auto largest_fitting = [&]() -> std::ptrdiff_t {
-        if (!fits(1)) return 0;
-        std::ptrdiff_t lo = 1, hi = longest;
-        while (lo < hi) {
-            const std::ptrdiff_t mid = lo + (hi - lo + 1) / 2;
-            if (fits(mid))
-                lo = mid;
-            else
-                hi = mid - 1;
-        }
-        return lo;
-    };
 
     std::ptrdiff_t t = longest;
     if (opt.tile_edge_m > 0) {
         const double cells = std::round(opt.tile_edge_m / g.cell);
         t = cells < 1 ? 1 : cells >= static_cast<double>(longest) ? longest : static_cast<std::ptrdiff_t>(cells);
     } else if (limited) {
-        t = largest_fitting();
+        t = detail::largest_fitting_tile_edge(g, opt);
     }
-    if (limited && t == 0) {
-        // Not even 1-cell tiles fit: the survey grid (or the chunk buffers) alone is too big.
-        const double buffers = static_cast<double>(opt.tiles_in_flight) *
-                               (detail::tile_halo_cells_bound(g, 1, opt.halo_cells) * opt.bytes_per_tile_cell +
-                                static_cast<double>(opt.chunk_points) * opt.bytes_per_point);
-        const double grid_bytes = static_cast<double>(g.size()) * opt.bytes_per_cell;
-        if (buffers >= budget || opt.bytes_per_cell <= 0) {
-            throw invalid_input(detail::concat(function, ": the chunk buffers alone (", buffers,
-                                               " bytes for tiles_in_flight ", opt.tiles_in_flight, " x chunk_points ",
-                                               opt.chunk_points, ") exceed memory_budget_bytes ", budget,
-                                               ": lower chunk_points or tiles_in_flight, or raise the budget"));
-        }
-        // The cell size c at which (ceil(width / c) + 1) x (ceil(height / c) + 1) cells fit the rest.
-        const double width = static_cast<double>(g.cols) * g.cell, height = static_cast<double>(g.rows) * g.cell;
-        const double room = (budget - buffers) / opt.bytes_per_cell;
-        double c = g.cell * std::sqrt(static_cast<double>(g.size()) / std::max(room, 1.0));
-        while ((std::ceil(width / c) + 1) * (std::ceil(height / c) + 1) > room) c *= 1.01;
-        throw invalid_input(
-            detail::concat(function, ": the survey grid alone (", g.rows, " x ", g.cols, " cells x bytes_per_cell ",
-                           opt.bytes_per_cell, " = ", grid_bytes, " bytes) does not fit memory_budget_bytes ", budget,
-                           " with the chunk buffers (", buffers, " bytes); a cell of ", detail::round_up_3_digits(c),
-                           " m instead of ", g.cell, " m would fit, or raise the budget"));
-    }
+    if (limited && t == 0) detail::refuse_tile_plan_budget(g, opt, function);
 
     tile_plan plan;
     plan.g = g;
@@ -167,63 +223,25 @@ inline tile_plan make_tile_plan(const grid& g, std::span<const survey_file_exten
     plan.tile_rows = (g.rows + t - 1) / t;
     plan.tile_cols = (g.cols + t - 1) / t;
     plan.tiles.reserve(static_cast<std::size_t>(plan.tile_rows * plan.tile_cols));
-
-    // Cell ranges the files can land in, computed once.
-    struct file_cells {
-        bool inside = false;
-        cell_box box;
-    };
-    std::vector<file_cells> reach(files.size());
+    std::vector<detail::file_cells> reach(files.size());  // computed once for all tiles
     for (std::size_t i = 0; i < files.size(); ++i)
         reach[i].inside = detail::file_cell_range(g, files[i].box, reach[i].box);
-
     double largest_halo = 0;
     const std::ptrdiff_t h = opt.halo_cells;
     for (std::ptrdiff_t tr = 0; tr < plan.tile_rows; ++tr) {
         for (std::ptrdiff_t tc = 0; tc < plan.tile_cols; ++tc) {
-            survey_tile tile;
+            survey_tile tile = detail::make_survey_tile(g, tr, tc, t, h, files, reach);
             tile.index = plan.tiles.size();
-            tile.core = {tr * t, tc * t, std::min(tr * t + t, g.rows) - 1, std::min(tc * t + t, g.cols) - 1};
-            // Clipping first keeps huge halos from overflowing.
-            tile.with_halo = {std::max<std::ptrdiff_t>(0, tile.core.row_min - std::min(h, tile.core.row_min)),
-                              std::max<std::ptrdiff_t>(0, tile.core.col_min - std::min(h, tile.core.col_min)),
-                              tile.core.row_max + std::min(h, g.rows - 1 - tile.core.row_max),
-                              tile.core.col_max + std::min(h, g.cols - 1 - tile.core.col_max)};
             largest_halo = std::max(
                 largest_halo, static_cast<double>(tile.with_halo.rows()) * static_cast<double>(tile.with_halo.cols()));
-            const bounds core_m = g.extent(tile.core);
-            double expected = 0;
-            for (std::size_t i = 0; i < files.size(); ++i) {
-                const file_cells& f = reach[i];
-                if (!f.inside) continue;
-                const cell_box& w = tile.with_halo;
-                if (f.box.row_max < w.row_min || f.box.row_min > w.row_max || f.box.col_max < w.col_min ||
-                    f.box.col_min > w.col_max) {
-                    continue;
-                }
-                tile.files.push_back(i);
-                const bounds& b = files[i].box;
-                // A degenerate axis (all points on one line) belongs to the core holding its cell.
-                const bool row_in = f.box.row_min >= tile.core.row_min && f.box.row_min <= tile.core.row_max;
-                const bool col_in = f.box.col_min >= tile.core.col_min && f.box.col_min <= tile.core.col_max;
-                expected += static_cast<double>(files[i].points) *
-                            detail::overlap_fraction(b.xmin, b.xmax, core_m.xmin, core_m.xmax, col_in) *
-                            detail::overlap_fraction(b.ymin, b.ymax, core_m.ymin, core_m.ymax, row_in);
-            }
-            tile.points_estimate = static_cast<std::uint64_t>(std::llround(expected));
             plan.tiles.push_back(std::move(tile));
         }
     }
     plan.peak_bytes_estimate = detail::tile_plan_peak(g, largest_halo, opt);
 
     if (limited && plan.peak_bytes_estimate > budget) {
-        const std::ptrdiff_t fit = largest_fitting();
-        if (fit == 0) {
-            // Reuse the message of the case above with an automatic edge.
-            tile_plan_options auto_edge = opt;
-            auto_edge.tile_edge_m = 0;
-            return make_tile_plan(g, files, auto_edge);
-        }
+        const std::ptrdiff_t fit = detail::largest_fitting_tile_edge(g, opt);
+        if (fit == 0) detail::refuse_tile_plan_budget(g, opt, function);  // as with an automatic edge
         throw invalid_input(detail::concat(
             function, ": tile_edge_m ", opt.tile_edge_m, " m (", t, " cells, halo ", h, ") needs ",
             plan.peak_bytes_estimate, " bytes, more than memory_budget_bytes ", budget,
