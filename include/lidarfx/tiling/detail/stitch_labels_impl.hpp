@@ -57,22 +57,35 @@ struct piece_stats {
     std::ptrdiff_t first = std::numeric_limits<std::ptrdiff_t>::max();  ///< row-major index of its first cell
 };
 
+/// The tiling of a stitch: square tiles of `t` cells, row-major, and the global id of every piece (offset of
+/// its tile + its local label; local 0 = that tile's background).
+struct piece_tiling {
+    std::ptrdiff_t t, tile_cols;
+    std::vector<std::size_t> offset;  ///< per tile, its first piece id; offset[tiles] = all pieces
+
+    std::size_t tile_of(std::ptrdiff_t r, std::ptrdiff_t c) const noexcept
+    {
+        return static_cast<std::size_t>(r / t * tile_cols + c / t);
+    }
+    std::size_t id(raster_view<const std::int32_t> labels, std::ptrdiff_t r, std::ptrdiff_t c) const noexcept
+    {
+        return offset[tile_of(r, c)] + static_cast<std::size_t>(labels(r, c));
+    }
+};
+
+/// Stage 1, per tile and independent: local labels (1..n in the tile's raster-scan order) written into the tile's
+/// cells of `labels`, and each piece's cells, box, sum and first cell. Progress 0 to 0.8.
 template <class T, class V>
-stitched_components stitch_labels_view(raster_view<const T> m, const raster_view<const V>* values,
-                                       const stitch_labels_options& opt, const char* function)
+std::vector<std::vector<piece_stats>> label_tiles(raster_view<const T> m, const raster_view<const V>* values,
+                                                  raster_view<std::int32_t> labels, std::ptrdiff_t t,
+                                                  std::ptrdiff_t tile_cols, const stitch_labels_options& opt,
+                                                  const char* function)
 {
     const std::ptrdiff_t rows = m.rows(), cols = m.cols();
-    stitched_components out{raster<std::int32_t>(rows, cols, uninitialized), {}, {}, {}};
-    const std::ptrdiff_t t = std::min(opt.tile_cells, std::max<std::ptrdiff_t>({rows, cols, 1}));
-    const std::ptrdiff_t tile_rows = (rows + t - 1) / t, tile_cols = (cols + t - 1) / t;
-    const auto tiles = static_cast<std::size_t>(tile_rows * tile_cols);
-    std::vector<std::vector<piece_stats>> pieces(tiles);
-    const raster_view<std::int32_t> labels = out.labels.view();
-
-    // Stage 1, per tile and independent: local labels (1..n in the tile's raster-scan order) written into the
-    // tile's cells of `labels`, and each piece's cells, box, sum and first cell.
+    const std::ptrdiff_t tiles = (rows + t - 1) / t * tile_cols;
+    std::vector<std::vector<piece_stats>> pieces(static_cast<std::size_t>(tiles));
     parallel_for_rows(
-        static_cast<std::ptrdiff_t>(tiles), 1, opt.run.threads,
+        tiles, 1, opt.run.threads,
         [&](std::ptrdiff_t first, std::ptrdiff_t last) {
             for (std::ptrdiff_t i = first; i < last; ++i) {
                 const std::ptrdiff_t r0 = i / tile_cols * t, c0 = i % tile_cols * t;
@@ -94,15 +107,15 @@ stitched_components stitch_labels_view(raster_view<const T> m, const raster_view
             }
         },
         detail::progress_phase(opt.run.progress, 0.0, 0.8), function);
+    return pieces;
+}
 
-    // Stage 2: global piece ids (tile offset + local label; local 0 = that tile's background), then the seams.
-    std::vector<std::size_t> offset(tiles + 1, 0);
-    for (std::size_t i = 0; i < tiles; ++i) offset[i + 1] = offset[i] + pieces[i].size();
-    piece_forest forest(offset[tiles]);
-    const auto id = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return offset[static_cast<std::size_t>(r / t * tile_cols + c / t)] + static_cast<std::size_t>(labels(r, c));
-    };
-    const std::ptrdiff_t diag = opt.conn == connectivity::eight ? 1 : 0;
+/// Stage 2: joins the pieces that touch across the seams between tiles.
+inline void join_across_seams(raster_view<const std::int32_t> labels, const piece_tiling& tiling, connectivity conn,
+                              piece_forest& forest)
+{
+    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols(), t = tiling.t;
+    const std::ptrdiff_t diag = conn == connectivity::eight ? 1 : 0;
     // Vertical seams: cell (r, c - 1) and the cells (r + d, c) of the next tile, |d| <= diag. The diagonal pairs
     // that also cross a horizontal seam (tile corners) are among them.
     for (std::ptrdiff_t c = t; c < cols; c += t) {
@@ -110,7 +123,7 @@ stitched_components stitch_labels_view(raster_view<const T> m, const raster_view
             if (labels(r, c - 1) == 0) continue;
             for (std::ptrdiff_t d = -diag; d <= diag; ++d) {
                 if (r + d < 0 || r + d >= rows || labels(r + d, c) == 0) continue;
-                forest.join(id(r, c - 1), id(r + d, c));
+                forest.join(tiling.id(labels, r, c - 1), tiling.id(labels, r + d, c));
             }
         }
     }
@@ -120,13 +133,21 @@ stitched_components stitch_labels_view(raster_view<const T> m, const raster_view
             if (labels(r - 1, c) == 0) continue;
             for (std::ptrdiff_t d = -diag; d <= diag; ++d) {
                 if (c + d < 0 || c + d >= cols || labels(r, c + d) == 0) continue;
-                forest.join(id(r - 1, c), id(r, c + d));
+                forest.join(tiling.id(labels, r - 1, c), tiling.id(labels, r, c + d));
             }
         }
     }
+}
 
-    // Stage 3: merge the statistics of every set (exact: counts, boxes and integer sums), order the sets by their
-    // first cell in raster-scan order, as connected_components numbers them, and relabel.
+/// Stage 3: merges the statistics of every set (exact: counts, boxes and integer sums), orders the sets by their
+/// first cell in raster-scan order, as connected_components numbers them, fills out's sizes, boxes and sums
+/// (sums only with values) and returns each piece's final label.
+inline std::vector<std::int32_t> number_sets(const std::vector<std::vector<piece_stats>>& pieces,
+                                             const piece_tiling& tiling, piece_forest& forest, bool with_values,
+                                             stitched_components& out, const char* function)
+{
+    const std::vector<std::size_t>& offset = tiling.offset;
+    const std::size_t tiles = pieces.size();
     std::vector<piece_stats> merged(offset[tiles]);
     piece_stats background;
     for (std::size_t i = 0; i < tiles; ++i) {
@@ -154,28 +175,47 @@ stitched_components stitch_labels_view(raster_view<const T> m, const raster_view
     std::vector<std::int32_t> final_label(offset[tiles], 0);
     out.sizes.assign(roots.size() + 1, 0);
     out.boxes.assign(roots.size() + 1, cell_box{});
-    if (values) out.sums.assign(roots.size() + 1, 0);
+    if (with_values) out.sums.assign(roots.size() + 1, 0);
     out.sizes[0] = background.cells;
     out.boxes[0] = background.box;
-    if (values) out.sums[0] = background.sum;
+    if (with_values) out.sums[0] = background.sum;
     for (std::size_t k = 0; k < roots.size(); ++k) {
         const piece_stats& s = merged[roots[k]];
         final_label[roots[k]] = static_cast<std::int32_t>(k + 1);
         out.sizes[k + 1] = s.cells;
         out.boxes[k + 1] = s.box;
-        if (values) out.sums[k + 1] = s.sum;
+        if (with_values) out.sums[k + 1] = s.sum;
     }
     for (std::size_t i = 0; i < tiles; ++i) {
         for (std::size_t l = 1; l < pieces[i].size(); ++l) {
             final_label[offset[i] + l] = final_label[forest.find(offset[i] + l)];
         }
     }
+    return final_label;
+}
+
+template <class T, class V>
+stitched_components stitch_labels_view(raster_view<const T> m, const raster_view<const V>* values,
+                                       const stitch_labels_options& opt, const char* function)
+{
+    const std::ptrdiff_t rows = m.rows(), cols = m.cols();
+    stitched_components out{raster<std::int32_t>(rows, cols, uninitialized), {}, {}, {}};
+    const std::ptrdiff_t t = std::min(opt.tile_cells, std::max<std::ptrdiff_t>({rows, cols, 1}));
+    piece_tiling tiling{t, (cols + t - 1) / t, {}};
+    const raster_view<std::int32_t> labels = out.labels.view();
+    const std::vector<std::vector<piece_stats>> pieces =
+        label_tiles(m, values, labels, t, tiling.tile_cols, opt, function);
+    tiling.offset.assign(pieces.size() + 1, 0);
+    for (std::size_t i = 0; i < pieces.size(); ++i) tiling.offset[i + 1] = tiling.offset[i] + pieces[i].size();
+    piece_forest forest(tiling.offset.back());
+    join_across_seams(labels, tiling, opt.conn, forest);
+    const std::vector<std::int32_t> final_label = number_sets(pieces, tiling, forest, values != nullptr, out, function);
     parallel_for_rows(
         rows, 64, opt.run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             for (std::ptrdiff_t r = r0; r < r1; ++r) {
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    if (labels(r, c) != 0) labels(r, c) = final_label[id(r, c)];
+                    if (labels(r, c) != 0) labels(r, c) = final_label[tiling.id(labels, r, c)];
                 }
             }
         },
