@@ -101,8 +101,8 @@ const lidarfx::raster<std::int32_t>& labels_4096(bool bridged)
     static std::map<bool, lidarfx::raster<std::int32_t>> cache;
     auto it = cache.find(bridged);
     if (it == cache.end()) {
-        lidarfx::extract_waterbodies_options o{.island_min_area_m2 = 0, .run = {.threads = 0}};
-        if (!bridged) o.bridge_max_span_m = 0;
+        lidarfx::extract_waterbodies_options o{.islands = {.island_min_area_m2 = 0}, .run = {.threads = 0}};
+        if (!bridged) o.join_bridges = false;
         it = cache.emplace(bridged, lidarfx::extract_waterbodies(rasters_4096(), o).labels).first;
     }
     return it->second;

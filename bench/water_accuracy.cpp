@@ -25,28 +25,28 @@ int main()
     using namespace lidarfx;
     const auto dissertation = [](extract_waterbodies_options& o) {
         o.grow.sample = ks_sample_mode::cumulative;
-        o.level_tolerance_m = 0;
-        o.bridge_max_span_m = 0;
+        o.level.tolerance_m = 0;
+        o.join_bridges = false;
     };
     const std::vector<configuration> rows{
         {"dissertation schedule (cumulative KS, IDW angles, no refinement, no bridges)",
          [&](extract_waterbodies_options& o) {
              dissertation(o);
-             o.angular_on = angular_input::idw_filled;
-             o.dropouts_join_any_threshold = false;
+             o.angles.input = angular_input::idw_filled;
+             o.angles.dropouts_join_any_threshold = false;
          }},
         {"+ dropouts join at any theta, angles from returns only", dissertation},
         {"+ level refinement",
          [](extract_waterbodies_options& o) {
              o.grow.sample = ks_sample_mode::cumulative;
-             o.bridge_max_span_m = 0;
+             o.join_bridges = false;
          }},
         {"increment KS, no refinement",
          [](extract_waterbodies_options& o) {
-             o.level_tolerance_m = 0;
-             o.bridge_max_span_m = 0;
+             o.level.tolerance_m = 0;
+             o.join_bridges = false;
          }},
-        {"increment KS + refinement, no bridges", [](extract_waterbodies_options& o) { o.bridge_max_span_m = 0; }},
+        {"increment KS + refinement, no bridges", [](extract_waterbodies_options& o) { o.join_bridges = false; }},
         {"lidarfx defaults", [](extract_waterbodies_options&) {}},
     };
     std::vector<synth::scene> lakes, rivers;

@@ -9,10 +9,10 @@
 // WF_DRIFT, WF_EXEMPT (grow.level_*), WF_FIRST (0/1, grow.test_first_step), WF_Q (seed level quantile),
 // WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
-// options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridge_join_touching), WF_SLOPE
+// options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridges.join_touching), WF_SLOPE
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
 // seeds beyond bridges), WF_BSEED_{MIN,BEYOND,BEHIND,TOL,CLEAR,AWAY,SLOPE} (their options), WF_FLAT_SLOPE
-// (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (min_free_seed_share),
+// (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (growing.min_free_seed_share),
 // WF_TRIM (0/1, trim_edges), WF_TRIM_{MIN,MAX,WIN} (trim_raised_edge_cells options), WF_SHORE (0/1, shore_cells), WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options),
 // WF_PRESET=1 (start from flat_seed_water_method() instead of the defaults);
 // WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
@@ -140,13 +140,13 @@ int main(int argc, char** argv)
         {"lidarfx defaults", [](extract_waterbodies_options& o) {
              if (const char* v = std::getenv("WF_PRESET"); v && std::atoi(v) != 0) o = flat_seed_water_method();
              if (const char* v = std::getenv("WF_FLAT_DROPOUTS")) o.flat_seed_dropouts = std::atoi(v) != 0;
-             if (const char* v = std::getenv("WF_FREE_SHARE")) o.min_free_seed_share = std::atof(v);
+             if (const char* v = std::getenv("WF_FREE_SHARE")) o.growing.min_free_seed_share = std::atof(v);
              if (const char* v = std::getenv("WF_GATE")) o.grow.level_gate_m = std::atof(v);
              if (const char* v = std::getenv("WF_DRIFT")) o.grow.level_drift_m = std::atof(v);
              if (const char* v = std::getenv("WF_EXEMPT")) o.grow.level_ks_exempt_m = std::atof(v);
              if (const char* v = std::getenv("WF_Q")) o.grow.seed_level.quantile = std::atof(v);
-             if (const char* v = std::getenv("WF_SEEDMIN")) o.min_seed_cells = static_cast<std::size_t>(std::atoi(v));
-             if (const char* v = std::getenv("WF_OPEN")) o.seed_opening_size_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_SEEDMIN")) o.seeds.min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_OPEN")) o.seeds.opening_size_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_FLAT")) o.flat_seeds = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_FLAT_TOL")) o.flat.level_tolerance_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_RAD")) o.flat.level_radius_cells = std::atoi(v);
@@ -168,7 +168,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_RAD")) o.surface_slope.radius_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_SLOPE_MIN")) o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
-             if (const char* v = std::getenv("WF_TOUCH")) o.bridge_join_touching = std::atoi(v) != 0;
+             if (const char* v = std::getenv("WF_TOUCH")) o.bridges.join_touching = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_BSEED")) o.bridge_seed_rounds = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_MIN")) o.bridge_seed_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_BSEED_BEYOND")) o.bridge_seeds.beyond_cells = std::atoi(v);
@@ -201,7 +201,7 @@ int main(int argc, char** argv)
         configs.push_back({"flat_seed_water_method() without the dropouts next to flat seeds (flat_seed_dropouts = false)",
                            preset([](extract_waterbodies_options& o) { o.flat_seed_dropouts = false; })});
         configs.push_back({"flat_seed_water_method() skipping every seed with a cell in a body (min_free_seed_share = 1)",
-                           preset([](extract_waterbodies_options& o) { o.min_free_seed_share = 1; })});
+                           preset([](extract_waterbodies_options& o) { o.growing.min_free_seed_share = 1; })});
         configs.push_back({"flat_seed_water_method() with the default level drift (grow.level_drift_m = 0.005)",
                            preset([](extract_waterbodies_options& o) { o.grow.level_drift_m = 0.005; })});
         configs.push_back({"flat_seed_water_method() with bridge seeds of >= 8 cells (bridge_seed_min_cells = 8)",
@@ -230,7 +230,7 @@ int main(int argc, char** argv)
                            }});
         configs.push_back({"with flat seeds, touching bodies not merged", [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
-                               o.bridge_join_touching = false;
+                               o.bridges.join_touching = false;
                            }});
         configs.push_back({"with flat seeds and a level that never rises (grow.level_rise_m = 0)",
                            [](extract_waterbodies_options& o) {
@@ -253,10 +253,13 @@ int main(int argc, char** argv)
                            [](extract_waterbodies_options& o) { o.bridge_seed_rounds = 0; }});
         configs.push_back({"without bridges (no joins across decks, no seeds beyond them)",
                            [](extract_waterbodies_options& o) {
-                               o.bridge_max_span_m = 0;
+                               o.join_bridges = false;
                                o.bridge_seed_rounds = 0;
                            }});
-        configs.push_back({"without level refinement", [](extract_waterbodies_options& o) { o.level_tolerance_m = 0; }});
+        configs.push_back({"without level refinement", [](extract_waterbodies_options& o) {
+            o.level.tolerance_m = 0;
+            o.bridges.water_tolerance_m = 0;  // the tolerance both steps shared
+        }});
     }
     std::printf("| configuration | kind | acc mean / 5%% / worst | sens mean / 5%% / worst | spec mean / 5%% / worst | "
                 "IoU mean / 5%% / worst | worst seed | bridges one body |\n|---|---|---|---|---|---|---|---|\n");

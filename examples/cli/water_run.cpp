@@ -92,22 +92,28 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     extract_waterbodies_options opt =
         a.has("dropout-seeds-only") ? extract_waterbodies_options{} : flat_seed_water_method();
     opt.run.threads = a.integer("threads", 0);
-    opt.vegetation_height_m = a.number("veg-height", opt.vegetation_height_m);
-    const int min_seed = a.integer("min-seed-cells", static_cast<int>(opt.min_seed_cells));
+    opt.vegetation.height_m = a.number("veg-height", opt.vegetation.height_m);
+    const int min_seed = a.integer("min-seed-cells", static_cast<int>(opt.seeds.min_cells));
     if (min_seed < 1) {
         throw usage_error("--min-seed-cells must be >= 1 (got " + std::to_string(min_seed) + ")");
     }
-    opt.min_seed_cells = static_cast<std::size_t>(min_seed);
+    opt.seeds.min_cells = static_cast<std::size_t>(min_seed);
     opt.grow.theta_start_deg = a.number("theta-start", opt.grow.theta_start_deg);
     opt.grow.theta_step_deg = a.number("theta-step", opt.grow.theta_step_deg);
     opt.grow.theta_max_deg = a.number("theta-max", opt.grow.theta_max_deg);
     opt.grow.ks.alpha = a.number("alpha", opt.grow.ks.alpha);
     if (a.has("one-sided")) opt.grow.ks.critical = ks_critical::one_sided;
-    opt.level_tolerance_m = a.number("level-tolerance", opt.level_tolerance_m);
-    opt.island_min_area_m2 = a.number("island-min-area", opt.island_min_area_m2);
-    opt.bridge_max_span_m = a.number("bridge-span", opt.bridge_max_span_m);
-    opt.bridge_seeds.max_span_m = opt.bridge_max_span_m;
-    if (opt.bridge_max_span_m == 0) opt.bridge_seed_rounds = 0;
+    // --level-tolerance is the water level's tolerance of the narrow-water refinement and of the water seen
+    // past a bridge deck; --bridge-span the longest deck joined across and crossed by seeds (0: neither).
+    opt.level.tolerance_m = a.number("level-tolerance", opt.level.tolerance_m);
+    opt.bridges.water_tolerance_m = opt.level.tolerance_m;
+    opt.islands.island_min_area_m2 = a.number("island-min-area", opt.islands.island_min_area_m2);
+    opt.bridges.max_span_m = a.number("bridge-span", opt.bridges.max_span_m);
+    opt.bridge_seeds.max_span_m = opt.bridges.max_span_m;
+    if (opt.bridges.max_span_m == 0) {
+        opt.join_bridges = false;
+        opt.bridge_seed_rounds = 0;
+    }
     const double hull_radius_m = a.number("hull-radius", survey_footprint_options{}.hull_radius_m);
     opt.check_inputs = !a.has("force");
     opt.run.progress = progress_bar("waterbodies");
@@ -120,17 +126,18 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
         }
     };
     const auto& g = opt.grow;
-    need(opt.vegetation_height_m > 0 && std::isfinite(opt.vegetation_height_m), "veg-height", "a finite number > 0",
-         opt.vegetation_height_m);
+    need(opt.vegetation.height_m > 0 && std::isfinite(opt.vegetation.height_m), "veg-height", "a finite number > 0",
+         opt.vegetation.height_m);
     need(g.theta_start_deg >= 0 && g.theta_start_deg <= 90, "theta-start", "in [0, 90] degrees", g.theta_start_deg);
     need(g.theta_step_deg > 0 && g.theta_step_deg <= 90, "theta-step", "in (0, 90] degrees", g.theta_step_deg);
     need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max",
          "in [--theta-start, 90] degrees", g.theta_max_deg);
     need(g.ks.alpha > 0 && g.ks.alpha < 1, "alpha", "in (0, 1)", g.ks.alpha);
-    need(opt.level_tolerance_m >= 0 && std::isfinite(opt.level_tolerance_m), "level-tolerance",
-         "a finite number >= 0 (metres)", opt.level_tolerance_m);
-    need(opt.island_min_area_m2 >= 0, "island-min-area", ">= 0 (m2; inf keeps every island)", opt.island_min_area_m2);
-    need(opt.bridge_max_span_m >= 0, "bridge-span", ">= 0 (metres; 0 disables)", opt.bridge_max_span_m);
+    need(opt.level.tolerance_m >= 0 && std::isfinite(opt.level.tolerance_m), "level-tolerance",
+         "a finite number >= 0 (metres)", opt.level.tolerance_m);
+    need(opt.islands.island_min_area_m2 >= 0, "island-min-area", ">= 0 (m2; inf keeps every island)",
+         opt.islands.island_min_area_m2);
+    need(opt.bridges.max_span_m >= 0, "bridge-span", ">= 0 (metres; 0 disables)", opt.bridges.max_span_m);
     need(hull_radius_m >= 0 && std::isfinite(hull_radius_m), "hull-radius", "a finite number >= 0 (metres; 0 disables)",
          hull_radius_m);
 

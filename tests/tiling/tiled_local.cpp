@@ -250,18 +250,19 @@ TEST_CASE("tiling/water_reach: the waterbody method's local steps, tiled with th
         return water_rasters{w(min_z), w(max_z), w(intensity), w(dropout), w(multiple)};
     };
     const water_rasters whole = window({0, 0, rows - 1, cols - 1});
-    const extract_waterbodies_options opt{.vegetation_closing_size_cells = 5, .angular_radius_cells = 2,
-                                          .seed_opening_size_cells = 3};
+    const extract_waterbodies_options opt{.vegetation = {.closing_size_cells = 5},
+                                          .angles = {.radius_cells = 2},
+                                          .seeds = {.opening_size_cells = 3}};
     const water_step_reach reach = water_reach(opt);
     CHECK(reach.vegetation_closing == 4);
     CHECK(reach.angles == 2);
     CHECK(reach.seed_opening == 2);
     CHECK(reach.largest() == 4);
     const auto vegetation = [&](raster_view<const float>, const cell_box& b) {
-        return water_vegetation(window(b), {.closing_size_cells = opt.vegetation_closing_size_cells});
+        return water_vegetation(window(b), {.closing_size_cells = opt.vegetation.closing_size_cells});
     };
     const auto angles = [&](raster_view<const float>, const cell_box& b) {
-        return water_angles(window(b), 2.0, {.radius_cells = opt.angular_radius_cells});
+        return water_angles(window(b), 2.0, {.radius_cells = opt.angles.radius_cells});
     };
     const raster<std::uint8_t> whole_vegetation = water_vegetation(whole, {.closing_size_cells = 5});
     const raster<float> whole_angles = water_angles(whole, 2.0, {.radius_cells = 2});
@@ -271,5 +272,5 @@ TEST_CASE("tiling/water_reach: the waterbody method's local steps, tiled with th
         CHECK(same_bits(tiled_local(z, reach.vegetation_closing, t, vegetation), whole_vegetation));
         CHECK(same_bits(tiled_local(z, reach.angles, t, angles), whole_angles));
     }
-    CHECK_THROWS_AS(water_reach({.angular_on = angular_input::idw_filled}), invalid_input);
+    CHECK_THROWS_AS(water_reach({.angles = {.input = angular_input::idw_filled}}), invalid_input);
 }

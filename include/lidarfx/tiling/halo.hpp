@@ -88,16 +88,16 @@ struct water_step_reach {
 };
 
 /// Reaches of the waterbody method's local steps for the given options. @throws invalid_input as the steps do
-/// for sizes that are even or < 1 or a radius < 1, and when angular_on is idw_filled (the angles then read
+/// for sizes that are even or < 1 or a radius < 1, and when angles.input is idw_filled (the angles then read
 /// min z filled by idw_fill with an unlimited radius, which is not local).
 inline water_step_reach water_reach(const extract_waterbodies_options& opt)
 {
-    detail::require(opt.angular_on == angular_input::returns_only, "water_reach",
-                    "angular_on must be returns_only: with idw_filled the angles read an IDW fill of unlimited "
+    detail::require(opt.angles.input == angular_input::returns_only, "water_reach",
+                    "angles.input must be returns_only: with idw_filled the angles read an IDW fill of unlimited "
                     "radius, which is not local (no halo makes a tile exact)");
-    return {morphology_reach({.size_cells = opt.vegetation_closing_size_cells}, 2),
-            angular_filter_reach({.radius_cells = opt.angular_radius_cells}),
-            morphology_reach({.size_cells = opt.seed_opening_size_cells}, 2)};
+    return {morphology_reach({.size_cells = opt.vegetation.closing_size_cells}, 2),
+            angular_filter_reach({.radius_cells = opt.angles.radius_cells}),
+            morphology_reach({.size_cells = opt.seeds.opening_size_cells}, 2)};
 }
 
 }  // namespace lidarfx

@@ -140,31 +140,6 @@ TEST_CASE("water/extract_waterbodies: a pond with returns and 40 % scattered dro
     CHECK(found_in_pond(without) < pond / 2);  // the opened seed mask keeps too little of the pond
 }
 
-TEST_CASE("water/extract_waterbodies: a mask is found empty or not wherever its one set cell lies")
-{
-    // any_set decides whether the flat and bridge seeds' steps run: it must see a cell anywhere, in
-    // rows shorter and longer than its 64-cell blocks, and in a strided view.
-    for (const auto& [rows, cols] : {std::pair{1, 1}, std::pair{1, 64}, std::pair{3, 65}, std::pair{5, 200}}) {
-        raster<std::uint8_t> mask(rows, cols, 0);
-        CHECK_FALSE(detail::any_set(mask));
-        for (int r = 0; r < rows; ++r) {
-            for (int c = 0; c < cols; ++c) {
-                mask(r, c) = 7;
-                const bool seen = detail::any_set(mask);
-                mask(r, c) = 0;
-                REQUIRE(seen);
-            }
-        }
-    }
-    CHECK_FALSE(detail::any_set(raster<std::uint8_t>()));
-    raster<std::uint8_t> padded(4, 100, 0);
-    padded(2, 90) = 1;  // outside the view's 80 columns: not seen
-    const raster_view<const std::uint8_t> view(padded.data(), 4, 80, 100);
-    CHECK_FALSE(detail::any_set(view));
-    padded(3, 79) = 1;
-    CHECK(detail::any_set(view));
-}
-
 TEST_CASE("water/extract_waterbodies: same result for any thread count")
 {
     synth::scene_options so;
@@ -198,13 +173,12 @@ TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public st
     const auto pr = rasterize(sc.points.cloud(), sc.truth.g);
     const auto in = to_water_rasters(pr);
     extract_waterbodies_options o;
-    o.vegetation_height_m = 3.0;
-    o.vegetation_closing_size_cells = 3;
-    o.angular_radius_cells = 3;
-    o.seed_opening_size_cells = 3;
-    o.min_seed_cells = 50;
-    o.angular_on = angular_input::idw_filled;
-    o.dropouts_join_any_threshold = false;
+    o.vegetation.height_m = 3.0;
+    o.vegetation.closing_size_cells = 3;
+    o.angles.radius_cells = 3;
+    o.seeds = {.opening_size_cells = 3, .min_cells = 50};
+    o.angles.input = angular_input::idw_filled;
+    o.angles.dropouts_join_any_threshold = false;
     o.flat_seeds = true;
     const auto w = extract_waterbodies(pr, o);
     REQUIRE(w.ran);
@@ -241,8 +215,8 @@ TEST_CASE("water/extract_waterbodies: huge or infinite island areas and bridge s
     const double longest_run_m = static_cast<double>(pr.g.rows + pr.g.cols) * cell;
     const auto with = [&](double island_m2, double span_m) {
         extract_waterbodies_options o;
-        o.island_min_area_m2 = island_m2;
-        o.bridge_max_span_m = span_m;
+        o.islands.island_min_area_m2 = island_m2;
+        o.bridges.max_span_m = span_m;
         return extract_waterbodies(pr, o).labels;
     };
     const auto reference = with(whole_raster_m2, longest_run_m);
@@ -272,9 +246,9 @@ TEST_CASE("water/extract_waterbodies: bad input is refused with clear messages")
                          "extract_waterbodies: theta_max_deg must be >= theta_start_deg and <= 90 (got 5)",
                          invalid_input);
     o = {};
-    o.seed_opening_size_cells = 4;
+    o.seeds.opening_size_cells = 4;
     CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
-                         "extract_waterbodies: seed_opening_size_cells must be odd and >= 1 (got 4)", invalid_input);
+                         "extract_waterbodies: opening_size_cells must be odd and >= 1 (got 4)", invalid_input);
     o = {};
     o.run.threads = -1;
     CHECK_THROWS_WITH_AS(extract_waterbodies(water_rasters{z, z, z, d}, 2.0, o),
@@ -302,75 +276,6 @@ TEST_CASE("water/extract_waterbodies: progress is monotone and ends at 1; return
 
     o.run.progress = [](double f) { return f < 0.5; };
     CHECK_THROWS_WITH_AS(extract_waterbodies(pr, o), "extract_waterbodies: cancelled", cancelled);
-}
-
-TEST_CASE("water/extract_waterbodies' band cut: cut_at_level_bands against the plain loop over every cell")
-{
-    // The plain form: per part the mean min z over returns, every cell's band index (NaN off the mask or
-    // without a return) in full rows, and the cut of each row read from the uncut rows (a cut cell becomes 0,
-    // the others keep their value).
-    const auto plain = [](raster<std::uint8_t> mask, const raster<float>& z, double band) {
-        const std::ptrdiff_t rows = mask.rows(), cols = mask.cols();
-        const auto parts = connected_components(mask, connectivity::eight);
-        std::vector<double> mean(parts.count() + 1, 0.0), finite(parts.count() + 1, 0.0);
-        for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const auto l = static_cast<std::size_t>(parts.labels(r, c));
-                if (l > 0 && std::isfinite(z(r, c))) mean[l] += z(r, c), finite[l] += 1;
-            }
-        }
-        for (std::size_t l = 1; l < mean.size(); ++l) mean[l] = finite[l] > 0 ? mean[l] / finite[l] : 0.0;
-        const auto index = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-            const auto l = static_cast<std::size_t>(parts.labels(r, c));
-            return l > 0 ? std::floor((z(r, c) - mean[l]) / band + 0.5) : std::numeric_limits<double>::quiet_NaN();
-        };
-        const raster<std::uint8_t> uncut = mask;
-        for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
-            for (std::ptrdiff_t c = 0; c + 1 < cols; ++c) {
-                const double h = index(r, c), right = index(r, c + 1), down = index(r + 1, c);
-                const bool known = !std::isnan(h);
-                const bool cut_right = uncut(r, c + 1) != 0 && right != h && known && !std::isnan(right);
-                const bool cut_down = uncut(r + 1, c) != 0 && down != h && known && !std::isnan(down);
-                if (cut_right || cut_down) mask(r, c) = 0;
-            }
-        }
-        return mask;
-    };
-    std::uint32_t state = 777;  // LCG: deterministic
-    const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
-    constexpr float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0}, {1, 1}, {1, 70}, {70, 1}, {2, 2},
-                                                                {3, 64}, {5, 65}, {40, 130}, {64, 129}};
-    for (const auto& item : shapes) {
-        const auto& rows = std::get<0>(item);
-        const auto& cols = std::get<1>(item);
-        for (int trial = 0; trial < 12; ++trial) {
-            // Mask densities from empty to full; heights on a slope (several bands per part), NaN and inf among them.
-            const std::uint32_t density = trial == 0 ? 0 : trial == 1 ? 100 : next() % 100;
-            raster<std::uint8_t> mask(rows, cols, 0);
-            raster<float> z(rows, cols, 0.0f);
-            for (std::ptrdiff_t r = 0; r < rows; ++r) {
-                for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                    mask(r, c) = static_cast<std::uint8_t>(next() % 100 < density ? 1 + next() % 255 : 0);
-                    const std::uint32_t x = next() % 40;
-                    z(r, c) = x == 0 ? nan : x == 1 && trial > 6 ? (next() % 2 ? inf : -inf)
-                                                                 : 10.0f + 0.013f * static_cast<float>(r + 2 * c) +
-                                                                       0.001f * static_cast<float>(next() % 50);
-                }
-            }
-            if (trial == 3) std::fill(z.begin(), z.end(), nan);  // a mask without returns: nothing is cut
-            for (const double band : {0.3, 0.05}) {
-                const auto expected = plain(mask, z, band);
-                auto got = mask;
-                const auto parts = connected_components(got, connectivity::eight);
-                detail::cut_at_level_bands(got, parts.labels, parts.count(), z, band);
-                CAPTURE(rows);
-                CAPTURE(cols);
-                CAPTURE(trial);
-                REQUIRE(std::equal(got.begin(), got.end(), expected.begin(), expected.end()));
-            }
-        }
-    }
 }
 
 TEST_CASE("water/extract_waterbodies: the edge steps' options are checked up front, in extract_waterbodies' name")

@@ -89,29 +89,29 @@ TEST_CASE("water/grow_waterbodies: a seed partly inside a body grows from its fr
     CHECK(g.labels(3, 3) == 1);    // its cells in lake A stay lake A's
     two_lakes t;
     straddling(t);
-    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {.min_free_seed_share = 1.0});
+    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {}, {}, {.min_free_seed_share = 1.0});
     REQUIRE(h.bodies.size() == 2);
     CHECK(h.bodies[1].seed == 3);  // a cell in a body skips the seed: lake B grows from seed 3
     two_lakes u;
     straddling(u);
-    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {.min_free_seed_share = 0.75});
+    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {}, {}, {.min_free_seed_share = 0.75});
     REQUIRE(k.bodies.size() == 2);
     CHECK(k.bodies[1].seed == 3);  // 60 % free < 75 %: skipped
     two_lakes v;
-    CHECK_THROWS_WITH_AS(grow_waterbodies(v.field, v.seeds, v.min_z, v.max_z, {.min_free_seed_share = 0.0}),
+    CHECK_THROWS_WITH_AS(grow_waterbodies(v.field, v.seeds, v.min_z, v.max_z, {}, {}, {.min_free_seed_share = 0.0}),
                          "grow_waterbodies: min_free_seed_share must be in (0, 1] (got 0)", invalid_input);
 }
 
 TEST_CASE("water/grow_waterbodies: the refinement options reach the bodies")
 {
     two_lakes s;
-    const auto g = grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.level = {.depth_cells = 0}});
+    const auto g = grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {}, {.depth_cells = 0});
     CHECK(g.labels(2, 5) == 0);
     two_lakes t;
-    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {.level = {.max_rise_m = 0.125}});
+    const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {}, {.max_rise_m = 0.125});
     CHECK(h.labels(2, 5) == 0);  // its highest return rises 0.25 m above the water
     two_lakes u;
-    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {.grow = {.theta_max_deg = 45.0}});
+    const auto k = grow_waterbodies(u.field, u.seeds, u.min_z, u.max_z, {.theta_max_deg = 45.0});
     CHECK(k.bodies.size() == 1);  // 40° banks join at θ 45°: one body over both lakes
     CHECK(k.labels(0, 11) == 1);
 }
@@ -130,7 +130,7 @@ TEST_CASE("water/grow_waterbodies: progress is monotone and ends at 1; returning
     water_test::check_progress_and_cancel(
         [&](const execution& run) {
             two_lakes s;
-            return grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.run = run});
+            return grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {}, {}, {.run = run});
         },
         "grow_waterbodies");
 }
@@ -146,14 +146,14 @@ TEST_CASE("water/grow_waterbodies: bad arguments are refused")
     CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, short_max_z),
                          "grow_waterbodies: field.eligible and max_z must have the same shape (got 5x12 and 4x12)",
                          invalid_input);
-    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {.level = {.tolerance_m = -1}}),
+    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {}, {.tolerance_m = -1}),
                          "grow_waterbodies: tolerance_m must be >= 0 (got -1)", invalid_input);
 }
 
 TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random fields")
 {
     // The reference: per seed in label order, its free cells (row order) grown by grow_waterbody, refined by
-    // join_level_cells with stamps of their own, then labelled and taken out of the eligible cells.
+    // join_level_cells, then labelled and taken out of the eligible cells.
     std::mt19937 rng(17);
     for (int trial = 0; trial < 30; ++trial) {
         CAPTURE(trial);
@@ -182,14 +182,15 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
             }
         }
         field.min_z = min_z;
-        const grow_waterbodies_options opt{.grow = {.min_ks_samples = 5},
-                                           .level = {.tolerance_m = 0.1, .max_rise_m = 0.4, .depth_cells = 2}};
+        const grow_waterbody_options grow{.min_ks_samples = 5};
+        const join_level_cells_options level{.tolerance_m = 0.1, .max_rise_m = 0.4, .depth_cells = 2};
+        const grow_waterbodies_options opt{};
 
         water_field reference_field = field;
         field.min_z = min_z;
         raster<std::int32_t> labels(rows, cols, 0);
         std::vector<double> thetas;
-        std::int32_t stamp = 0;
+        grow_waterbody_workspace workspace;
         for (std::int32_t s = 1; s <= n_seeds; ++s) {
             std::vector<std::ptrdiff_t> cells, free;
             for (std::ptrdiff_t i = 0; i < rows * cols; ++i)
@@ -199,9 +200,9 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
             if (free.empty() || (free.size() < cells.size() &&
                                  static_cast<double>(free.size()) < opt.min_free_seed_share * static_cast<double>(cells.size())))
                 continue;
-            auto region = grow_waterbody(reference_field, free, opt.grow, labels, --stamp);
+            auto region = grow_waterbody(reference_field, free, grow, workspace);
             if (region.cells.empty()) continue;
-            join_level_cells(region.cells, min_z, max_z, reference_field.eligible, labels, --stamp, opt.level);
+            join_level_cells(region.cells, min_z, max_z, reference_field.eligible, level);
             thetas.push_back(region.theta_deg);
             for (const auto i : region.cells) {
                 labels.data()[i] = static_cast<std::int32_t>(thetas.size());
@@ -210,7 +211,7 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
         }
         for (auto& l : labels) l = std::max(l, 0);
 
-        const auto grown = grow_waterbodies(field, seeds, min_z, max_z, opt);
+        const auto grown = grow_waterbodies(field, seeds, min_z, max_z, grow, level, opt);
         CHECK(grown.labels == labels);
         CHECK(field.eligible == reference_field.eligible);
         REQUIRE(grown.bodies.size() == thetas.size());

@@ -71,8 +71,8 @@ TEST_CASE("water/grow_waterbody: one bucket-queue flood equals a BFS per thresho
         seed.push_back(centre);
         if (trial % 4 == 0) seed.push_back(static_cast<std::ptrdiff_t>(rng() % static_cast<unsigned>(rows * cols)));
 
-        raster<std::int32_t> visited(rows, cols, 0);
-        const auto flood = grow_waterbody(f, seed, o, visited, 1);
+        grow_waterbody_workspace workspace;
+        const auto flood = grow_waterbody(f, seed, o, workspace);
         const auto expected = reference::grow(f, seed, o);
         CHECK(membership(flood, rows * cols) == expected);
         rejections += flood.stopped_by_ks;
@@ -81,8 +81,8 @@ TEST_CASE("water/grow_waterbody: one bucket-queue flood equals a BFS per thresho
             CHECK(flood.theta_deg == o.theta_start_deg + flood.steps_accepted * o.theta_step_deg);
             CHECK(flood.theta_deg <= o.theta_max_deg);
         }
-        // The scratch stamp makes a second call independent of the first.
-        const auto again = grow_waterbody(f, seed, o, visited, 2);
+        // The workspace makes a second call independent of the first.
+        const auto again = grow_waterbody(f, seed, o, workspace);
         CHECK(again.cells == flood.cells);
     }
     // The random scenes exercise both endings.
@@ -103,9 +103,9 @@ TEST_CASE("water/grow_waterbody: hand-checked flood stops before the land")
         f.intensity_bin(0, c) = c < 20 ? 0 : 9;
     }
     grow_waterbody_options o{.theta_start_deg = 2, .theta_step_deg = 1, .theta_max_deg = 10, .min_ks_samples = 1};
-    raster<std::int32_t> visited(1, 40, 0);
+    grow_waterbody_workspace workspace;
     const std::vector<std::ptrdiff_t> seed{0};
-    const auto g = grow_waterbody(f, seed, o, visited, 7);
+    const auto g = grow_waterbody(f, seed, o, workspace);
     // Step 0 (θ 2°) holds the 20 dark cells; step 3 (θ 5°) adds 20 bright ones:
     // D = 1 - 20/40 = 0.5 > 1.36·sqrt(60/800) = 0.372 -> rejected, the 20 dark cells remain.
     CHECK(g.cells.size() == 20);
@@ -114,7 +114,7 @@ TEST_CASE("water/grow_waterbody: hand-checked flood stops before the land")
     CHECK(g.theta_deg == 4.0);
 
     f.eligible(0, 2) = 0;  // vegetation cuts the strip
-    const auto cut = grow_waterbody(f, seed, o, visited, 8);
+    const auto cut = grow_waterbody(f, seed, o, workspace);
     CHECK(cut.cells.size() == 2);
     CHECK_FALSE(cut.stopped_by_ks);
 }
@@ -125,24 +125,55 @@ TEST_CASE("water/grow_waterbody: bad options and fields are refused")
     f.angle_deg = raster<float>(2, 2);
     f.eligible = raster<std::uint8_t>(2, 2, 1);
     f.intensity_bin = raster<std::int32_t>(2, 2);
-    raster<std::int32_t> visited(2, 2);
+    grow_waterbody_workspace workspace;
     const std::vector<std::ptrdiff_t> seed{0};
-    CHECK_THROWS_WITH_AS(grow_waterbody(f, seed, {.theta_start_deg = 5, .theta_max_deg = 3}, visited, 1),
+    CHECK_THROWS_WITH_AS(grow_waterbody(f, seed, {.theta_start_deg = 5, .theta_max_deg = 3}, workspace),
                          "grow_waterbody: theta_max_deg must be >= theta_start_deg and <= 90 (got 3)", invalid_input);
-    CHECK_THROWS_WITH_AS(grow_waterbody(f, seed, {.theta_step_deg = 0}, visited, 1),
+    CHECK_THROWS_WITH_AS(grow_waterbody(f, seed, {.theta_step_deg = 0}, workspace),
                          "grow_waterbody: theta_step_deg must be in (0, 90] (got 0)", invalid_input);
     grow_waterbody_options bad_alpha;
     bad_alpha.ks.alpha = 1.5;
-    CHECK_THROWS_AS(grow_waterbody(f, seed, bad_alpha, visited, 1), invalid_input);
+    CHECK_THROWS_AS(grow_waterbody(f, seed, bad_alpha, workspace), invalid_input);
     const std::vector<std::ptrdiff_t> outside{4};
-    CHECK_THROWS_AS(grow_waterbody(f, outside, {}, visited, 1), invalid_input);
+    CHECK_THROWS_AS(grow_waterbody(f, outside, {}, workspace), invalid_input);
     // Intensity bins outside [-1, bins): one past the last, and one with the bits above 2^24 set.
-    std::int32_t stamp = 10;  // a fresh stamp per call: the cells are unvisited
     for (const std::int32_t bad : {1, std::int32_t{1} << 24, std::int32_t{1} << 29, std::int32_t{1} << 30}) {
         f.intensity_bin(0, 1) = bad;
-        CHECK_THROWS_AS(grow_waterbody(f, seed, {}, visited, ++stamp), invalid_input);
+        CHECK_THROWS_AS(grow_waterbody(f, seed, {}, workspace), invalid_input);
     }
     f.intensity_bin(0, 1) = 0;
     f.eligible = raster<std::uint8_t>(3, 2);
-    CHECK_THROWS_AS(grow_waterbody(f, seed, {}, visited, 1), invalid_input);
+    CHECK_THROWS_AS(grow_waterbody(f, seed, {}, workspace), invalid_input);
+}
+
+TEST_CASE("water/grow_waterbody: a workspace over a caller's labels stamps only the eligible cells it visits")
+{
+    water_field f;
+    f.angle_deg = raster<float>(3, 8, 1.0f);
+    f.eligible = raster<std::uint8_t>(3, 8, 1);
+    f.intensity_bin = raster<std::int32_t>(3, 8, -1);
+    raster<std::int32_t> labels(3, 8, 0);
+    for (std::ptrdiff_t r = 0; r < 3; ++r) {  // a body in column 4: taken, not eligible
+        labels(r, 4) = 5;
+        f.eligible(r, 4) = 0;
+    }
+    grow_waterbody_workspace borrowed(labels.view());
+    const std::vector<std::ptrdiff_t> seed{0};
+    const auto own = grow_waterbody(f, seed, {});  // a workspace of its own gives the same flood
+    const auto first = grow_waterbody(f, seed, {}, borrowed);
+    CHECK(first.cells.size() == 12);
+    CHECK(first.cells == own.cells);
+    for (std::ptrdiff_t r = 0; r < 3; ++r) {
+        CHECK(labels(r, 4) == 5);
+        for (std::ptrdiff_t c = 0; c < 4; ++c) CHECK(labels(r, c) < 0);
+        for (std::ptrdiff_t c = 5; c < 8; ++c) CHECK(labels(r, c) == 0);
+    }
+    const auto second = grow_waterbody(f, seed, {}, borrowed);  // a new stamp: the first flood's marks are no visit
+    CHECK(second.cells == first.cells);
+    borrowed.clear_marks();
+    for (std::ptrdiff_t r = 0; r < 3; ++r)
+        for (std::ptrdiff_t c = 0; c < 8; ++c) CHECK(labels(r, c) == (c == 4 ? 5 : 0));
+    raster<std::int32_t> small(2, 8, 0);
+    grow_waterbody_workspace wrong(small.view());
+    CHECK_THROWS_AS(grow_waterbody(f, seed, {}, wrong), invalid_input);
 }

@@ -36,13 +36,13 @@ TEST_CASE("water/grow_waterbody level gate: a pond's flood stops where the field
         }
     }
     const auto field = flat_field(min_z);
-    raster<std::int32_t> visited(20, 20, 0);
-    const auto gated = grow_waterbody(field, seed, {}, visited, -1);
+    grow_waterbody_workspace workspace;
+    const auto gated = grow_waterbody(field, seed, {}, workspace);
     CHECK(gated.cells.size() == 64);
 
     grow_waterbody_options no_gate;
     no_gate.level_gate_m = 0;
-    const auto flooded = grow_waterbody(field, seed, no_gate, visited, -2);
+    const auto flooded = grow_waterbody(field, seed, no_gate, workspace);
     CHECK(flooded.cells.size() == 400);  // the untested first step takes the whole flat field
 }
 
@@ -64,12 +64,12 @@ TEST_CASE("water/grow_waterbody level gate: the level drifts along a falling riv
         }
     }
     const auto field = flat_field(min_z);
-    raster<std::int32_t> visited(12, 80, 0);
-    CHECK(grow_waterbody(field, seed, {}, visited, -1).cells.size() == 4 * 80);
+    grow_waterbody_workspace workspace;
+    CHECK(grow_waterbody(field, seed, {}, workspace).cells.size() == 4 * 80);
 
     grow_waterbody_options fixed_level;
     fixed_level.level_drift_m = 0;  // the seed's level only: the flood ends ~0.15 / 0.004 columns downstream
-    const auto short_reach = grow_waterbody(field, seed, fixed_level, visited, -2);
+    const auto short_reach = grow_waterbody(field, seed, fixed_level, workspace);
     CHECK(short_reach.cells.size() < 4 * 45);
     CHECK(short_reach.cells.size() > 4 * 30);
 }
@@ -90,13 +90,13 @@ TEST_CASE("water/grow_waterbody level gate: with level_rise_m 0 the level does n
         }
     }
     const auto field = flat_field(min_z);
-    raster<std::int32_t> visited(40, 40, 0);
+    grow_waterbody_workspace workspace;
     grow_waterbody_options creep;
     creep.level_rise_m = -1;  // rises like it falls (5 mm per cell): the flood climbs the whole slope
-    CHECK(grow_waterbody(field, seed, creep, visited, -1).cells.size() == 40 * 40);
+    CHECK(grow_waterbody(field, seed, creep, workspace).cells.size() == 40 * 40);
     grow_waterbody_options flat;
     flat.level_rise_m = 0;  // the level passed on never rises: the flood stops 0.15 m above the pond
-    const auto held = grow_waterbody(field, seed, flat, visited, -2);
+    const auto held = grow_waterbody(field, seed, flat, workspace);
     // Land joins while 0.02 + 0.004 (c − 5) <= 0.15 m above the pond: columns up to 37, not 38 and 39.
     CHECK(held.cells.size() == 40 * 38);
 }
@@ -125,18 +125,18 @@ TEST_CASE("water/grow_waterbody first-step test: a bright meadow 0.1 m above the
             field.intensity_bin.view()(r, c) = static_cast<std::int32_t>((pond ? 0 : 30) + (r * 7 + c * 3) % 10);
         }
     }
-    raster<std::int32_t> visited(n, n, 0);
-    const auto tested = grow_waterbody(field, seed, {}, visited, -1);
+    grow_waterbody_workspace workspace;
+    const auto tested = grow_waterbody(field, seed, {}, workspace);
     CHECK(tested.cells.size() == 14 * 14);  // the pond, nothing of the meadow
 
     grow_waterbody_options untested;
     untested.test_first_step = false;
-    const auto flooded = grow_waterbody(field, seed, untested, visited, -2);
+    const auto flooded = grow_waterbody(field, seed, untested, workspace);
     CHECK(flooded.cells.size() == static_cast<std::size_t>(n * n));  // the meadow is within the gate
 
     // A meadow as dark as the pond is the same water to the test: it joins.
     auto dark = field;
     for (std::ptrdiff_t i = 0; i < dark.intensity_bin.size(); ++i)
         if (dark.intensity_bin.data()[i] >= 30) dark.intensity_bin.data()[i] -= 30;
-    CHECK(grow_waterbody(dark, seed, {}, visited, -3).cells.size() == static_cast<std::size_t>(n * n));
+    CHECK(grow_waterbody(dark, seed, {}, workspace).cells.size() == static_cast<std::size_t>(n * n));
 }

@@ -18,17 +18,16 @@ namespace {
 struct strip {
     raster<float> min_z, max_z;
     raster<std::uint8_t> eligible;
-    raster<std::int32_t> visited;
     explicit strip(std::initializer_list<float> z)
         : min_z(1, static_cast<std::ptrdiff_t>(z.size())), max_z(1, static_cast<std::ptrdiff_t>(z.size())),
-          eligible(1, static_cast<std::ptrdiff_t>(z.size()), 1), visited(1, static_cast<std::ptrdiff_t>(z.size()), 0)
+          eligible(1, static_cast<std::ptrdiff_t>(z.size()), 1)
     {
         std::ptrdiff_t c = 0;
         for (const float v : z) min_z(0, c) = max_z(0, c) = v, ++c;
     }
     std::vector<std::ptrdiff_t> join(std::vector<std::ptrdiff_t> region, const join_level_cells_options& o)
     {
-        join_level_cells(region, min_z, max_z, eligible, visited, 7, o);
+        join_level_cells(region, min_z, max_z, eligible, o);
         return region;
     }
 };
@@ -76,7 +75,6 @@ TEST_CASE("water/join_level_cells: cells at the water level join, up to depth_ce
     // Cell 2 is within 0.125 m (inclusive) of the level 10 of cell 1, cell 3 too and two steps away; cell 4
     // would be the third step.
     CHECK(s.join({0, 1}, eighth) == cells{0, 1, 2, 3});
-    for (std::ptrdiff_t c = 0; c < 6; ++c) CHECK(s.visited(0, c) == (c < 4 ? 7 : 0));
     strip deeper{10.0f, 10.0f, 10.125f, 10.125f, 10.125f, 10.0f};
     CHECK(deeper.join({0, 1}, {.tolerance_m = 0.125, .depth_cells = 3}) == cells{0, 1, 2, 3, 4});
 }
@@ -111,7 +109,6 @@ TEST_CASE("water/join_level_cells: no returns, vegetation and disabled options j
     strip off{10.0f, 10.0f, 10.0f};
     CHECK(off.join({0, 1}, {.tolerance_m = 0}) == cells{0, 1});
     CHECK(off.join({0, 1}, {.depth_cells = 0}) == cells{0, 1});
-    CHECK(off.visited == raster<std::int32_t>(1, 3, 0));  // disabled: not even the region is marked
 }
 
 TEST_CASE("water/join_level_cells: the walk reaches diagonal neighbours")
@@ -120,9 +117,8 @@ TEST_CASE("water/join_level_cells: the walk reaches diagonal neighbours")
                                    {12.0f, 10.0f, 12.0f},
                                    {12.0f, 12.0f, 10.0f}});
     raster<std::uint8_t> eligible(3, 3, 1);
-    raster<std::int32_t> visited(3, 3, 0);
     cells region{0};
-    join_level_cells(region, z, z, eligible, visited, -1, eighth);
+    join_level_cells(region, z, z, eligible, eighth);
     CHECK(region == cells{0, 4, 8});
 }
 
@@ -162,9 +158,8 @@ TEST_CASE("water/join_level_cells: starting from edge cells equals starting from
         std::shuffle(region.begin(), region.end(), rng);
         const join_level_cells_options o{.tolerance_m = 0.05 + 0.2 * u(rng), .max_rise_m = 0.5 * u(rng),
                                          .depth_cells = static_cast<int>(rng() % 4)};
-        raster<std::int32_t> visited(rows, cols, 0);
         cells got = region;
-        join_level_cells(got, lo, hi, eligible, visited, 1, o);
+        join_level_cells(got, lo, hi, eligible, o);
         CHECK(got == reference_join(region, lo, hi, eligible, o));
         grew += got.size() > region.size();
     }
@@ -180,5 +175,5 @@ TEST_CASE("water/join_level_cells: bad arguments are refused")
                          invalid_input);
     raster<std::uint8_t> wrong(2, 2, 1);
     cells region{0};
-    CHECK_THROWS_AS(join_level_cells(region, s.min_z, s.max_z, wrong, s.visited, 1), invalid_input);
+    CHECK_THROWS_AS(join_level_cells(region, s.min_z, s.max_z, wrong), invalid_input);
 }

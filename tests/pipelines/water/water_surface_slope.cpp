@@ -124,12 +124,12 @@ TEST_CASE("water/grow_waterbody level_follow_max_slope: the level follows a rive
                       slope};
     for (std::ptrdiff_t i = 0; i < min_z.size(); ++i)
         if (std::isnan(min_z.data()[i])) field.intensity_bin.data()[i] = -1;
-    raster<std::int32_t> visited(rows, cols, 0);
-    const auto climbed = grow_waterbody(field, seed, {}, visited, -1);
+    grow_waterbody_workspace workspace;
+    const auto climbed = grow_waterbody(field, seed, {}, workspace);
     CHECK(climbed.cells.size() == static_cast<std::size_t>(rows * cols));
     grow_waterbody_options cue;
     cue.level_follow_max_slope = 0.008;
-    const auto stopped = grow_waterbody(field, seed, cue, visited, -2);
+    const auto stopped = grow_waterbody(field, seed, cue, workspace);
     // Beach cells up to 0.15 m above 100 m: cols 10-46 (0.004 · 37 = 0.148); with the water, 47 columns.
     CHECK(stopped.cells.size() == static_cast<std::size_t>(rows * 47));
 }

@@ -43,21 +43,6 @@ struct seeds_beyond_bridges_options {
                                        ///< Default 3
 };
 
-namespace detail {
-
-inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
-{
-    require(o.max_span_m > 0, fn, "max_span_m", "> 0", o.max_span_m);
-    require(o.min_clearance_m >= 0, fn, "min_clearance_m", ">= 0", o.min_clearance_m);
-    require(o.level_tolerance_m >= 0, fn, "level_tolerance_m", ">= 0", o.level_tolerance_m);
-    require(o.beyond_cells >= 1, fn, "beyond_cells", ">= 1", o.beyond_cells);
-    require(o.behind_cells >= 0, fn, "behind_cells", ">= 0", o.behind_cells);
-    require(o.approach_cells >= 0, fn, "approach_cells", ">= 0", o.approach_cells);
-    require(o.clear_cells >= 0, fn, "clear_cells", ">= 0", o.clear_cells);
-}
-
-}  // namespace detail
-
 /// Seed cells beyond bridge decks: from every cell of a body (label > 0, finite min z, behind_cells cells of
 /// the same body behind it) a walk goes along each of the 8 directions of the rows, columns and diagonals over
 /// a deck: after at most approach_cells land cells at the start cell's level (within level_tolerance_m) or
@@ -75,109 +60,8 @@ inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
 inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
                                                  raster_view<const std::uint8_t> eligible, double cell_m,
                                                  const seeds_beyond_bridges_options& opt = {},
-                                                 surface_slope_source surface_slope = {})
-{
-    constexpr const char* fn = "seeds_beyond_bridges";
-    detail::require_positive(cell_m, fn, "cell_m");
-    detail::validate(opt, fn);
-    detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    detail::require_same_shape(labels, eligible, fn, "labels", "eligible");
-    const bool sloped_out = !surface_slope.empty() && opt.max_surface_slope >= 0;
-    if (sloped_out) detail::require_same_shape(labels, surface_slope, fn, "labels", "surface_slope");
-    const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    raster<std::uint8_t> seeds(rows, cols, 0);
-    const auto inside = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return r >= 0 && r < rows && c >= 0 && c < cols; };
-    constexpr int steps[8][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
-    std::vector<std::ptrdiff_t> marked;  // cells marked (a cell may appear more than once)
-    // The walks from body cell (r, c) of `body`.
-    const auto walk_from = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t body) {
-        const float z0 = min_z(r, c);
-        if (!std::isfinite(z0)) return;
-        const auto level_with = [&](float z) { return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m; };
-        for (const auto& step : steps) {
-            const std::ptrdiff_t dr = step[0], dc = step[1];
-            // Only a cell at the body's edge along this line starts a walk.
-            if (!inside(r + dr, c + dc) || labels(r + dr, c + dc) != 0) continue;
-            bool channel = true;
-            for (std::ptrdiff_t k = 1; k <= opt.behind_cells && channel; ++k)
-                channel = inside(r - k * dr, c - k * dc) && labels(r - k * dr, c - k * dc) == body;
-            if (!channel) continue;
-            const double step_m = (dr != 0 && dc != 0) ? cell_m * std::numbers::sqrt2 : cell_m;
-            const auto span = static_cast<std::ptrdiff_t>(std::floor(opt.max_span_m / step_m));
-            // Up to the deck: a few land cells at the water's level (the body may stop short of the deck);
-            // then over it: land cells with no return or standing clear of the water.
-            std::ptrdiff_t k = 1;
-            for (; k <= opt.approach_cells && inside(r + k * dr, c + k * dc); ++k) {
-                const std::ptrdiff_t rr = r + k * dr, cc = c + k * dc;
-                if (labels(rr, cc) != 0 || !(level_with(min_z(rr, cc)) || std::isnan(min_z(rr, cc)))) break;
-            }
-            const std::ptrdiff_t deck_from = k;
-            bool raised = false;
-            for (; k <= span && inside(r + k * dr, c + k * dc); ++k) {
-                const std::ptrdiff_t rr = r + k * dr, cc = c + k * dc;
-                if (labels(rr, cc) != 0) break;
-                const float z = min_z(rr, cc);
-                if (std::isfinite(z) && !(z >= z0 + opt.min_clearance_m)) break;
-                raised |= std::isfinite(z);
-            }
-            if (!raised || k == deck_from) continue;
-            // Beyond it: beyond_cells water-like cells in a row.
-            bool water_like = true;
-            for (std::ptrdiff_t j = 0; j < opt.beyond_cells && water_like; ++j) {
-                const std::ptrdiff_t rr = r + (k + j) * dr, cc = c + (k + j) * dc;
-                water_like = inside(rr, cc) && labels(rr, cc) == 0 && eligible(rr, cc) != 0 &&
-                             level_with(min_z(rr, cc)) &&
-                             !(sloped_out && surface_slope(rr, cc) > opt.max_surface_slope);
-            }
-            if (!water_like) continue;
-            for (std::ptrdiff_t j = 0; j < opt.beyond_cells; ++j) {
-                const std::ptrdiff_t rr = r + (k + j) * dr, cc = c + (k + j) * dc;
-                seeds(rr, cc) = 1;
-                marked.push_back(rr * cols + cc);
-            }
-        }
-    };
-    // Per row, 1 for the body cells that may start a walk: none inside a body (all 8 neighbours its own),
-    // where most body cells are.
-    std::vector<std::uint8_t> may_start(static_cast<std::size_t>(cols));
-    std::uint8_t* start = may_start.data();
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* here = labels.row(r);
-        // Land is passed over in blocks; each stretch of body cells is flagged in one vectorized loop.
-        for (std::ptrdiff_t c = detail::next_positive(here, 0, cols); c < cols;
-             c = detail::next_positive(here, c, cols)) {
-            const std::ptrdiff_t from = c;
-            while (c < cols && here[c] > 0) ++c;
-            std::fill(start + from, start + c, std::uint8_t{1});  // the raster's border: all may start
-            if (r > 0 && r + 1 < rows) {
-                const std::int32_t* above = labels.row(r - 1);
-                const std::int32_t* below = labels.row(r + 1);
-                const std::ptrdiff_t to = std::min(c, cols - 1);
-                LIDARFX_IVDEP
-                for (std::ptrdiff_t x = std::max<std::ptrdiff_t>(from, 1); x < to; ++x) {
-                    const std::int32_t b = here[x];
-                    start[x] = static_cast<std::uint8_t>((above[x - 1] != b) | (above[x] != b) | (above[x + 1] != b) |
-                                                         (here[x - 1] != b) | (here[x + 1] != b) | (below[x - 1] != b) |
-                                                         (below[x] != b) | (below[x + 1] != b));
-                }
-            }
-            for (std::ptrdiff_t x = detail::next_positive(start, from, c); x < c;
-                 x = detail::next_positive(start, x + 1, c))
-                walk_from(r, x, here[x]);
-        }
-    }
-    // Only where nothing was found yet: a marked cell within clear_cells of a body is the bank of water
-    // already found (a walk over a deck's end lands on it), not water cut off by the deck.
-    const std::ptrdiff_t d = opt.clear_cells;
-    for (const std::ptrdiff_t cell : marked) {
-        const std::ptrdiff_t r = cell / cols, c = cell % cols;
-        bool near = false;
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - d); rr <= std::min(rows - 1, r + d) && !near; ++rr)
-            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - d); cc <= std::min(cols - 1, c + d); ++cc)
-                near |= labels(rr, cc) > 0;
-        if (near) seeds(r, c) = 0;
-    }
-    return seeds;
-}
+                                                 surface_slope_source surface_slope = {});
 
 }  // namespace lidarfx
+
+#include "lidarfx/pipelines/water/detail/bridge_seeds_impl.hpp"

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -38,7 +39,7 @@ enum class ks_sample_mode {
     increment,   ///< only the cells the step added: a leak is tested on its own and caught while small
 };
 
-/// Threshold schedule and stopping rule of the growing step (dissertation §2.3.3, DESIGN.md §5).
+/// Threshold schedule and stopping rule of the growing step (dissertation §2.3.3, docs/waterbodies.md).
 struct grow_waterbody_options {
     double theta_start_deg = 2.0;     ///< first angular threshold θ_0, degrees, >= 0
     double theta_step_deg = 1.0;      ///< increment of θ per step, degrees, > 0
@@ -77,7 +78,7 @@ struct grow_waterbody_options {
                                   ///< they never join, and the step ends without what only they reach (a
                                   ///< flat meadow or terrace next to the water, within the gate, was
                                   ///< flooded at θ_0 without any test). The seed's own cells never wait.
-                                  ///< Default true (water family, seeds 500-599: river specificity 99.40
+                                  ///< Default true (on the water family: river specificity 99.40
                                   ///< -> 99.76 %, worst lake's 88 -> 99 %; river sensitivity 66 -> 64 %;
                                   ///< docs/waterbodies.md)
 };
@@ -90,48 +91,49 @@ struct grow_waterbody_result {
     bool stopped_by_ks = false;         ///< true when the KS test rejected step steps_accepted + 1
 };
 
-namespace detail {
+/// Scratch of grow_waterbody for a caller that grows many seeds on one field: each flood marks the cells it
+/// visits with a stamp of its own, so nothing is cleared between floods. Default-constructed, it allocates a
+/// mark raster of the field's shape at the first flood (and again if the shape changes). Constructed over a
+/// caller's label raster (`marks`: contiguous rows, the field's shape, labels >= 0), it allocates nothing: each flood
+/// writes a new negative stamp into the eligible cells it visits and only reads the others, so labels > 0 of cells that
+/// are not eligible stay as they are; clear_marks() sets the stamped cells back to 0. One workspace per thread; it
+/// holds no result.
+class grow_waterbody_workspace {
+public:
+    grow_waterbody_workspace() = default;
+    explicit grow_waterbody_workspace(raster_view<std::int32_t> marks) noexcept : marks_(marks), borrowed_(true) {}
 
-inline void validate(const grow_waterbody_options& o, const char* function)
-{
-    require(o.theta_start_deg >= 0 && o.theta_start_deg <= 90, function, "theta_start_deg", "in [0, 90]",
-            o.theta_start_deg);
-    require(o.theta_step_deg > 0 && o.theta_step_deg <= 90, function, "theta_step_deg", "in (0, 90]", o.theta_step_deg);
-    require(o.theta_max_deg >= o.theta_start_deg && o.theta_max_deg <= 90, function, "theta_max_deg",
-            ">= theta_start_deg and <= 90", o.theta_max_deg);
-    require(o.ks.alpha > 0 && o.ks.alpha < 1, function, "ks.alpha", "in (0, 1)", o.ks.alpha);
-    require(o.level_gate_m >= 0, function, "level_gate_m", ">= 0", o.level_gate_m);
-    require(o.level_drift_m >= 0, function, "level_drift_m", ">= 0", o.level_drift_m);
-}
+    /// Sets the cells stamped so far (< 0) back to 0 and starts the stamps again. O(cells).
+    void clear_marks() noexcept
+    {
+        for (std::ptrdiff_t r = 0; r < marks_.rows(); ++r) {
+            std::int32_t* m = marks_.row(r);
+            for (std::ptrdiff_t c = 0, n = marks_.cols(); c < n; ++c) m[c] = m[c] < 0 ? 0 : m[c];
+        }
+        stamp_ = 0;
+    }
 
-/// θ_k, computed the same way everywhere so that step membership is exact.
-inline double theta_of_step(const grow_waterbody_options& o, int k) noexcept
-{
-    return o.theta_start_deg + static_cast<double>(k) * o.theta_step_deg;
-}
+    /// The marks of the next flood over a field of rows x cols cells and its stamp (no cell holds it yet).
+    /// @throws invalid_input if the workspace is over marks of another shape.
+    std::pair<raster_view<std::int32_t>, std::int32_t> next_flood(std::ptrdiff_t rows, std::ptrdiff_t cols)
+    {
+        if (!borrowed_ && (own_.rows() != rows || own_.cols() != cols)) {
+            own_ = raster<std::int32_t>(rows, cols, 0);
+            marks_ = own_.view();
+            stamp_ = 0;
+        }
+        detail::require(marks_.rows() == rows && marks_.cols() == cols && marks_.row_stride() == cols, "grow_waterbody",
+                        "workspace.marks", "contiguous and of the field's shape", marks_.rows());
+        if (stamp_ == std::numeric_limits<std::int32_t>::min()) clear_marks();
+        return {marks_, --stamp_};
+    }
 
-inline int last_step(const grow_waterbody_options& o) noexcept
-{
-    int k = static_cast<int>(std::floor((o.theta_max_deg - o.theta_start_deg) / o.theta_step_deg));
-    while (k > 0 && theta_of_step(o, k) > o.theta_max_deg) --k;
-    while (theta_of_step(o, k + 1) <= o.theta_max_deg) ++k;
-    return k;
-}
-
-/// Smallest step k with angle <= θ_k (NaN: 0); last + 1 when the angle exceeds θ_max.
-inline int step_of_angle(const grow_waterbody_options& o, float angle, int last) noexcept
-{
-    if (std::isnan(angle)) return 0;
-    const double a = angle;
-    if (a <= o.theta_start_deg) return 0;
-    int k = static_cast<int>(std::ceil((a - o.theta_start_deg) / o.theta_step_deg));
-    if (k > last + 1) return last + 1;
-    while (k > 0 && a <= theta_of_step(o, k - 1)) --k;
-    while (k <= last && a > theta_of_step(o, k)) ++k;
-    return k;
-}
-
-}  // namespace detail
+private:
+    raster<std::int32_t> own_;
+    raster_view<std::int32_t> marks_ = {};
+    std::int32_t stamp_ = 0;
+    bool borrowed_ = false;
+};
 
 /// Grows one seed into a waterbody. The region at step k is the set of eligible cells 8-connected to the
 /// seed through eligible cells whose angle is <= θ_k = θ_0 + k·Δθ (NaN angles join at any step). After
@@ -139,163 +141,17 @@ inline int step_of_angle(const grow_waterbody_options& o, float angle, int last)
 /// (samples: cells with intensity_bin >= 0); on rejection the previous region is kept and growth stops.
 /// All steps run as ONE flood: a bucket queue keyed by the step at which a cell can first join (the
 /// minimax of steps along its best path), so each cell enters the queue once, with a cumulative intensity
-/// histogram per step. O(cells reached + steps * bins). `visited` is scratch of the field's shape whose
-/// cells must differ from `stamp` on entry (pass a fresh stamp per call to reuse it without clearing).
-/// @throws invalid_input on a field of mismatched shapes, bins < 1, options out of range, or an intensity bin
-/// outside [-1, bins) in a cell the flood reaches.
+/// histogram per step. O(cells reached + steps * bins). The cells visited are marked in `workspace` (a caller that
+/// grows many seeds on one field keeps one workspace: nothing is allocated or cleared between floods).
+/// @throws invalid_input on a field of mismatched shapes (or a workspace over marks of another shape), bins < 1,
+/// options out of range, or an intensity bin outside [-1, bins) in a cell the flood reaches.
 inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
-                                            const grow_waterbody_options& opt, raster<std::int32_t>& visited,
-                                            std::int32_t stamp)
-{
-    constexpr const char* fn = "grow_waterbody";
-    detail::validate(opt, fn);
-    detail::require_same_shape(field.angle_deg, field.eligible, fn, "field.angle_deg", "field.eligible");
-    detail::require_same_shape(field.angle_deg, field.intensity_bin, fn, "field.angle_deg", "field.intensity_bin");
-    detail::require_same_shape(field.angle_deg, visited, fn, "field.angle_deg", "visited");
-    detail::require(field.bins >= 1, fn, "field.bins", ">= 1", field.bins);
+                                            const grow_waterbody_options& opt, grow_waterbody_workspace& workspace);
 
-    const std::ptrdiff_t rows = field.angle_deg.rows(), cols = field.angle_deg.cols(), n = rows * cols;
-    const float* angle = field.angle_deg.data();
-    const std::uint8_t* eligible = field.eligible.data();
-    const std::int32_t* bin = field.intensity_bin.data();
-    std::int32_t* seen = visited.data();
-    const int last = detail::last_step(opt);
-
-    // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
-    const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
-    if (gate) detail::require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
-    const detail::cell_splitter split(cols);
-    const bool exempt = gate && opt.level_ks_exempt_m >= 0;
-    const auto exempt_m = static_cast<float>(opt.level_ks_exempt_m);
-    // A queued cell: its index, the level it passes on (gate; NaN: unknown yet) and its intensity sample
-    // (bin, -1 for none) with two bits read when it joins, all found while its row is in cache at the push.
-    struct queued {
-        std::ptrdiff_t cell;
-        float level;
-        std::int32_t sample;
-    };
-    constexpr std::int32_t by_level_bit = 1 << 30;    // min z <= level + exempt: water by its height
-    constexpr std::int32_t at_level_bit = 1 << 29;    // |min z − level| <= exempt (test_first_step)
-    constexpr std::int32_t bin_bits = (1 << 24) - 1;  // bins <= ks_histogram::largest_max_value + 1
-    static_assert(ks_histogram::largest_max_value <= static_cast<std::uint32_t>(bin_bits));
-    // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
-    using cell_queue = std::vector<queued, detail::raster_allocator<queued>>;
-    std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
-    const bool slope_gate = gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty();
-    if (slope_gate)
-        detail::require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
-    const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
-    const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
-    // The views in locals: the queue stores could alias their members, which would then be reloaded.
-    const raster_view<const float> min_z = field.min_z;
-    const surface_slope_source surface_slope = field.surface_slope;
-    // Cell i = r * cols + c, not seen and eligible, reached at step from_step from a cell passing on
-    // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
-    // already, and a call per neighbour would cost more than the test.
-    const auto push = [&](std::ptrdiff_t i, std::ptrdiff_t r, std::ptrdiff_t c, int from_step, float from_level) {
-        const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
-        if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
-        float level = from_level;
-        std::int32_t sample = bin[i];
-        if (sample > bin_bits) [[unlikely]]
-            detail::require(false, fn, "field.intensity_bin", "in [-1, bins)", sample);
-        if (gate) {
-            const float z = min_z(r, c);
-            if (!std::isnan(z)) {
-                if (std::isnan(from_level)) {
-                    level = z;
-                } else {
-                    const double d = static_cast<double>(z) - from_level;
-                    if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    if (!slope_gate || !(surface_slope(r, c) > max_slope))
-                        level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
-                }
-            }
-            if (exempt && sample >= 0) {
-                if (z <= level + exempt_m) sample |= by_level_bit;
-                if (std::abs(z - level) <= exempt_m) sample |= at_level_bit;
-            }
-        }
-        seen[i] = stamp;
-        buckets[static_cast<std::size_t>(k)].push_back({i, level, sample});
-    };
-    const auto fresh = [&](std::ptrdiff_t i) { return seen[i] != stamp && eligible[i]; };
-    const float seed_level = gate ? static_cast<float>(seed_water_level(seed_cells, field.min_z, opt.seed_level)) : NAN;
-    for (const auto i : seed_cells) {
-        if (i < 0 || i >= n) [[unlikely]]
-            detail::require(false, fn, "seed cell index", "inside the field", i);
-        const auto [r, c] = split(i);
-        if (fresh(i)) push(i, r, c, 0, seed_level);
-    }
-    const std::size_t seed_entries = buckets.front().size();  // the seed's own cells never wait (test_first_step)
-
-    grow_waterbody_result out;
-    const auto max_bin = static_cast<std::uint32_t>(field.bins - 1);
-    ks_histogram previous(max_bin), current(max_bin), added(max_bin);
-    const bool increment = opt.sample == ks_sample_mode::increment;
-    // The first step's test within itself (test_first_step): its cells off the level wait here.
-    const bool first_test = exempt && opt.test_first_step;
-    std::vector<queued> waiting;
-    ks_histogram waiting_sample(max_bin);
-    for (int k = 0; k <= last; ++k) {
-        const std::size_t before = out.cells.size();
-        auto& bucket = buckets[static_cast<std::size_t>(k)];
-        const auto join = [&](const queued& q) {
-            const std::ptrdiff_t i = q.cell;
-            out.cells.push_back(i);
-            if (q.sample >= 0) {
-                current.add(q.sample & bin_bits);
-                // A cell at or below the level it joined at is water by its height: no KS evidence needed.
-                if (increment && !(q.sample & by_level_bit)) added.add(q.sample & bin_bits);
-            }
-            const auto [r, c] = split(i);
-            for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
-                const std::ptrdiff_t rr = r + dr;
-                if (rr < 0 || rr >= rows) continue;
-                for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
-                    const std::ptrdiff_t cc = c + dc;
-                    if ((dr == 0 && dc == 0) || cc < 0 || cc >= cols) continue;
-                    if (const std::ptrdiff_t j = rr * cols + cc; fresh(j)) push(j, rr, cc, k, q.level);
-                }
-            }
-        };
-        // Cells pushed into this bucket while it is being drained join at this same step.
-        for (std::size_t q = 0;;) {
-            for (; q < bucket.size(); ++q) {
-                const queued entry = bucket[q];
-                if (first_test && k == 0 && q >= seed_entries && entry.sample >= 0 && !(entry.sample & at_level_bit)) {
-                    waiting.push_back(entry);
-                    waiting_sample.add(entry.sample & bin_bits);
-                    continue;
-                }
-                join(entry);
-            }
-            if (waiting.empty()) break;
-            const bool rejected =
-                current.size() >= opt.min_ks_samples && ks_one_sided(current, waiting_sample, opt.ks).reject;
-            const auto cells = std::exchange(waiting, {});
-            waiting_sample.clear();
-            if (rejected) break;  // they stay visited: no other path lets them in
-            for (const auto& w : cells) join(w);
-        }
-        cell_queue().swap(bucket);
-        const bool grew = out.cells.size() > before;
-        if (k > 0 && grew && previous.size() >= opt.min_ks_samples && previous.size() > 0 &&
-            current.size() > previous.size() && (!increment || !added.empty())) {
-            if (ks_one_sided(previous, increment ? added : current, opt.ks).reject) {
-                out.cells.resize(before);
-                out.stopped_by_ks = true;
-                break;
-            }
-        }
-        if (!out.cells.empty()) {
-            out.steps_accepted = k;
-            out.theta_deg = detail::theta_of_step(opt, k);
-        }
-        if (grew) previous = current;
-        if (increment && !added.empty()) added.clear();
-    }
-    return out;
-}
+/// grow_waterbody with a workspace of its own (allocated for this call).
+inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
+                                            const grow_waterbody_options& opt = {});
 
 }  // namespace lidarfx
+
+#include "lidarfx/pipelines/water/detail/grow_waterbody_impl.hpp"

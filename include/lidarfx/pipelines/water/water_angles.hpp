@@ -33,7 +33,7 @@ struct water_angles_options {
     execution run = {};  ///< threads of the kernels (same result for any count), progress
 };
 
-/// Angles for region growing: angular_filter of min z (DESIGN.md §4: per cell the largest
+/// Angles for region growing: angular_filter of min z (per cell the largest
 /// atan(|Δz| / distance) over the (2·radius_cells + 1)² window, degrees in [0, 90], NaN neighbours skipped,
 /// NaN centre gives NaN), read on the returns only or on min z filled by idw_fill; then dropout cells get
 /// NaN (dropouts_join_any_threshold: grow_waterbody lets NaN join at any θ) or, otherwise, 90° where the
@@ -41,32 +41,8 @@ struct water_angles_options {
 /// Progress: 0 on entry, 1 when done.
 /// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, options out of range;
 /// cancelled.
-inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt = {})
-{
-    constexpr const char* fn = "water_angles";
-    detail::validate(in, fn);
-    detail::require_positive(cell_m, fn, "cell_m");
-    detail::require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
-    detail::check_execution(opt.run, fn);
-    detail::report(opt.run.progress, 0.0, fn);
-    const int threads = opt.run.threads;
-    const angular_filter_options af{.radius_cells = opt.radius_cells, .run = {.threads = threads}};
-    raster<float> angle =
-        opt.input == angular_input::idw_filled
-            ? angular_filter(idw_fill(in.min_z, cell_m, idw_fill_options{.run = {.threads = threads}}).filled, cell_m,
-                             af)
-            : angular_filter(in.min_z, cell_m, af);
-    for (std::ptrdiff_t r = 0; r < angle.rows(); ++r) {
-        float* a = angle.row(r);
-        const std::uint8_t* dropout = in.dropout.row(r);
-        if (opt.dropouts_join_any_threshold) {
-            for (std::ptrdiff_t c = 0; c < angle.cols(); ++c) a[c] = dropout[c] ? NAN : a[c];
-        } else {
-            for (std::ptrdiff_t c = 0; c < angle.cols(); ++c) a[c] = dropout[c] && std::isnan(a[c]) ? 90.0f : a[c];
-        }
-    }
-    detail::report(opt.run.progress, 1.0, fn);
-    return angle;
-}
+inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt = {});
 
 }  // namespace lidarfx
+
+#include "lidarfx/pipelines/water/detail/water_angles_impl.hpp"
