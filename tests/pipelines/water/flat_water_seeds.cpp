@@ -57,12 +57,12 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     MESSAGE("turbid lake: seed cells on water " << on_water << ", on land " << on_land);
     CHECK(on_water >= 50);
     CHECK(on_land == 0);
-    // The labels form gives the same seeds, into a buffer of another shape or one reused with garbage.
-    raster<std::int32_t> labels(2, 3, 5);
+    // The workspace form gives the same seeds, with labels of another shape or reused with garbage.
+    flat_water_seeds_workspace workspace{raster<std::int32_t>(2, 3, 5)};
     for (int again = 0; again < 2; ++again) {
-        CHECK(flat_water_seeds(in, {}, {}, {}, labels) == seeds);
-        CHECK((labels.rows() == seeds.rows() && labels.cols() == seeds.cols()));
-        std::fill(labels.begin(), labels.end(), 123);
+        CHECK(flat_water_seeds(in, {}, {}, {}, {}, workspace) == seeds);
+        CHECK((workspace.labels.rows() == seeds.rows() && workspace.labels.cols() == seeds.cols()));
+        std::fill(workspace.labels.begin(), workspace.labels.end(), 123);
     }
 
     // Cells taken by bodies grown before are cleared from the mask, and nothing else changes: taken cells
@@ -72,8 +72,8 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     const auto slope = water_surface_slope(in.min_z, lake.cell_m);
     for (const bool with_slope : {false, true}) {
         const surface_slope_source source = with_slope ? surface_slope_source(slope) : surface_slope_source();
-        raster<std::int32_t> own;
-        const auto all = flat_water_seeds(in, {}, {}, source, own);
+        flat_water_seeds_workspace own;
+        const auto all = flat_water_seeds(in, {}, {}, source, {}, own);
         const auto parts = connected_components(all, connected_components_options{.conn = connectivity::eight});
         const auto first = std::find(all.begin(), all.end(), std::uint8_t{1}) - all.begin();
         REQUIRE(first < all.size());
@@ -84,7 +84,7 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
                                         : parts.labels.data()[i] == parts.labels.data()[first];
                 taken.data()[i] = in_it ? 7 : 0;
             }
-            const auto cleared = flat_water_seeds(in, {}, {}, source, own, taken);
+            const auto cleared = flat_water_seeds(in, {}, {}, source, taken, own);
             long kept = 0, differ = 0;
             for (std::ptrdiff_t i = 0; i < all.size(); ++i) {
                 differ += cleared.data()[i] != (taken.data()[i] > 0 ? 0 : all.data()[i]);
@@ -95,7 +95,7 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
             const auto first_size = parts.sizes[static_cast<std::size_t>(parts.labels.data()[first])];
             if (!west) CHECK(kept == std::count(all.begin(), all.end(), std::uint8_t{1}) - static_cast<long>(first_size));
         }
-        CHECK_THROWS_AS(flat_water_seeds(in, {}, {}, source, own, raster<std::int32_t>(3, 3, 0)), invalid_input);
+        CHECK_THROWS_AS(flat_water_seeds(in, {}, {}, source, raster<std::int32_t>(3, 3, 0), own), invalid_input);
     }
 
     const auto found = extract_waterbodies(pr, {.flat_seeds = true});

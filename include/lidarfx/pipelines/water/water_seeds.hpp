@@ -59,7 +59,7 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     // Ranked by size, the seeds to keep are the ranks 1..kept; the others become background. One pass
     // renumbers and drops (as rank_by_size, then a pass dropping the small ones, would).
     const std::size_t n = seeds.count();
-    auto rank = detail::size_ranks(seeds.sizes);
+    auto rank = rank_components_by_size(seeds.sizes);
     std::vector<std::size_t> ranked(n + 1, seeds.sizes[0]);
     for (std::size_t l = 1; l <= n; ++l) ranked[static_cast<std::size_t>(rank[l])] = seeds.sizes[l];
     std::size_t kept = 0;
@@ -71,7 +71,7 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
         }
     }
     ranked.resize(kept + 1);
-    detail::relabel_runs(seeds.labels, rank);
+    relabel_components(seeds.labels, rank);
     seeds.sizes = std::move(ranked);
     detail::report(opt.run.progress, 1.0, fn);
     return seeds;
