@@ -33,9 +33,10 @@ void extraction(benchmark::State& state)
     const auto z = town_dsm(side);
     lidarfx::extract_buildings_options opt;
     opt.run.threads = static_cast<int>(state.range(1));
+    const lidarfx::grid g{0.0, static_cast<double>(z.rows()), 1.0, z.rows(), z.cols()};  // 1 m cells
     std::size_t found = 0;
     for (auto _ : state) {
-        const auto b = lidarfx::extract_buildings(z, 1.0, opt);
+        const auto b = lidarfx::extract_buildings(z, g, opt);
         found = b.buildings.size();
         benchmark::DoNotOptimize(found);
     }

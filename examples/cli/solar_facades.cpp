@@ -61,9 +61,10 @@ std::vector<std::string> facade_file_names(bool png)
 void write_facade_outputs(io::output_folder& out, const facade_run& run)
 {
     extract_buildings_options bopt;
-    bopt.vegetation = run.vegetation;
     bopt.run = {.threads = run.threads, .progress = progress_bar("buildings")};
-    const extract_buildings_result b = extract_buildings(run.dsm, run.cell_m, bopt);
+    const grid local{0.0, static_cast<double>(run.dsm.rows()) * run.cell_m, run.cell_m, run.dsm.rows(),
+                     run.dsm.cols()};  // metres; the outlines below are polygonized on grid_crs
+    const extract_buildings_result b = extract_buildings(run.dsm, local, {}, run.vegetation, bopt);
     const surface_energy_result e = surface_energy(
         run.dsm, b.building_id, run.cell_m, run.latitude_deg, run.longitude_deg, run.records,
         {.month_utc_offset_h = run.utc_offset_h,

@@ -89,9 +89,7 @@ int main(int argc, char** argv)
     lidarfx::rasterize_options first;
     first.returns = lidarfx::return_selection::first;
     const auto r = lidarfx::rasterize(town.town.points.cloud(), g, first);
-    lidarfx::extract_buildings_options opt;
-    opt.vegetation = r.multiple_returns;
-    const auto b = lidarfx::extract_buildings(r.max_z, g.cell, opt);
+    const auto b = lidarfx::extract_buildings(r.max_z, g, {}, r.multiple_returns);
     const auto dsm = lidarfx::idw_fill(r.max_z, g.cell).filled;
     const auto shade = lidarfx::io::hillshade(dsm, g.cell);
     std::cout << "town: " << dsm.rows() << " x " << dsm.cols() << " cells of " << g.cell << " m, "

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// The dissertation takes one convex hull per edge object with Boost.Geometry. ground_model computes it in the
+// The dissertation takes one convex hull per edge object with Boost.Geometry. convex_hull computes it in the
 // header (exact integer monotone chain, so the library does not pull Boost.Geometry into every includer); here
 // Boost.Geometry's convex_hull is the reference: same area and same vertex set on random and degenerate inputs.
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/buildings/ground_model.hpp>
+#include <lidarfx/core/raster.hpp>
+#include <lidarfx/pipelines/buildings/convex_hull.hpp>
 
 #include <algorithm>
 #include <array>
@@ -43,7 +44,7 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
         std::uniform_int_distribution<std::int64_t> coord(-spread, spread);
         std::vector<cell> pts(static_cast<std::size_t>(3 + trial % 60));
         for (auto& p : pts) p = {coord(rng), coord(rng)};
-        const auto hull = lidarfx::detail::convex_hull(pts);
+        const auto hull = lidarfx::convex_hull(pts);
 
         bg::model::multi_point<point> mp;
         for (const auto& p : pts) bg::append(mp, point(static_cast<double>(p[0]), static_cast<double>(p[1])));
@@ -63,8 +64,27 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
 
 TEST_CASE("buildings/convex_hull: one point, two points, a line")
 {
-    CHECK(lidarfx::detail::convex_hull({{2, 3}}).size() == 1);
-    CHECK(lidarfx::detail::convex_hull({{2, 3}, {2, 3}, {5, 3}}).size() == 2);
-    const auto line = lidarfx::detail::convex_hull({{0, 0}, {1, 1}, {2, 2}, {3, 3}});
+    CHECK(lidarfx::convex_hull({{2, 3}}).size() == 1);
+    CHECK(lidarfx::convex_hull({{2, 3}, {2, 3}, {5, 3}}).size() == 2);
+    const auto line = lidarfx::convex_hull({{0, 0}, {1, 1}, {2, 2}, {3, 3}});
     CHECK(std::abs(area_of(line)) == 0.0);
+}
+
+TEST_CASE("buildings/burn_convex: the cells whose centres lie inside or on the hull; a point; a segment")
+{
+    lidarfx::raster<std::uint8_t> m(6, 6, 0);
+    lidarfx::burn_convex(lidarfx::convex_hull({{1, 1}, {4, 1}, {1, 4}}), m.view());  // triangle (col, row)
+    int n = 0;
+    for (std::ptrdiff_t r = 0; r < 6; ++r)
+        for (std::ptrdiff_t c = 0; c < 6; ++c) {
+            const bool inside = c >= 1 && r >= 1 && c + r <= 5;
+            CHECK(m(r, c) == (inside ? 1 : 0));
+            n += m(r, c);
+        }
+    CHECK(n == 10);
+    lidarfx::raster<std::uint8_t> p(4, 4, 0);
+    lidarfx::burn_convex({{2, 3}}, p.view());
+    CHECK(p(3, 2) == 1);
+    lidarfx::burn_convex({{0, 0}, {2, 2}}, p.view());  // the diagonal's cells
+    CHECK((p(0, 0) == 1 && p(1, 1) == 1 && p(2, 2) == 1 && p(0, 1) == 0));
 }

@@ -39,6 +39,12 @@ raster<float> gable_scene(double tilt, double cell)
     return z;
 }
 
+/// The local grid of a raster of `cell`-metre cells: column 0 at x = 0, row 0's north edge at y = rows x cell.
+grid local_grid(const raster<float>& z, double cell)
+{
+    return grid{0.0, static_cast<double>(z.rows()) * cell, cell, z.rows(), z.cols()};
+}
+
 }  // namespace
 
 TEST_CASE("ground_model: the terrain under a box is the ground around it, and nDSM its height")
@@ -71,10 +77,25 @@ TEST_CASE("ground_model: flat ground has no edges, holes are filled, all-NaN is 
     CHECK_THROWS_AS(ground_model(z, 1.0, bad), invalid_input);
 }
 
+TEST_CASE("ground_model: replace_ground takes a given terrain and fills its holes by IDW")
+{
+    const auto z = box_scene(20, 40, 16, 44, 7.0f);
+    auto gm = ground_model(z, 0.5);
+    raster<float> given(60, 60, 90.0f);
+    given(30, 30) = nan_f;
+    replace_ground(gm, given, 0.5);
+    CHECK(gm.ground(0, 0) == 90.0f);
+    CHECK(gm.ground(30, 30) == doctest::Approx(90.0));
+    CHECK(gm.surface(30, 30) == 107.0f);  // the surface stays
+    const raster<float> none(60, 60, nan_f);
+    CHECK_THROWS_WITH_AS(replace_ground(gm, none, 0.5), doctest::Contains("no finite cell"), invalid_input);
+    CHECK_THROWS_AS(replace_ground(gm, raster<float>(3, 3, 1.0f), 0.5), invalid_input);
+}
+
 TEST_CASE("extract_buildings: one box building: footprint, heights, one flat surface, outline")
 {
     const auto z = box_scene(20, 40, 16, 44, 7.0f);  // 10 m x 14 m = 140 m^2
-    const auto b = extract_buildings(z, 0.5);
+    const auto b = extract_buildings(z, local_grid(z, 0.5));
     REQUIRE(b.buildings.size() == 1);
     REQUIRE(b.surfaces.size() == 1);
     std::size_t cells = 0, wrong = 0;
@@ -104,7 +125,7 @@ TEST_CASE("extract_buildings: a gable becomes two surfaces of the right tilt and
     for (const double tilt : {15.0, 30.0, 50.0}) {
         CAPTURE(tilt);
         const auto z = gable_scene(tilt, 0.5);
-        const auto b = extract_buildings(z, 0.5);
+        const auto b = extract_buildings(z, local_grid(z, 0.5));
         REQUIRE(b.buildings.size() == 1);
         REQUIRE(b.surfaces.size() == 2);
         for (const auto& s : b.surfaces) {
@@ -126,32 +147,30 @@ TEST_CASE("extract_buildings: vegetation cells and small objects are no building
     raster<std::uint8_t> veg(60, 60, 0);
     for (std::ptrdiff_t r = 20; r < 40; ++r)
         for (std::ptrdiff_t c = 16; c < 44; ++c) veg(r, c) = 1;
-    extract_buildings_options opt;
-    opt.vegetation = veg;
-    CHECK(extract_buildings(z, 0.5, opt).buildings.empty());
+    CHECK(extract_buildings(z, local_grid(z, 0.5), {}, veg).buildings.empty());
     const auto small = box_scene(20, 30, 20, 30, 7.0f);  // 5 m x 5 m = 25 m^2 < 50 m^2
-    CHECK(extract_buildings(small, 0.5).buildings.empty());
-    opt = {};
-    opt.min_area_m2 = 20;
-    CHECK(extract_buildings(small, 0.5, opt).buildings.size() == 1);
+    CHECK(extract_buildings(small, local_grid(small, 0.5)).buildings.empty());
+    extract_buildings_options opt;
+    opt.candidates.min_area_m2 = 20;
+    CHECK(extract_buildings(small, local_grid(small, 0.5), opt).buildings.size() == 1);
 }
 
 TEST_CASE("extract_buildings: empty raster, all NaN, one cell, same result for any thread count")
 {
     const raster<float> empty(0, 0);
-    CHECK(extract_buildings(empty, 1.0).buildings.empty());
+    CHECK(extract_buildings(empty, local_grid(empty, 1.0)).buildings.empty());
     const raster<float> none(5, 5, nan_f);
-    CHECK_THROWS_WITH_AS(extract_buildings(none, 1.0), doctest::Contains("no finite cell"), invalid_input);
+    CHECK_THROWS_WITH_AS(extract_buildings(none, local_grid(none, 1.0)), doctest::Contains("no finite cell"), invalid_input);
     const raster<float> one(1, 1, 3.0f);
-    const auto b1 = extract_buildings(one, 1.0);
+    const auto b1 = extract_buildings(one, local_grid(one, 1.0));
     CHECK(b1.buildings.empty());
     CHECK(b1.ground(0, 0) == 3.0f);
-    CHECK_THROWS_AS(extract_buildings(one, 0.0), invalid_input);
+    CHECK_THROWS_AS(extract_buildings(one, local_grid(one, 0.0)), invalid_input);
 
     const auto z = gable_scene(35.0, 0.5);
     extract_buildings_options many;
     many.run.threads = 3;
-    const auto a = extract_buildings(z, 0.5), b = extract_buildings(z, 0.5, many);
+    const auto a = extract_buildings(z, local_grid(z, 0.5)), b = extract_buildings(z, local_grid(z, 0.5), many);
     CHECK(a.building_id.size() == b.building_id.size());
     bool same = true;
     for (std::ptrdiff_t i = 0; i < a.building_id.size(); ++i) {

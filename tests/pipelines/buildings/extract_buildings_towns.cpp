@@ -38,9 +38,7 @@ town_score score_town(const synth::scene& s, const std::vector<synth::tree>& tre
     rasterize_options first;
     first.returns = return_selection::first;
     const auto dsm = rasterize(s.points.cloud(), g, first);
-    extract_buildings_options opt;
-    opt.vegetation = dsm.multiple_returns;
-    const auto b = extract_buildings(dsm.max_z, g.cell, opt);
+    const auto b = extract_buildings(dsm.max_z, g, {}, dsm.multiple_returns);
     const double cell2 = g.cell * g.cell;
 
     town_score sc;

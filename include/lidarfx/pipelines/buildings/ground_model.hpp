@@ -18,6 +18,7 @@
 #include "lidarfx/kernels/filter/angular_filter.hpp"
 #include "lidarfx/kernels/interpolate/idw_fill.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
+#include "lidarfx/pipelines/buildings/convex_hull.hpp"
 
 namespace lidarfx {
 
@@ -42,62 +43,6 @@ struct ground_model_result {
 };
 
 namespace detail {
-
-/// Convex hull (Andrew's monotone chain) of integer points (col, row), counter-clockwise in (col, row)
-/// axes, collinear points dropped; exact (64-bit cross products). O(n log n).
-inline std::vector<std::array<std::int64_t, 2>> convex_hull(std::vector<std::array<std::int64_t, 2>> p)
-{
-    std::sort(p.begin(), p.end());
-    p.erase(std::unique(p.begin(), p.end()), p.end());
-    if (p.size() < 3) return p;
-    const auto cross = [](const auto& o, const auto& a, const auto& b) {
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-    };
-    std::vector<std::array<std::int64_t, 2>> h(2 * p.size());
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-        while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    h.resize(k - 1);
-    return h;
-}
-
-/// Sets mask(r, c) = 1 for every cell whose centre (c, r) lies inside or on the convex polygon `hull`
-/// (counter-clockwise in (col, row) axes; one or two points mark just those cells / that segment's cells).
-inline void burn_convex(const std::vector<std::array<std::int64_t, 2>>& hull, raster_view<std::uint8_t> mask)
-{
-    if (hull.empty()) return;
-    std::int64_t r0 = hull[0][1], r1 = r0, c0 = hull[0][0], c1 = c0;
-    for (const auto& v : hull) {
-        r0 = std::min(r0, v[1]);
-        r1 = std::max(r1, v[1]);
-        c0 = std::min(c0, v[0]);
-        c1 = std::max(c1, v[0]);
-    }
-    const std::size_t n = hull.size();
-    for (std::int64_t r = r0; r <= r1; ++r) {
-        for (std::int64_t c = c0; c <= c1; ++c) {
-            bool inside = true;
-            for (std::size_t i = 0; i < n && inside; ++i) {
-                const auto& a = hull[i];
-                const auto& b = hull[(i + 1) % n];
-                const std::int64_t cr = (b[0] - a[0]) * (r - a[1]) - (b[1] - a[1]) * (c - a[0]);
-                if (n >= 3)
-                    inside = cr >= 0;
-                else if (n == 2)
-                    inside = cr == 0 && std::min(a[0], b[0]) <= c && c <= std::max(a[0], b[0]) &&
-                             std::min(a[1], b[1]) <= r && r <= std::max(a[1], b[1]);
-            }
-            if (n == 1) inside = r == hull[0][1] && c == hull[0][0];
-            if (inside) mask(static_cast<std::ptrdiff_t>(r), static_cast<std::ptrdiff_t>(c)) = 1;
-        }
-    }
-}
 
 inline void check_ground_model(double cell_m, const ground_model_options& opt, const char* function)
 {
@@ -166,7 +111,7 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
     std::size_t kept = 0;
     while (kept < objects.count() && objects.sizes[kept + 1] >= opt.min_edge_cells) ++kept;
     out.object_count = kept;
-    std::vector<std::vector<std::array<std::int64_t, 2>>> points(kept);
+    std::vector<std::vector<cell_point>> points(kept);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const auto l = static_cast<std::size_t>(objects.labels(r, c));
@@ -175,7 +120,7 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
             points[l - 1].push_back({c, r});
         }
     }
-    for (auto& p : points) detail::burn_convex(detail::convex_hull(std::move(p)), out.in_hull.view());
+    for (auto& p : points) burn_convex(convex_hull(std::move(p)), out.in_hull.view());
     detail::report(opt.run.progress, 0.5, function);
 
     raster<float> known(rows, cols, std::numeric_limits<float>::quiet_NaN());
@@ -193,6 +138,32 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
         out.ground = out.surface;  // hulls cover everything: no ground to interpolate from, nDSM = 0
     detail::report(opt.run.progress, 1.0, function);
     return out;
+}
+
+/// Replaces terrain.ground by a given terrain model `ground` (metres, the terrain's shape; e.g. min_z of
+/// class 2), its NaN and infinite cells filled by IDW from the finite ones (idw_fill with opt.idw_k and
+/// opt.idw_power, run.threads); terrain.surface, edges and hulls stay. cell_m in metres. O(cells * idw_k).
+/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, an option is out of range, or
+/// `ground` has no finite cell.
+inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
+                           const ground_model_options& opt = {})
+{
+    constexpr const char* function = "replace_ground";
+    detail::check_ground_model(cell_m, opt, function);
+    detail::require_same_shape(terrain.ground, ground, function, "terrain", "ground");
+    const std::ptrdiff_t rows = ground.rows(), cols = ground.cols();
+    raster<float> given(rows, cols);
+    bool any = false;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const float v = ground(r, c);
+            given(r, c) = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
+            any = any || std::isfinite(v);
+        }
+    }
+    detail::require(any, function, "ground has no finite cell: pass an empty view to estimate the terrain");
+    idw_fill(given, terrain.ground, cell_m,
+             idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {opt.run.threads, {}}});
 }
 
 /// nDSM = surface - ground per cell (heights above the terrain, metres); NaN where either is NaN.

@@ -56,7 +56,7 @@ inline bool truth_suitable(const roof_town_plane& p, const roof_suitability_opti
     q.tilt_deg = p.tilt_deg;
     q.azimuth_deg = p.azimuth_deg;
     q.sloped_area_m2 = p.sloped_area_m2;
-    lidarfx::detail::judge_patch(q, o);
+    lidarfx::judge_patch(q, o);
     return q.suitable;
 }
 
