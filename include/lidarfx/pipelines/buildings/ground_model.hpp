@@ -42,6 +42,34 @@ struct ground_model_result {
     std::size_t object_count = 0;  ///< kept edge objects
 };
 
+/// Terrain model of a surface model without ground classes (dissertation 3.2.1): (1) NaN cells of `dsm`
+/// (no return) are filled by IDW (idw_fill, idw_k nearest, weight 1 / d^idw_power); (2) edges = cells whose
+/// angular value (angular_filter, angular_radius_cells) is >= edge_angle_deg: a neighbour x metres away
+/// may differ by at most x * tan(edge_angle_deg) metres within one plane; (3) 8-connected edge objects of
+/// fewer than min_edge_cells cells are dropped; (4) one convex hull per kept object, over its cell centres;
+/// (5) ground = the surface at cells outside every hull; inside the hulls it is IDW of the ground cells.
+/// nDSM = surface - ground (see ndsm). Elevations in metres, cell_m the cell size in metres. O(cells * (
+/// radius^2 + idw_k)) plus the hulls' bounding boxes. Same bits for any thread count.
+/// @throws invalid_input on bad options, cell_m not finite and > 0, or a DSM without a finite cell
+/// ("...: dsm has no finite cell"); cancelled if run.progress returns false.
+template <raster_input In>
+ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt = {});
+
+/// Replaces terrain.ground by a given terrain model `ground` (metres, the terrain's shape; e.g. min_z of
+/// class 2), its NaN and infinite cells filled by IDW from the finite ones (idw_fill with opt.idw_k and
+/// opt.idw_power, run.threads); terrain.surface, edges and hulls stay. cell_m in metres. O(cells * idw_k).
+/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, an option is out of range, or
+/// `ground` has no finite cell.
+inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
+                           const ground_model_options& opt = {});
+
+/// nDSM = surface - ground per cell (heights above the terrain, metres); NaN where either is NaN.
+/// @throws invalid_input if the shapes differ.
+template <raster_input Surface, raster_input Ground>
+raster<float> ndsm(const Surface& surface, const Ground& ground);
+
+// ---- implementation ----
+
 namespace detail {
 
 inline void check_ground_model(double cell_m, const ground_model_options& opt, const char* function)
@@ -58,18 +86,8 @@ inline void check_ground_model(double cell_m, const ground_model_options& opt, c
 
 }  // namespace detail
 
-/// Terrain model of a surface model without ground classes (dissertation 3.2.1): (1) NaN cells of `dsm`
-/// (no return) are filled by IDW (idw_fill, idw_k nearest, weight 1 / d^idw_power); (2) edges = cells whose
-/// angular value (angular_filter, angular_radius_cells) is >= edge_angle_deg: a neighbour x metres away
-/// may differ by at most x * tan(edge_angle_deg) metres within one plane; (3) 8-connected edge objects of
-/// fewer than min_edge_cells cells are dropped; (4) one convex hull per kept object, over its cell centres;
-/// (5) ground = the surface at cells outside every hull; inside the hulls it is IDW of the ground cells.
-/// nDSM = surface - ground (see ndsm). Elevations in metres, cell_m the cell size in metres. O(cells * (
-/// radius^2 + idw_k)) plus the hulls' bounding boxes. Same bits for any thread count.
-/// @throws invalid_input on bad options, cell_m not finite and > 0, or a DSM without a finite cell
-/// ("...: dsm has no finite cell"); cancelled if run.progress returns false.
 template <raster_input In>
-ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt = {})
+ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt)
 {
     constexpr const char* function = "ground_model";
     detail::check_ground_model(cell_m, opt, function);
@@ -140,13 +158,8 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
     return out;
 }
 
-/// Replaces terrain.ground by a given terrain model `ground` (metres, the terrain's shape; e.g. min_z of
-/// class 2), its NaN and infinite cells filled by IDW from the finite ones (idw_fill with opt.idw_k and
-/// opt.idw_power, run.threads); terrain.surface, edges and hulls stay. cell_m in metres. O(cells * idw_k).
-/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, an option is out of range, or
-/// `ground` has no finite cell.
 inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
-                           const ground_model_options& opt = {})
+                           const ground_model_options& opt)
 {
     constexpr const char* function = "replace_ground";
     detail::check_ground_model(cell_m, opt, function);
@@ -166,8 +179,6 @@ inline void replace_ground(ground_model_result& terrain, raster_view<const float
              idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {opt.run.threads, {}}});
 }
 
-/// nDSM = surface - ground per cell (heights above the terrain, metres); NaN where either is NaN.
-/// @throws invalid_input if the shapes differ.
 template <raster_input Surface, raster_input Ground>
 raster<float> ndsm(const Surface& surface, const Ground& ground)
 {

@@ -50,7 +50,13 @@ struct surface_patches_options {
 /// @throws invalid_input if shapes differ or cell_m is not finite and > 0.
 template <raster_input Dsm, raster_input Ids>
 std::vector<surface_patch> surface_patches(const Dsm& dsm, const Ids& building_id, double cell_m,
-                                           const surface_patches_options& opt = {})
+                                           const surface_patches_options& opt = {});
+
+// ---- implementation ----
+
+template <raster_input Dsm, raster_input Ids>
+std::vector<surface_patch> surface_patches(const Dsm& dsm, const Ids& building_id, double cell_m,
+                                           const surface_patches_options& opt)
 {
     constexpr const char* fn = "surface_patches";
     detail::require_positive(cell_m, fn, "cell_m");
