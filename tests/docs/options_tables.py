@@ -79,41 +79,46 @@ def split_top(text, sep=","):
 
 
 def members(body):
-    """[(type, name, default or None, comment)] of the data members at the struct's top level."""
-    out, pending, depth, last = [], [], 0, None
+    """[(type, name, default or None, comment)] of the data members at the struct's top level. A declaration may
+    span lines (a braced default); its ///< comments, and ///< lines right below it, are its comment; a /// block
+    above it is its comment too."""
+    out, pending, last = [], [], None
+    stmt, stmt_comment, depth = "", [], 0
     for line in body:
         code = strip_comment(line).strip()
-        comment = None
         m = re.search(r"///<?\s?(.*)$", line)
-        if m:
-            comment = m.group(1).strip()
-        if depth == 0 and not code:
-            if line.strip().startswith("///<") and last is not None:  # continuation of the member above
+        comment = m.group(1).strip() if m else None
+        trailing = comment is not None and "///<" in line
+        if not stmt and not code:
+            if trailing and last is not None:  # continuation of the member above
                 last[3] = (last[3] + " " + comment).strip()
-            elif line.strip().startswith("///"):
+            elif comment is not None:
                 pending.append(comment)
             else:
-                pending = []
+                pending, last = [], None
             continue
-        opening = depth
+        stmt = stmt + (" " if stmt and not stmt.endswith(("{", "(", "<")) else "") + code
+        if trailing:
+            stmt_comment.append(comment)
         depth += code.count("{") - code.count("}")
-        if opening != 0 or not code.endswith(";") or re.search(r"\w\s*\(", code.split("=")[0].split("{")[0]):
-            pending, last = [], None  # a member function, a nested type, or inside one
+        if depth > 0 or not (stmt.endswith(";") or stmt.endswith("}")):
             continue
-        m = re.match(r"^((?:const\s+)?[\w:]+(?:<.*>)?)\s+(.*);$", code)
+        statement, text = stmt, " ".join(pending + stmt_comment)
+        stmt, stmt_comment, pending, last = "", [], [], None
+        head = statement.split("=")[0].split("{")[0]
+        if not statement.endswith(";") or re.search(r"\w\s*\(", head) or re.match(r"(struct|class|enum|using)\b", head):
+            continue  # a member function, a nested type or an alias
+        m = re.match(r"^((?:const\s+)?[\w:]+(?:<.*?>)?)\s+(.*);$", statement)
         if not m:
-            pending, last = [], None
             continue
         type_, decls = m.group(1), split_top(m.group(2))
-        text = " ".join(pending + ([comment] if comment and "///<" in line else []))
         for decl in decls:
-            d = re.match(r"^(\w+)\s*(?:=\s*(.*)|\{(.*)\})?$", decl)
+            d = re.match(r"^(\w+)\s*(?:=\s*(.*)|\{(.*)\})?$", decl, re.S)
             if not d:
                 raise SystemExit(f"options_tables.py: cannot read member '{decl}'")
             default = d.group(2) if d.group(2) is not None else d.group(3)
             last = [type_, d.group(1), default, text]
             out.append(last)
-        pending = []
     return out
 
 
