@@ -2,7 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/core/raster.hpp>
-#include <lidarfx/pipelines/water/bridge_seeds.hpp>
+#include <lidarfx/pipelines/water/seeds_beyond_bridges.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -64,4 +64,4 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
 
 }  // namespace lidarfx
 
-#include "lidarfx/pipelines/water/detail/bridge_seeds_impl.hpp"
+#include "lidarfx/pipelines/water/detail/seeds_beyond_bridges_impl.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Implementation of bridge_seeds (included at the end of pipelines/water/bridge_seeds.hpp).
+// Implementation of seeds_beyond_bridges (included at the end of pipelines/water/seeds_beyond_bridges.hpp).
 #pragma once
 
 #include <algorithm>
