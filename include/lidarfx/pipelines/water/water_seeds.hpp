@@ -23,6 +23,27 @@ struct water_seeds_options {
     execution run = {};           ///< threads of the kernels (same result for any count), progress
 };
 
+/// Seeds of waterbodies (dissertation 2.3.2): the dropout mask opened by an opening_size_cells square
+/// (morph_open; removes dropouts narrower than the square, as on land), its 8-connected components of at
+/// least min_cells cells, ranked by size: label 1 = largest, ties in raster-scan order of their first
+/// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
+/// The labels are written into `labels` (given another shape, it is replaced by one of the mask's), whose
+/// memory the result takes: a caller that labels again reuses it (a new raster's pages cost their first touch).
+/// O(cells). Progress: 0 on entry, 1 when done.
+/// @throws invalid_input on options out of range; cancelled when progress returns false.
+template <raster_input Mask>
+components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels);
+
+/// water_seeds (see above) with its labels in a raster of its own.
+template <raster_input Mask>
+components water_seeds(const Mask& dropout, const water_seeds_options& opt = {});
+
+/// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
+/// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
+inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& seeds);
+
+// ---- implementation ----
+
 namespace detail {
 
 inline void validate(const water_seeds_options& o, const char* fn)
@@ -35,14 +56,6 @@ inline void validate(const water_seeds_options& o, const char* fn)
 
 }  // namespace detail
 
-/// Seeds of waterbodies (dissertation 2.3.2): the dropout mask opened by an opening_size_cells square
-/// (morph_open; removes dropouts narrower than the square, as on land), its 8-connected components of at
-/// least min_cells cells, ranked by size: label 1 = largest, ties in raster-scan order of their first
-/// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
-/// The labels are written into `labels` (given another shape, it is replaced by one of the mask's), whose
-/// memory the result takes: a caller that labels again reuses it (a new raster's pages cost their first touch).
-/// O(cells). Progress: 0 on entry, 1 when done.
-/// @throws invalid_input on options out of range; cancelled when progress returns false.
 template <raster_input Mask>
 components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels)
 {
@@ -77,9 +90,8 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     return seeds;
 }
 
-/// water_seeds (see above) with its labels in a raster of its own.
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt = {})
+components water_seeds(const Mask& dropout, const water_seeds_options& opt)
 {
     return water_seeds(dropout, opt, raster<std::int32_t>());
 }
@@ -150,8 +162,6 @@ inline seed_cell_runs seed_cells_flat(const components& seeds, const char* fn = 
 
 }  // namespace detail
 
-/// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
-/// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
 inline std::vector<std::vector<std::ptrdiff_t>> seed_cells(const components& seeds)
 {
     const auto runs = detail::seed_cells_flat(seeds);
