@@ -77,8 +77,8 @@ void bm_surface_energy_year(benchmark::State& state)
     const int threads = static_cast<int>(state.range(0));
     std::size_t roofs = 0, facades = 0, daylight = 0;
     for (auto _ : state) {
-        const auto res = lidarfx::surface_energy(t.dsm, t.ids, 1.0, 40.0, -75.2, records,
-                                                 {.month_utc_offset_h = -5.0, .run = {.threads = threads}});
+        const auto res = lidarfx::surface_energy(t.dsm, t.ids, 1.0, {40.0, -75.2, -5.0}, records,
+                                                 {.run = {.threads = threads}});
         roofs = res.roofs.size();
         facades = res.facades.size();
         daylight = res.sun_up_records;

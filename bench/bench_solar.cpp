@@ -54,7 +54,7 @@ void bm_irradiance_year(benchmark::State& state)
     lidarfx::irradiance_maps_options opt{.run = {.threads = static_cast<int>(state.range(1))}};
     opt.shadow_line_phases = static_cast<int>(state.range(2));
     for (auto _ : state) {
-        auto maps = lidarfx::irradiance_maps(z, 1.0, 36.1, -79.9, records, opt);
+        auto maps = lidarfx::irradiance_maps(z, 1.0, {36.1, -79.9}, records, {}, {}, opt);
         benchmark::DoNotOptimize(maps.annual_kwh_m2.data());
         state.counters["sun_up_records"] = static_cast<double>(maps.sun_up_records);
     }

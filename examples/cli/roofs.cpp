@@ -20,6 +20,7 @@
 #include "io/tables.hpp"
 #include "outputs.hpp"
 #include "roof_outputs.hpp"
+#include "solar_place.hpp"
 
 namespace {
 
@@ -39,13 +40,15 @@ constexpr const char* usage =
     "  --cell M       cell size for LAS input, metres [1]\n"
     "  --mode M       planes | paper [planes]\n"
     "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
-    "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches; the\n"
-    "                 station gives the place unless --lat/--lon are given\n"
+    "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches\n"
     "  --lat/--lon    the place in degrees; without --tmy, the yields of a clear-sky year there\n"
     "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and DTM, the footprints\n"
     "                 and the weather file are checked against before they are read (exit code 2) [half the\n"
     "                 memory]\n"
-    "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
+    "  --threads N    threads, 0 = all cores [0]; same result for every N\n"
+    "The place of the sun, as lidarfx solar puts it: --lat/--lon when given, else the survey's centre when its CRS\n"
+    "is known and lidarfx has PROJ, else the TMY station; with a known CRS and PROJ, sun azimuths are turned from\n"
+    "true to grid north by the meridian convergence at the survey's centre.\n";
 
 }  // namespace
 
@@ -64,6 +67,7 @@ struct roof_inputs {
     double unit_m = 1.0;    // metres per CRS unit of x and y
     std::string crs_wkt;
     int epsg = 0;
+    std::string place_crs;  // the CRS whose centre PROJ may place for the sun ("" when none)
 };
 
 roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const arguments& a, int threads)
@@ -99,6 +103,7 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
     in.unit_m = s.crs.horizontal_unit_m;
     in.crs_wkt = s.crs_wkt;
     in.epsg = s.epsg;
+    in.place_crs = s.crs.for_outputs();
     return in;
 }
 
@@ -139,22 +144,22 @@ int run_roofs(const std::vector<std::string>& args)
     const std::string footprint_file = inputs.back();
     inputs.pop_back();
 
-    // Weather for the yields (optional): a TMY3 year (its rows' own years; the station gives the place unless
-    // --lat/--lon are given), or the clear-sky year 2021 at --lat/--lon.
+    // Weather for the yields (optional): a TMY3 year (its rows' own years), or the clear-sky year 2021 at
+    // --lat/--lon. The place of the sun is resolved as `lidarfx solar` does once the grid is known.
     std::vector<irradiance_record> records;
-    double lat = a.number("lat", NAN), lon = a.number("lon", NAN);
+    const double lat = a.number("lat", NAN), lon = a.number("lon", NAN);
     if (a.has("lat") != a.has("lon")) throw usage_error("--lat and --lon go together");
     if (a.has("lat") && !(lat >= -90.0 && lat <= 90.0)) throw usage_error("--lat must be in [-90, 90] degrees");
     if (a.has("lon") && !(lon >= -180.0 && lon <= 180.0)) throw usage_error("--lon must be in [-180, 180] degrees");
+    solar_place_sources place_sources;
+    place_sources.station_latitude_deg = NAN;
+    place_sources.station_longitude_deg = NAN;
     if (a.has("tmy")) {
         const auto tmy = read_weather_year(a.text("tmy", ""));
         records = tmy.records;
-        if (!a.has("lat")) {
-            lat = tmy.station.latitude_deg;
-            lon = tmy.station.longitude_deg;
-        }
-    } else if (a.has("lat")) {
-        records = clear_sky_records(2021, lat, lon);
+        place_sources.station_latitude_deg = tmy.station.latitude_deg;
+        place_sources.station_longitude_deg = tmy.station.longitude_deg;
+        place_sources.utc_offset_h = tmy.station.utc_offset_h;
     }
 
     // Footprints first: a bad file fails before the survey is read and before the output folder exists.
@@ -200,8 +205,14 @@ int run_roofs(const std::vector<std::string>& args)
     });
 
     std::vector<roof_patch_yield> yields;
-    if (!records.empty()) {
-        yields = roof_yield(in.dsm, in.g.cell, r, lat, lon, records,
+    if (a.has("tmy") || a.has("lat")) {
+        place_sources.g = in.out_grid;
+        place_sources.place_crs = in.place_crs;
+        place_sources.input = inputs[0];
+        const solar_place place = resolve_solar_place(a, place_sources);
+        std::cout << "place: " << place.description << "\n";
+        if (!a.has("tmy")) records = clear_sky_records(2021, place.site.latitude_deg, place.site.longitude_deg);
+        yields = roof_yield(in.dsm, in.g.cell, r, place.site, records,
                             {.run = {.threads = threads, .progress = progress_bar("yield")}});
         double kwh = 0;
         for (const roof_patch_yield& y : yields) kwh += y.annual_kwh;

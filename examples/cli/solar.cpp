@@ -28,6 +28,7 @@
 #include "io/tmy3.hpp"
 #include "outputs.hpp"
 #include "solar_facades.hpp"
+#include "solar_place.hpp"
 
 namespace {
 
@@ -121,17 +122,6 @@ std::string fixed(double v, int digits)
     std::ostringstream o;
     o << std::fixed << std::setprecision(digits) << v;
     return o.str();
-}
-
-// Refuses (exit code 2) a missing or out-of-range latitude or longitude, saying why none was found.
-void require_place(double lat, double lon, const std::string& why_none)
-{
-    if (!(lat >= -90.0 && lat <= 90.0)) {
-        throw lidarfx::cli::usage_error("--lat must be given, in [-90, 90] degrees, with --lon: " + why_none);
-    }
-    if (!(lon >= -180.0 && lon <= 180.0)) {
-        throw lidarfx::cli::usage_error("--lon must be given, in [-180, 180] degrees, with --lat: " + why_none);
-    }
 }
 
 // A GeoTIFF surface model in metres: heights times the vertical unit, the cell in metres; grid and CRS as in the
@@ -228,9 +218,9 @@ int run_solar(const std::vector<std::string>& args)
     const bool single_grid = inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
     // Refusals that need no input read: nothing can give the place.
     if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
-        require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
+        cli::require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
     }
-    if (!a.has("tmy") && !lidarfx::io::proj_available()) require_place(lat, lon, "this lidarfx was built without PROJ");
+    if (!a.has("tmy") && !lidarfx::io::proj_available()) cli::require_place(lat, lon, "this lidarfx was built without PROJ");
 
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
@@ -272,46 +262,16 @@ int run_solar(const std::vector<std::string>& args)
     }
 
     // Where the sun is seen from, and how the grid is turned against true north.
-    std::optional<lidarfx::io::geographic_place> centre;
-    std::string no_centre = inputs[0] + " has no coordinate system";
-    if (!place_crs.empty() && !lidarfx::io::proj_available()) no_centre = "this lidarfx was built without PROJ";
-    if (!place_crs.empty() && lidarfx::io::proj_available()) {
-        try {
-            centre = lidarfx::io::place_of(place_crs, g.x0 + 0.5 * static_cast<double>(g.cols) * g.cell,
-                                           g.y0 - 0.5 * static_cast<double>(g.rows) * g.cell);
-        } catch (const std::exception& e) {
-            no_centre = std::string("PROJ cannot place its centre: ") + e.what();
-            std::cerr << "lidarfx: warning: " << inputs[0] << ": " << no_centre
-                      << "; grid north is taken as true north\n";
-        }
-    }
-    const char* lat_from = "--lat";
-    const char* lon_from = "--lon";
-    if (!a.has("lat")) {
-        lat = centre ? centre->latitude_deg : station_lat;
-        lat_from = centre ? "the survey's centre (PROJ)" : "the TMY station";
-    }
-    if (!a.has("lon")) {
-        lon = centre ? centre->longitude_deg : station_lon;
-        lon_from = centre ? "the survey's centre (PROJ)" : "the TMY station";
-    }
-    require_place(lat, lon, no_centre);
-    if (centre && (std::abs(lat - centre->latitude_deg) > 0.5 || std::abs(lon - centre->longitude_deg) > 0.5)) {
-        std::cerr << "lidarfx: warning: the sun is placed at latitude " << lat << ", longitude " << lon
-                  << ", but the survey's centre is at " << centre->latitude_deg << ", " << centre->longitude_deg
-                  << "\n";
-    }
-    const double convergence_deg = centre ? centre->convergence_deg : 0.0;
-    std::ostringstream place;
-    place << std::fixed << std::setprecision(6) << "latitude " << lat << " from " << lat_from << ", longitude " << lon
-          << " from " << lon_from << "; "
-          << (centre ? "meridian convergence " + fixed(convergence_deg, 4) +
-                           " degrees at the survey's centre (grid north east of true north when positive; sun "
-                           "azimuths turned to grid north by it)"
-                     : std::string("grid north taken as true north (no convergence: ") + no_centre + ")");
-    std::cout << "place: " << place.str() << "\n";
+    const cli::solar_place place = cli::resolve_solar_place(a, {.g = g,
+                                                                .place_crs = place_crs,
+                                                                .input = inputs[0],
+                                                                .station_latitude_deg = station_lat,
+                                                                .station_longitude_deg = station_lon,
+                                                                .utc_offset_h = zone_h});
+    const lidarfx::solar_site& site = place.site;
+    std::cout << "place: " << place.description << "\n";
     if (!a.has("tmy")) {
-        records = lidarfx::clear_sky_records(records_year, lat, lon);
+        records = lidarfx::clear_sky_records(records_year, site.latitude_deg, site.longitude_deg);
         std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
                   << records_year
                   << "\n";
@@ -335,13 +295,10 @@ int run_solar(const std::vector<std::string>& args)
     }
     for (const auto& n : names) out.check_name(n);
 
-    const auto res = lidarfx::irradiance_maps(dsm, cell_m, lat, lon, records,
-                                              {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez
-                                                                             : lidarfx::diffuse_model::isotropic,
-                                               .month_utc_offset_h = zone_h,
-                                               .meridian_convergence_deg = convergence_deg,
-                                               .run = {.threads = threads,
-                                                       .progress = cli::progress_bar("irradiance")}});
+    const lidarfx::irradiance_maps_options maps_options{
+        .sky = {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez : lidarfx::diffuse_model::isotropic},
+        .run = {.threads = threads, .progress = cli::progress_bar("irradiance")}};
+    const auto res = lidarfx::irradiance_maps(dsm, cell_m, site, records, {}, {}, maps_options);
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
               << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 
@@ -375,7 +332,7 @@ int run_solar(const std::vector<std::string>& args)
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";
     out.set_units_note("kWh/m2 per cell (horizontal surfaces), SVF in [0, 1], on the input's grid; sun for " +
-                       place.str());
+                       place.description);
     if (a.has("facades")) {
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
                                         .vegetation = vegetation.view(),
@@ -383,10 +340,7 @@ int run_solar(const std::vector<std::string>& args)
                                         .grid_crs = g,
                                         .crs_wkt = crs_wkt,
                                         .epsg = epsg,
-                                        .latitude_deg = lat,
-                                        .longitude_deg = lon,
-                                        .utc_offset_h = zone_h,
-                                        .convergence_deg = convergence_deg,
+                                        .site = site,
                                         .records = records,
                                         .threads = threads,
                                         .png = formats.png});

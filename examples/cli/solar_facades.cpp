@@ -66,10 +66,8 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                      run.dsm.cols()};  // metres; the outlines below are polygonized on grid_crs
     const extract_buildings_result b = extract_buildings(run.dsm, local, {}, run.vegetation, bopt);
     const surface_energy_result e = surface_energy(
-        run.dsm, b.building_id, run.cell_m, run.latitude_deg, run.longitude_deg, run.records,
-        {.month_utc_offset_h = run.utc_offset_h,
-         .meridian_convergence_deg = run.convergence_deg,
-         .run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
+        run.dsm, b.building_id, run.cell_m, run.site, run.records,
+        {.run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
 
     // Outlines in the input's CRS units; heights and areas in metres.
     std::vector<io::geojson_feature> features;

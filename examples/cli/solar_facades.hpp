@@ -8,6 +8,7 @@
 
 #include <lidarfx/core/grid.hpp>
 #include <lidarfx/core/raster.hpp>
+#include <lidarfx/kernels/solar/daylight_suns.hpp>
 #include <lidarfx/kernels/solar/irradiance_record.hpp>
 
 #include "cli_common.hpp"
@@ -24,7 +25,7 @@ struct facade_run {
     grid grid_crs;
     std::string crs_wkt;
     int epsg = 0;
-    double latitude_deg = 0, longitude_deg = 0, utc_offset_h = 0, convergence_deg = 0;
+    solar_site site;  ///< the sun's place, the weather's time zone and the grid's meridian convergence
     std::span<const irradiance_record> records;
     int threads = 0;
     bool png = true;

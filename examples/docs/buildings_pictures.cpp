@@ -124,9 +124,10 @@ int main(int argc, char** argv)
     // (c) Annual energy of a clear-sky year: each roof cell takes the mean of the roof patches (2 x 2 quads) it
     // belongs to; the edge cells the walls hang from take the mean over their facade sub-patches (all walls and
     // levels), drawn over the roof value.
-    const auto e = lidarfx::surface_energy(dsm, b.building_id, g.cell, latitude_deg, longitude_deg,
-                                           lidarfx::clear_sky_records(2021, latitude_deg, longitude_deg),
-                                           {.month_utc_offset_h = utc_offset_h});
+    const auto e = lidarfx::surface_energy(
+        dsm, b.building_id, g.cell,
+        {.latitude_deg = latitude_deg, .longitude_deg = longitude_deg, .utc_offset_h = utc_offset_h},
+        lidarfx::clear_sky_records(2021, latitude_deg, longitude_deg));
     lidarfx::raster<double> sum(dsm.rows(), dsm.cols(), 0.0), n(dsm.rows(), dsm.cols(), 0.0);
     for (std::size_t k = 0; k < e.roofs.size(); ++k)
         for (const auto& [di, dj] : std::array<std::array<int, 2>, 4>{{{0, 0}, {0, 1}, {1, 0}, {1, 1}}}) {

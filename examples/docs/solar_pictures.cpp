@@ -75,9 +75,9 @@ int main(int argc, char** argv)
     }
 
     // Sky view factor and the annual irradiation of a clear-sky year.
-    const auto res = lidarfx::irradiance_maps(dsm, cell_m, latitude_deg, longitude_deg,
-                                              lidarfx::clear_sky_records(2021, latitude_deg, longitude_deg),
-                                              {.month_utc_offset_h = utc_offset_h});
+    const auto res = lidarfx::irradiance_maps(
+        dsm, cell_m, {.latitude_deg = latitude_deg, .longitude_deg = longitude_deg, .utc_offset_h = utc_offset_h},
+        lidarfx::clear_sky_records(2021, latitude_deg, longitude_deg));
     legend_png(out / "solar-svf.png", res.sky_view_factor, "SVF");
     legend_png(out / "solar-annual.png", res.annual_kwh_m2, "kWh/m²");
     return 0;

@@ -42,9 +42,12 @@ TEST_CASE("io/facades: a box in Greensboro's TMY3 year -- south > east ~ west > 
     if (!data) return;
     const tmy3_data& d = *data;
     const auto s = lone_box();
-    const auto res = surface_energy(s.dsm, s.ids, 1.0, d.station.latitude_deg, d.station.longitude_deg, d.records,
-                                    {.sun = {.elevation_m = d.station.elevation_m},
-                                     .month_utc_offset_h = d.station.utc_offset_h});
+    const auto res = surface_energy(s.dsm, s.ids, 1.0,
+                                    {.latitude_deg = d.station.latitude_deg,
+                                     .longitude_deg = d.station.longitude_deg,
+                                     .utc_offset_h = d.station.utc_offset_h,
+                                     .sun = {.elevation_m = d.station.elevation_m}},
+                                    d.records);
     const auto t = surface_class_table(res);
     const auto bill = bill_savings(t);
     const char* names[] = {"North facade", "South facade", "East facade", "West facade", "Rooftop"};
@@ -89,8 +92,10 @@ TEST_CASE("io/facades: with Greensboro's weather at 45 N the south facade beats 
     if (!data) return;
     const tmy3_data& d = *data;
     const auto s = lone_box();
-    const auto res = surface_energy(s.dsm, s.ids, 1.0, 45.0, d.station.longitude_deg, d.records,
-                                    {.month_utc_offset_h = d.station.utc_offset_h});
+    const auto res = surface_energy(
+        s.dsm, s.ids, 1.0,
+        {.latitude_deg = 45.0, .longitude_deg = d.station.longitude_deg, .utc_offset_h = d.station.utc_offset_h},
+        d.records);
     const auto t = surface_class_table(res);
     const auto so = static_cast<std::size_t>(surface_class::south_facade);
     const auto roof = static_cast<std::size_t>(surface_class::rooftop);

@@ -383,9 +383,12 @@ TEST_CASE("io/tmy3: Greensboro's TMY3 year (723170TYA.CSV) reads as 8760 hours a
     CHECK(d.station.latitude_deg == doctest::Approx(36.1));
     // On open flat ground the year's beam on the horizontal plus diffuse equals the year's GHI within 1 %.
     const raster<float> flat(6, 7, 270.0f);
-    const auto res = irradiance_maps(flat, 1.0, d.station.latitude_deg, d.station.longitude_deg, d.records,
-                                     {.sun = {.elevation_m = d.station.elevation_m},
-                                      .month_utc_offset_h = d.station.utc_offset_h});
+    const auto res = irradiance_maps(flat, 1.0,
+                                     {.latitude_deg = d.station.latitude_deg,
+                                      .longitude_deg = d.station.longitude_deg,
+                                      .utc_offset_h = d.station.utc_offset_h,
+                                      .sun = {.elevation_m = d.station.elevation_m}},
+                                     d.records);
     const double closure = res.annual_kwh_m2(3, 3) / res.ghi_kwh_m2 - 1.0;
     MESSAGE("Greensboro TMY3: GHI ", res.ghi_kwh_m2, " kWh/m^2, open flat cell ", res.annual_kwh_m2(3, 3),
             " kWh/m^2, closure error ", 100.0 * closure, " %");

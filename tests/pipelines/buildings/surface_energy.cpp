@@ -28,7 +28,8 @@ std::array<surface_class_row, 5> box_table(double lat, double lon, double utc_of
 {
     const auto s = reference::one_box(60, 60, 25, 24, 10, 12, 100.0f, 110.0f);
     const auto records = clear_sky_records(2021, lat, lon);
-    auto res = surface_energy(s.dsm, s.ids, 1.0, lat, lon, records, {.month_utc_offset_h = utc_offset_h});
+    auto res = surface_energy(s.dsm, s.ids, 1.0, {.latitude_deg = lat, .longitude_deg = lon, .utc_offset_h = utc_offset_h},
+                              records);
     const auto table = surface_class_table(res);
     if (out) *out = std::move(res);
     return table;
@@ -91,8 +92,8 @@ TEST_CASE("buildings/surface_energy: a neighbour's shadow lowers the lower level
     std::mt19937 rng(7);
     const auto s = reference::box_town_ids(rng, 70, 64, 24);
     const auto records = clear_sky_records(2021, 40.0, -75.0, {.interval = std::chrono::hours{3}});
-    const auto one = surface_energy(s.dsm, s.ids, 1.0, 40.0, -75.0, records, {.run = {.threads = 1}});
-    const auto two = surface_energy(s.dsm, s.ids, 1.0, 40.0, -75.0, records, {.run = {.threads = 2}});
+    const auto one = surface_energy(s.dsm, s.ids, 1.0, {40.0, -75.0}, records, {.run = {.threads = 1}});
+    const auto two = surface_energy(s.dsm, s.ids, 1.0, {40.0, -75.0}, records, {.run = {.threads = 2}});
     REQUIRE(one.facades.size() > 200);
     REQUIRE(one.facade_energy.size() == two.facade_energy.size());
     REQUIRE(one.roof_energy.size() == two.roof_energy.size());
@@ -161,18 +162,20 @@ TEST_CASE("buildings/surface_energy: progress, cancellation and refusals")
     const auto s = reference::one_box(20, 20, 8, 8, 4, 4, 0.0f, 9.0f);
     const auto records = clear_sky_records(2021, 36.0, -80.0, {.interval = std::chrono::hours{6}});
     reference::progress_log log;
-    surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.svf_directions = 8, .run = {.progress = log.callback()}});
+    surface_energy(s.dsm, s.ids, 1.0, {36.0, -80.0}, records,
+                   {.sky = {.svf_directions = 8}, .run = {.progress = log.callback()}});
     CHECK(log.monotone_to_one());
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records,
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, {36.0, -80.0}, records,
                                    {.run = {.progress = [](double f) { return f < 0.5; }}}),
                     cancelled);
     const raster<std::int32_t> other(19, 20, 0);
-    CHECK_THROWS_AS(surface_energy(s.dsm, other, 1.0, 36.0, -80.0, records), invalid_input);
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 0.0, 36.0, -80.0, records), invalid_input);
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 95.0, -80.0, records), invalid_input);
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.svf_directions = 2}), invalid_input);
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, records, {.month_utc_offset_h = 20.0}), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, other, 1.0, {36.0, -80.0}, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 0.0, {36.0, -80.0}, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, {95.0, -80.0}, records), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, {36.0, -80.0}, records, {.sky = {.svf_directions = 2}}),
+                    invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, {36.0, -80.0, 20.0}, records), invalid_input);
     auto bad = records;
     bad[3].dni_w_m2 = -1.0;
-    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, 36.0, -80.0, bad), invalid_input);
+    CHECK_THROWS_AS(surface_energy(s.dsm, s.ids, 1.0, {36.0, -80.0}, bad), invalid_input);
 }

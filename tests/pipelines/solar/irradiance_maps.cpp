@@ -65,7 +65,7 @@ TEST_CASE("solar/irradiance_maps: on open flat ground the annual sum equals the 
     const auto records = clear_sky_records(2021, golden_lat, golden_lon);
     REQUIRE(records.size() == 8760);
     const raster<float> flat(12, 9, 1600.0f);
-    const auto res = irradiance_maps(flat, 2.0, golden_lat, golden_lon, records);
+    const auto res = irradiance_maps(flat, 2.0, solar_site{golden_lat, golden_lon}, records);
     // Haurwitz's cloudless year at 40 N: about 2,000 kWh/m^2 (TMY3 sites in the US get 1,200..2,300 with clouds).
     CHECK(res.ghi_kwh_m2 > 1800.0);
     CHECK(res.ghi_kwh_m2 < 2400.0);
@@ -87,7 +87,7 @@ TEST_CASE("solar/irradiance_maps: the monthly maps sum to the annual map, and th
 {
     const auto records = clear_days(golden_lat, golden_lon, 5);
     const auto z = block_scene();
-    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    const auto res = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
     double ghi = 0.0;
     for (int m = 0; m < 12; ++m) {
         ghi += res.month_ghi_kwh_m2[static_cast<std::size_t>(m)];
@@ -109,7 +109,7 @@ TEST_CASE("solar/irradiance_maps: the monthly maps sum to the annual map, and th
 TEST_CASE("solar/irradiance_maps: a cell in a block's shadow gets less than open ground, and less beam in winter")
 {
     const auto records = clear_days(golden_lat, golden_lon, 3);
-    const auto res = irradiance_maps(block_scene(), 1.0, golden_lat, golden_lon, records);
+    const auto res = irradiance_maps(block_scene(), 1.0, solar_site{golden_lat, golden_lon}, records);
     const double open = res.annual_kwh_m2(0, 0), north_of_block = res.annual_kwh_m2(18, 20);
     const double south_of_block = res.annual_kwh_m2(24, 20);
     MESSAGE("open ", open, ", just north of the block ", north_of_block, ", just south ", south_of_block, " kWh/m^2");
@@ -130,18 +130,17 @@ TEST_CASE("solar/irradiance_maps: a vertical south wall gets more than a north w
     raster<float> tilt(4, 6, 90.0f), azimuth(4, 6, 180.0f);
     for (std::ptrdiff_t r = 0; r < 4; ++r)
         for (std::ptrdiff_t c = 3; c < 6; ++c) azimuth(r, c) = 0.0f;  // east half faces north
-    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
-                                     {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view()});
+    const auto res = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records,
+                                     tilt.view(), azimuth.view());
     const double south = res.annual_kwh_m2(1, 1), north = res.annual_kwh_m2(1, 4);
     MESSAGE("vertical walls at Golden: south ", south, ", north ", north, " kWh/m^2");
     CHECK(south > 2.0 * north);
     CHECK(north > 0.0);  // half the (open) sky, and the early and late summer sun
-    const auto flat = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    const auto flat = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
     CHECK(south < flat.annual_kwh_m2(1, 1));
     // Ground reflection adds to walls and only to walls.
-    const auto bright = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
-                                        {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
-                                         .albedo = 0.2});
+    const auto bright = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(),
+                                        {.sky = {.albedo = 0.2}});
     CHECK(bright.annual_kwh_m2(1, 4) == doctest::Approx(north + 0.2 * 0.5 * res.ghi_kwh_m2).epsilon(1e-5));
 }
 
@@ -157,14 +156,14 @@ TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slop
     const auto sa = slope_aspect(z, 1.0);
     REQUIRE(sa.aspect_deg(10, 10) == doctest::Approx(0.0).epsilon(1e-6));
     REQUIRE(sa.aspect_deg(30, 10) == doctest::Approx(180.0));
-    const irradiance_maps_options terrain{.surface_tilt_deg = sa.slope_deg.view(),
-                                          .surface_azimuth_deg = sa.aspect_deg.view()};
-    const auto cape = irradiance_maps(z, 1.0, cape_lat, cape_lon, clear_days(cape_lat, cape_lon, 5), terrain);
+    const auto cape = irradiance_maps(z, 1.0, solar_site{cape_lat, cape_lon}, clear_days(cape_lat, cape_lon, 5),
+                                     sa.slope_deg.view(), sa.aspect_deg.view());
     MESSAGE("Cape Town: north-facing slope ", cape.annual_kwh_m2(10, 10), ", south-facing ",
             cape.annual_kwh_m2(30, 10), " kWh/m^2");
     CHECK(cape.annual_kwh_m2(10, 10) > 1.1 * cape.annual_kwh_m2(30, 10));
     // The same ridge in the north: the other way round.
-    const auto golden = irradiance_maps(z, 1.0, golden_lat, golden_lon, clear_days(golden_lat, golden_lon, 5), terrain);
+    const auto golden = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, clear_days(golden_lat, golden_lon, 5),
+                                       sa.slope_deg.view(), sa.aspect_deg.view());
     CHECK(golden.annual_kwh_m2(30, 10) > 1.1 * golden.annual_kwh_m2(10, 10));
 }
 
@@ -172,9 +171,9 @@ TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI 
 {
     const auto records = clear_days(golden_lat, golden_lon, 5);
     const raster<float> z(4, 6, 0.0f);
-    const auto iso_flat = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
+    const auto iso_flat = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
     const auto perez_flat =
-        irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.diffuse = diffuse_model::perez});
+        irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {}, {.sky = {.diffuse = diffuse_model::perez}});
     // Flat and open: the circumsolar share lands whole on the cell while the sun is >= 5 deg high, and a little
     // less below (a / c = sin e / cos 85 < 1), so Perez gives slightly less than GHI, never more.
     const double ratio_flat = perez_flat.annual_kwh_m2(1, 1) / iso_flat.annual_kwh_m2(1, 1);
@@ -185,11 +184,10 @@ TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI 
 
     // A 35 deg slope facing south: the bright sky around the sun is in front of it.
     const raster<float> tilt(4, 6, 35.0f), azimuth(4, 6, 180.0f);
-    const irradiance_maps_options south{.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view()};
-    irradiance_maps_options south_perez = south;
-    south_perez.diffuse = diffuse_model::perez;
-    const auto iso = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, south);
-    const auto per = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, south_perez);
+    irradiance_maps_options south_perez;
+    south_perez.sky.diffuse = diffuse_model::perez;
+    const auto iso = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view());
+    const auto per = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), south_perez);
     const double ratio = per.annual_kwh_m2(1, 1) / iso.annual_kwh_m2(1, 1);
     MESSAGE("35 deg south slope at Golden, clear sky: isotropic ", iso.annual_kwh_m2(1, 1), ", Perez ",
             per.annual_kwh_m2(1, 1), " kWh/m^2 (ratio ", ratio, ")");
@@ -207,9 +205,8 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky an open cell gets beam + pe
     records[0].dhi_w_m2 = 120.0;
     records[0].ghi_w_m2 = 850.0;
     const raster<float> z(3, 4, 0.0f), tilt(3, 4, 30.0f), azimuth(3, 4, 160.0f);
-    const auto res = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
-                                     {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
-                                      .diffuse = diffuse_model::perez});
+    const auto res = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(),
+                                     {.sky = {.diffuse = diffuse_model::perez}});
     const sun_position_result sun = sun_position(records[0].middle_utc(), golden_lat, golden_lon);
     const double cos_theta = cos_incidence(sun.azimuth_deg, sun.elevation_deg, 30.0, 160.0);
     const perez_diffuse_result sky = perez_diffuse(120.0, 800.0, sun.elevation_deg, cos_theta, 30.0, 172);
@@ -224,8 +221,8 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the cir
 {
     const auto records = clear_days(golden_lat, golden_lon, 7);
     const raster<float> z = block_scene();
-    const auto iso = irradiance_maps(z, 1.0, golden_lat, golden_lon, records);
-    const auto per = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.diffuse = diffuse_model::perez});
+    const auto iso = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
+    const auto per = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {}, {.sky = {.diffuse = diffuse_model::perez}});
     // North of the block (row 18: 2 m away, in its shadow for most of the year) against open ground south of it.
     const double shaded = per.annual_kwh_m2(18, 20) / iso.annual_kwh_m2(18, 20);
     const double open = per.annual_kwh_m2(35, 20) / iso.annual_kwh_m2(35, 20);
@@ -237,13 +234,13 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the cir
     raster<float> tilt(40, 40, 20.0f), azimuth(40, 40, 135.0f);
     tilt(7, 7) = std::numeric_limits<float>::quiet_NaN();
     for (bool nonnegative : {true, false}) {
-        const irradiance_maps_options o{.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = azimuth.view(),
-                                        .albedo = 0.2, .diffuse = diffuse_model::perez,
-                                        .perez = {.nonnegative = nonnegative}, .run = {.threads = 1}};
+        const irradiance_maps_options o{
+            .sky = {.diffuse = diffuse_model::perez, .perez = {.nonnegative = nonnegative}, .albedo = 0.2},
+            .run = {.threads = 1}};
         irradiance_maps_options o3 = o;
         o3.run.threads = 3;
-        const auto one = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, o);
-        const auto three = irradiance_maps(z, 1.0, golden_lat, golden_lon, records, o3);
+        const auto one = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o);
+        const auto three = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o3);
         CHECK(same_bits(one.annual_kwh_m2, three.annual_kwh_m2));
         CHECK(std::isnan(one.annual_kwh_m2(7, 7)));
         CHECK(one.annual_kwh_m2(18, 20) > 0.0);
@@ -257,10 +254,10 @@ TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN ce
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < z.cols(); ++c) z(r, c) += static_cast<float>((r * 7 + c * 13) % 5) * 0.3f;
     z(3, 4) = std::numeric_limits<float>::quiet_NaN();
-    const auto one = irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.threads = 1}});
+    const auto one = irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = 1}});
     for (int threads : {2, 3, 0}) {
         INFO("threads ", threads);
-        const auto many = irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.threads = threads}});
+        const auto many = irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = threads}});
         CHECK(same_bits(one.annual_kwh_m2, many.annual_kwh_m2));
         for (std::size_t m = 0; m < 12; ++m) CHECK(same_bits(one.month_kwh_m2[m], many.month_kwh_m2[m]));
     }
@@ -269,9 +266,9 @@ TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN ce
     CHECK(std::isfinite(one.annual_kwh_m2(3, 5)));
 
     reference::progress_log log;
-    irradiance_maps(z, 0.5, golden_lat, golden_lon, records, {.run = {.progress = log.callback()}});
+    irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.progress = log.callback()}});
     CHECK(log.monotone_to_one(10));
-    CHECK_THROWS_AS(irradiance_maps(z, 0.5, golden_lat, golden_lon, records,
+    CHECK_THROWS_AS(irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {},
                                     {.run = {.progress = reference::cancel_at_once()}}),
                     cancelled);
 }
@@ -288,8 +285,7 @@ TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from tr
     REQUIRE(sun.elevation_deg > 10.0);
     const raster<float> z = block_scene();
     const double convergence = 25.0;   // grid north 25 degrees east of true north
-    const auto turned = irradiance_maps(z, 1.0, golden_lat, golden_lon, records,
-                                        {.meridian_convergence_deg = convergence});
+    const auto turned = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, convergence}, records);
     const auto lit_grid = raylines_shadow(z, 1.0, sun.azimuth_deg - convergence, sun.elevation_deg, {.nan_cell = 0});
     const auto lit_true = raylines_shadow(z, 1.0, sun.azimuth_deg, sun.elevation_deg, {.nan_cell = 0});
     std::ptrdiff_t differ = 0, shadow = 0;
@@ -303,23 +299,22 @@ TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from tr
     CHECK(shadow > 10);
     CHECK(differ > 5);   // the turn moves the shadow: the check above tells the two apart
     // 0 (the default) leaves the maps bit for bit as they were.
-    CHECK(same_bits(irradiance_maps(z, 1.0, golden_lat, golden_lon, records).annual_kwh_m2,
-                    irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.meridian_convergence_deg = 0.0})
+    CHECK(same_bits(irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records).annual_kwh_m2,
+                    irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, 0.0}, records)
                         .annual_kwh_m2));
 
     // A tilted cell facing grid azimuth A under convergence g gets what a cell facing A + g gets without it.
     const raster<float> flat(3, 3, 0.0f), tilt(3, 3, 40.0f), facing_grid(3, 3, 150.0f), facing_true(3, 3, 175.0f);
-    const auto on_grid = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
-                                         {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_grid.view(),
-                                          .meridian_convergence_deg = convergence});
-    const auto on_true = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
-                                         {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_true.view()});
-    const auto unturned = irradiance_maps(flat, 1.0, golden_lat, golden_lon, records,
-                                          {.surface_tilt_deg = tilt.view(), .surface_azimuth_deg = facing_grid.view()});
+    const auto on_grid = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon, 0.0, convergence}, records,
+                                         tilt.view(), facing_grid.view());
+    const auto on_true = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(),
+                                         facing_true.view());
+    const auto unturned = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(),
+                                          facing_grid.view());
     CHECK(on_grid.annual_kwh_m2(1, 1) == doctest::Approx(on_true.annual_kwh_m2(1, 1)).epsilon(1e-6));
     CHECK(std::abs(on_grid.annual_kwh_m2(1, 1) - unturned.annual_kwh_m2(1, 1)) > 0.01f);
 
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, golden_lat, golden_lon, records, {.meridian_convergence_deg = 91.0}),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, 91.0}, records),
                          doctest::Contains("meridian_convergence_deg"), invalid_input);
 }
 
@@ -329,27 +324,29 @@ TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name"
     std::vector<irradiance_record> records(1);
     records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 6 / 21} + std::chrono::hours{18};
     records[0].ghi_w_m2 = 500.0;
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 0.0, 40.0, -105.0, records), doctest::Contains("cell_m"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 95.0, -105.0, records), doctest::Contains("latitude_deg"),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 0.0, solar_site{40.0, -105.0}, records), doctest::Contains("cell_m"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{95.0, -105.0}, records), doctest::Contains("latitude_deg"),
                          invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.surface_tilt_deg = tilt.view()}),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, tilt.view()),
                          doctest::Contains("surface_azimuth_deg"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records,
-                                         {.surface_tilt_deg = small.view(), .surface_azimuth_deg = small.view()}),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, small.view(),
+                                         small.view()),
                          doctest::Contains("same shape"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.albedo = 1.5}), doctest::Contains("albedo"),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {}, {.sky = {.albedo = 1.5}}),
+                         doctest::Contains("albedo"),
                          invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records, {.svf_directions = 2}),
-                         doctest::Contains("irradiance_maps: svf_directions"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records,
-                                         {.diffuse = diffuse_model::perez, .perez = {.solar_constant_w_m2 = -1.0}}),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {}, {.sky = {.svf_directions = 2}}),
+                         doctest::Contains("irradiance_maps: sky.svf_directions"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {},
+                                         {.sky = {.diffuse = diffuse_model::perez,
+                                                  .perez = {.solar_constant_w_m2 = -1.0}}}),
                          doctest::Contains("perez.solar_constant_w_m2"), invalid_input);
     records[0].dni_w_m2 = -3.0;
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("records[0]"),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records), doctest::Contains("records[0]"),
                          invalid_input);
     records[0].dni_w_m2 = 0.0;
     records[0].interval = std::chrono::seconds{0};
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, 40.0, -105.0, records), doctest::Contains("interval"),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records), doctest::Contains("interval"),
                          invalid_input);
 }
 

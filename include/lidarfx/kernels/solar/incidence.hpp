@@ -43,12 +43,14 @@ inline enu_vector surface_normal_unchecked(double tilt_deg, double azimuth_deg) 
     return {std::sin(b) * std::sin(a), std::sin(b) * std::cos(a), std::cos(b)};
 }
 
+}  // namespace detail
+
+/// Dot product of two east / north / up vectors: u.east v.east + u.north v.north + u.up v.up (for unit vectors
+/// the cosine of the angle between them; enu_dot(sun_vector, surface_normal) is cos_incidence). No checks.
 inline double enu_dot(const enu_vector& u, const enu_vector& v) noexcept
 {
     return u.east * v.east + u.north * v.north + u.up * v.up;
 }
-
-}  // namespace detail
 
 /// Unit vector towards the sun: (cos e sin A, cos e cos A, sin e) in (east, north, up), with A the sun azimuth in
 /// degrees clockwise from north and e its elevation above the horizon in degrees ([-90, 90]).
@@ -79,8 +81,7 @@ inline enu_vector surface_normal(double tilt_deg, double surface_azimuth_deg)
 inline double cos_incidence(double sun_azimuth_deg, double sun_elevation_deg, double tilt_deg,
                             double surface_azimuth_deg)
 {
-    return detail::enu_dot(sun_vector(sun_azimuth_deg, sun_elevation_deg),
-                           surface_normal(tilt_deg, surface_azimuth_deg));
+    return enu_dot(sun_vector(sun_azimuth_deg, sun_elevation_deg), surface_normal(tilt_deg, surface_azimuth_deg));
 }
 
 /// Beam (direct) irradiance on a surface, W/m^2: DNI * max(0, cos theta) * lit, with dni_w_m2 the direct normal

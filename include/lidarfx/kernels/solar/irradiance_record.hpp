@@ -23,16 +23,26 @@ struct irradiance_record {
     constexpr std::chrono::sys_seconds middle_utc() const noexcept { return start_utc + interval / 2; }
 };
 
-namespace detail {
-
-/// Month index 0..11 of a record: the month of its middle in UTC + offset_h.
-inline int record_month(const irradiance_record& rec, double offset_h)
+/// Month index 0 (January) .. 11 (December) of a record: the month of its middle in local standard time
+/// UTC + utc_offset_h (hours, rounded to the second). No checks.
+inline int record_month(const irradiance_record& rec, double utc_offset_h)
 {
     namespace chr = std::chrono;
-    const auto local = rec.middle_utc() + chr::seconds{static_cast<long long>(std::llround(offset_h * 3600.0))};
+    const auto local = rec.middle_utc() + chr::seconds{static_cast<long long>(std::llround(utc_offset_h * 3600.0))};
     const chr::year_month_day ymd{chr::floor<chr::days>(local)};
     return static_cast<int>(static_cast<unsigned>(ymd.month())) - 1;
 }
+
+/// Day of the year 1..366 of a record's middle, UTC (for the extraterrestrial irradiance of the Perez sky).
+inline int record_day_of_year(const irradiance_record& rec)
+{
+    namespace chr = std::chrono;
+    const chr::sys_days day = chr::floor<chr::days>(rec.middle_utc());
+    const chr::year_month_day ymd{day};
+    return static_cast<int>((day - chr::sys_days{ymd.year() / chr::January / 1}).count()) + 1;
+}
+
+namespace detail {
 
 /// Refuses records with a non-positive interval or a DNI, DHI or GHI outside [0, 1e6] W/m^2 (or NaN).
 inline void require_records(std::span<const irradiance_record> records, const char* fn)

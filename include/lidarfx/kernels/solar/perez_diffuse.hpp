@@ -50,6 +50,10 @@ struct perez_diffuse_result {
     double total_w_m2() const noexcept { return isotropic_w_m2 + circumsolar_w_m2 + horizon_w_m2; }
 };
 
+/// cos 85 deg, the floor of the circumsolar term's denominator: circumsolar = DHI F1 max(0, cos theta) /
+/// max(perez_cos_85, sin e).
+inline constexpr double perez_cos_85 = 0.08715574274765814;
+
 namespace detail {
 
 inline constexpr double perez_rad_per_deg = std::numbers::pi / 180.0;
@@ -68,9 +72,6 @@ inline constexpr std::array<std::array<double, 6>, 8> perez_1990_coefficients = 
 
 /// Lower clearness bound of bins 2..8 (bin 1 starts at 1).
 inline constexpr std::array<double, 7> perez_1990_bin_edges = {1.065, 1.230, 1.500, 1.950, 2.800, 4.500, 6.200};
-
-/// cos 85 deg: the floor of the circumsolar term's denominator.
-inline constexpr double perez_cos_85 = 0.08715574274765814;  // cos(85 deg)
 
 inline double extraterrestrial_unchecked(int day_of_year, double solar_constant) noexcept
 {

@@ -24,7 +24,9 @@
 #include <numbers>
 #include <vector>
 
-namespace lidarfx::detail {
+namespace lidarfx {
+
+namespace detail {
 
 /// (sin, cos) of an angle in degrees, exact (0, +-1) at multiples of 90 degrees so that rays along the
 /// grid axes stay in one row or column.
@@ -40,7 +42,12 @@ inline std::array<double, 2> sincos_deg(double deg) noexcept
     return {std::sin(rad), std::cos(rad)};
 }
 
-/// The family of lines that walks away from `azimuth_deg` (clockwise from north) over a rows x cols raster.
+}  // namespace detail
+
+/// The family of lines that walks away from an azimuth (clockwise from north) over a rows x cols raster (see the
+/// geometry above): every cell lies on exactly one line, and along a line the walk visits the cells in the order
+/// of increasing t. make_ray_lines builds it; raylines_shadow, horizon_map, sky_view_factor and the facade sweeps
+/// walk it. Cheap to copy (a few numbers).
 struct ray_lines {
     double dcol = 0, drow = 1;  ///< unit walk direction: columns (east) and rows (south) per unit length
     bool steep = true;          ///< one cell per row (|drow| >= |dcol|), else one cell per column
@@ -114,9 +121,12 @@ inline int line_phase_of(double slope, std::ptrdiff_t i, int phases) noexcept
     return j % phases;
 }
 
+/// The ray lines walking away from azimuth_deg (degrees clockwise from north; exact along the grid axes) over a
+/// rows x cols raster, with phase 0.5 (a line through the centre of every cell of major index 0). O(1), no checks
+/// (a non-finite azimuth gives NaN directions).
 inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept
 {
-    const auto [s, c] = sincos_deg(azimuth_deg);
+    const auto [s, c] = detail::sincos_deg(azimuth_deg);
     ray_lines l;
     l.dcol = -s;
     l.drow = c;
@@ -127,4 +137,4 @@ inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::pt
     return l;
 }
 
-}  // namespace lidarfx::detail
+}  // namespace lidarfx

@@ -36,12 +36,9 @@ struct sky_view_factor_options {
     execution run = {};   ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
-namespace detail {
-
-/// Source elevations of the source_share definition: 15, 20, ..., 85 degrees (the zenith is counted apart).
+/// Number of source elevations per azimuth of sky_view_factor_method::source_share: 15, 20, ..., 85 degrees,
+/// i.e. 15 + 5 j for j = 0 .. 14 (the zenith is counted apart).
 inline constexpr int sky_source_elevations = 15;
-
-}  // namespace detail
 
 /// Sky view factor of every cell (into form), in [0, 1], 1 on open flat ground; NaN for NaN cells. One
 /// horizon sweep per azimuth (horizon_map, upper convex hull, O(rows * cols)) gives the horizon tangent
@@ -63,8 +60,8 @@ void sky_view_factor(const In& dsm, Out&& svf, double cell_m, const sky_view_fac
         detail::write_through<float>(std::forward<Out>(svf), [&](raster_view<float> out) {
             detail::require(!detail::overlaps(z, out), fn, "svf must not overlap dsm");
             const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-            double tan_e[detail::sky_source_elevations];
-            for (int j = 0; j < detail::sky_source_elevations; ++j) {
+            double tan_e[sky_source_elevations];
+            for (int j = 0; j < sky_source_elevations; ++j) {
                 tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
             }
             const bool share = opt.method == sky_view_factor_method::source_share;
@@ -85,7 +82,7 @@ void sky_view_factor(const In& dsm, Out&& svf, double cell_m, const sky_view_fac
                             if (share) {
                                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                                     int visible = 0;
-                                    for (int j = 0; j < detail::sky_source_elevations; ++j) visible += tan_e[j] >= t[c];
+                                    for (int j = 0; j < sky_source_elevations; ++j) visible += tan_e[j] >= t[c];
                                     s[c] += visible;
                                 }
                             } else {
@@ -95,7 +92,7 @@ void sky_view_factor(const In& dsm, Out&& svf, double cell_m, const sky_view_fac
                     },
                     detail::progress_phase(opt.run.progress, from + 0.9 * (to - from), to), fn);
             }
-            const double scale = share ? 1.0 / (detail::sky_source_elevations * n + 1.0) : 1.0 / n;
+            const double scale = share ? 1.0 / (sky_source_elevations * n + 1.0) : 1.0 / n;
             const double offset = share ? 1.0 : 0.0;  // the zenith, always visible
             const float nan = std::numeric_limits<float>::quiet_NaN();
             for (std::ptrdiff_t r = 0; r < rows; ++r) {

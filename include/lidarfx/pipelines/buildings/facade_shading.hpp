@@ -143,9 +143,9 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
-        const detail::ray_lines l = detail::make_ray_lines(sun_azimuth_deg, z.rows(), z.cols());
-        const detail::shadow_lifts lift =
-            detail::make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
+        const ray_lines l = make_ray_lines(sun_azimuth_deg, z.rows(), z.cols());
+        const shadow_lifts lift =
+            make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
         std::vector<double> limit;
         detail::facade_shadow_sweep(z, obs, l, lift, limit, {}, opt.run.threads, fn);
         const detail::facade_cos_table cos_theta(sun_azimuth_deg, sun_elevation_deg);

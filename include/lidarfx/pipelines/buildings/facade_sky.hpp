@@ -143,9 +143,8 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
     detail::require_facade_cells(patches, dsm.rows(), dsm.cols(), fn);
     const bool share = opt.method == sky_view_factor_method::source_share;
     std::vector<double> sum(patches.size(), 0.0), weight(patches.size(), 0.0);
-    double tan_e[detail::sky_source_elevations];
-    for (int j = 0; j < detail::sky_source_elevations; ++j)
-        tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
+    double tan_e[sky_source_elevations];
+    for (int j = 0; j < sky_source_elevations; ++j) tan_e[j] = std::tan((15.0 + 5.0 * j) * (std::numbers::pi / 180.0));
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
@@ -159,7 +158,7 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
                 if (cos_phi <= 1e-12) continue;  // behind or in the wall plane (cos 90 deg rounds to ~1e-17)
                 if (share) {
                     int visible = 0;
-                    for (int j = 0; j < detail::sky_source_elevations; ++j) visible += tan_e[j] >= tangent[p];
+                    for (int j = 0; j < sky_source_elevations; ++j) visible += tan_e[j] >= tangent[p];
                     sum[p] += visible;
                 } else {
                     const double h = std::atan(tangent[p]);
@@ -172,7 +171,7 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
     });
     std::vector<double> svf(patches.size(), 0.0);
     for (std::size_t p = 0; p < svf.size(); ++p) {
-        svf[p] = share ? sum[p] / (detail::sky_source_elevations * opt.directions + 1.0)
+        svf[p] = share ? sum[p] / (sky_source_elevations * opt.directions + 1.0)
                        : (weight[p] > 0.0 ? 0.5 * sum[p] / weight[p] : 0.0);
     }
     return svf;

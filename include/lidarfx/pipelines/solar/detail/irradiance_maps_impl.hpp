@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: Apache-2.0
+// Implementation of irradiance_maps (pipelines/solar/irradiance_maps.hpp): per-cell surfaces, the per-record
+// terms, the accumulation of one daylight sun into a month and the month and annual outputs.
+#pragma once
+// Included at the end of its public header, which declares what is defined here.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/solar/daylight_suns.hpp"
+#include "lidarfx/kernels/solar/incidence.hpp"
+#include "lidarfx/kernels/solar/irradiance_record.hpp"
+#include "lidarfx/kernels/solar/perez_diffuse.hpp"
+#include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/sky_options.hpp"
+#include "lidarfx/kernels/solar/sky_view_factor.hpp"
+
+namespace lidarfx::detail {
+
+/// Per-cell incidence terms of a tilted surface: normal vector, (1 + cos b) / 2, (1 - cos b) / 2 and, for the
+/// Perez sky only, sin b. Empty for horizontal cells.
+struct cell_surface {
+    std::vector<enu_vector> normal;
+    std::vector<float> sky, ground, sin_tilt;
+    bool tilted() const noexcept { return !sky.empty(); }
+};
+
+/// One record's terms, each already times DHI (or DNI, GHI) and the interval in kWh (W h / 1000). The isotropic
+/// sky is the Perez sky with F1 = F2 = 0.
+struct perez_record_terms {
+    double dni = 0, beam_flat = 0;  ///< DNI, and DNI sin e for horizontal cells
+    double isotropic = 0;           ///< DHI (1 - F1): times (1 + cos b) / 2 and SVF
+    double horizon = 0;             ///< DHI F2: times sin b and SVF
+    double circumsolar = 0;         ///< DHI F1 / max(cos 85, sin e): times max(0, cos theta) and lit
+    double reflected = 0;           ///< GHI albedo: times (1 - cos b) / 2
+    bool clamp = false;             ///< clamp the diffuse sum at 0 (components may be < 0)
+};
+
+/// Refuses a bad cell size, option or surface raster pair of irradiance_maps (before any sun is computed).
+template <class In>
+void check_irradiance_maps(const In& dsm, double cell_m, raster_view<const float> tilt,
+                           raster_view<const float> azimuth, const irradiance_maps_options& opt, const char* fn)
+{
+    require_positive(cell_m, fn, "cell_m");
+    check_execution(opt.run, fn);
+    require_sky_options(opt.sky, fn);
+    require(opt.shadow_line_phases >= 1 && opt.shadow_line_phases <= 64, fn, "shadow_line_phases", "in [1, 64]",
+            opt.shadow_line_phases);
+    const bool tilted = tilt.rows() > 0 || tilt.cols() > 0;
+    const bool has_azimuth = azimuth.rows() > 0 || azimuth.cols() > 0;
+    require(tilted == has_azimuth, fn,
+            "surface_tilt_deg and surface_azimuth_deg must be given together (or neither, for horizontal)");
+    if (tilted) {
+        require_same_shape(dsm, tilt, fn, "dsm", "surface_tilt_deg");
+        require_same_shape(dsm, azimuth, fn, "dsm", "surface_azimuth_deg");
+    }
+}
+
+/// The GHI sums of every record (daylight or not), per month of UTC + utc_offset_h and in total, kWh/m^2.
+inline void sum_ghi_by_month(std::span<const irradiance_record> records, double utc_offset_h,
+                             irradiance_maps_result& res)
+{
+    for (const irradiance_record& r : records) {
+        const int m = record_month(r, utc_offset_h);
+        const double kwh = r.ghi_w_m2 * (static_cast<double>(r.interval.count()) / 3600.0) / 1000.0;
+        res.month_ghi_kwh_m2[static_cast<std::size_t>(m)] += kwh;
+        res.ghi_kwh_m2 += kwh;
+    }
+}
+
+/// Per-cell surfaces of the tilt and azimuth rasters (empty when none are given); NaN tilts give NaN terms.
+/// @throws invalid_input if a tilt is outside [0, 180] or an azimuth is infinite.
+inline cell_surface make_cell_surfaces(raster_view<const float> tilt, raster_view<const float> azimuth, bool perez,
+                                       const char* fn)
+{
+    cell_surface surf;
+    const std::ptrdiff_t rows = tilt.rows(), cols = tilt.cols();
+    const std::size_t n = static_cast<std::size_t>(rows * cols);
+    if (n == 0) return surf;
+    surf.normal.resize(n);
+    surf.sky.resize(n);
+    surf.ground.resize(n);
+    if (perez) surf.sin_tilt.resize(n);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const double b = tilt(r, c), a = azimuth(r, c);
+            const std::size_t k = static_cast<std::size_t>(r * cols + c);
+            if (b != b) {
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                surf.normal[k] = {nan, nan, nan};
+                surf.sky[k] = surf.ground[k] = std::numeric_limits<float>::quiet_NaN();
+                if (perez) surf.sin_tilt[k] = std::numeric_limits<float>::quiet_NaN();
+                continue;
+            }
+            require(b >= 0.0 && b <= 180.0, fn, "surface_tilt_deg", "in [0, 180] degrees", b);
+            surf.normal[k] = surface_normal(b, a == a ? a : 0.0);
+            const double cb = std::cos(b * (std::numbers::pi / 180.0));
+            surf.sky[k] = static_cast<float>((1.0 + cb) / 2.0);
+            surf.ground[k] = static_cast<float>((1.0 - cb) / 2.0);
+            if (perez) surf.sin_tilt[k] = static_cast<float>(std::sin(b * (std::numbers::pi / 180.0)));
+        }
+    }
+    return surf;
+}
+
+/// The terms of one daylight sun under the chosen sky.
+inline perez_record_terms record_terms(const daylight_sun& d, const sky_options& sky)
+{
+    const double hours_k = d.kwh_per_w_m2;
+    const double dhi = d.dhi_w_m2 * hours_k;
+    const bool perez = sky.diffuse == diffuse_model::perez;
+    // Perez sky of this record (unused by the isotropic sky): per-cell factors of DHI * hours_k.
+    const perez_sky p =
+        perez ? perez_sky_coefficients(d.dhi_w_m2, d.dni_w_m2, d.elevation_deg, d.day_of_year, sky.perez) : perez_sky{};
+    return {.dni = d.dni_w_m2 * hours_k,
+            .beam_flat = d.dni_w_m2 * (d.sun.up > 0.0 ? d.sun.up : 0.0) * hours_k,
+            .isotropic = perez ? dhi * (1.0 - p.f1) : dhi,
+            .horizon = dhi * p.f2,
+            .circumsolar = dhi * p.f1 / std::max(perez_cos_85, d.sun.up),
+            .reflected = d.ghi_w_m2 * sky.albedo * hours_k,
+            .clamp = !sky.perez.nonnegative};
+}
+
+/// Adds one record's beam, Perez diffuse and reflected irradiation to one row (acc) of cols cells: lit and svf
+/// the row's shadow and sky view factor, surf the per-cell surfaces (nullptr: horizontal) from cell index k0.
+inline void add_perez_row(double* acc, const std::uint8_t* lit, const float* svf, std::ptrdiff_t cols,
+                          const cell_surface* surf, std::size_t k0, const enu_vector& sun,
+                          const perez_record_terms& t) noexcept
+{
+    if (surf == nullptr) {
+        const double circumsolar = t.circumsolar * sun.up;
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            double diffuse = t.isotropic * static_cast<double>(svf[c]) + (lit[c] == 1 ? circumsolar : 0.0);
+            if (t.clamp) diffuse = std::max(0.0, diffuse);
+            acc[c] += (lit[c] == 1 ? t.beam_flat : 0.0) + diffuse;
+        }
+        return;
+    }
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        const std::size_t k = k0 + static_cast<std::size_t>(c);
+        const double cos_t = enu_dot(sun, surf->normal[k]);
+        const bool sunny = lit[c] == 1 && cos_t > 0.0;
+        const double sky =
+            t.isotropic * static_cast<double>(surf->sky[k]) + t.horizon * static_cast<double>(surf->sin_tilt[k]);
+        double diffuse = sky * static_cast<double>(svf[c]) + (sunny ? t.circumsolar * cos_t : 0.0);
+        if (t.clamp) diffuse = std::max(0.0, diffuse);
+        acc[c] += (sunny ? t.dni * cos_t : 0.0) + diffuse + t.reflected * static_cast<double>(surf->ground[k]);
+    }
+}
+
+/// Adds one record's beam, isotropic diffuse and reflected irradiation to one row (acc) of cols cells.
+inline void add_isotropic_row(double* acc, const std::uint8_t* lit, const float* svf, std::ptrdiff_t cols,
+                              const cell_surface* surf, std::size_t k0, const enu_vector& sun,
+                              const perez_record_terms& t) noexcept
+{
+    const double dhi = t.isotropic;
+    if (surf == nullptr) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            acc[c] += (lit[c] == 1 ? t.beam_flat : 0.0) + dhi * static_cast<double>(svf[c]);
+        }
+        return;
+    }
+    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+        const std::size_t k = k0 + static_cast<std::size_t>(c);
+        const double cos_t = enu_dot(sun, surf->normal[k]);
+        const double beam = lit[c] == 1 && cos_t > 0.0 ? t.dni * cos_t : 0.0;
+        acc[c] += beam + dhi * static_cast<double>(svf[c]) * surf->sky[k] + t.reflected * surf->ground[k];
+    }
+}
+
+/// Adds one daylight sun to `month`: its cast shadows into `lit`, then every row's irradiation.
+inline void add_daylight_sun(raster_view<const float> z, double cell_m, const daylight_sun& d, const cell_surface& surf,
+                             const raster<float>& svf, raster<std::uint8_t>& lit, raster<double>& month,
+                             const irradiance_maps_options& opt)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    raylines_shadow(z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
+                    {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = opt.run.threads}});
+    const perez_record_terms terms = record_terms(d, opt.sky);
+    const bool perez = opt.sky.diffuse == diffuse_model::perez;
+    const cell_surface* s = surf.tilted() ? &surf : nullptr;
+    parallel_for_rows(rows, 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const auto add = perez ? add_perez_row : add_isotropic_row;
+            add(month.view().row(r), lit.view().row(r), svf.view().row(r), cols, s, static_cast<std::size_t>(r * cols),
+                d.sun, terms);
+        }
+    });
+}
+
+/// Month m's map as floats (NaN on NaN cells and NaN surfaces), and the month added to `annual`.
+inline raster<float> finish_month(raster_view<const float> z, const cell_surface& surf, const raster<double>& month,
+                                  raster<double>& annual)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    raster<float> out(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const std::size_t k = static_cast<std::size_t>(r * cols + c);
+            const bool nodata = z(r, c) != z(r, c) || (surf.tilted() && surf.sky[k] != surf.sky[k]);
+            annual(r, c) += month(r, c);
+            out(r, c) = nodata ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(month(r, c));
+        }
+    }
+    return out;
+}
+
+/// The month and annual maps of the daylight suns, grouped by month; res.sky_view_factor is already set.
+inline void accumulate_months(raster_view<const float> z, double cell_m, std::span<const daylight_sun> suns,
+                              const cell_surface& surf, const irradiance_maps_options& opt, double progress_from,
+                              irradiance_maps_result& res, const char* fn)
+{
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    std::array<std::vector<const daylight_sun*>, 12> by_month;
+    for (const daylight_sun& d : suns) by_month[static_cast<std::size_t>(d.month)].push_back(&d);
+    raster<double> annual(rows, cols, 0.0), month(rows, cols, 0.0);
+    raster<std::uint8_t> lit(rows, cols);
+    std::size_t done = 0;
+    for (std::size_t m = 0; m < 12; ++m) {
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c) month(r, c) = 0.0;
+        for (const daylight_sun* d : by_month[m]) {
+            add_daylight_sun(z, cell_m, *d, surf, res.sky_view_factor, lit, month, opt);
+            const double fraction = static_cast<double>(++done) / static_cast<double>(suns.size() + 1);
+            report(opt.run.progress, progress_from + (1.0 - progress_from) * fraction, fn);
+        }
+        res.month_kwh_m2[m] = finish_month(z, surf, month, annual);
+    }
+    res.annual_kwh_m2 = raster<float>(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const float m0 = res.month_kwh_m2[0](r, c);
+            res.annual_kwh_m2(r, c) =
+                m0 != m0 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(annual(r, c));
+        }
+    }
+}
+
+}  // namespace lidarfx::detail
+
+namespace lidarfx {
+
+template <raster_input In>
+irradiance_maps_result irradiance_maps(const In& dsm, double cell_m, const solar_site& site,
+                                       std::span<const irradiance_record> records,
+                                       raster_view<const float> surface_tilt_deg,
+                                       raster_view<const float> surface_azimuth_deg, const irradiance_maps_options& opt)
+{
+    constexpr const char* fn = "irradiance_maps";
+    detail::check_irradiance_maps(dsm, cell_m, surface_tilt_deg, surface_azimuth_deg, opt, fn);
+    // Sun positions first: they validate the site and every time before any long work.
+    const std::vector<daylight_sun> suns = daylight_suns(records, site);
+    irradiance_maps_result res;
+    detail::sum_ghi_by_month(records, site.utc_offset_h, res);
+    res.sun_up_records = suns.size();
+    const detail::cell_surface surf =
+        detail::make_cell_surfaces(surface_tilt_deg, surface_azimuth_deg, opt.sky.diffuse == diffuse_model::perez, fn);
+    return detail::with_float_view(dsm, [&](raster_view<const float> z) {
+        const double svf_share = 0.1;  // share of the progress taken by the sky view factor
+        res.sky_view_factor = raster<float>(z.rows(), z.cols());
+        sky_view_factor(z, res.sky_view_factor, cell_m,
+                        {.method = opt.sky.svf_method,
+                         .directions = opt.sky.svf_directions,
+                         .run = {.threads = opt.run.threads,
+                                 .progress = detail::progress_phase(opt.run.progress, 0.0, svf_share)}});
+        detail::accumulate_months(z, cell_m, suns, surf, opt, svf_share, res, fn);
+        detail::report(opt.run.progress, 1.0, fn);
+        return std::move(res);
+    });
+}
+
+}  // namespace lidarfx
