@@ -1,0 +1,98 @@
+# SPDX-License-Identifier: Apache-2.0
+# `lidarfx roofs --tmy` and `lidarfx solar --tmy --year-from-tmy` put the sun in the same place and accumulate the
+# same daylight suns: the flat roof patch's annual_kwh_m2 from roofs equals the mean of solar's annual_kwh_m2.asc
+# over the roof's cells (solar maps horizontal cells, so a flat plane is the plane both commands see), within the
+# ASCII grid's 8 significant digits. Both say the same "place:" line.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+include("${CMAKE_CURRENT_LIST_DIR}/block_dsm.cmake")
+write_block_dsm("${WORK_DIR}/dsm.asc" 20 6 14 6 14 108)
+write_block_dsm("${WORK_DIR}/dtm.asc" 20 0 0 0 0 100)
+file(WRITE "${WORK_DIR}/footprints.geojson"
+     "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{\"building_id\":1},"
+     "\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[1006,2014],[1014,2014],[1014,2006],[1006,2006],"
+     "[1006,2014]]]}}]}")
+
+# A TMY3 year in 2001 (hour-ending stamps): GHI 500, DNI 600, DHI 100 W/m^2 from 08:00 to 17:00 local time.
+set(station "723170,\"GREENSBORO PIEDMONT TRIAD INT\",NC,-5.0,36.100,-79.950,273\n")
+set(header "Date (MM/DD/YYYY),Time (HH:MM),ETR (W/m^2),ETRN (W/m^2),GHI (W/m^2),GHI source,GHI uncert (%),")
+string(APPEND header "DNI (W/m^2),DNI source,DNI uncert (%),DHI (W/m^2),DHI source,DHI uncert (%)\n")
+set(rows "")
+set(month 0)
+foreach(days 31 28 31 30 31 30 31 31 30 31 30 31)
+    math(EXPR month "${month} + 1")
+    set(mm "${month}")
+    if(month LESS 10)
+        set(mm "0${month}")
+    endif()
+    foreach(day RANGE 1 ${days})
+        set(dd "${day}")
+        if(day LESS 10)
+            set(dd "0${day}")
+        endif()
+        foreach(hh 01 02 03 04 05 06 07 18 19 20 21 22 23 24)
+            string(APPEND rows "${mm}/${dd}/2001,${hh}:00,0,0,0,1,0,0,1,0,0,1,0\n")
+        endforeach()
+        foreach(hh 08 09 10 11 12 13 14 15 16 17)
+            string(APPEND rows "${mm}/${dd}/2001,${hh}:00,0,0,500,1,0,600,1,0,100,1,0\n")
+        endforeach()
+    endforeach()
+endforeach()
+file(WRITE "${WORK_DIR}/year.csv" "${station}${header}${rows}")
+
+execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson"
+                        --tmy "${WORK_DIR}/year.csv" --formats asc --out "${WORK_DIR}/roofs"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE roofs_said ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "lidarfx roofs --tmy failed (${rc}):\n${roofs_said}\n${err}")
+endif()
+execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/dsm.asc" --tmy "${WORK_DIR}/year.csv" --year-from-tmy
+                        --formats asc --out "${WORK_DIR}/solar"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE solar_said ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "lidarfx solar --tmy failed (${rc}):\n${solar_said}\n${err}")
+endif()
+string(REGEX MATCH "place: [^\n]*" roofs_place "${roofs_said}")
+string(REGEX MATCH "place: [^\n]*" solar_place "${solar_said}")
+if(NOT roofs_place OR NOT roofs_place STREQUAL solar_place)
+    message(FATAL_ERROR "roofs and solar put the sun in different places:\n${roofs_place}\n${solar_place}")
+endif()
+
+# A decimal number as an integer in 1e-4 units (the grid writes 8 significant digits: at most 4 decimals here).
+function(to_tenth_milli value out)
+    string(REGEX MATCH "^([0-9]+)(\\.([0-9]*))?" m "${value}")
+    set(whole "${CMAKE_MATCH_1}")
+    set(frac "${CMAKE_MATCH_3}0000")
+    string(SUBSTRING "${frac}" 0 4 frac)
+    string(REGEX REPLACE "^0+([0-9])" "\\1" frac "${frac}")
+    math(EXPR v "${whole} * 10000 + ${frac}")
+    set(${out} ${v} PARENT_SCOPE)
+endfunction()
+
+file(STRINGS "${WORK_DIR}/roofs/roof_patches.csv" patches)
+list(GET patches 1 flat)
+string(REPLACE "," ";" flat "${flat}")
+list(GET flat 2 tilt)
+list(GET flat 12 roof_kwh)
+if(NOT tilt EQUAL 0)
+    message(FATAL_ERROR "the flat roof's patch is not flat: ${flat}")
+endif()
+to_tenth_milli("${roof_kwh}" roof_value)
+file(STRINGS "${WORK_DIR}/solar/annual_kwh_m2.asc" grid_lines)
+set(sum 0)
+foreach(r RANGE 6 13)
+    math(EXPR line "${r} + 6")
+    list(GET grid_lines ${line} cells)
+    string(REGEX REPLACE " +" ";" cells "${cells}")
+    foreach(c RANGE 6 13)
+        list(GET cells ${c} v)
+        to_tenth_milli("${v}" v)
+        math(EXPR sum "${sum} + ${v}")
+    endforeach()
+endforeach()
+math(EXPR mean "${sum} / 64")
+math(EXPR diff "${mean} - ${roof_value}")
+if(diff LESS -10 OR diff GREATER 10)
+    message(FATAL_ERROR "roofs gives the flat roof ${roof_kwh} kWh/m2, solar's map ${mean} (1e-4 kWh/m2) over it")
+endif()
+message(STATUS "roofs and solar agree on the flat roof: ${roof_kwh} kWh/m2 (solar ${mean} e-4); ${roofs_place}")
