@@ -29,7 +29,7 @@ STRUCTS = [
       "slope_aspect_options", "ks_one_sided_options"]),
     ("Sun, shadows, sky view", ["sun_position_options", "raylines_shadow_options", "horizon_map_options",
                                 "sky_view_factor_options", "clear_sky_options", "irradiance_record"]),
-    ("Solar irradiation", ["irradiance_maps_options", "perez_diffuse_options"]),
+    ("Solar irradiation", ["solar_site", "irradiance_maps_options", "sky_options", "perez_diffuse_options"]),
     ("Waterbodies", ["extract_waterbodies_options"]),
     ("Buildings", ["extract_buildings_options", "ground_model_options", "building_candidates_options",
                    "local_planes_options", "grow_roof_surfaces_options", "merge_roof_surfaces_options"]),
