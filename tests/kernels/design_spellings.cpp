@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The public spellings of DESIGN.md section 2, written exactly as a caller with plain lidarfx types writes them,
+// The public spellings the library promises (docs/conventions.md: the stable public API), written exactly as a caller with plain lidarfx types writes them,
 // through the umbrella header only.
 #include <doctest/doctest.h>
 

@@ -216,7 +216,7 @@ TEST_CASE("filter/angular_filter: a larger window never gives a smaller angle")
 
 TEST_CASE("filter/angular_filter: accepts host rasters and writes into any output")
 {
-    // The spelling of DESIGN.md section 2.
+    // The spelling the library promises (docs/conventions.md).
     raster<float> z(4, 5, 1.0f);
     z(2, 2) = 3.0f;
     const raster_view<const float> view = z.view();

@@ -81,7 +81,7 @@ struct computed_mask {
 
 }  // namespace
 
-// The plain spellings of DESIGN.md section 2 compile and agree with each other.
+// The plain spellings the library promises compile and agree with each other.
 TEST_CASE("filter/morph_open: the design's plain spellings compile")
 {
     std::mt19937 rng(11);

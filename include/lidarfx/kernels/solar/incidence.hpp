@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // incidence: the angle between the sun and a surface's normal, and the beam irradiance that reaches the surface
-// (DESIGN.md section 6; dissertation 3.2.5 with the angle conventions fixed).
+// (dissertation 3.2.5, with the angle conventions of docs/solar-irradiance.md).
 #pragma once
 
 #include <cmath>

@@ -25,7 +25,7 @@
 namespace lidarfx::synth {
 
 /// Holes in water smaller than this (m^2) count as water in scene_truth::water_filled, as the waterbody
-/// method fills them (DESIGN.md section 5, step 6).
+/// method fills them (fill_small_islands, docs/waterbodies.md).
 inline constexpr double island_fill_area_m2 = 200.0;
 
 /// The truth of a synthetic scene, sampled at the centres of the cells of `g`.
