@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Structure rules of docs/architecture.md that the include-line check (check_layers.cmake) cannot see.
 
-  check_structure.py detail <include dir>     a header uses `detail::name` only when `name` is declared in its own
+  check_structure.py detail <include dir>     a header uses a `detail` name (qualified, or unqualified from inside
+                                              its own namespace detail) only when it is declared in its own
                                               area (core/, adapters/, tiling/, kernels/<area>/, pipelines/<area>/,
                                               each with its detail/ folder) or in core/, the library's shared base
   check_structure.py length <include dir> N   no function body in a header is longer than N lines
@@ -50,6 +51,51 @@ def area_of(header, root):
     return parts[0]
 
 
+STATEMENT_WORDS = {"return", "co_return", "co_yield", "throw", "else", "case", "new", "delete", "sizeof", "do",
+                   "typename", "template", "operator", "goto"}
+
+
+KEYWORDS = set("""alignas alignof and asm auto bool break case catch char char8_t char16_t char32_t class concept const
+consteval constexpr constinit const_cast continue co_await co_return co_yield decltype default delete do double
+dynamic_cast else enum explicit export extern false float for friend goto if inline int long mutable namespace new
+noexcept not nullptr operator or private protected public register reinterpret_cast requires return short signed
+sizeof static static_assert static_cast struct switch template this thread_local throw true try typedef typeid
+typename union unsigned using virtual void volatile wchar_t while final override""".split())
+
+
+def detail_top_level_names(text):
+    """Names declared directly inside the `namespace detail` blocks of a header (functions, types, constants;
+    not their parameters or locals)."""
+    names = set()
+    for m in re.finditer(r"namespace\s+(?:lidarfx::)?detail\s*\{", text):
+        depth, i, top = 1, m.end(), []
+        while depth and i < len(text):
+            c = text[i]
+            if c == "{":
+                depth += 1
+                top.append(" {")
+            elif c == "}":
+                depth -= 1
+            elif depth == 1:
+                top.append(c)
+            i += 1
+        segment = "".join(top)
+        while True:  # parameter lists out, their parentheses kept
+            stripped = re.sub(r"\([^()]*\)", "()", segment)
+            stripped = stripped.replace("()", "\0")
+            if stripped == segment.replace("()", "\0"):
+                break
+            segment = stripped.replace("\0", "()")
+        segment = segment.replace("\0", "()")
+        for d in re.finditer(r"(\b[A-Za-z_]\w*|[>)])\s+([A-Za-z_]\w*)\s*(?=[(<{=;\[])", segment):
+            if d.group(1) not in STATEMENT_WORDS:
+                names.add(d.group(2))
+        for d in re.finditer(r"\b(?:struct|class|enum)\s+([A-Za-z_]\w*)(?!\s*[,>=])|\b(?:using|concept)\s+([A-Za-z_]\w*)",
+                             segment):  # a template's `class T,` or `class T>` is a parameter, not a type
+            names.add(d.group(1) or d.group(2))
+    return names
+
+
 def check_detail(include_dir):
     root = pathlib.Path(include_dir) / "lidarfx"
     headers = sorted(p for p in root.rglob("*.hpp") if p.name != "lidarfx.hpp")
@@ -57,13 +103,30 @@ def check_detail(include_dir):
     declared = {}  # area -> set of names written unqualified (declarations and same-namespace uses)
     for h, text in code.items():
         names = declared.setdefault(area_of(h, root), set())
-        for m in re.finditer(r"(?<![\w:.>])([A-Za-z_]\w*)\s*(?=[(<{=;,\[])", text):
-            names.add(m.group(1))
+        # a declaration: the name after a type (a word that is not a statement keyword, or the > or ) that ends one), followed
+        # by what starts a function, a variable or a template; calls and uses do not declare
+        for m in re.finditer(r"(\b[A-Za-z_]\w*|[>)])\s+([A-Za-z_]\w*)\s*(?=[(<{=;,\[])", text):
+            if m.group(1) not in STATEMENT_WORDS:
+                names.add(m.group(2))
         for m in re.finditer(r"\b(?:struct|class|using|enum|concept)\s+([A-Za-z_]\w*)", text):
             names.add(m.group(1))
+    internal = {}  # area -> names declared at the top level of its `namespace detail` blocks
+    for h, text in code.items():
+        internal.setdefault(area_of(h, root), set()).update(detail_top_level_names(text))
     violations = []
     for h, text in code.items():
         area = area_of(h, root)
+        own = declared.get(area, set()) | declared.get("core", set())
+        # an unqualified use of another area's internal name (from inside a `namespace detail` block)
+        for m in re.finditer(r"(?<![\w:.>])([A-Za-z_]\w*)\b", text):
+            name = m.group(1)
+            if name in own or name in KEYWORDS:
+                continue
+            owners = sorted(a for a, names in internal.items() if a not in (area, "core") and name in names)
+            if owners:
+                line = text.count("\n", 0, m.start()) + 1
+                violations.append(f"lidarfx/{h.relative_to(root)}:{line}: {name} is internal to {', '.join(owners)}"
+                                  f", not {area}: make it a documented public kernel in the right layer")
         for m in re.finditer(r"\bdetail::([A-Za-z_]\w*)", text):
             name = m.group(1)
             if name in declared.get(area, set()) or name in declared.get("core", set()):

@@ -32,20 +32,20 @@ struct horizon_stack_result {
     std::vector<raster<float>> horizon_deg;  ///< horizon_deg[i]: the horizon_map towards azimuth_deg[i]
 };
 
-namespace detail {
-
-struct hull_point {
-    double t, z;  // position along the walk (m) and height (m)
+/// A point of the upper convex hull that horizon_hull_step keeps: position along a walk and height.
+struct horizon_hull_point {
+    double t, z;  ///< position along the walk (m) and height (m)
 };
 
-/// One step of the horizon sweep: the tangent of the horizon angle (>= 0) at (t, z) over the points of `hull`
-/// (the upper convex hull of the profile behind, t increasing), then (t, z) joins the hull. Hull points
-/// that fall on or below the chord from their predecessor to (t, z) can be the highest angle neither from
-/// here nor from any later point, so they are dropped; the last one kept is the tangent point. Amortized O(1).
-inline double horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double z) noexcept
+/// One step of a horizon sweep along a line of cells (horizon_map and the facade sky views use it): the tangent of the
+/// horizon angle (>= 0) at (t, z) over the points of `hull` (the upper convex hull of the profile behind, t
+/// increasing), then (t, z) joins the hull. Hull points that fall on or below the chord from their predecessor to (t,
+/// z) can be the highest angle neither from here nor from any later point, so they are dropped; the last one kept is
+/// the tangent point. Amortized O(1).
+inline double horizon_hull_step(horizon_hull_point* hull, std::ptrdiff_t& n, double t, double z) noexcept
 {
     while (n >= 2) {
-        const hull_point a = hull[n - 2], b = hull[n - 1];
+        const horizon_hull_point a = hull[n - 2], b = hull[n - 1];
         if ((b.z - a.z) * (t - a.t) <= (z - a.z) * (b.t - a.t)) {
             --n;
         } else {
@@ -57,6 +57,8 @@ inline double horizon_step(hull_point* hull, std::ptrdiff_t& n, double t, double
     hull[n++] = {t, z};
     return tangent;
 }
+
+namespace detail {
 
 /// Tangents to degrees over o[c0, c1): a separate loop, so the arctangent vectorizes (NaN stays NaN).
 /// For double outputs (tangents kept for sky_view_factor) nothing is converted.
@@ -74,7 +76,7 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
                          std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
-    std::vector<hull_point> hulls(static_cast<std::size_t>(lines * rows));
+    std::vector<horizon_hull_point> hulls(static_cast<std::size_t>(lines * rows));
     std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(lines), 0);
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
     const T nan = std::numeric_limits<T>::quiet_NaN();
@@ -91,8 +93,9 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
                 continue;
             }
             const std::ptrdiff_t line = c - s - k0;
-            o[c] = static_cast<T>(horizon_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
-                                               (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+            o[c] =
+                static_cast<T>(horizon_hull_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
+                                                 (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
@@ -105,7 +108,7 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
                            const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
-    std::vector<hull_point> hulls(static_cast<std::size_t>(lines * cols));
+    std::vector<horizon_hull_point> hulls(static_cast<std::size_t>(lines * cols));
     std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(lines), 0);
     const double a = l.dcol * cell_m, b = l.drow * cell_m;
     const bool fwd = l.forward();
@@ -124,8 +127,9 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
                 continue;
             }
             const std::ptrdiff_t line = r - sh[static_cast<std::size_t>(c)] - k0;
-            o[c] = static_cast<T>(horizon_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
-                                               (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+            o[c] =
+                static_cast<T>(horizon_hull_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
+                                                 (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
         }
         tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }

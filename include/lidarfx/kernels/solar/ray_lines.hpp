@@ -26,8 +26,6 @@
 
 namespace lidarfx {
 
-namespace detail {
-
 /// (sin, cos) of an angle in degrees, exact (0, +-1) at multiples of 90 degrees so that rays along the
 /// grid axes stay in one row or column.
 inline std::array<double, 2> sincos_deg(double deg) noexcept
@@ -41,6 +39,8 @@ inline std::array<double, 2> sincos_deg(double deg) noexcept
     const double rad = a * (std::numbers::pi / 180.0);
     return {std::sin(rad), std::cos(rad)};
 }
+
+namespace detail {
 
 }  // namespace detail
 
@@ -126,7 +126,7 @@ inline int line_phase_of(double slope, std::ptrdiff_t i, int phases) noexcept
 /// (a non-finite azimuth gives NaN directions).
 inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::ptrdiff_t cols) noexcept
 {
-    const auto [s, c] = detail::sincos_deg(azimuth_deg);
+    const auto [s, c] = sincos_deg(azimuth_deg);
     ray_lines l;
     l.dcol = -s;
     l.drow = c;

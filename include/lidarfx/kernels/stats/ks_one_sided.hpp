@@ -138,6 +138,21 @@ inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& 
 /// ks_one_sided on two histograms with only the significance level set.
 inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, double alpha = 0.05);
 
+/// The unsigned type of sortable_key<T>: 32 bits for T of up to 4 bytes, 64 bits otherwise.
+template <class T>
+using sortable_key_t = std::conditional_t<sizeof(T) <= 4, std::uint32_t, std::uint64_t>;
+
+/// An unsigned key in the order of v, for radix and histogram selection of values: a < b exactly when
+/// sortable_key(a) < sortable_key(b), and equal values (-0 and +0 included) give equal keys. T: float, double
+/// or an integer of up to 64 bits; v is not NaN. Floats: IEEE bits with the negatives reversed below the
+/// positives; signed integers: sign bit flipped. O(1).
+template <class T>
+sortable_key_t<T> sortable_key(T v) noexcept;
+
+/// The value of a key of sortable_key<T> for T float or double (-0 comes back as +0). O(1).
+template <class T>
+T from_sortable_key(sortable_key_t<T> k) noexcept;
+
 }  // namespace lidarfx
 
 #include "lidarfx/kernels/stats/detail/ks_one_sided_impl.hpp"

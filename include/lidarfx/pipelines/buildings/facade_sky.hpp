@@ -36,7 +36,7 @@ namespace detail {
 /// max(0, max over the hull points of (z_i - h) / (t - t_i)) for a query point (t, h) beyond the hull (t greater
 /// than every t_i). On an upper convex hull these slopes rise to the tangent point and fall after it, so a
 /// binary search finds it: O(log n).
-inline double hull_tangent_at(const hull_point* hull, std::ptrdiff_t n, double t, double h) noexcept
+inline double hull_tangent_at(const horizon_hull_point* hull, std::ptrdiff_t n, double t, double h) noexcept
 {
     if (n == 0) return 0.0;
     const auto slope = [&](std::ptrdiff_t i) { return (hull[i].z - h) / (t - hull[i].t); };
@@ -68,10 +68,10 @@ inline void facade_horizon_sweep(raster_view<const float> z, const facade_observ
     parallel_for_rows(
         l.count(), block, threads,
         [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
-            std::vector<hull_point> hulls(static_cast<std::size_t>((b1 - b0) * major));
+            std::vector<horizon_hull_point> hulls(static_cast<std::size_t>((b1 - b0) * major));
             std::vector<std::ptrdiff_t> sizes(static_cast<std::size_t>(b1 - b0), 0);
             walk_ray_lines(l, sh, first + b0, first + b1, [&](std::ptrdiff_t line, std::ptrdiff_t r, std::ptrdiff_t c) {
-                hull_point* hull = hulls.data() + line * major;
+                horizon_hull_point* hull = hulls.data() + line * major;
                 std::ptrdiff_t& n = sizes[static_cast<std::size_t>(line)];
                 const double t = (static_cast<double>(c) + 0.5) * a + (static_cast<double>(r) + 0.5) * b;
                 const std::int32_t o = obs.index(r, c);
@@ -83,7 +83,7 @@ inline void facade_horizon_sweep(raster_view<const float> z, const facade_observ
                     }
                 }
                 const float zc = z(r, c);
-                if (zc == zc) horizon_step(hull, n, t, static_cast<double>(zc));
+                if (zc == zc) horizon_hull_step(hull, n, t, static_cast<double>(zc));
             });
         },
         {}, fn);
@@ -154,7 +154,7 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
             const double azimuth = 360.0 * i / n;
             detail::facade_horizon_sweep(z, obs, subs, cell_m, azimuth, tangent, opt.run.threads, fn);
             for (std::size_t p = 0; p < subs.size(); ++p) {
-                const double cos_phi = detail::sincos_deg(azimuth - subs[p].facing_azimuth_deg)[1];
+                const double cos_phi = sincos_deg(azimuth - subs[p].facing_azimuth_deg)[1];
                 if (cos_phi <= 1e-12) continue;  // behind or in the wall plane (cos 90 deg rounds to ~1e-17)
                 if (share) {
                     int visible = 0;

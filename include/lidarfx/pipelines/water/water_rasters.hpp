@@ -93,14 +93,14 @@ inline double median(std::span<float> values)
     }
     std::uint32_t lowest = std::numeric_limits<std::uint32_t>::max(), highest = 0;
     for (const float x : values) {
-        lowest = std::min(lowest, ks_key(x));
-        highest = std::max(highest, ks_key(x));
+        lowest = std::min(lowest, sortable_key(x));
+        highest = std::max(highest, sortable_key(x));
     }
     // Offsets k − lowest in [0, highest − lowest]: `shift` low bits below the (at most 16) counted ones.
     const int span_bits = static_cast<int>(std::bit_width(highest - lowest));
     const int shift = std::max(0, span_bits - 16);
     std::vector<std::uint32_t> histogram((std::size_t{1} << 16), 0);
-    for (const float x : values) ++histogram[(ks_key(x) - lowest) >> shift];
+    for (const float x : values) ++histogram[(sortable_key(x) - lowest) >> shift];
     std::uint32_t high = 0;
     while (rank >= histogram[high]) rank -= histogram[high++];
     std::uint32_t low = 0;
@@ -108,12 +108,12 @@ inline double median(std::span<float> values)
         std::fill(histogram.begin(), histogram.end(), 0);
         const std::uint32_t mask = (std::uint32_t{1} << shift) - 1;
         for (const float x : values) {
-            const std::uint32_t k = ks_key(x) - lowest;
+            const std::uint32_t k = sortable_key(x) - lowest;
             if ((k >> shift) == high) ++histogram[k & mask];
         }
         while (rank >= histogram[low]) rank -= histogram[low++];
     }
-    const float m = ks_value<float>(lowest + (high << shift | low));
+    const float m = from_sortable_key<float>(lowest + (high << shift | low));
     return m == 0 ? 0.0 : m;
 }
 

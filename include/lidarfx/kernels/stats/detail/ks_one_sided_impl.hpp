@@ -114,7 +114,7 @@ inline constexpr bool ks_keyed = std::is_same_v<T, float> || std::is_same_v<T, d
                                  (std::is_integral_v<T> && sizeof(T) <= 8);
 
 template <class T>
-using ks_key_t = std::conditional_t<sizeof(T) <= 4, std::uint32_t, std::uint64_t>;
+using ks_key_t = sortable_key_t<T>;
 
 /// Unsigned key in the order of the values: equal values (-0 and +0 included) give equal keys. Floats:
 /// IEEE bits with negatives reversed below positives; signed integers: sign bit flipped. NaN never gets here.
@@ -476,6 +476,18 @@ inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& 
 inline ks_result ks_one_sided(const ks_histogram& previous, const ks_histogram& current, double alpha)
 {
     return ks_one_sided(previous, current, ks_one_sided_options{.alpha = alpha});
+}
+
+template <class T>
+sortable_key_t<T> sortable_key(T v) noexcept
+{
+    return detail::ks_key(v);
+}
+
+template <class T>
+T from_sortable_key(sortable_key_t<T> k) noexcept
+{
+    return detail::ks_value<T>(k);
 }
 
 }  // namespace lidarfx

@@ -164,3 +164,6 @@ inline int short_one(int x)
     return 0;
 }
 }  // namespace lidarfx
+namespace lidarfx::detail {
+inline int twice(int x) { return smooth_rows(x) * 2; }  // unqualified, from inside detail
+}  // namespace lidarfx::detail
