@@ -328,3 +328,26 @@ TEST_CASE("stats/ks_one_sided: bad arguments throw with a clear message")
     CHECK_THROWS_WITH_AS(ks_one_sided(h, blank), "ks_one_sided: current must hold at least one value (got none)",
                          invalid_input);
 }
+
+TEST_CASE("sortable_key orders values as < does and from_sortable_key inverts it")
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> wide(-1e6f, 1e6f);
+    std::vector<float> v = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::min(),
+                            -std::numeric_limits<float>::min(), std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    for (int i = 0; i < 2000; ++i) v.push_back(wide(rng));
+    for (const float a : v) {
+        for (const float b : {v[0], v[3], v[7], v[100], v[1500]}) {
+            CHECK((a < b) == (lidarfx::sortable_key(a) < lidarfx::sortable_key(b)));
+            CHECK((a == b) == (lidarfx::sortable_key(a) == lidarfx::sortable_key(b)));
+        }
+        const float back = lidarfx::from_sortable_key<float>(lidarfx::sortable_key(a));
+        CHECK(back == a);
+        if (back == 0.0f) CHECK_FALSE(std::signbit(back));  // -0 comes back as +0
+    }
+    CHECK(lidarfx::sortable_key(std::int64_t{-5}) < lidarfx::sortable_key(std::int64_t{3}));
+    CHECK(lidarfx::sortable_key(-2.5) < lidarfx::sortable_key(-2.25));
+    CHECK(lidarfx::from_sortable_key<double>(lidarfx::sortable_key(-2.5)) == -2.5);
+}
