@@ -6,8 +6,8 @@
 
 #include <lidarfx/kernels/solar/clear_sky.hpp>
 #include <lidarfx/pipelines/buildings/facade_patches.hpp>
-#include <lidarfx/pipelines/buildings/facade_shading.hpp>
-#include <lidarfx/pipelines/buildings/facade_sky.hpp>
+#include <lidarfx/pipelines/buildings/facade_lit.hpp>
+#include <lidarfx/pipelines/buildings/facade_sky_view.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
 #include <cstddef>

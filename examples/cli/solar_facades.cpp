@@ -11,7 +11,7 @@
 #include <lidarfx/kernels/vector/polygonize.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
-#include <lidarfx/pipelines/buildings/surface_energy_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_class_table.hpp>
 
 #include "io/png.hpp"
 #include "io/quicklook.hpp"

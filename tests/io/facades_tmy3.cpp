@@ -6,7 +6,7 @@
 #include "io/tmy3.hpp"
 
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
-#include <lidarfx/pipelines/buildings/surface_energy_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_class_table.hpp>
 
 #include <cmath>
 #include <filesystem>

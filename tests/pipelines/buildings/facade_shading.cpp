@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/pipelines/buildings/facade_patches.hpp>
-#include <lidarfx/pipelines/buildings/facade_shading.hpp>
+#include <lidarfx/pipelines/buildings/facade_lit.hpp>
 
 #include <cmath>
 #include <random>

@@ -4,7 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/pipelines/buildings/facade_patches.hpp>
-#include <lidarfx/pipelines/buildings/facade_sky.hpp>
+#include <lidarfx/pipelines/buildings/facade_sky_view.hpp>
 
 #include <cmath>
 #include <random>

@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/pipelines/buildings/facade_patches.hpp>
-#include <lidarfx/pipelines/buildings/patches.hpp>
+#include <lidarfx/pipelines/buildings/surface_patches.hpp>
 
 #include <cmath>
 #include <map>

@@ -5,7 +5,7 @@
 
 #include <lidarfx/kernels/solar/clear_sky.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
-#include <lidarfx/pipelines/buildings/surface_energy_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_class_table.hpp>
 
 #include <cmath>
 #include <random>

@@ -24,10 +24,10 @@
 #include "lidarfx/kernels/solar/sky_options.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
-#include "lidarfx/pipelines/buildings/facade_rays.hpp"
-#include "lidarfx/pipelines/buildings/facade_shading.hpp"
-#include "lidarfx/pipelines/buildings/facade_sky.hpp"
-#include "lidarfx/pipelines/buildings/patches.hpp"
+#include "lidarfx/pipelines/buildings/facade_observers.hpp"
+#include "lidarfx/pipelines/buildings/facade_lit.hpp"
+#include "lidarfx/pipelines/buildings/facade_sky_view.hpp"
+#include "lidarfx/pipelines/buildings/surface_patches.hpp"
 
 namespace lidarfx::detail {
 

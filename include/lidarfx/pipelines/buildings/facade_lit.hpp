@@ -18,7 +18,7 @@
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
-#include "lidarfx/pipelines/buildings/facade_rays.hpp"
+#include "lidarfx/pipelines/buildings/facade_observers.hpp"
 
 namespace lidarfx {
 

@@ -18,8 +18,8 @@
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
-#include "lidarfx/pipelines/buildings/facade_rays.hpp"
-#include "lidarfx/pipelines/buildings/facade_shading.hpp"
+#include "lidarfx/pipelines/buildings/facade_observers.hpp"
+#include "lidarfx/pipelines/buildings/facade_lit.hpp"
 
 namespace lidarfx {
 
