@@ -5,8 +5,8 @@
 #include <benchmark/benchmark.h>
 
 #include <lidarfx/kernels/solar/clear_sky.hpp>
-#include <lidarfx/pipelines/buildings/facade_patches.hpp>
 #include <lidarfx/pipelines/buildings/facade_lit.hpp>
+#include <lidarfx/pipelines/buildings/facade_patches.hpp>
 #include <lidarfx/pipelines/buildings/facade_sky_view.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
@@ -77,8 +77,8 @@ void bm_surface_energy_year(benchmark::State& state)
     const int threads = static_cast<int>(state.range(0));
     std::size_t roofs = 0, facades = 0, daylight = 0;
     for (auto _ : state) {
-        const auto res = lidarfx::surface_energy(t.dsm, t.ids, 1.0, {40.0, -75.2, -5.0}, records,
-                                                 {.run = {.threads = threads}});
+        const auto res =
+            lidarfx::surface_energy(t.dsm, t.ids, 1.0, {40.0, -75.2, -5.0}, records, {.run = {.threads = threads}});
         roofs = res.roofs.size();
         facades = res.facades.size();
         daylight = res.sun_up_records;

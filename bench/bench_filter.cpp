@@ -7,9 +7,9 @@
 #include <lidarfx/kernels/filter/angular_filter.hpp>
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
 
+#include "common.hpp"
 #include "reference/angular_filter.hpp"
 #include "reference/slope_aspect.hpp"
-#include "common.hpp"
 
 #include <string>
 

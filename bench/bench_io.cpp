@@ -5,6 +5,7 @@
 // (format 6) when LIDARFX_PDAL_DATA names PDAL's test/data folder, else on the committed fixtures.
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -12,7 +13,6 @@
 #include <map>
 #include <random>
 #include <string>
-#include <unistd.h>
 
 #include "io/las.hpp"
 #include "io/las_writer.hpp"
@@ -30,10 +30,11 @@ public:
     {
         auto& path = paths_[{format, n}];
         if (!path.empty()) return path;
-        path = (std::filesystem::temp_directory_path() /
-                ("lidarfx_bench_io_" + std::to_string(::getpid()) + "_" + std::to_string(format) + "_" +
-                 std::to_string(n) + ".las")).string();
-        lidarfx::io::las_writer w(path, {.version_minor = 4, .point_format = format, .offset = std::array<double, 3>{}});
+        path = (std::filesystem::temp_directory_path() / ("lidarfx_bench_io_" + std::to_string(::getpid()) + "_" +
+                                                          std::to_string(format) + "_" + std::to_string(n) + ".las"))
+                   .string();
+        lidarfx::io::las_writer w(path,
+                                  {.version_minor = 4, .point_format = format, .offset = std::array<double, 3>{}});
         std::mt19937 rng(11);
         std::uniform_real_distribution<double> xy(0.0, 1000.0), z(0.0, 80.0);
         lidarfx::io::las_points chunk;

@@ -7,8 +7,8 @@
 
 #include <lidarfx/kernels/label/connected_components.hpp>
 
-#include "reference/components.hpp"
 #include "common.hpp"
+#include "reference/components.hpp"
 
 #include <cstdint>
 

@@ -9,8 +9,8 @@
 #include <lidarfx/kernels/filter/distance_transform.hpp>
 #include <lidarfx/kernels/filter/morphology.hpp>
 
-#include "reference/morphology.hpp"
 #include "common.hpp"
+#include "reference/morphology.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -8,9 +8,9 @@
 #include <lidarfx/kernels/interpolate/idw_fill.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 
+#include "common.hpp"
 #include "reference/idw.hpp"
 #include "reference/rasterize.hpp"
-#include "common.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -105,7 +105,10 @@ const survey& shuffled_points()
     return s;
 }
 
-lidarfx::grid survey_grid(const survey& s) { return lidarfx::snapped_grid(lidarfx::bounds_of(s.cloud()), cell_m); }
+lidarfx::grid survey_grid(const survey& s)
+{
+    return lidarfx::snapped_grid(lidarfx::bounds_of(s.cloud()), cell_m);
+}
 
 /// Elevation with 30 % NaN cells in round blobs of radius 2..40 cells (dropout patches, lakes).
 lidarfx::raster<float> holes_raster(std::ptrdiff_t n, unsigned seed, double share = 0.3)
@@ -155,8 +158,14 @@ void bm_rasterize(benchmark::State& state, const survey& s)
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s.x.size()));
 }
 
-void bm_rasterize_scan_order(benchmark::State& state) { bm_rasterize(state, points()); }
-void bm_rasterize_shuffled(benchmark::State& state) { bm_rasterize(state, shuffled_points()); }
+void bm_rasterize_scan_order(benchmark::State& state)
+{
+    bm_rasterize(state, points());
+}
+void bm_rasterize_shuffled(benchmark::State& state)
+{
+    bm_rasterize(state, shuffled_points());
+}
 
 /// A sparse survey: 1,000 points spread over 5 km x 5 km, 1 m cells (25 M cells). The accumulator holds
 /// only the tiles the points fall in; the time is mostly writing the six 25 M-cell rasters of the result.
@@ -229,10 +238,17 @@ BENCHMARK(bm_rasterize_shuffled)->ArgName("threads")->Arg(1)->Arg(0)->Unit(bench
 BENCHMARK(bm_rasterize_sparse)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(bm_rasterize_reference)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(bm_bounds_of)->Unit(benchmark::kMillisecond);
-BENCHMARK(bm_idw_fill)->ArgNames({"n", "k", "threads"})->ArgsProduct({{idw_n}, {8}, {1, 0}})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(bm_idw_fill)->ArgNames({"n", "k", "threads"})->Args({idw_n, 1, 1})->Args({idw_n, 32, 1})
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(bm_idw_fill)
+    ->ArgNames({"n", "k", "threads"})
+    ->ArgsProduct({{idw_n}, {8}, {1, 0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(bm_idw_fill)
+    ->ArgNames({"n", "k", "threads"})
+    ->Args({idw_n, 1, 1})
+    ->Args({idw_n, 32, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(bm_idw_fill_reference)->Arg(128)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -111,10 +111,10 @@ void bm_sky_view_factor(benchmark::State& state)
     const auto n = state.range(0);
     const auto& z = town(n);
     lidarfx::raster<float> svf(n, n);
-    const lidarfx::sky_view_factor_options opt{
-        .method = state.range(1) == 0 ? lidarfx::sky_view_factor_method::source_share
-                                      : lidarfx::sky_view_factor_method::cosine_weighted,
-        .run = {.threads = static_cast<int>(state.range(2))}};
+    const lidarfx::sky_view_factor_options opt{.method = state.range(1) == 0
+                                                             ? lidarfx::sky_view_factor_method::source_share
+                                                             : lidarfx::sky_view_factor_method::cosine_weighted,
+                                               .run = {.threads = static_cast<int>(state.range(2))}};
     for (auto _ : state) {
         lidarfx::sky_view_factor(z, svf, 1.0, opt);
         benchmark::DoNotOptimize(svf.data());

@@ -7,12 +7,12 @@
 
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
 
-#include "reference/ks.hpp"
 #include "common.hpp"
+#include "reference/ks.hpp"
 
 #include <algorithm>
-#include <ctime>
 #include <cstdint>
+#include <ctime>
 #include <random>
 #include <string>
 #include <vector>

@@ -71,8 +71,8 @@ void bm_polygonize(benchmark::State& state)
 /// Baseline: the first implementation (even-odd test of each hole against the exteriors of its label).
 void bm_polygonize_quadratic(benchmark::State& state)
 {
-    time_outlines(state,
-                  [](const auto& labels, const lidarfx::grid& g) { return reference::polygonize_quadratic(labels, g); });
+    time_outlines(
+        state, [](const auto& labels, const lidarfx::grid& g) { return reference::polygonize_quadratic(labels, g); });
 }
 
 }  // namespace

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include <lidarfx/kernels/points/rasterize.hpp>
-#include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/synth/scenes.hpp>
 
 #include "common.hpp"
 #include "io/las.hpp"
@@ -117,57 +117,67 @@ void bm_water_step_4096(benchmark::State& state)
     const lidarfx::execution run{.threads = threads};
     for (auto _ : state) {
         switch (state.range(0)) {
-        case 0: benchmark::DoNotOptimize(lidarfx::assess_water_inputs(in, cell).dropout_fraction); break;
-        case 1: benchmark::DoNotOptimize(lidarfx::water_vegetation(in, {.run = run}).data()); break;
-        case 2: benchmark::DoNotOptimize(lidarfx::water_angles(in, cell, {.run = run}).data()); break;
-        case 3: benchmark::DoNotOptimize(lidarfx::water_seeds(pr.dropout, {.run = run}).labels.data()); break;
-        case 4: benchmark::DoNotOptimize(lidarfx::intensity_bins(pr.mean_intensity, pr.dropout).bin.data()); break;
-        case 5: {
-            state.PauseTiming();
-            auto labels = labels_4096(false);
-            state.ResumeTiming();
-            lidarfx::join_across_bridges(labels, pr.min_z, lidarfx::water_levels(labels, pr.min_z), cell);
-            benchmark::DoNotOptimize(labels.data());
-            break;
-        }
-        case 6: {
-            state.PauseTiming();
-            auto labels = labels_4096(true);
-            state.ResumeTiming();
-            benchmark::DoNotOptimize(lidarfx::fill_small_islands(labels, cell, {.run = run}));
-            break;
-        }
-        case 7: {
-            state.PauseTiming();
-            auto labels = labels_4096(true);
-            state.ResumeTiming();
-            reference::fill_small_islands(labels, static_cast<std::size_t>(std::ceil(200.0 / (cell * cell))));
-            benchmark::DoNotOptimize(labels.data());
-            break;
-        }
-        case 8: {
-            state.PauseTiming();
-            auto labels = labels_4096(true);
-            std::vector<lidarfx::waterbody> bodies;
-            state.ResumeTiming();
-            lidarfx::measure_waterbodies(labels, bodies, in, cell);
-            benchmark::DoNotOptimize(bodies.data());
-            break;
-        }
-        case 9: {  // with the vegetation mask excluded, as extract_waterbodies calls it
-            static const auto vegetation = lidarfx::water_vegetation(in, {.run = {.threads = 0}});
-            benchmark::DoNotOptimize(lidarfx::flat_water_seeds(in, vegetation, {.run = run}).data());
-            break;
-        }
-        case 10:
-            benchmark::DoNotOptimize(lidarfx::water_surface_slope(in.min_z, cell, {.run = run}).data());
-            break;
+            case 0:
+                benchmark::DoNotOptimize(lidarfx::assess_water_inputs(in, cell).dropout_fraction);
+                break;
+            case 1:
+                benchmark::DoNotOptimize(lidarfx::water_vegetation(in, {.run = run}).data());
+                break;
+            case 2:
+                benchmark::DoNotOptimize(lidarfx::water_angles(in, cell, {.run = run}).data());
+                break;
+            case 3:
+                benchmark::DoNotOptimize(lidarfx::water_seeds(pr.dropout, {.run = run}).labels.data());
+                break;
+            case 4:
+                benchmark::DoNotOptimize(lidarfx::intensity_bins(pr.mean_intensity, pr.dropout).bin.data());
+                break;
+            case 5: {
+                state.PauseTiming();
+                auto labels = labels_4096(false);
+                state.ResumeTiming();
+                lidarfx::join_across_bridges(labels, pr.min_z, lidarfx::water_levels(labels, pr.min_z), cell);
+                benchmark::DoNotOptimize(labels.data());
+                break;
+            }
+            case 6: {
+                state.PauseTiming();
+                auto labels = labels_4096(true);
+                state.ResumeTiming();
+                benchmark::DoNotOptimize(lidarfx::fill_small_islands(labels, cell, {.run = run}));
+                break;
+            }
+            case 7: {
+                state.PauseTiming();
+                auto labels = labels_4096(true);
+                state.ResumeTiming();
+                reference::fill_small_islands(labels, static_cast<std::size_t>(std::ceil(200.0 / (cell * cell))));
+                benchmark::DoNotOptimize(labels.data());
+                break;
+            }
+            case 8: {
+                state.PauseTiming();
+                auto labels = labels_4096(true);
+                std::vector<lidarfx::waterbody> bodies;
+                state.ResumeTiming();
+                lidarfx::measure_waterbodies(labels, bodies, in, cell);
+                benchmark::DoNotOptimize(bodies.data());
+                break;
+            }
+            case 9: {  // with the vegetation mask excluded, as extract_waterbodies calls it
+                static const auto vegetation = lidarfx::water_vegetation(in, {.run = {.threads = 0}});
+                benchmark::DoNotOptimize(lidarfx::flat_water_seeds(in, vegetation, {.run = run}).data());
+                break;
+            }
+            case 10:
+                benchmark::DoNotOptimize(lidarfx::water_surface_slope(in.min_z, cell, {.run = run}).data());
+                break;
         }
     }
-    static const char* const names[] = {"assess_water_inputs", "water_vegetation", "water_angles",
-                                        "water_seeds", "intensity_bins", "join_across_bridges",
-                                        "fill_small_islands", "reference::fill_small_islands", "measure_waterbodies",
-                                        "flat_water_seeds", "water_surface_slope"};
+    static const char* const names[] = {
+        "assess_water_inputs", "water_vegetation",    "water_angles",       "water_seeds",
+        "intensity_bins",      "join_across_bridges", "fill_small_islands", "reference::fill_small_islands",
+        "measure_waterbodies", "flat_water_seeds",    "water_surface_slope"};
     state.SetLabel(names[state.range(0)]);
     state.SetItemsProcessed(state.iterations() * pr.g.size());
 }

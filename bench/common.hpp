@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -38,7 +38,8 @@ inline lidarfx::raster<float> random_terrain(std::ptrdiff_t rows, std::ptrdiff_t
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             z(r, c) = static_cast<float>(20.0 + 5.0 * std::sin(0.01 * static_cast<double>(r)) *
-                                                    std::cos(0.013 * static_cast<double>(c))) + noise(rng);
+                                                    std::cos(0.013 * static_cast<double>(c))) +
+                      noise(rng);
     return z;
 }
 
@@ -155,7 +156,8 @@ inline bool add_build_context()
         kept = true;
     }
 #endif
-    benchmark::AddCustomContext("allocator", kept ? "freed blocks < 512 MiB kept (as the lidarfx program)" : "glibc defaults");
+    benchmark::AddCustomContext("allocator",
+                                kept ? "freed blocks < 512 MiB kept (as the lidarfx program)" : "glibc defaults");
     return true;
 }
 

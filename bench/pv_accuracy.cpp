@@ -66,10 +66,12 @@ int main(int argc, char** argv)
             const auto r = roof_suitability(town.dsm, town.dtm, town.building_id, town.g, o);
             synth::roof_scores s;
             synth::score_roofs(town, r, o, s);
-            std::printf("  project town (town_scene seed 1, %zu buildings, 2 pts/m2, max z in 1 m cells): found %.3f tilt5 %.3f "
-                        "tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f\n",
-                        town.buildings.size(), s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(),
-                        s.precision(), s.area_rmse());
+            std::printf(
+                "  project town (town_scene seed 1, %zu buildings, 2 pts/m2, max z in 1 m cells): found %.3f tilt5 "
+                "%.3f "
+                "tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f\n",
+                town.buildings.size(), s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(), s.precision(),
+                s.area_rmse());
         }
         synth::roof_scores total;
         for (unsigned seed = first; seed <= last; ++seed) {
@@ -81,9 +83,11 @@ int main(int argc, char** argv)
             const auto r = roof_suitability(town.dsm, town.dtm, town.building_id, town.g, o);
             synth::roof_scores s;
             synth::score_roofs(town, r, o, s);
-            std::printf("  seed %u: found %.3f tilt5 %.3f tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f  (%.1f pts/m2)\n",
-                        seed, s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(), s.precision(),
-                        s.area_rmse(), town.density_per_m2);
+            std::printf(
+                "  seed %u: found %.3f tilt5 %.3f tilt10 %.3f az15 %.3f recall %.3f prec %.3f area %.3f  (%.1f "
+                "pts/m2)\n",
+                seed, s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(), s.precision(), s.area_rmse(),
+                town.density_per_m2);
             total.true_planes += s.true_planes;
             total.found += s.found;
             total.tilt_within_5 += s.tilt_within_5;
@@ -92,29 +96,40 @@ int main(int argc, char** argv)
             total.azimuth_within_15 += s.azimuth_within_15;
             total.azimuth_within_45 += s.azimuth_within_45;
             total.area_sq += s.area_sq;
-            total.tp += s.tp; total.fp += s.fp; total.fn += s.fn; total.tn += s.tn;
-            for (auto m : s.matches) { m.building_id += static_cast<std::int32_t>(seed) * 1000; total.matches.push_back(m); }
+            total.tp += s.tp;
+            total.fp += s.fp;
+            total.fn += s.fn;
+            total.tn += s.tn;
+            for (auto m : s.matches) {
+                m.building_id += static_cast<std::int32_t>(seed) * 1000;
+                total.matches.push_back(m);
+            }
         }
-        std::printf("%-7s %7zu %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n", mode == roof_mode::planes ? "planes" : "paper",
-                    total.true_planes, total.found_share(), total.tilt5(), total.tilt10(), total.azimuth15(),
-                    total.azimuth45(), total.recall(), total.precision(), total.area_rmse());
+        std::printf("%-7s %7zu %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
+                    mode == roof_mode::planes ? "planes" : "paper", total.true_planes, total.found_share(),
+                    total.tilt5(), total.tilt10(), total.azimuth15(), total.azimuth45(), total.recall(),
+                    total.precision(), total.area_rmse());
         auto worst = total.matches;
-        std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
+        std::sort(worst.begin(), worst.end(),
+                  [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
             std::printf("    worst tilt: seed %d building %d (%s) tilt %.1f vs %.1f\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].tilt, worst[k].true_tilt);
+                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].tilt,
+                        worst[k].true_tilt);
         std::erase_if(worst, [](const auto& m) { return m.true_tilt < 5; });  // no azimuth on flat planes
-        std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
+        std::sort(worst.begin(), worst.end(),
+                  [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
-            std::printf("    worst azimuth: seed %d building %d (%s) azimuth %.1f vs %.1f (tilt %.1f)\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].azimuth,
-                        worst[k].true_azimuth, worst[k].true_tilt);
+            std::printf("    worst azimuth: seed %d building %d (%s) azimuth %.1f vs %.1f (tilt %.1f)\n",
+                        worst[k].building_id / 1000, worst[k].building_id % 1000, synth::kind_name(worst[k].kind),
+                        worst[k].azimuth, worst[k].true_azimuth, worst[k].true_tilt);
         std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) {
             return std::fabs(a.area / a.true_area - 1) > std::fabs(b.area / b.true_area - 1);
         });
         for (std::size_t k = 0; k < std::min<std::size_t>(4, worst.size()); ++k)
             std::printf("    worst area: seed %d building %d (%s) %.1f vs %.1f m2\n", worst[k].building_id / 1000,
-                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].area, worst[k].true_area);
+                        worst[k].building_id % 1000, synth::kind_name(worst[k].kind), worst[k].area,
+                        worst[k].true_area);
     }
     return 0;
 }

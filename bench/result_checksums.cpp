@@ -20,7 +20,10 @@ struct fnv {
         for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
     }
     template <class T>
-    void value(const T& v) { bytes(&v, sizeof v); }
+    void value(const T& v)
+    {
+        bytes(&v, sizeof v);
+    }
 };
 
 template <class View>
@@ -108,8 +111,8 @@ int main()
             }
             print(name, "waterbodies.bodies", bh.h);
             const auto cf = confusion_counts(wb.water.view(), sc.truth.water_filled.view(), cell);
-            std::printf("%-10s %-28s %.6f %.6f %.6f\n", name.c_str(), "confusion", cf.accuracy(),
-                        cf.sensitivity(), cf.specificity());
+            std::printf("%-10s %-28s %.6f %.6f %.6f\n", name.c_str(), "confusion", cf.accuracy(), cf.sensitivity(),
+                        cf.specificity());
         }
     }
 }

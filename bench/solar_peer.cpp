@@ -31,8 +31,9 @@ lidarfx::raster<float> read_f32(const std::string& path, std::ptrdiff_t n)
     lidarfx::raster<float> z(n, n);
     std::ifstream in(path, std::ios::binary);
     in.read(reinterpret_cast<char*>(z.data()), static_cast<std::streamsize>(n * n * sizeof(float)));
-    if (!in) throw std::runtime_error(path + ": cannot read " + std::to_string(n) + " x " + std::to_string(n) +
-                                      " float32 cells (give the side N the file was written with)");
+    if (!in)
+        throw std::runtime_error(path + ": cannot read " + std::to_string(n) + " x " + std::to_string(n) +
+                                 " float32 cells (give the side N the file was written with)");
     return z;
 }
 
@@ -90,7 +91,8 @@ try {
         const auto z = read_f32(argv[2], n);
         lidarfx::raster<float> h(n, n);
         const lidarfx::horizon_map_options opt{.run = {.threads = std::stoi(argv[5])}};
-        const double s = best_seconds(std::stoi(argv[6]), [&] { lidarfx::horizon_map(z, h, 1.0, std::stod(argv[4]), opt); });
+        const double s =
+            best_seconds(std::stoi(argv[6]), [&] { lidarfx::horizon_map(z, h, 1.0, std::stod(argv[4]), opt); });
         write_raw(argv[7], h);
         report(s, n);
         return 0;

@@ -8,8 +8,8 @@
 
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
-#include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/synth/scenes.hpp>
 
 namespace {
 
@@ -59,7 +59,8 @@ int main()
         lake_rasters.push_back(rasterize(lakes.back().points.cloud(), lakes.back().truth.g));
         river_rasters.push_back(rasterize(rivers.back().points.cloud(), rivers.back().truth.g));
     }
-    std::printf("| configuration | lake acc / sens / spec / IoU %% | river acc / sens / spec / IoU %% |\n|---|---|---|\n");
+    std::printf(
+        "| configuration | lake acc / sens / spec / IoU %% | river acc / sens / spec / IoU %% |\n|---|---|---|\n");
     for (const auto& row : rows) {
         extract_waterbodies_options o;
         row.set(o);

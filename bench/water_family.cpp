@@ -13,14 +13,14 @@
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
 // seeds beyond bridges), WF_BSEED_{MIN,BEYOND,BEHIND,TOL,CLEAR,AWAY,SLOPE} (their options), WF_FLAT_SLOPE
 // (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (growing.min_free_seed_share),
-// WF_TRIM (0/1, trim_edges), WF_TRIM_{MIN,MAX,WIN} (trim_raised_edge_cells options), WF_SHORE (0/1, shore_cells), WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options),
-// WF_PRESET=1 (start from flat_seed_water_method() instead of the defaults);
-// WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
+// WF_TRIM (0/1, trim_edges), WF_TRIM_{MIN,MAX,WIN} (trim_raised_edge_cells options), WF_SHORE (0/1, shore_cells),
+// WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options), WF_PRESET=1 (start from flat_seed_water_method() instead
+// of the defaults); WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -68,8 +68,8 @@ std::vector<score> run(const std::vector<prepared>& scenes, const extract_waterb
                          "    %s seed %u ran %d seeds %zu grown %zu bodies %zu dropout %.3f acc %.2f sens %.2f "
                          "spec %.2f one %d\n",
                          p.truth.kind == synth::water_family_kind::lake ? "lake" : "river", p.seed, w.ran,
-                         w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction,
-                         100 * s.acc, 100 * s.sens, 100 * s.spec, s.has_bridges ? int(s.one_body) : -1);
+                         w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction, 100 * s.acc,
+                         100 * s.sens, 100 * s.spec, s.has_bridges ? int(s.one_body) : -1);
         out.push_back(s);
     }
     return out;
@@ -99,11 +99,16 @@ int main(int argc, char** argv)
     unsigned first = 1001, count = 50;
     bool ablation = false, list_scenes = false;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--tuning")) first = 1, count = 20;
-        else if (!std::strcmp(argv[i], "--first") && i + 1 < argc) first = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--count") && i + 1 < argc) count = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--ablation")) ablation = true;
-        else if (!std::strcmp(argv[i], "--scenes")) list_scenes = true;
+        if (!std::strcmp(argv[i], "--tuning"))
+            first = 1, count = 20;
+        else if (!std::strcmp(argv[i], "--first") && i + 1 < argc)
+            first = static_cast<unsigned>(std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--count") && i + 1 < argc)
+            count = static_cast<unsigned>(std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--ablation"))
+            ablation = true;
+        else if (!std::strcmp(argv[i], "--scenes"))
+            list_scenes = true;
         else {
             std::fprintf(stderr, "usage: water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]\n");
             return 2;
@@ -122,22 +127,25 @@ int main(int argc, char** argv)
     const double gen_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("seeds %u-%u per kind; scenes generated and rasterized in %.1f s\n\n", first, first + count - 1, gen_s);
     if (list_scenes) {
-        std::printf("| kind | seed | size m | pts/m² | cell m | H m | angle ° | overlap | drop nadir | glint | turbid | bridges | islands |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        std::printf(
+            "| kind | seed | size m | pts/m² | cell m | H m | angle ° | overlap | drop nadir | glint | turbid | "
+            "bridges | islands |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (const auto* v : {&lakes, &rivers})
             for (const auto& p : *v) {
                 const auto& s = p.truth;
                 std::printf("| %s | %u | %.0f | %.2f | %.1f | %.0f | %.1f | %.2f | %.2f | %.2f | %d | %d | %d |\n",
                             s.kind == synth::water_family_kind::lake ? "lake" : "river", p.seed, s.size_m,
                             s.density_per_m2, s.cell_m, s.scan.flying_height_m, s.scan.max_scan_angle_deg,
-                            s.scan.overlap, s.returns.drop_nadir, s.returns.glint, s.returns.turbid ? 1 : 0,
-                            s.bridges, s.islands);
+                            s.scan.overlap, s.returns.drop_nadir, s.returns.glint, s.returns.turbid ? 1 : 0, s.bridges,
+                            s.islands);
             }
         std::printf("\n");
     }
 
     std::vector<configuration> configs{
         {"previous method (before the family)", [](extract_waterbodies_options& o) { o = previous_water_method(); }},
-        {"lidarfx defaults", [](extract_waterbodies_options& o) {
+        {"lidarfx defaults",
+         [](extract_waterbodies_options& o) {
              if (const char* v = std::getenv("WF_PRESET"); v && std::atoi(v) != 0) o = flat_seed_water_method();
              if (const char* v = std::getenv("WF_FLAT_DROPOUTS")) o.flat_seed_dropouts = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_FREE_SHARE")) o.growing.min_free_seed_share = std::atof(v);
@@ -160,17 +168,20 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_LOWER")) o.flat.max_lower_share = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_BRIGHT")) o.flat.bright_density_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
-             if (const char* v = std::getenv("WF_FLAT_JOINTMIN")) o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_FLAT_JOINTMIN"))
+                 o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
              if (const char* v = std::getenv("WF_FIRST")) o.grow.test_first_step = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_BAND")) o.surface_slope.band_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_SLOPE")) o.flat.max_surface_slope = std::atof(v);
              if (const char* v = std::getenv("WF_SLOPE_RAD")) o.surface_slope.radius_cells = std::atoi(v);
-             if (const char* v = std::getenv("WF_SLOPE_MIN")) o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_SLOPE_MIN"))
+                 o.surface_slope.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_TOUCH")) o.bridges.join_touching = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_BSEED")) o.bridge_seed_rounds = std::atoi(v);
-             if (const char* v = std::getenv("WF_BSEED_MIN")) o.bridge_seed_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_BSEED_MIN"))
+                 o.bridge_seed_min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_BSEED_BEYOND")) o.bridge_seeds.beyond_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_BEHIND")) o.bridge_seeds.behind_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_BSEED_TOL")) o.bridge_seeds.level_tolerance_m = std::atof(v);
@@ -198,10 +209,12 @@ int main(int argc, char** argv)
                 change(o);
             };
         };
-        configs.push_back({"flat_seed_water_method() without the dropouts next to flat seeds (flat_seed_dropouts = false)",
-                           preset([](extract_waterbodies_options& o) { o.flat_seed_dropouts = false; })});
-        configs.push_back({"flat_seed_water_method() skipping every seed with a cell in a body (min_free_seed_share = 1)",
-                           preset([](extract_waterbodies_options& o) { o.growing.min_free_seed_share = 1; })});
+        configs.push_back(
+            {"flat_seed_water_method() without the dropouts next to flat seeds (flat_seed_dropouts = false)",
+             preset([](extract_waterbodies_options& o) { o.flat_seed_dropouts = false; })});
+        configs.push_back(
+            {"flat_seed_water_method() skipping every seed with a cell in a body (min_free_seed_share = 1)",
+             preset([](extract_waterbodies_options& o) { o.growing.min_free_seed_share = 1; })});
         configs.push_back({"flat_seed_water_method() with the default level drift (grow.level_drift_m = 0.005)",
                            preset([](extract_waterbodies_options& o) { o.grow.level_drift_m = 0.005; })});
         configs.push_back({"flat_seed_water_method() with bridge seeds of >= 8 cells (bridge_seed_min_cells = 8)",
@@ -220,10 +233,9 @@ int main(int argc, char** argv)
         configs.push_back({"without the level gate", [](extract_waterbodies_options& o) { o.grow.level_gate_m = 0; }});
         configs.push_back({"without level cells exempt from KS",
                            [](extract_waterbodies_options& o) { o.grow.level_ks_exempt_m = -1; }});
-        configs.push_back({"with flat seeds (flat_seeds = true)",
-                           [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
-        configs.push_back({"with flat seeds, without their bright and joint paths",
-                           [](extract_waterbodies_options& o) {
+        configs.push_back(
+            {"with flat seeds (flat_seeds = true)", [](extract_waterbodies_options& o) { o.flat_seeds = true; }});
+        configs.push_back({"with flat seeds, without their bright and joint paths", [](extract_waterbodies_options& o) {
                                o.flat_seeds = true;
                                o.flat.bright_density_ratio = 0;
                                o.flat.max_joint_ratio = 0;
@@ -237,12 +249,13 @@ int main(int argc, char** argv)
                                o.flat_seeds = true;
                                o.grow.level_rise_m = 0;
                            }});
-        configs.push_back({"with flat seeds and a level that follows min z only on a level surface "
-                           "(grow.level_follow_max_slope = 0.008)",
-                           [](extract_waterbodies_options& o) {
-                               o.flat_seeds = true;
-                               o.grow.level_follow_max_slope = 0.008;
-                           }});
+        configs.push_back(
+            {"with flat seeds and a level that follows min z only on a level surface "
+             "(grow.level_follow_max_slope = 0.008)",
+             [](extract_waterbodies_options& o) {
+                 o.flat_seeds = true;
+                 o.grow.level_follow_max_slope = 0.008;
+             }});
         configs.push_back({"without edge trimming (trim_edges = false)",
                            [](extract_waterbodies_options& o) { o.trim_edges = false; }});
         configs.push_back({"without shore cells (shore_cells = false)",
@@ -251,18 +264,19 @@ int main(int argc, char** argv)
                            [](extract_waterbodies_options& o) { o.grow.test_first_step = false; }});
         configs.push_back({"without seeds beyond bridges (bridge_seed_rounds = 0)",
                            [](extract_waterbodies_options& o) { o.bridge_seed_rounds = 0; }});
-        configs.push_back({"without bridges (no joins across decks, no seeds beyond them)",
-                           [](extract_waterbodies_options& o) {
-                               o.join_bridges = false;
-                               o.bridge_seed_rounds = 0;
-                           }});
+        configs.push_back(
+            {"without bridges (no joins across decks, no seeds beyond them)", [](extract_waterbodies_options& o) {
+                 o.join_bridges = false;
+                 o.bridge_seed_rounds = 0;
+             }});
         configs.push_back({"without level refinement", [](extract_waterbodies_options& o) {
-            o.level.tolerance_m = 0;
-            o.bridges.water_tolerance_m = 0;  // the tolerance both steps shared
-        }});
+                               o.level.tolerance_m = 0;
+                               o.bridges.water_tolerance_m = 0;  // the tolerance both steps shared
+                           }});
     }
-    std::printf("| configuration | kind | acc mean / 5%% / worst | sens mean / 5%% / worst | spec mean / 5%% / worst | "
-                "IoU mean / 5%% / worst | worst seed | bridges one body |\n|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| configuration | kind | acc mean / 5%% / worst | sens mean / 5%% / worst | spec mean / 5%% / worst | "
+        "IoU mean / 5%% / worst | worst seed | bridges one body |\n|---|---|---|---|---|---|---|---|\n");
     for (const auto& cfg : configs) {
         extract_waterbodies_options o;
         o.run.threads = 1;

@@ -6,23 +6,23 @@
 #endif
 
 #include <algorithm>
-#include <cctype>
-#include <exception>
-#include <thread>
+#include <array>
 #include <atomic>
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <exception>
 #include <future>
+#include <iomanip>
 #include <iostream>
 #include <limits>
-#include <array>
 #include <memory>
 #include <optional>
-#include <cerrno>
-#include <cstring>
-#include <utility>
-#include <iomanip>
 #include <sstream>
+#include <thread>
+#include <utility>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -55,7 +55,8 @@ arguments::arguments(const std::vector<std::string>& args, const std::vector<std
             continue;
         }
         if (a.rfind("--", 0) != 0) {
-            if (a.size() > 1 && a[0] == '-') throw std::invalid_argument("unknown option " + a + " (options are --name)");
+            if (a.size() > 1 && a[0] == '-')
+                throw std::invalid_argument("unknown option " + a + " (options are --name)");
             positional_.push_back(a);
             continue;
         }
@@ -144,10 +145,20 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option)
     }
     std::string unit = text.substr(used);
     unit.erase(std::remove(unit.begin(), unit.end(), ' '), unit.end());
-    static const std::map<std::string, double> units{
-        {"", 1.0},           {"B", 1.0},           {"K", 1024.0},        {"KB", 1e3},          {"KiB", 1024.0},
-        {"M", 1048576.0},    {"MB", 1e6},          {"MiB", 1048576.0},   {"G", 1073741824.0},  {"GB", 1e9},
-        {"GiB", 1073741824.0}, {"T", 1099511627776.0}, {"TB", 1e12},     {"TiB", 1099511627776.0}};
+    static const std::map<std::string, double> units{{"", 1.0},
+                                                     {"B", 1.0},
+                                                     {"K", 1024.0},
+                                                     {"KB", 1e3},
+                                                     {"KiB", 1024.0},
+                                                     {"M", 1048576.0},
+                                                     {"MB", 1e6},
+                                                     {"MiB", 1048576.0},
+                                                     {"G", 1073741824.0},
+                                                     {"GB", 1e9},
+                                                     {"GiB", 1073741824.0},
+                                                     {"T", 1099511627776.0},
+                                                     {"TB", 1e12},
+                                                     {"TiB", 1099511627776.0}};
     const auto it = units.find(unit);
     const double bytes = it == units.end() ? -1 : value * it->second;
     if (!(bytes >= 1) || !(bytes < 1.8e19)) {
@@ -163,10 +174,14 @@ output_formats output_formats_from(const arguments& a)
     const std::string text = a.text("formats", "");
     std::istringstream in(text);
     for (std::string name; std::getline(in, name, ',');) {
-        if (name == "asc") f.asc = true;
-        else if (name == "tif") f.tif = true;
-        else if (name == "png") f.png = true;
-        else throw usage_error("--formats takes a comma-separated list of asc, tif and png (got '" + text + "')");
+        if (name == "asc")
+            f.asc = true;
+        else if (name == "tif")
+            f.tif = true;
+        else if (name == "png")
+            f.png = true;
+        else
+            throw usage_error("--formats takes a comma-separated list of asc, tif and png (got '" + text + "')");
     }
     if (!f.asc && !f.tif && !f.png) throw usage_error("--formats names no format (got '" + text + "')");
     if (f.tif && !io::geotiff_available())
@@ -294,7 +309,9 @@ void refuse_grid_over_budget(const std::string& path, const grid& g, double byte
 }
 
 outlier_bins::outlier_bins(const bounds& b)
-    : box(b), bw(std::max(b.xmax - b.xmin, 1e-9) / bins), bh(std::max(b.ymax - b.ymin, 1e-9) / bins),
+    : box(b),
+      bw(std::max(b.xmax - b.xmin, 1e-9) / bins),
+      bh(std::max(b.ymax - b.ymin, 1e-9) / bins),
       count(static_cast<std::size_t>(bins) * bins, 0)
 {
 }
@@ -304,7 +321,7 @@ void outlier_bins::add(std::span<const double> x, std::span<const double> y)
     // Bins per metre: a product per point instead of a division (every count goes through here alike).
     const double per_x = 1.0 / bw, per_y = 1.0 / bh;
     const auto bin = [](double v, double lo, double per) {
-        const double b = (v - lo) * per;   // >= 0 and < bins + 1 for points inside the box
+        const double b = (v - lo) * per;  // >= 0 and < bins + 1 for points inside the box
         return b < 0 ? 0 : b >= bins - 1 ? bins - 1 : static_cast<int>(b);
     };
     for (std::size_t i = 0; i < x.size(); ++i) {
@@ -332,7 +349,7 @@ outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bou
             io::las_reader r(p);
             r.set_memory_budget(memory_budget_bytes);
             largest = std::max(largest, r.largest_chunk_bytes());
-            budget = r.memory_budget();   // 0 resolved
+            budget = r.memory_budget();  // 0 resolved
         }
         if (largest > 0) groups = std::clamp<std::size_t>(static_cast<std::size_t>(budget / (2 * largest)), 1, groups);
     }
@@ -344,7 +361,7 @@ outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bou
             std::vector<double> x, y;
             for (std::size_t f = g; f < paths.size(); f += groups) {
                 io::las_reader r(paths[f]);
-                r.set_memory_budget(memory_budget_bytes);   // LAZ chunks within --memory
+                r.set_memory_budget(memory_budget_bytes);  // LAZ chunks within --memory
                 while (r.position() < r.point_count()) {   // an empty read would shrink the chunk's buffers
                     const std::size_t n = r.read(chunk, std::size_t{1} << 20);
                     x.resize(n), y.resize(n);
@@ -367,12 +384,16 @@ void refuse_outliers(const outlier_bins& bins_of_points, std::uint64_t total, do
     const auto& count = bins_of_points.count;
     std::vector<std::uint64_t> column(bins, 0), row(bins, 0);
     for (int j = 0; j < bins; ++j)
-        for (int i = 0; i < bins; ++i) column[i] += count[static_cast<std::size_t>(j) * bins + i], row[j] += count[static_cast<std::size_t>(j) * bins + i];
+        for (int i = 0; i < bins; ++i)
+            column[i] += count[static_cast<std::size_t>(j) * bins + i],
+                row[j] += count[static_cast<std::size_t>(j) * bins + i];
     const auto core = [&](const std::vector<std::uint64_t>& h) {
         const double tail = 1e-4 * static_cast<double>(total);
         int lo = 0, hi = bins - 1;
-        for (double seen = 0; lo < bins - 1 && seen + static_cast<double>(h[lo]) <= tail; ++lo) seen += static_cast<double>(h[lo]);
-        for (double seen = 0; hi > lo && seen + static_cast<double>(h[hi]) <= tail; --hi) seen += static_cast<double>(h[hi]);
+        for (double seen = 0; lo < bins - 1 && seen + static_cast<double>(h[lo]) <= tail; ++lo)
+            seen += static_cast<double>(h[lo]);
+        for (double seen = 0; hi > lo && seen + static_cast<double>(h[hi]) <= tail; --hi)
+            seen += static_cast<double>(h[hi]);
         return std::pair{lo, hi};
     };
     const auto [c0, c1] = core(column);
@@ -402,9 +423,9 @@ void refuse_outliers(const outlier_bins& bins_of_points, std::uint64_t total, do
     std::ostringstream why;
     why << std::fixed << std::setprecision(0) << outside << " of " << total
         << " points lie far from the rest (the most near x " << where[0] / u << ", y " << where[1] / u
-        << ") and would stretch the grid from " << kept.xmax - kept.xmin << " m x " << kept.ymax - kept.ymin
-        << " m to " << box.xmax - box.xmin << " m x " << box.ymax - box.ymin << " m. Use --crop " << kept.xmin / u
-        << ',' << kept.ymin / u << ',' << kept.xmax / u << ',' << kept.ymax / u
+        << ") and would stretch the grid from " << kept.xmax - kept.xmin << " m x " << kept.ymax - kept.ymin << " m to "
+        << box.xmax - box.xmin << " m x " << box.ymax - box.ymin << " m. Use --crop " << kept.xmin / u << ','
+        << kept.ymin / u << ',' << kept.xmax / u << ',' << kept.ymax / u
         << " to keep the rest, or --force to keep them";
     throw usage_error(why.str());
 }
@@ -427,7 +448,8 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
         const std::pair<std::uintmax_t, std::uintmax_t> id{st.st_dev, st.st_ino};
         const auto same = std::find(identities.begin(), identities.end(), id);
         if (same != identities.end()) {
-            throw std::invalid_argument(p + " is the same file as " + paths[static_cast<std::size_t>(same - identities.begin())] +
+            throw std::invalid_argument(p + " is the same file as " +
+                                        paths[static_cast<std::size_t>(same - identities.begin())] +
                                         "; give each file once");
         }
         identities.push_back(id);
@@ -437,13 +459,13 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     bounds box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     std::uint64_t total = 0;
-    std::vector<std::string> warned;   // each warning once, however many files give it
+    std::vector<std::string> warned;  // each warning once, however many files give it
     std::optional<io::las_header> previous;
     io::survey_crs crs;
     for (const auto& p : paths) {
         io::las_reader r(p);
         const auto& h = r.header();
-        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of(h);   // tiles share their CRS
+        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of(h);  // tiles share their CRS
         previous = h;
         for (const auto& w : crs.warnings) {
             if (std::find(warned.begin(), warned.end(), w) != warned.end()) continue;
@@ -494,7 +516,8 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     if (opt.crop) {
         const bounds c{opt.crop->xmin * unit_xy, opt.crop->ymin * unit_xy, opt.crop->xmax * unit_xy,
                        opt.crop->ymax * unit_xy};
-        box = {std::max(box.xmin, c.xmin), std::max(box.ymin, c.ymin), std::min(box.xmax, c.xmax), std::min(box.ymax, c.ymax)};
+        box = {std::max(box.xmin, c.xmin), std::max(box.ymin, c.ymin), std::min(box.xmax, c.xmax),
+               std::min(box.ymax, c.ymax)};
         if (!(box.xmin <= box.xmax && box.ymin <= box.ymax)) throw usage_error("--crop does not overlap the survey");
     }
     // Refuse before allocating: the grid's memory against the budget, the cell against the density.
@@ -521,9 +544,8 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
         const double fits = round_cell_up(cell_m * std::sqrt(need / static_cast<double>(budget)));
         std::ostringstream why;
         why << "a grid of " << extent.str() << " at " << cell_m << " m cells (" << std::setprecision(4) << cells
-            << " cells) needs about " << gib(need) << ", over the memory budget of "
-            << gib(static_cast<double>(budget)) << "; use --cell " << fits
-            << " or more, --crop to a smaller extent, or a larger --memory";
+            << " cells) needs about " << gib(need) << ", over the memory budget of " << gib(static_cast<double>(budget))
+            << "; use --cell " << fits << " or more, --crop to a smaller extent, or a larger --memory";
         throw usage_error(why.str());
     }
     if (!opt.force && too_sparse) {
@@ -561,7 +583,7 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     survey_layout layout = survey_layout_of(paths, opt, true);
     survey s = std::move(layout.head);
     const grid g = layout.g;
-    std::optional<outlier_bins> outliers;   // counted as the points are read, when the layout left it to us
+    std::optional<outlier_bins> outliers;  // counted as the points are read, when the layout left it to us
     if (layout.outliers_unchecked) outliers.emplace(layout.header_box);
     const std::uint64_t total = layout.total;
     raster_accumulator acc(g);
@@ -579,8 +601,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
             if (!reader) {
                 if (file == paths.size()) return 0;
                 reader = std::make_unique<io::las_reader>(paths[file++]);
-                reader->set_threads(threads);   // LAZ chunks decode in parallel (no effect on LAS)
-                reader->set_memory_budget(opt.memory_budget_bytes);   // ... within --memory
+                reader->set_threads(threads);                        // LAZ chunks decode in parallel (no effect on LAS)
+                reader->set_memory_budget(opt.memory_budget_bytes);  // ... within --memory
             }
             dst.file = file - 1;
             // Stopping at the last point, not at an empty read, keeps the chunk's buffers for the next file.
@@ -632,7 +654,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     if (scans) s.scan_covered = scans->take();
     s.points = done;
     if (s.rasters.points_used == 0) {
-        throw std::runtime_error("no point of the input has finite coordinates (" + std::to_string(s.rasters.points_nan) +
+        throw std::runtime_error("no point of the input has finite coordinates (" +
+                                 std::to_string(s.rasters.points_nan) +
                                  " points with NaN or infinite x, y or z): nothing to rasterize");
     }
     return s;

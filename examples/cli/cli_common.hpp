@@ -3,13 +3,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
-#include <map>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <stdexcept>
-#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -63,14 +63,14 @@ struct output_formats {
 /// How read_survey reads and what it refuses; survey_options_from() fills it from --cell, --threads,
 /// --memory, --crop and --force.
 struct survey_options {
-    double cell_m = 2.0;                     ///< cell size, metres (whatever the unit of the files' CRS)
-    int threads = 0;                         ///< 0 = all cores
+    double cell_m = 2.0;  ///< cell size, metres (whatever the unit of the files' CRS)
+    int threads = 0;      ///< 0 = all cores
     bool show_progress = true;
-    std::uint64_t memory_budget_bytes = 0;   ///< 0: half the physical memory
-    double bytes_per_cell = 64;              ///< what the command keeps per grid cell (its memory estimate)
-    std::optional<bounds> crop;              ///< keep the points inside, build the grid over it (units of the CRS)
-    bool force = false;                      ///< run even when the cell is far too small for the point density
-    output_formats formats;                  ///< what the command writes (--formats)
+    std::uint64_t memory_budget_bytes = 0;  ///< 0: half the physical memory
+    double bytes_per_cell = 64;             ///< what the command keeps per grid cell (its memory estimate)
+    std::optional<bounds> crop;             ///< keep the points inside, build the grid over it (units of the CRS)
+    bool force = false;                     ///< run even when the cell is far too small for the point density
+    output_formats formats;                 ///< what the command writes (--formats)
 };
 
 /// --formats asc,tif,png (any non-empty subset, default all). @throws usage_error on an unknown name, or
@@ -101,10 +101,10 @@ struct survey {
     rasterize_result rasters;
     raster<std::uint8_t> scan_covered;  ///< cells a scan line crossed between two returns (scan_coverage);
                                         ///< empty when no file has GPS times
-    io::survey_crs crs;          ///< CRS and units of the first file (every file has the same units)
-    std::string crs_wkt;         ///< the CRS of the first file as WKT, empty when none (crs.wkt)
-    int epsg = 0;                ///< horizontal EPSG code of the first file (0 = none or user-defined)
-    std::size_t points = 0;      ///< points read
+    io::survey_crs crs;                 ///< CRS and units of the first file (every file has the same units)
+    std::string crs_wkt;                ///< the CRS of the first file as WKT, empty when none (crs.wkt)
+    int epsg = 0;                       ///< horizontal EPSG code of the first file (0 = none or user-defined)
+    std::size_t points = 0;             ///< points read
     std::size_t files = 0;
 };
 
@@ -113,8 +113,8 @@ struct survey {
 struct outlier_bins {
     static constexpr int bins = 256;
     bounds box;
-    double bw = 1, bh = 1;                 ///< bin width and height, metres
-    std::vector<std::uint64_t> count;      ///< bins x bins, row j (from ymin) then column i (from xmin)
+    double bw = 1, bh = 1;             ///< bin width and height, metres
+    std::vector<std::uint64_t> count;  ///< bins x bins, row j (from ymin) then column i (from xmin)
 
     explicit outlier_bins(const bounds& box);
     /// Counts points at x, y (metres; non-finite ones are skipped; outside the box, in the border bins).
@@ -136,17 +136,17 @@ outlier_bins count_outlier_bins(const std::vector<std::string>& paths, const bou
 
 /// What read_survey learns from the files' headers before reading any point, everything in metres.
 struct survey_layout {
-    survey head;                          ///< crs, crs_wkt, epsg and files set; no rasters yet
-    grid g;                               ///< the snapped grid over the files' bounds (or the crop box)
-    std::vector<bounds> extents;          ///< each file's header bounds, in input order
-    std::vector<std::uint64_t> points;    ///< each file's header point count
-    std::uint64_t total = 0;              ///< points of every file
-    double unit_xy = 1, unit_z = 1;       ///< metres per unit of the files' x and y, and of z
-    bounds header_box;                    ///< the union of the files' header boxes, metres (before any crop)
+    survey head;                        ///< crs, crs_wkt, epsg and files set; no rasters yet
+    grid g;                             ///< the snapped grid over the files' bounds (or the crop box)
+    std::vector<bounds> extents;        ///< each file's header bounds, in input order
+    std::vector<std::uint64_t> points;  ///< each file's header point count
+    std::uint64_t total = 0;            ///< points of every file
+    double unit_xy = 1, unit_z = 1;     ///< metres per unit of the files' x and y, and of z
+    bounds header_box;                  ///< the union of the files' header boxes, metres (before any crop)
     /// The outlier check is left to the reader: it counts outlier_bins over header_box as it reads every
     /// point once and calls refuse_outliers before returning (survey_layout_of with reader_checks_outliers).
     bool outliers_unchecked = false;
-    std::uint64_t memory_budget_bytes = 0;   ///< --memory (0: half the physical memory), for the LAZ readers
+    std::uint64_t memory_budget_bytes = 0;  ///< --memory (0: half the physical memory), for the LAZ readers
 };
 
 /// The header checks of read_survey, before any point is read: the same file twice, CRS and units
@@ -186,11 +186,11 @@ void report_non_finite_heights(const std::string& path, std::size_t cells);
 /// the files' header bounds (or the crop box); points outside those bounds (a header that lies) are reported
 /// as an error naming the file. Coordinates are converted to metres by the units of each file's CRS (io::crs_of,
 /// whose warnings are printed once each); files in different units, or in degrees (a geographic CRS, where
-/// cells and distances in metres mean nothing), are refused with a usage_error suggesting a reprojection. Before reading any point it refuses (usage_error, exit code 2) a grid whose
-/// memory estimate (cells x bytes_per_cell) exceeds the budget, and, unless `force`, a cell so small that
-/// 99 % of the cells would be empty at the survey's mean density; both messages name a cell size that fits.
-/// With `threads` != 1 the next chunk is read while the current one is rasterized; the chunks are added in
-/// file order either way, so the rasters do not depend on `threads`.
+/// cells and distances in metres mean nothing), are refused with a usage_error suggesting a reprojection. Before
+/// reading any point it refuses (usage_error, exit code 2) a grid whose memory estimate (cells x bytes_per_cell)
+/// exceeds the budget, and, unless `force`, a cell so small that 99 % of the cells would be empty at the survey's mean
+/// density; both messages name a cell size that fits. With `threads` != 1 the next chunk is read while the current one
+/// is rasterized; the chunks are added in file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
 

@@ -23,8 +23,7 @@ inline std::map<std::string, command>& registry()
 
 /// Registers a subcommand; use as `static const cli::registration reg{"water", "...", run_water};`.
 struct registration {
-    registration(const std::string& name, std::string summary,
-                 std::function<int(const std::vector<std::string>&)> run)
+    registration(const std::string& name, std::string summary, std::function<int(const std::vector<std::string>&)> run)
     {
         registry()[name] = command{std::move(summary), std::move(run)};
     }

@@ -3,16 +3,16 @@
 // writing rasters, pictures and tables to a folder and printing the scores against the scenes' truth.
 #include <chrono>
 #include <filesystem>
-#include <sstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
-#include <lidarfx/lidarfx.hpp>
 #include <lidarfx/kernels/metrics/confusion.hpp>
+#include <lidarfx/lidarfx.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 #include <lidarfx/synth/roof_metrics.hpp>
 #include <lidarfx/synth/roof_towns.hpp>
 #include <lidarfx/synth/scenes.hpp>
-#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 
 #include "cli_common.hpp"
 #include "command.hpp"
@@ -72,8 +72,8 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
         const bool detected = w.water.data()[i] != 0, truth = sc.truth.water_filled.data()[i] != 0;
         const std::array<std::uint8_t, 3> color = detected && truth ? std::array<std::uint8_t, 3>{40, 110, 255}
                                                   : detected        ? std::array<std::uint8_t, 3>{230, 30, 30}
-                                                  : truth        ? std::array<std::uint8_t, 3>{250, 210, 0}
-                                                                 : std::array<std::uint8_t, 3>{200, 200, 200};
+                                                  : truth           ? std::array<std::uint8_t, 3>{250, 210, 0}
+                                                                    : std::array<std::uint8_t, 3>{200, 200, 200};
         agreement.rgb.insert(agreement.rgb.end(), color.begin(), color.end());
     }
     folder.write("agreement.png", [&](const std::string& path) { lidarfx::io::write_png_rgb(path, agreement); });
@@ -95,7 +95,10 @@ struct roof_scored {
     double seconds = 0;
 };
 
-const char* mode_name(lidarfx::roof_mode m) { return m == lidarfx::roof_mode::paper ? "paper" : "planes"; }
+const char* mode_name(lidarfx::roof_mode m)
+{
+    return m == lidarfx::roof_mode::paper ? "paper" : "planes";
+}
 
 // roof_suitability in `mode` on `town`, scored against its truth, with its roof outputs in `dir`.
 roof_scored run_roof_town(const lidarfx::synth::roof_town& town, lidarfx::roof_mode mode,
@@ -107,7 +110,11 @@ roof_scored run_roof_town(const lidarfx::synth::roof_town& town, lidarfx::roof_m
     opt.run = {.threads = threads};
     const auto t0 = std::chrono::steady_clock::now();
     const auto r = lidarfx::roof_suitability(town.dsm, town.dtm, town.building_id, town.g, opt);
-    roof_scored out{mode, {}, town.buildings.size(), r.patches.size(), 0,
+    roof_scored out{mode,
+                    {},
+                    town.buildings.size(),
+                    r.patches.size(),
+                    0,
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
     lidarfx::synth::score_roofs(town, r, opt, out.score);
     for (const auto& p : r.patches) out.suitable += p.suitable;
@@ -118,9 +125,9 @@ roof_scored run_roof_town(const lidarfx::synth::roof_town& town, lidarfx::roof_m
     std::cout << std::fixed << std::setprecision(1) << mode_name(mode) << " mode: " << out.patches << " patches, "
               << out.suitable << " suitable; true planes " << s.true_planes << ", found " << 100 * s.found_share()
               << " %, tilt within 5 deg " << 100 * s.tilt5() << " %, within 10 deg " << 100 * s.tilt10()
-              << " %, azimuth within 15 deg " << 100 * s.azimuth15() << " %, suitability recall "
-              << 100 * s.recall() << " % precision " << 100 * s.precision() << " %, sloped-area RMSE "
-              << 100 * s.area_rmse() << " %  (" << std::setprecision(3) << out.seconds << " s)\n"
+              << " %, azimuth within 15 deg " << 100 * s.azimuth15() << " %, suitability recall " << 100 * s.recall()
+              << " % precision " << 100 * s.precision() << " %, sloped-area RMSE " << 100 * s.area_rmse() << " %  ("
+              << std::setprecision(3) << out.seconds << " s)\n"
               << std::defaultfloat;
     return out;
 }
@@ -169,13 +176,14 @@ int run_demo(const std::vector<std::string>& args)
     to.seed = roof_town_seed;
     const auto town = lidarfx::synth::make_roof_town(to);
     std::cout << "\n== roof town (seed " << to.seed << "): " << town.buildings.size() << " buildings, "
-              << town.planes.size() << " roof planes, " << std::setprecision(3) << town.density_per_m2
-              << " points/m2, " << town.g.cols << " x " << town.g.rows << " cells of " << town.g.cell << " m ==\n"
+              << town.planes.size() << " roof planes, " << std::setprecision(3) << town.density_per_m2 << " points/m2, "
+              << town.g.cols << " x " << town.g.rows << " cells of " << town.g.cell << " m ==\n"
               << std::defaultfloat;
     std::vector<roof_scored> roofs;
     for (const auto mode : {lidarfx::roof_mode::planes, lidarfx::roof_mode::paper})
         roofs.push_back(run_roof_town(town, mode, out / (std::string("roofs_") + mode_name(mode)), threads));
-    top.write("roof_scores.csv", [&](const std::string& path) { lidarfx::io::write_file(path, roof_scores_csv(roofs)); });
+    top.write("roof_scores.csv",
+              [&](const std::string& path) { lidarfx::io::write_file(path, roof_scores_csv(roofs)); });
     lidarfx::cli::commit_and_report(top, lidarfx::cli::command_line("demo", args));
 
     if (a.has("las")) {

@@ -39,7 +39,7 @@ int main(int argc, char** argv)
     } catch (const lidarfx::cli::usage_error& e) {
         std::cerr << "lidarfx " << it->first << ": " << e.what() << '\n';
         return 2;
-    } catch (const lidarfx::invalid_input& e) {   // input refused before it is read (a LAZ chunk over --memory)
+    } catch (const lidarfx::invalid_input& e) {  // input refused before it is read (a LAZ chunk over --memory)
         std::cerr << "lidarfx " << it->first << ": " << e.what() << '\n';
         return 2;
     } catch (const std::exception& e) {

@@ -170,7 +170,7 @@ std::vector<std::string> waterbody_file_names(const output_formats& formats)
 void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats, int threads)
 {
     const auto& pr = s.rasters;
-    const grid g = to_crs_units(pr.g, s);   // georeferenced in the files' CRS; heights stay in metres
+    const grid g = to_crs_units(pr.g, s);  // georeferenced in the files' CRS; heights stay in metres
     dir.set_units_note(units_note(s));
     // Every file is one job; the jobs run side by side (each writer is single-threaded).
     std::vector<std::function<void()>> jobs;
@@ -180,14 +180,17 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
     grid_file("min_z", pr.min_z);
     grid_file("max_z", pr.max_z);
     grid_file("mean_intensity", pr.mean_intensity);
-    jobs.emplace_back([&] { write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg, formats); });
-    jobs.emplace_back([&] { write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), g, s.crs_wkt, s.epsg, formats); });
+    jobs.emplace_back(
+        [&] { write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg, formats); });
+    jobs.emplace_back(
+        [&] { write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), g, s.crs_wkt, s.epsg, formats); });
     if (formats.png) {
         const auto png = [&](const std::string& name, const io::rgb_image& img) {
             dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
         };
         const auto f = picture_factor(pr.g);
-        jobs.emplace_back([&, png, f] { png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min))); });
+        jobs.emplace_back(
+            [&, png, f] { png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min))); });
         jobs.emplace_back([&, png, f] {
             png("mean_intensity.png", io::colorize(block_reduce<float>(pr.mean_intensity, f, finite_mean)));
         });
@@ -211,7 +214,8 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
     const auto cells = static_cast<double>(std::max<std::ptrdiff_t>(1, found.footprint.size()));
     std::cout << "footprint: " << std::fixed << std::setprecision(1) << 100.0 * static_cast<double>(flown) / cells
               << " % of the grid was flown (" << 100.0 * static_cast<double>(crossed) / cells
-              << " % crossed by scan lines without a return); outside is no data\n" << std::defaultfloat;
+              << " % crossed by scan lines without a return); outside is no data\n"
+              << std::defaultfloat;
     auto inputs = to_water_rasters(s.rasters);
     inputs.footprint = found.footprint;
     found.result = extract_waterbodies(inputs, s.rasters.g.cell, opt);
@@ -223,7 +227,7 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
 {
     const auto& pr = s.rasters;
     const auto& g = pr.g;
-    const grid in_crs = to_crs_units(g, s);   // georeferenced in the files' CRS; areas and levels stay in metres
+    const grid in_crs = to_crs_units(g, s);  // georeferenced in the files' CRS; areas and levels stay in metres
     dir.set_units_note(units_note(s));
     // The files are independent: they are written on `threads` threads, the longest (the picture) first.
     std::vector<std::function<void()>> jobs;
@@ -247,8 +251,10 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
                     continue;
                 }
                 bool data = false;
-                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 2); rr <= std::min(g.rows - 1, r + 2) && !data; ++rr)
-                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 2); cc <= std::min(g.cols - 1, c + 2); ++cc)
+                for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 2); rr <= std::min(g.rows - 1, r + 2) && !data;
+                     ++rr)
+                    for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 2); cc <= std::min(g.cols - 1, c + 2);
+                         ++cc)
                         if (!pr.dropout(rr, cc)) {
                             data = true;
                             break;
@@ -266,8 +272,18 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
         write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats);
     });
     jobs.push_back([&] {
-        std::vector<std::string> header{"label", "area_m2", "cells", "xmin", "ymin", "xmax", "ymax", "seed",
-                                        "theta_deg", "stopped_by_ks", "mean_intensity", "water_level_m",
+        std::vector<std::string> header{"label",
+                                        "area_m2",
+                                        "cells",
+                                        "xmin",
+                                        "ymin",
+                                        "xmax",
+                                        "ymax",
+                                        "seed",
+                                        "theta_deg",
+                                        "stopped_by_ks",
+                                        "mean_intensity",
+                                        "water_level_m",
                                         "dropout_fraction"};
         std::vector<std::vector<io::table_value>> rows;
         for (const auto& b : w.bodies) {
@@ -282,8 +298,11 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
         for (const auto& lp : polygonize(w.labels, in_crs)) {
             const auto& b = w.bodies[static_cast<std::size_t>(lp.label - 1)];
             for (const auto& poly : lp.polygons) {
-                features.push_back({poly.rings, {{"label", b.label}, {"area_m2", b.area_m2},
-                                                 {"water_level_m", b.water_level_m}, {"theta_deg", b.theta_deg}}});
+                features.push_back({poly.rings,
+                                    {{"label", b.label},
+                                     {"area_m2", b.area_m2},
+                                     {"water_level_m", b.water_level_m},
+                                     {"theta_deg", b.theta_deg}}});
             }
         }
         dir.write("waterbodies.geojson", [&](const std::string& path) { io::write_geojson(path, features, s.epsg); });

@@ -24,7 +24,7 @@ std::vector<std::string> waterbody_file_names(const output_formats& formats = {}
 
 /// Waterbodies of a survey found inside its footprint, and that footprint.
 struct survey_waterbodies {
-    raster<std::uint8_t> footprint;      ///< 1 = inside the area flown (footprint_of)
+    raster<std::uint8_t> footprint;  ///< 1 = inside the area flown (footprint_of)
     extract_waterbodies_result result;
 };
 
@@ -38,8 +38,7 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
 /// `footprint`: 1 = inside the area flown (footprint_of). The files are written on `threads` threads
 /// (0 = all cores); the same bytes whatever the count.
 void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,
-                       raster_view<const std::uint8_t> footprint, const output_formats& formats = {},
-                       int threads = 0);
+                       raster_view<const std::uint8_t> footprint, const output_formats& formats = {}, int threads = 0);
 
 /// Prints the diagnostics of the inputs: problems and warnings.
 void print_diagnostics(const water_diagnostics& d);

@@ -34,7 +34,8 @@ io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const 
     };
     for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
         for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
-            if (suitable(y, x) && !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
+            if (suitable(y, x) &&
+                !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
                 std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
                 px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
             }
@@ -66,15 +67,13 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
             rows.back().push_back(y.annual_kwh);
         }
     }
-    std::vector<std::string> header{"building_id", "patch_id", "tilt_deg", "azimuth_deg", "area_m2", "sloped_area_m2",
-                                    "kwp", "suitable", "centroid_x", "centroid_y", "flat", "reason"};
+    std::vector<std::string> header{"building_id", "patch_id", "tilt_deg",   "azimuth_deg", "area_m2", "sloped_area_m2",
+                                    "kwp",         "suitable", "centroid_x", "centroid_y",  "flat",    "reason"};
     if (!yields.empty()) {
         header.push_back("annual_kwh_m2");
         header.push_back("annual_kwh");
     }
-    out.write("roof_patches.csv", [&](const std::string& path) {
-        io::write_csv(path, header, rows);
-    });
+    out.write("roof_patches.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
     std::map<std::int32_t, std::size_t> index_of;
     for (std::size_t i = 0; i < r.patches.size(); ++i) index_of[r.patches[i].patch_id] = i;
     std::vector<io::geojson_feature> features;
@@ -82,10 +81,15 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
         const std::size_t i = index_of.at(lp.label);
         const roof_patch& p = r.patches[i];
         for (const auto& poly : lp.polygons) {
-            features.push_back({poly.rings, {{"building_id", p.building_id}, {"patch_id", p.patch_id},
-                                             {"tilt_deg", p.tilt_deg}, {"azimuth_deg", p.azimuth_deg},
-                                             {"area_m2", p.area_m2}, {"sloped_area_m2", p.sloped_area_m2},
-                                             {"kwp", p.kwp}, {"suitable", p.suitable}}});
+            features.push_back({poly.rings,
+                                {{"building_id", p.building_id},
+                                 {"patch_id", p.patch_id},
+                                 {"tilt_deg", p.tilt_deg},
+                                 {"azimuth_deg", p.azimuth_deg},
+                                 {"area_m2", p.area_m2},
+                                 {"sloped_area_m2", p.sloped_area_m2},
+                                 {"kwp", p.kwp},
+                                 {"suitable", p.suitable}}});
             if (!yields.empty()) {
                 features.back().properties.emplace_back("annual_kwh_m2", yields[i].annual_kwh_m2);
                 features.back().properties.emplace_back("annual_kwh", yields[i].annual_kwh);
@@ -97,8 +101,9 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
         const io::rgb_image img = patch_picture(r, frame.dsm, frame.cell_m);
         out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
     }
-    out.set_units_note("areas in m2 (horizontal area_m2, sloped_area_m2), angles in degrees (azimuth clockwise from "
-                       "grid north), centroids and outlines in the input's CRS units");
+    out.set_units_note(
+        "areas in m2 (horizontal area_m2, sloped_area_m2), angles in degrees (azimuth clockwise from "
+        "grid north), centroids and outlines in the input's CRS units");
 }
 
 }  // namespace lidarfx::cli

@@ -16,8 +16,8 @@
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
-#include "io/tmy3.hpp"
 #include "io/tables.hpp"
+#include "io/tmy3.hpp"
 #include "outputs.hpp"
 #include "roof_outputs.hpp"
 #include "solar_place.hpp"
@@ -62,9 +62,9 @@ constexpr double roofs_bytes_per_cell = 64;
 // The surface models of the run, in metres, on one grid.
 struct roof_inputs {
     raster<float> dsm, dtm;
-    grid g;                 // metres (read_survey's grid, or the .asc grid taken as metres)
-    grid out_grid;          // the same cells in the input's CRS units, for outputs
-    double unit_m = 1.0;    // metres per CRS unit of x and y
+    grid g;               // metres (read_survey's grid, or the .asc grid taken as metres)
+    grid out_grid;        // the same cells in the input's CRS units, for outputs
+    double unit_m = 1.0;  // metres per CRS unit of x and y
     std::string crs_wkt;
     int epsg = 0;
     std::string place_crs;  // the CRS whose centre PROJ may place for the sun ("" when none)
@@ -140,7 +140,8 @@ int run_roofs(const std::vector<std::string>& args)
     const output_formats formats = output_formats_from(a);
     std::vector<std::string> inputs = a.positional();
     if (inputs.size() < 2 || !(has_extension(inputs.back(), ".geojson") || has_extension(inputs.back(), ".json")))
-        throw usage_error("the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
+        throw usage_error(
+            "the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
     const std::string footprint_file = inputs.back();
     inputs.pop_back();
 
@@ -192,14 +193,19 @@ int run_roofs(const std::vector<std::string>& args)
         const io::footprint& f = fp.file.footprints[i];
         const burn_account& acc = fp.burn.footprints[i];
         std::string status = "used";
-        if (acc.outside) status = "outside the grid";
-        else if (acc.cells == 0) status = acc.contested ? "covered by other footprints" : "no cell centre inside";
-        else ++used;
-        report.push_back({f.building_id, static_cast<std::int64_t>(f.feature), status, static_cast<std::int64_t>(acc.cells),
-                          static_cast<std::int64_t>(acc.contested), static_cast<std::int64_t>(patches_of[f.building_id])});
+        if (acc.outside)
+            status = "outside the grid";
+        else if (acc.cells == 0)
+            status = acc.contested ? "covered by other footprints" : "no cell centre inside";
+        else
+            ++used;
+        report.push_back({f.building_id, static_cast<std::int64_t>(f.feature), status,
+                          static_cast<std::int64_t>(acc.cells), static_cast<std::int64_t>(acc.contested),
+                          static_cast<std::int64_t>(patches_of[f.building_id])});
     }
     for (const io::footprint_problem& p : fp.file.problems)
-        report.push_back({p.building_id, static_cast<std::int64_t>(p.feature), p.problem, std::int64_t{0}, std::int64_t{0}, std::int64_t{0}});
+        report.push_back({p.building_id, static_cast<std::int64_t>(p.feature), p.problem, std::int64_t{0},
+                          std::int64_t{0}, std::int64_t{0}});
     out.write("footprints.csv", [&](const std::string& path) {
         io::write_csv(path, {"building_id", "feature", "status", "cells", "contested_cells", "patches"}, report);
     });
@@ -230,8 +236,8 @@ int run_roofs(const std::vector<std::string>& args)
     }
     std::cout << std::fixed << std::setprecision(1) << "footprints: " << used << " used of "
               << fp.file.footprints.size() + fp.file.problems.size() << " (see footprints.csv)\n"
-              << "roof patches (" << mode << " mode): " << r.patches.size() << ", suitable " << suitable << ", "
-              << kwp << " kWp\n";
+              << "roof patches (" << mode << " mode): " << r.patches.size() << ", suitable " << suitable << ", " << kwp
+              << " kWp\n";
     commit_and_report(out, command_line("roofs", args));
     return 0;
 }

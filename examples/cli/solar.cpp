@@ -128,8 +128,8 @@ std::string fixed(double v, int digits)
 // file (for outputs that land where the input lies).
 struct geotiff_dsm {
     lidarfx::raster<float> values;
-    lidarfx::grid g;              // in the CRS's units
-    double cell_m = 0;            // g.cell in metres
+    lidarfx::grid g;    // in the CRS's units
+    double cell_m = 0;  // g.cell in metres
     lidarfx::io::survey_crs crs;
 };
 
@@ -141,7 +141,8 @@ geotiff_dsm read_geotiff_dsm(const std::string& path, std::uint64_t memory_budge
 {
     namespace io = lidarfx::io;
     if (!io::geotiff_available()) {
-        throw lidarfx::cli::usage_error(path + ": reading a GeoTIFF needs GDAL, and this lidarfx was built without "
+        throw lidarfx::cli::usage_error(path +
+                                        ": reading a GeoTIFF needs GDAL, and this lidarfx was built without "
                                         "it: convert it to ESRI ASCII (gdal_translate -of AAIGrid DSM.tif DSM.asc, "
                                         "heights and cells in metres) or install libgdal-dev and rebuild");
     }
@@ -172,8 +173,9 @@ geotiff_dsm read_geotiff_dsm(const std::string& path, std::uint64_t memory_budge
 int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
-    const cli::arguments a(args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats", "diffuse"},
-                           {"help", "force", "year-from-tmy", "facades"});
+    const cli::arguments a(
+        args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats", "diffuse"},
+        {"help", "force", "year-from-tmy", "facades"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
@@ -188,8 +190,8 @@ int run_solar(const std::vector<std::string>& args)
     if (year_from_tmy && !a.has("tmy")) throw cli::usage_error("--year-from-tmy needs --tmy FILE.csv");
     if (year_from_tmy && a.has("year")) throw cli::usage_error("--year and --year-from-tmy exclude each other");
     const int records_year = a.integer("year", 2021);
-    if (records_year < 1900 || records_year > 2200) throw cli::usage_error("--year must be in [1900, 2200] (got " +
-                                                           std::to_string(records_year) + ")");
+    if (records_year < 1900 || records_year > 2200)
+        throw cli::usage_error("--year must be in [1900, 2200] (got " + std::to_string(records_year) + ")");
     std::vector<lidarfx::irradiance_record> records;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     double lat = a.number("lat", nan), lon = a.number("lon", nan);
@@ -215,12 +217,14 @@ int run_solar(const std::vector<std::string>& args)
         }
     }
     const auto& inputs = a.positional();
-    const bool single_grid = inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
+    const bool single_grid =
+        inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
     // Refusals that need no input read: nothing can give the place.
     if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
         cli::require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
     }
-    if (!a.has("tmy") && !lidarfx::io::proj_available()) cli::require_place(lat, lon, "this lidarfx was built without PROJ");
+    if (!a.has("tmy") && !lidarfx::io::proj_available())
+        cli::require_place(lat, lon, "this lidarfx was built without PROJ");
 
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
@@ -273,8 +277,7 @@ int run_solar(const std::vector<std::string>& args)
     if (!a.has("tmy")) {
         records = lidarfx::clear_sky_records(records_year, site.latitude_deg, site.longitude_deg);
         std::cout << "weather: no --tmy given, using the clear-sky model (Haurwitz GHI, Erbs split) for "
-                  << records_year
-                  << "\n";
+                  << records_year << "\n";
     }
 
     lidarfx::io::output_folder out(a.text("out", ""), {inputs.begin(), inputs.end()});

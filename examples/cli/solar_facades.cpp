@@ -10,8 +10,8 @@
 
 #include <lidarfx/kernels/vector/polygonize.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
-#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 #include <lidarfx/pipelines/buildings/surface_class_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
@@ -65,9 +65,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
     const grid local{0.0, static_cast<double>(run.dsm.rows()) * run.cell_m, run.cell_m, run.dsm.rows(),
                      run.dsm.cols()};  // metres; the outlines below are polygonized on grid_crs
     const extract_buildings_result b = extract_buildings(run.dsm, local, {}, run.vegetation, bopt);
-    const surface_energy_result e = surface_energy(
-        run.dsm, b.building_id, run.cell_m, run.site, run.records,
-        {.run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
+    const surface_energy_result e =
+        surface_energy(run.dsm, b.building_id, run.cell_m, run.site, run.records,
+                       {.run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
 
     // Outlines in the input's CRS units; heights and areas in metres.
     std::vector<io::geojson_feature> features;
@@ -75,8 +75,11 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
         const building_record& rec = b.buildings[static_cast<std::size_t>(lp.label - 1)];
         for (const auto& poly : lp.polygons) {
             features.push_back({poly.rings,
-                                {{"building_id", rec.id}, {"ground_z", rec.ground_z}, {"eave_z", rec.eave_z},
-                                 {"ridge_z", rec.ridge_z}, {"height_m", rec.ridge_z - rec.ground_z},
+                                {{"building_id", rec.id},
+                                 {"ground_z", rec.ground_z},
+                                 {"eave_z", rec.eave_z},
+                                 {"ridge_z", rec.ridge_z},
+                                 {"height_m", rec.ridge_z - rec.ground_z},
                                  {"roof_area_m2", rec.roof_area_horizontal_m2},
                                  {"roof_area_sloped_m2", rec.roof_area_sloped_m2},
                                  {"roof_surfaces", static_cast<std::int64_t>(rec.surfaces.size())}}});
@@ -93,8 +96,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                         en.quarter_kwh_m2_day[3]});
     }
     out.write("facade_patches.csv", [&](const std::string& path) {
-        io::write_csv(path, {"building_id", "patch_id", "level", "facing_azimuth_deg", "height_m", "area_m2",
-                             "annual_kwh_m2", "q1_kwh_m2_day", "q2_kwh_m2_day", "q3_kwh_m2_day", "q4_kwh_m2_day"},
+        io::write_csv(path,
+                      {"building_id", "patch_id", "level", "facing_azimuth_deg", "height_m", "area_m2", "annual_kwh_m2",
+                       "q1_kwh_m2_day", "q2_kwh_m2_day", "q3_kwh_m2_day", "q4_kwh_m2_day"},
                       rows);
     });
 
@@ -105,8 +109,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                       r.quarter_kwh_m2_day[2], r.quarter_kwh_m2_day[3], r.annual_kwh_m2, r.area_m2});
     }
     out.write("surface_table.csv", [&](const std::string& path) {
-        io::write_csv(path, {"surface", "jan_mar_kwh_m2_day", "apr_jun_kwh_m2_day", "jul_sep_kwh_m2_day",
-                             "oct_dec_kwh_m2_day", "annual_kwh_m2_yr", "area_m2"},
+        io::write_csv(path,
+                      {"surface", "jan_mar_kwh_m2_day", "apr_jun_kwh_m2_day", "jul_sep_kwh_m2_day",
+                       "oct_dec_kwh_m2_day", "annual_kwh_m2_yr", "area_m2"},
                       t1);
     });
     for (const bill_savings_row& r : bill_savings(table)) {
@@ -114,8 +119,8 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                       r.quarter_per_day[2], r.quarter_per_day[3], r.annual});
     }
     out.write("bill_savings.csv", [&](const std::string& path) {
-        io::write_csv(path, {"surface", "jan_mar_per_day", "apr_jun_per_day", "jul_sep_per_day", "oct_dec_per_day",
-                             "annual"},
+        io::write_csv(path,
+                      {"surface", "jan_mar_per_day", "apr_jun_per_day", "jul_sep_per_day", "oct_dec_per_day", "annual"},
                       t2);
     });
     if (run.png) {

@@ -18,7 +18,7 @@ struct solar_place_sources {
     std::string place_crs;  ///< the CRS PROJ may place the centre in ("" when none is known)
     std::string input;      ///< the first input's name, for messages
     double station_latitude_deg = 0, station_longitude_deg = 0;  ///< the TMY station's (NaN without --tmy)
-    double utc_offset_h = 0;                                      ///< the weather's time zone (0 without --tmy)
+    double utc_offset_h = 0;                                     ///< the weather's time zone (0 without --tmy)
 };
 
 /// The site of a solar run and the sentence that says where it comes from.

@@ -20,7 +20,7 @@ constexpr const char* manifest_header = "lidarfx tiles 2";
 constexpr const char* marker_name = ".lidarfx-tile-store";
 constexpr const char* manifest_name = "manifest.txt";
 constexpr char tile_file_magic[8] = {'L', 'F', 'X', 'S', 'T', 'O', 'R', '1'};
-constexpr std::size_t tile_header_bytes = 8 + 4 * 8;   // magic, index, fingerprint hash, payload size, checksum
+constexpr std::size_t tile_header_bytes = 8 + 4 * 8;  // magic, index, fingerprint hash, payload size, checksum
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what, int error)
 {
@@ -117,13 +117,13 @@ void write_file_atomically(const std::filesystem::path& path, const std::vector<
 {
     auto temporary = path;
     temporary += ".tmp" + std::to_string(::getpid());
-    remove_regular(temporary);   // a leftover of this process id; anything else there makes open fail
+    remove_regular(temporary);  // a leftover of this process id; anything else there makes open fail
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0) fail(temporary, "cannot open for writing", errno);
     const auto give_up = [&](const char* what) {
         const int error = errno;
         ::close(fd);
-        ::unlink(temporary.c_str());   // this run's temporary: never left behind a failed write
+        ::unlink(temporary.c_str());  // this run's temporary: never left behind a failed write
         fail(temporary, what, error);
     };
     std::size_t done = 0;
@@ -136,7 +136,7 @@ void write_file_atomically(const std::filesystem::path& path, const std::vector<
         }
         done += static_cast<std::size_t>(n);
     }
-    if (::fsync(fd) != 0 && errno != EINVAL) give_up("flushing to disk failed");   // EINVAL: cannot sync
+    if (::fsync(fd) != 0 && errno != EINVAL) give_up("flushing to disk failed");  // EINVAL: cannot sync
     if (::close(fd) != 0) {
         const int error = errno;
         ::unlink(temporary.c_str());
@@ -159,11 +159,13 @@ void write_file_atomically(const std::filesystem::path& path, const std::vector<
 }
 
 tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
-    : dir_(std::move(dir)), fingerprint_(std::move(fingerprint)),
+    : dir_(std::move(dir)),
+      fingerprint_(std::move(fingerprint)),
       fingerprint_hash_(fnv1a64(fingerprint_.data(), fingerprint_.size()))
 {
-    const std::string what_to_do = "; lidarfx keeps its tiles only in a folder it made there and touched nothing: "
-                                   "move it away, or choose another --out";
+    const std::string what_to_do =
+        "; lidarfx keeps its tiles only in a folder it made there and touched nothing: "
+        "move it away, or choose another --out";
     struct stat st {};
     if (::lstat(dir_.c_str(), &st) != 0) {
         if (errno != ENOENT) fail(dir_, "cannot inspect", errno);
@@ -177,7 +179,7 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
     bool marked = false, any = false;
     std::vector<std::size_t> tiles;
     std::vector<std::string> warnings;
-    std::string stranger;   // the first entry that is not the store's
+    std::string stranger;  // the first entry that is not the store's
     for (const auto& entry : std::filesystem::directory_iterator(dir_)) {
         any = true;
         const std::string name = entry.path().filename().string();
@@ -185,10 +187,11 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
         if (::lstat(entry.path().c_str(), &e) != 0) fail(entry.path(), "cannot inspect", errno);
         const auto tile = tile_of_name(name);
         if (tile && !S_ISREG(e.st_mode)) {
-            foreign_.insert(*tile);   // not ours: recomputed, and left as it is
-            warnings.push_back(entry.path().string() + (S_ISLNK(e.st_mode)    ? " is a symbolic link, not a regular file"
-                                                        : S_ISFIFO(e.st_mode) ? " is a FIFO, not a regular file"
-                                                                              : " is not a regular file") +
+            foreign_.insert(*tile);  // not ours: recomputed, and left as it is
+            warnings.push_back(entry.path().string() +
+                               (S_ISLNK(e.st_mode)    ? " is a symbolic link, not a regular file"
+                                : S_ISFIFO(e.st_mode) ? " is a FIFO, not a regular file"
+                                                      : " is not a regular file") +
                                "; recomputing the tile and leaving that entry as it is");
             continue;
         }
@@ -197,7 +200,8 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
         if ((!ours || !S_ISREG(e.st_mode)) && stranger.empty()) stranger = name;
         marked = marked || name == marker_name;
     }
-    if (any && !marked) throw usage_error(dir_.string() + " is not a lidarfx tile folder (no " + marker_name + ")" + what_to_do);
+    if (any && !marked)
+        throw usage_error(dir_.string() + " is not a lidarfx tile folder (no " + marker_name + ")" + what_to_do);
     if (!stranger.empty())
         throw usage_error(dir_.string() + " holds " + stranger + ", which lidarfx did not write" + what_to_do);
     if (!any) {
@@ -218,7 +222,8 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
             std::cerr << "lidarfx: warning: " << tile_path(t).string() << " " << why << "; recomputing the tile\n";
             remove_regular(tile_path(t));
         }
-        std::cerr << "lidarfx: resuming the run in " << dir_.string() << ": " << done_.size() << " tile(s) already done\n";
+        std::cerr << "lidarfx: resuming the run in " << dir_.string() << ": " << done_.size()
+                  << " tile(s) already done\n";
     } else {
         if (found) {
             std::cerr << "lidarfx: " << dir_.string() << " holds tiles of a run with other inputs or settings; "
@@ -227,9 +232,10 @@ tile_store::tile_store(std::filesystem::path dir, std::string fingerprint)
         for (const std::size_t t : tiles) remove_regular(tile_path(t));
     }
     for (const auto& w : warnings) std::cerr << "lidarfx: warning: " << w << "\n";
-    for (const auto& entry : std::filesystem::directory_iterator(dir_))   // temporaries of killed runs
+    for (const auto& entry : std::filesystem::directory_iterator(dir_))  // temporaries of killed runs
         if (temporary_name(entry.path().filename().string())) remove_regular(entry.path());
-    if (done_.empty()) write_file_atomically(dir_ / manifest_name, std::vector<std::uint8_t>(manifest.begin(), manifest.end()));
+    if (done_.empty())
+        write_file_atomically(dir_ / manifest_name, std::vector<std::uint8_t>(manifest.begin(), manifest.end()));
 }
 
 std::optional<std::vector<std::uint8_t>> tile_store::read_checked(std::size_t tile, std::string& why) const
@@ -309,7 +315,8 @@ void tile_store::remove()
 
 void remove_tile_folder(const std::filesystem::path& dir)
 {
-    struct stat st {}, marker_st {};
+    struct stat st {
+    }, marker_st{};
     // Only a real folder holding the marker is the store: a link, a file or a foreign folder is not touched.
     if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return;
     if (::lstat((dir / marker_name).c_str(), &marker_st) != 0 || !S_ISREG(marker_st.st_mode)) return;
@@ -318,7 +325,7 @@ void remove_tile_folder(const std::filesystem::path& dir)
         const std::string name = entry.path().filename().string();
         if (tile_of_name(name) || name == manifest_name || temporary_name(name)) remove_regular(entry.path());
     }
-    remove_regular(dir / marker_name);   // last: until the folder is empty it stays recognisably ours
+    remove_regular(dir / marker_name);  // last: until the folder is empty it stays recognisably ours
     if (::rmdir(dir.c_str()) != 0 && errno != ENOENT) {
         const std::string marker = "lidarfx tile store\n";
         write_file_atomically(dir / marker_name, std::vector<std::uint8_t>(marker.begin(), marker.end()), false);

@@ -59,7 +59,7 @@ private:
     std::string fingerprint_;
     std::uint64_t fingerprint_hash_ = 0;
     std::set<std::size_t> done_;
-    std::set<std::size_t> foreign_;   // tiles whose name holds an entry that is not a regular file
+    std::set<std::size_t> foreign_;  // tiles whose name holds an entry that is not a regular file
     mutable std::mutex mutex_;
 };
 

@@ -87,9 +87,12 @@ std::vector<survey_file_extent> survey_file_extents(const survey_layout& layout)
     std::vector<survey_file_extent> files;
     for (std::size_t f = 0; f < layout.extents.size(); ++f) {
         const bounds& e = layout.extents[f];
-        const double grow = 1e-6 + 1e-12 * std::max({std::abs(e.xmin), std::abs(e.xmax), std::abs(e.ymin), std::abs(e.ymax)});
-        if (layout.points[f] > 0) files.push_back({{e.xmin - grow, e.ymin - grow, e.xmax + grow, e.ymax + grow}, layout.points[f]});
-        else files.push_back({bounds{layout.g.x0 - 1e9, layout.g.y0 + 1e9, layout.g.x0 - 1e9, layout.g.y0 + 1e9}, 0});
+        const double grow =
+            1e-6 + 1e-12 * std::max({std::abs(e.xmin), std::abs(e.xmax), std::abs(e.ymin), std::abs(e.ymax)});
+        if (layout.points[f] > 0)
+            files.push_back({{e.xmin - grow, e.ymin - grow, e.xmax + grow, e.ymax + grow}, layout.points[f]});
+        else
+            files.push_back({bounds{layout.g.x0 - 1e9, layout.g.y0 + 1e9, layout.g.x0 - 1e9, layout.g.y0 + 1e9}, 0});
     }
     return files;
 }
@@ -101,19 +104,19 @@ tile_plan plan_survey_tiles(const survey_layout& layout, double tile_edge_m, con
         throw usage_error("--tile must be a positive number of metres (got " + std::to_string(tile_edge_m) + ")");
     tile_plan_options o;
     o.tile_edge_m = tile_edge_m;
-    o.halo_cells = 0;   // stage A bins each point in its own cell: no step reaches beyond the core
+    o.halo_cells = 0;  // stage A bins each point in its own cell: no step reaches beyond the core
     o.memory_budget_bytes = opt.memory_budget_bytes;
     o.bytes_per_cell = opt.bytes_per_cell;
-    o.bytes_per_tile_cell = 64;   // accumulator (24 B), finished rasters (18 B), scan lines (1 B), packed copy (19 B)
-    o.bytes_per_point = 72;       // a chunk as read (42 B) and its points in the core (30 B)
+    o.bytes_per_tile_cell = 64;  // accumulator (24 B), finished rasters (18 B), scan lines (1 B), packed copy (19 B)
+    o.bytes_per_point = 72;      // a chunk as read (42 B) and its points in the core (30 B)
     o.chunk_points = tile_chunk_points;
     o.tiles_in_flight = std::max(1, tiles_in_flight);
     try {
         return make_tile_plan(layout.g, survey_file_extents(layout), o);
     } catch (const invalid_input& e) {
         std::ostringstream why;
-        why << "--tile " << tile_edge_m << " does not fit --memory (lower --tile or --threads, or raise --memory): "
-            << e.what();
+        why << "--tile " << tile_edge_m
+            << " does not fit --memory (lower --tile or --threads, or raise --memory): " << e.what();
         throw usage_error(why.str());
     }
 }
@@ -128,14 +131,15 @@ std::vector<file_readers> survey_file_readers(const survey_layout& layout, const
     // handed points and open accumulators (24 B a cell) at once.
     std::vector<double> handed;
     auto readers = assign_file_readers(plan, files, max_handed_points, &handed);
-    const auto open = std::min(handed.size(), static_cast<std::size_t>(plan.tile_cols) + 2 + static_cast<std::size_t>(tiles_in_flight));
-    double most = 0, sum = 0;   // the largest sum of handed points over `open` consecutive tiles
+    const auto open = std::min(
+        handed.size(), static_cast<std::size_t>(plan.tile_cols) + 2 + static_cast<std::size_t>(tiles_in_flight));
+    double most = 0, sum = 0;  // the largest sum of handed points over `open` consecutive tiles
     for (std::size_t t = 0; t < handed.size(); ++t) {
         sum += handed[t] - (t >= open ? handed[t - open] : 0.0);
         most = std::max(most, sum);
     }
-    const double waiting = static_cast<double>(open) * static_cast<double>(plan.tile_cells) *
-                           static_cast<double>(plan.tile_cells) * 24.0;
+    const double waiting =
+        static_cast<double>(open) * static_cast<double>(plan.tile_cells) * static_cast<double>(plan.tile_cells) * 24.0;
     const bool fits = memory_budget_bytes == 0 ||
                       plan.peak_bytes_estimate + most * 30.0 + waiting <= static_cast<double>(memory_budget_bytes);
     return fits ? readers : assign_file_readers(plan, files, 0);
@@ -156,7 +160,8 @@ struct core_points {
         return_number.clear(), number_of_returns.clear(), classification.clear();
     }
     /// Adds point i of `chunk`, in cell `at` of the survey grid, to the core `core` whose window grid is `window`.
-    void push(const io::las_points& chunk, std::size_t i, const cell_index& at, const cell_box& core, const grid& window)
+    void push(const io::las_points& chunk, std::size_t i, const cell_index& at, const cell_box& core,
+              const grid& window)
     {
         const auto centre = window.center(at.row - core.row_min, at.col - core.col_min);
         x.push_back(centre[0]);
@@ -220,7 +225,7 @@ file_counts read_file_into(const survey_layout& layout, const std::string& path,
 {
     file_counts counts;
     io::las_reader reader(path);
-    reader.set_memory_budget(layout.memory_budget_bytes);   // LAZ chunks within --memory
+    reader.set_memory_budget(layout.memory_budget_bytes);  // LAZ chunks within --memory
     cell_box all = cores[0];
     std::vector<grid> windows;
     for (const cell_box& c : cores) {
@@ -288,7 +293,8 @@ tile_rasters read_tile(const survey_layout& layout, const std::vector<std::strin
     for (const std::size_t f : tile.files) {
         const file_counts c = read_file_into(
             layout, paths[f], plan.g, std::span(&core, 1), readers.at(f).home == index, crop,
-            [&](std::size_t, const core_points& p) { acc.add(p.cloud()); }, std::span(&out.scan_covered, 1), chunk, kept);
+            [&](std::size_t, const core_points& p) { acc.add(p.cloud()); }, std::span(&out.scan_covered, 1), chunk,
+            kept);
         counts.nan += c.nan, counts.outside += c.outside, counts.points += c.points;
     }
     out.rasters = acc.finish();
@@ -311,7 +317,10 @@ struct byte_writer {
     }
     void u64(std::uint64_t v) { put(&v, sizeof v); }
     template <class T>
-    void cells(const raster<T>& r) { put(r.data(), static_cast<std::size_t>(r.size()) * sizeof(T)); }
+    void cells(const raster<T>& r)
+    {
+        put(r.data(), static_cast<std::size_t>(r.size()) * sizeof(T));
+    }
 };
 
 struct byte_reader {
@@ -320,7 +329,8 @@ struct byte_reader {
     std::size_t at = 0;
     void get(void* p, std::size_t n)
     {
-        if (bytes.size() - at < n) throw std::runtime_error(where + ": a saved tile is cut short; remove it to start over");
+        if (bytes.size() - at < n)
+            throw std::runtime_error(where + ": a saved tile is cut short; remove it to start over");
         std::memcpy(p, bytes.data() + at, n);
         at += n;
     }
@@ -331,7 +341,10 @@ struct byte_reader {
         return v;
     }
     template <class T>
-    void cells(raster<T>& r) { get(r.data(), static_cast<std::size_t>(r.size()) * sizeof(T)); }
+    void cells(raster<T>& r)
+    {
+        get(r.data(), static_cast<std::size_t>(r.size()) * sizeof(T));
+    }
 };
 
 }  // namespace
@@ -341,10 +354,10 @@ std::vector<std::uint8_t> pack_tile(const tile_rasters& t)
     byte_writer w;
     w.put(tile_magic, sizeof tile_magic);
     const auto& r = t.rasters;
-    for (const std::uint64_t v : {std::uint64_t{t.index}, std::uint64_t(r.g.rows), std::uint64_t(r.g.cols),
-                                  std::uint64_t{r.points_used}, std::uint64_t{r.points_outside},
-                                  std::uint64_t{r.points_nan}, std::uint64_t{t.points_read},
-                                  std::uint64_t{!t.scan_covered.empty()}})
+    for (const std::uint64_t v :
+         {std::uint64_t{t.index}, std::uint64_t(r.g.rows), std::uint64_t(r.g.cols), std::uint64_t{r.points_used},
+          std::uint64_t{r.points_outside}, std::uint64_t{r.points_nan}, std::uint64_t{t.points_read},
+          std::uint64_t{!t.scan_covered.empty()}})
         w.u64(v);
     each_cell_raster([&](auto member) { w.cells(r.*member); });
     if (!t.scan_covered.empty()) w.cells(t.scan_covered);
@@ -361,7 +374,8 @@ tile_rasters unpack_tile(std::span<const std::uint8_t> bytes, const tile_plan& p
     tile_rasters t;
     t.index = in.u64();
     const auto rows = static_cast<std::ptrdiff_t>(in.u64()), cols = static_cast<std::ptrdiff_t>(in.u64());
-    if (t.index >= plan.tiles.size() || plan.tiles[t.index].core.rows() != rows || plan.tiles[t.index].core.cols() != cols)
+    if (t.index >= plan.tiles.size() || plan.tiles[t.index].core.rows() != rows ||
+        plan.tiles[t.index].core.cols() != cols)
         throw std::runtime_error(where + ": a saved tile does not fit this run's tiles; remove it to start over");
     const auto& core = plan.tiles[t.index].core;
     auto& r = t.rasters;
@@ -400,7 +414,8 @@ void tiled_survey_assembly::place(const tile_rasters& t)
     auto& r = s_.rasters;
     const auto copy = [&](auto& to, const auto& from) {
         for (std::ptrdiff_t i = 0; i < core.rows(); ++i)
-            std::copy(from.view().row(i), from.view().row(i) + core.cols(), to.view().row(core.row_min + i) + core.col_min);
+            std::copy(from.view().row(i), from.view().row(i) + core.cols(),
+                      to.view().row(core.row_min + i) + core.col_min);
     };
     each_cell_raster([&](auto member) { copy(r.*member, t.rasters.*member); });
     if (!t.scan_covered.empty()) {
@@ -435,11 +450,13 @@ std::uint64_t sampled_hash(const std::string& path, std::uint64_t size)
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
     constexpr std::uint64_t edge = 64 * 1024, block = 4 * 1024, blocks = 16;
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> spans;   // offset, length
-    if (size <= 2 * edge + blocks * block) spans.push_back({0, size});
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> spans;  // offset, length
+    if (size <= 2 * edge + blocks * block)
+        spans.push_back({0, size});
     else {
         spans.push_back({0, edge});
-        for (std::uint64_t k = 0; k < blocks; ++k) spans.push_back({edge + (size - 2 * edge - block) * k / (blocks - 1), block});
+        for (std::uint64_t k = 0; k < blocks; ++k)
+            spans.push_back({edge + (size - 2 * edge - block) * k / (blocks - 1), block});
         spans.push_back({size - edge, edge});
     }
     std::uint64_t h = fnv1a64(nullptr, 0);
@@ -466,7 +483,9 @@ std::string tiled_fingerprint(const std::vector<std::string>& paths, const surve
     std::ostringstream f;
     f.precision(17);
     f << "cell_m " << opt.cell_m << "\ntile_edge_m " << tile_edge_m << "\n";
-    if (opt.crop) f << "crop " << opt.crop->xmin << ' ' << opt.crop->ymin << ' ' << opt.crop->xmax << ' ' << opt.crop->ymax << "\n";
+    if (opt.crop)
+        f << "crop " << opt.crop->xmin << ' ' << opt.crop->ymin << ' ' << opt.crop->xmax << ' ' << opt.crop->ymax
+          << "\n";
     for (const auto& p : paths) {
         struct stat st {};
         if (::stat(p.c_str(), &st) != 0) throw std::runtime_error(p + ": cannot open: " + std::strerror(errno));
@@ -482,17 +501,17 @@ namespace {
 /// A tile of a tiled run while its parts come in: its own reading and the files handed to it.
 struct open_tile {
     std::mutex mutex;
-    int pending = 1;                              // parts still to come: its own reading + files handed to it
-    std::unique_ptr<raster_accumulator> acc;      // from its own reading on
-    std::vector<core_points> handed;              // points handed by the homes of its thin files
-    tile_rasters out;                             // counts and scan lines so far
+    int pending = 1;                          // parts still to come: its own reading + files handed to it
+    std::unique_ptr<raster_accumulator> acc;  // from its own reading on
+    std::vector<core_points> handed;          // points handed by the homes of its thin files
+    tile_rasters out;                         // counts and scan lines so far
 };
 
 /// A reading thread's buffers: the chunk as read and its points sorted by core.
 struct reading_buffers {
     io::las_points chunk;
     std::vector<core_points> kept;
-    std::optional<outlier_bins> outliers;   // the points of the files this thread read as their home
+    std::optional<outlier_bins> outliers;  // the points of the files this thread read as their home
 };
 
 }  // namespace
@@ -503,14 +522,15 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     survey_layout layout = survey_layout_of(paths, opt, true);
     const int threads = detail::resolve_threads(opt.threads, "--threads");
     const auto check_outliers_now = [&] {
-        refuse_outliers(count_outlier_bins(paths, layout.header_box, layout.unit_xy, opt.threads, opt.memory_budget_bytes),
-                        layout.total, layout.unit_xy);
+        refuse_outliers(
+            count_outlier_bins(paths, layout.header_box, layout.unit_xy, opt.threads, opt.memory_budget_bytes),
+            layout.total, layout.unit_xy);
     };
     const tile_plan plan = [&] {
         try {
             return plan_survey_tiles(layout, tile_edge_m, opt, threads);
         } catch (const usage_error&) {
-            if (layout.outliers_unchecked) check_outliers_now();   // far points would explain the refusal
+            if (layout.outliers_unchecked) check_outliers_now();  // far points would explain the refusal
             throw;
         }
     }();
@@ -525,7 +545,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
         check_outliers_now();
         count_outliers = false;
     }
-    const char* kill_hook = std::getenv("LIDARFX_TEST_KILL_AFTER_TILES");   // test hook, see the header
+    const char* kill_hook = std::getenv("LIDARFX_TEST_KILL_AFTER_TILES");  // test hook, see the header
     const long kill_after = kill_hook ? std::atol(kill_hook) : 0;
     const survey_layout& L = layout;
     const bool crop = opt.crop.has_value();
@@ -534,7 +554,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     std::mutex bar_mutex;
     std::size_t finished = 0;
     std::atomic<long> recorded{0};
-    std::atomic<bool> stop{false};          // set by the first failure: no tile starts after it
+    std::atomic<bool> stop{false};           // set by the first failure: no tile starts after it
     std::atomic<std::size_t> file_reads{0};  // files read by this run's tiles (not those taken from the store)
     const auto placed = [&](const tile_rasters& t) {
         assembly.place(t);
@@ -573,7 +593,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
         o.acc.reset();
         o.handed = {};
         if (store) {
-            store->save(t, pack_tile(r));   // a failure stops the run (below), keeping the tiles saved before
+            store->save(t, pack_tile(r));  // a failure stops the run (below), keeping the tiles saved before
             if (recorded.fetch_add(1) + 1 == kill_after) std::raise(SIGKILL);
         }
         placed(r);
@@ -621,14 +641,15 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
                 return;
             }
             const cell_box& core = tile.core;
-            auto acc = std::make_unique<raster_accumulator>(plan.g.window(core.row_min, core.col_min, core.rows(), core.cols()));
+            auto acc = std::make_unique<raster_accumulator>(
+                plan.g.window(core.row_min, core.col_min, core.rows(), core.cols()));
             tile_rasters own;
             own.index = index;
             std::unique_ptr<reading_buffers> buffers = take_buffers();
             io::las_points& chunk = buffers->chunk;
             std::vector<core_points>& kept = buffers->kept;
             for (const std::size_t f : tile.files) {
-                if (!reads_itself(f, index)) continue;   // handed to this tile
+                if (!reads_itself(f, index)) continue;  // handed to this tile
                 ++file_reads;
                 const bool home = readers[f].home == index;
                 const auto& to = hands[f];
@@ -674,7 +695,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
     }
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
-    for (auto& job : jobs) {   // the first failure (a write on a full disk, a bad file) ends the run
+    for (auto& job : jobs) {  // the first failure (a write on a full disk, a bad file) ends the run
         job = [&stop, body = std::move(job)] {
             if (stop) return;
             try {
@@ -704,7 +725,7 @@ survey read_survey_tiled(const std::vector<std::string>& paths, const survey_opt
                                            : "")
                   << "\n";
     }
-    return assembly.finish();   // the tiles stay in resume_dir until the caller's outputs are committed
+    return assembly.finish();  // the tiles stay in resume_dir until the caller's outputs are committed
 }
 
 }  // namespace lidarfx::cli

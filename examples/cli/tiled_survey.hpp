@@ -78,7 +78,7 @@ public:
 private:
     survey s_;
     tile_plan plan_;
-    std::uint64_t unread_points_ = 0;   // points of files no tile lists (outside the grid)
+    std::uint64_t unread_points_ = 0;  // points of files no tile lists (outside the grid)
     std::mutex mutex_;
 };
 

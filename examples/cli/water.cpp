@@ -5,7 +5,10 @@
 
 namespace {
 
-int run_water(const std::vector<std::string>& args) { return lidarfx::cli::run_water(args); }
+int run_water(const std::vector<std::string>& args)
+{
+    return lidarfx::cli::run_water(args);
+}
 
 const lidarfx::cli::registration reg{"water", "LAS files -> waterbody maps, tables and polygons", run_water};
 

@@ -61,10 +61,22 @@ constexpr const char* usage =
 
 const std::vector<std::string>& water_value_options()
 {
-    static const std::vector<std::string> names{"cell",         "out",          "threads",         "veg-height",
-                                                "min-seed-cells", "theta-start", "theta-step",      "theta-max",
-                                                "alpha",        "level-tolerance", "island-min-area", "bridge-span",
-                                                "hull-radius",  "memory",       "crop",            "formats",
+    static const std::vector<std::string> names{"cell",
+                                                "out",
+                                                "threads",
+                                                "veg-height",
+                                                "min-seed-cells",
+                                                "theta-start",
+                                                "theta-step",
+                                                "theta-max",
+                                                "alpha",
+                                                "level-tolerance",
+                                                "island-min-area",
+                                                "bridge-span",
+                                                "hull-radius",
+                                                "memory",
+                                                "crop",
+                                                "formats",
                                                 "tile"};
     return names;
 }
@@ -130,8 +142,8 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
          opt.vegetation.height_m);
     need(g.theta_start_deg >= 0 && g.theta_start_deg <= 90, "theta-start", "in [0, 90] degrees", g.theta_start_deg);
     need(g.theta_step_deg > 0 && g.theta_step_deg <= 90, "theta-step", "in (0, 90] degrees", g.theta_step_deg);
-    need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max",
-         "in [--theta-start, 90] degrees", g.theta_max_deg);
+    need(g.theta_max_deg >= g.theta_start_deg && g.theta_max_deg <= 90, "theta-max", "in [--theta-start, 90] degrees",
+         g.theta_max_deg);
     need(g.ks.alpha > 0 && g.ks.alpha < 1, "alpha", "in (0, 1)", g.ks.alpha);
     need(opt.level.tolerance_m >= 0 && std::isfinite(opt.level.tolerance_m), "level-tolerance",
          "a finite number >= 0 (metres)", opt.level.tolerance_m);
@@ -162,7 +174,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     print_waterbodies(w);
     write_waterbodies(out, s, w, found.footprint, survey_options.formats, opt.run.threads);
     commit_and_report(out, command_line("water", args));
-    if (tile_edge_m > 0) remove_tile_folder(tiles_dir);   // the run is complete: its tiles are no longer needed
+    if (tile_edge_m > 0) remove_tile_folder(tiles_dir);  // the run is complete: its tiles are no longer needed
     return 0;
 }
 

@@ -101,8 +101,10 @@ int main(int argc, char** argv)
     for (std::ptrdiff_t i = 0; i < dsm.rows(); ++i)
         for (std::ptrdiff_t j = 0; j < dsm.cols(); ++j) {
             const std::int32_t id = b.building_id(i, j);
-            if (on_outline(b.building_id, i, j)) set_pixel(img, i, j, {0, 0, 0});
-            else if (id != 0) set_pixel(img, i, j, lidarfx::io::label_color(id), 0.6);
+            if (on_outline(b.building_id, i, j))
+                set_pixel(img, i, j, {0, 0, 0});
+            else if (id != 0)
+                set_pixel(img, i, j, lidarfx::io::label_color(id), 0.6);
         }
     write(out / "buildings-extracted.png", img, "buildings by id");
 
@@ -111,7 +113,8 @@ int main(int argc, char** argv)
     for (std::ptrdiff_t i = 0; i < dsm.rows(); ++i)
         for (std::ptrdiff_t j = 0; j < dsm.cols(); ++j) {
             const std::int32_t s = b.surface_id(i, j);
-            if (on_outline(b.building_id, i, j)) set_pixel(img, i, j, {0, 0, 0});
+            if (on_outline(b.building_id, i, j))
+                set_pixel(img, i, j, {0, 0, 0});
             else if (s != 0) {
                 const auto& surf = b.surfaces[static_cast<std::size_t>(s - 1)];
                 set_pixel(img, i, j,
@@ -157,8 +160,8 @@ int main(int argc, char** argv)
                 const auto* c = colours.rgb.data() + (i * colours.width + j) * 3;
                 set_pixel(img, i, j, {c[0], c[1], c[2]});
             }
-    std::cout << e.roofs.size() << " roof patches, " << e.facades.size() << " facade sub-patches, GHI "
-              << e.ghi_kwh_m2 << " kWh/m², cells " << lo << " .. " << hi << " kWh/m²\n";
+    std::cout << e.roofs.size() << " roof patches, " << e.facades.size() << " facade sub-patches, GHI " << e.ghi_kwh_m2
+              << " kWh/m², cells " << lo << " .. " << hi << " kWh/m²\n";
     // Twice the size, so that the one-cell ring of facade values shows.
     write(out / "buildings-energy.png", lidarfx::io::with_legend(enlarged(img, 2), lo, hi, "kWh/m²"),
           "annual energy of roofs and facades");

@@ -16,8 +16,8 @@
 
 namespace {
 
-constexpr double latitude_deg = 52.5, longitude_deg = 13.4;   // Berlin
-constexpr int utc_offset_h = 1;                               // CET: local standard time = UTC + 1 h
+constexpr double latitude_deg = 52.5, longitude_deg = 13.4;  // Berlin
+constexpr int utc_offset_h = 1;                              // CET: local standard time = UTC + 1 h
 constexpr double cell_m = 1.0;
 
 // Lowest and highest finite value.

@@ -22,7 +22,8 @@ namespace {
 constexpr std::ptrdiff_t tile = 200;  // pixels per scene side
 
 /// Draws one scene into `img` at (x0, y0), nearest-neighbour scaled to tile x tile pixels.
-void draw(lidarfx::io::rgb_image& img, std::ptrdiff_t x0, std::ptrdiff_t y0, const lidarfx::synth::water_family_scene& s)
+void draw(lidarfx::io::rgb_image& img, std::ptrdiff_t x0, std::ptrdiff_t y0,
+          const lidarfx::synth::water_family_scene& s)
 {
     const auto pr = lidarfx::rasterize(s.points.cloud(), s.g);
     const auto filled = lidarfx::idw_fill(pr.min_z, s.cell_m).filled;
@@ -34,9 +35,12 @@ void draw(lidarfx::io::rgb_image& img, std::ptrdiff_t x0, std::ptrdiff_t y0, con
             const int g = shade.view()(r, c);
             const bool truth = s.water_filled(r, c), hit = found.ran && found.water.view()(r, c);
             std::array<int, 3> rgb{g, g, g};
-            if (truth && hit) rgb = pr.dropout(r, c) ? std::array<int, 3>{20, 40, 120} : std::array<int, 3>{60, 110, 220};
-            else if (truth) rgb = {240, 210, 40};
-            else if (hit) rgb = {220, 40, 40};
+            if (truth && hit)
+                rgb = pr.dropout(r, c) ? std::array<int, 3>{20, 40, 120} : std::array<int, 3>{60, 110, 220};
+            else if (truth)
+                rgb = {240, 210, 40};
+            else if (hit)
+                rgb = {220, 40, 40};
             auto* p = &img.rgb[static_cast<std::size_t>(((y0 + py) * img.width + x0 + px) * 3)];
             for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(rgb[static_cast<std::size_t>(k)]);
         }
@@ -77,6 +81,7 @@ int main(int argc, char** argv)
     draw(cases, 4, 4, lidarfx::synth::dropout_pond_scene());
     draw(cases, 4 + tile + 4, 4, lidarfx::synth::specular_river_scene());
     lidarfx::io::write_png_rgb((out / "water-cases.png").string(), cases);
-    std::cout << "wrote " << (out / "water-family.png").string() << " and " << (out / "water-cases.png").string() << "\n";
+    std::cout << "wrote " << (out / "water-family.png").string() << " and " << (out / "water-cases.png").string()
+              << "\n";
     return 0;
 }

@@ -9,8 +9,14 @@
 #include <lidarfx/synth/scenes.hpp>  // only for the stand-in points
 
 namespace {
-void report(const std::string& why) { std::printf("cannot map water: %s\n", why.c_str()); }
-void use(std::int32_t label, double area_m2, double level_m) { std::printf("body %d: %.0f m2 at %.2f m\n", label, area_m2, level_m); }
+void report(const std::string& why)
+{
+    std::printf("cannot map water: %s\n", why.c_str());
+}
+void use(std::int32_t label, double area_m2, double level_m)
+{
+    std::printf("body %d: %.0f m2 at %.2f m\n", label, area_m2, level_m);
+}
 }  // namespace
 
 int main()
@@ -22,15 +28,15 @@ int main()
 
     // --- as in the README ---
     lidarfx::soa_cloud<> cloud(xs, ys, zs, intensities, returns, nreturns);
-    const lidarfx::grid g = lidarfx::snapped_grid(lidarfx::bounds_of(cloud), 2.0);    // 2 m cells on a 2 m lattice
-    const auto pr = lidarfx::rasterize(cloud, g, {.run = {.threads = 0}});            // min/max z, intensity, dropouts
+    const lidarfx::grid g = lidarfx::snapped_grid(lidarfx::bounds_of(cloud), 2.0);  // 2 m cells on a 2 m lattice
+    const auto pr = lidarfx::rasterize(cloud, g, {.run = {.threads = 0}});          // min/max z, intensity, dropouts
 
-    const auto angles = lidarfx::angular_filter(pr.min_z, g.cell);                    // degrees, NaN-aware
-    const auto seeds = lidarfx::morph_open(pr.dropout, 5);                            // 5x5, bit-packed
+    const auto angles = lidarfx::angular_filter(pr.min_z, g.cell);  // degrees, NaN-aware
+    const auto seeds = lidarfx::morph_open(pr.dropout, 5);          // 5x5, bit-packed
     const auto blobs = lidarfx::connected_components(seeds, lidarfx::connectivity::eight);
 
-    const auto water = lidarfx::extract_waterbodies(pr, {.run = {.threads = 0}});     // the whole method
-    for (const auto& issue : water.diagnostics.issues)                                // coded, with values
+    const auto water = lidarfx::extract_waterbodies(pr, {.run = {.threads = 0}});         // the whole method
+    for (const auto& issue : water.diagnostics.issues)                                    // coded, with values
         if (issue.severity == lidarfx::water_severity::problem) report(issue.message());  // why it cannot run
     for (const auto& body : water.bodies) use(body.label, body.area_m2, body.water_level_m);
     // --- end of the README's lines ---

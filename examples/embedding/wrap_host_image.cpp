@@ -35,7 +35,8 @@ int main()
     std::vector<float> storage(100 * 128, 0.0f);
     host::float_image img{storage.data(), 100, 120, 128 * sizeof(float)};
     for (int r = 0; r < img.rows_count; ++r)
-        for (int c = 0; c < img.cols_count; ++c) storage[static_cast<std::size_t>(r * 128 + c)] = 0.1f * static_cast<float>(c);
+        for (int c = 0; c < img.cols_count; ++c)
+            storage[static_cast<std::size_t>(r * 128 + c)] = 0.1f * static_cast<float>(c);
 
     static_assert(lidarfx::strided_raster<host::float_image_view>);
     const auto z = lidarfx::view_of(host::float_image_view{&img});  // no copy: same pointer, stride 128

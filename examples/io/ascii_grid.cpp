@@ -126,7 +126,7 @@ private:
 template <class T>
 bool parse(std::string_view token, T& value)
 {
-    if (!token.empty() && token.front() == '+') token.remove_prefix(1);   // from_chars rejects a leading '+'
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);  // from_chars rejects a leading '+'
     const auto res = std::from_chars(token.data(), token.data() + token.size(), value);
     return res.ec == std::errc() && res.ptr == token.data() + token.size();
 }

@@ -30,35 +30,36 @@ namespace lidarfx::io {
 namespace {
 
 // GeoKey ids (GeoTIFF 1.1, OGC 19-008r4) and the tags their values may live in.
-constexpr std::uint16_t model_type_key = 1024;        // 1 projected, 2 geographic, 3 geocentric
+constexpr std::uint16_t model_type_key = 1024;  // 1 projected, 2 geographic, 3 geocentric
 constexpr std::uint16_t geographic_type_key = 2048;
 constexpr std::uint16_t projected_type_key = 3072;
 constexpr std::uint16_t proj_linear_units_key = 3076;
-constexpr std::uint16_t proj_linear_unit_size_key = 3077;   // metres per unit when 3076 is user-defined
+constexpr std::uint16_t proj_linear_unit_size_key = 3077;  // metres per unit when 3076 is user-defined
 constexpr std::uint16_t vertical_type_key = 4096;
 constexpr std::uint16_t vertical_units_key = 4099;
 constexpr std::uint16_t double_params_tag = 34736;
 constexpr std::uint16_t user_defined = 32767;
 
 struct linear_unit {
-    int code;        // EPSG unit code
-    double m;        // metres per unit
+    int code;  // EPSG unit code
+    double m;  // metres per unit
     const char* name;
 };
 
 // EPSG linear units a GeoTIFF key may name (the common ones; GDAL knows every other).
 constexpr std::array<linear_unit, 8> linear_units{{{9001, metre_m, "metre"},
-                                                  {9002, international_foot_m, "foot"},
-                                                  {9003, us_survey_foot_m, "US survey foot"},
-                                                  {9005, 0.3047972654, "Clarke's foot"},
-                                                  {9014, 1.8288, "fathom"},
-                                                  {9015, 1852.0, "nautical mile"},
-                                                  {9030, 1852.0, "nautical mile"},
-                                                  {9036, 1000.0, "kilometre"}}};
+                                                   {9002, international_foot_m, "foot"},
+                                                   {9003, us_survey_foot_m, "US survey foot"},
+                                                   {9005, 0.3047972654, "Clarke's foot"},
+                                                   {9014, 1.8288, "fathom"},
+                                                   {9015, 1852.0, "nautical mile"},
+                                                   {9030, 1852.0, "nautical mile"},
+                                                   {9036, 1000.0, "kilometre"}}};
 
 const linear_unit* unit_by_code(int code)
 {
-    const auto it = std::find_if(linear_units.begin(), linear_units.end(), [&](const linear_unit& u) { return u.code == code; });
+    const auto it =
+        std::find_if(linear_units.begin(), linear_units.end(), [&](const linear_unit& u) { return u.code == code; });
     return it == linear_units.end() ? nullptr : &*it;
 }
 
@@ -74,7 +75,8 @@ std::string unit_name(double m)
 
 const las_geo_key* find_key(const las_header& h, std::uint16_t id)
 {
-    const auto it = std::find_if(h.geo_keys.begin(), h.geo_keys.end(), [&](const las_geo_key& k) { return k.id == id; });
+    const auto it =
+        std::find_if(h.geo_keys.begin(), h.geo_keys.end(), [&](const las_geo_key& k) { return k.id == id; });
     return it == h.geo_keys.end() ? nullptr : &*it;
 }
 
@@ -123,8 +125,8 @@ std::optional<linear_unit> explicit_unit(const las_header& h, std::uint16_t id, 
 {
     const auto u = known_unit(h, id);
     if (!u && short_key(h, id)) {
-        c.warnings.push_back("GeoKey " + std::to_string(id) + " names linear unit " + std::to_string(*short_key(h, id)) +
-                             ", which is not known here; it is ignored");
+        c.warnings.push_back("GeoKey " + std::to_string(id) + " names linear unit " +
+                             std::to_string(*short_key(h, id)) + ", which is not known here; it is ignored");
     }
     return u;
 }
@@ -139,14 +141,15 @@ bool has_crs_keys(const las_header& h)
 
 bool blank(const std::string& s)
 {
-    return std::all_of(s.begin(), s.end(), [](unsigned char ch) { return std::isspace(ch) || ch == '\'' || ch == '"'; });
+    return std::all_of(s.begin(), s.end(),
+                       [](unsigned char ch) { return std::isspace(ch) || ch == '\'' || ch == '"'; });
 }
 
 // ---- WKT without GDAL: a small tree of nodes, enough to find the units and the EPSG code. ----
 
 struct wkt_node {
-    std::string keyword;                 // upper case
-    std::vector<std::string> values;     // literal children (quotes removed)
+    std::string keyword;              // upper case
+    std::vector<std::string> values;  // literal children (quotes removed)
     std::vector<wkt_node> children;
 };
 
@@ -154,7 +157,9 @@ struct wkt_node {
 std::optional<wkt_node> parse_wkt(const std::string& text)
 {
     std::size_t i = 0;
-    const auto skip = [&] { while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i; };
+    const auto skip = [&] {
+        while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    };
     std::function<std::optional<wkt_node>(int)> node = [&](int depth) -> std::optional<wkt_node> {
         if (depth > 64) return std::nullopt;
         skip();
@@ -171,9 +176,12 @@ std::optional<wkt_node> parse_wkt(const std::string& text)
             if (text[i] == '"') {
                 std::string v;
                 for (++i; i < text.size(); ++i) {
-                    if (text[i] == '"' && i + 1 < text.size() && text[i + 1] == '"') v += text[++i];
-                    else if (text[i] == '"') break;
-                    else v += text[i];
+                    if (text[i] == '"' && i + 1 < text.size() && text[i + 1] == '"')
+                        v += text[++i];
+                    else if (text[i] == '"')
+                        break;
+                    else
+                        v += text[i];
                 }
                 if (i++ >= text.size()) return std::nullopt;
                 n.values.push_back(v);
@@ -187,7 +195,7 @@ std::optional<wkt_node> parse_wkt(const std::string& text)
                     if (!child) return std::nullopt;
                     n.children.push_back(std::move(*child));
                 } else {
-                    n.values.push_back(text.substr(start, i - start));   // an enumeration such as NORTH
+                    n.values.push_back(text.substr(start, i - start));  // an enumeration such as NORTH
                 }
             } else {
                 const std::size_t start = i;
@@ -224,7 +232,7 @@ const wkt_node* child_of(const wkt_node& n, std::initializer_list<const char*> k
 std::optional<double> wkt_linear_unit(const wkt_node& n)
 {
     const wkt_node* u = child_of(n, {"UNIT", "LENGTHUNIT"});
-    if (u == nullptr) {   // WKT2 may give the unit in each AXIS
+    if (u == nullptr) {  // WKT2 may give the unit in each AXIS
         if (const wkt_node* axis = child_of(n, {"AXIS"})) u = child_of(*axis, {"UNIT", "LENGTHUNIT"});
     }
     if (u == nullptr || u->values.size() < 2) return std::nullopt;
@@ -247,13 +255,13 @@ bool is_one_of(const std::string& keyword, std::initializer_list<const char*> na
 
 constexpr std::initializer_list<const char*> projected_keywords = {"PROJCS", "PROJCRS", "PROJECTEDCRS"};
 constexpr std::initializer_list<const char*> geographic_keywords = {"GEOGCS", "GEOGCRS", "GEOGRAPHICCRS", "GEODCRS",
-                                                                     "GEODETICCRS"};
+                                                                    "GEODETICCRS"};
 constexpr std::initializer_list<const char*> vertical_keywords = {"VERT_CS", "VERTCRS", "VERTICALCRS"};
 
 /// What one record (the GeoKeys or the WKT) says, before the rules of crs_of are applied.
 struct found {
-    bool crs = false;                    // a horizontal CRS was found
-    std::string wkt;                     // horizontal CRS for outputs (empty: none or no GDAL)
+    bool crs = false;  // a horizontal CRS was found
+    std::string wkt;   // horizontal CRS for outputs (empty: none or no GDAL)
     int epsg = 0;
     bool geographic = false;
     std::optional<double> horizontal_m;  // metres per unit of x and y, when the CRS says
@@ -271,7 +279,8 @@ found from_wkt_text(const std::string& text, survey_crs& c)
     if (is_one_of(root->keyword, {"COMPD_CS", "COMPOUNDCRS"})) {
         horizontal = nullptr;
         for (const auto& part : root->children) {
-            if (is_one_of(part.keyword, projected_keywords) || is_one_of(part.keyword, geographic_keywords)) horizontal = &part;
+            if (is_one_of(part.keyword, projected_keywords) || is_one_of(part.keyword, geographic_keywords))
+                horizontal = &part;
             if (is_one_of(part.keyword, vertical_keywords)) vertical = &part;
         }
         if (horizontal == nullptr) return f;
@@ -350,9 +359,9 @@ found from_srs(OGRSpatialReferenceH srs)
     } else if (OSRIsProjected(hz) || OSRIsLocal(hz)) {
         const double m = OSRGetLinearUnits(hz, nullptr);
         if (m > 0 && std::isfinite(m)) f.horizontal_m = m;
-        if (OSRIsLocal(hz)) return f;   // a unit without a place on Earth: nothing to carry
+        if (OSRIsLocal(hz)) return f;  // a unit without a place on Earth: nothing to carry
     } else {
-        return f;   // geocentric or vertical only: nothing to carry
+        return f;  // geocentric or vertical only: nothing to carry
     }
     f.crs = true;
     const char* authority = OSRGetAuthorityName(hz, nullptr);
@@ -362,7 +371,8 @@ found from_srs(OGRSpatialReferenceH srs)
         // GDAL keeps the code of "EPSG:26995 in US survey feet"; that code names the CRS in metres, so the
         // outputs get the CRS without it (its parameters in the new unit, as GDAL gives them).
         const srs_ptr by_code = srs_from_epsg(f.epsg);
-        if (by_code && std::abs(OSRGetLinearUnits(by_code.get(), nullptr) - *f.horizontal_m) > 1e-12 * *f.horizontal_m) {
+        if (by_code &&
+            std::abs(OSRGetLinearUnits(by_code.get(), nullptr) - *f.horizontal_m) > 1e-12 * *f.horizontal_m) {
             char* name = nullptr;
             OSRGetLinearUnits(hz, &name);
             const std::string unit = name != nullptr ? name : unit_name(*f.horizontal_m);
@@ -372,7 +382,7 @@ found from_srs(OGRSpatialReferenceH srs)
             f.epsg = 0;
         }
     }
-    if (f.epsg == 0) {   // the one EPSG CRS that matches exactly, if any (a user-defined CRS may be one)
+    if (f.epsg == 0) {  // the one EPSG CRS that matches exactly, if any (a user-defined CRS may be one)
         int count = 0;
         int* confidence = nullptr;
         OGRSpatialReferenceH* matches = OSRFindMatches(hz, nullptr, &count, &confidence);
@@ -390,7 +400,7 @@ found from_srs(OGRSpatialReferenceH srs)
     char* wkt = nullptr;
     if (OSRExportToWkt(hz, &wkt) == OGRERR_NONE && wkt != nullptr) f.wkt = wkt;
     CPLFree(wkt);
-    if (f.wkt.empty()) {   // some CRSs have no WKT1 form
+    if (f.wkt.empty()) {  // some CRSs have no WKT1 form
         wkt = nullptr;
         const char* options[] = {"FORMAT=WKT2_2019", nullptr};
         if (OSRExportToWktEx(hz, &wkt, options) == OGRERR_NONE && wkt != nullptr) f.wkt = wkt;
@@ -404,7 +414,7 @@ found from_srs(OGRSpatialReferenceH srs)
 std::vector<std::uint8_t> tiff_with_geokeys(const las_header& h)
 {
     struct entry {
-        std::uint16_t tag, type;   // type: 2 ASCII, 3 SHORT, 4 LONG, 12 DOUBLE
+        std::uint16_t tag, type;  // type: 2 ASCII, 3 SHORT, 4 LONG, 12 DOUBLE
         std::uint32_t count;
         std::vector<std::uint8_t> bytes;
     };
@@ -420,10 +430,18 @@ std::vector<std::uint8_t> tiff_with_geokeys(const las_header& h)
     };
     std::vector<std::uint16_t> directory{1, 1, 0, static_cast<std::uint16_t>(h.geo_keys.size())};
     for (const auto& k : h.geo_keys) directory.insert(directory.end(), {k.id, k.location, k.count, k.value});
-    std::vector<entry> entries{shorts(256, {1}), shorts(257, {1}), shorts(258, {8}), shorts(259, {1}),
-                               shorts(262, {1}), entry{273, 4, 1, {}}, shorts(277, {1}), shorts(278, {1}),
-                               entry{279, 4, 1, {1, 0, 0, 0}}, doubles(33550, {1.0, 1.0, 0.0}),
-                               doubles(33922, {0, 0, 0, 0, 0, 0}), shorts(34735, directory)};
+    std::vector<entry> entries{shorts(256, {1}),
+                               shorts(257, {1}),
+                               shorts(258, {8}),
+                               shorts(259, {1}),
+                               shorts(262, {1}),
+                               entry{273, 4, 1, {}},
+                               shorts(277, {1}),
+                               shorts(278, {1}),
+                               entry{279, 4, 1, {1, 0, 0, 0}},
+                               doubles(33550, {1.0, 1.0, 0.0}),
+                               doubles(33922, {0, 0, 0, 0, 0, 0}),
+                               shorts(34735, directory)};
     if (!h.geo_doubles.empty()) entries.push_back(doubles(34736, h.geo_doubles));
     if (!h.geo_ascii.empty()) {
         std::vector<std::uint8_t> text(h.geo_ascii.begin(), h.geo_ascii.end());
@@ -450,12 +468,12 @@ std::vector<std::uint8_t> tiff_with_geokeys(const las_header& h)
         if (e.bytes.size() <= 4) {
             if (!e.bytes.empty()) std::memcpy(out.data() + at + 8, e.bytes.data(), e.bytes.size());
         } else {
-            if (out.size() % 2) out.push_back(0);   // values start on a word boundary
+            if (out.size() % 2) out.push_back(0);  // values start on a word boundary
             put32(at + 8, static_cast<std::uint32_t>(out.size()));
             out.insert(out.end(), e.bytes.begin(), e.bytes.end());
         }
     }
-    put32(strip_entry, static_cast<std::uint32_t>(out.size()));   // the one pixel, last
+    put32(strip_entry, static_cast<std::uint32_t>(out.size()));  // the one pixel, last
     out.push_back(0);
     return out;
 }
@@ -502,11 +520,11 @@ found from_keys(const las_header& h, bool use_gdal, survey_crs& c)
         std::string why;
         srs_ptr srs = srs_from_geokeys(h, why);
         if (srs && !OSRIsProjected(srs.get()) && !OSRIsGeographic(srs.get())) {
-            const found local = from_srs(srs.get());   // a LOCAL_CS: units only
+            const found local = from_srs(srs.get());  // a LOCAL_CS: units only
             if (!code_key(h, projected_type_key) && !code_key(h, geographic_type_key)) return local;
             srs.reset();
         }
-        if (!srs) {   // GDAL could not read the whole directory, but the EPSG code itself may still be known
+        if (!srs) {  // GDAL could not read the whole directory, but the EPSG code itself may still be known
             if (const found alone = from_keys_alone(h); alone.crs) srs = srs_from_epsg(alone.epsg);
         }
         if (!srs) {
@@ -537,15 +555,17 @@ found from_keys(const las_header& h, bool use_gdal, survey_crs& c)
     if (f.crs && !f.geographic) {
         const auto unit = known_unit(h, proj_linear_units_key);
         if (!unit) {
-            c.warnings.push_back("the unit of EPSG:" + std::to_string(f.epsg) + " is not known without GDAL; metres are assumed");
+            c.warnings.push_back("the unit of EPSG:" + std::to_string(f.epsg) +
+                                 " is not known without GDAL; metres are assumed");
         } else if (unit->code != 9001) {
             c.warnings.push_back("EPSG:" + std::to_string(f.epsg) + " is given in " + unit->name +
                                  "; without GDAL nothing checks that the code names a CRS in that unit");
         }
     }
     if (!f.crs && (find_key(h, projected_type_key) || find_key(h, geographic_type_key))) {
-        c.warnings.push_back("its GeoKeys define a coordinate system by parameters, which needs GDAL to be "
-                             "carried; outputs carry no CRS");
+        c.warnings.push_back(
+            "its GeoKeys define a coordinate system by parameters, which needs GDAL to be "
+            "carried; outputs carry no CRS");
     }
     return f;
 }
@@ -572,8 +592,8 @@ found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c)
 bool same_crs_records(const las_header& a, const las_header& b)
 {
     const auto wkt_flag = [](const las_header& h) { return h.version_minor >= 4 && (h.global_encoding & 16) != 0; };
-    return a.geo_keys == b.geo_keys && a.geo_doubles == b.geo_doubles && a.geo_ascii == b.geo_ascii &&
-           a.wkt == b.wkt && a.has_wkt_record == b.has_wkt_record && wkt_flag(a) == wkt_flag(b);
+    return a.geo_keys == b.geo_keys && a.geo_doubles == b.geo_doubles && a.geo_ascii == b.geo_ascii && a.wkt == b.wkt &&
+           a.has_wkt_record == b.has_wkt_record && wkt_flag(a) == wkt_flag(b);
 }
 
 bool crs_gdal_available() noexcept
@@ -594,7 +614,7 @@ std::string survey_crs::for_outputs() const
 std::string survey_crs::describe() const
 {
     std::string what = epsg != 0 ? "EPSG:" + std::to_string(epsg) : !source.empty() ? "a user-defined CRS" : "no CRS";
-    if (epsg == 0 && !wkt.empty()) {   // the CRS's name, as its WKT gives it: KEYWORD["name", ...
+    if (epsg == 0 && !wkt.empty()) {  // the CRS's name, as its WKT gives it: KEYWORD["name", ...
         const auto open = wkt.find("[\""), close = open == std::string::npos ? open : wkt.find('"', open + 2);
         if (close != std::string::npos && close > open + 2) what = wkt.substr(open + 2, close - open - 2);
     }
@@ -625,12 +645,14 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
         from_record = wkt_found, c.source = "WKT";
     } else if (keys) {
         found k = from_keys(h, use_gdal, c);
-        if (k.crs || !try_wkt()) from_record = k, c.source = k.crs ? "GeoKeys" : "";
-        else from_record = wkt_found, c.source = "WKT";
+        if (k.crs || !try_wkt())
+            from_record = k, c.source = k.crs ? "GeoKeys" : "";
+        else
+            from_record = wkt_found, c.source = "WKT";
     } else if (try_wkt()) {
         from_record = wkt_found, c.source = "WKT";
     }
-    try_wkt();   // an unreadable WKT record is reported even when the GeoKeys are used
+    try_wkt();  // an unreadable WKT record is reported even when the GeoKeys are used
     const found f = from_record.value_or(found{});
     c.wkt = f.wkt;
     c.epsg = f.epsg;
@@ -662,8 +684,9 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
     c.vertical_unit_m = vertical.value_or(c.geographic ? 1.0 : c.horizontal_unit_m);
     c.vertical_unit = unit_name(c.vertical_unit_m);
     if (!c.source.empty() && c.epsg == 0) {
-        c.warnings.push_back("no EPSG code names its CRS exactly: GeoTIFF outputs carry the CRS as WKT, the GeoJSON "
-                             "carries none");
+        c.warnings.push_back(
+            "no EPSG code names its CRS exactly: GeoTIFF outputs carry the CRS as WKT, the GeoJSON "
+            "carries none");
     }
     if (c.source.empty()) {
         c.warnings.push_back(std::string("it names no coordinate system: outputs carry none") +
@@ -674,7 +697,7 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
 
 survey_crs crs_of_wkt(const std::string& wkt, bool use_gdal)
 {
-    las_header h;   // a LAS 1.4 header whose only CRS record is the WKT
+    las_header h;  // a LAS 1.4 header whose only CRS record is the WKT
     h.version_minor = 4;
     h.global_encoding = 16;
     h.has_wkt_record = !wkt.empty();

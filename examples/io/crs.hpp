@@ -17,16 +17,16 @@ inline constexpr double us_survey_foot_m = 1200.0 / 3937.0;
 /// What a LAS file says about its coordinate reference system (CRS), read from its GeoKeys (GeoKeyDirectory
 /// 34735 with GeoDoubleParams 34736 and GeoAsciiParams 34737) or its OGC WKT record (2112, VLR or EVLR).
 struct survey_crs {
-    std::string wkt;                   ///< the CRS as WKT, for outputs; empty when unknown (always without GDAL
-                                       ///< unless the file holds WKT)
-    int epsg = 0;                      ///< EPSG code of the horizontal CRS, 0 when none or user-defined
-    bool geographic = false;           ///< x and y are longitude and latitude in degrees
-    double horizontal_unit_m = 1;      ///< metres per unit of x and y: 1, 0.3048, 1200/3937 (1 when geographic)
-    double vertical_unit_m = 1;        ///< metres per unit of z
-    std::string horizontal_unit = "metre";   ///< name of the unit of x and y ("degree" when geographic)
-    std::string vertical_unit = "metre";     ///< name of the unit of z
-    std::string source;                ///< where the CRS came from: "GeoKeys", "WKT", or "" (the file has none)
-    std::vector<std::string> warnings; ///< what could not be carried or was assumed, one sentence each
+    std::string wkt;                        ///< the CRS as WKT, for outputs; empty when unknown (always without GDAL
+                                            ///< unless the file holds WKT)
+    int epsg = 0;                           ///< EPSG code of the horizontal CRS, 0 when none or user-defined
+    bool geographic = false;                ///< x and y are longitude and latitude in degrees
+    double horizontal_unit_m = 1;           ///< metres per unit of x and y: 1, 0.3048, 1200/3937 (1 when geographic)
+    double vertical_unit_m = 1;             ///< metres per unit of z
+    std::string horizontal_unit = "metre";  ///< name of the unit of x and y ("degree" when geographic)
+    std::string vertical_unit = "metre";    ///< name of the unit of z
+    std::string source;                     ///< where the CRS came from: "GeoKeys", "WKT", or "" (the file has none)
+    std::vector<std::string> warnings;      ///< what could not be carried or was assumed, one sentence each
 
     /// The CRS as write_geotiff takes it: the WKT, else "EPSG:n", else "".
     std::string for_outputs() const;

@@ -45,11 +45,11 @@ void orient(polygon& p)
     for (std::size_t k = 0; k < p.rings.size(); ++k) {
         auto& ring = p.rings[k];
         double area2 = 0;
-        for (std::size_t i = 0; i + 1 < ring.size(); ++i) area2 += ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1];
+        for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+            area2 += ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1];
         if ((k == 0) != (area2 > 0)) std::reverse(ring.begin(), ring.end());
     }
 }
-
 
 // Why the footprint cannot be used as drawn ("" when it can): a ring crossing itself, zero area, or another
 // reason of Boost.Geometry's is_valid.
@@ -76,8 +76,10 @@ std::string size_text(double bytes)
 {
     std::ostringstream s;
     s << std::setprecision(3);
-    if (bytes >= 1073741824.0) s << bytes / 1073741824.0 << " GiB";
-    else s << bytes / 1048576.0 << " MiB";
+    if (bytes >= 1073741824.0)
+        s << bytes / 1073741824.0 << " GiB";
+    else
+        s << bytes / 1048576.0 << " MiB";
     return s.str();
 }
 
@@ -90,7 +92,7 @@ struct feature_text {
     std::string id_token;
     bool have_type = false, have_coordinates = false;
     std::string type;
-    int height = 0;   // nesting of the coordinates: 1 a position, 2 a ring, 3 a Polygon, 4 a MultiPolygon
+    int height = 0;  // nesting of the coordinates: 1 a position, 2 a ring, 3 a Polygon, 4 a MultiPolygon
     std::vector<std::array<double, 2>> vertices;
     std::vector<std::size_t> ring_end, part_end;  // vertices before each ring's end, rings before each part's end
     std::string shape_error, bad_value;           // the first of each, if any
@@ -180,11 +182,12 @@ private:
             // What the whole file would need if the rest is like what was read so far.
             const double read = std::max(1.0, static_cast<double>(i_)), share = std::min(1.0, read / text_bytes_);
             const double projected = std::max(need, text_bytes_ + (need - text_bytes_) / share);
-            throw invalid_input(detail::concat(
-                source_, ": reading the footprints needs about ", size_text(projected), " (the file's ",
-                size_text(text_bytes_), ", and ", kept_vertices_, " vertices kept by feature ", feature_, " in its first ",
-                std::floor(100 * share), " %), over the memory budget of ", size_text(static_cast<double>(budget_)),
-                "; split the file into smaller ones or use a larger --memory"));
+            throw invalid_input(detail::concat(source_, ": reading the footprints needs about ", size_text(projected),
+                                               " (the file's ", size_text(text_bytes_), ", and ", kept_vertices_,
+                                               " vertices kept by feature ", feature_, " in its first ",
+                                               std::floor(100 * share), " %), over the memory budget of ",
+                                               size_text(static_cast<double>(budget_)),
+                                               "; split the file into smaller ones or use a larger --memory"));
         }
     }
 
@@ -192,7 +195,8 @@ private:
 
     [[noreturn]] void fail(const std::string& what) const
     {
-        const auto line = 1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(std::min(i_, s_.size())), '\n');
+        const auto line =
+            1 + std::count(s_.begin(), s_.begin() + static_cast<std::ptrdiff_t>(std::min(i_, s_.size())), '\n');
         throw invalid_input(detail::concat(source_, ": not valid JSON at byte ", i_, " (line ", line, "): ", what));
     }
     void skip_space()
@@ -218,10 +222,7 @@ private:
         skip_space();
         if (i_ != s_.size()) fail("unexpected text after the JSON value");
     }
-    bool number_next() const
-    {
-        return i_ < s_.size() && (s_[i_] == '-' || (s_[i_] >= '0' && s_[i_] <= '9'));
-    }
+    bool number_next() const { return i_ < s_.size() && (s_[i_] == '-' || (s_[i_] >= '0' && s_[i_] <= '9')); }
 
     // A number as written, and its value: +-inf beyond a double's range (`in_range` false), 0 below it.
     struct number_text {
@@ -232,8 +233,8 @@ private:
     number_text number()
     {
         const std::size_t start = i_;
-        while (i_ < s_.size() && ((s_[i_] >= '0' && s_[i_] <= '9') || s_[i_] == '-' || s_[i_] == '+' ||
-                                  s_[i_] == '.' || s_[i_] == 'e' || s_[i_] == 'E'))
+        while (i_ < s_.size() && ((s_[i_] >= '0' && s_[i_] <= '9') || s_[i_] == '-' || s_[i_] == '+' || s_[i_] == '.' ||
+                                  s_[i_] == 'e' || s_[i_] == 'E'))
             ++i_;
         number_text n{s_.substr(start, i_ - start)};
         const auto [end, ec] = std::from_chars(n.token.data(), n.token.data() + n.token.size(), n.value);
@@ -264,14 +265,25 @@ private:
             if (i_ >= s_.size()) fail("unterminated escape");
             const char e = s_[i_++];
             switch (e) {
-                case 'n': out += '\n'; break;
-                case 't': out += '\t'; break;
-                case 'r': out += '\r'; break;
-                case 'b': out += '\b'; break;
-                case 'f': out += '\f'; break;
+                case 'n':
+                    out += '\n';
+                    break;
+                case 't':
+                    out += '\t';
+                    break;
+                case 'r':
+                    out += '\r';
+                    break;
+                case 'b':
+                    out += '\b';
+                    break;
+                case 'f':
+                    out += '\f';
+                    break;
                 case 'u': {
                     if (i_ + 4 > s_.size()) fail("short \\u escape");
-                    const unsigned code = static_cast<unsigned>(std::strtoul(std::string(s_.substr(i_, 4)).c_str(), nullptr, 16));
+                    const unsigned code =
+                        static_cast<unsigned>(std::strtoul(std::string(s_.substr(i_, 4)).c_str(), nullptr, 16));
                     i_ += 4;
                     if (code < 0x80) {
                         out += static_cast<char>(code);
@@ -285,7 +297,8 @@ private:
                     }
                     break;
                 }
-                default: out += e;  // \" \\ \/
+                default:
+                    out += e;  // \" \\ \/
             }
         }
     }
@@ -408,8 +421,10 @@ private:
                     }
                     if (name == "coordinates" && !t.have_coordinates) {
                         t.have_coordinates = true;
-                        if (peek('[')) t.height = coordinates(4, true);
-                        else t.shape("the coordinates must be an array");
+                        if (peek('['))
+                            t.height = coordinates(4, true);
+                        else
+                            t.shape("the coordinates must be an array");
                         return true;
                     }
                     return false;
@@ -460,13 +475,18 @@ private:
                     continue;
                 }
                 const int h = coordinates(depth + 1, false);
-                if (height < 0) height = h;
-                else if (h != height) t.shape("the coordinates mix arrays of different depths");
+                if (height < 0)
+                    height = h;
+                else if (h != height)
+                    t.shape("the coordinates mix arrays of different depths");
             } while (take(','));
             expect(']');
-            if (height == 1) t.ring_end.push_back(t.vertices.size());
-            else if (height == 2) t.part_end.push_back(t.ring_end.size());
-            else if (height > 3) t.shape("the coordinates are nested deeper than a MultiPolygon's");
+            if (height == 1)
+                t.ring_end.push_back(t.vertices.size());
+            else if (height == 2)
+                t.part_end.push_back(t.ring_end.size());
+            else if (height > 3)
+                t.shape("the coordinates are nested deeper than a MultiPolygon's");
             return height < 0 ? 0 : height + 1;
         }
         // A position: x, y and maybe more numbers (z, m), which are not kept.
@@ -509,9 +529,11 @@ private:
         if (t.id_kind == 0)
             throw invalid_input(where + ": no integer \"building_id\" property (every footprint needs one)");
         if (t.id_kind == 2)
-            throw invalid_input(where + ": building_id " + t.id_token + " is not an integer (every footprint needs one)");
+            throw invalid_input(where + ": building_id " + t.id_token +
+                                " is not an integer (every footprint needs one)");
         if (t.id != std::floor(t.id) || t.id < 1 || t.id > 2147483647.0)
-            throw invalid_input(detail::concat(where, ": building_id ", t.id_token, " is not an integer in 1 .. 2147483647"));
+            throw invalid_input(
+                detail::concat(where, ": building_id ", t.id_token, " is not an integer in 1 .. 2147483647"));
         const auto building = static_cast<std::int32_t>(t.id);
         if (const auto [it, fresh] = first_feature_of_.emplace(building, feature_); !fresh)
             throw invalid_input(detail::concat(where, ": building_id ", building, " is used by feature ", it->second,
@@ -524,10 +546,12 @@ private:
         if (!t.bad_value.empty()) throw invalid_input(at + ": coordinate " + t.bad_value);
         if (!t.shape_error.empty()) throw invalid_input(at + ": " + t.shape_error);
         if (t.height == 0)
-            throw invalid_input(at + (multi ? ": an empty MultiPolygon" : ": a Polygon needs at least its exterior ring"));
+            throw invalid_input(at +
+                                (multi ? ": an empty MultiPolygon" : ": a Polygon needs at least its exterior ring"));
         if (t.height != (multi ? 4 : 3))
-            throw invalid_input(at + (multi ? ": a MultiPolygon's coordinates must be polygons of rings of positions [x, y]"
-                                            : ": a Polygon's coordinates must be rings of positions [x, y]"));
+            throw invalid_input(at +
+                                (multi ? ": a MultiPolygon's coordinates must be polygons of rings of positions [x, y]"
+                                       : ": a Polygon's coordinates must be rings of positions [x, y]"));
         charge(16.0 * (static_cast<double>(t.vertices.capacity()) + 2.0 * static_cast<double>(t.vertices.size())));
         footprint fp{building, {}, feature_};
         std::size_t ring = 0;
@@ -535,10 +559,12 @@ private:
             polygon p;
             for (; ring < part_end; ++ring) {
                 const std::size_t a = ring == 0 ? 0 : t.ring_end[ring - 1], b = t.ring_end[ring];
-                if (b - a < 4) throw invalid_input(at + ": every ring needs at least 4 positions (closed, 3 distinct corners)");
+                if (b - a < 4)
+                    throw invalid_input(at + ": every ring needs at least 4 positions (closed, 3 distinct corners)");
                 std::vector<std::array<double, 2>> r;
                 r.reserve(b - a + 1);
-                r.assign(t.vertices.begin() + static_cast<std::ptrdiff_t>(a), t.vertices.begin() + static_cast<std::ptrdiff_t>(b));
+                r.assign(t.vertices.begin() + static_cast<std::ptrdiff_t>(a),
+                         t.vertices.begin() + static_cast<std::ptrdiff_t>(b));
                 if (r.front() != r.back()) r.push_back(r.front());
                 p.rings.push_back(std::move(r));
             }

@@ -40,16 +40,22 @@ pj horizontal_of(PJ_CONTEXT* ctx, pj crs)
 {
     for (int step = 0; step < 3 && crs; ++step) {
         const PJ_TYPE type = proj_get_type(crs.get());
-        if (type == PJ_TYPE_BOUND_CRS) crs.reset(proj_get_source_crs(ctx, crs.get()));
-        else if (type == PJ_TYPE_COMPOUND_CRS) crs.reset(proj_crs_get_sub_crs(ctx, crs.get(), 0));
-        else break;
+        if (type == PJ_TYPE_BOUND_CRS)
+            crs.reset(proj_get_source_crs(ctx, crs.get()));
+        else if (type == PJ_TYPE_COMPOUND_CRS)
+            crs.reset(proj_crs_get_sub_crs(ctx, crs.get(), 0));
+        else
+            break;
     }
     return crs;
 }
 
 }  // namespace
 
-bool proj_available() noexcept { return true; }
+bool proj_available() noexcept
+{
+    return true;
+}
 
 geographic_place place_of(const std::string& crs, double x, double y)
 {
@@ -69,7 +75,7 @@ geographic_place place_of(const std::string& crs, double x, double y)
     // WGS 84 in degrees from Greenwich (a CRS's own geodetic CRS may count grads from Paris).
     const pj wgs84(proj_create(ctx, "EPSG:4326"));
     const pj raw(wgs84 ? proj_create_crs_to_crs_from_pj(ctx, wgs84.get(), projected.get(), nullptr, nullptr) : nullptr);
-    const pj to_grid(raw ? proj_normalize_for_visualization(ctx, raw.get()) : nullptr);   // lon, lat -> x, y
+    const pj to_grid(raw ? proj_normalize_for_visualization(ctx, raw.get()) : nullptr);  // lon, lat -> x, y
     if (!to_grid) throw failure("has no transformation from WGS 84 in PROJ (is proj.db installed?)");
     const PJ_COORD lonlat = proj_trans(to_grid.get(), PJ_INV, proj_coord(x, y, 0, 0));
     geographic_place p;
@@ -93,11 +99,15 @@ geographic_place place_of(const std::string& crs, double x, double y)
 
 #else
 
-bool proj_available() noexcept { return false; }
+bool proj_available() noexcept
+{
+    return false;
+}
 
 geographic_place place_of(const std::string& crs, double, double)
 {
-    throw std::runtime_error("placing a point of the coordinate system " + shown(crs) + " needs PROJ, and lidarfx_io "
+    throw std::runtime_error("placing a point of the coordinate system " + shown(crs) +
+                             " needs PROJ, and lidarfx_io "
                              "was built without it (install libproj-dev and reconfigure, or give --lat and --lon)");
 }
 

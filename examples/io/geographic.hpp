@@ -9,8 +9,8 @@ namespace lidarfx::io {
 
 /// A point of a projected CRS on the globe.
 struct geographic_place {
-    double latitude_deg = 0;    ///< north, WGS 84
-    double longitude_deg = 0;   ///< east of Greenwich, WGS 84
+    double latitude_deg = 0;   ///< north, WGS 84
+    double longitude_deg = 0;  ///< east of Greenwich, WGS 84
     /// Meridian convergence, degrees: the angle from true north to grid north (the CRS's +y), positive when grid
     /// north lies east (clockwise) of true north. An azimuth turns from true to grid north as
     /// a_grid = a_true - convergence_deg. Transverse Mercator: about atan(tan(lon - lon0) sin(lat)), positive east

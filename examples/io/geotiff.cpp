@@ -70,23 +70,27 @@ std::string crs_to_wkt(const std::string& crs)
     CPLFree(wkt);
     OSRDestroySpatialReference(srs);
     if (out.empty()) {
-        throw invalid_input(detail::concat("write_geotiff: crs_wkt_or_epsg must name a coordinate system GDAL "
-                                           "understands (got '", crs, "')"));
+        throw invalid_input(
+            detail::concat("write_geotiff: crs_wkt_or_epsg must name a coordinate system GDAL "
+                           "understands (got '",
+                           crs, "')"));
     }
     return out;
 }
 
 }  // namespace
 
-bool geotiff_available() noexcept { return true; }
+bool geotiff_available() noexcept
+{
+    return true;
+}
 
 void write_geotiff(const std::string& path, raster_view<const float> values, const grid& g,
                    const std::string& crs_wkt_or_epsg)
 {
     constexpr const char* fn = "write_geotiff";
     g.validate(fn);
-    detail::require(values.rows() == g.rows && values.cols() == g.cols, fn,
-                    "values and grid must have the same shape");
+    detail::require(values.rows() == g.rows && values.cols() == g.cols, fn, "values and grid must have the same shape");
     detail::require(!values.empty(), fn, "values must not be empty");
     register_drivers();
     const quiet_gdal quiet;
@@ -111,14 +115,16 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
         for (std::ptrdiff_t r = 0; r < n; ++r) {
             const float* src = values.row(r0 + r);
             float* dst = strip.data() + static_cast<std::size_t>(r) * cols;
-            for (std::size_t c = 0; c < cols; ++c) dst[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
+            for (std::size_t c = 0; c < cols; ++c)
+                dst[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
         }
         ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r0), static_cast<int>(g.cols), static_cast<int>(n),
                           strip.data(), static_cast<int>(g.cols), static_cast<int>(n), GDT_Float32, 0, 0) == CE_None;
     }
     if (!ok) throw std::runtime_error(path + ": writing the GeoTIFF failed" + gdal_message());
-    ds.reset();   // flushes and closes
-    if (CPLGetLastErrorType() >= CE_Failure) throw std::runtime_error(path + ": closing the GeoTIFF failed" + gdal_message());
+    ds.reset();  // flushes and closes
+    if (CPLGetLastErrorType() >= CE_Failure)
+        throw std::runtime_error(path + ": closing the GeoTIFF failed" + gdal_message());
 }
 
 namespace {
@@ -129,7 +135,8 @@ grid grid_of(GDALDatasetH ds, const std::string& path)
     const int cols = GDALGetRasterXSize(ds), rows = GDALGetRasterYSize(ds);
     if (GDALGetRasterCount(ds) < 1) throw std::runtime_error(path + ": the file has no raster band");
     std::array<double, 6> gt{};
-    if (GDALGetGeoTransform(ds, gt.data()) != CE_None) throw std::runtime_error(path + ": the file has no geotransform");
+    if (GDALGetGeoTransform(ds, gt.data()) != CE_None)
+        throw std::runtime_error(path + ": the file has no geotransform");
     try {
         return from_gdal(gt, rows, cols);
     } catch (const invalid_input& e) {
@@ -194,28 +201,41 @@ bool crs_understood(const std::string& crs) noexcept
 
 #else
 
-bool crs_understood(const std::string&) noexcept { return true; }
+bool crs_understood(const std::string&) noexcept
+{
+    return true;
+}
 
 namespace {
 
 [[noreturn]] void no_gdal(const std::string& path)
 {
-    throw std::runtime_error(path + ": GeoTIFF support needs GDAL, and lidarfx_io was built without it "
-                                    "(install libgdal-dev and reconfigure, or write PNG / ESRI ASCII instead)");
+    throw std::runtime_error(path +
+                             ": GeoTIFF support needs GDAL, and lidarfx_io was built without it "
+                             "(install libgdal-dev and reconfigure, or write PNG / ESRI ASCII instead)");
 }
 
 }  // namespace
 
-bool geotiff_available() noexcept { return false; }
+bool geotiff_available() noexcept
+{
+    return false;
+}
 
 void write_geotiff(const std::string& path, raster_view<const float>, const grid&, const std::string&)
 {
     no_gdal(path);
 }
 
-geotiff_raster read_geotiff(const std::string& path) { no_gdal(path); }
+geotiff_raster read_geotiff(const std::string& path)
+{
+    no_gdal(path);
+}
 
-grid read_geotiff_grid(const std::string& path) { no_gdal(path); }
+grid read_geotiff_grid(const std::string& path)
+{
+    no_gdal(path);
+}
 
 #endif
 

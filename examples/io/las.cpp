@@ -87,8 +87,7 @@ void decode(const std::uint8_t* p, std::size_t n, std::size_t stride, const las_
     }
 }
 
-using decoder = void (*)(const std::uint8_t*, std::size_t, std::size_t, const las_header&, las_points&,
-                         std::size_t);
+using decoder = void (*)(const std::uint8_t*, std::size_t, std::size_t, const las_header&, las_points&, std::size_t);
 
 decoder decoder_for(int format)
 {
@@ -97,7 +96,7 @@ decoder decoder_for(int format)
     return gps ? &decode<false, true> : &decode<false, false>;
 }
 
-constexpr std::size_t block_bytes = std::size_t{2} << 20;   // decode in ~2 MiB blocks: one read call each
+constexpr std::size_t block_bytes = std::size_t{2} << 20;  // decode in ~2 MiB blocks: one read call each
 
 }  // namespace
 
@@ -127,8 +126,8 @@ void las_points::resize(std::size_t n, bool with_gps_time)
 
 void las_points::append(const las_points& other)
 {
-    const bool gps = (empty() || !gps_time.empty()) && (other.empty() || !other.gps_time.empty()) &&
-                     !(empty() && other.empty());
+    const bool gps =
+        (empty() || !gps_time.empty()) && (other.empty() || !other.gps_time.empty()) && !(empty() && other.empty());
     const auto cat = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
     cat(x, other.x);
     cat(y, other.y);
@@ -139,7 +138,10 @@ void las_points::append(const las_points& other)
     cat(classification, other.classification);
     cat(classification_flags, other.classification_flags);
     cat(scan_angle_deg, other.scan_angle_deg);
-    if (gps) cat(gps_time, other.gps_time); else gps_time.clear();
+    if (gps)
+        cat(gps_time, other.gps_time);
+    else
+        gps_time.clear();
 }
 
 soa_cloud<> las_points::cloud() const
@@ -167,7 +169,7 @@ las_reader::las_reader(std::span<const std::uint8_t> bytes, std::string name)
 las_reader::las_reader(std::vector<std::uint8_t>&& bytes, std::string name)
     : path_(std::move(name)), owned_(std::move(bytes))
 {
-    memory_ = owned_;   // the heap block stays put when the reader is moved
+    memory_ = owned_;  // the heap block stays put when the reader is moved
     file_size_ = owned_.size();
     parse();
 }
@@ -207,8 +209,8 @@ void las_reader::parse()
     const std::uint8_t* p = head.data();
     if (std::memcmp(p, "LASF", 4) != 0) fail(path_, "not a LAS file (the signature is not 'LASF')");
     if (head_size < header_size_10) {
-        fail(path_, "truncated header: the file has " + std::to_string(file_size_) +
-                        " bytes, a LAS header at least " + std::to_string(header_size_10));
+        fail(path_, "truncated header: the file has " + std::to_string(file_size_) + " bytes, a LAS header at least " +
+                        std::to_string(header_size_10));
     }
 
     h.version_major = p[24];
@@ -253,8 +255,8 @@ void las_reader::parse()
                         " lies inside the header (header size " + std::to_string(h.header_size) + ")");
     }
     if (h.offset_to_point_data > file_size_) {
-        fail(path_, "offset to point data " + std::to_string(h.offset_to_point_data) +
-                        " is beyond the file size " + std::to_string(file_size_));
+        fail(path_, "offset to point data " + std::to_string(h.offset_to_point_data) + " is beyond the file size " +
+                        std::to_string(file_size_));
     }
 
     // Counts: LAS 1.4 adds 64-bit counts; the legacy ones must then be 0 or equal.
@@ -286,9 +288,8 @@ void las_reader::parse()
     if (!h.compressed && h.point_count > room / h.point_record_length) {
         fail(path_, "truncated: the header declares " + std::to_string(h.point_count) + " points of " +
                         std::to_string(h.point_record_length) + " bytes from byte " +
-                        std::to_string(h.offset_to_point_data) + " but the file has " +
-                        std::to_string(file_size_) + " bytes (room for " +
-                        std::to_string(room / h.point_record_length) + " points)");
+                        std::to_string(h.offset_to_point_data) + " but the file has " + std::to_string(file_size_) +
+                        " bytes (room for " + std::to_string(room / h.point_record_length) + " points)");
     }
 
     static constexpr const char* axis[3] = {"x", "y", "z"};
@@ -361,12 +362,12 @@ void las_reader::parse()
             h.has_wkt_record = true;
             continue;
         }
-        if (v.record_id == 34736) {   // GeoDoubleParams: the doubles GeoKeys point into (a partial one is dropped)
+        if (v.record_id == 34736) {  // GeoDoubleParams: the doubles GeoKeys point into (a partial one is dropped)
             h.geo_doubles.resize(static_cast<std::size_t>(v.data_size / 8));
             for (std::size_t k = 0; k < h.geo_doubles.size(); ++k) h.geo_doubles[k] = load<double>(data + 8 * k);
             continue;
         }
-        if (v.record_id == 34737) {   // GeoAsciiParams: kept byte for byte, since keys index into it
+        if (v.record_id == 34737) {  // GeoAsciiParams: kept byte for byte, since keys index into it
             h.geo_ascii.assign(reinterpret_cast<const char*>(data), static_cast<std::size_t>(v.data_size));
             continue;
         }
@@ -387,9 +388,12 @@ void las_reader::parse()
             h.geo_keys.push_back(key);
             // Only codes stored in place are EPSG codes; 32767 means "user-defined".
             const int code = key.location == 0 && key.value != 32767 ? key.value : 0;
-            if (key.id == 3072) h.epsg_projected = code;
-            else if (key.id == 2048) h.epsg_geographic = code;
-            else if (key.id == 4096) h.epsg_vertical = code;
+            if (key.id == 3072)
+                h.epsg_projected = code;
+            else if (key.id == 2048)
+                h.epsg_geographic = code;
+            else if (key.id == 4096)
+                h.epsg_vertical = code;
         }
     }
     if (h.compressed) open_laz();
@@ -398,8 +402,8 @@ void las_reader::parse()
 struct las_reader::laz_state {
     laz_vlr vlr;
     std::vector<laz_chunk> chunks;
-    std::uint64_t largest_points = 0;   // of a chunk
-    std::mutex file_mutex;   // guards the file stream when worker threads fetch chunks
+    std::uint64_t largest_points = 0;  // of a chunk
+    std::mutex file_mutex;             // guards the file stream when worker threads fetch chunks
     /// What one thread needs to decode a chunk; kept in a pool so decoders are reused across reads.
     struct worker {
         laz_chunk_decoder decoder;
@@ -441,8 +445,9 @@ void las_reader::open_laz()
         if (v.user_id == "laszip encoded" && v.record_id == 22204) found = &v;
     }
     if (!found) {
-        fail(path_, "the point format says LAZ (compressed) but the file has no laszip VLR (user id 'laszip "
-                    "encoded', record 22204)");
+        fail(path_,
+             "the point format says LAZ (compressed) but the file has no laszip VLR (user id 'laszip "
+             "encoded', record 22204)");
     }
     laz_ = std::make_unique<laz_state>();
     {
@@ -470,8 +475,8 @@ void las_reader::open_laz()
     const std::uint64_t table_bytes = std::min<std::uint64_t>(file_size_ - table_offset, 16 + 24 * max_chunks);
     const std::uint8_t* t = bytes_at(table_offset, static_cast<std::size_t>(table_bytes));
     const std::vector<std::uint8_t> copy(t, t + table_bytes);
-    laz_->chunks = parse_laz_chunk_table(copy, laz_->vlr, first_chunk, table_offset, h.point_count,
-                                         h.point_record_length, path_);
+    laz_->chunks =
+        parse_laz_chunk_table(copy, laz_->vlr, first_chunk, table_offset, h.point_count, h.point_record_length, path_);
     for (const laz_chunk& c : laz_->chunks) laz_->largest_points = std::max(laz_->largest_points, c.point_count);
 }
 
@@ -481,7 +486,7 @@ std::uint64_t las_reader::memory_budget() const noexcept
     const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
     const std::uint64_t physical =
         pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
-    return physical > 0 ? physical / 2 : std::uint64_t{1} << 31;   // 2 GiB when the system does not say
+    return physical > 0 ? physical / 2 : std::uint64_t{1} << 31;  // 2 GiB when the system does not say
 }
 
 void las_reader::set_threads(int threads)
@@ -499,7 +504,7 @@ int las_reader::decode_threads() const
 {
     if (!laz_) return 1;
     const std::uint64_t largest = std::max<std::uint64_t>(1, largest_chunk_bytes());
-    const std::uint64_t in_budget = memory_budget() / largest;   // chunks of the largest size
+    const std::uint64_t in_budget = memory_budget() / largest;  // chunks of the largest size
     const auto fit = static_cast<int>(std::min<std::uint64_t>(in_budget > 1 ? in_budget - 1 : 1, 1024));
     return std::clamp(fit, 1, lidarfx::detail::resolve_threads(threads_, "las_reader"));
 }
@@ -518,13 +523,16 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
         const laz_chunk& k = z.chunks[c];
         const double decoded = static_cast<double>(k.point_count) * static_cast<double>(stride);
         if (decoded > static_cast<double>(budget) / 2) {
-            throw invalid_input(path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()) +
-                                " (first point " + std::to_string(k.first_point) + ") claims " +
-                                std::to_string(k.point_count) + " points in " + std::to_string(k.byte_count) +
-                                " compressed bytes: " + mib(decoded) + " decoded (" + std::to_string(stride) +
-                                " bytes a point), over half the memory budget of " + mib(static_cast<double>(budget)) +
+            throw invalid_input(path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " +
+                                std::to_string(z.chunks.size()) + " (first point " + std::to_string(k.first_point) +
+                                ") claims " + std::to_string(k.point_count) + " points in " +
+                                std::to_string(k.byte_count) + " compressed bytes: " + mib(decoded) + " decoded (" +
+                                std::to_string(stride) + " bytes a point), over half the memory budget of " +
+                                mib(static_cast<double>(budget)) +
                                 " (a chunk decoding and the one kept must fit); raise the memory budget (--memory) "
-                                "to at least " + mib(2 * decoded) + ", or check the file (a corrupt chunk table "
+                                "to at least " +
+                                mib(2 * decoded) +
+                                ", or check the file (a corrupt chunk table "
                                 "claims more points than its chunk holds)");
         }
     }
@@ -532,39 +540,41 @@ void las_reader::read_laz(std::size_t n, const std::function<void(std::size_t)>&
     const auto take_points = [&](std::size_t c, const std::uint8_t* records) {
         const laz_chunk& k = z.chunks[c];
         const std::uint64_t lo = std::max(begin, k.first_point), hi = std::min(end, k.first_point + k.point_count);
-        sink(records + (lo - k.first_point) * stride, static_cast<std::size_t>(hi - lo), static_cast<std::size_t>(lo - begin));
+        sink(records + (lo - k.first_point) * stride, static_cast<std::size_t>(hi - lo),
+             static_cast<std::size_t>(lo - begin));
     };
     std::vector<std::uint8_t> next_cache;
     const bool file = file_.is_open();
-    std::size_t first = c0;   // of the batch at hand
-    std::vector<std::exception_ptr> errors;   // per chunk of the batch
+    std::size_t first = c0;                  // of the batch at hand
+    std::vector<std::exception_ptr> errors;  // per chunk of the batch
     const auto body = [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
         for (std::ptrdiff_t b = b0; b < b1; ++b) try {
-            const std::size_t c = first + static_cast<std::size_t>(b);
-            if (c == z.cached) {
-                take_points(c, z.cached_records.data());
-                continue;
+                const std::size_t c = first + static_cast<std::size_t>(b);
+                if (c == z.cached) {
+                    take_points(c, z.cached_records.data());
+                    continue;
+                }
+                const laz_chunk& k = z.chunks[c];
+                auto w = z.take(h.point_record_length);
+                const auto bytes = static_cast<std::size_t>(k.byte_count);
+                const std::uint8_t* data;
+                if (file) {
+                    std::lock_guard lock(z.file_mutex);
+                    const std::uint8_t* p = bytes_at(k.offset, bytes);
+                    w->compressed.assign(p, p + bytes);
+                    data = w->compressed.data();
+                } else {
+                    data = bytes_at(k.offset, bytes);
+                }
+                w->decoder.decode(
+                    {data, bytes}, k.point_count, w->records,
+                    path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
+                take_points(c, w->records.data());
+                if (c == c1) next_cache.swap(w->records);  // kept for the next read: moved, not copied
+                z.give(std::move(w));
+            } catch (...) {
+                errors[static_cast<std::size_t>(b)] = std::current_exception();
             }
-            const laz_chunk& k = z.chunks[c];
-            auto w = z.take(h.point_record_length);
-            const auto bytes = static_cast<std::size_t>(k.byte_count);
-            const std::uint8_t* data;
-            if (file) {
-                std::lock_guard lock(z.file_mutex);
-                const std::uint8_t* p = bytes_at(k.offset, bytes);
-                w->compressed.assign(p, p + bytes);
-                data = w->compressed.data();
-            } else {
-                data = bytes_at(k.offset, bytes);
-            }
-            w->decoder.decode({data, bytes}, k.point_count, w->records,
-                              path_ + ": LAZ chunk " + std::to_string(c + 1) + " of " + std::to_string(z.chunks.size()));
-            take_points(c, w->records.data());
-            if (c == c1) next_cache.swap(w->records);   // kept for the next read: moved, not copied
-            z.give(std::move(w));
-        } catch (...) {
-            errors[static_cast<std::size_t>(b)] = std::current_exception();
-        }
     };
     // Batches of a few chunks per thread: the output grows with the points decoded (a corrupt file fails
     // before its claimed count is allocated), and each batch runs in parallel on at most `threads` workers,
@@ -604,7 +614,8 @@ std::size_t las_reader::read_records(std::vector<std::uint8_t>& records, std::si
         std::memcpy(records.data() + at * stride, from, count * stride);
     };
     if (laz_) {
-        read_laz(n, [&](std::size_t points) { records.resize(points * stride); }, copy);
+        read_laz(
+            n, [&](std::size_t points) { records.resize(points * stride); }, copy);
     } else {
         copy(bytes_at(h.offset_to_point_data + next_ * stride, n * stride), n, 0);
         next_ += n;
@@ -615,8 +626,8 @@ std::size_t las_reader::read_records(std::vector<std::uint8_t>& records, std::si
 void las_reader::seek(std::uint64_t index)
 {
     if (index > header_.point_count) {
-        fail(path_, "seek to point " + std::to_string(index) + " beyond the " +
-                        std::to_string(header_.point_count) + " points of the file");
+        fail(path_, "seek to point " + std::to_string(index) + " beyond the " + std::to_string(header_.point_count) +
+                        " points of the file");
     }
     next_ = index;
 }

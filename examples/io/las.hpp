@@ -18,10 +18,10 @@
 namespace lidarfx::io {
 
 /// Bits of las_points::classification_flags (the same meaning for every point format).
-inline constexpr std::uint8_t las_flag_synthetic = 1;   ///< created by other means than the scanner
-inline constexpr std::uint8_t las_flag_key_point = 2;   ///< model key-point (keep when thinning)
-inline constexpr std::uint8_t las_flag_withheld = 4;    ///< to be ignored (deleted)
-inline constexpr std::uint8_t las_flag_overlap = 8;     ///< overlap of flight lines (point formats 6–10 only)
+inline constexpr std::uint8_t las_flag_synthetic = 1;  ///< created by other means than the scanner
+inline constexpr std::uint8_t las_flag_key_point = 2;  ///< model key-point (keep when thinning)
+inline constexpr std::uint8_t las_flag_withheld = 4;   ///< to be ignored (deleted)
+inline constexpr std::uint8_t las_flag_overlap = 8;    ///< overlap of flight lines (point formats 6–10 only)
 
 /// Size in bytes of the fields of point data format 0..10 (a record may be longer: extra bytes follow).
 /// Returns 0 for an unknown format.
@@ -40,12 +40,12 @@ struct las_geo_key {
 /// A variable-length record (VLR) or, in LAS 1.4, an extended one (EVLR): its identity and where its
 /// payload lies in the file.
 struct las_vlr {
-    std::string user_id;             ///< e.g. "LASF_Projection"
-    std::uint16_t record_id = 0;     ///< e.g. 34735 GeoKeyDirectory, 2112 OGC WKT
+    std::string user_id;          ///< e.g. "LASF_Projection"
+    std::uint16_t record_id = 0;  ///< e.g. 34735 GeoKeyDirectory, 2112 OGC WKT
     std::string description;
-    std::uint64_t data_offset = 0;   ///< byte offset of the payload in the file
-    std::uint64_t data_size = 0;     ///< payload size in bytes
-    bool extended = false;           ///< true for an EVLR (after the point data)
+    std::uint64_t data_offset = 0;  ///< byte offset of the payload in the file
+    std::uint64_t data_size = 0;    ///< payload size in bytes
+    bool extended = false;          ///< true for an EVLR (after the point data)
 };
 
 /// The public header block of a LAS file after validation, plus the CRS found in its (E)VLRs.
@@ -54,34 +54,34 @@ struct las_vlr {
 struct las_header {
     int version_major = 1, version_minor = 2;
     std::uint16_t file_source_id = 0;
-    std::uint16_t global_encoding = 0;        ///< bit 0 GPS time type, bit 4 CRS as WKT (1.4)
+    std::uint16_t global_encoding = 0;  ///< bit 0 GPS time type, bit 4 CRS as WKT (1.4)
     std::string system_identifier;
     std::string generating_software;
     std::uint16_t creation_day = 0, creation_year = 0;
-    std::uint16_t header_size = 0;            ///< bytes; >= 227 (1.0–1.2), 235 (1.3), 375 (1.4)
-    std::uint32_t offset_to_point_data = 0;   ///< bytes from the file start to the first point record
+    std::uint16_t header_size = 0;           ///< bytes; >= 227 (1.0–1.2), 235 (1.3), 375 (1.4)
+    std::uint32_t offset_to_point_data = 0;  ///< bytes from the file start to the first point record
     std::uint32_t vlr_count = 0;
-    int point_format = 0;                     ///< 0..10 (the compression bits of LAZ removed)
-    bool compressed = false;                  ///< LAZ: point data compressed by LASzip
-    std::uint16_t point_record_length = 0;    ///< bytes per record, >= las_min_record_length(point_format)
+    int point_format = 0;                   ///< 0..10 (the compression bits of LAZ removed)
+    bool compressed = false;                ///< LAZ: point data compressed by LASzip
+    std::uint16_t point_record_length = 0;  ///< bytes per record, >= las_min_record_length(point_format)
     std::uint64_t point_count = 0;
     std::array<std::uint64_t, 15> points_by_return{};
-    std::array<double, 3> scale{1, 1, 1};     ///< x, y, z: coordinate = integer * scale + offset
+    std::array<double, 3> scale{1, 1, 1};  ///< x, y, z: coordinate = integer * scale + offset
     std::array<double, 3> offset{};
-    std::array<double, 3> min{}, max{};       ///< x, y, z bounds as written in the header, metres
-    std::uint64_t evlr_offset = 0;            ///< LAS 1.4: byte offset of the first EVLR (0 when none)
+    std::array<double, 3> min{}, max{};  ///< x, y, z bounds as written in the header, metres
+    std::uint64_t evlr_offset = 0;       ///< LAS 1.4: byte offset of the first EVLR (0 when none)
     std::uint32_t evlr_count = 0;
-    std::vector<las_vlr> vlrs;                ///< every VLR, then every EVLR, in file order
+    std::vector<las_vlr> vlrs;  ///< every VLR, then every EVLR, in file order
 
     // Coordinate reference system, kept as metadata (nothing is reprojected).
-    std::vector<las_geo_key> geo_keys;        ///< GeoKeyDirectory entries, empty when absent
-    std::vector<double> geo_doubles;          ///< GeoDoubleParams (34736) the keys point into, empty when absent
-    std::string geo_ascii;                    ///< GeoAsciiParams (34737) as stored ('|'-ended fields, NULs kept)
-    int epsg_projected = 0;                   ///< ProjectedCSTypeGeoKey (3072); 0 = absent or user-defined
-    int epsg_geographic = 0;                  ///< GeographicTypeGeoKey (2048); 0 = absent or user-defined
-    int epsg_vertical = 0;                    ///< VerticalCSTypeGeoKey (4096); 0 = absent or user-defined
-    std::string wkt;                          ///< OGC coordinate system WKT (record 2112), empty when absent
-    bool has_wkt_record = false;              ///< a WKT record (2112) is present, even an empty one
+    std::vector<las_geo_key> geo_keys;  ///< GeoKeyDirectory entries, empty when absent
+    std::vector<double> geo_doubles;    ///< GeoDoubleParams (34736) the keys point into, empty when absent
+    std::string geo_ascii;              ///< GeoAsciiParams (34737) as stored ('|'-ended fields, NULs kept)
+    int epsg_projected = 0;             ///< ProjectedCSTypeGeoKey (3072); 0 = absent or user-defined
+    int epsg_geographic = 0;            ///< GeographicTypeGeoKey (2048); 0 = absent or user-defined
+    int epsg_vertical = 0;              ///< VerticalCSTypeGeoKey (4096); 0 = absent or user-defined
+    std::string wkt;                    ///< OGC coordinate system WKT (record 2112), empty when absent
+    bool has_wkt_record = false;        ///< a WKT record (2112) is present, even an empty one
 
     bool has_gps_time() const noexcept { return las_format_has_gps_time(point_format); }
     /// The horizontal EPSG code: projected when known, else geographic, else 0.
@@ -92,12 +92,12 @@ struct las_header {
 /// Fields are decoded from the record: return numbers have 3 bits in formats 0–5 and 4 bits in 6–10;
 /// classification has 5 bits (flags apart) in 0–5 and 8 bits in 6–10; flags use the las_flag_* bits.
 struct las_points {
-    std::vector<double> x, y, z;                    ///< metres (scale and offset applied)
+    std::vector<double> x, y, z;  ///< metres (scale and offset applied)
     std::vector<std::uint16_t> intensity;
     std::vector<std::uint8_t> return_number, number_of_returns, classification;
-    std::vector<std::uint8_t> classification_flags; ///< las_flag_synthetic | key_point | withheld | overlap
-    std::vector<float> scan_angle_deg;              ///< degrees, negative = left of nadir (formats 6–10: 0.006° steps)
-    std::vector<double> gps_time;                   ///< empty when the point format has no GPS time
+    std::vector<std::uint8_t> classification_flags;  ///< las_flag_synthetic | key_point | withheld | overlap
+    std::vector<float> scan_angle_deg;  ///< degrees, negative = left of nadir (formats 6–10: 0.006° steps)
+    std::vector<double> gps_time;       ///< empty when the point format has no GPS time
 
     std::size_t size() const noexcept { return x.size(); }
     bool empty() const noexcept { return x.empty(); }
@@ -210,16 +210,16 @@ private:
     void read_laz(std::size_t n, const std::function<void(std::size_t)>& grow, const record_sink& sink);
 
     std::string path_;
-    std::ifstream file_;                       // used when reading a file
-    std::span<const std::uint8_t> memory_;     // used when reading a buffer
-    std::vector<std::uint8_t> owned_;          // the buffer, when the reader owns it
+    std::ifstream file_;                    // used when reading a file
+    std::span<const std::uint8_t> memory_;  // used when reading a buffer
+    std::vector<std::uint8_t> owned_;       // the buffer, when the reader owns it
     std::uint64_t file_size_ = 0;
     std::vector<std::uint8_t> buffer_;
     las_header header_;
     std::uint64_t next_ = 0;
-    std::unique_ptr<laz_state> laz_;           // LAZ only: chunk table, decoders, the last chunk decoded
+    std::unique_ptr<laz_state> laz_;  // LAZ only: chunk table, decoders, the last chunk decoded
     int threads_ = 1;
-    std::uint64_t memory_budget_ = 0;          // 0: half the physical memory
+    std::uint64_t memory_budget_ = 0;  // 0: half the physical memory
 };
 
 /// Reads every point of a LAS file. @throws std::runtime_error naming the file.

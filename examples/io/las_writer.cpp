@@ -23,14 +23,14 @@ constexpr std::size_t block_points = 1 << 16;
 
 void put_string(std::uint8_t* p, const std::string& s, std::size_t n)
 {
-    std::memcpy(p, s.data(), std::min(s.size(), n - 1));   // keep a terminating NUL
+    std::memcpy(p, s.data(), std::min(s.size(), n - 1));  // keep a terminating NUL
 }
 
 std::vector<std::uint8_t> vlr(const char* user_id, std::uint16_t record_id, const char* description,
                               const std::vector<std::uint8_t>& payload)
 {
     std::vector<std::uint8_t> out(vlr_header_size + payload.size(), 0);
-    put_string(out.data() + 2, user_id, 17);   // 16 chars, no NUL needed
+    put_string(out.data() + 2, user_id, 17);  // 16 chars, no NUL needed
     store<std::uint16_t>(out.data() + 18, record_id);
     store<std::uint16_t>(out.data() + 20, static_cast<std::uint16_t>(payload.size()));
     put_string(out.data() + 22, description, 32);
@@ -47,15 +47,15 @@ std::vector<std::uint8_t> geo_key_directory(const las_write_options& o)
     };
     for (const las_geo_key& k : o.geo_keys) keys.push_back({k.id, k.location, k.count, k.value});
     if (keys.empty()) {
-        key(1024, o.epsg_projected > 0 ? 1 : 2);      // GTModelTypeGeoKey: projected / geographic
+        key(1024, o.epsg_projected > 0 ? 1 : 2);  // GTModelTypeGeoKey: projected / geographic
         if (o.epsg_geographic > 0) key(2048, o.epsg_geographic);
         if (o.epsg_projected > 0) {
             key(3072, o.epsg_projected);
-            key(3076, 9001);                          // ProjLinearUnitsGeoKey: metre
+            key(3076, 9001);  // ProjLinearUnitsGeoKey: metre
         }
         if (o.epsg_vertical > 0) {
             key(4096, o.epsg_vertical);
-            key(4099, 9001);                          // VerticalUnitsGeoKey: metre
+            key(4099, 9001);  // VerticalUnitsGeoKey: metre
         }
     }
     std::vector<std::uint8_t> out(8 + 8 * keys.size());
@@ -116,14 +116,15 @@ template <class V>
 void require_length(const std::vector<V>& v, std::size_t n, const char* name)
 {
     if (!v.empty() && v.size() != n) {
-        throw invalid_input(detail::concat(fn, ": ", name, " must be empty or of length x.size() = ", n,
-                                           " (got ", v.size(), ")"));
+        throw invalid_input(
+            detail::concat(fn, ": ", name, " must be empty or of length x.size() = ", n, " (got ", v.size(), ")"));
     }
 }
 
 [[noreturn]] void bad_value(const char* name, double value, std::size_t i, const char* requirement)
 {
-    throw invalid_input(detail::concat(fn, ": ", name, " of point ", i, " must be ", requirement, " (got ", value, ")"));
+    throw invalid_input(
+        detail::concat(fn, ": ", name, " of point ", i, " must be ", requirement, " (got ", value, ")"));
 }
 
 }  // namespace
@@ -149,7 +150,7 @@ las_writer::~las_writer()
     if (!open_) return;
     try {
         close();
-    } catch (...) {   // a destructor must not throw; close() reports errors to callers who ask
+    } catch (...) {  // a destructor must not throw; close() reports errors to callers who ask
     }
 }
 
@@ -168,8 +169,9 @@ void las_writer::start()
     qmin_.fill(std::numeric_limits<std::int32_t>::max());
     qmax_.fill(std::numeric_limits<std::int32_t>::min());
     open_ = true;
-    write_header();   // placeholder with zero counts; close() writes the final one
-    for (const auto& r : records) out_->write(reinterpret_cast<const char*>(r.data()), static_cast<std::streamsize>(r.size()));
+    write_header();  // placeholder with zero counts; close() writes the final one
+    for (const auto& r : records)
+        out_->write(reinterpret_cast<const char*>(r.data()), static_cast<std::streamsize>(r.size()));
     if (!*out_) throw std::runtime_error(path_ + ": write failed");
 }
 
@@ -179,7 +181,7 @@ void las_writer::write_header()
     std::vector<std::uint8_t> h(header_size_for(o.version_minor), 0);
     std::uint8_t* p = h.data();
     std::memcpy(p, "LASF", 4);
-    store<std::uint16_t>(p + 6, o.version_minor >= 4 && !o.wkt.empty() ? 16 : 0);   // bit 4: CRS is WKT
+    store<std::uint16_t>(p + 6, o.version_minor >= 4 && !o.wkt.empty() ? 16 : 0);  // bit 4: CRS is WKT
     p[24] = 1;
     p[25] = static_cast<std::uint8_t>(o.version_minor);
     put_string(p + 26, o.system_identifier, 32);
@@ -195,10 +197,12 @@ void las_writer::write_header()
     p[104] = static_cast<std::uint8_t>(o.point_format);
     store<std::uint16_t>(p + 105, record_length_);
     // Legacy 32-bit counts: required before 1.4; in 1.4 set for formats 0–5 when they fit, else 0.
-    const bool legacy = count_ <= std::numeric_limits<std::uint32_t>::max() && (o.version_minor < 4 || o.point_format < 6);
+    const bool legacy =
+        count_ <= std::numeric_limits<std::uint32_t>::max() && (o.version_minor < 4 || o.point_format < 6);
     if (legacy) {
         store<std::uint32_t>(p + 107, static_cast<std::uint32_t>(count_));
-        for (std::size_t k = 0; k < 5; ++k) store<std::uint32_t>(p + 111 + 4 * k, static_cast<std::uint32_t>(by_return_[k]));
+        for (std::size_t k = 0; k < 5; ++k)
+            store<std::uint32_t>(p + 111 + 4 * k, static_cast<std::uint32_t>(by_return_[k]));
     }
     const bool any = count_ > 0;
     for (std::size_t k = 0; k < 3; ++k) {
@@ -232,7 +236,7 @@ void las_writer::write(const las_points& pts)
     if (!offset_known_) {
         for (std::size_t k = 0; k < 3; ++k) {
             const auto [lo, hi] = std::minmax_element(xyz[k]->begin(), xyz[k]->end());
-            if (!std::isfinite(*lo) || !std::isfinite(*hi)) break;   // the quantization below reports it
+            if (!std::isfinite(*lo) || !std::isfinite(*hi)) break;  // the quantization below reports it
             offset_[k] = std::floor(*lo / 1000.0) * 1000.0;
         }
         offset_known_ = true;
@@ -261,8 +265,10 @@ void las_writer::write(const las_points& pts)
             for (std::size_t k = 0; k < 3; ++k) {
                 const double q = ((*xyz[k])[i] - offset_[k]) / opt_.scale[k];
                 if (!(q >= -2147483648.5 && q < 2147483647.5)) {
-                    bad_value(k == 0 ? "x" : k == 1 ? "y" : "z", (*xyz[k])[i], i,
-                              "finite and within 2^31 quanta of scale from the offset");
+                    bad_value(k == 0   ? "x"
+                              : k == 1 ? "y"
+                                       : "z",
+                              (*xyz[k])[i], i, "finite and within 2^31 quanta of scale from the offset");
                 }
                 const auto v = static_cast<std::int32_t>(std::llround(q));
                 store<std::int32_t>(r + 4 * k, v);
@@ -279,7 +285,8 @@ void las_writer::write(const las_points& pts)
             if (nr > max_return) bad_value("number_of_returns", nr, i, extended ? "<= 15" : "<= 7 in formats 0-5");
             if (cls > max_class) bad_value("classification", cls, i, "<= 31 in formats 0-5");
             if (flags > max_flags) {
-                bad_value("classification_flags", flags, i, extended ? "<= 15" : "<= 7 (no overlap bit) in formats 0-5");
+                bad_value("classification_flags", flags, i,
+                          extended ? "<= 15" : "<= 7 (no overlap bit) in formats 0-5");
             }
             if (rn >= 1 && rn <= 15) ++by_return[static_cast<std::size_t>(rn - 1)];
             if (extended) {

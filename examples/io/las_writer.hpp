@@ -16,22 +16,22 @@ namespace lidarfx::io {
 
 /// How to write a LAS file. Defaults: LAS 1.2, point format 0, centimetre scale, offset chosen from the data.
 struct las_write_options {
-    int version_minor = 2;            ///< LAS 1.x, 0..4; formats 2–3 need >= 2, 4–5 need >= 3, 6–10 need 4
-    int point_format = 0;             ///< 0..10; RGB, NIR and wave-packet fields are written as zeros
-    std::array<double, 3> scale{0.01, 0.01, 0.01};   ///< x, y, z quantum in metres, finite and > 0
+    int version_minor = 2;  ///< LAS 1.x, 0..4; formats 2–3 need >= 2, 4–5 need >= 3, 6–10 need 4
+    int point_format = 0;   ///< 0..10; RGB, NIR and wave-packet fields are written as zeros
+    std::array<double, 3> scale{0.01, 0.01, 0.01};  ///< x, y, z quantum in metres, finite and > 0
     /// x, y, z offsets in metres; nullopt = the minimum of the first points written, floored to 1000 m.
     std::optional<std::array<double, 3>> offset{};
-    int extra_bytes = 0;              ///< zero bytes appended to each record (record length grows), 0..1000
-    int epsg_projected = 0;           ///< > 0: GeoKeyDirectory with ProjectedCSTypeGeoKey (3072), metres
-    int epsg_geographic = 0;          ///< > 0: GeographicTypeGeoKey (2048)
-    int epsg_vertical = 0;            ///< > 0: VerticalCSTypeGeoKey (4096), metres
-    std::string wkt{};                ///< non-empty: an OGC WKT VLR (2112); LAS 1.4 also sets global encoding bit 4
-    bool empty_wkt_record = false;    ///< with an empty `wkt`: write an empty WKT record (as careless writers do)
+    int extra_bytes = 0;            ///< zero bytes appended to each record (record length grows), 0..1000
+    int epsg_projected = 0;         ///< > 0: GeoKeyDirectory with ProjectedCSTypeGeoKey (3072), metres
+    int epsg_geographic = 0;        ///< > 0: GeographicTypeGeoKey (2048)
+    int epsg_vertical = 0;          ///< > 0: VerticalCSTypeGeoKey (4096), metres
+    std::string wkt{};              ///< non-empty: an OGC WKT VLR (2112); LAS 1.4 also sets global encoding bit 4
+    bool empty_wkt_record = false;  ///< with an empty `wkt`: write an empty WKT record (as careless writers do)
     /// Non-empty: the GeoKeyDirectory entries written as they are (instead of the keys of the EPSG codes above),
     /// with GeoDoubleParams (34736) and GeoAsciiParams (34737) VLRs when those are non-empty.
     std::vector<las_geo_key> geo_keys{};
     std::vector<double> geo_doubles{};
-    std::string geo_ascii{};          ///< '|'-ended fields; a NUL is appended
+    std::string geo_ascii{};  ///< '|'-ended fields; a NUL is appended
     std::string system_identifier = "lidarfx";
     std::string generating_software = "lidarfx las_writer";
 };

@@ -24,14 +24,22 @@ namespace {
 std::string item_name(std::uint16_t type)
 {
     switch (static_cast<laz_item_type>(type)) {
-    case laz_item_type::byte: return "BYTE";
-    case laz_item_type::point10: return "POINT10";
-    case laz_item_type::gpstime11: return "GPSTIME11";
-    case laz_item_type::rgb12: return "RGB12";
-    case laz_item_type::point14: return "POINT14";
-    case laz_item_type::rgb14: return "RGB14";
-    case laz_item_type::rgbnir14: return "RGBNIR14";
-    case laz_item_type::byte14: return "BYTE14";
+        case laz_item_type::byte:
+            return "BYTE";
+        case laz_item_type::point10:
+            return "POINT10";
+        case laz_item_type::gpstime11:
+            return "GPSTIME11";
+        case laz_item_type::rgb12:
+            return "RGB12";
+        case laz_item_type::point14:
+            return "POINT14";
+        case laz_item_type::rgb14:
+            return "RGB14";
+        case laz_item_type::rgbnir14:
+            return "RGBNIR14";
+        case laz_item_type::byte14:
+            return "BYTE14";
     }
     return "item type " + std::to_string(type);
 }
@@ -41,27 +49,42 @@ std::vector<laz_item_type> items_for(int point_format)
 {
     using t = laz_item_type;
     switch (point_format) {
-    case 0: return {t::point10};
-    case 1: return {t::point10, t::gpstime11};
-    case 2: return {t::point10, t::rgb12};
-    case 3: return {t::point10, t::gpstime11, t::rgb12};
-    case 6: return {t::point14};
-    case 7: return {t::point14, t::rgb14};
-    case 8: return {t::point14, t::rgbnir14};
-    default: return {};
+        case 0:
+            return {t::point10};
+        case 1:
+            return {t::point10, t::gpstime11};
+        case 2:
+            return {t::point10, t::rgb12};
+        case 3:
+            return {t::point10, t::gpstime11, t::rgb12};
+        case 6:
+            return {t::point14};
+        case 7:
+            return {t::point14, t::rgb14};
+        case 8:
+            return {t::point14, t::rgbnir14};
+        default:
+            return {};
     }
 }
 
 std::uint16_t item_size(laz_item_type type)
 {
     switch (type) {
-    case laz_item_type::point10: return 20;
-    case laz_item_type::gpstime11: return 8;
-    case laz_item_type::rgb12: return 6;
-    case laz_item_type::point14: return 30;
-    case laz_item_type::rgb14: return 6;
-    case laz_item_type::rgbnir14: return 8;
-    default: return 0;
+        case laz_item_type::point10:
+            return 20;
+        case laz_item_type::gpstime11:
+            return 8;
+        case laz_item_type::rgb12:
+            return 6;
+        case laz_item_type::point14:
+            return 30;
+        case laz_item_type::rgb14:
+            return 6;
+        case laz_item_type::rgbnir14:
+            return 8;
+        default:
+            return 0;
     }
 }
 
@@ -97,10 +120,12 @@ laz_vlr parse_laz_vlr(std::span<const std::uint8_t> payload, int point_format, s
     }
     const std::string version = std::to_string(v.version_major) + "." + std::to_string(v.version_minor) + "r" +
                                 std::to_string(v.version_revision);
-    if (v.coder != 0) fail(name, "LAZ coder " + std::to_string(v.coder) + " is unknown (only 0, arithmetic, is defined)");
+    if (v.coder != 0)
+        fail(name, "LAZ coder " + std::to_string(v.coder) + " is unknown (only 0, arithmetic, is defined)");
     if (v.compressor == 1) {
-        fail(name, "LAZ from LASzip " + version + " (point-wise, unchunked compressor 1) is not supported; "
-                   "recompress it with a current laszip or pdal");
+        fail(name, "LAZ from LASzip " + version +
+                       " (point-wise, unchunked compressor 1) is not supported; "
+                       "recompress it with a current laszip or pdal");
     }
     if (v.compressor != 2 && v.compressor != 3) {
         fail(name, "LAZ compressor " + std::to_string(v.compressor) + " is not supported (2 and 3 are)");
@@ -135,8 +160,8 @@ laz_vlr parse_laz_vlr(std::span<const std::uint8_t> payload, int point_format, s
         }
         const std::uint16_t need = layered ? 3 : 2;
         if (it.version != need) {
-            fail(name, "LAZ item " + item_name(it.type) + " version " + std::to_string(it.version) +
-                           " (from LASzip " + version + ") is not supported (version " + std::to_string(need) +
+            fail(name, "LAZ item " + item_name(it.type) + " version " + std::to_string(it.version) + " (from LASzip " +
+                           version + ") is not supported (version " + std::to_string(need) +
                            " is); recompress with a current laszip or pdal");
         }
         total += it.size;
@@ -217,9 +242,9 @@ struct laz_chunk_decoder::impl {
     std::uint16_t record_length = 0;
     bool layered = false;
     laz::decoder dec;
-    std::vector<std::unique_ptr<laz::item_decoder>> items;         // point-wise
-    std::vector<std::unique_ptr<laz::layered_item_decoder>> layers; // layered
-    std::vector<std::size_t> offsets;                              // of each item in the record
+    std::vector<std::unique_ptr<laz::item_decoder>> items;           // point-wise
+    std::vector<std::unique_ptr<laz::layered_item_decoder>> layers;  // layered
+    std::vector<std::size_t> offsets;                                // of each item in the record
 };
 
 laz_chunk_decoder::laz_chunk_decoder(const laz_vlr& vlr, std::uint16_t record_length) : impl_(std::make_unique<impl>())
@@ -232,14 +257,30 @@ laz_chunk_decoder::laz_chunk_decoder(const laz_vlr& vlr, std::uint16_t record_le
         m.offsets.push_back(offset);
         offset += it.size;
         switch (static_cast<laz_item_type>(it.type)) {
-        case laz_item_type::point10: m.items.push_back(std::make_unique<laz::point10_v2>(m.dec)); break;
-        case laz_item_type::gpstime11: m.items.push_back(std::make_unique<laz::gpstime11_v2>(m.dec)); break;
-        case laz_item_type::rgb12: m.items.push_back(std::make_unique<laz::rgb12_v2>(m.dec)); break;
-        case laz_item_type::byte: m.items.push_back(std::make_unique<laz::bytes_v2>(m.dec, it.size)); break;
-        case laz_item_type::point14: m.layers.push_back(std::make_unique<laz::point14_v3>()); break;
-        case laz_item_type::rgb14: m.layers.push_back(std::make_unique<laz::rgb14_v3>(false)); break;
-        case laz_item_type::rgbnir14: m.layers.push_back(std::make_unique<laz::rgb14_v3>(true)); break;
-        case laz_item_type::byte14: m.layers.push_back(std::make_unique<laz::bytes14_v3>(it.size)); break;
+            case laz_item_type::point10:
+                m.items.push_back(std::make_unique<laz::point10_v2>(m.dec));
+                break;
+            case laz_item_type::gpstime11:
+                m.items.push_back(std::make_unique<laz::gpstime11_v2>(m.dec));
+                break;
+            case laz_item_type::rgb12:
+                m.items.push_back(std::make_unique<laz::rgb12_v2>(m.dec));
+                break;
+            case laz_item_type::byte:
+                m.items.push_back(std::make_unique<laz::bytes_v2>(m.dec, it.size));
+                break;
+            case laz_item_type::point14:
+                m.layers.push_back(std::make_unique<laz::point14_v3>());
+                break;
+            case laz_item_type::rgb14:
+                m.layers.push_back(std::make_unique<laz::rgb14_v3>(false));
+                break;
+            case laz_item_type::rgbnir14:
+                m.layers.push_back(std::make_unique<laz::rgb14_v3>(true));
+                break;
+            case laz_item_type::byte14:
+                m.layers.push_back(std::make_unique<laz::bytes14_v3>(it.size));
+                break;
         }
     }
 }
@@ -255,7 +296,8 @@ void laz_chunk_decoder::decode(std::span<const std::uint8_t> bytes, std::uint64_
     const std::size_t stride = m.record_length;
     records.clear();
     if (point_count == 0) return;
-    if (bytes.size() < stride) fail(what, "the chunk's " + std::to_string(bytes.size()) + " bytes end inside its first point");
+    if (bytes.size() < stride)
+        fail(what, "the chunk's " + std::to_string(bytes.size()) + " bytes end inside its first point");
     records.resize(stride);
     std::memcpy(records.data(), bytes.data(), stride);
     const std::uint8_t* const end = bytes.data() + bytes.size();

@@ -15,14 +15,14 @@ namespace lidarfx::io {
 
 /// LASzip item types (the laszip VLR lists one per part of the point record, in record order).
 enum class laz_item_type : std::uint16_t {
-    byte = 0,        ///< extra bytes, point formats 0–5
-    point10 = 6,     ///< the 20 bytes of point formats 0–5
-    gpstime11 = 7,   ///< GPS time, 8 bytes
-    rgb12 = 8,       ///< red, green, blue, 6 bytes
-    point14 = 10,    ///< the 30 bytes of point formats 6–10
-    rgb14 = 11,      ///< red, green, blue of formats 7 and 8
-    rgbnir14 = 12,   ///< red, green, blue, near infrared of format 8
-    byte14 = 14,     ///< extra bytes, point formats 6–10
+    byte = 0,       ///< extra bytes, point formats 0–5
+    point10 = 6,    ///< the 20 bytes of point formats 0–5
+    gpstime11 = 7,  ///< GPS time, 8 bytes
+    rgb12 = 8,      ///< red, green, blue, 6 bytes
+    point14 = 10,   ///< the 30 bytes of point formats 6–10
+    rgb14 = 11,     ///< red, green, blue of formats 7 and 8
+    rgbnir14 = 12,  ///< red, green, blue, near infrared of format 8
+    byte14 = 14,    ///< extra bytes, point formats 6–10
 };
 
 struct laz_item {
@@ -32,12 +32,12 @@ struct laz_item {
 /// The laszip VLR (user id "laszip encoded", record 22204).
 struct laz_vlr {
     static constexpr std::uint32_t variable_chunk_size = 0xFFFFFFFFu;
-    std::uint16_t compressor = 0;   ///< 1 point-wise, 2 point-wise chunked, 3 layered chunked (LAS 1.4)
-    std::uint16_t coder = 0;        ///< 0 arithmetic (the only one defined)
+    std::uint16_t compressor = 0;  ///< 1 point-wise, 2 point-wise chunked, 3 layered chunked (LAS 1.4)
+    std::uint16_t coder = 0;       ///< 0 arithmetic (the only one defined)
     std::uint8_t version_major = 0, version_minor = 0;
     std::uint16_t version_revision = 0;
     std::uint32_t options = 0;
-    std::uint32_t chunk_size = 0;   ///< points per chunk; variable_chunk_size: listed in the chunk table
+    std::uint32_t chunk_size = 0;  ///< points per chunk; variable_chunk_size: listed in the chunk table
     std::vector<laz_item> items;
 };
 

@@ -157,7 +157,10 @@ public:
             n = m.decoder_table_[t + 1] + 1;
             while (n > sym + 1) {
                 const std::uint32_t k = (sym + n) >> 1;
-                if (m.distribution_[k] > dv) n = k; else sym = k;
+                if (m.distribution_[k] > dv)
+                    n = k;
+                else
+                    sym = k;
             }
             x = m.distribution_[sym] * length_;
             if (sym != m.last_symbol_) y = m.distribution_[sym + 1] * length_;
@@ -270,12 +273,15 @@ public:
             bits_[context].init(corr_bits_ + 1);
             bits_ready_[context] = 1;
         }
-        const std::uint32_t real = static_cast<std::uint32_t>(pred) + static_cast<std::uint32_t>(corrector(dec, bits_[context]));
+        const std::uint32_t real =
+            static_cast<std::uint32_t>(pred) + static_cast<std::uint32_t>(corrector(dec, bits_[context]));
         if (corr_range_ == 0) return static_cast<std::int32_t>(real);
         // Fold into [0, range) as the encoder did (pred and correction lie within one range of it).
         std::int32_t r = static_cast<std::int32_t>(real);
-        if (r < 0) r += static_cast<std::int32_t>(corr_range_);
-        else if (static_cast<std::uint32_t>(r) >= corr_range_) r -= static_cast<std::int32_t>(corr_range_);
+        if (r < 0)
+            r += static_cast<std::int32_t>(corr_range_);
+        else if (static_cast<std::uint32_t>(r) >= corr_range_)
+            r -= static_cast<std::int32_t>(corr_range_);
         return r;
     }
 
@@ -300,7 +306,8 @@ private:
             c = (dec.decode_symbol(corrector_[k_]) << low_bits) | dec.read_bits(low_bits);
         }
         // c in [0, 2^k): the upper half maps to [2^(k-1), 2^k), the lower half to [-(2^k - 1), -2^(k-1)].
-        const std::int64_t v = c >= (1u << (k_ - 1)) ? std::int64_t{c} + 1 : std::int64_t{c} - ((std::int64_t{1} << k_) - 1);
+        const std::int64_t v =
+            c >= (1u << (k_ - 1)) ? std::int64_t{c} + 1 : std::int64_t{c} - ((std::int64_t{1} << k_) - 1);
         return static_cast<std::int32_t>(v);
     }
 

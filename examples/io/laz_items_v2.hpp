@@ -15,8 +15,14 @@
 namespace lidarfx::io::laz {
 
 /// Folds an int into a byte the way the encoder's byte arithmetic wrapped it.
-inline std::uint8_t fold_u8(std::int32_t n) noexcept { return static_cast<std::uint8_t>(n); }
-inline std::int32_t clamp_u8(std::int32_t n) noexcept { return n < 0 ? 0 : n > 255 ? 255 : n; }
+inline std::uint8_t fold_u8(std::int32_t n) noexcept
+{
+    return static_cast<std::uint8_t>(n);
+}
+inline std::int32_t clamp_u8(std::int32_t n) noexcept
+{
+    return n < 0 ? 0 : n > 255 ? 255 : n;
+}
 
 /// The streaming median of the last five values (the predictor of x and y differences).
 class median5 {
@@ -80,10 +86,10 @@ private:
 
 /// Which of 16 predictor sets a point uses, from (number of returns, return number), and the level
 /// (distance from the last return) that picks the height predictor.
-inline constexpr std::uint8_t return_map[8][8] = {
-    {15, 14, 13, 12, 11, 10, 9, 8}, {14, 0, 1, 3, 6, 10, 10, 9},     {13, 1, 2, 4, 7, 11, 11, 10},
-    {12, 3, 4, 5, 8, 12, 12, 11},   {11, 6, 7, 8, 9, 13, 13, 12},    {10, 10, 11, 12, 13, 14, 14, 13},
-    {9, 10, 11, 12, 13, 14, 15, 14}, {8, 9, 10, 11, 12, 13, 14, 15}};
+inline constexpr std::uint8_t return_map[8][8] = {{15, 14, 13, 12, 11, 10, 9, 8},  {14, 0, 1, 3, 6, 10, 10, 9},
+                                                  {13, 1, 2, 4, 7, 11, 11, 10},    {12, 3, 4, 5, 8, 12, 12, 11},
+                                                  {11, 6, 7, 8, 9, 13, 13, 12},    {10, 10, 11, 12, 13, 14, 14, 13},
+                                                  {9, 10, 11, 12, 13, 14, 15, 14}, {8, 9, 10, 11, 12, 13, 14, 15}};
 inline constexpr std::uint8_t return_level[8][8] = {
     {0, 1, 2, 3, 4, 5, 6, 7}, {1, 0, 1, 2, 3, 4, 5, 6}, {2, 1, 0, 1, 2, 3, 4, 5}, {3, 2, 1, 0, 1, 2, 3, 4},
     {4, 3, 2, 1, 0, 1, 2, 3}, {5, 4, 3, 2, 1, 0, 1, 2}, {6, 5, 4, 3, 2, 1, 0, 1}, {7, 6, 5, 4, 3, 2, 1, 0}};
@@ -121,7 +127,7 @@ public:
         dx_median_.fill(median5{});
         dy_median_.fill(median5{});
         std::memcpy(last_, first, 20);
-        last_[12] = last_[13] = 0;   // the intensity predictor starts from 0, not the first point's value
+        last_[12] = last_[13] = 0;  // the intensity predictor starts from 0, not the first point's value
     }
 
     void decode(std::uint8_t* item) override
@@ -135,7 +141,8 @@ public:
             n = (p[14] >> 3) & 7;
             const std::uint32_t m = return_map[n][r];
             if (changed & 16) {
-                const auto v = static_cast<std::uint16_t>(intensity_.decompress(dec_, last_intensity_[m], m < 3 ? m : 3));
+                const auto v =
+                    static_cast<std::uint16_t>(intensity_.decompress(dec_, last_intensity_[m], m < 3 ? m : 3));
                 last_intensity_[m] = v;
                 store16(p + 12, v);
             } else {
@@ -147,7 +154,8 @@ public:
                 p[16] = fold_u8(v + p[16]);
             }
             if (changed & 2) p[17] = static_cast<std::uint8_t>(dec_.decode_symbol(model(user_data_, p[17])));
-            if (changed & 1) store16(p + 18, static_cast<std::uint16_t>(point_source_.decompress(dec_, load16(p + 18))));
+            if (changed & 1)
+                store16(p + 18, static_cast<std::uint16_t>(point_source_.decompress(dec_, load16(p + 18))));
         } else {
             r = p[14] & 7;
             n = (p[14] >> 3) & 7;
@@ -172,8 +180,18 @@ public:
     }
 
 private:
-    static std::uint16_t load16(const std::uint8_t* p) noexcept { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-    static std::uint32_t load32(const std::uint8_t* p) noexcept { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+    static std::uint16_t load16(const std::uint8_t* p) noexcept
+    {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+    }
+    static std::uint32_t load32(const std::uint8_t* p) noexcept
+    {
+        std::uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
     static void store16(std::uint8_t* p, std::uint16_t v) noexcept { std::memcpy(p, &v, 2); }
     static void store32(std::uint8_t* p, std::uint32_t v) noexcept { std::memcpy(p, &v, 4); }
     /// The model for a byte field given its previous value, made on first use (as the encoder does).
@@ -200,9 +218,9 @@ private:
 class gpstime11_v2 final : public item_decoder {
 public:
     static constexpr std::int32_t multi_max = 500, multi_minus = -10;
-    static constexpr std::uint32_t multi_unchanged = multi_max - multi_minus + 1;   // 511
-    static constexpr std::uint32_t multi_code_full = multi_max - multi_minus + 2;   // 512
-    static constexpr std::uint32_t multi_total = multi_max - multi_minus + 6;       // 516
+    static constexpr std::uint32_t multi_unchanged = multi_max - multi_minus + 1;  // 511
+    static constexpr std::uint32_t multi_code_full = multi_max - multi_minus + 2;  // 512
+    static constexpr std::uint32_t multi_total = multi_max - multi_minus + 6;      // 516
 
     explicit gpstime11_v2(decoder& dec) : dec_(dec) {}
 
@@ -237,7 +255,8 @@ public:
             } else {
                 const std::uint32_t multi = dec_.decode_symbol(multi_);
                 if (multi == 1) {
-                    time_[last_] += static_cast<std::uint64_t>(static_cast<std::int64_t>(ic_.decompress(dec_, diff_[last_], 1)));
+                    time_[last_] +=
+                        static_cast<std::uint64_t>(static_cast<std::int64_t>(ic_.decompress(dec_, diff_[last_], 1)));
                     extreme_[last_] = 0;
                 } else if (multi < multi_unchanged) {
                     std::int32_t d;
@@ -286,7 +305,8 @@ private:
     void read_full() noexcept
     {
         next_ = (next_ + 1) & 3;
-        const auto high = static_cast<std::uint32_t>(ic_.decompress(dec_, static_cast<std::int32_t>(time_[last_] >> 32), 8));
+        const auto high =
+            static_cast<std::uint32_t>(ic_.decompress(dec_, static_cast<std::int32_t>(time_[last_] >> 32), 8));
         time_[next_] = (std::uint64_t{high} << 32) | dec_.read_int();
         last_ = next_;
         diff_[last_] = 0;
@@ -299,7 +319,7 @@ private:
     std::uint32_t last_ = 0, next_ = 0;
     std::array<std::int32_t, 4> diff_{};
     std::array<std::int32_t, 4> extreme_{};
-    std::array<std::uint64_t, 4> time_{};   // the bits of the double, as integers
+    std::array<std::uint64_t, 4> time_{};  // the bits of the double, as integers
 };
 
 /// The RGB prediction shared by RGB12 v2 and RGB14 v3: which bytes changed (one symbol), then each
@@ -308,7 +328,9 @@ inline void decode_rgb(decoder& dec, symbol_model& byte_used, std::array<symbol_
                        const std::uint16_t* last, std::uint16_t* rgb) noexcept
 {
     const std::uint32_t sym = dec.decode_symbol(byte_used);
-    const auto corr = [&](int k) { return static_cast<std::int32_t>(dec.decode_symbol(diff[static_cast<std::size_t>(k)])); };
+    const auto corr = [&](int k) {
+        return static_cast<std::int32_t>(dec.decode_symbol(diff[static_cast<std::size_t>(k)]));
+    };
     std::uint32_t r, g, b;
     r = (sym & 1) ? fold_u8(corr(0) + (last[0] & 0xFF)) : (last[0] & 0xFF);
     r |= (sym & 2) ? std::uint32_t{fold_u8(corr(1) + (last[0] >> 8))} << 8 : (last[0] & 0xFF00);

@@ -174,7 +174,8 @@ public:
         } else if (rn_minus && !rn_plus) {
             r = (r + 15) & 15;
         } else if (rn_plus && rn_minus) {
-            r = gps_changed ? xy.decode_symbol(c.return_number[r]) : (r + xy.decode_symbol(c.return_number_gps_same) + 2) & 15;
+            r = gps_changed ? xy.decode_symbol(c.return_number[r])
+                            : (r + xy.decode_symbol(c.return_number_gps_same) + 2) & 15;
         }
         last[14] = static_cast<std::uint8_t>((n << 4) | r);
 
@@ -207,17 +208,20 @@ public:
         }
         if (layers_[4].used()) {
             const std::uint32_t k = (gps_changed ? 1u : 0u) | (r >= n ? 2u : 0u) | (r == 1 ? 4u : 0u);
-            const auto v = static_cast<std::uint16_t>(c.intensity.decompress(layers_[4].dec, c.last_intensity[k], k >> 1));
+            const auto v =
+                static_cast<std::uint16_t>(c.intensity.decompress(layers_[4].dec, c.last_intensity[k], k >> 1));
             c.last_intensity[k] = v;
             std::memcpy(last + 12, &v, 2);
         }
         if (changed & 8) {
             std::int16_t angle;
             std::memcpy(&angle, last + 18, 2);
-            const auto v = static_cast<std::uint16_t>(c.scan_angle.decompress(layers_[5].dec, angle, gps_changed ? 1 : 0));
+            const auto v =
+                static_cast<std::uint16_t>(c.scan_angle.decompress(layers_[5].dec, angle, gps_changed ? 1 : 0));
             std::memcpy(last + 18, &v, 2);
         }
-        if (layers_[6].used()) last[17] = static_cast<std::uint8_t>(layers_[6].dec.decode_symbol(c.user_data[last[17] / 4]));
+        if (layers_[6].used())
+            last[17] = static_cast<std::uint8_t>(layers_[6].dec.decode_symbol(c.user_data[last[17] / 4]));
         if (changed & 32) {
             std::uint16_t source;
             std::memcpy(&source, last + 20, 2);
@@ -250,7 +254,7 @@ private:
         std::array<median5, 12> dx_median, dy_median;
         bool gps_changed = false;
         std::uint32_t seq = 0, next_seq = 0;
-        std::array<std::uint64_t, 4> time{};   // bits of the doubles
+        std::array<std::uint64_t, 4> time{};  // bits of the doubles
         std::array<std::int32_t, 4> time_diff{}, extreme{};
     };
 
@@ -326,8 +330,10 @@ private:
             c.time_diff[c.seq] = 0;
             c.extreme[c.seq] = 0;
         };
-        const auto add = [&c](std::int32_t d) { c.time[c.seq] += static_cast<std::uint64_t>(static_cast<std::int64_t>(d)); };
-        for (int switches = 0; switches < 4; ++switches) {   // a valid stream switches at most once
+        const auto add = [&c](std::int32_t d) {
+            c.time[c.seq] += static_cast<std::uint64_t>(static_cast<std::int64_t>(d));
+        };
+        for (int switches = 0; switches < 4; ++switches) {  // a valid stream switches at most once
             if (c.time_diff[c.seq] == 0) {
                 const std::uint32_t multi = dec.decode_symbol(c.time_zero_diff);
                 if (multi == 0) {
@@ -423,10 +429,15 @@ public:
         if (nir_) {
             if (nir_layer_.used()) {
                 const std::uint32_t sym = nir_layer_.dec.decode_symbol(c.nir_used);
-                std::uint32_t v = (sym & 1) ? fold_u8(static_cast<std::int32_t>(nir_layer_.dec.decode_symbol(c.nir_diff[0])) + (last[3] & 0xFF))
-                                            : (last[3] & 0xFFu);
-                v |= (sym & 2) ? std::uint32_t{fold_u8(static_cast<std::int32_t>(nir_layer_.dec.decode_symbol(c.nir_diff[1])) + (last[3] >> 8))} << 8
-                               : (last[3] & 0xFF00u);
+                std::uint32_t v = (sym & 1)
+                                      ? fold_u8(static_cast<std::int32_t>(nir_layer_.dec.decode_symbol(c.nir_diff[0])) +
+                                                (last[3] & 0xFF))
+                                      : (last[3] & 0xFFu);
+                v |= (sym & 2)
+                         ? std::uint32_t{fold_u8(
+                               static_cast<std::int32_t>(nir_layer_.dec.decode_symbol(c.nir_diff[1])) + (last[3] >> 8))}
+                               << 8
+                         : (last[3] & 0xFF00u);
                 now[3] = static_cast<std::uint16_t>(v);
             } else {
                 now[3] = last[3];

@@ -2,18 +2,18 @@
 #include "io/output_folder.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <future>
-#include <thread>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -36,7 +36,10 @@ std::runtime_error failure(const std::filesystem::path& path, const std::string&
     return std::runtime_error(path.string() + ": " + what);
 }
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text()
+{
+    return std::strerror(errno);
+}
 
 /// ".<name>.<pid>.lidarfx-tmp": hidden, unique to this process, recognisable as a leftover.
 std::string temporary_name(const std::string& name)
@@ -53,8 +56,9 @@ std::string temporary_name(const std::string& name)
 bool is_temporary_name(const std::string& t)
 {
     const std::size_t suffix = std::strlen(temporary_suffix);
-    if (t.size() <= suffix + 3 || t[0] != '.' || t.compare(t.size() - suffix, suffix, temporary_suffix) != 0) return false;
-    const std::string rest = t.substr(1, t.size() - suffix - 1);   // <name>.<pid>
+    if (t.size() <= suffix + 3 || t[0] != '.' || t.compare(t.size() - suffix, suffix, temporary_suffix) != 0)
+        return false;
+    const std::string rest = t.substr(1, t.size() - suffix - 1);  // <name>.<pid>
     const auto dot = rest.rfind('.');
     if (dot == std::string::npos || dot == 0 || dot + 1 == rest.size()) return false;
     for (std::size_t i = dot + 1; i < rest.size(); ++i)
@@ -252,8 +256,7 @@ void output_folder::check_name(const std::string& name) const
     }
 }
 
-void output_folder::write(const std::string& name,
-                          const std::function<void(const std::string& temporary_path)>& writer)
+void output_folder::write(const std::string& name, const std::function<void(const std::string& temporary_path)>& writer)
 {
     const auto temporary = dir_ / temporary_name(name);
     {
@@ -289,7 +292,8 @@ void output_folder::commit(const std::string& command)
                 digests[i] = sha256_of_file(pending_[i].temporary);
             }
         };
-        const std::size_t helpers = std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), pending_.size());
+        const std::size_t helpers =
+            std::min<std::size_t>(std::max(1u, std::thread::hardware_concurrency()), pending_.size());
         std::vector<std::future<void>> running;
         for (std::size_t t = 1; t < helpers; ++t) running.push_back(std::async(std::launch::async, worker));
         worker();
@@ -302,8 +306,8 @@ void output_folder::commit(const std::string& command)
     for (std::size_t i = 0; i < pending_.size(); ++i) {
         const auto& p = pending_[i];
         manifest << (i ? ",\n" : "\n") << "    {\"name\": " << json_string(p.name)
-                 << ", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \""
-                 << digests[i] << "\"}";
+                 << ", \"bytes\": " << std::filesystem::file_size(p.temporary) << ", \"sha256\": \"" << digests[i]
+                 << "\"}";
     }
     manifest << "\n  ]\n}\n";
     check_name(manifest_name);

@@ -59,7 +59,7 @@ private:
     std::filesystem::path dir_;
     std::vector<std::filesystem::path> inputs_;
     std::vector<pending> pending_;
-    mutable std::mutex mutex_;   // guards pending_ while writers run on several threads
+    mutable std::mutex mutex_;  // guards pending_ while writers run on several threads
     int lock_fd_ = -1;
     bool created_ = false;  // the folder did not exist before this run
     bool committed_ = false;

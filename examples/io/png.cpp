@@ -54,9 +54,12 @@ void put_chunk(std::vector<std::uint8_t>& out, const char (&type)[5], std::span<
 std::uint8_t filtered(int type, const std::uint8_t* row, const std::uint8_t* up, std::size_t i, std::size_t bpp)
 {
     switch (type) {
-    case 1: return static_cast<std::uint8_t>(row[i] - (i >= bpp ? row[i - bpp] : 0));
-    case 2: return static_cast<std::uint8_t>(row[i] - (up ? up[i] : 0));
-    default: return row[i];
+        case 1:
+            return static_cast<std::uint8_t>(row[i] - (i >= bpp ? row[i - bpp] : 0));
+        case 2:
+            return static_cast<std::uint8_t>(row[i] - (up ? up[i] : 0));
+        default:
+            return row[i];
     }
 }
 
@@ -67,16 +70,17 @@ std::vector<std::uint8_t> zlib_stored(const std::vector<std::uint8_t>& raw)
     std::vector<std::uint8_t> z;
     z.reserve(raw.size() + raw.size() / max_block * 5 + 16);
     z.push_back(0x78);
-    z.push_back(0x01);   // (0x78 * 256 + 0x01) % 31 == 0
+    z.push_back(0x01);  // (0x78 * 256 + 0x01) % 31 == 0
     for (std::size_t at = 0; at < raw.size();) {
         const std::size_t n = std::min(max_block, raw.size() - at);
         const bool last = at + n == raw.size();
-        z.push_back(last ? 1 : 0);   // BFINAL, BTYPE 00 (stored); the rest of the byte pads to a boundary
+        z.push_back(last ? 1 : 0);  // BFINAL, BTYPE 00 (stored); the rest of the byte pads to a boundary
         z.push_back(static_cast<std::uint8_t>(n));
         z.push_back(static_cast<std::uint8_t>(n >> 8));
         z.push_back(static_cast<std::uint8_t>(~n));
         z.push_back(static_cast<std::uint8_t>(~n >> 8));
-        z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(at), raw.begin() + static_cast<std::ptrdiff_t>(at + n));
+        z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(at),
+                 raw.begin() + static_cast<std::ptrdiff_t>(at + n));
         at += n;
     }
     put_u32_be(z, adler32(raw));
@@ -121,7 +125,7 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) noex
 std::uint32_t adler32(std::span<const std::uint8_t> bytes, std::uint32_t adler) noexcept
 {
     constexpr std::uint32_t mod = 65521;
-    constexpr std::size_t nmax = 5552;   // largest run whose sums cannot overflow 32 bits before the modulo
+    constexpr std::size_t nmax = 5552;  // largest run whose sums cannot overflow 32 bits before the modulo
     std::uint32_t a = adler & 0xFFFFu, b = adler >> 16;
     for (std::size_t i = 0; i < bytes.size();) {
         const std::size_t end = std::min(bytes.size(), i + nmax);
@@ -173,7 +177,8 @@ std::vector<std::uint8_t> encode_png(std::ptrdiff_t width, std::ptrdiff_t height
             if (const auto c = cost(type); c < best_cost) best = type, best_cost = c;
         }
         dst[0] = static_cast<std::uint8_t>(best);
-        for (std::size_t i = 0; i < static_cast<std::size_t>(row_bytes); ++i) dst[1 + i] = filtered(best, row, up, i, bpp);
+        for (std::size_t i = 0; i < static_cast<std::size_t>(row_bytes); ++i)
+            dst[1 + i] = filtered(best, row, up, i, bpp);
     }
     const std::vector<std::uint8_t> z = deflate_available() ? zlib_deflate(raw) : zlib_stored(raw);
 
@@ -181,9 +186,9 @@ std::vector<std::uint8_t> encode_png(std::ptrdiff_t width, std::ptrdiff_t height
     std::vector<std::uint8_t> ihdr;
     put_u32_be(ihdr, static_cast<std::uint32_t>(width));
     put_u32_be(ihdr, static_cast<std::uint32_t>(height));
-    ihdr.insert(ihdr.end(), {8, static_cast<std::uint8_t>(channels == 1 ? 0 : 2), 0, 0, 0});   // depth, colour, methods
+    ihdr.insert(ihdr.end(), {8, static_cast<std::uint8_t>(channels == 1 ? 0 : 2), 0, 0, 0});  // depth, colour, methods
     put_chunk(png, "IHDR", ihdr);
-    constexpr std::size_t max_idat = std::size_t{1} << 24;   // several IDAT chunks keep each one well below 2^31
+    constexpr std::size_t max_idat = std::size_t{1} << 24;  // several IDAT chunks keep each one well below 2^31
     for (std::size_t at = 0; at < z.size(); at += max_idat) {
         put_chunk(png, "IDAT", std::span<const std::uint8_t>(z).subspan(at, std::min(max_idat, z.size() - at)));
     }

@@ -15,7 +15,7 @@ namespace lidarfx::io {
 /// An 8-bit RGB picture: `height` rows of `width` pixels, 3 bytes (r, g, b) each, row 0 at the top.
 struct rgb_image {
     std::ptrdiff_t width = 0, height = 0;
-    std::vector<std::uint8_t> rgb;   ///< width * height * 3 bytes, row-major
+    std::vector<std::uint8_t> rgb;  ///< width * height * 3 bytes, row-major
 };
 
 /// CRC-32 of `bytes` as used by PNG and zlib (reflected polynomial 0xEDB88320, initial and final XOR

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include <lidarfx/core/error.hpp>
 
@@ -16,14 +16,14 @@ namespace {
 
 // viridis at t = 0, 1/8, ..., 1 (matplotlib, CC0).
 constexpr std::array<std::array<std::uint8_t, 3>, 9> viridis{{{68, 1, 84},
-                                                               {71, 45, 123},
-                                                               {59, 82, 139},
-                                                               {44, 114, 142},
-                                                               {33, 144, 140},
-                                                               {39, 173, 129},
-                                                               {93, 200, 99},
-                                                               {170, 220, 50},
-                                                               {253, 231, 37}}};
+                                                              {71, 45, 123},
+                                                              {59, 82, 139},
+                                                              {44, 114, 142},
+                                                              {33, 144, 140},
+                                                              {39, 173, 129},
+                                                              {93, 200, 99},
+                                                              {170, 220, 50},
+                                                              {253, 231, 37}}};
 
 rgb_image blank(std::ptrdiff_t rows, std::ptrdiff_t cols, const char* fn)
 {
@@ -81,7 +81,7 @@ rgb_image colorize(raster_view<const float> values)
             }
         }
     }
-    if (!(lo <= hi)) return blank(values.rows(), values.cols(), "colorize");   // no finite value: all black
+    if (!(lo <= hi)) return blank(values.rows(), values.cols(), "colorize");  // no finite value: all black
     return colorize(values, lo, hi);
 }
 
@@ -104,9 +104,12 @@ raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double
     // Difference along one axis at (r, c): central when both neighbours exist, else one-sided, else none.
     const auto diff = [](double before, double centre, double after, double& d) {
         const bool b = !std::isnan(before), a = !std::isnan(after);
-        if (b && a) d = (after - before) / 2.0;
-        else if (a) d = after - centre;
-        else if (b) d = centre - before;
+        if (b && a)
+            d = (after - before) / 2.0;
+        else if (a)
+            d = after - centre;
+        else if (b)
+            d = centre - before;
         return b || a;
     };
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
@@ -129,7 +132,7 @@ raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double
                 }
             }
             const double dzdx = wx > 0 ? sx / wx / cell_m : 0.0;
-            const double dzdy = wy > 0 ? -sy / wy / cell_m : 0.0;   // rows grow southwards
+            const double dzdy = wy > 0 ? -sy / wy / cell_m : 0.0;  // rows grow southwards
             const double shade = (-dzdx * lx - dzdy * ly + lz) / std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
             out(r, c) = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(shade, 0.0, 1.0)));
         }
@@ -207,39 +210,72 @@ std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept
 {
     using g = std::array<std::uint8_t, 7>;
     switch (ch) {
-    case U'0': return g{0b01110, 0b10001, 0b10011, 0b10101, 0b11001, 0b10001, 0b01110};
-    case U'1': return g{0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110};
-    case U'2': return g{0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b01000, 0b11111};
-    case U'3': return g{0b11111, 0b00010, 0b00100, 0b00010, 0b00001, 0b10001, 0b01110};
-    case U'4': return g{0b00010, 0b00110, 0b01010, 0b10010, 0b11111, 0b00010, 0b00010};
-    case U'5': return g{0b11111, 0b10000, 0b11110, 0b00001, 0b00001, 0b10001, 0b01110};
-    case U'6': return g{0b00110, 0b01000, 0b10000, 0b11110, 0b10001, 0b10001, 0b01110};
-    case U'7': return g{0b11111, 0b00001, 0b00010, 0b00100, 0b01000, 0b01000, 0b01000};
-    case U'8': return g{0b01110, 0b10001, 0b10001, 0b01110, 0b10001, 0b10001, 0b01110};
-    case U'9': return g{0b01110, 0b10001, 0b10001, 0b01111, 0b00001, 0b00010, 0b01100};
-    case U'.': return g{0, 0, 0, 0, 0, 0b01100, 0b01100};
-    case U'-': return g{0, 0, 0, 0b11111, 0, 0, 0};
-    case U'+': return g{0, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0};
-    case U'/': return g{0, 0b00001, 0b00010, 0b00100, 0b01000, 0b10000, 0};
-    case U'²': return g{0b01100, 0b10010, 0b00100, 0b01000, 0b11110, 0, 0};
-    case U'k': return g{0b10000, 0b10000, 0b10010, 0b10100, 0b11000, 0b10100, 0b10010};
-    case U'W': return g{0b10001, 0b10001, 0b10001, 0b10101, 0b10101, 0b10101, 0b01010};
-    case U'h': return g{0b10000, 0b10000, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
-    case U'm': return g{0, 0, 0b11010, 0b10101, 0b10101, 0b10001, 0b10001};
-    case U'S': return g{0b01111, 0b10000, 0b10000, 0b01110, 0b00001, 0b00001, 0b11110};
-    case U'V': return g{0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b01010, 0b00100};
-    case U'F': return g{0b11111, 0b10000, 0b10000, 0b11110, 0b10000, 0b10000, 0b10000};
-    case U'e': return g{0, 0, 0b01110, 0b10001, 0b11111, 0b10000, 0b01110};
-    case U'n': return g{0, 0, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
-    case U'o': return g{0, 0, 0b01110, 0b10001, 0b10001, 0b10001, 0b01110};
-    case U'a': return g{0, 0, 0b01110, 0b00001, 0b01111, 0b10001, 0b01111};
-    case U'°': return g{0b01100, 0b10010, 0b10010, 0b01100, 0, 0, 0};
-    case U'z': return g{0, 0, 0b11111, 0b00010, 0b00100, 0b01000, 0b11111};
-    case U'i': return g{0b00100, 0, 0b01100, 0b00100, 0b00100, 0b00100, 0b01110};
-    case U'u': return g{0, 0, 0b10001, 0b10001, 0b10001, 0b10011, 0b01101};
-    case U't': return g{0b01000, 0b01000, 0b11100, 0b01000, 0b01000, 0b01001, 0b00110};
-    case U' ': return g{};
-    default: return g{0b11111, 0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b11111};
+        case U'0':
+            return g{0b01110, 0b10001, 0b10011, 0b10101, 0b11001, 0b10001, 0b01110};
+        case U'1':
+            return g{0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110};
+        case U'2':
+            return g{0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b01000, 0b11111};
+        case U'3':
+            return g{0b11111, 0b00010, 0b00100, 0b00010, 0b00001, 0b10001, 0b01110};
+        case U'4':
+            return g{0b00010, 0b00110, 0b01010, 0b10010, 0b11111, 0b00010, 0b00010};
+        case U'5':
+            return g{0b11111, 0b10000, 0b11110, 0b00001, 0b00001, 0b10001, 0b01110};
+        case U'6':
+            return g{0b00110, 0b01000, 0b10000, 0b11110, 0b10001, 0b10001, 0b01110};
+        case U'7':
+            return g{0b11111, 0b00001, 0b00010, 0b00100, 0b01000, 0b01000, 0b01000};
+        case U'8':
+            return g{0b01110, 0b10001, 0b10001, 0b01110, 0b10001, 0b10001, 0b01110};
+        case U'9':
+            return g{0b01110, 0b10001, 0b10001, 0b01111, 0b00001, 0b00010, 0b01100};
+        case U'.':
+            return g{0, 0, 0, 0, 0, 0b01100, 0b01100};
+        case U'-':
+            return g{0, 0, 0, 0b11111, 0, 0, 0};
+        case U'+':
+            return g{0, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0};
+        case U'/':
+            return g{0, 0b00001, 0b00010, 0b00100, 0b01000, 0b10000, 0};
+        case U'²':
+            return g{0b01100, 0b10010, 0b00100, 0b01000, 0b11110, 0, 0};
+        case U'k':
+            return g{0b10000, 0b10000, 0b10010, 0b10100, 0b11000, 0b10100, 0b10010};
+        case U'W':
+            return g{0b10001, 0b10001, 0b10001, 0b10101, 0b10101, 0b10101, 0b01010};
+        case U'h':
+            return g{0b10000, 0b10000, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
+        case U'm':
+            return g{0, 0, 0b11010, 0b10101, 0b10101, 0b10001, 0b10001};
+        case U'S':
+            return g{0b01111, 0b10000, 0b10000, 0b01110, 0b00001, 0b00001, 0b11110};
+        case U'V':
+            return g{0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b01010, 0b00100};
+        case U'F':
+            return g{0b11111, 0b10000, 0b10000, 0b11110, 0b10000, 0b10000, 0b10000};
+        case U'e':
+            return g{0, 0, 0b01110, 0b10001, 0b11111, 0b10000, 0b01110};
+        case U'n':
+            return g{0, 0, 0b10110, 0b11001, 0b10001, 0b10001, 0b10001};
+        case U'o':
+            return g{0, 0, 0b01110, 0b10001, 0b10001, 0b10001, 0b01110};
+        case U'a':
+            return g{0, 0, 0b01110, 0b00001, 0b01111, 0b10001, 0b01111};
+        case U'°':
+            return g{0b01100, 0b10010, 0b10010, 0b01100, 0, 0, 0};
+        case U'z':
+            return g{0, 0, 0b11111, 0b00010, 0b00100, 0b01000, 0b11111};
+        case U'i':
+            return g{0b00100, 0, 0b01100, 0b00100, 0b00100, 0b00100, 0b01110};
+        case U'u':
+            return g{0, 0, 0b10001, 0b10001, 0b10001, 0b10011, 0b01101};
+        case U't':
+            return g{0b01000, 0b01000, 0b11100, 0b01000, 0b01000, 0b01001, 0b00110};
+        case U' ':
+            return g{};
+        default:
+            return g{0b11111, 0b10001, 0b10001, 0b10001, 0b10001, 0b10001, 0b11111};
     }
 }
 
@@ -308,7 +344,10 @@ int legend_scale(std::ptrdiff_t width) noexcept
     return static_cast<int>(std::clamp<std::ptrdiff_t>(width / 300, 1, 4));
 }
 
-std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept { return 26 * legend_scale(width); }
+std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept
+{
+    return 26 * legend_scale(width);
+}
 
 rgb_image with_legend(const rgb_image& picture, double min, double max, std::string_view unit)
 {
@@ -320,7 +359,7 @@ rgb_image with_legend(const rgb_image& picture, double min, double max, std::str
                     "min and max must be finite with min <= max");
     const int s = legend_scale(picture.width);
     const std::string lo = number_label(min), hi = number_label(max);
-    const std::ptrdiff_t margin = 4 * s, gap = 3 * s * 2;   // gap: between the labels and the unit
+    const std::ptrdiff_t margin = 4 * s, gap = 3 * s * 2;  // gap: between the labels and the unit
     // The unit is centred: room for the longer label on both sides.
     const std::ptrdiff_t label = std::max(text_width_px(lo, s), text_width_px(hi, s));
     const std::ptrdiff_t needed = 2 * margin + 2 * label + text_width_px(unit, s) + 2 * gap;

@@ -42,11 +42,16 @@ std::string table_value::format() const
     return std::visit(
         [](const auto& v) -> std::string {
             using V = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<V, std::monostate>) return "";
-            else if constexpr (std::is_same_v<V, bool>) return v ? "true" : "false";
-            else if constexpr (std::is_same_v<V, double>) return std::isfinite(v) ? shortest(v) : "";
-            else if constexpr (std::is_same_v<V, std::string>) return v;
-            else return shortest(v);
+            if constexpr (std::is_same_v<V, std::monostate>)
+                return "";
+            else if constexpr (std::is_same_v<V, bool>)
+                return v ? "true" : "false";
+            else if constexpr (std::is_same_v<V, double>)
+                return std::isfinite(v) ? shortest(v) : "";
+            else if constexpr (std::is_same_v<V, std::string>)
+                return v;
+            else
+                return shortest(v);
         },
         v_);
 }
@@ -87,8 +92,8 @@ std::string to_csv(const std::vector<std::string>& header, const std::vector<std
     line(header, [](const std::string& s) { return s; });
     for (std::size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].size() != header.size()) {
-            throw invalid_input(detail::concat("to_csv: row ", r, " has ", rows[r].size(), " fields, the header ",
-                                               header.size()));
+            throw invalid_input(
+                detail::concat("to_csv: row ", r, " has ", rows[r].size(), " fields, the header ", header.size()));
         }
         line(rows[r], [](const table_value& v) { return v.format(); });
     }
@@ -107,22 +112,36 @@ std::string json_string(std::string_view text)
     for (const char ch : text) {
         const auto u = static_cast<unsigned char>(ch);
         switch (ch) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
-        case '\b': out += "\\b"; break;
-        case '\f': out += "\\f"; break;
-        default:
-            if (u < 0x20) {
-                static constexpr char hex[] = "0123456789abcdef";
-                out += "\\u00";
-                out += hex[u >> 4];
-                out += hex[u & 15];
-            } else {
-                out += ch;
-            }
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            case '\b':
+                out += "\\b";
+                break;
+            case '\f':
+                out += "\\f";
+                break;
+            default:
+                if (u < 0x20) {
+                    static constexpr char hex[] = "0123456789abcdef";
+                    out += "\\u00";
+                    out += hex[u >> 4];
+                    out += hex[u & 15];
+                } else {
+                    out += ch;
+                }
         }
     }
     out += '"';
@@ -162,16 +181,16 @@ std::string to_geojson(const std::vector<geojson_feature>& features, int epsg)
                                                        " has a non-finite coordinate (", pt[0], ", ", pt[1], ")"));
                 }
             }
-            if (!ring.empty() && ring.front() == ring.back()) ring.pop_back();   // work on the open ring
+            if (!ring.empty() && ring.front() == ring.back()) ring.pop_back();  // work on the open ring
             geo_ring distinct = ring;
             std::sort(distinct.begin(), distinct.end());
             if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) {
-                throw invalid_input(detail::concat(fn, ": feature ", f, " ring ", k,
-                                                   " must have at least 3 distinct positions"));
+                throw invalid_input(
+                    detail::concat(fn, ": feature ", f, " ring ", k, " must have at least 3 distinct positions"));
             }
             const bool outer = k == 0;
             const double area = signed_area(ring);
-            if ((outer && area < 0) || (!outer && area > 0)) std::reverse(ring.begin() + 1, ring.end());   // same start
+            if ((outer && area < 0) || (!outer && area > 0)) std::reverse(ring.begin() + 1, ring.end());  // same start
             ring.push_back(ring.front());
             out += k ? ",[" : "[";
             for (std::size_t i = 0; i < ring.size(); ++i) {

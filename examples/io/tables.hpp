@@ -18,16 +18,19 @@ namespace lidarfx::io {
 /// is written as an empty CSV field and as JSON null.
 class table_value {
 public:
-    table_value() = default;                                        ///< null
-    table_value(std::nullptr_t) {}                                  ///< null
+    table_value() = default;        ///< null
+    table_value(std::nullptr_t) {}  ///< null
     table_value(bool v) : v_(v) {}
     template <std::signed_integral T>
-    table_value(T v) : v_(static_cast<std::int64_t>(v)) {}
+    table_value(T v) : v_(static_cast<std::int64_t>(v))
+    {
+    }
     template <std::unsigned_integral T>
-        requires(!std::same_as<T, bool>)
-    table_value(T v) : v_(static_cast<std::uint64_t>(v)) {}
+    requires(!std::same_as<T, bool>) table_value(T v) : v_(static_cast<std::uint64_t>(v)) {}
     template <std::floating_point T>
-    table_value(T v) : v_(static_cast<double>(v)) {}
+    table_value(T v) : v_(static_cast<double>(v))
+    {
+    }
     table_value(std::string v) : v_(std::move(v)) {}
     table_value(const char* v) : v_(std::string(v)) {}
     table_value(std::string_view v) : v_(std::string(v)) {}

@@ -7,8 +7,8 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstddef>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -119,8 +119,9 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
     }
     {
         const auto f = csv_fields(trim(line));
-        if (f.size() < 7) fail("the station line needs 7 fields (id, name, state, zone, lat, lon, elevation), got " +
-                               std::to_string(f.size()));
+        if (f.size() < 7)
+            fail("the station line needs 7 fields (id, name, state, zone, lat, lon, elevation), got " +
+                 std::to_string(f.size()));
         tmy3_station& s = out.station;
         s.id = std::string(trim(f[0]));
         s.name = std::string(trim(f[1]));
@@ -139,8 +140,12 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
         const auto f = csv_fields(trim(line));
         for (std::size_t i = 0; i < f.size(); ++i) {
             const std::string_view n = column_name(f[i]);
-            std::ptrdiff_t* slot = n == "Date" ? &col_date : n == "Time" ? &col_time : n == "GHI" ? &col_ghi
-                                 : n == "DNI"  ? &col_dni  : n == "DHI"  ? &col_dhi  : nullptr;
+            std::ptrdiff_t* slot = n == "Date"   ? &col_date
+                                   : n == "Time" ? &col_time
+                                   : n == "GHI"  ? &col_ghi
+                                   : n == "DNI"  ? &col_dni
+                                   : n == "DHI"  ? &col_dhi
+                                                 : nullptr;
             if (slot != nullptr && *slot < 0) *slot = static_cast<std::ptrdiff_t>(i);
         }
         const std::pair<std::ptrdiff_t, const char*> need[] = {
@@ -234,8 +239,8 @@ tmy3_data parse_tmy3(std::string_view text, const std::string& source)
     if (cov.hours_missing > tmy3_max_missing_hours) {
         throw invalid_input(source + ": " + std::to_string(cov.hours_present) + " of " +
                             std::to_string(tmy3_hours_of_year) + " hours of the year have values, " +
-                            std::to_string(cov.hours_missing) + " are missing (the first " + cov.first_missing +
-                            ", " + std::to_string(cov.rows_marked_missing) + " marked -9900): at most " +
+                            std::to_string(cov.hours_missing) + " are missing (the first " + cov.first_missing + ", " +
+                            std::to_string(cov.rows_marked_missing) + " marked -9900): at most " +
                             std::to_string(tmy3_max_missing_hours) + " (1 %) may be missing");
     }
     return out;

@@ -13,13 +13,13 @@ namespace lidarfx::io {
 
 /// The station line of a TMY3 file (its first line).
 struct tmy3_station {
-    std::string id;             ///< USAF station number, e.g. "723170"
-    std::string name;           ///< station name, e.g. "GREENSBORO PIEDMONT TRIAD INT"
-    std::string state;          ///< state or province, e.g. "NC"
-    double utc_offset_h = 0;    ///< time zone of the stamps: local standard time = UTC + this many hours (-5 = EST)
-    double latitude_deg = 0;    ///< degrees north
-    double longitude_deg = 0;   ///< degrees east (negative west)
-    double elevation_m = 0;     ///< metres above sea level
+    std::string id;            ///< USAF station number, e.g. "723170"
+    std::string name;          ///< station name, e.g. "GREENSBORO PIEDMONT TRIAD INT"
+    std::string state;         ///< state or province, e.g. "NC"
+    double utc_offset_h = 0;   ///< time zone of the stamps: local standard time = UTC + this many hours (-5 = EST)
+    double latitude_deg = 0;   ///< degrees north
+    double longitude_deg = 0;  ///< degrees east (negative west)
+    double elevation_m = 0;    ///< metres above sea level
 };
 
 /// Hours of a TMY year: 365 days of 24 hours (a TMY has no 29 February).

@@ -9,10 +9,10 @@
 #include <algorithm>
 #include <exception>
 #include <functional>
-#include <limits>
-#include <stdexcept>
 #include <iostream>
+#include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,7 +32,7 @@ struct run_plan {
     survey_options opt;
     survey_layout layout;
     tile_plan plan;
-    std::vector<file_readers> readers;   // every listing tile reads its files (ranks hand nothing on)
+    std::vector<file_readers> readers;  // every listing tile reads its files (ranks hand nothing on)
 };
 
 run_plan plan_run(const std::vector<std::string>& files, const survey_options& opt, double tile_edge_m)
@@ -77,8 +77,10 @@ survey gather_survey(const run_plan& p, int ranks)
     const auto receive = [&](bool wait) {
         MPI_Status status;
         int arrived = 1;
-        if (wait) MPI_Probe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &status);
-        else MPI_Iprobe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &arrived, &status);
+        if (wait)
+            MPI_Probe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &status);
+        else
+            MPI_Iprobe(MPI_ANY_SOURCE, tile_tag, MPI_COMM_WORLD, &arrived, &status);
         if (!arrived) return false;
         int count = 0;
         MPI_Get_count(&status, MPI_BYTE, &count);
@@ -113,7 +115,8 @@ void work(const std::vector<std::string>& args, int rank, int ranks)
     read_my_tiles(p, rank, ranks, [&](tile_rasters&& t) {
         auto bytes = pack_tile(t);
         if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-            throw std::runtime_error("tile " + std::to_string(t.index) + " is over 2 GiB as a message: use a smaller --tile");
+            throw std::runtime_error("tile " + std::to_string(t.index) +
+                                     " is over 2 GiB as a message: use a smaller --tile");
         MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, 0, tile_tag, MPI_COMM_WORLD);
     });
 }
@@ -129,7 +132,9 @@ int main(int argc, char** argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     if (argc < 2 || std::string(argv[1]) != "water") {
-        if (rank == 0) std::cerr << "usage: mpirun -np N lidarfx-mpi water ...   (the options of lidarfx water, --tile M needed)\n";
+        if (rank == 0)
+            std::cerr
+                << "usage: mpirun -np N lidarfx-mpi water ...   (the options of lidarfx water, --tile M needed)\n";
         MPI_Finalize();
         return 2;
     }
@@ -138,8 +143,8 @@ int main(int argc, char** argv)
     try {
         if (rank == 0) {
             bool announced = false;
-            const auto source = [&](const std::vector<std::string>& files, const survey_options& opt, double tile_edge_m,
-                                    const std::filesystem::path&) {
+            const auto source = [&](const std::vector<std::string>& files, const survey_options& opt,
+                                    double tile_edge_m, const std::filesystem::path&) {
                 run_plan p;
                 try {
                     p = plan_run(files, opt, tile_edge_m);
@@ -163,7 +168,7 @@ int main(int argc, char** argv)
                 }
                 throw;
             }
-            if (!announced) {   // --help or a usage error before any reading
+            if (!announced) {  // --help or a usage error before any reading
                 int go = 0;
                 MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
             }
@@ -172,7 +177,7 @@ int main(int argc, char** argv)
         }
     } catch (const usage_error& e) {
         std::cerr << "lidarfx-mpi water (rank " << rank << "): " << e.what() << '\n';
-        if (rank != 0) MPI_Abort(MPI_COMM_WORLD, 2);   // rank 0 waits for this rank's tiles
+        if (rank != 0) MPI_Abort(MPI_COMM_WORLD, 2);  // rank 0 waits for this rank's tiles
         code = 2;
     } catch (const std::exception& e) {
         std::cerr << "lidarfx-mpi water (rank " << rank << "): error: " << e.what() << '\n';

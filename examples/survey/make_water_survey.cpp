@@ -40,18 +40,24 @@ int main(int argc, char** argv)
     for (int i = 2; i + 1 < argc; i += 2) {
         const std::string name = argv[i];
         const double v = std::atof(argv[i + 1]);
-        if (name == "--size") size = v;
-        else if (name == "--density") density = v;
-        else if (name == "--file") file = v;
-        else if (name == "--seed") seed = static_cast<unsigned>(v);
-        else return usage();
+        if (name == "--size")
+            size = v;
+        else if (name == "--density")
+            density = v;
+        else if (name == "--file")
+            file = v;
+        else if (name == "--seed")
+            seed = static_cast<unsigned>(v);
+        else
+            return usage();
     }
     if (!(size > 0) || !(density > 0) || !(file > 0)) return usage();
     std::filesystem::create_directories(out);
-    const auto files_x = static_cast<int>(std::ceil(2 * size / file)), files_y = static_cast<int>(std::ceil(size / file));
+    const auto files_x = static_cast<int>(std::ceil(2 * size / file)),
+               files_y = static_cast<int>(std::ceil(size / file));
     std::map<int, std::unique_ptr<lidarfx::io::las_writer>> writers;
-    const lidarfx::io::las_write_options wo{.point_format = 1, .offset = std::array<double, 3>{east0, north0, 0.0},
-                                             .epsg_projected = 32633};
+    const lidarfx::io::las_write_options wo{
+        .point_format = 1, .offset = std::array<double, 3>{east0, north0, 0.0}, .epsg_projected = 32633};
     for (int r = 0; r < files_y; ++r) {
         for (int c = 0; c < files_x; ++c) {
             const auto path = out / ("file_" + std::to_string(r) + "_" + std::to_string(c) + ".las");
@@ -65,7 +71,7 @@ int main(int argc, char** argv)
         const auto& p = scene.points;
         const double x_shift = east0 + part * size;
         std::map<int, lidarfx::io::las_points> buckets;
-        const double time_shift = part * 1.0e5;   // the second scene flown later
+        const double time_shift = part * 1.0e5;  // the second scene flown later
         for (std::size_t i = 0; i < p.size(); ++i) {
             const double x = p.x[i] + x_shift, y = p.y[i] + north0;
             const int c = std::min(files_x - 1, static_cast<int>((x - east0) / file));

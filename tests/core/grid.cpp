@@ -70,10 +70,10 @@ TEST_CASE("core/grid: cell boxes grow cell by cell and map to the world rectangl
 TEST_CASE("core/grid: edges belong to cells as documented; outside and NaN are nowhere")
 {
     const grid g{0.0, 10.0, 1.0, 10, 10};
-    CHECK(g.cell_of(0.0, 10.0) == cell_index{0, 0});   // north-west corner
-    CHECK(g.cell_of(1.0, 10.0) == cell_index{0, 1});   // west edge of column 1
-    CHECK(g.cell_of(0.0, 9.0) == cell_index{1, 0});    // north edge of row 1
-    CHECK(g.cell_of(10.0, 0.0) == cell_index{9, 9});   // far (south-east) corner -> last cell
+    CHECK(g.cell_of(0.0, 10.0) == cell_index{0, 0});  // north-west corner
+    CHECK(g.cell_of(1.0, 10.0) == cell_index{0, 1});  // west edge of column 1
+    CHECK(g.cell_of(0.0, 9.0) == cell_index{1, 0});   // north edge of row 1
+    CHECK(g.cell_of(10.0, 0.0) == cell_index{9, 9});  // far (south-east) corner -> last cell
     CHECK(g.cell_of(10.0, 5.5) == cell_index{4, 9});
     CHECK_FALSE(g.cell_of(10.0 + 1e-9, 5.0));
     CHECK_FALSE(g.cell_of(-1e-9, 5.0));
@@ -87,8 +87,8 @@ TEST_CASE("core/grid: snapped grids sit on multiples of the cell and cover the b
     const auto g = snapped_grid({3.2, 7.9, 10.0, 20.0}, 2.0);
     CHECK(g.x0 == 2.0);
     CHECK(g.y0 == 20.0);
-    CHECK(g.cols == 4);   // 2..10, with 10 on the closed east edge
-    CHECK(g.rows == 7);   // 20..6
+    CHECK(g.cols == 4);  // 2..10, with 10 on the closed east edge
+    CHECK(g.rows == 7);  // 20..6
     CHECK(g.cell_of(10.0, 7.9));
     CHECK(g.cell_of(3.2, 20.0));
     const auto one = snapped_grid({4.0, 4.0, 4.0, 4.0}, 2.0);
@@ -138,18 +138,19 @@ TEST_CASE("core/grid: snapped_grid refuses what it cannot represent, naming the 
     // LAS header bounds near 2^48 (a crafted file): refused, never a grid whose rows * cols wraps.
     const double far = std::ldexp(1.0, 48);
     CHECK_THROWS_AS(snapped_grid({-far, -far, far, far}, 1.0), invalid_input);
-    CHECK_THROWS_AS(snapped_grid({0, 0, far, far}, 4096.0), invalid_input);   // fine lattice, 2^36 x 2^36 cells
+    CHECK_THROWS_AS(snapped_grid({0, 0, far, far}, 4096.0), invalid_input);  // fine lattice, 2^36 x 2^36 cells
     CHECK_THROWS_AS(snapped_grid({0, 0, std::numeric_limits<double>::infinity(), 1}, 1.0), invalid_input);
     CHECK_THROWS_AS(snapped_grid({0, 0, 1, 1}, std::numeric_limits<double>::infinity()), invalid_input);
     CHECK_THROWS_AS(snapped_grid({0, 0, 1, 1}, std::numeric_limits<double>::denorm_min()), invalid_input);
     CHECK_THROWS_WITH_AS(snapped_grid({2, 0, 1, 1}, 1.0),
-                         "snapped_grid: bounds must be finite with min <= max (got bounds (2, 0, 1, 1))", invalid_input);
+                         "snapped_grid: bounds must be finite with min <= max (got bounds (2, 0, 1, 1))",
+                         invalid_input);
     const double top = std::numeric_limits<double>::max();
     CHECK_THROWS_WITH_AS(snapped_grid({-top, 0, -top, 0}, 1e300),
                          "snapped_grid: bounds (-1.7976931348623157e+308, 0, -1.7976931348623157e+308, 0) at cell_m "
                          "1.0000000000000001e+300 give a grid beyond the double range",
                          invalid_input);
-    CHECK_THROWS_AS(snapped_grid({-1e308, 0, 1e308, 0}, 1e300), invalid_input);   // xmax - x0 overflows
+    CHECK_THROWS_AS(snapped_grid({-1e308, 0, 1e308, 0}, 1e300), invalid_input);  // xmax - x0 overflows
     const grid vast = snapped_grid({-1e303, -1e303, 1e303, 1e303}, 1e300);
     CHECK(vast.rows == 2000);
     CHECK(vast.cell_of(1e303, -1e303) == cell_index{1999, 1999});
@@ -181,7 +182,7 @@ TEST_CASE("core/grid: one rounding rule - every point of the bounds lands in the
         CAPTURE(seed);
         CAPTURE(trial);
         const double cell = trial % 3 == 0   ? nice_cells[static_cast<std::size_t>(trial / 3) % nice_cells.size()]
-                            : trial % 3 == 1 ? std::round(1 + u(rng) * 499) / 100   // 0.01 .. 5 in steps of 0.01
+                            : trial % 3 == 1 ? std::round(1 + u(rng) * 499) / 100  // 0.01 .. 5 in steps of 0.01
                                              : 0.01 + u(rng) * 4.99;
         const double cx = centres[static_cast<std::size_t>(trial) % centres.size()];
         const double cy = centres[static_cast<std::size_t>(trial / 7) % centres.size()];
@@ -190,21 +191,22 @@ TEST_CASE("core/grid: one rounding rule - every point of the bounds lands in the
         b.xmax = b.xmin + w;
         b.ymax = b.ymin + h;
         switch (trial % 5) {
-        case 1:  // bounds on lattice lines, computed as k * cell (as a header written from a grid would hold)
-            b = {std::floor(b.xmin / cell) * cell, std::floor(b.ymin / cell) * cell, std::ceil(b.xmax / cell) * cell,
-                 std::ceil(b.ymax / cell) * cell};
-            break;
-        case 2:  // minimum on a lattice line, the maximum a whole number of cells further (summed, not multiplied)
-            b.xmin = std::round(b.xmin / cell) * cell;
-            b.ymin = std::round(b.ymin / cell) * cell;
-            b.xmax = b.xmin + std::round(w / cell) * cell;
-            b.ymax = b.ymin + std::round(h / cell) * cell;
-            break;
-        case 3:  // decimal bounds (centimetres), as LAS scales make them
-            b = {std::round(b.xmin * 100) / 100, std::round(b.ymin * 100) / 100, std::round(b.xmax * 100) / 100,
-                 std::round(b.ymax * 100) / 100};
-            break;
-        default: break;
+            case 1:  // bounds on lattice lines, computed as k * cell (as a header written from a grid would hold)
+                b = {std::floor(b.xmin / cell) * cell, std::floor(b.ymin / cell) * cell,
+                     std::ceil(b.xmax / cell) * cell, std::ceil(b.ymax / cell) * cell};
+                break;
+            case 2:  // minimum on a lattice line, the maximum a whole number of cells further (summed, not multiplied)
+                b.xmin = std::round(b.xmin / cell) * cell;
+                b.ymin = std::round(b.ymin / cell) * cell;
+                b.xmax = b.xmin + std::round(w / cell) * cell;
+                b.ymax = b.ymin + std::round(h / cell) * cell;
+                break;
+            case 3:  // decimal bounds (centimetres), as LAS scales make them
+                b = {std::round(b.xmin * 100) / 100, std::round(b.ymin * 100) / 100, std::round(b.xmax * 100) / 100,
+                     std::round(b.ymax * 100) / 100};
+                break;
+            default:
+                break;
         }
         CAPTURE(cell);
         CAPTURE(b.xmin);
@@ -222,17 +224,20 @@ TEST_CASE("core/grid: one rounding rule - every point of the bounds lands in the
         CHECK((g.cols == 1 || g.to_cell_coords(b.xmax, b.ymin).col > static_cast<double>(g.cols - 1)));
         CHECK((g.rows == 1 || g.to_cell_coords(b.xmax, b.ymin).row > static_cast<double>(g.rows - 1)));
 
-        std::vector<std::array<double, 2>> points{{b.xmin, b.ymin}, {b.xmin, b.ymax}, {b.xmax, b.ymin}, {b.xmax, b.ymax}};
+        std::vector<std::array<double, 2>> points{
+            {b.xmin, b.ymin}, {b.xmin, b.ymax}, {b.xmax, b.ymin}, {b.xmax, b.ymax}};
         for (int k = 0; k < 8; ++k) {
             const double t = u(rng);
-            points.push_back({b.xmin + t * (b.xmax - b.xmin), b.ymin});   // south and north edges
+            points.push_back({b.xmin + t * (b.xmax - b.xmin), b.ymin});  // south and north edges
             points.push_back({b.xmin + t * (b.xmax - b.xmin), b.ymax});
-            points.push_back({b.xmin, b.ymin + t * (b.ymax - b.ymin)});   // west and east edges
+            points.push_back({b.xmin, b.ymin + t * (b.ymax - b.ymin)});  // west and east edges
             points.push_back({b.xmax, b.ymin + t * (b.ymax - b.ymin)});
             points.push_back({b.xmin + u(rng) * (b.xmax - b.xmin), b.ymin + u(rng) * (b.ymax - b.ymin)});
             // On an interior lattice line (kept inside the bounds).
-            const double lx = std::clamp(g.x0 + std::floor(u(rng) * static_cast<double>(g.cols)) * cell, b.xmin, b.xmax);
-            const double ly = std::clamp(g.y0 - std::floor(u(rng) * static_cast<double>(g.rows)) * cell, b.ymin, b.ymax);
+            const double lx =
+                std::clamp(g.x0 + std::floor(u(rng) * static_cast<double>(g.cols)) * cell, b.xmin, b.xmax);
+            const double ly =
+                std::clamp(g.y0 - std::floor(u(rng) * static_cast<double>(g.rows)) * cell, b.ymin, b.ymax);
             points.push_back({lx, ly});
         }
         for (const auto& item : points) {
@@ -264,7 +269,7 @@ TEST_CASE("core/grid: every cell size from 0.01 to 5 m covers bounds 1000..1010 
     // The cases the old sizing lost: (y0 - ymin) / cell came out a hair above the row count.
     const grid g = snapped_grid(b, 0.32);
     CHECK(g.y0 == 2010.24);
-    CHECK(g.rows == 33);   // 32 rows reach down to 2000.0000000000000089 in exact arithmetic, just short of 2000
+    CHECK(g.rows == 33);  // 32 rows reach down to 2000.0000000000000089 in exact arithmetic, just short of 2000
     CHECK(g.cell_of(1005, 2000) == cell_index{32, 15});
 }
 
@@ -288,8 +293,8 @@ TEST_CASE("core/grid: GDAL geotransforms round-trip and bad ones are refused")
 {
     const grid g{500000.0, 4100000.0, 2.0, 30, 40};
     CHECK(from_gdal(to_gdal(g), 30, 40) == g);
-    CHECK_THROWS_WITH_AS(from_gdal({0, 1, 0.1, 0, 0, -1}, 2, 2),
-                         "from_gdal: rotated geotransforms are not supported", invalid_input);
+    CHECK_THROWS_WITH_AS(from_gdal({0, 1, 0.1, 0, 0, -1}, 2, 2), "from_gdal: rotated geotransforms are not supported",
+                         invalid_input);
     CHECK_THROWS_AS(from_gdal({0, 1, 0, 0, 0, 1}, 2, 2), invalid_input);
     CHECK_THROWS_AS(from_gdal({0, 1, 0, 0, 0, -2}, 2, 2), invalid_input);
     CHECK_THROWS_WITH_AS((grid{0, 0, -1, 1, 1}.validate("f")), "f: grid.cell must be finite and > 0 (got -1)",

@@ -106,4 +106,3 @@ TEST_CASE("core/mask_ops: mask_any finds a mask empty or not wherever its one se
     padded(3, 79) = 1;
     CHECK(mask_any(view));
 }
-

@@ -5,9 +5,9 @@
 
 #include <atomic>
 #include <chrono>
-#include <thread>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 using namespace lidarfx;
@@ -54,7 +54,8 @@ TEST_CASE("core/parallel_for_rows: exceptions propagate; progress reports and ca
 
         std::atomic<int> blocks_run{0};
         CHECK_THROWS_AS(parallel_for_rows(
-                            1000, 1, threads, [&](std::ptrdiff_t, std::ptrdiff_t) {
+                            1000, 1, threads,
+                            [&](std::ptrdiff_t, std::ptrdiff_t) {
                                 ++blocks_run;
                                 std::this_thread::sleep_for(std::chrono::microseconds(200));
                             },

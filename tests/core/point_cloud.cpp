@@ -64,8 +64,8 @@ TEST_CASE("core/point_cloud: struct-of-arrays spans are read in place")
 TEST_CASE("core/point_cloud: arrays of structs through member projections")
 {
     std::vector<las_point> pts{{1, 2, 3, 100, 1, 2}, {4, 5, 6, 200, 2, 2}};
-    aos_cloud c(std::span<const las_point>(pts), &las_point::x, &las_point::y, &las_point::z,
-                &las_point::intensity, &las_point::return_number, &las_point::number_of_returns);
+    aos_cloud c(std::span<const las_point>(pts), &las_point::x, &las_point::y, &las_point::z, &las_point::intensity,
+                &las_point::return_number, &las_point::number_of_returns);
     static_assert(point_cloud<decltype(c)>);
     static_assert(has_intensity<decltype(c)> && has_return_number<decltype(c)>);
     static_assert(!has_classification<decltype(c)>);

@@ -124,10 +124,10 @@ TEST_CASE("core/raster: sizes above max_raster_cells (2^40) are refused before a
 {
     static_assert(max_raster_cells == std::int64_t{1} << 40);
     const std::ptrdiff_t big = std::ptrdiff_t{1} << 32, most = std::numeric_limits<std::ptrdiff_t>::max();
-    CHECK_THROWS_WITH_AS(raster<float>(big, big), "raster: rows x cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(raster<float>(big, big),
+                         "raster: rows x cols must be <= 2^40 cells (got 4294967296 x 4294967296)", invalid_input);
     CHECK_THROWS_AS(raster<float>(big, big, uninitialized), invalid_input);
-    CHECK_THROWS_AS(raster<std::uint8_t>(most, most), invalid_input);   // rows * cols would overflow
+    CHECK_THROWS_AS(raster<std::uint8_t>(most, most), invalid_input);  // rows * cols would overflow
     CHECK_THROWS_AS(raster<std::uint8_t>(2, most), invalid_input);
     // One extent alone is bounded too: an empty raster cannot carry an extent past the limit.
     CHECK_THROWS_WITH_AS(raster<float>(0, (std::ptrdiff_t{1} << 40) + 1),
@@ -153,7 +153,7 @@ TEST_CASE("core/raster_view: sizes and strides that overflow are refused; the li
                          "raster_view: (rows - 1) * row_stride + cols cells must fit in the address space (got 3 rows, "
                          "row_stride 2305843009213693951)",
                          invalid_input);
-    CHECK_NOTHROW(raster_view<double>(&d, 1, 1, most / 4));   // one row: the stride is never applied
+    CHECK_NOTHROW(raster_view<double>(&d, 1, 1, most / 4));  // one row: the stride is never applied
     CHECK_NOTHROW(raster_view<double>(nullptr, 0, 5));
     CHECK_NOTHROW(raster_view<double>(nullptr, 5, 0));
     // Windows whose end would overflow are refused, not wrapped around.
@@ -245,8 +245,8 @@ TEST_CASE("core/raster_view: cell_splitter splits linear indices exactly as / an
 {
     std::mt19937_64 rng(17);
     const std::ptrdiff_t limit = static_cast<std::ptrdiff_t>(lidarfx::max_raster_cells);
-    const std::vector<std::ptrdiff_t> widths{1, 2, 3, 7, 1000, 4096, 4097, 65535, 1 << 20, 999'999'937,
-                                             std::ptrdiff_t{1} << 39, limit - 1, limit};
+    const std::vector<std::ptrdiff_t> widths{
+        1, 2, 3, 7, 1000, 4096, 4097, 65535, 1 << 20, 999'999'937, std::ptrdiff_t{1} << 39, limit - 1, limit};
     for (const std::ptrdiff_t cols : widths) {
         const lidarfx::detail::cell_splitter split(cols);
         const std::ptrdiff_t rows = std::max<std::ptrdiff_t>(1, limit / cols);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // libFuzzer target for the LAS and LAZ reader: any bytes must give valid points or a std::runtime_error,
 // never a crash, a sanitizer report or an allocation beyond a bounded multiple of the input's size (LAZ:
-// only as the points are decoded); LAZ reads on 1 and 2 threads must decode the same records; accepted files must survive a round
-// trip through the writer. The header bounds of every file whose header parses are also driven through
+// only as the points are decoded); LAZ reads on 1 and 2 threads must decode the same records; accepted files must
+// survive a round trip through the writer. The header bounds of every file whose header parses are also driven through
 // snapped_grid and raster_accumulator at a few cell sizes, with the points read: invalid_input is an
 // accepted outcome there, anything else (a crash, a sanitizer report, another exception, a point inside
 // the bounds that misses the grid) is a bug. Built and run by scripts/fuzz.sh.
@@ -27,10 +27,10 @@ using lidarfx::io::las_points;
 
 bool identical(const las_points& a, const las_points& b)
 {
-    return a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity &&
-           a.return_number == b.return_number && a.number_of_returns == b.number_of_returns &&
-           a.classification == b.classification && a.classification_flags == b.classification_flags &&
-           a.scan_angle_deg == b.scan_angle_deg && a.gps_time.size() == b.gps_time.size();
+    return a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity && a.return_number == b.return_number &&
+           a.number_of_returns == b.number_of_returns && a.classification == b.classification &&
+           a.classification_flags == b.classification_flags && a.scan_angle_deg == b.scan_angle_deg &&
+           a.gps_time.size() == b.gps_time.size();
 }
 
 /// True when integer * scale + offset round-trips through the writer's quantization exactly: scales of a
@@ -57,7 +57,7 @@ void rasterize_on_header_bounds(const lidarfx::io::las_header& h, const las_poin
 {
     constexpr std::ptrdiff_t cell_cap = std::ptrdiff_t{1} << 22, finish_cap = std::ptrdiff_t{1} << 16;
     const lidarfx::bounds b{h.min[0], h.min[1], h.max[0], h.max[1]};
-    const double span = std::max(b.xmax - b.xmin, b.ymax - b.ymin);   // may be NaN, infinite or negative
+    const double span = std::max(b.xmax - b.xmin, b.ymax - b.ymin);  // may be NaN, infinite or negative
     const auto cloud = points.cloud();
     const std::size_t n = cloud.size();
     for (const double cell_m : {1.0, 0.59, 0.32, span / 7, span / 300}) {
@@ -65,9 +65,9 @@ void rasterize_on_header_bounds(const lidarfx::io::las_header& h, const las_poin
         try {
             g = lidarfx::snapped_grid(b, cell_m);
         } catch (const lidarfx::invalid_input&) {
-            continue;   // bounds or cell it cannot represent: refused with a message, as documented
+            continue;  // bounds or cell it cannot represent: refused with a message, as documented
         }
-        g.validate("fuzz");   // what snapped_grid returns is valid: an exception here escapes as a bug
+        g.validate("fuzz");  // what snapped_grid returns is valid: an exception here escapes as a bug
         if (g.size() > cell_cap) continue;
         lidarfx::raster_accumulator acc(g);
         acc.add(cloud);
@@ -110,7 +110,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     bool have_header = false;
     try {
         lidarfx::io::las_reader r(std::span<const std::uint8_t>(data, size), "fuzz");
-        r.set_memory_budget(std::uint64_t{256} << 20);   // a LAZ chunk over 128 MiB is refused (invalid_input)
+        r.set_memory_budget(std::uint64_t{256} << 20);  // a LAZ chunk over 128 MiB is refused (invalid_input)
         header = r.header();
         have_header = true;
         if (header.compressed) {
@@ -121,7 +121,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 r.read_records(one, static_cast<std::size_t>(r.point_count()));
             } catch (const std::runtime_error& e) {
                 error_one = e.what();
-            } catch (const lidarfx::invalid_input& e) {   // a LAZ chunk over the memory budget
+            } catch (const lidarfx::invalid_input& e) {  // a LAZ chunk over the memory budget
                 error_one = e.what();
             }
             r.seek(0);
@@ -130,7 +130,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 r.read_records(two, static_cast<std::size_t>(r.point_count()));
             } catch (const std::runtime_error& e) {
                 error_two = e.what();
-            } catch (const lidarfx::invalid_input& e) {   // a LAZ chunk over the memory budget
+            } catch (const lidarfx::invalid_input& e) {  // a LAZ chunk over the memory budget
                 error_two = e.what();
             }
             if (error_one != error_two || (error_one.empty() && one != two)) std::abort();
@@ -139,7 +139,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
         las_points chunk;
         std::uint64_t total = 0;
-        const std::size_t step = 1 + size % 13;   // odd chunk sizes
+        const std::size_t step = 1 + size % 13;  // odd chunk sizes
         while (const std::size_t k = r.read(chunk, step)) total += k;
         if (total != r.point_count()) std::abort();
         all = r.read_all();
@@ -147,9 +147,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!header.compressed && total * header.point_record_length + header.offset_to_point_data > size) std::abort();
         (void)all.cloud();
     } catch (const std::runtime_error&) {
-        if (have_header) rasterize_on_header_bounds(header, las_points{});   // the bounds alone
+        if (have_header) rasterize_on_header_bounds(header, las_points{});  // the bounds alone
         return 0;
-    } catch (const lidarfx::invalid_input&) {   // a LAZ chunk over the memory budget, refused before decoding
+    } catch (const lidarfx::invalid_input&) {  // a LAZ chunk over the memory budget, refused before decoding
         if (have_header) rasterize_on_header_bounds(header, las_points{});
         return 0;
     }
@@ -159,10 +159,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!exact_lattice(header)) return 0;
     std::vector<std::uint8_t> bytes;
     try {
-        bytes = lidarfx::io::encode_las(all, {.version_minor = 4, .point_format = header.point_format,
-                                              .scale = header.scale, .offset = header.offset});
+        bytes = lidarfx::io::encode_las(
+            all,
+            {.version_minor = 4, .point_format = header.point_format, .scale = header.scale, .offset = header.offset});
     } catch (const lidarfx::invalid_input&) {
-        return 0;   // e.g. a legacy scan angle outside [-90, 90], which the reader reports as stored
+        return 0;  // e.g. a legacy scan angle outside [-90, 90], which the reader reports as stored
     }
     lidarfx::io::las_reader again(bytes, "fuzz round trip");
     if (!identical(again.read_all(), all)) std::abort();

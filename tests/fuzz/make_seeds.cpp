@@ -50,8 +50,10 @@ int main(int argc, char** argv)
                 p.classification[i] = static_cast<std::uint8_t>(2 + i);
                 p.scan_angle_deg[i] = static_cast<float>(i) - 2.0f;
             }
-            const lidarfx::io::las_write_options opt{.version_minor = version, .point_format = format,
-                                                     .extra_bytes = format % 3, .epsg_projected = 32610,
+            const lidarfx::io::las_write_options opt{.version_minor = version,
+                                                     .point_format = format,
+                                                     .extra_bytes = format % 3,
+                                                     .epsg_projected = 32610,
                                                      .epsg_vertical = 5703,
                                                      .wkt = version == 4 ? "PROJCS[\"WGS 84 / UTM 10N\"]" : ""};
             save(out / ("writer_f" + std::to_string(format) + "_v1" + std::to_string(version) + ".las"),
@@ -73,9 +75,10 @@ int main(int argc, char** argv)
             p.return_number[i] = 1;
             p.number_of_returns[i] = static_cast<std::uint8_t>(1 + i % 2);
         }
-        save(out / "grid_edges.las", lidarfx::io::encode_las(p, {.version_minor = 2, .point_format = 0,
-                                                                  .scale = {0.01, 0.01, 0.01},
-                                                                  .offset = std::array<double, 3>{0, 0, 0}}));
+        save(out / "grid_edges.las", lidarfx::io::encode_las(p, {.version_minor = 2,
+                                                                 .point_format = 0,
+                                                                 .scale = {0.01, 0.01, 0.01},
+                                                                 .offset = std::array<double, 3>{0, 0, 0}}));
         // One point; the header claims bounds from 0 to 2^48 (a grid that cannot exist at any usual cell).
         lidarfx::io::las_points one;
         one.resize(1, true);
@@ -85,8 +88,8 @@ int main(int argc, char** argv)
         std::vector<std::uint8_t> bytes = lidarfx::io::encode_las(one, {.version_minor = 4, .point_format = 6});
         const double far = 281474976710656.0, zero = 0.0;
         for (int k = 0; k < 2; ++k) {
-            std::memcpy(bytes.data() + 179 + 16 * k, &far, 8);    // max x, max y
-            std::memcpy(bytes.data() + 187 + 16 * k, &zero, 8);   // min x, min y
+            std::memcpy(bytes.data() + 179 + 16 * k, &far, 8);   // max x, max y
+            std::memcpy(bytes.data() + 187 + 16 * k, &zero, 8);  // min x, min y
         }
         save(out / "grid_huge_bounds.las", bytes);
     }

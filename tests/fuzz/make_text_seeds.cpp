@@ -40,9 +40,10 @@ std::string two(int v)
 std::string tmy3_year(int days, bool with_faults)
 {
     static const int days_in[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    std::string text = "723170,\"GREENSBORO PIEDMONT TRIAD INT\",NC,-5.0,36.100,-79.950,273\n"
-                       "Date (MM/DD/YYYY),Time (HH:MM),ETR (W/m^2),ETRN (W/m^2),GHI (W/m^2),GHI source,GHI uncert (%),"
-                       "DNI (W/m^2),DNI source,DNI uncert (%),DHI (W/m^2),DHI source,DHI uncert (%)\n";
+    std::string text =
+        "723170,\"GREENSBORO PIEDMONT TRIAD INT\",NC,-5.0,36.100,-79.950,273\n"
+        "Date (MM/DD/YYYY),Time (HH:MM),ETR (W/m^2),ETRN (W/m^2),GHI (W/m^2),GHI source,GHI uncert (%),"
+        "DNI (W/m^2),DNI source,DNI uncert (%),DHI (W/m^2),DHI source,DHI uncert (%)\n";
     int day = 0;
     for (int m = 1; m <= 12 && day < days; ++m) {
         for (int d = 1; d <= days_in[m - 1] && day < days; ++d, ++day) {
@@ -78,7 +79,8 @@ int main(int argc, char** argv)
     const std::string flat = R"({"type":"Polygon","coordinates":[[[0,0],[5,0],[10,0],[0,0]]]})";
     const fs::path fp = out / "footprints";
     save(fp / "three.geojson", collection(feature(1, square) + "," + feature(7, holed) + "," + feature(3, multi)));
-    save(fp / "problems.geojson", collection(feature(5, bowtie) + ",\n" + feature(6, square) + ",\n" + feature(8, flat)));
+    save(fp / "problems.geojson",
+         collection(feature(5, bowtie) + ",\n" + feature(6, square) + ",\n" + feature(8, flat)));
     save(fp / "bom.geojson", "\xEF\xBB\xBF" + collection(feature(2, square)));
     save(fp / "order.geojson",
          R"({"features":[{"geometry":{"coordinates":[[[500000.5,5000000.25,12.5],[500010.5,5000000.25,12.5],)"
@@ -94,9 +96,11 @@ int main(int argc, char** argv)
     save(tmy / "day.csv", tmy3_year(1, false));
 
     const fs::path asc = out / "ascii_grid";
-    save(asc / "corner.asc", "ncols 4\nnrows 3\nxllcorner 1000\nyllcorner 2000\ncellsize 0.5\nNODATA_value -9999\n"
-                             "1 2 3 4\n5 -9999 7 8.25\n9 10 11 1e3\n");
-    save(asc / "center.asc", "NCOLS 2\r\nNROWS 2\r\nXLLCENTER 0.25\r\nYLLCENTER -10\r\nCELLSIZE 0.5\r\n1.5 2\r\n3 4\r\n");
+    save(asc / "corner.asc",
+         "ncols 4\nnrows 3\nxllcorner 1000\nyllcorner 2000\ncellsize 0.5\nNODATA_value -9999\n"
+         "1 2 3 4\n5 -9999 7 8.25\n9 10 11 1e3\n");
+    save(asc / "center.asc",
+         "NCOLS 2\r\nNROWS 2\r\nXLLCENTER 0.25\r\nYLLCENTER -10\r\nCELLSIZE 0.5\r\n1.5 2\r\n3 4\r\n");
     save(asc / "nan.asc", "ncols 3\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\nnan inf -inf\n");
     save(asc / "one.asc", "ncols 1\nnrows 1\nxllcorner -5e5\nyllcorner 4e6\ncellsize 2\nnodata_value 0\n0\n");
     return 0;

@@ -5,10 +5,10 @@
 
 #include <bit>
 #include <charconv>
-#include <string>
-#include <vector>
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "io_test_util.hpp"
 
@@ -106,7 +106,8 @@ TEST_CASE("io/read_ascii_grid: malformed files are rejected with the file name a
           path + ": ncols and nrows must be positive integers");
     CHECK(error("ncols 2\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize -1\n1 2\n") ==
           path + ": cellsize must be finite and > 0");
-    CHECK(runtime_error_of([&] { (void)read_ascii_grid(dir.file("none.asc"), g); }) == dir.file("none.asc") + ": cannot open");
+    CHECK(runtime_error_of([&] { (void)read_ascii_grid(dir.file("none.asc"), g); }) ==
+          dir.file("none.asc") + ": cannot open");
 }
 
 TEST_CASE("io/write_ascii_grid: checks the shape and the grid")
@@ -119,16 +120,18 @@ TEST_CASE("io/write_ascii_grid: checks the shape and the grid")
                          "write_ascii_grid: grid.cell must be finite and > 0 (got -1)", invalid_input);
     CHECK_THROWS_WITH_AS(write_ascii_grid(dir.file("a.asc"), raster<float>(0, 0), {0, 0, 1, 0, 0}),
                          "write_ascii_grid: raster must not be empty", invalid_input);
-    CHECK(runtime_error_of([&] { write_ascii_grid(dir.file("no/a.asc"), v, {0, 0, 1, 2, 3}); }) ==
-          dir.file("no/a.asc") + ": cannot open for writing");
+    CHECK(runtime_error_of([&] {
+              write_ascii_grid(dir.file("no/a.asc"), v, {0, 0, 1, 2, 3});
+          }) == dir.file("no/a.asc") + ": cannot open for writing");
 }
 
 TEST_CASE("io/write_ascii_grid: every value is written as std::to_chars writes it (whole numbers, -0, 1e5, NaN)")
 {
     // The writer has fast paths for whole numbers and NaN; their text must be the shortest round trip that
     // to_chars gives, across the places where fixed and scientific forms trade places.
-    std::vector<float> values{0.0f, -0.0f, 1.0f, -1.0f, 7.0f, 99999.0f, -99999.0f, 100000.0f, 123456.0f, 1e6f,
-                              20000.0f, 0.5f, -2.25f, 1e-7f, 3.4e38f, NAN, 65535.0f, 16777216.0f, -100000.0f};
+    std::vector<float> values{0.0f,      -0.0f,     1.0f,     -1.0f,       7.0f,      99999.0f, -99999.0f,
+                              100000.0f, 123456.0f, 1e6f,     20000.0f,    0.5f,      -2.25f,   1e-7f,
+                              3.4e38f,   NAN,       65535.0f, 16777216.0f, -100000.0f};
     std::mt19937 rng(5);
     for (int i = 0; i < 200; ++i) values.push_back(static_cast<float>(static_cast<int>(rng() % 400001) - 200000));
     raster<float> r(1, static_cast<std::ptrdiff_t>(values.size()));
@@ -178,8 +181,9 @@ TEST_CASE("io/read_ascii_grid: inf, -inf and nan heights are no data, counted")
 {
     io_test::temp_dir dir;
     const std::string path = dir.file("inf.asc");
-    write_text(path, "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n"
-                     "inf 1 -9999\n-inf nan 2\n");
+    write_text(path,
+               "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n"
+               "inf 1 -9999\n-inf nan 2\n");
     grid g;
     std::size_t non_finite = 0;
     const auto v = read_ascii_grid(path, g, &non_finite);

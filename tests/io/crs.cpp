@@ -54,7 +54,10 @@ survey_crs crs_written(const las_write_options& o, bool use_gdal = true)
     return crs_of(las_reader(std::vector<std::uint8_t>(bytes), "test.las").header(), use_gdal);
 }
 
-las_geo_key key(std::uint16_t id, std::uint16_t value) { return {id, 0, 1, value}; }
+las_geo_key key(std::uint16_t id, std::uint16_t value)
+{
+    return {id, 0, 1, value};
+}
 las_geo_key key_at(std::uint16_t id, std::uint16_t tag, std::uint16_t count, std::uint16_t index)
 {
     return {id, tag, count, index};
@@ -80,12 +83,27 @@ cli::survey_options quiet(double cell_m)
 las_write_options user_defined_lambert_in_feet()
 {
     las_write_options o;
-    o.geo_keys = {key(1024, 1), key(1025, 1), key_at(1026, 34737, 38, 0), key(2048, 32767),
-                  key_at(2049, 34737, 60, 38), key(2050, 6152), key(2054, 9102), key_at(2057, 34736, 1, 7),
-                  key_at(2059, 34736, 1, 6), key_at(2061, 34736, 1, 8), key(3059, 1), key(3072, 32767),
-                  key(3074, 32767), key(3075, 8), key(3076, 9002), key_at(3078, 34736, 1, 2),
-                  key_at(3079, 34736, 1, 3), key_at(3084, 34736, 1, 1), key_at(3085, 34736, 1, 0),
-                  key_at(3086, 34736, 1, 4), key_at(3087, 34736, 1, 5)};
+    o.geo_keys = {key(1024, 1),
+                  key(1025, 1),
+                  key_at(1026, 34737, 38, 0),
+                  key(2048, 32767),
+                  key_at(2049, 34737, 60, 38),
+                  key(2050, 6152),
+                  key(2054, 9102),
+                  key_at(2057, 34736, 1, 7),
+                  key_at(2059, 34736, 1, 6),
+                  key_at(2061, 34736, 1, 8),
+                  key(3059, 1),
+                  key(3072, 32767),
+                  key(3074, 32767),
+                  key(3075, 8),
+                  key(3076, 9002),
+                  key_at(3078, 34736, 1, 2),
+                  key_at(3079, 34736, 1, 3),
+                  key_at(3084, 34736, 1, 1),
+                  key_at(3085, 34736, 1, 0),
+                  key_at(3086, 34736, 1, 4),
+                  key_at(3087, 34736, 1, 5)};
     o.geo_doubles = {41.75, -120.5, 43.0, 45.5, 1312335.958005249, 0.0, 298.257222101, 6378137.0, 0.0};
     o.geo_ascii = "NAD_1983_HARN_Lambert_Conformal_Conic|GCS Name = GCS_North_American_1983_HARN|Primem = Greenwich||";
     return o;
@@ -147,8 +165,9 @@ TEST_CASE("io/crs_of: an EPSG code in metres; no CRS at all is metres with a war
     }
 }
 
-TEST_CASE("io/crs_of: EPSG codes whose unit is the foot or the US survey foot (with GDAL); without GDAL the "
-          "unit keys alone count")
+TEST_CASE(
+    "io/crs_of: EPSG codes whose unit is the foot or the US survey foot (with GDAL); without GDAL the "
+    "unit keys alone count")
 {
     if (crs_gdal_available()) {
         // No ProjLinearUnitsGeoKey: the unit comes from the code; z takes the unit of x and y.
@@ -159,7 +178,7 @@ TEST_CASE("io/crs_of: EPSG codes whose unit is the foot or the US survey foot (w
         CHECK(ft.vertical_unit_m == international_foot_m);
         const auto us = crs_written({.geo_keys = {key(1024, 1), key(3072, 2286)}});
         CHECK(us.epsg == 2286);
-        CHECK(us.horizontal_unit_m == doctest::Approx(us_survey_foot_m).epsilon(1e-14));   // GDAL prints 15 digits
+        CHECK(us.horizontal_unit_m == doctest::Approx(us_survey_foot_m).epsilon(1e-14));  // GDAL prints 15 digits
         CHECK(us.horizontal_unit == "US survey foot");
         const auto mi = crs_written({.geo_keys = {key(1024, 1), key(3072, 6494), key(3076, 9002)}});
         CHECK(mi.horizontal_unit_m == international_foot_m);
@@ -169,14 +188,16 @@ TEST_CASE("io/crs_of: EPSG codes whose unit is the foot or the US survey foot (w
     CHECK(unknown.epsg == 2994);
     CHECK(unknown.horizontal_unit_m == 1.0);
     CHECK(any_warning(unknown, "not known without GDAL; metres are assumed"));
-    const auto keyed = crs_written({.geo_keys = {key(1024, 1), key(3072, 2994), key(3076, 9002), key(4099, 9003)}}, false);
+    const auto keyed =
+        crs_written({.geo_keys = {key(1024, 1), key(3072, 2994), key(3076, 9002), key(4099, 9003)}}, false);
     CHECK(keyed.horizontal_unit_m == international_foot_m);
     CHECK(keyed.vertical_unit_m == us_survey_foot_m);
     CHECK(keyed.vertical_unit == "US survey foot");
 }
 
-TEST_CASE("io/crs_of: ProjLinearUnitsGeoKey overrides the unit of EPSG 26995 (US survey feet), and the CRS "
-          "carried says so")
+TEST_CASE(
+    "io/crs_of: ProjLinearUnitsGeoKey overrides the unit of EPSG 26995 (US survey feet), and the CRS "
+    "carried says so")
 {
     const las_write_options o{.geo_keys = {key(1024, 1), key(3072, 26995), key(3076, 9003)}};
     for (const bool gdal : {true, false}) {
@@ -187,17 +208,18 @@ TEST_CASE("io/crs_of: ProjLinearUnitsGeoKey overrides the unit of EPSG 26995 (US
     }
     if (!crs_gdal_available()) return;
     const auto c = crs_written(o);
-    CHECK(c.epsg != 26995);   // 26995 names the CRS in metres: GeoJSON must not claim it
+    CHECK(c.epsg != 26995);  // 26995 names the CRS in metres: GeoJSON must not claim it
     CHECK(any_warning(c, "no EPSG code names its CRS exactly"));
 #ifdef LIDARFX_HAVE_GDAL
     CHECK(ogr_linear_unit(c.wkt) == doctest::Approx(us_survey_foot_m).epsilon(1e-14));
     CHECK(contains(c.wkt, "Mississippi West"));
-    CHECK(contains(c.wkt, "2296583.333"));   // false easting 700 km in US survey feet
+    CHECK(contains(c.wkt, "2296583.333"));  // false easting 700 km in US survey feet
 #endif
 }
 
-TEST_CASE("io/crs_of: a projection defined by parameters (GeoKeys with doubles and text) gives a CRS through "
-          "GDAL, and a warning without it")
+TEST_CASE(
+    "io/crs_of: a projection defined by parameters (GeoKeys with doubles and text) gives a CRS through "
+    "GDAL, and a warning without it")
 {
     const auto o = user_defined_lambert_in_feet();
     if (crs_gdal_available()) {
@@ -207,11 +229,11 @@ TEST_CASE("io/crs_of: a projection defined by parameters (GeoKeys with doubles a
         CHECK(contains(c.wkt, "1312335.958"));
         CHECK(c.horizontal_unit_m == international_foot_m);
         CHECK(c.vertical_unit_m == international_foot_m);
-        CHECK(c.epsg == 0);   // EPSG:2994 is close (70 % for GDAL) but not the same CRS
+        CHECK(c.epsg == 0);  // EPSG:2994 is close (70 % for GDAL) but not the same CRS
     }
     const auto alone = crs_written(o, false);
     CHECK(alone.for_outputs().empty());
-    CHECK(alone.horizontal_unit_m == international_foot_m);   // the unit key still holds
+    CHECK(alone.horizontal_unit_m == international_foot_m);  // the unit key still holds
     CHECK(any_warning(alone, "by parameters, which needs GDAL"));
 }
 
@@ -228,7 +250,7 @@ TEST_CASE("io/crs_of: WKT records give the units, horizontal and vertical (compo
         CHECK(compound.epsg == 32614);
         CHECK(compound.horizontal_unit_m == 1.0);
         CHECK(compound.vertical_unit_m == doctest::Approx(us_survey_foot_m).epsilon(1e-14));
-        CHECK(!contains(compound.wkt, "VERT_CS") == (gdal && crs_gdal_available()));   // outputs: horizontal only
+        CHECK(!contains(compound.wkt, "VERT_CS") == (gdal && crs_gdal_available()));  // outputs: horizontal only
         const auto degrees = crs_written({.wkt = R"w(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,)w"
                                                  R"w(298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",)w"
                                                  R"w(0.0174532925199433],AUTHORITY["EPSG","4326"]])w"},
@@ -246,9 +268,8 @@ TEST_CASE("io/crs_of: an empty or unreadable WKT record is ignored with a warnin
         CHECK(empty.epsg == 32633);
         CHECK(any_warning(empty, "WKT record is empty; it is ignored"));
         // A LAS 1.4 file that says its CRS is WKT, with nonsense there: the GeoKeys are used instead.
-        const auto odd = crs_written({.version_minor = 4, .point_format = 6, .epsg_projected = 32633,
-                                      .wkt = "NOT A COORDINATE SYSTEM["},
-                                     gdal);
+        const auto odd = crs_written(
+            {.version_minor = 4, .point_format = 6, .epsg_projected = 32633, .wkt = "NOT A COORDINATE SYSTEM["}, gdal);
         CHECK(odd.source == "GeoKeys");
         CHECK(odd.epsg == 32633);
         CHECK(any_warning(odd, "WKT record is unreadable"));
@@ -275,11 +296,10 @@ TEST_CASE("io/read_survey: a survey in feet is read in metres and written back i
     const double ft = us_survey_foot_m;
     // 100 x 100 points 1 ft apart, 26995 overridden to US survey feet (as mvk-thin.las from PDAL's tests).
     const auto feet = dir.file("feet.las");
-    write_las(feet, square(100, 2296583.0, 1000000.0),
-              {.geo_keys = {key(1024, 1), key(3072, 26995), key(3076, 9003)}});
+    write_las(feet, square(100, 2296583.0, 1000000.0), {.geo_keys = {key(1024, 1), key(3072, 26995), key(3076, 9003)}});
     const auto s = cli::read_survey({feet}, quiet(2.0));
     CHECK(s.crs.horizontal_unit_m == ft);
-    CHECK(s.rasters.g.cell == 2.0);   // --cell is metres
+    CHECK(s.rasters.g.cell == 2.0);  // --cell is metres
     // The grid covers the points in metres: 99 ft = 30.2 m wide, 16 or 17 cells of 2 m (50 if read as metres).
     CHECK(s.rasters.g.cols <= 17);
     CHECK(s.rasters.g.x0 <= 2296583.0 * ft);
@@ -313,16 +333,18 @@ TEST_CASE("io/read_survey: a survey in feet is read in metres and written back i
     }
 }
 
-TEST_CASE("io/read_survey: degrees are refused (exit code 2) suggesting a reprojection; files in different "
-          "units are refused; an empty WKT record is not")
+TEST_CASE(
+    "io/read_survey: degrees are refused (exit code 2) suggesting a reprojection; files in different "
+    "units are refused; an empty WKT record is not")
 {
     io_test::temp_dir dir;
     const auto degrees = dir.file("degrees.las");
-    write_las(degrees, square(10, -122.5, 45.0, 1e-5), {.scale = {1e-7, 1e-7, 0.01}, .offset = std::array<double, 3>{0.0, 0.0, 0.0}, .epsg_geographic = 4326});
+    write_las(degrees, square(10, -122.5, 45.0, 1e-5),
+              {.scale = {1e-7, 1e-7, 0.01}, .offset = std::array<double, 3>{0.0, 0.0, 0.0}, .epsg_geographic = 4326});
     try {
         cli::read_survey({degrees}, quiet(2.0));
         FAIL("a survey in degrees was read");
-    } catch (const cli::usage_error& e) {   // main() turns it into exit code 2
+    } catch (const cli::usage_error& e) {  // main() turns it into exit code 2
         const std::string why = e.what();
         CHECK(contains(why, degrees + ": x and y are longitude and latitude in degrees"));
         CHECK(contains(why, "Reproject"));
@@ -353,8 +375,9 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
         for (double& value : *v) value /= international_foot_m;
     const auto in_metres = dir.file("lake_m.las"), in_feet = dir.file("lake_ft.las");
     write_las(in_metres, m, {.scale = {0.001, 0.001, 0.001}, .epsg_projected = 32633});
-    write_las(in_feet, f, {.scale = {0.001, 0.001, 0.001},
-                           .geo_keys = {key(1024, 1), key(3072, 32633), key(3076, 9002), key(4099, 9002)}});
+    write_las(in_feet, f,
+              {.scale = {0.001, 0.001, 0.001},
+               .geo_keys = {key(1024, 1), key(3072, 32633), key(3076, 9002), key(4099, 9002)}});
     const auto sm = cli::read_survey({in_metres}, quiet(2.0)), sf = cli::read_survey({in_feet}, quiet(2.0));
     CHECK(sf.crs.horizontal_unit_m == international_foot_m);
     CHECK(sf.rasters.g.rows == sm.rasters.g.rows);
@@ -386,8 +409,9 @@ TEST_CASE("io/water: a scene written in feet gives the areas and levels of the s
     // The manifest says which values are metres and where the places are.
     const auto manifest = io_test::read_bytes(dir.file("out_ft/manifest.json"));
     const std::string text(manifest.begin(), manifest.end());
-    CHECK(contains(text, "\"units\": \"cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and "
-                         "polygons in the CRS of the input, "));
+    CHECK(contains(text,
+                   "\"units\": \"cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and "
+                   "polygons in the CRS of the input, "));
     // GDAL names the CRS; without it the description says what the keys give.
     if (geotiff_available()) CHECK(contains(text, "WGS 84 / UTM zone 33N (foot)"));
 }
@@ -408,16 +432,16 @@ TEST_CASE("io/crs_of: PDAL's test surveys (optional: LIDARFX_PDAL_DATA)")
         }
         return crs_of(las_reader(path.string()).header());
     };
-    if (const auto c = crs("autzen_trim.las")) {   // Oregon GIC Lambert on NAD83(HARN), international feet
+    if (const auto c = crs("autzen_trim.las")) {  // Oregon GIC Lambert on NAD83(HARN), international feet
         CHECK(c->horizontal_unit_m == international_foot_m);
         CHECK(c->vertical_unit_m == international_foot_m);
         if (crs_gdal_available()) CHECK(contains(c->wkt, "Lambert_Conformal_Conic"));
     }
-    if (const auto c = crs("mvk-thin.las")) {   // EPSG 26995 with ProjLinearUnitsGeoKey = US survey foot
+    if (const auto c = crs("mvk-thin.las")) {  // EPSG 26995 with ProjLinearUnitsGeoKey = US survey foot
         CHECK(c->horizontal_unit_m == us_survey_foot_m);
         if (crs_gdal_available()) CHECK(c->epsg != 26995);
     }
-    if (const auto c = crs("4_6_crop.las")) {   // EPSG 2903, NAD83(HARN) / New Mexico Central (ftUS)
+    if (const auto c = crs("4_6_crop.las")) {  // EPSG 2903, NAD83(HARN) / New Mexico Central (ftUS)
         CHECK(c->epsg == 2903);
         CHECK(c->horizontal_unit_m == us_survey_foot_m);
         CHECK(c->vertical_unit_m == us_survey_foot_m);
@@ -431,7 +455,7 @@ TEST_CASE("io/crs_of: PDAL's test surveys (optional: LIDARFX_PDAL_DATA)")
             CHECK(c->epsg != 0);
         }
     }
-    if (const auto c = crs("test1_4.las")) {   // LAS 1.4, WKT: New Mexico Central (ftUS)
+    if (const auto c = crs("test1_4.las")) {  // LAS 1.4, WKT: New Mexico Central (ftUS)
         CHECK(c->source == "WKT");
         CHECK(c->horizontal_unit_m == doctest::Approx(us_survey_foot_m).epsilon(1e-14));
     }
@@ -463,14 +487,16 @@ TEST_CASE("io/water: a survey in feet clipped to a circle - water in m2 and m, n
         f.gps_time.push_back(p.gps_time[i]);
     }
     const auto path = dir.file("circle_ft.las");
-    write_las(path, f, {.point_format = 1, .scale = {0.001, 0.001, 0.001},
-                        .geo_keys = {key(1024, 1), key(3072, 32633), key(3076, 9002), key(4099, 9002)}});
+    write_las(path, f,
+              {.point_format = 1,
+               .scale = {0.001, 0.001, 0.001},
+               .geo_keys = {key(1024, 1), key(3072, 32633), key(3076, 9002), key(4099, 9002)}});
     const auto s = cli::read_survey({path}, quiet(2.0));
     REQUIRE(!s.scan_covered.empty());  // the GPS times were read and the scan lines followed
     const auto found = cli::find_waterbodies(s, {});
     REQUIRE(found.result.ran);
     REQUIRE(!found.result.bodies.empty());
-    const auto& g = s.rasters.g;   // metres
+    const auto& g = s.rasters.g;  // metres
     std::size_t outside = 0, water_cells = 0;
     for (std::ptrdiff_t r = 0; r < g.rows; ++r)
         for (std::ptrdiff_t c = 0; c < g.cols; ++c) {

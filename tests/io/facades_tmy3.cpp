@@ -5,8 +5,8 @@
 
 #include "io/tmy3.hpp"
 
-#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 #include <lidarfx/pipelines/buildings/surface_class_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -32,7 +32,10 @@ std::optional<tmy3_data> greensboro()
 }
 
 /// A 12 x 10 m, 10 m tall box alone on flat ground, 1 m cells.
-reference::box_scene lone_box() { return reference::one_box(60, 60, 25, 24, 10, 12, 270.0f, 280.0f); }
+reference::box_scene lone_box()
+{
+    return reference::one_box(60, 60, 25, 24, 10, 12, 270.0f, 280.0f);
+}
 
 }  // namespace
 

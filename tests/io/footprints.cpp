@@ -41,7 +41,8 @@ TEST_CASE("io/footprints: polygons and multipolygons with holes are read, rings 
     CHECK(c.footprints[0].building_id == 1);
     const auto& outer = c.footprints[0].parts[0].rings[0];
     double area2 = 0;
-    for (std::size_t i = 0; i + 1 < outer.size(); ++i) area2 += outer[i][0] * outer[i + 1][1] - outer[i + 1][0] * outer[i][1];
+    for (std::size_t i = 0; i + 1 < outer.size(); ++i)
+        area2 += outer[i][0] * outer[i + 1][1] - outer[i + 1][0] * outer[i][1];
     CHECK(area2 == 200.0);  // counter-clockwise now (it was drawn clockwise)
     CHECK(c.footprints[1].parts[0].rings.size() == 2);
     CHECK(c.footprints[1].parts[0].rings[0].front() == c.footprints[1].parts[0].rings[0].back());  // closed
@@ -125,8 +126,8 @@ std::string many_squares(int n)
         const std::string x = std::to_string(500000 + 20 * i) + ".25", x1 = std::to_string(500010 + 20 * i) + ".25";
         if (i) features += ',';
         features += feature(std::to_string(i + 1), R"({"type":"Polygon","coordinates":[[[)" + x + ",5000000.5],[" + x1 +
-                                                       ",5000000.5],[" + x1 + ",5000010.5],[" + x + ",5000010.5],[" + x +
-                                                       ",5000000.5]]]}");
+                                                       ",5000000.5],[" + x1 + ",5000010.5],[" + x + ",5000010.5],[" +
+                                                       x + ",5000000.5]]]}");
     }
     return collection(features);
 }
@@ -146,17 +147,18 @@ TEST_CASE("io/footprints: a coordinate beyond 1e9 or a double's range is refused
     const std::string big = refusal(collection(feature("6", ring_at("1e999", "0"))));
     CHECK(big.find("coordinate x = 1e999 of vertex 0 is beyond the range of a double") != std::string::npos);
     // The properties after the geometry: the id is still named.
-    const std::string later = refusal(collection(
-        R"({"type":"Feature","geometry":)" + ring_at("0", "1e10") + R"(,"properties":{"building_id":77}})"));
+    const std::string later = refusal(
+        collection(R"({"type":"Feature","geometry":)" + ring_at("0", "1e10") + R"(,"properties":{"building_id":77}})"));
     CHECK(later.find("feature 0 (building_id 77): coordinate y = 1e10") != std::string::npos);
     // The limit itself is accepted, and a z of any size is not read.
     CHECK(refusal(collection(feature("7", ring_at("-1e9", "1e9")))).empty());
     CHECK(refusal(collection(feature(
-              "8", R"({"type":"Polygon","coordinates":[[[0,0,1e300],[0,10,1],[10,10,1],[10,0,1],[0,0,1]]]})")))
+                      "8", R"({"type":"Polygon","coordinates":[[[0,0,1e300],[0,10,1],[10,10,1],[10,0,1],[0,0,1]]]})")))
               .empty());
     CHECK(refusal(collection(feature("9", ring_at("1000000000.001", "0")))).find("beyond +-1e9") != std::string::npos);
     // A building_id beyond a double's range is named as written.
-    CHECK(refusal(collection(feature("1e999", square))).find("building_id 1e999 is not an integer") != std::string::npos);
+    CHECK(refusal(collection(feature("1e999", square))).find("building_id 1e999 is not an integer") !=
+          std::string::npos);
 }
 
 TEST_CASE("io/footprints: a UTF-8 byte order mark is skipped; JSON errors give byte and line")

@@ -33,9 +33,9 @@ easting_northing utm(double lat_deg, double lon_deg, double lon0_deg, bool south
     const double n = a / std::sqrt(1 - e2 * std::sin(phi) * std::sin(phi));
     const double t = std::tan(phi) * std::tan(phi), c = ep2 * std::cos(phi) * std::cos(phi);
     const double A = (lon_deg - lon0_deg) * deg * std::cos(phi);
-    const double x = k0 * n *
-                     (A + (1 - t + c) * std::pow(A, 3) / 6 +
-                      (5 - 18 * t + t * t + 72 * c - 58 * ep2) * std::pow(A, 5) / 120);
+    const double x =
+        k0 * n *
+        (A + (1 - t + c) * std::pow(A, 3) / 6 + (5 - 18 * t + t * t + 72 * c - 58 * ep2) * std::pow(A, 5) / 120);
     const double y = k0 * (m + n * std::tan(phi) *
                                    (A * A / 2 + (5 - t + 9 * c + 4 * c * c) * std::pow(A, 4) / 24 +
                                     (61 - 58 * t + t * t + 600 * c - 330 * ep2) * std::pow(A, 6) / 720));
@@ -50,8 +50,9 @@ double first_order_convergence_deg(double lat_deg, double lon_deg, double lon0_d
 
 }  // namespace
 
-TEST_CASE("io/place_of: UTM points give their latitude and longitude and the meridian convergence, whose sign puts "
-          "grid north east of true north east of the central meridian in the north (with PROJ)")
+TEST_CASE(
+    "io/place_of: UTM points give their latitude and longitude and the meridian convergence, whose sign puts "
+    "grid north east of true north east of the central meridian in the north (with PROJ)")
 {
     if (!proj_available()) {
         MESSAGE("PROJ not built in: checking the error instead");
@@ -64,29 +65,31 @@ TEST_CASE("io/place_of: UTM points give their latitude and longitude and the mer
         bool south;
     };
     // Zone 13N (central meridian -105) on, east and west of the meridian; zone 33S (15 E) east of it.
-    for (const site s : {site{"EPSG:32613", 40.0, -105.0, -105.0, false},
-                         site{"EPSG:32613", 40.0, -103.0, -105.0, false},
-                         site{"EPSG:32613", 55.5, -107.5, -105.0, false},
-                         site{"EPSG:32733", -20.0, 17.0, 15.0, true}}) {
+    for (const site s :
+         {site{"EPSG:32613", 40.0, -105.0, -105.0, false}, site{"EPSG:32613", 40.0, -103.0, -105.0, false},
+          site{"EPSG:32613", 55.5, -107.5, -105.0, false}, site{"EPSG:32733", -20.0, 17.0, 15.0, true}}) {
         CAPTURE(s.crs);
         CAPTURE(s.lat);
         CAPTURE(s.lon);
         const easting_northing p = utm(s.lat, s.lon, s.lon0, s.south);
         const geographic_place g = place_of(s.crs, p.x, p.y);
-        CHECK(std::abs(g.latitude_deg - s.lat) < 1e-6);    // about 0.1 m
+        CHECK(std::abs(g.latitude_deg - s.lat) < 1e-6);  // about 0.1 m
         CHECK(std::abs(g.longitude_deg - s.lon) < 1e-6);
         const double expected = first_order_convergence_deg(s.lat, s.lon, s.lon0);
         CHECK(std::abs(g.convergence_deg - expected) < 0.01);
-        if (s.lon == s.lon0) CHECK(std::abs(g.convergence_deg) < 1e-6);
-        else CHECK((g.convergence_deg > 0.5) == ((s.lon > s.lon0) == (s.lat > 0)));   // the sign, not only the size
+        if (s.lon == s.lon0)
+            CHECK(std::abs(g.convergence_deg) < 1e-6);
+        else
+            CHECK((g.convergence_deg > 0.5) == ((s.lon > s.lon0) == (s.lat > 0)));  // the sign, not only the size
     }
     // Compound CRSs (UTM + a height) are placed by their projected part.
     const easting_northing p = utm(40.0, -103.0, -105.0, false);
     CHECK(std::abs(place_of("EPSG:32613+5703", p.x, p.y).latitude_deg - 40.0) < 1e-6);
 }
 
-TEST_CASE("io/place_of: a CRS in feet gives what its metre twin gives; geographic and unknown CRSs are "
-          "refused naming the CRS (with PROJ)")
+TEST_CASE(
+    "io/place_of: a CRS in feet gives what its metre twin gives; geographic and unknown CRSs are "
+    "refused naming the CRS (with PROJ)")
 {
     if (!proj_available()) return;
     // NAD83 / Oregon North in metres (EPSG:32126) and in international feet (EPSG:2269): one Lambert projection.
@@ -103,6 +106,6 @@ TEST_CASE("io/place_of: a CRS in feet gives what its metre twin gives; geographi
 
     CHECK(contains(io_test::runtime_error_of([] { place_of("EPSG:4326", -105, 40); }), "not a projected"));
     CHECK(contains(io_test::runtime_error_of([] { place_of("EPSG:4326", -105, 40); }), "EPSG:4326"));
-    CHECK(contains(io_test::runtime_error_of([] { place_of("no such CRS", 0, 0); }),
-                   "'no such CRS' is not understood"));
+    CHECK(
+        contains(io_test::runtime_error_of([] { place_of("no such CRS", 0, 0); }), "'no such CRS' is not understood"));
 }

@@ -21,7 +21,7 @@ TEST_CASE("io/write_geotiff: float32 round trip with NoData, geotransform and CR
     std::uniform_real_distribution<float> u(-5.0f, 90.0f);
     raster<float> big(40, 60);
     for (auto& v : big) v = rng() % 9 == 0 ? NAN : u(rng);
-    const auto values = big.view().window(2, 4, 37, 53);   // strided
+    const auto values = big.view().window(2, 4, 37, 53);  // strided
     const grid g{2230738.5, 252410.0, 0.5, 37, 53};
     if (!geotiff_available()) {
         MESSAGE("GDAL not built in: checking the error instead of a round trip");
@@ -36,14 +36,14 @@ TEST_CASE("io/write_geotiff: float32 round trip with NoData, geotransform and CR
     CHECK(contains(back.crs_wkt, "3645"));
     CHECK(contains(back.crs_wkt, "Oregon North"));
 
-    write_geotiff(path, values, g, "3645");   // a bare EPSG code
+    write_geotiff(path, values, g, "3645");  // a bare EPSG code
     CHECK(contains(read_geotiff(path).crs_wkt, "Oregon North"));
-    write_geotiff(path, values, g, back.crs_wkt);   // WKT
+    write_geotiff(path, values, g, back.crs_wkt);  // WKT
     CHECK(contains(read_geotiff(path).crs_wkt, "Oregon North"));
-    write_geotiff(path, values, g);   // no CRS
+    write_geotiff(path, values, g);  // no CRS
     CHECK(read_geotiff(path).crs_wkt.empty());
 
-    raster<float> one(1, 1, -9999.0f);   // the NoData value itself reads back as NaN (documented)
+    raster<float> one(1, 1, -9999.0f);  // the NoData value itself reads back as NaN (documented)
     write_geotiff(path, one, {0, 1, 1, 1, 1});
     CHECK(std::isnan(read_geotiff(path).values(0, 0)));
 

@@ -101,10 +101,10 @@ inline bool same_cells(lidarfx::raster_view<const float> a, lidarfx::raster_view
 /// Every attribute of a and b is equal.
 inline bool identical(const lidarfx::io::las_points& a, const lidarfx::io::las_points& b)
 {
-    return a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity &&
-           a.return_number == b.return_number && a.number_of_returns == b.number_of_returns &&
-           a.classification == b.classification && a.classification_flags == b.classification_flags &&
-           a.scan_angle_deg == b.scan_angle_deg && a.gps_time == b.gps_time;
+    return a.x == b.x && a.y == b.y && a.z == b.z && a.intensity == b.intensity && a.return_number == b.return_number &&
+           a.number_of_returns == b.number_of_returns && a.classification == b.classification &&
+           a.classification_flags == b.classification_flags && a.scan_angle_deg == b.scan_angle_deg &&
+           a.gps_time == b.gps_time;
 }
 
 /// All points of r read from the start in chunks of chunk_size (checking each chunk's size).
@@ -119,7 +119,13 @@ inline lidarfx::io::las_points read_in_chunks(lidarfx::io::las_reader& r, std::s
     return all;
 }
 
-inline bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
-inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+inline bool starts_with(const std::string& s, const std::string& prefix)
+{
+    return s.rfind(prefix, 0) == 0;
+}
+inline bool contains(const std::string& s, const std::string& part)
+{
+    return s.find(part) != std::string::npos;
+}
 
 }  // namespace io_test

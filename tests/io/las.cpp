@@ -55,8 +55,7 @@ sample random_sample(std::mt19937& rng, std::size_t n, int format, const std::ar
         p.number_of_returns.push_back(static_cast<std::uint8_t>(ret(rng)));
         p.classification.push_back(static_cast<std::uint8_t>(cls(rng)));
         p.classification_flags.push_back(static_cast<std::uint8_t>(flags(rng)));
-        p.scan_angle_deg.push_back(extended ? static_cast<float>(angle(rng)) * 0.006f
-                                            : static_cast<float>(angle(rng)));
+        p.scan_angle_deg.push_back(extended ? static_cast<float>(angle(rng)) * 0.006f : static_cast<float>(angle(rng)));
         if (las_format_has_gps_time(format)) p.gps_time.push_back(gps(rng));
     }
     return s;
@@ -149,10 +148,14 @@ TEST_CASE("io/las: every point format 0-10 round-trips through the writer, read 
             CAPTURE(format);
             CAPTURE(version);
             const std::size_t n = 1 + rng() % 3000;
-            const int extra = static_cast<int>(rng() % 3) * 7;   // records longer than the format's fields
+            const int extra = static_cast<int>(rng() % 3) * 7;  // records longer than the format's fields
             const auto s = random_sample(rng, n, format, scale, offset);
-            const las_write_options opt{.version_minor = version, .point_format = format, .scale = scale,
-                                        .offset = offset, .extra_bytes = extra, .epsg_projected = 3645};
+            const las_write_options opt{.version_minor = version,
+                                        .point_format = format,
+                                        .scale = scale,
+                                        .offset = offset,
+                                        .extra_bytes = extra,
+                                        .epsg_projected = 3645};
             const std::string path = dir.file(detail::concat("f", format, "v", version, ".las"));
             write_las(path, s.points, opt);
 
@@ -198,7 +201,7 @@ TEST_CASE("io/las_reader: reads cross the decode blocks exactly (large file, chu
     io_test::temp_dir dir;
     std::mt19937 rng(7);
     const std::array<double, 3> scale{0.01, 0.01, 0.01}, offset{0, 0, 0};
-    const auto s = random_sample(rng, 250'003, 1, scale, offset);   // > two 2 MiB blocks of 28-byte records
+    const auto s = random_sample(rng, 250'003, 1, scale, offset);  // > two 2 MiB blocks of 28-byte records
     const std::string path = dir.file("large.las");
     write_las(path, s.points, {.point_format = 1, .scale = scale, .offset = offset});
     las_reader r(path);
@@ -225,8 +228,8 @@ TEST_CASE("io/las: CRS metadata round-trips (GeoKeys, geographic, vertical, WKT 
     p.y = {20.0, 19.25};
     p.z = {0.5, 3.0};
     const std::string wkt = "PROJCS[\"NAD83(NSRS2007) / Oregon North\",UNIT[\"metre\",1]]";
-    auto bytes = encode_las(p, {.version_minor = 4, .point_format = 6, .epsg_geographic = 4759,
-                                .epsg_vertical = 5703, .wkt = wkt});
+    auto bytes = encode_las(
+        p, {.version_minor = 4, .point_format = 6, .epsg_geographic = 4759, .epsg_vertical = 5703, .wkt = wkt});
     {
         las_reader r(bytes);
         const las_header& h = r.header();
@@ -236,13 +239,13 @@ TEST_CASE("io/las: CRS metadata round-trips (GeoKeys, geographic, vertical, WKT 
         CHECK(h.epsg_vertical == 5703);
         CHECK(h.wkt == wkt);
         CHECK((h.global_encoding & 16) != 0);
-        CHECK(h.geo_keys.size() == 4);   // model type, geographic, vertical, vertical units
+        CHECK(h.geo_keys.size() == 4);  // model type, geographic, vertical, vertical units
         CHECK(h.point_count == 2);
         const auto q = r.read_all();
         CHECK(q.x == p.x);
         CHECK(q.y == p.y);
         CHECK(q.z == p.z);
-        CHECK(q.return_number == std::vector<std::uint8_t>{1, 1});   // defaults of absent attributes
+        CHECK(q.return_number == std::vector<std::uint8_t>{1, 1});  // defaults of absent attributes
     }
     // LAS 1.4 may carry the WKT after the points, in an EVLR; the later record wins.
     append_evlr(bytes, 2112, "GEOGCS[\"late\"]");
@@ -308,10 +311,10 @@ TEST_CASE("io/las_writer: rejects values the point format cannot hold and bad op
     p.x[1] = NAN;
     CHECK(contains(message(p, {}), "las_writer: x of point 1 must be finite"));
     p.x[1] = 1e9;
-    CHECK(contains(message(p, {.offset = std::array<double, 3>{0, 0, 0}}), "x of point 1 must be finite and within 2^31"));
+    CHECK(contains(message(p, {.offset = std::array<double, 3>{0, 0, 0}}),
+                   "x of point 1 must be finite and within 2^31"));
     p.x[1] = 2;
-    CHECK(message(p, {.point_format = 6}) ==
-          "las_writer: point format 6 needs LAS 1.4 or later (got version_minor 2)");
+    CHECK(message(p, {.point_format = 6}) == "las_writer: point format 6 needs LAS 1.4 or later (got version_minor 2)");
     CHECK(message(p, {.version_minor = 2, .point_format = 4}) ==
           "las_writer: point format 4 needs LAS 1.3 or later (got version_minor 2)");
     CHECK(message(p, {.point_format = 11}) == "las_writer: point_format must be in 0..10 (got 11)");
@@ -328,10 +331,11 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
     std::mt19937 rng(99);
     const std::array<double, 3> scale{0.01, 0.01, 0.01}, offset{0, 0, 0};
     const auto s12 = random_sample(rng, 100, 1, scale, offset);
-    const auto v12 = encode_las(s12.points, {.point_format = 1, .scale = scale, .offset = offset, .epsg_projected = 3645});
+    const auto v12 =
+        encode_las(s12.points, {.point_format = 1, .scale = scale, .offset = offset, .epsg_projected = 3645});
     const auto s14 = random_sample(rng, 100, 6, scale, offset);
     const auto v14 = encode_las(s14.points, {.version_minor = 4, .point_format = 6, .scale = scale, .offset = offset});
-    CHECK(error_for(dir, v12) == "<no error>");   // the unmodified files are fine
+    CHECK(error_for(dir, v12) == "<no error>");  // the unmodified files are fine
     const auto mutated = [](std::vector<std::uint8_t> bytes, auto&& change) {
         change(bytes);
         return bytes;
@@ -343,8 +347,9 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
         // The LASzip bits of the format id say "compressed"; without the laszip VLR nothing can decode it.
         for (const auto& base : {v12, v14}) {
             for (const std::uint8_t bit : {std::uint8_t{0x80}, std::uint8_t{0x40}}) {
-                CHECK(contains(error_for(dir, mutated(base, [bit](auto& b) { b[104] = static_cast<std::uint8_t>(b[104] | bit); })),
-                               "the point format says LAZ (compressed) but the file has no laszip VLR"));
+                CHECK(contains(
+                    error_for(dir, mutated(base, [bit](auto& b) { b[104] = static_cast<std::uint8_t>(b[104] | bit); })),
+                    "the point format says LAZ (compressed) but the file has no laszip VLR"));
             }
         }
         // The name does not decide: an uncompressed file called .laz is read as LAS.
@@ -352,10 +357,10 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
         CHECK(error_for(dir, v12, "UPPER.LAZ") == "<no error>");
         // Nor does a laszip VLR alone (the format bits do): the points are read as stored.
         CHECK(error_for(dir, mutated(v12, [](auto& b) {
-                  std::memset(b.data() + 227 + 2, 0, 16);
-                  std::memcpy(b.data() + 227 + 2, "laszip encoded", 14);
-                  put<std::uint16_t>(b, 227 + 18, 22204);
-              })) == "<no error>");
+                            std::memset(b.data() + 227 + 2, 0, 16);
+                            std::memcpy(b.data() + 227 + 2, "laszip encoded", 14);
+                            put<std::uint16_t>(b, 227 + 18, 22204);
+                        })) == "<no error>");
     }
     SUBCASE("signature")
     {
@@ -382,8 +387,8 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
         // Every prefix of a file is rejected, never read as fewer points.
         for (std::size_t len = 0; len < v14.size(); len += 1 + len / 50) {
             CAPTURE(len);
-            CHECK(error_for(dir, std::vector<std::uint8_t>(v14.begin(), v14.begin() + static_cast<std::ptrdiff_t>(len))) !=
-                  "<no error>");
+            CHECK(error_for(dir, std::vector<std::uint8_t>(
+                                     v14.begin(), v14.begin() + static_cast<std::ptrdiff_t>(len))) != "<no error>");
         }
     }
     SUBCASE("header fields that disagree with the file or the format")
@@ -426,8 +431,9 @@ TEST_CASE("io/las_reader: each kind of corrupt or unsupported file is rejected w
                        "EVLR 1 of 1 at byte " + std::to_string(with_evlr.size() - 10) + " does not fit in the file"));
         CHECK(contains(error_for(dir, mutated(with_evlr, [](auto& b) { put<std::uint32_t>(b, 243, 2); })),
                        "EVLR 2 of 2 at byte " + std::to_string(with_evlr.size()) + " does not fit in the file"));
-        CHECK(contains(error_for(dir, mutated(with_evlr, [&](auto& b) { put<std::uint64_t>(b, v14.size() + 20, 1000); })),
-                       "declares 1000 bytes, past the end of the file"));
+        CHECK(
+            contains(error_for(dir, mutated(with_evlr, [&](auto& b) { put<std::uint64_t>(b, v14.size() + 20, 1000); })),
+                     "declares 1000 bytes, past the end of the file"));
     }
 }
 
@@ -439,8 +445,12 @@ TEST_CASE("io/las_reader: random corruption of valid files gives a clean error o
     std::vector<std::vector<std::uint8_t>> bases;
     for (int format : {0, 3, 6, 10}) {
         const auto s = random_sample(rng, 20, format, scale, offset);
-        bases.push_back(encode_las(s.points, {.version_minor = 4, .point_format = format, .scale = scale,
-                                              .offset = offset, .epsg_projected = 3645, .wkt = "PROJCS[]"}));
+        bases.push_back(encode_las(s.points, {.version_minor = 4,
+                                              .point_format = format,
+                                              .scale = scale,
+                                              .offset = offset,
+                                              .epsg_projected = 3645,
+                                              .wkt = "PROJCS[]"}));
     }
     int rejected = 0, accepted = 0;
     for (int trial = 0; trial < 3000; ++trial) {
@@ -448,7 +458,8 @@ TEST_CASE("io/las_reader: random corruption of valid files gives a clean error o
         const int edits = 1 + static_cast<int>(rng() % 4);
         for (int e = 0; e < edits; ++e) {
             // Mostly the header and VLRs, where the structure lives.
-            const std::size_t at = rng() % 4 == 0 ? rng() % bytes.size() : rng() % std::min<std::size_t>(bytes.size(), 500);
+            const std::size_t at =
+                rng() % 4 == 0 ? rng() % bytes.size() : rng() % std::min<std::size_t>(bytes.size(), 500);
             bytes[at] = static_cast<std::uint8_t>(rng());
         }
         try {
@@ -482,7 +493,7 @@ TEST_CASE("io/las_points: append and cloud() view the arrays without copies")
     no_gps.resize(1, false);
     a.append(no_gps);
     CHECK(a.size() == 6);
-    CHECK(a.gps_time.empty());   // one chunk had no GPS time: the column cannot be kept
+    CHECK(a.gps_time.empty());  // one chunk had no GPS time: the column cannot be kept
     const auto c = a.cloud();
     CHECK(c.size() == 6);
     CHECK(c.x(4) == 5);

@@ -157,8 +157,8 @@ std::string error_reading(const std::vector<std::uint8_t>& bytes, int threads = 
 
 TEST_CASE("io/laz: point formats 0-3 decode bit for bit as their uncompressed twins (PDAL data)")
 {
-    for (const auto& [laz, las] : {std::pair{"laz/simple.laz", "las/simple.las"},
-                                   std::pair{"laz/autzen_trim.laz", "las/autzen_trim.las"}}) {
+    for (const auto& [laz, las] :
+         {std::pair{"laz/simple.laz", "las/simple.las"}, std::pair{"laz/autzen_trim.laz", "las/autzen_trim.las"}}) {
         const std::string a = pdal_file(laz), b = pdal_file(las);
         if (a.empty() || b.empty()) continue;
         CAPTURE(a);
@@ -197,8 +197,9 @@ TEST_CASE("io/laz: LAZ from LASzip 1.x (unchunked compressor 1) is refused with 
     const std::string path = pdal_file("laz/simple-laszip-compressor-version-1.2r0.laz");
     if (path.empty()) return;
     CHECK(runtime_error_of([&] { las_reader r(path); }) ==
-          path + ": LAZ from LASzip 1.2r0 (point-wise, unchunked compressor 1) is not supported; recompress it "
-                 "with a current laszip or pdal");
+          path +
+              ": LAZ from LASzip 1.2r0 (point-wise, unchunked compressor 1) is not supported; recompress it "
+              "with a current laszip or pdal");
 }
 
 TEST_CASE("io/laz: the committed fixtures decode to their verified checksums without the twins")
@@ -243,7 +244,8 @@ TEST_CASE("io/laz: seek and chunked reads inside and across chunks equal the who
     const std::size_t n = all.size();
     for (const int threads : {1, 2}) {
         r.set_threads(threads);
-        for (const std::uint64_t start : {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{517}, std::uint64_t{n - 1}}) {
+        for (const std::uint64_t start :
+             {std::uint64_t{0}, std::uint64_t{1}, std::uint64_t{517}, std::uint64_t{n - 1}}) {
             for (const std::size_t step : {std::size_t{1}, std::size_t{97}, std::size_t{700}, n}) {
                 r.seek(start);
                 las_points chunk;
@@ -306,7 +308,8 @@ TEST_CASE("io/laz: corrupt headers, chunk tables and chunk bytes give a clean er
     CHECK(error_reading(with_count(std::uint64_t{1} << 40)) ==
           "corrupt.laz: the LAZ chunks hold 1065 points, the header declares 1099511627776");
     // The chunk table offset points outside the point data.
-    CHECK(starts_with(error_reading(patched(data, std::int64_t{12})), "corrupt.laz: the LAZ chunk table offset 12 lies outside"));
+    CHECK(starts_with(error_reading(patched(data, std::int64_t{12})),
+                      "corrupt.laz: the LAZ chunk table offset 12 lies outside"));
     CHECK(starts_with(error_reading(patched(data, std::int64_t{-5})), "corrupt.laz: the LAZ chunk table offset -5"));
     // The laszip VLR names items that do not make up the point format.
     CHECK(starts_with(error_reading(patched(104, std::uint8_t{0x80 | 6})), "corrupt.laz: "));
@@ -369,7 +372,7 @@ TEST_CASE("io/laz: unknown compressors, coders and item versions are refused by 
     CHECK(error(ok, 3, 36) == "f.laz: the LAZ items make records of 34 bytes, the header says 36");
     CHECK(error(ok, 4, 34) == "f.laz: LAZ point format 4 is not supported (formats 0–3 and 6–8 are)");
     v = ok;
-    v.items.push_back({0, 2, 2});   // two extra bytes
+    v.items.push_back({0, 2, 2});  // two extra bytes
     CHECK(error(v, 3, 36) == "<no error>");
     v.chunk_size = 0;
     CHECK(error(v, 3, 36) == "f.laz: the laszip VLR gives a chunk size of 0 points");
@@ -385,7 +388,7 @@ std::vector<std::uint8_t> chunk_bomb(std::uint32_t claimed)
     auto b = read_bytes(fixture("simple.laz"));
     const las_reader r(b, "simple.laz");
     const las_header& h = r.header();
-    REQUIRE(h.version_minor < 4);   // the 32-bit legacy count is the count
+    REQUIRE(h.version_minor < 4);  // the 32-bit legacy count is the count
     for (const las_vlr& v : h.vlrs) {
         if (v.user_id == "laszip encoded") std::memcpy(b.data() + v.data_offset + 12, &claimed, 4);
     }
@@ -435,7 +438,7 @@ TEST_CASE("io/laz: no chunk decodes more points than laz_max_points_per_byte all
                 std::mt19937 rng(7);
                 for (auto& c : chunk) c = static_cast<std::uint8_t>(rng());
             }
-            std::fill(chunk.begin(), chunk.begin() + set.length, std::uint8_t{0});   // the raw first point
+            std::fill(chunk.begin(), chunk.begin() + set.length, std::uint8_t{0});  // the raw first point
             const std::uint64_t claim = 1 + laz_max_points_per_byte * bytes;
             std::vector<std::uint8_t> records;
             const std::string e = runtime_error_of([&] { dec.decode(chunk, claim, records, "bomb"); });
@@ -489,7 +492,7 @@ TEST_CASE("io/laz: a chunk over half the memory budget is refused before decodin
                        "256 MiB (a chunk decoding and the one kept must fit); raise the memory budget (--memory) to "
                        "at least 648.5 MiB, or check the file (a corrupt chunk table claims more points than its "
                        "chunk holds)");
-        CHECK(seconds < 0.5);   // nothing decoded
+        CHECK(seconds < 0.5);  // nothing decoded
         CHECK(p.size() == 0);
     }
     // read_records and read_all refuse the same way; a budget over twice the chunk lets it decode (and fail
@@ -501,7 +504,7 @@ TEST_CASE("io/laz: a chunk over half the memory budget is refused before decodin
     CHECK(contains(error_of([&] { r.read_all(); }), "over half the memory budget of 256 MiB"));
     CHECK(r.memory_budget() == std::uint64_t{256} << 20);
     r.set_memory_budget(0);
-    CHECK(r.memory_budget() > 0);   // half the physical memory
+    CHECK(r.memory_budget() > 0);  // half the physical memory
 }
 
 TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: the same records")
@@ -511,7 +514,7 @@ TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: th
         CAPTURE(name);
         las_reader r(fixture(name));
         const std::vector<std::uint8_t> want = all_records(r);
-        const std::uint64_t whole = want.size();   // every chunk is at most this
+        const std::uint64_t whole = want.size();  // every chunk is at most this
         for (const std::uint64_t budget : {2 * whole, 3 * whole, 5 * whole + 7, std::uint64_t{1} << 30}) {
             for (const int threads : {1, 2, 3, 0}) {
                 CAPTURE(budget);
@@ -523,14 +526,17 @@ TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: th
             }
         }
         // Chunks in flight: (k + 1) x the largest within the budget, k at most the threads asked for.
-        const std::uint64_t largest = [&] {   // decoded bytes of the largest chunk, found as the budget's edge
+        const std::uint64_t largest = [&] {  // decoded bytes of the largest chunk, found as the budget's edge
             std::uint64_t lo = 1, hi = whole;
             while (lo < hi) {
                 const std::uint64_t mid = (lo + hi) / 2;
                 r.set_memory_budget(2 * mid);
                 r.seek(0);
                 las_points p;
-                if (error_of([&] { r.read_all(); }) == "<no error>") hi = mid; else lo = mid + 1;
+                if (error_of([&] { r.read_all(); }) == "<no error>")
+                    hi = mid;
+                else
+                    lo = mid + 1;
             }
             return lo;
         }();
@@ -541,7 +547,8 @@ TEST_CASE("io/laz: any memory budget that holds two chunks, any thread count: th
             r.set_memory_budget((k + 1) * largest);
             CHECK(r.decode_threads() == static_cast<int>(std::min<std::uint64_t>(k, 4)));
             r.set_memory_budget((k + 1) * largest - 1);
-            CHECK(r.decode_threads() == static_cast<int>(std::max<std::uint64_t>(1, std::min<std::uint64_t>(k - 1, 4))));
+            CHECK(r.decode_threads() ==
+                  static_cast<int>(std::max<std::uint64_t>(1, std::min<std::uint64_t>(k - 1, 4))));
         }
         r.set_memory_budget(std::uint64_t{1} << 30);
         CHECK(r.decode_threads() == 4);

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -57,8 +57,12 @@ TEST_CASE("io/output_folder: files appear under their names only at commit, with
     CHECK(text_of(dir / "b.txt").empty());
     const auto manifest = text_of(dir / "manifest.json");
     // SHA-256 of "abc" and of the empty string (FIPS 180-4 examples).
-    CHECK(contains(manifest, R"({"name": "a.txt", "bytes": 3, "sha256": "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"})"));
-    CHECK(contains(manifest, R"({"name": "b.txt", "bytes": 0, "sha256": "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"})"));
+    CHECK(contains(
+        manifest,
+        R"({"name": "a.txt", "bytes": 3, "sha256": "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"})"));
+    CHECK(contains(
+        manifest,
+        R"({"name": "b.txt", "bytes": 0, "sha256": "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"})"));
     CHECK(contains(manifest, R"("command": "lidarfx test \"quoted\"")"));
     CHECK(entries(dir) == std::vector<std::string>{".lidarfx.lock", "a.txt", "b.txt", "manifest.json"});
     CHECK(sha256_of_file(dir / "a.txt") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
@@ -160,7 +164,8 @@ TEST_CASE("io/output_folder: leftovers of killed runs are removed; bad names are
     std::filesystem::create_directories(dir / "sub");
     CHECK(contains(io_test::runtime_error_of([&] { out.check_name("sub"); }), "not a regular file"));
     write_file((dir / "plain.txt").string(), std::string("a file"));
-    CHECK(contains(io_test::runtime_error_of([&] { output_folder bad(dir / "plain.txt"); }), "plain.txt: exists and is not a folder"));
+    CHECK(contains(io_test::runtime_error_of([&] { output_folder bad(dir / "plain.txt"); }),
+                   "plain.txt: exists and is not a folder"));
 }
 
 TEST_CASE("io/output_folder: only regular files named as this program names its temporaries are removed as leftovers")
@@ -170,10 +175,10 @@ TEST_CASE("io/output_folder: only regular files named as this program names its 
     const std::filesystem::path theirs = tmp.file("theirs.lidarfx-tmp");
     std::filesystem::create_directories(dir);
     write_file(theirs.string(), std::string("someone's"));
-    write_file((dir / ".a.txt.77.lidarfx-tmp").string(), std::string("ours"));                  // a leftover
+    write_file((dir / ".a.txt.77.lidarfx-tmp").string(), std::string("ours"));  // a leftover
     for (const char* foreign : {"notes.lidarfx-tmp", ".a.txt.lidarfx-tmp", ".a.txt.7x.lidarfx-tmp", "..1.lidarfx-tmp"})
         write_file((dir / foreign).string(), std::string("theirs"));
-    std::filesystem::create_symlink(theirs, dir / ".b.txt.78.lidarfx-tmp");                       // a link at our form
+    std::filesystem::create_symlink(theirs, dir / ".b.txt.78.lidarfx-tmp");  // a link at our form
     {
         output_folder out(dir);
     }

@@ -50,7 +50,7 @@ std::uint32_t be32(const std::uint8_t* p)
 struct decoded_png {
     std::uint32_t width = 0, height = 0;
     int colour_type = -1;
-    std::vector<std::uint8_t> pixels;   // rows without filter bytes
+    std::vector<std::uint8_t> pixels;  // rows without filter bytes
 };
 
 decoded_png decode_png(const std::vector<std::uint8_t>& f)
@@ -72,11 +72,11 @@ decoded_png decode_png(const std::vector<std::uint8_t>& f)
             REQUIRE(length == 13);
             out.width = be32(data);
             out.height = be32(data + 4);
-            CHECK(data[8] == 8);    // bit depth
+            CHECK(data[8] == 8);  // bit depth
             out.colour_type = data[9];
-            CHECK(data[10] == 0);   // deflate
-            CHECK(data[11] == 0);   // adaptive filtering
-            CHECK(data[12] == 0);   // no interlace
+            CHECK(data[10] == 0);  // deflate
+            CHECK(data[11] == 0);  // adaptive filtering
+            CHECK(data[12] == 0);  // no interlace
         } else if (type == "IDAT") {
             z.insert(z.end(), data, data + length);
         }
@@ -88,7 +88,7 @@ decoded_png decode_png(const std::vector<std::uint8_t>& f)
     REQUIRE(z.size() >= 6);
     CHECK((z[0] & 0x0F) == 8);
     CHECK((z[0] * 256 + z[1]) % 31 == 0);
-    CHECK((z[1] & 0x20) == 0);   // no preset dictionary
+    CHECK((z[1] & 0x20) == 0);  // no preset dictionary
     const std::size_t channels = out.colour_type == 2 ? 3 : 1;
     const std::size_t line = 1 + out.width * channels;
     std::vector<std::uint8_t> raw;
@@ -97,7 +97,7 @@ decoded_png decode_png(const std::vector<std::uint8_t>& f)
         for (bool final = false; !final;) {
             REQUIRE(at + 5 <= z.size());
             final = (z[at] & 1) != 0;
-            CHECK(((z[at] >> 1) & 3) == 0);   // stored
+            CHECK(((z[at] >> 1) & 3) == 0);  // stored
             const std::uint32_t len = z[at + 1] | z[at + 2] << 8;
             const std::uint32_t nlen = z[at + 3] | z[at + 4] << 8;
             CHECK(len == (~nlen & 0xFFFFu));
@@ -135,20 +135,24 @@ decoded_png decode_png(const std::vector<std::uint8_t>& f)
     return out;
 }
 
-std::vector<std::uint8_t> bytes_of(std::string_view s) { return {s.begin(), s.end()}; }
+std::vector<std::uint8_t> bytes_of(std::string_view s)
+{
+    return {s.begin(), s.end()};
+}
 
 }  // namespace
 
 TEST_CASE("io/crc32, io/adler32: published check values and agreement with plain definitions")
 {
-    CHECK(crc32(bytes_of("123456789")) == 0xCBF43926u);   // the CRC-32 check value
+    CHECK(crc32(bytes_of("123456789")) == 0xCBF43926u);  // the CRC-32 check value
     CHECK(crc32(bytes_of("")) == 0u);
     CHECK(adler32(bytes_of("Wikipedia")) == 0x11E60398u);
     CHECK(adler32(bytes_of("")) == 1u);
     std::mt19937 rng(1);
     for (std::size_t n : {1u, 7u, 5551u, 5552u, 5553u, 100000u}) {
         std::vector<std::uint8_t> v(n);
-        for (auto& x : v) x = static_cast<std::uint8_t>(rng() | (n == 100000 ? 0xF0 : 0));   // large bytes stress overflow
+        for (auto& x : v)
+            x = static_cast<std::uint8_t>(rng() | (n == 100000 ? 0xF0 : 0));  // large bytes stress overflow
         CHECK(crc32(v) == crc32_bitwise(v.data(), v.size()));
         CHECK(adler32(v) == adler32_plain(v));
         // Continuing over two parts equals one pass.
@@ -170,7 +174,7 @@ TEST_CASE("io/write_png_gray: the file decodes back to the pixels (strided views
         CAPTURE(cols);
         raster<std::uint8_t> big(rows + 2, cols + 5);
         for (auto& v : big) v = static_cast<std::uint8_t>(rng());
-        const auto view = big.view().window(1, 3, rows, cols);   // row_stride > cols
+        const auto view = big.view().window(1, 3, rows, cols);  // row_stride > cols
         const std::string path = dir.file("gray.png");
         write_png_gray(path, view);
         const auto png = decode_png(io_test::read_bytes(path));
@@ -206,8 +210,8 @@ TEST_CASE("io/write_png_rgb: the file decodes back to the pixels; sizes are chec
                          invalid_input);
     CHECK_THROWS_WITH_AS(write_png_gray(path, raster<std::uint8_t>(3, 0)),
                          "encode_png: width must be in 1..2^31-1 (got 0)", invalid_input);
-    CHECK_THROWS_WITH_AS((void)encode_png(2, 2, 2, rgb.data(), 4), "encode_png: channels must be 1 (gray) or 3 (RGB) (got 2)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS((void)encode_png(2, 2, 2, rgb.data(), 4),
+                         "encode_png: channels must be 1 (gray) or 3 (RGB) (got 2)", invalid_input);
     CHECK(io_test::runtime_error_of([&] { write_png_rgb(dir.file("none/x.png"), w, h, rgb); }) ==
           dir.file("none/x.png") + ": cannot open for writing");
 }

@@ -22,7 +22,10 @@ rgb pixel(const rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)
     return {p[0], p[1], p[2]};
 }
 
-double luma(const rgb& c) { return 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]; }
+double luma(const rgb& c)
+{
+    return 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2];
+}
 
 /// Shade of a plane z = a*x + b*y (x east, y north) lit from azimuth/altitude: 255 * max(0, n . l).
 int plane_shade(double a, double b, double azimuth_deg, double altitude_deg)
@@ -56,7 +59,7 @@ TEST_CASE("io/ramp_color: viridis ends, NaN black, luminance rising with t")
     double previous = -1;
     for (int i = 0; i <= 1000; ++i) {
         const double y = luma(ramp_color(i / 1000.0));
-        CHECK(y >= previous - 0.6);   // rounding each channel to an integer moves luma by < 0.6
+        CHECK(y >= previous - 0.6);  // rounding each channel to an integer moves luma by < 0.6
         previous = y;
     }
     CHECK(luma(ramp_color(1.0)) > luma(ramp_color(0.0)) + 150);
@@ -65,7 +68,7 @@ TEST_CASE("io/ramp_color: viridis ends, NaN black, luminance rising with t")
 TEST_CASE("io/colorize: maps [min, max] onto the ramp, clamps outside, NaN black, strided views")
 {
     raster<float> big(5, 9, 0.0f);
-    auto v = big.view().window(1, 2, 3, 4);   // row_stride 9 > cols 4
+    auto v = big.view().window(1, 2, 3, 4);  // row_stride 9 > cols 4
     const float cells[3][4] = {{10, 15, 20, NAN}, {5, 25, 12.5f, 17.5f}, {10, 10, 20, 20}};
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) v(r, c) = cells[r][c];
@@ -77,12 +80,12 @@ TEST_CASE("io/colorize: maps [min, max] onto the ramp, clamps outside, NaN black
     CHECK(pixel(img, 0, 1) == ramp_color(0.5));
     CHECK(pixel(img, 0, 2) == ramp_color(1));
     CHECK(pixel(img, 0, 3) == rgb{0, 0, 0});
-    CHECK(pixel(img, 1, 0) == ramp_color(0));   // below min
-    CHECK(pixel(img, 1, 1) == ramp_color(1));   // above max
+    CHECK(pixel(img, 1, 0) == ramp_color(0));  // below min
+    CHECK(pixel(img, 1, 1) == ramp_color(1));  // above max
     CHECK(pixel(img, 1, 2) == ramp_color(0.25));
     CHECK(pixel(img, 1, 3) == ramp_color(0.75));
-    CHECK(colorize(raster<float>(v)).rgb == colorize(v).rgb);   // contiguous copy, same picture
-    CHECK(colorize(v).rgb == colorize(v, 5, 25).rgb);           // automatic range = finite min and max
+    CHECK(colorize(raster<float>(v)).rgb == colorize(v).rgb);  // contiguous copy, same picture
+    CHECK(colorize(v).rgb == colorize(v, 5, 25).rgb);          // automatic range = finite min and max
 
     const raster<float> flat(2, 2, 3.0f);
     CHECK(pixel(colorize(flat), 1, 1) == ramp_color(0.5));
@@ -102,8 +105,9 @@ TEST_CASE("io/hillshade: planes shade exactly everywhere (borders and NaN holes 
         const std::ptrdiff_t rows = 1 + trial % 7, cols = 1 + (trial * 5) % 13;
         raster<float> z(rows, cols);
         for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)   // y decreases with the row: row 0 is north
-                z(r, c) = static_cast<float>(100 + a * static_cast<double>(c) * cell - b * static_cast<double>(r) * cell);
+            for (std::ptrdiff_t c = 0; c < cols; ++c)  // y decreases with the row: row 0 is north
+                z(r, c) =
+                    static_cast<float>(100 + a * static_cast<double>(c) * cell - b * static_cast<double>(r) * cell);
         if (trial % 2 && rows * cols > 4) z(rows / 2, cols / 2) = NAN;
         const auto hs = hillshade(z, cell);
         const int expected = rows * cols == 1 ? 180 : plane_shade(a, b, 315, 45);
@@ -114,14 +118,14 @@ TEST_CASE("io/hillshade: planes shade exactly everywhere (borders and NaN holes 
                     continue;
                 }
                 // A single row or column has no gradient across it: only that axis is known.
-                const int want = rows == 1 || cols == 1 ? plane_shade(cols == 1 ? 0 : a, rows == 1 ? 0 : b, 315, 45)
-                                                        : expected;
-                CHECK(std::abs(hs(r, c) - want) <= 1);   // float elevations move the shade by < 1 level
+                const int want =
+                    rows == 1 || cols == 1 ? plane_shade(cols == 1 ? 0 : a, rows == 1 ? 0 : b, 315, 45) : expected;
+                CHECK(std::abs(hs(r, c) - want) <= 1);  // float elevations move the shade by < 1 level
             }
         }
     }
     const raster<float> flat(4, 4, 7.0f);
-    CHECK(hillshade(flat, 1.0)(2, 2) == 180);   // round(255 sin 45°)
+    CHECK(hillshade(flat, 1.0)(2, 2) == 180);  // round(255 sin 45°)
     CHECK(hillshade(flat, 1.0, 0, 90)(0, 0) == 255);
     // Facing the light at 45° -> full light; facing away -> dark.
     raster<float> nw(3, 3), se(3, 3);
@@ -158,7 +162,7 @@ TEST_CASE("io/label_color: background black, distinct stable colours for labels"
     for (std::int32_t label = 1; label <= 256; ++label) {
         const rgb c = label_color(label);
         CHECK(c != rgb{0, 0, 0});
-        CHECK(luma(c) > 40);   // visible against the black background
+        CHECK(luma(c) > 40);  // visible against the black background
         seen.insert(c);
         CHECK(label_color(label) == c);
     }
@@ -184,7 +188,7 @@ TEST_CASE("io/overlay_mask: tints masked cells over the grey picture")
     mask(1, 0) = 1;
     const auto img = overlay_mask(grey, mask, {0, 120, 255}, 0.5);
     CHECK(pixel(img, 0, 0) == rgb{100, 100, 100});
-    CHECK(pixel(img, 1, 0) == rgb{50, 110, 178});   // round(0.5 * 100 + 0.5 * colour)
+    CHECK(pixel(img, 1, 0) == rgb{50, 110, 178});  // round(0.5 * 100 + 0.5 * colour)
     CHECK(pixel(overlay_mask(grey, mask, {9, 8, 7}, 1.0), 1, 0) == rgb{9, 8, 7});
     CHECK(overlay_mask(grey, mask, {9, 8, 7}, 0.0).rgb == std::vector<std::uint8_t>(12, 100));
     CHECK_THROWS_WITH_AS(overlay_mask(grey, raster<std::uint8_t>(2, 3)),
@@ -202,13 +206,13 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
     for (std::ptrdiff_t r = 0; r < one.height; ++r)
         for (std::ptrdiff_t c = 0; c < one.width; ++c) lit += pixel(one, r, c) == rgb{0, 0, 0};
     CHECK(lit == 10);
-    CHECK(pixel(one, 1, 4) == rgb{0, 0, 0});        // top of the stem: glyph column 2, row 0
-    CHECK(pixel(one, 7, 3) == rgb{0, 0, 0});        // foot: glyph row 6, columns 1..3
+    CHECK(pixel(one, 1, 4) == rgb{0, 0, 0});  // top of the stem: glyph column 2, row 0
+    CHECK(pixel(one, 7, 3) == rgb{0, 0, 0});  // foot: glyph row 6, columns 1..3
     CHECK(pixel(one, 7, 2) == rgb{255, 255, 255});
     CHECK(pixel(one, 1, 2) == rgb{255, 255, 255});
 
     // Every digit is drawn from its own bitmap, pixel for pixel, at scale 1 and as blocks at scale 2.
-    std::set<std::string> pictures;   // the bytes of each digit's picture
+    std::set<std::string> pictures;  // the bytes of each digit's picture
     for (char d = '0'; d <= '9'; ++d) {
         const std::string text(1, d);
         for (int scale : {1, 2}) {
@@ -227,18 +231,18 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
             CHECK(again.rgb == img.rgb);
         }
     }
-    CHECK(pictures.size() == 10);   // ten different digits
+    CHECK(pictures.size() == 10);  // ten different digits
 
     CHECK(text_width_px("", 1) == 0);
     CHECK(text_width_px("12", 1) == 11);
-    CHECK(text_width_px("kWh/m²", 2) == (6 * 6 - 1) * 2);   // "²" is one character
+    CHECK(text_width_px("kWh/m²", 2) == (6 * 6 - 1) * 2);  // "²" is one character
     CHECK(glyph_rows(U'²') != glyph_rows(U'2'));
-    CHECK(glyph_rows(U'#') == glyph_rows(U'@'));           // unknown characters: the same empty box
+    CHECK(glyph_rows(U'#') == glyph_rows(U'@'));  // unknown characters: the same empty box
     CHECK(glyph_rows(U'#') != glyph_rows(U' '));
     rgb_image edge{3, 3, std::vector<std::uint8_t>(27, 0)};
-    draw_text(edge, -2, -2, "8", {9, 9, 9});                // partly outside: clipped, no crash
-    CHECK(pixel(edge, 0, 0) == rgb{0, 0, 0});               // glyph row 2 (10001), column 2: off
-    CHECK(pixel(edge, 1, 0) == rgb{9, 9, 9});               // glyph row 3 (01110), column 2: on
+    draw_text(edge, -2, -2, "8", {9, 9, 9});   // partly outside: clipped, no crash
+    CHECK(pixel(edge, 0, 0) == rgb{0, 0, 0});  // glyph row 2 (10001), column 2: off
+    CHECK(pixel(edge, 1, 0) == rgb{9, 9, 9});  // glyph row 3 (01110), column 2: on
     CHECK_THROWS_AS(draw_text(edge, 0, 0, "1", {0, 0, 0}, 0), invalid_input);
 }
 
@@ -253,14 +257,14 @@ TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under t
     CHECK(legend_height_px(360) == 26);
     CHECK(img.width == 360);
     REQUIRE(img.height == 40 + 26);
-    CHECK(std::equal(picture.rgb.begin(), picture.rgb.end(), img.rgb.begin()));   // picture unchanged on top
+    CHECK(std::equal(picture.rgb.begin(), picture.rgb.end(), img.rgb.begin()));  // picture unchanged on top
 
     // The bar: rows 44..51, columns 4..355, from ramp_color(0) to ramp_color(1), luminance rising.
     CHECK(pixel(img, 44, 4) == ramp_color(0));
     CHECK(pixel(img, 51, 355) == ramp_color(1));
     CHECK(pixel(img, 47, 180) == ramp_color(176.0 / 351.0));
     CHECK(luma(pixel(img, 47, 300)) > luma(pixel(img, 47, 60)));
-    CHECK(pixel(img, 43, 100) == rgb{255, 255, 255});   // margin between picture and bar
+    CHECK(pixel(img, 43, 100) == rgb{255, 255, 255});  // margin between picture and bar
 
     // Text rows 55..61: black pixels where the labels are, white elsewhere.
     const auto dark_in = [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
@@ -269,8 +273,8 @@ TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under t
             for (std::ptrdiff_t c = c0; c < c1; ++c) n += pixel(img, r, c) == rgb{0, 0, 0};
         return n;
     };
-    CHECK(dark_in(4, 9) > 0);                                  // "0" under the left end
-    CHECK(dark_in(356 - text_width_px("1234", 1), 356) > 0);   // "1234" (%.4g) right-aligned
+    CHECK(dark_in(4, 9) > 0);                                 // "0" under the left end
+    CHECK(dark_in(356 - text_width_px("1234", 1), 356) > 0);  // "1234" (%.4g) right-aligned
     const std::ptrdiff_t unit_w = text_width_px("kWh/m²", 1);
     CHECK(dark_in((360 - unit_w) / 2, (360 + unit_w) / 2) > 0);  // the unit in the middle
     CHECK(dark_in(100, 150) == 0);
@@ -282,7 +286,7 @@ TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under t
             if (pixel(img, r, c) != pixel(other, r, c)) ++(c >= 300 ? changed_right : changed_left);
     CHECK(changed_left == 0);
     CHECK(changed_right > 0);
-    CHECK(with_legend(picture, 0, 1234.4, "kWh/m²").rgb == img.rgb);   // deterministic
+    CHECK(with_legend(picture, 0, 1234.4, "kWh/m²").rgb == img.rgb);  // deterministic
 
     // Wide pictures get a bigger font; narrow ones are widened on the right with white.
     const rgb_image wide = with_legend(colorize(raster<float>(10, 900, 1.0f), 0, 1), 0, 1, "SVF");
@@ -300,7 +304,8 @@ TEST_CASE("io/colorize_over_hillshade: finite cells as colorize, the others a di
 {
     raster<float> z(6, 7);
     for (std::ptrdiff_t r = 0; r < 6; ++r)
-        for (std::ptrdiff_t c = 0; c < 7; ++c) z(r, c) = static_cast<float>(0.7 * static_cast<double>(c) - 0.3 * static_cast<double>(r));
+        for (std::ptrdiff_t c = 0; c < 7; ++c)
+            z(r, c) = static_cast<float>(0.7 * static_cast<double>(c) - 0.3 * static_cast<double>(r));
     raster<float> v(6, 7, NAN);
     v(1, 2) = 3.0f;
     v(4, 5) = 8.0f;

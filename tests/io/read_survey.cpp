@@ -117,10 +117,10 @@ TEST_CASE("io/read_survey: points on the header's east and south bounds are insi
     const auto path = dir.file("edges.las");
     std::vector<std::array<double, 3>> xyz;
     for (int i = 0; i <= 20; ++i) {
-        xyz.push_back({1000.0 + 0.5 * i, 2000.0, 1.0});   // south edge, west to east
-        xyz.push_back({1010.0, 2000.0 + 0.5 * i, 1.0});   // east edge, south to north
-        xyz.push_back({1000.0, 2000.0 + 0.5 * i, 1.0});   // west edge
-        xyz.push_back({1000.0 + 0.5 * i, 2010.0, 1.0});   // north edge
+        xyz.push_back({1000.0 + 0.5 * i, 2000.0, 1.0});  // south edge, west to east
+        xyz.push_back({1010.0, 2000.0 + 0.5 * i, 1.0});  // east edge, south to north
+        xyz.push_back({1000.0, 2000.0 + 0.5 * i, 1.0});  // west edge
+        xyz.push_back({1000.0 + 0.5 * i, 2010.0, 1.0});  // north edge
     }
     write_las(path, points_at(xyz));
     int refused = 0;

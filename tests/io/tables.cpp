@@ -34,7 +34,7 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text)
                 field += ch;
             }
         } else if (ch == '"') {
-            REQUIRE(field.empty());   // quotes only open a field
+            REQUIRE(field.empty());  // quotes only open a field
             quoted = was_quoted = true;
         } else if (ch == ',') {
             rows.back().push_back(field);
@@ -46,12 +46,12 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text)
             was_quoted = false;
             rows.emplace_back();
         } else {
-            REQUIRE_FALSE(was_quoted);   // nothing may follow a closing quote
+            REQUIRE_FALSE(was_quoted);  // nothing may follow a closing quote
             field += ch;
         }
     }
     REQUIRE_FALSE(quoted);
-    REQUIRE(rows.back().empty());   // the text ends with a line break
+    REQUIRE(rows.back().empty());  // the text ends with a line break
     rows.pop_back();
     return rows;
 }
@@ -120,7 +120,7 @@ TEST_CASE("io/to_csv: random text and numbers read back unchanged by an RFC 4180
                     const double v = real(rng);
                     row.emplace_back(v);
                     want.push_back(row.back().format());
-                    CHECK(std::stod(want.back()) == v);   // shortest form, yet exact
+                    CHECK(std::stod(want.back()) == v);  // shortest form, yet exact
                 }
             }
             expected.push_back(want);

@@ -32,21 +32,23 @@ std::vector<std::string> write_lake_survey(const io_test::temp_dir& dir, double 
     const auto scene = synth::lake_scene({.seed = 7, .size_m = 300, .density_per_m2 = 1.5});
     std::vector<las_points> parts(9);
     const auto all = las_points_from(scene.points);
-    const auto in = [&](double v, int k) { return (k == 0 || v >= k * 100 - overlap_m) && (k == 2 || v < k * 100 + 100 + overlap_m); };
+    const auto in = [&](double v, int k) {
+        return (k == 0 || v >= k * 100 - overlap_m) && (k == 2 || v < k * 100 + 100 + overlap_m);
+    };
     for (std::size_t i = 0; i < all.size(); ++i)
-    for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-        if (!in(all.x[i], c) || !in(all.y[i], r)) continue;
-        auto& p = parts[static_cast<std::size_t>(r * 3 + c)];
-        p.x.push_back(all.x[i] + 600000.0);
-        p.y.push_back(all.y[i] + 5000000.0);
-        p.z.push_back(all.z[i]);
-        p.intensity.push_back(all.intensity[i]);
-        p.return_number.push_back(all.return_number[i]);
-        p.number_of_returns.push_back(all.number_of_returns[i]);
-        p.classification.push_back(all.classification[i]);
-        p.gps_time.push_back(all.gps_time[i]);
-    }
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+                if (!in(all.x[i], c) || !in(all.y[i], r)) continue;
+                auto& p = parts[static_cast<std::size_t>(r * 3 + c)];
+                p.x.push_back(all.x[i] + 600000.0);
+                p.y.push_back(all.y[i] + 5000000.0);
+                p.z.push_back(all.z[i]);
+                p.intensity.push_back(all.intensity[i]);
+                p.return_number.push_back(all.return_number[i]);
+                p.number_of_returns.push_back(all.number_of_returns[i]);
+                p.classification.push_back(all.classification[i]);
+                p.gps_time.push_back(all.gps_time[i]);
+            }
     std::vector<std::string> paths;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         paths.push_back(dir.file("part_" + std::to_string(k) + ".las"));
@@ -101,7 +103,7 @@ TEST_CASE("io/tiled_survey: tile by tile, the survey read_survey reads, bit for 
     const auto untiled = cli::read_survey(paths, quiet(1.5, 1));
     const auto& sc = untiled.scan_covered;
     REQUIRE(!sc.empty());
-    REQUIRE(std::count(sc.data(), sc.data() + sc.size(), 1) > 100);   // lakes lose pulses: scan lines cross
+    REQUIRE(std::count(sc.data(), sc.data() + sc.size(), 1) > 100);  // lakes lose pulses: scan lines cross
     for (const double edge : {10.5, 45.0, 1000.0}) {
         for (const int threads : {1, 2}) {
             CAPTURE(edge);
@@ -119,9 +121,10 @@ TEST_CASE("io/tiled_survey: tile by tile, the survey read_survey reads, bit for 
         const auto readers = cli::survey_file_readers(layout, plan, true);
         std::size_t handed = 0;
         for (const auto& r : readers) handed += r.handed_to.size();
-        CHECK(handed >= 12);   // each inner border is crossed by the files on both sides
+        CHECK(handed >= 12);  // each inner border is crossed by the files on both sides
         const auto want = cli::read_survey(overlapping, o);
-        for (const int threads : {1, 2}) check_same_survey(want, cli::read_survey_tiled(overlapping, quiet(2.0, threads), 100.0, {}));
+        for (const int threads : {1, 2})
+            check_same_survey(want, cli::read_survey_tiled(overlapping, quiet(2.0, threads), 100.0, {}));
     }
     SUBCASE("with --crop (files outside it are read by no tile)")
     {
@@ -136,7 +139,7 @@ TEST_CASE("io/tiled_survey: a point far from the rest is refused as read_survey 
     io_test::temp_dir dir;
     auto paths = write_lake_survey(dir);
     las_points far;
-    far.x = {600150.0, 630000.0};   // the second point 30 km east of a 300 m survey
+    far.x = {600150.0, 630000.0};  // the second point 30 km east of a 300 m survey
     far.y = {5000150.0, 5000150.0};
     far.z = {10.0, 10.0};
     far.intensity = {100, 100};
@@ -148,7 +151,8 @@ TEST_CASE("io/tiled_survey: a point far from the rest is refused as read_survey 
     const auto want = io_test::error_of([&] { cli::read_survey(paths, quiet(2.0, 1)); });
     REQUIRE(io_test::contains(want, "1 of "));
     REQUIRE(io_test::contains(want, "lie far from the rest"));
-    for (const int threads : {1, 2}) CHECK(io_test::error_of([&] { cli::read_survey_tiled(paths, quiet(2.0, threads), 200.0, {}); }) == want);
+    for (const int threads : {1, 2})
+        CHECK(io_test::error_of([&] { cli::read_survey_tiled(paths, quiet(2.0, threads), 200.0, {}); }) == want);
     // A resumed run (some tiles already kept) checks before reading, with the same message.
     const std::filesystem::path kept = dir.file("kept");
     {
@@ -165,7 +169,7 @@ TEST_CASE("io/tiled_survey: a tile packed and unpacked is the same tile; damaged
     const auto o = quiet(2.0, 1);
     const auto layout = cli::survey_layout_of(paths, o);
     const auto plan = cli::plan_survey_tiles(layout, 60.0, o, 1);
-    REQUIRE(plan.tiles.size() == 25);   // 150 x 150 cells in tiles of 30 x 30
+    REQUIRE(plan.tiles.size() == 25);  // 150 x 150 cells in tiles of 30 x 30
     const auto tile = cli::read_tile(layout, paths, plan, cli::survey_file_readers(layout, plan, false), 12, false);
     CHECK(tile.rasters.points_used > 0);
     const auto bytes = cli::pack_tile(tile);
@@ -190,7 +194,7 @@ TEST_CASE("io/tile_store: finished tiles survive a reopen with the same fingerpr
         CHECK(store.done_count() == 2);
     }
     CHECK(std::filesystem::is_regular_file(folder / ".lidarfx-tile-store"));
-    io_test::write_bytes((folder / "tile_4.bin.tmp99").string(), {9});   // a temporary of a killed run
+    io_test::write_bytes((folder / "tile_4.bin.tmp99").string(), {9});  // a temporary of a killed run
     {
         cli::tile_store store(folder, "inputs A\n");
         CHECK(store.done(3));
@@ -215,7 +219,8 @@ TEST_CASE("io/tile_store: a link, a file or a folder lidarfx did not make is ref
     const std::filesystem::path theirs = dir.file("theirs");
     std::filesystem::create_directories(theirs);
     const std::vector<std::uint8_t> precious{'k', 'e', 'e', 'p'};
-    for (const char* name : {"tile_0.bin", "manifest.txt", "notes"}) io_test::write_bytes((theirs / name).string(), precious);
+    for (const char* name : {"tile_0.bin", "manifest.txt", "notes"})
+        io_test::write_bytes((theirs / name).string(), precious);
     const auto untouched = [&] {
         for (const char* name : {"tile_0.bin", "manifest.txt", "notes"})
             CHECK(io_test::read_bytes((theirs / name).string()) == precious);
@@ -244,39 +249,42 @@ TEST_CASE("io/tile_store: a link, a file or a folder lidarfx did not make is ref
     }
     io_test::write_bytes((ours / "notes").string(), precious);
     for (const char* fingerprint : {"A\n", "B\n"})
-        CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(ours, fingerprint); }), "notes, which lidarfx did not write"));
+        CHECK(io_test::contains(io_test::error_of([&] { cli::tile_store s(ours, fingerprint); }),
+                                "notes, which lidarfx did not write"));
     CHECK(std::filesystem::exists(ours / "tile_1.bin"));
-    cli::remove_tile_folder(ours);   // removes its own files only, and keeps the folder for the foreign one
+    cli::remove_tile_folder(ours);  // removes its own files only, and keeps the folder for the foreign one
     CHECK(io_test::read_bytes((ours / "notes").string()) == precious);
     CHECK(!std::filesystem::exists(ours / "tile_1.bin"));
 }
 
-TEST_CASE("io/tiled_survey: tiles altered between runs are recomputed; the resumed survey is a clean run's, bit for bit")
+TEST_CASE(
+    "io/tiled_survey: tiles altered between runs are recomputed; the resumed survey is a clean run's, bit for bit")
 {
     io_test::temp_dir dir;
     const auto paths = write_lake_survey(dir);
     const auto o = quiet(2.0, 2);
     const auto want = cli::read_survey(paths, o);
     const std::filesystem::path kept = dir.file("kept");
-    check_same_survey(want, cli::read_survey_tiled(paths, o, 60.0, kept));   // 25 tiles, all kept
+    check_same_survey(want, cli::read_survey_tiled(paths, o, 60.0, kept));  // 25 tiles, all kept
     const auto tile = [&](int t) { return (kept / ("tile_" + std::to_string(t) + ".bin")).string(); };
     REQUIRE(std::filesystem::is_regular_file(tile(24)));
     auto flipped = io_test::read_bytes(tile(3));
-    flipped[flipped.size() / 2] ^= 0x10;                                    // one bit of a raster cell
+    flipped[flipped.size() / 2] ^= 0x10;  // one bit of a raster cell
     io_test::write_bytes(tile(3), flipped);
-    std::filesystem::copy_file(tile(5), tile(4), std::filesystem::copy_options::overwrite_existing);  // a neighbour's copy
+    std::filesystem::copy_file(tile(5), tile(4),
+                               std::filesystem::copy_options::overwrite_existing);  // a neighbour's copy
     std::filesystem::remove(tile(6));
-    std::filesystem::create_symlink(tile(7), tile(6));                      // a link to a neighbour
+    std::filesystem::create_symlink(tile(7), tile(6));  // a link to a neighbour
     std::filesystem::remove(tile(8));
-    REQUIRE(::mkfifo(tile(8).c_str(), 0644) == 0);                          // would block a plain open
+    REQUIRE(::mkfifo(tile(8).c_str(), 0644) == 0);  // would block a plain open
     for (const int threads : {1, 2}) {
         CAPTURE(threads);
         check_same_survey(want, cli::read_survey_tiled(paths, quiet(2.0, threads), 60.0, kept));
     }
-    CHECK(std::filesystem::is_symlink(tile(6)));   // not ours: left as it was
+    CHECK(std::filesystem::is_symlink(tile(6)));  // not ours: left as it was
     CHECK(std::filesystem::is_fifo(tile(8)));
     cli::tile_store store(kept, cli::tiled_fingerprint(paths, o, 60.0));
-    CHECK(store.done_count() == 23);                // 3 and 4 recomputed and saved again; 6 and 8 not saved
+    CHECK(store.done_count() == 23);  // 3 and 4 recomputed and saved again; 6 and 8 not saved
 }
 
 TEST_CASE("io/tiled_fingerprint: an input edited in place, its size and modification time kept, is another input")
@@ -289,7 +297,7 @@ TEST_CASE("io/tiled_fingerprint: an input edited in place, its size and modifica
     REQUIRE(::stat(paths[4].c_str(), &st) == 0);
     auto bytes = io_test::read_bytes(paths[4]);
     REQUIRE(bytes.size() > 20000);
-    bytes[bytes.size() - 3000] ^= 0x01;   // a point's coordinate, in the last 64 KiB
+    bytes[bytes.size() - 3000] ^= 0x01;  // a point's coordinate, in the last 64 KiB
     io_test::write_bytes(paths[4], bytes);
     const struct timespec times[2] = {st.st_atim, st.st_mtim};
     REQUIRE(::utimensat(AT_FDCWD, paths[4].c_str(), times, 0) == 0);
@@ -308,14 +316,15 @@ TEST_CASE("io/write_file_atomically: a failed write names the system's reason an
     struct rlimit small = old_limit;
     small.rlim_cur = 4096;
     REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
-    const auto error = io_test::error_of([&] { cli::write_file_atomically(path, std::vector<std::uint8_t>(100000, 1)); });
+    const auto error =
+        io_test::error_of([&] { cli::write_file_atomically(path, std::vector<std::uint8_t>(100000, 1)); });
     ::setrlimit(RLIMIT_FSIZE, &old_limit);
     std::signal(SIGXFSZ, old_handler);
     CHECK(io_test::contains(error, "write failed (File too large)"));
-    CHECK(io_test::read_bytes(path) == std::vector<std::uint8_t>{7, 7});   // the earlier file as it was
+    CHECK(io_test::read_bytes(path) == std::vector<std::uint8_t>{7, 7});  // the earlier file as it was
     std::size_t entries = 0;
     for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.file(""))) ++entries;
-    CHECK(entries == 1);   // no temporary left
+    CHECK(entries == 1);  // no temporary left
 }
 
 TEST_CASE("io/survey_files: a folder stands for its LAS and LAZ files sorted by name; files pass as they are")
@@ -323,7 +332,8 @@ TEST_CASE("io/survey_files: a folder stands for its LAS and LAZ files sorted by 
     io_test::temp_dir dir;
     const std::filesystem::path folder = dir.file("survey");
     std::filesystem::create_directories(folder);
-    for (const char* name : {"b.las", "a.LAZ", "c.las", "notes.txt"}) io_test::write_bytes((folder / name).string(), {0});
+    for (const char* name : {"b.las", "a.LAZ", "c.las", "notes.txt"})
+        io_test::write_bytes((folder / name).string(), {0});
     const auto files = cli::survey_files({folder.string(), dir.file("other.las")});
     REQUIRE(files.size() == 4);
     CHECK(files[0] == (folder / "a.LAZ").string());

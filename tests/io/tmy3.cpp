@@ -57,7 +57,8 @@ std::string row(const std::string& date, const std::string& time, int ghi, int d
 std::string full_row(const std::string& date, const std::string& time, int ghi, int dni, int dhi)
 {
     return date + "," + time + ",1244,1324," + std::to_string(ghi) + ",1,9," + std::to_string(dni) + ",1,9," +
-           std::to_string(dhi) + ",1,13,355,1,9,1,1,9,354,1,13,1393,1,18,10,A,7,10,A,7,21.7,A,7,20.6,A,7,93,A,7,"
+           std::to_string(dhi) +
+           ",1,13,355,1,9,1,1,9,354,1,13,1393,1,18,10,A,7,10,A,7,21.7,A,7,20.6,A,7,93,A,7,"
            "986,A,7,220,A,7,3.1,A,7,11300,B,7,1370,A,7,3.6,E,8,0.000,F,8,0.00,?,0,18,1,D,9,80,C,8\n";
 }
 
@@ -81,8 +82,8 @@ std::vector<std::string> year_rows(const row_format& format = row, int year = 20
         for (int d = 1; d <= days_in[m - 1]; ++d) {
             for (int h = 1; h <= 24; ++h) {
                 const bool day = h >= 8 && h <= 17;
-                rows.push_back(format(two(m) + "/" + two(d) + "/" + std::to_string(year), two(h) + ":00",
-                                      day ? 500 : 0, day ? 600 : 0, day ? 100 : 0));
+                rows.push_back(format(two(m) + "/" + two(d) + "/" + std::to_string(year), two(h) + ":00", day ? 500 : 0,
+                                      day ? 600 : 0, day ? 100 : 0));
             }
         }
     }
@@ -168,13 +169,14 @@ TEST_CASE("io/tmy3: columns are found by name, and a zone east of Greenwich move
     };
     std::vector<std::string> rows = year_rows(reordered);
     rows[hour_of(3, 1, 6)] = reordered("03/01/2001", "06:00", 200, 400, 30);
-    const std::string text = "1,\"X\",ZZ,+2.5,10,20,5\r\n"
-                             "DHI (W/m^2),Time (HH:MM),DNI (W/m^2),Date (MM/DD/YYYY),GHI (W/m^2)\r\n" +
-                             [&] {
-                                 std::string t;
-                                 for (const auto& r : rows) t += r;
-                                 return t;
-                             }();
+    const std::string text =
+        "1,\"X\",ZZ,+2.5,10,20,5\r\n"
+        "DHI (W/m^2),Time (HH:MM),DNI (W/m^2),Date (MM/DD/YYYY),GHI (W/m^2)\r\n" +
+        [&] {
+            std::string t;
+            for (const auto& r : rows) t += r;
+            return t;
+        }();
     const tmy3_data d = parse_tmy3(text, "east.csv");
     REQUIRE(d.records.size() == 8760);
     CHECK(d.station.utc_offset_h == 2.5);
@@ -249,8 +251,10 @@ TEST_CASE("io/tmy3: one extra row is a repeated hour, wherever it is")
     const std::size_t h = hour_of(6, 21, 12);
     rows.insert(rows.begin() + static_cast<std::ptrdiff_t>(h) + 1, rows[h]);  // the row twice, one after the other
     CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(rows), "extra.csv"); }),
-                   "extra.csv: line " + std::to_string(h + 4) + ": the hour 06/21 12:00 ('06/21/2001,12:00') is "
-                   "already on line " + std::to_string(h + 3)));
+                   "extra.csv: line " + std::to_string(h + 4) +
+                       ": the hour 06/21 12:00 ('06/21/2001,12:00') is "
+                       "already on line " +
+                       std::to_string(h + 3)));
     // 00:00 is the previous day's 24:00: with both, the hour is there twice.
     std::vector<std::string> midnight = year_rows();
     midnight.push_back(row("03/01/2001", "00:00", 0, 0, 0));
@@ -318,13 +322,14 @@ TEST_CASE("io/tmy3: -9900 (TMY3's missing value) makes the hour missing")
     CHECK(d.coverage.hours_missing == 1);
     CHECK(d.coverage.rows_marked_missing == 1);
     CHECK(d.coverage.first_missing == "04/02 11:00");
-    CHECK(contains(coverage_line(d, "marked.csv"), "covers 8759 of 8760 hours of the year (1 missing, the first "
-                                                   "04/02 11:00, 1 marked -9900: they add nothing"));
+    CHECK(contains(coverage_line(d, "marked.csv"),
+                   "covers 8759 of 8760 hours of the year (1 missing, the first "
+                   "04/02 11:00, 1 marked -9900: they add nothing"));
     // A marked hour is still on its row: a second row for it is a repeat.
     rows.push_back(row("04/02/2001", "11:00", 500, 600, 100));
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(rows), "marked.csv"); }),
-                   "the hour 04/02 11:00 ('04/02/2001,11:00') is already on line " +
-                       std::to_string(hour_of(4, 2, 11) + 3)));
+    CHECK(contains(
+        invalid_input_of([&] { parse_tmy3(text_of(rows), "marked.csv"); }),
+        "the hour 04/02 11:00 ('04/02/2001,11:00') is already on line " + std::to_string(hour_of(4, 2, 11) + 3)));
     // 89 marked: refused like 89 absent rows.
     std::vector<std::string> many = year_rows();
     for (int i = 0; i < 89; ++i) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The public spellings the library promises (docs/conventions.md: the stable public API), written exactly as a caller with plain lidarfx types writes them,
-// through the umbrella header only.
+// The public spellings the library promises (docs/conventions.md: the stable public API), written exactly as a caller
+// with plain lidarfx types writes them, through the umbrella header only.
 #include <doctest/doctest.h>
 
 #include <lidarfx/lidarfx.hpp>

@@ -63,7 +63,9 @@ inline double facade_horizon_on_line(lidarfx::raster_view<const float> z, double
     double s, co;
     sincos_deg(azimuth_deg, s, co);
     const double a = -s * cell_m, b = co * cell_m;
-    const auto t = [&](std::ptrdiff_t rr, std::ptrdiff_t cc) { return (double(cc) + 0.5) * a + (double(rr) + 0.5) * b; };
+    const auto t = [&](std::ptrdiff_t rr, std::ptrdiff_t cc) {
+        return (double(cc) + 0.5) * a + (double(rr) + 0.5) * b;
+    };
     double best = 0.0;
     for_each_earlier_on_line(z.rows(), z.cols(), azimuth_deg, r, c, [&](std::ptrdiff_t rq, std::ptrdiff_t cq) {
         if (std::isnan(z(rq, cq))) return;

@@ -71,7 +71,8 @@ inline std::vector<std::uint8_t> grow(const lidarfx::water_field& f, const std::
         // The increment: values of the cells that joined at this step.
         std::vector<double> added;
         for (std::size_t i = 0; i < current.size(); ++i)
-            if (current[i] && !previous[i] && f.intensity_bin.data()[i] >= 0) added.push_back(f.intensity_bin.data()[i]);
+            if (current[i] && !previous[i] && f.intensity_bin.data()[i] >= 0)
+                added.push_back(f.intensity_bin.data()[i]);
         const auto& tested = o.sample == lidarfx::ks_sample_mode::increment ? added : sample;
         if (k > 0 && cells > previous_cells && previous_sample.size() >= o.min_ks_samples && !previous_sample.empty() &&
             !tested.empty() && lidarfx::ks_one_sided(previous_sample, tested, o.ks).reject) {

@@ -40,8 +40,8 @@ inline lidarfx::raster<float> idw_fill(lidarfx::raster_view<const float> z, doub
             for (candidate d : data) {
                 d.d2 = (d.r - r) * (d.r - r) + (d.c - c) * (d.c - c);
                 // Inclusive radius, with the documented tolerance of 1e-9 cells.
-                const bool within = opt.radius_m == 0 ||
-                                    std::sqrt(static_cast<double>(d.d2)) <= opt.radius_m / cell_m + 1e-9;
+                const bool within =
+                    opt.radius_m == 0 || std::sqrt(static_cast<double>(d.d2)) <= opt.radius_m / cell_m + 1e-9;
                 if (within) near.push_back(d);
             }
             std::sort(near.begin(), near.end(), [](const candidate& a, const candidate& b) {

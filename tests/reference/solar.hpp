@@ -30,8 +30,8 @@ inline void sincos_deg(double deg, double& s, double& c)
     c = std::cos(a * std::numbers::pi / 180.0);
 }
 
-/// The documented shadow key of a cell: z + t tan(e), t = ((double(c) + 0.5) dcol + (double(r) + 0.5) drow) cell_m with the
-/// walk direction (dcol, drow) = (-sin A, cos A), evaluated in the kernel's order so that ties round alike.
+/// The documented shadow key of a cell: z + t tan(e), t = ((double(c) + 0.5) dcol + (double(r) + 0.5) drow) cell_m with
+/// the walk direction (dcol, drow) = (-sin A, cos A), evaluated in the kernel's order so that ties round alike.
 struct shadow_key {
     double a, b;  // dcol * cell_m * tan e, drow * cell_m * tan e
     shadow_key(double azimuth_deg, double elevation_deg, double cell_m)
@@ -59,9 +59,12 @@ lidarfx::raster<std::uint8_t> shadow_per_cell(lidarfx::raster_view<const float> 
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
         for (std::ptrdiff_t col = 0; col < z.cols(); ++col) {
             const float zp = z(r, col);
-            if (std::isnan(zp)) out(r, col) = nan_cell;
-            else if (elevation_deg <= 0) out(r, col) = 0;
-            else if (elevation_deg < 90 && shaded(r, col, key(zp, r, col))) out(r, col) = 0;
+            if (std::isnan(zp))
+                out(r, col) = nan_cell;
+            else if (elevation_deg <= 0)
+                out(r, col) = 0;
+            else if (elevation_deg < 90 && shaded(r, col, key(zp, r, col)))
+                out(r, col) = 0;
         }
     }
     return out;
@@ -128,10 +131,12 @@ inline lidarfx::raster<std::uint8_t> shadow_sampled_march(lidarfx::raster_view<c
             std::ptrdiff_t iy, ix;
             if (steep) {
                 iy = r + (vy > 0 ? j : -j);
-                ix = static_cast<std::ptrdiff_t>(std::floor(double(col) + 0.5 + double(j) * std::fabs(vx / vy) * (vx > 0 ? 1 : -1)));
+                ix = static_cast<std::ptrdiff_t>(
+                    std::floor(double(col) + 0.5 + double(j) * std::fabs(vx / vy) * (vx > 0 ? 1 : -1)));
             } else {
                 ix = col + (vx > 0 ? j : -j);
-                iy = static_cast<std::ptrdiff_t>(std::floor(double(r) + 0.5 + double(j) * std::fabs(vy / vx) * (vy > 0 ? 1 : -1)));
+                iy = static_cast<std::ptrdiff_t>(
+                    std::floor(double(r) + 0.5 + double(j) * std::fabs(vy / vx) * (vy > 0 ? 1 : -1)));
             }
             if (ix < 0 || ix >= cols || iy < 0 || iy >= rows) return false;
             const float zq = z(iy, ix);
@@ -158,13 +163,18 @@ void for_each_earlier_on_line(std::ptrdiff_t rows, std::ptrdiff_t cols, double a
     const double frac = double(major) * slope - std::floor(double(major) * slope);
     const int family = static_cast<int>(std::floor(0.5 + phases * (1.0 - frac))) % phases;
     const double phase = 0.5 + double(family) / phases;
-    const auto rnd = [&](std::ptrdiff_t i) { return static_cast<std::ptrdiff_t>(std::floor(phase + double(i) * slope)); };
+    const auto rnd = [&](std::ptrdiff_t i) {
+        return static_cast<std::ptrdiff_t>(std::floor(phase + double(i) * slope));
+    };
     const std::ptrdiff_t k = (steep ? c : r) - rnd(major);
     const std::ptrdiff_t back = (steep ? drow : dcol) > 0 ? -1 : 1;  // towards the azimuth
     for (std::ptrdiff_t i = major + back; i >= 0 && i < (steep ? rows : cols); i += back) {
         const std::ptrdiff_t m = k + rnd(i);
         if (m < 0 || m >= (steep ? cols : rows)) continue;
-        if (steep) f(i, m); else f(m, i);
+        if (steep)
+            f(i, m);
+        else
+            f(m, i);
     }
 }
 
@@ -182,9 +192,12 @@ inline lidarfx::raster<std::uint8_t> shadow_on_lines(lidarfx::raster_view<const 
                 continue;
             }
             const double kp = key(z(r, c), r, c);
-            for_each_earlier_on_line(z.rows(), z.cols(), azimuth_deg, r, c, [&](std::ptrdiff_t rq, std::ptrdiff_t cq) {
-                if (!std::isnan(z(rq, cq)) && key(z(rq, cq), rq, cq) > kp) out(r, c) = 0;
-            }, phases);
+            for_each_earlier_on_line(
+                z.rows(), z.cols(), azimuth_deg, r, c,
+                [&](std::ptrdiff_t rq, std::ptrdiff_t cq) {
+                    if (!std::isnan(z(rq, cq)) && key(z(rq, cq), rq, cq) > kp) out(r, c) = 0;
+                },
+                phases);
         }
     }
     return out;
@@ -197,7 +210,9 @@ inline lidarfx::raster<float> horizon_on_lines(lidarfx::raster_view<const float>
     lidarfx::raster<float> out(z.rows(), z.cols(), 0.0f);
     double s, co;
     sincos_deg(azimuth_deg, s, co);
-    const auto t = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return ((double(c) + 0.5) * -s + (double(r) + 0.5) * co) * cell_m; };
+    const auto t = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return ((double(c) + 0.5) * -s + (double(r) + 0.5) * co) * cell_m;
+    };
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r) {
         for (std::ptrdiff_t c = 0; c < z.cols(); ++c) {
             if (std::isnan(z(r, c))) {
@@ -207,7 +222,8 @@ inline lidarfx::raster<float> horizon_on_lines(lidarfx::raster_view<const float>
             double best = 0;
             for_each_earlier_on_line(z.rows(), z.cols(), azimuth_deg, r, c, [&](std::ptrdiff_t rq, std::ptrdiff_t cq) {
                 if (std::isnan(z(rq, cq))) return;
-                const double a = std::atan2(double(z(rq, cq)) - z(r, c), t(r, c) - t(rq, cq)) * 180.0 / std::numbers::pi;
+                const double a =
+                    std::atan2(double(z(rq, cq)) - z(r, c), t(r, c) - t(rq, cq)) * 180.0 / std::numbers::pi;
                 best = std::max(best, a);
             });
             out(r, c) = static_cast<float>(best);
@@ -219,13 +235,14 @@ inline lidarfx::raster<float> horizon_on_lines(lidarfx::raster_view<const float>
 /// A town: gently sloping ground with noise_m of noise and box buildings 3..25 m tall, each side
 /// min_side..max_side cells.
 inline lidarfx::raster<float> box_town(std::mt19937& rng, std::ptrdiff_t rows, std::ptrdiff_t cols, int buildings,
-                                      double noise_m = 0.3, std::ptrdiff_t min_side = 3, std::ptrdiff_t max_side = 14)
+                                       double noise_m = 0.3, std::ptrdiff_t min_side = 3, std::ptrdiff_t max_side = 14)
 {
     std::uniform_real_distribution<double> noise(0.0, noise_m), height(3.0, 25.0), tilt(-0.05, 0.05);
     const double gx = tilt(rng), gy = tilt(rng);
     lidarfx::raster<float> z(rows, cols);
     for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c) z(r, c) = static_cast<float>(100 + gx * double(c) + gy * double(r) + noise(rng));
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            z(r, c) = static_cast<float>(100 + gx * double(c) + gy * double(r) + noise(rng));
     std::uniform_int_distribution<std::ptrdiff_t> size(min_side, max_side), row(0, rows - 1), col(0, cols - 1);
     for (int b = 0; b < buildings; ++b) {
         const std::ptrdiff_t r0 = row(rng), c0 = col(rng), h = size(rng), w = size(rng);

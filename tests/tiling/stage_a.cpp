@@ -55,7 +55,8 @@ TEST_CASE("tiling/tile_index_of: per-tile accumulators on the survey grid merge 
     const grid g = snapped_grid(extent, cell);
     points all;
     for (int i = 0; i < 20000; ++i) {
-        double x = extent.xmin + (extent.xmax - extent.xmin) * u(rng), y = extent.ymin + (extent.ymax - extent.ymin) * u(rng);
+        double x = extent.xmin + (extent.xmax - extent.xmin) * u(rng),
+               y = extent.ymin + (extent.ymax - extent.ymin) * u(rng);
         if (i % 3 == 0) x = g.x0 + std::floor((x - g.x0) / cell) * cell;  // on a vertical lattice line
         if (i % 5 == 0) y = g.y0 - std::floor((g.y0 - y) / cell) * cell;  // on a horizontal one
         all.push(x, y, 10 + 5 * u(rng), std::uint16_t(intensity(rng)));
@@ -73,7 +74,8 @@ TEST_CASE("tiling/tile_index_of: per-tile accumulators on the survey grid merge 
             REQUIRE(t);
             const auto at = g.cell_of(all.x[i], all.y[i]);
             const cell_box& core = plan.tiles[*t].core;
-            CHECK((at->row >= core.row_min && at->row <= core.row_max && at->col >= core.col_min && at->col <= core.col_max));
+            CHECK((at->row >= core.row_min && at->row <= core.row_max && at->col >= core.col_min &&
+                   at->col <= core.col_max));
             routed[*t].push(all.x[i], all.y[i], all.z[i], all.intensity[i]);
         }
         // Tiles in reverse order, each its own accumulator on the survey grid (sparse: memory follows its points).

@@ -24,8 +24,8 @@ void check_against_whole(raster_view<const std::uint8_t> m, const raster<std::in
     CAPTURE(tile_cells);
     CAPTURE(conn == connectivity::eight);
     const components whole = connected_components(m, conn);
-    const stitched_components got = stitch_labels(m, values, {.conn = conn, .tile_cells = tile_cells,
-                                                              .run = {.threads = threads}});
+    const stitched_components got =
+        stitch_labels(m, values, {.conn = conn, .tile_cells = tile_cells, .run = {.threads = threads}});
     CHECK(got.labels == whole.labels);
     CHECK(got.sizes == whole.sizes);
     CHECK(got.boxes == component_bounds(whole));

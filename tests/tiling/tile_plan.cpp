@@ -77,7 +77,10 @@ TEST_CASE("tiling/make_tile_plan: a tile lists every file that has a point in it
         for (int i = 0; i < 9; ++i) {
             double x0 = 500000 + 30 * (i % 3) + (trial % 3 == 0 ? 0 : 10 * u(rng)) - 5;
             double y0 = 4000000 + 30 * (i / 3) + (trial % 3 == 0 ? 0 : 10 * u(rng)) - 5;
-            if (trial % 3 == 0) { x0 = std::round(x0 / cell) * cell; y0 = std::round(y0 / cell) * cell; }
+            if (trial % 3 == 0) {
+                x0 = std::round(x0 / cell) * cell;
+                y0 = std::round(y0 / cell) * cell;
+            }
             const double w = trial % 3 == 0 ? 30 : 5 + 40 * u(rng), h = trial % 3 == 0 ? 30 : 5 + 40 * u(rng);
             std::vector<std::array<double, 2>> pts{{x0, y0}, {x0 + w, y0 + h}, {x0, y0 + h}, {x0 + w, y0}};
             for (int k = 0; k < 200; ++k) pts.push_back({x0 + w * u(rng), y0 + h * u(rng)});
@@ -85,8 +88,8 @@ TEST_CASE("tiling/make_tile_plan: a tile lists every file that has a point in it
             points.push_back(pts);
         }
         const grid g = snapped_grid({500000, 4000000, 500080, 4000080}, cell);  // cuts some files
-        const tile_plan p = make_tile_plan(g, files, {.tile_edge_m = cell * double(1 + trial % 13),
-                                                      .halo_cells = trial % 4});
+        const tile_plan p =
+            make_tile_plan(g, files, {.tile_edge_m = cell * double(1 + trial % 13), .halo_cells = trial % 4});
         for (std::size_t f = 0; f < files.size(); ++f) {
             for (const auto& pt : points[f]) {
                 const auto at = g.cell_of(pt[0], pt[1]);
@@ -117,7 +120,7 @@ TEST_CASE("tiling/make_tile_plan: a file is listed only where its box can land, 
     // Only the core holding the whole box expects its points: uniform density.
     CHECK(tile_of(p, 10, 30).points_estimate == 1000);
     CHECK(tile_of(p, 9, 30).points_estimate == 0);
-    CHECK(tile_of(p, 9, 30).files == std::vector<std::size_t>{0});  // halo reaches row 10
+    CHECK(tile_of(p, 9, 30).files == std::vector<std::size_t>{0});   // halo reaches row 10
     CHECK(tile_of(p, 25, 30).files == std::vector<std::size_t>{0});  // halo reaches row 19
     CHECK(tile_of(p, 35, 30).files.empty());
     CHECK(tile_of(p, 10, 55).files.empty());
@@ -150,17 +153,22 @@ TEST_CASE("tiling/make_tile_plan: 1-cell grid, zero-point files, files outside t
     CHECK(p.tiles[0].with_halo == cell_box{0, 0, 0, 0});
 
     const grid g{0, 10, 2, 5, 5};
-    CHECK(make_tile_plan(g, {}, {.tile_edge_m = 0.3}).tile_cells == 1);      // below a cell: 1 cell
-    CHECK(make_tile_plan(g, {}, {.tile_edge_m = 3.1}).tile_cells == 2);      // rounded to whole cells
-    CHECK(make_tile_plan(g, {}, {}).tile_cells == 5);                        // no budget, no edge: one tile
+    CHECK(make_tile_plan(g, {}, {.tile_edge_m = 0.3}).tile_cells == 1);  // below a cell: 1 cell
+    CHECK(make_tile_plan(g, {}, {.tile_edge_m = 3.1}).tile_cells == 2);  // rounded to whole cells
+    CHECK(make_tile_plan(g, {}, {}).tile_cells == 5);                    // no budget, no edge: one tile
     CHECK(make_tile_plan(g, {}, {.halo_cells = 1000000}).tiles[0].with_halo == cell_box{0, 0, 4, 4});
 }
 
 TEST_CASE("tiling/make_tile_plan: peak_bytes_estimate follows the memory model")
 {
     const grid g{0, 0, 1, 100, 80};
-    const tile_plan_options opt{.tile_edge_m = 30, .halo_cells = 2, .bytes_per_cell = 10, .bytes_per_tile_cell = 3,
-                                .bytes_per_point = 5, .chunk_points = 1000, .tiles_in_flight = 2};
+    const tile_plan_options opt{.tile_edge_m = 30,
+                                .halo_cells = 2,
+                                .bytes_per_cell = 10,
+                                .bytes_per_tile_cell = 3,
+                                .bytes_per_point = 5,
+                                .chunk_points = 1000,
+                                .tiles_in_flight = 2};
     const tile_plan p = make_tile_plan(g, {}, opt);
     // The largest with_halo is an interior tile: 34 x 34 cells.
     CHECK(p.peak_bytes_estimate == doctest::Approx(8000.0 * 10 + 2 * (34.0 * 34 * 3 + 1000 * 5)));
@@ -169,8 +177,12 @@ TEST_CASE("tiling/make_tile_plan: peak_bytes_estimate follows the memory model")
 TEST_CASE("tiling/make_tile_plan: the budget picks the largest edge that fits and refuses what does not")
 {
     const grid g{0, 0, 1, 1000, 1000};
-    tile_plan_options opt{.halo_cells = 10, .memory_budget_bytes = 0, .bytes_per_cell = 64,
-                          .bytes_per_tile_cell = 48, .bytes_per_point = 40, .chunk_points = 1 << 16};
+    tile_plan_options opt{.halo_cells = 10,
+                          .memory_budget_bytes = 0,
+                          .bytes_per_cell = 64,
+                          .bytes_per_tile_cell = 48,
+                          .bytes_per_point = 40,
+                          .chunk_points = 1 << 16};
     const double fixed = 1e6 * 64 + 65536.0 * 40;
     opt.memory_budget_bytes = std::uint64_t(fixed + 48.0 * 220 * 220);  // with_halo of 200 + 2 x 10 fits
     const tile_plan p = make_tile_plan(g, {}, opt);
@@ -239,17 +251,18 @@ TEST_CASE("tiling/assign_file_readers: files cut along the tile lines are read o
     REQUIRE(per_tile.size() == p.tiles.size());
     double handed = 0;
     for (const double h : per_tile) handed += h;
-    CHECK(per_tile[0] == 0);   // the north-west tile is nobody's east or south neighbour
+    CHECK(per_tile[0] == 0);  // the north-west tile is nobody's east or south neighbour
     REQUIRE(readers.size() == files.size());
     double expected = 0;
     for (std::size_t f = 0; f < files.size(); ++f) {
         CAPTURE(f);
         const int r = int(f) / 4, c = int(f) % 4;
-        const std::size_t home = std::size_t((3 - r) * 4 + c);   // the tile of its 100 x 100 cells (rows run south)
+        const std::size_t home = std::size_t((3 - r) * 4 + c);  // the tile of its 100 x 100 cells (rows run south)
         CHECK(readers[f].home == home);
-        std::vector<std::size_t> slivers;   // east, south, south-east when inside the grid
+        std::vector<std::size_t> slivers;  // east, south, south-east when inside the grid
         for (const auto& t : p.tiles)
-            if (t.index != home && std::find(t.files.begin(), t.files.end(), f) != t.files.end()) slivers.push_back(t.index);
+            if (t.index != home && std::find(t.files.begin(), t.files.end(), f) != t.files.end())
+                slivers.push_back(t.index);
         CHECK(readers[f].handed_to == slivers);
         CHECK(slivers.size() == std::size_t((c < 3) + (r > 0) + (c < 3 && r > 0)));
         // The range has one more column and row where a sliver is (the grid's far borders fold into the last
@@ -263,7 +276,7 @@ TEST_CASE("tiling/assign_file_readers: files cut along the tile lines are read o
         const auto strict = assign_file_readers(p, files, max);
         for (std::size_t f = 0; f < files.size(); ++f) {
             CHECK(strict[f].home == readers[f].home);
-            for (const std::size_t t : strict[f].handed_to) CHECK(t == strict[f].home + 5);   // 1 cell: ~1 point
+            for (const std::size_t t : strict[f].handed_to) CHECK(t == strict[f].home + 5);  // 1 cell: ~1 point
             if (max == 0) CHECK(strict[f].handed_to.empty());
         }
     }
@@ -275,9 +288,10 @@ TEST_CASE("tiling/assign_file_readers: a file over many tiles is handed only to 
     const std::vector<survey_file_extent> files{{{0.5, 0.5, 399.5, 399.5}, 1000}, {{-50, -50, -10, -10}, 5}};
     const tile_plan p = make_tile_plan(g, files, {.tile_edge_m = 100});
     const auto readers = assign_file_readers(p, files, 100);
-    CHECK(readers[0].home == 0);   // every tile holds 100 x 100 of its cells: the lowest index wins
+    CHECK(readers[0].home == 0);  // every tile holds 100 x 100 of its cells: the lowest index wins
     CHECK(readers[0].handed_to == std::vector<std::size_t>{1, 4, 5});
-    CHECK(readers[1].home == p.tiles.size());   // outside the grid: no tile lists it
+    CHECK(readers[1].home == p.tiles.size());  // outside the grid: no tile lists it
     CHECK(readers[1].handed_to.empty());
-    CHECK_THROWS_AS(assign_file_readers(p, std::vector<survey_file_extent>{}, 100), invalid_input);   // plan lists file 0
+    CHECK_THROWS_AS(assign_file_readers(p, std::vector<survey_file_extent>{}, 100),
+                    invalid_input);  // plan lists file 0
 }

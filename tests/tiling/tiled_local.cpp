@@ -117,13 +117,15 @@ TEST_CASE("tiling/tiled_local: morphology open and close with their reach equal 
     for (const int size : {3, 5}) {
         const morphology_options opt{.size_cells = size};
         const std::ptrdiff_t reach = morphology_reach(opt, 2);
-        const reference::mask dense = reference::random_mask(rng, 60, 55, 0.8), sparse = reference::random_mask(rng, 60, 55, 0.2);
+        const reference::mask dense = reference::random_mask(rng, 60, 55, 0.8),
+                              sparse = reference::random_mask(rng, 60, 55, 0.2);
         const auto open = [&](raster_view<const std::uint8_t> w) { return morph_open(w, opt); };
         const auto close = [&](raster_view<const std::uint8_t> w) { return morph_close(w, opt); };
         bool open_differs = false, close_differs = false;
         for (const std::ptrdiff_t t : {1, 2, 7}) {
             open_differs = open_differs || !same_bits(tiled_local(dense, reach - 1, t, open), morph_open(dense, opt));
-            close_differs = close_differs || !same_bits(tiled_local(sparse, reach - 1, t, close), morph_close(sparse, opt));
+            close_differs =
+                close_differs || !same_bits(tiled_local(sparse, reach - 1, t, close), morph_close(sparse, opt));
         }
         CAPTURE(size);
         CHECK(open_differs);
@@ -183,7 +185,8 @@ TEST_CASE("tiling/tiled_local: horizons above the lowest sun and shadows along t
     double zmin = 1e300, zmax = -1e300;
     for (std::ptrdiff_t r = 0; r < s.z.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < s.z.cols(); ++c)
-            if (std::isfinite(s.z(r, c))) zmin = std::min(zmin, double(s.z(r, c))), zmax = std::max(zmax, double(s.z(r, c)));
+            if (std::isfinite(s.z(r, c)))
+                zmin = std::min(zmin, double(s.z(r, c))), zmax = std::max(zmax, double(s.z(r, c)));
     const std::ptrdiff_t reach = shadow_reach(zmax - zmin, min_elevation_deg, 1.0);
     CHECK(reach == static_cast<std::ptrdiff_t>(std::ceil((zmax - zmin) / std::tan(min_elevation_deg * M_PI / 180))));
     for (const double azimuth : {0.0, 90.0, 180.0, 270.0}) {
@@ -250,9 +253,8 @@ TEST_CASE("tiling/water_reach: the waterbody method's local steps, tiled with th
         return water_rasters{w(min_z), w(max_z), w(intensity), w(dropout), w(multiple)};
     };
     const water_rasters whole = window({0, 0, rows - 1, cols - 1});
-    const extract_waterbodies_options opt{.vegetation = {.closing_size_cells = 5},
-                                          .angles = {.radius_cells = 2},
-                                          .seeds = {.opening_size_cells = 3}};
+    const extract_waterbodies_options opt{
+        .vegetation = {.closing_size_cells = 5}, .angles = {.radius_cells = 2}, .seeds = {.opening_size_cells = 3}};
     const water_step_reach reach = water_reach(opt);
     CHECK(reach.vegetation_closing == 4);
     CHECK(reach.angles == 2);

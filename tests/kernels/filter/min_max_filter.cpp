@@ -75,10 +75,14 @@ raster<float> random_floats(std::mt19937& rng, std::ptrdiff_t rows, std::ptrdiff
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             const double p = u(rng);
-            if (p < nan_share) z(r, c) = nan_f;
-            else if (p < nan_share + 0.01) z(r, c) = u(rng) < 0.5 ? inf_f : -inf_f;
-            else if (p < nan_share + 0.1) z(r, c) = 1.0f;  // ties
-            else z(r, c) = value(rng);
+            if (p < nan_share)
+                z(r, c) = nan_f;
+            else if (p < nan_share + 0.01)
+                z(r, c) = u(rng) < 0.5 ? inf_f : -inf_f;
+            else if (p < nan_share + 0.1)
+                z(r, c) = 1.0f;  // ties
+            else
+                z(r, c) = value(rng);
         }
     }
     return z;
@@ -97,7 +101,8 @@ void check_against_brute(raster_view<const float> in, int radius, int threads = 
 TEST_CASE("filter/min_max_filter: hand-checked 4x5 with NaN and a border")
 {
     raster<float> z(4, 5);
-    const float v[4][5] = {{1, 2, 3, 4, 5}, {6, nan_f, 8, 9, 10}, {11, 12, 13, 14, 15}, {nan_f, nan_f, nan_f, nan_f, 0}};
+    const float v[4][5] = {
+        {1, 2, 3, 4, 5}, {6, nan_f, 8, 9, 10}, {11, 12, 13, 14, 15}, {nan_f, nan_f, nan_f, nan_f, 0}};
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 5; ++c) z(r, c) = v[r][c];
     const auto res = min_max_filter(z.view(), {.radius_cells = 1});
@@ -190,7 +195,8 @@ TEST_CASE("filter/min_max_filter: integer rasters (no NaN rule)")
     for (int trial = 0; trial < 20; ++trial) {
         raster<std::int32_t> m(1 + trial % 9, 3 + trial);
         for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
-            for (std::ptrdiff_t c = 0; c < m.cols(); ++c) m(r, c) = trial == 0 ? std::numeric_limits<std::int32_t>::max() : value(rng);
+            for (std::ptrdiff_t c = 0; c < m.cols(); ++c)
+                m(r, c) = trial == 0 ? std::numeric_limits<std::int32_t>::max() : value(rng);
         const int radius = trial % 4;
         const auto ref = brute<std::int32_t>(m.view(), radius);
         const auto got = min_max_filter(m.view(), {.radius_cells = radius});

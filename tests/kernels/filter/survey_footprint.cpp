@@ -51,8 +51,8 @@ TEST_CASE("filter/survey_footprint: empty corners of a circular tile are outside
     const auto inside = survey_footprint(tile, 0.5, {.hull_radius_m = 5.0});  // 10 cells
     CHECK(inside(0, 0) == 0);
     CHECK(inside(199, 199) == 0);
-    CHECK(inside(5, 100) == 0);       // beyond the circle's edge, not a corner
-    CHECK(inside(100, 100) == 1);     // the lake's centre: no returns, but enclosed by the survey
+    CHECK(inside(5, 100) == 0);    // beyond the circle's edge, not a corner
+    CHECK(inside(100, 100) == 1);  // the lake's centre: no returns, but enclosed by the survey
     CHECK(inside(100, 115) == 1);
     for (std::ptrdiff_t i = 0; i < tile.size(); ++i)
         if (tile.data()[i]) REQUIRE(inside.data()[i] == 1);  // every covered cell is inside

@@ -26,14 +26,16 @@ struct surfaces {
 surfaces from_mask(std::ptrdiff_t rows, std::ptrdiff_t cols, const std::vector<int>& tall)
 {
     surfaces s{raster<float>(rows, cols, 100.0f), raster<float>(rows, cols)};
-    for (std::ptrdiff_t i = 0; i < rows * cols; ++i) s.max_z.data()[i] = tall[static_cast<std::size_t>(i)] ? 105.0f : 101.0f;
+    for (std::ptrdiff_t i = 0; i < rows * cols; ++i)
+        s.max_z.data()[i] = tall[static_cast<std::size_t>(i)] ? 105.0f : 101.0f;
     return s;
 }
 
 raster<std::uint8_t> mask_of(std::ptrdiff_t rows, std::ptrdiff_t cols, const std::vector<int>& cells)
 {
     raster<std::uint8_t> m(rows, cols);
-    for (std::ptrdiff_t i = 0; i < rows * cols; ++i) m.data()[i] = static_cast<std::uint8_t>(cells[static_cast<std::size_t>(i)]);
+    for (std::ptrdiff_t i = 0; i < rows * cols; ++i)
+        m.data()[i] = static_cast<std::uint8_t>(cells[static_cast<std::size_t>(i)]);
     return m;
 }
 
@@ -42,9 +44,9 @@ raster<std::uint8_t> mask_of(std::ptrdiff_t rows, std::ptrdiff_t cols, const std
 TEST_CASE("raster/vegetation_mask: strictly more than height_m; NaN is no vegetation")
 {
     raster<float> lo(1, 5, 10.0f), hi(1, 5);
-    hi(0, 0) = 13.0f;   // spread 3 > 2
-    hi(0, 1) = 12.0f;   // spread 2, not > 2
-    hi(0, 2) = nan_f;   // no return
+    hi(0, 0) = 13.0f;  // spread 3 > 2
+    hi(0, 1) = 12.0f;  // spread 2, not > 2
+    hi(0, 2) = nan_f;  // no return
     hi(0, 3) = 10.5f;
     hi(0, 4) = 30.0f;
     lo(0, 4) = nan_f;
@@ -56,21 +58,11 @@ TEST_CASE("raster/vegetation_mask: strictly more than height_m; NaN is no vegeta
 TEST_CASE("raster/vegetation_mask: the closing fills gaps inside a canopy and keeps the border clipped")
 {
     // Hand-checked 3x3 closing: the hole at (1, 1) fills; the lone corner cell survives (border clipped).
-    const auto s = from_mask(5, 5, {1, 1, 1, 0, 0,
-                                    1, 0, 1, 0, 0,
-                                    1, 1, 1, 0, 0,
-                                    0, 0, 0, 0, 0,
-                                    0, 0, 0, 0, 1});
-    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 3}) == mask_of(5, 5, {1, 1, 1, 0, 0,
-                                                                                   1, 1, 1, 0, 0,
-                                                                                   1, 1, 1, 0, 0,
-                                                                                   0, 0, 0, 0, 0,
-                                                                                   0, 0, 0, 0, 1}));
-    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 1}) == mask_of(5, 5, {1, 1, 1, 0, 0,
-                                                                                   1, 0, 1, 0, 0,
-                                                                                   1, 1, 1, 0, 0,
-                                                                                   0, 0, 0, 0, 0,
-                                                                                   0, 0, 0, 0, 1}));
+    const auto s = from_mask(5, 5, {1, 1, 1, 0, 0, 1, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1});
+    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 3}) ==
+          mask_of(5, 5, {1, 1, 1, 0, 0, 1, 1, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1}));
+    CHECK(vegetation_mask(s.min_z, s.max_z, {.closing_size_cells = 1}) ==
+          mask_of(5, 5, {1, 1, 1, 0, 0, 1, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1}));
 }
 
 TEST_CASE("raster/vegetation_mask: the default 5x5 closing bridges gaps of up to 4 cells, not 5")
@@ -81,7 +73,8 @@ TEST_CASE("raster/vegetation_mask: the default 5x5 closing bridges gaps of up to
         const std::ptrdiff_t rows = 9, cols = 8 + gap;
         std::vector<int> tall(static_cast<std::size_t>(rows * cols));
         for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c) tall[static_cast<std::size_t>(r * cols + c)] = (c < 4 || c >= 4 + gap);
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                tall[static_cast<std::size_t>(r * cols + c)] = (c < 4 || c >= 4 + gap);
         const auto s = from_mask(rows, cols, tall);
         const auto m = vegetation_mask(s.min_z, s.max_z);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
@@ -112,7 +105,8 @@ TEST_CASE("raster/vegetation_mask: equals threshold then brute-force closing on 
         reference::mask threshold(27, 33);
         for (std::ptrdiff_t r = 0; r < 27; ++r)
             for (std::ptrdiff_t c = 0; c < 33; ++c)
-                threshold(r, c) = static_cast<std::uint8_t>(static_cast<double>(hi_w(r, c)) - lo_w(r, c) > opt.height_m);
+                threshold(r, c) =
+                    static_cast<std::uint8_t>(static_cast<double>(hi_w(r, c)) - lo_w(r, c) > opt.height_m);
         CAPTURE(seed);
         CAPTURE(trial);
         const auto expected = reference::close(threshold.view(), opt.closing_size_cells, opt.closing_size_cells);
@@ -155,13 +149,13 @@ TEST_CASE("raster/vegetation_mask: progress is monotone and ends at 1; returning
 TEST_CASE("raster/vegetation_mask: bad arguments throw invalid_input")
 {
     const raster<float> a(3, 4), b(4, 3);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, b), "vegetation_mask: min_z and max_z must have the same shape (got 3x4 and 4x3)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, b),
+                         "vegetation_mask: min_z and max_z must have the same shape (got 3x4 and 4x3)", invalid_input);
     raster<std::uint8_t> out(3, 3);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, out), "vegetation_mask: min_z and out must have the same shape (got 3x4 and 3x3)",
-                         invalid_input);
-    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.height_m = -1.0}), "vegetation_mask: height_m must be finite and >= 0 (got -1)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, out),
+                         "vegetation_mask: min_z and out must have the same shape (got 3x4 and 3x3)", invalid_input);
+    CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.height_m = -1.0}),
+                         "vegetation_mask: height_m must be finite and >= 0 (got -1)", invalid_input);
     CHECK_THROWS_AS(vegetation_mask(a, a, {.height_m = std::nan("")}), invalid_input);
     CHECK_THROWS_WITH_AS(vegetation_mask(a, a, {.closing_size_cells = 4}),
                          "vegetation_mask: closing_size_cells must be odd and >= 1 (got 4)", invalid_input);

@@ -36,29 +36,32 @@ raster<float> random_holes(std::mt19937& rng, std::ptrdiff_t rows, std::ptrdiff_
     for (auto& v : z) v = value(rng);
     const auto at = [&](std::ptrdiff_t n) { return std::uniform_int_distribution<std::ptrdiff_t>(0, n - 1)(rng); };
     switch (kind) {
-    case 0:
-        for (int blob = 0; blob < 1 + static_cast<int>(rows * cols / 200); ++blob) {
-            const auto r0 = at(rows), c0 = at(cols);
-            const double radius = 1.0 + 6.0 * unit(rng);
+        case 0:
+            for (int blob = 0; blob < 1 + static_cast<int>(rows * cols / 200); ++blob) {
+                const auto r0 = at(rows), c0 = at(cols);
+                const double radius = 1.0 + 6.0 * unit(rng);
+                for (std::ptrdiff_t r = 0; r < rows; ++r)
+                    for (std::ptrdiff_t c = 0; c < cols; ++c)
+                        if (std::hypot(static_cast<double>(r - r0), static_cast<double>(c - c0)) <= radius)
+                            z(r, c) = nan_f;
+            }
+            for (auto& v : z)
+                if (unit(rng) < 0.05) v = nan_f;
+            break;
+        case 1:
             for (std::ptrdiff_t r = 0; r < rows; ++r)
                 for (std::ptrdiff_t c = 0; c < cols; ++c)
-                    if (std::hypot(static_cast<double>(r - r0), static_cast<double>(c - c0)) <= radius) z(r, c) = nan_f;
-        }
-        for (auto& v : z) if (unit(rng) < 0.05) v = nan_f;
-        break;
-    case 1:
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if ((r + c) % 2 == 0) z(r, c) = nan_f;
-        break;
-    case 2:
-        for (auto& v : z) if (unit(rng) < 0.97) v = nan_f;
-        break;
-    default:
-        for (std::ptrdiff_t r = 0; r < rows; ++r)
-            for (std::ptrdiff_t c = 0; c < cols; ++c)
-                if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1) z(r, c) = nan_f;
-        break;
+                    if ((r + c) % 2 == 0) z(r, c) = nan_f;
+            break;
+        case 2:
+            for (auto& v : z)
+                if (unit(rng) < 0.97) v = nan_f;
+            break;
+        default:
+            for (std::ptrdiff_t r = 0; r < rows; ++r)
+                for (std::ptrdiff_t c = 0; c < cols; ++c)
+                    if (r == 0 || c == 0 || r == rows - 1 || c == cols - 1) z(r, c) = nan_f;
+            break;
     }
     z(at(rows), at(cols)) = value(rng);  // at least one data cell
     return z;
@@ -166,9 +169,9 @@ TEST_CASE("raster/idw_fill: equals the brute-force nearest-k reference on random
                 double cell_m;
                 idw_fill_options opt;
             };
-            for (const setting& base : {setting{1.0, {.k = 1}}, setting{2.0, {.k = 4, .radius_m = 7.5}},
-                                        setting{1.0, {.k = 8}},
-                                        setting{0.1, {.k = 8, .radius_m = 0.3, .power = 2.0}}}) {
+            for (const setting& base :
+                 {setting{1.0, {.k = 1}}, setting{2.0, {.k = 4, .radius_m = 7.5}}, setting{1.0, {.k = 8}},
+                  setting{0.1, {.k = 8, .radius_m = 0.3, .power = 2.0}}}) {
                 if (big && base.opt.k == 1) continue;
                 CAPTURE(seed);
                 CAPTURE(s.rows);
@@ -220,7 +223,8 @@ TEST_CASE("raster/idw_fill: constant rasters fill exactly")
     std::mt19937 rng(8);
     for (int kind = 0; kind < 4; ++kind) {
         auto z = random_holes(rng, 19, 23, kind);
-        for (auto& v : z) if (!std::isnan(v)) v = 12.345f;
+        for (auto& v : z)
+            if (!std::isnan(v)) v = 12.345f;
         for (int k : {1, 3, 8, 20}) {
             const auto out = idw_fill(z, 0.7, {.k = k, .power = 1.0 + 0.5 * kind, .run = {.threads = 2}});
             for (float v : out.filled) CHECK(v == 12.345f);

@@ -50,32 +50,51 @@ columns random_cloud(std::mt19937& rng, const grid& g, std::size_t n)
     for (std::size_t i = 0; i < n; ++i) {
         double x = g.x0 + u(rng) * w, y = g.y0 - u(rng) * h, z = 100.0 + 50.0 * u(rng);
         switch (kind(rng)) {
-        case 0:  // on a lattice line (cell edges, the west/north edges and the east/south border included)
-            x = g.x0 + static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.cols)(rng)) * g.cell;
-            break;
-        case 1:
-            y = g.y0 - static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.rows)(rng)) * g.cell;
-            break;
-        case 2: x = g.x1(); y = g.y1(); break;        // far south-east corner
-        case 3: x = g.x0 - g.cell * u(rng) - 1e-9; break;  // west of the grid
-        case 4: y = g.y1() - g.cell * u(rng) - 1e-9; break;  // south of the grid
-        case 5: x = g.x1() + 1e-7; break;
-        case 6: x = nan; break;
-        case 7: z = (i % 2) ? nan : -inf; break;
-        case 8: y = inf; break;
-        case 9: z = std::round(z); break;  // ties between points of one cell
-        default: break;
+            case 0:  // on a lattice line (cell edges, the west/north edges and the east/south border included)
+                x = g.x0 + static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.cols)(rng)) * g.cell;
+                break;
+            case 1:
+                y = g.y0 - static_cast<double>(std::uniform_int_distribution<std::ptrdiff_t>(0, g.rows)(rng)) * g.cell;
+                break;
+            case 2:
+                x = g.x1();
+                y = g.y1();
+                break;  // far south-east corner
+            case 3:
+                x = g.x0 - g.cell * u(rng) - 1e-9;
+                break;  // west of the grid
+            case 4:
+                y = g.y1() - g.cell * u(rng) - 1e-9;
+                break;  // south of the grid
+            case 5:
+                x = g.x1() + 1e-7;
+                break;
+            case 6:
+                x = nan;
+                break;
+            case 7:
+                z = (i % 2) ? nan : -inf;
+                break;
+            case 8:
+                y = inf;
+                break;
+            case 9:
+                z = std::round(z);
+                break;  // ties between points of one cell
+            default:
+                break;
         }
-        out.push(x, y, z, static_cast<std::uint16_t>(intensity(rng)), static_cast<std::uint8_t>(returns(rng) == 3 ? 2 : 1));
+        out.push(x, y, z, static_cast<std::uint16_t>(intensity(rng)),
+                 static_cast<std::uint8_t>(returns(rng) == 3 ? 2 : 1));
     }
     return out;
 }
 
 std::vector<grid> test_grids()
 {
-    return {grid{0.0, 0.0, 1.0, 1, 1},        grid{512345.25, 4100000.5, 2.0, 1, 17},
-            grid{-3.5, 7.0, 0.5, 19, 1},      grid{1000.0, 2000.0, 0.3, 7, 13},
-            grid{300000.0, 5000000.0, 2.0, 37, 23},  grid{-12.25, -40.75, 0.25, 257, 131}};
+    return {
+        grid{0.0, 0.0, 1.0, 1, 1},        grid{512345.25, 4100000.5, 2.0, 1, 17}, grid{-3.5, 7.0, 0.5, 19, 1},
+        grid{1000.0, 2000.0, 0.3, 7, 13}, grid{300000.0, 5000000.0, 2.0, 37, 23}, grid{-12.25, -40.75, 0.25, 257, 131}};
 }
 
 /// A point type a host might have, read through its own methods (no lidarfx adaptor).
@@ -101,12 +120,12 @@ TEST_CASE("raster/rasterize: a hand-checked 2x3 grid")
     // Cells are 10 m; the grid spans x 100..130 and y 200..180.
     const grid g{100.0, 200.0, 10.0, 2, 3};
     columns pts;
-    pts.push(101, 199, 5.0, 10, 1);    // (0, 0)
-    pts.push(109, 191, 7.0, 21, 2);    // (0, 0), multiple returns
-    pts.push(110, 200, 1.5, 7, 1);     // west edge of (0, 1), on the north edge
-    pts.push(130, 180, 9.0, 4, 1);     // far south-east corner -> (1, 2)
-    pts.push(125, 190, 3.0, 8, 1);     // on the row edge -> (1, 2)
-    pts.push(131, 185, 0.0, 0, 1);     // outside (east)
+    pts.push(101, 199, 5.0, 10, 1);  // (0, 0)
+    pts.push(109, 191, 7.0, 21, 2);  // (0, 0), multiple returns
+    pts.push(110, 200, 1.5, 7, 1);   // west edge of (0, 1), on the north edge
+    pts.push(130, 180, 9.0, 4, 1);   // far south-east corner -> (1, 2)
+    pts.push(125, 190, 3.0, 8, 1);   // on the row edge -> (1, 2)
+    pts.push(131, 185, 0.0, 0, 1);   // outside (east)
     pts.push(std::nan(""), 185, 0.0, 0, 1);
     const auto out = rasterize(pts.soa(), g);
     CHECK(out.points_used == 5);
@@ -176,7 +195,8 @@ TEST_CASE("raster/rasterize: any chunking, merge order or thread count gives bit
     for (int trial = 0; trial < 10; ++trial) {
         CAPTURE(trial);
         std::vector<std::size_t> cuts{0, pts.size()};
-        for (int k = 0; k < 1 + trial * 3; ++k) cuts.push_back(std::uniform_int_distribution<std::size_t>(0, pts.size())(rng));
+        for (int k = 0; k < 1 + trial * 3; ++k)
+            cuts.push_back(std::uniform_int_distribution<std::size_t>(0, pts.size())(rng));
         std::sort(cuts.begin(), cuts.end());
         std::vector<std::size_t> pieces(cuts.size() - 1);
         std::iota(pieces.begin(), pieces.end(), std::size_t{0});
@@ -201,9 +221,8 @@ TEST_CASE("raster/rasterize: soa_cloud, aos_cloud and a host type give the same 
         pts.x[i] = static_cast<float>(pts.x[i]);
         pts.y[i] = static_cast<float>(pts.y[i]);
         pts.z[i] = static_cast<float>(pts.z[i]);
-        host.points.push_back({static_cast<float>(pts.x[i]), static_cast<float>(pts.y[i]),
-                               static_cast<float>(pts.z[i]), static_cast<float>(pts.intensity[i]),
-                               pts.number_of_returns[i]});
+        host.points.push_back({static_cast<float>(pts.x[i]), static_cast<float>(pts.y[i]), static_cast<float>(pts.z[i]),
+                               static_cast<float>(pts.intensity[i]), pts.number_of_returns[i]});
     }
     struct las_point {
         double x, y, z;
@@ -290,11 +309,12 @@ TEST_CASE("raster/rasterize: zeros of both signs in one cell give +0 whatever th
           std::vector<double>{-1e-236, 1e-239, 1.0, -1e-300}, std::vector<double>{1e-239, -1e-236, 1.0, -1e-300}}) {
         for (std::size_t chunk : {std::size_t{1}, std::size_t{2}, std::size_t{4}}) {
             for (int threads : {1, 2}) {
-                const auto out = rasterize(soa_cloud<>(x, y, z), g, {.chunk_points = chunk, .run = {.threads = threads}});
+                const auto out =
+                    rasterize(soa_cloud<>(x, y, z), g, {.chunk_points = chunk, .run = {.threads = threads}});
                 CHECK_FALSE(std::signbit(out.min_z(0, 0)));
                 CHECK(out.min_z(0, 0) == 0.0f);
                 CHECK(out.max_z(0, 0) == 1.0f);
-                CHECK_FALSE(std::signbit(out.min_z(0, 1)));   // a lone -0 is stored as +0 too
+                CHECK_FALSE(std::signbit(out.min_z(0, 1)));  // a lone -0 is stored as +0 too
                 CHECK_FALSE(std::signbit(out.max_z(0, 1)));
             }
         }
@@ -340,17 +360,17 @@ TEST_CASE("raster/rasterize: bad arguments throw invalid_input")
     raster_accumulator a(grid{0, 0, 1.0, 2, 2});
     CHECK_THROWS_WITH_AS(a.merge(raster_accumulator(grid{0, 0, 1.0, 2, 3})),
                          "raster_accumulator::merge: other accumulator must be on the same grid", invalid_input);
-    CHECK_THROWS_WITH_AS(a.add(cloud, 0, 2), "raster_accumulator::add: range [first, last) must lie in [0, 1] (got [0, 2))",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(a.add(cloud, 0, 2),
+                         "raster_accumulator::add: range [first, last) must lie in [0, 1] (got [0, 2))", invalid_input);
     CHECK_THROWS_AS(raster_accumulator(grid{0, 0, -1.0, 2, 2}), invalid_input);
 }
 
 TEST_CASE("raster/raster_accumulator: grids whose size would overflow are refused, naming the sizes")
 {
     const std::ptrdiff_t big = std::ptrdiff_t{1} << 32;
-    CHECK_THROWS_WITH_AS(raster_accumulator(grid{0, 0, 1.0, big, big}),
-                         "raster_accumulator: grid.rows x grid.cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(
+        raster_accumulator(grid{0, 0, 1.0, big, big}),
+        "raster_accumulator: grid.rows x grid.cols must be <= 2^40 cells (got 4294967296 x 4294967296)", invalid_input);
     const std::vector<double> v{1.0};
     CHECK_THROWS_WITH_AS(rasterize(soa_cloud<>(v, v, v), grid{0, 0, 1.0, big, big}),
                          "rasterize: grid.rows x grid.cols must be <= 2^40 cells (got 4294967296 x 4294967296)",
@@ -398,7 +418,7 @@ TEST_CASE("raster/raster_accumulator: memory follows the occupied cells of a spa
     for (int i = 0; i < 300; ++i) pts.push(g.x0 + u(rng) * 2500, g.y0 - u(rng) * 2500, 100 * u(rng), 7, 1);
     raster_accumulator acc(g);
     acc.add(pts.soa());
-    CHECK(acc.allocated_cells() <= 300 * 1024);   // stayed sparse: 7 MB of statistics, not 150 MB
+    CHECK(acc.allocated_cells() <= 300 * 1024);  // stayed sparse: 7 MB of statistics, not 150 MB
     const auto out = acc.finish();
     CHECK(out.points_used == 300);
     std::uint64_t counted = 0, wet = 0;
@@ -416,7 +436,7 @@ TEST_CASE("raster/raster_accumulator: memory follows the occupied cells of a spa
         CHECK(out.min_z(at->row, at->col) <= static_cast<float>(pts.z[i]));
         CHECK(out.mean_intensity(at->row, at->col) == 7.0f);
     }
-    CHECK(wet == occupied.size());   // every other cell is written as an empty (dropout) cell
+    CHECK(wet == occupied.size());  // every other cell is written as an empty (dropout) cell
     // The same through rasterize, on one and two threads, and through a copy.
     CHECK(reference::same_bits(rasterize(pts.soa(), g), out));
     CHECK(reference::same_bits(rasterize(pts.soa(), g, {.chunk_points = 300, .run = {.threads = 2}}), out));
@@ -448,7 +468,9 @@ TEST_CASE("raster/raster_accumulator: sparse and dense accumulators merge to the
             parts.back().add(cloud, cuts[k], cuts[k + 1]);
         }
         // A dense accumulator holds exactly the grid's cells; tiles come in multiples of 1024.
-        const auto is_dense = [&](const raster_accumulator& p) { return p.allocated_cells() == static_cast<std::size_t>(g.size()); };
+        const auto is_dense = [&](const raster_accumulator& p) {
+            return p.allocated_cells() == static_cast<std::size_t>(g.size());
+        };
         std::size_t dense = 0, sparse = 0;
         for (const auto& p : parts) (is_dense(p) ? dense : sparse) += 1;
         CHECK(dense >= 1);
@@ -472,8 +494,9 @@ TEST_CASE("raster/raster_accumulator: sparse and dense accumulators merge to the
         for (int threads : {1, 2, 3}) {
             CAPTURE(n);
             CAPTURE(threads);
-            const auto part = soa_cloud<>(std::span(pts.x).first(n), std::span(pts.y).first(n), std::span(pts.z).first(n),
-                                          std::span(pts.intensity).first(n), {}, std::span(pts.number_of_returns).first(n));
+            const auto part =
+                soa_cloud<>(std::span(pts.x).first(n), std::span(pts.y).first(n), std::span(pts.z).first(n),
+                            std::span(pts.intensity).first(n), {}, std::span(pts.number_of_returns).first(n));
             const auto want = reference::rasterize(part, g);
             CHECK(reference::same_bits(rasterize(part, g, {.chunk_points = 1500, .run = {.threads = threads}}), want));
         }

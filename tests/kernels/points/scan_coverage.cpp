@@ -47,8 +47,8 @@ TEST_CASE("points/scan_coverage: the cells a scan line crossed while its pulses 
     const auto s = line_over_water();
     scan_coverage cov(tile);
     cov.add(s.x, s.y, s.t);
-    CHECK(covered_in_row(cov, 4, 10, 30) == 20);   // the whole gap, row of y = 5.5
-    CHECK(covered_in_row(cov, 3, 0, 40) == 0);     // nothing beside the line
+    CHECK(covered_in_row(cov, 4, 10, 30) == 20);  // the whole gap, row of y = 5.5
+    CHECK(covered_in_row(cov, 3, 0, 40) == 0);    // nothing beside the line
     CHECK(covered_in_row(cov, 5, 0, 40) == 0);
 }
 
@@ -97,7 +97,7 @@ TEST_CASE("points/scan_coverage: windows of a partition put together give the wh
     std::vector<double> x, y, t;
     for (int i = 0; i < 400; ++i) {
         const double f = i / 400.0;
-        if (i % 50 > 20) continue;   // lost pulses
+        if (i % 50 > 20) continue;  // lost pulses
         x.push_back(1000.3 + f * 25.9);
         y.push_back(2000.7 - 0.05 - f * 16.0);
         t.push_back(i * 1.0e-5);

@@ -64,7 +64,8 @@ TEST_CASE("solar/daylight_suns: months in local standard time; refusals name the
     CHECK(record_month(records[0], 3.0) == 0);
     CHECK(record_day_of_year(records[0]) == 365);
     // Sydney: the sun is up at 09:30 local on 1 January.
-    const auto at_sydney = daylight_suns(records, {.latitude_deg = -33.9, .longitude_deg = 151.2, .utc_offset_h = 10.0});
+    const auto at_sydney =
+        daylight_suns(records, {.latitude_deg = -33.9, .longitude_deg = 151.2, .utc_offset_h = 10.0});
     REQUIRE(at_sydney.size() == 1);
     CHECK(at_sydney[0].month == 0);
     CHECK(daylight_suns(records, {.latitude_deg = 52.5, .longitude_deg = 13.4}).empty());  // night in Berlin

@@ -93,7 +93,8 @@ TEST_CASE("solar/horizon_map: a mast's angle is atan(height / distance); NaN cel
     z(1, 25) = nan_f;
     const auto h = horizon_map(z, 2.0, 90.0);  // looking east towards the mast
     for (std::ptrdiff_t c : {0, 10, 20, 29}) {
-        CHECK(h(1, c) == doctest::Approx(std::atan(20.0 / (2.0 * double(30 - c))) * 180.0 / std::numbers::pi).epsilon(1e-6));
+        CHECK(h(1, c) ==
+              doctest::Approx(std::atan(20.0 / (2.0 * double(30 - c))) * 180.0 / std::numbers::pi).epsilon(1e-6));
     }
     CHECK(std::isnan(h(1, 25)));
     CHECK(h(1, 31) == 0.0f);

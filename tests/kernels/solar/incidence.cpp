@@ -10,7 +10,10 @@ using namespace lidarfx;
 
 namespace {
 
-double sin_deg(double x) { return std::sin(x * std::numbers::pi / 180.0); }
+double sin_deg(double x)
+{
+    return std::sin(x * std::numbers::pi / 180.0);
+}
 
 }  // namespace
 
@@ -31,9 +34,9 @@ TEST_CASE("solar/incidence: a horizontal surface gets DNI * sin(elevation) whate
 TEST_CASE("solar/incidence: cos theta = sin e cos b + cos e sin b cos(A_sun - A_surf)")
 {
     const double e = 35.0, b = 30.0, a_sun = 150.0, a_surf = 200.0;
-    const double want = sin_deg(e) * std::cos(b * std::numbers::pi / 180.0) +
-                        std::cos(e * std::numbers::pi / 180.0) * sin_deg(b) *
-                            std::cos((a_sun - a_surf) * std::numbers::pi / 180.0);
+    const double want =
+        sin_deg(e) * std::cos(b * std::numbers::pi / 180.0) +
+        std::cos(e * std::numbers::pi / 180.0) * sin_deg(b) * std::cos((a_sun - a_surf) * std::numbers::pi / 180.0);
     CHECK(cos_incidence(a_sun, e, b, a_surf) == doctest::Approx(want).epsilon(1e-12));
     // A surface facing the sun square on: theta = 0.
     CHECK(cos_incidence(a_sun, e, 90.0 - e, a_sun) == doctest::Approx(1.0).epsilon(1e-12));

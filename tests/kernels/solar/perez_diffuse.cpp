@@ -11,7 +11,10 @@ using namespace lidarfx;
 
 namespace {
 
-double cos_deg(double x) { return std::cos(x * std::numbers::pi / 180.0); }
+double cos_deg(double x)
+{
+    return std::cos(x * std::numbers::pi / 180.0);
+}
 
 }  // namespace
 
@@ -141,8 +144,8 @@ TEST_CASE("solar/perez_diffuse: every component is finite and >= 0 for DHI >= 0 
                         for (int doy : {1, 100, 185, 366}) {
                             const perez_diffuse_result r = perez_diffuse(dhi, dni, e, cos_theta, tilt, doy);
                             const bool ok = std::isfinite(r.total_w_m2()) && r.isotropic_w_m2 >= 0.0 &&
-                                            r.circumsolar_w_m2 >= 0.0 && r.horizon_w_m2 >= 0.0 &&
-                                            r.sky.f1 >= 0.0 && r.sky.f1 <= 1.0 && r.sky.bin >= 1 && r.sky.bin <= 8;
+                                            r.circumsolar_w_m2 >= 0.0 && r.horizon_w_m2 >= 0.0 && r.sky.f1 >= 0.0 &&
+                                            r.sky.f1 <= 1.0 && r.sky.bin >= 1 && r.sky.bin <= 8;
                             if (!ok) {
                                 FAIL_CHECK("DHI ", dhi, " DNI ", dni, " e ", e, " tilt ", tilt, " cos ", cos_theta,
                                            " doy ", doy, ": ", r.isotropic_w_m2, " ", r.circumsolar_w_m2, " ",
@@ -171,10 +174,8 @@ TEST_CASE("solar/perez_diffuse: invalid inputs throw and name the parameter")
                          invalid_input);
     CHECK_THROWS_WITH_AS(perez_diffuse(1.0, 0.0, 30.0, 1.5, 10.0, 1), doctest::Contains("cos_theta"), invalid_input);
     CHECK_THROWS_WITH_AS(perez_diffuse(1.0, 0.0, 30.0, 0.5, 181.0, 1), doctest::Contains("tilt_deg"), invalid_input);
-    CHECK_THROWS_WITH_AS(perez_diffuse(1.0, 0.0, 30.0, 0.5, 10.0, 0), doctest::Contains("day_of_year"),
-                         invalid_input);
-    CHECK_THROWS_WITH_AS(perez_sky_coefficients(1.0, 0.0, 30.0, 367), doctest::Contains("day_of_year"),
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(perez_diffuse(1.0, 0.0, 30.0, 0.5, 10.0, 0), doctest::Contains("day_of_year"), invalid_input);
+    CHECK_THROWS_WITH_AS(perez_sky_coefficients(1.0, 0.0, 30.0, 367), doctest::Contains("day_of_year"), invalid_input);
     CHECK_THROWS_WITH_AS(perez_sky_coefficients(1.0, 0.0, 30.0, 1, {.solar_constant_w_m2 = 0.0}),
                          doctest::Contains("solar_constant_w_m2"), invalid_input);
     CHECK_THROWS_WITH_AS(kasten_young_air_mass(-1.0), doctest::Contains("sun_elevation_deg"), invalid_input);

@@ -122,13 +122,15 @@ TEST_CASE("solar/raylines_shadow: agrees with a straight ray march on >= 99 % of
     for (int trial = 0; trial < trials; ++trial) {
         const double a = azimuth(rng), e = elevation(rng);
         const auto z = reference::box_town(rng, 120, 140, 40);
-        const double share = agreement(raylines_shadow(z, 1.0, a, e), reference::shadow_sampled_march(z.view(), 1.0, a, e));
+        const double share =
+            agreement(raylines_shadow(z, 1.0, a, e), reference::shadow_sampled_march(z.view(), 1.0, a, e));
         CHECK(share >= 0.99);
         sum += share;
         worst = std::min(worst, share);
     }
     CHECK(sum / trials >= 0.995);
-    MESSAGE("raylines_shadow vs per-cell ray march, 3..14 m buildings covering ~17 %: mean ", sum / trials, ", worst ", worst);
+    MESSAGE("raylines_shadow vs per-cell ray march, 3..14 m buildings covering ~17 %: mean ", sum / trials, ", worst ",
+            worst);
 }
 
 TEST_CASE("solar/raylines_shadow: a flat plane is lit everywhere, for any sun above the horizon")

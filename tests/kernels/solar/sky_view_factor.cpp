@@ -27,7 +27,8 @@ raster<float> source_share_brute(const raster<float>& z, double cell_m, int dire
     raster<int> count(z.rows(), z.cols(), 1);  // the zenith lights every cell
     for (int i = 0; i < directions; ++i) {
         for (int j = 0; j < 15; ++j) {
-            const auto lit = reference::shadow_on_lines(z.view(), cell_m, 360.0 * i / directions, 15.0 + 5.0 * j, 255, 1);
+            const auto lit =
+                reference::shadow_on_lines(z.view(), cell_m, 360.0 * i / directions, 15.0 + 5.0 * j, 255, 1);
             for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
                 for (std::ptrdiff_t c = 0; c < z.cols(); ++c) count(r, c) += lit(r, c) == 1;
         }
@@ -35,8 +36,8 @@ raster<float> source_share_brute(const raster<float>& z, double cell_m, int dire
     raster<float> out(z.rows(), z.cols());
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < z.cols(); ++c)
-            out(r, c) = std::isnan(z(r, c)) ? nan_f
-                                            : static_cast<float>(count(r, c) * (1.0 / (15.0 * directions + 1.0)));
+            out(r, c) =
+                std::isnan(z(r, c)) ? nan_f : static_cast<float>(count(r, c) * (1.0 / (15.0 * directions + 1.0)));
     return out;
 }
 

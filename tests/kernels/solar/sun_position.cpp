@@ -59,8 +59,8 @@ constexpr double spa_example_lat = 39.742476, spa_example_lon = -105.1786;
 
 TEST_CASE("solar/sun_position: SPA reproduces its published example within 0.0001 deg")
 {
-    const auto p = sun_position(utc(2003, 10, 17, 12 + 7, 30, 30), spa_example_lat, spa_example_lon,
-                                spa_example_options);
+    const auto p =
+        sun_position(utc(2003, 10, 17, 12 + 7, 30, 30), spa_example_lat, spa_example_lon, spa_example_options);
     MESSAGE("SPA example: zenith ", p.zenith_deg, " (error ", p.zenith_deg - 50.11162, "), azimuth ", p.azimuth_deg,
             " (error ", p.azimuth_deg - 194.34024, ")");
     // The published values carry 5 decimals; the spec's tolerance is 1e-4 deg.

@@ -149,27 +149,28 @@ TEST_CASE("stats/ks_one_sided: float and double samples give the sort-and-sweep 
         std::vector<double> p(n), c(m);
         const double shift = (trial % 7 - 3) * 0.05;
         switch (trial % 4) {
-        case 0:  // continuous
-            for (auto& v : p) v = normal(rng);
-            for (auto& v : c) v = normal(rng) + shift;
-            break;
-        case 1:  // heavy ties: a few hundred distinct values
-            for (auto& v : p) v = std::round(normal(rng) * 50);
-            for (auto& v : c) v = std::round((normal(rng) + shift) * 50);
-            break;
-        case 2:  // NaN, infinities, both zeros, denormals and huge values mixed in
-            for (auto& v : p) v = rng() % 10 == 0 ? nan : normal(rng) * std::pow(10.0, static_cast<int>(rng() % 600) - 300);
-            for (auto& v : c) v = rng() % 10 == 0 ? -0.0 : normal(rng) + shift;
-            p.push_back(inf);
-            c.push_back(-inf);
-            c.push_back(4.9e-324);
-            p.push_back(0.0);
-            break;
-        default:  // a narrow cluster next to a far outlier: the buckets of the first level are uneven
-            for (auto& v : p) v = 1.0 + normal(rng) * 1e-9;
-            for (auto& v : c) v = 1.0 + (normal(rng) + shift) * 1e-9;
-            p.push_back(1e300);
-            break;
+            case 0:  // continuous
+                for (auto& v : p) v = normal(rng);
+                for (auto& v : c) v = normal(rng) + shift;
+                break;
+            case 1:  // heavy ties: a few hundred distinct values
+                for (auto& v : p) v = std::round(normal(rng) * 50);
+                for (auto& v : c) v = std::round((normal(rng) + shift) * 50);
+                break;
+            case 2:  // NaN, infinities, both zeros, denormals and huge values mixed in
+                for (auto& v : p)
+                    v = rng() % 10 == 0 ? nan : normal(rng) * std::pow(10.0, static_cast<int>(rng() % 600) - 300);
+                for (auto& v : c) v = rng() % 10 == 0 ? -0.0 : normal(rng) + shift;
+                p.push_back(inf);
+                c.push_back(-inf);
+                c.push_back(4.9e-324);
+                p.push_back(0.0);
+                break;
+            default:  // a narrow cluster next to a far outlier: the buckets of the first level are uneven
+                for (auto& v : p) v = 1.0 + normal(rng) * 1e-9;
+                for (auto& v : c) v = 1.0 + (normal(rng) + shift) * 1e-9;
+                p.push_back(1e300);
+                break;
         }
         CHECK(ks_one_sided(p, c).d == reference::ks_statistic_sort_sweep(p, c));
         const std::vector<float> pf(p.begin(), p.end()), cf(c.begin(), c.end());
@@ -333,10 +334,17 @@ TEST_CASE("sortable_key orders values as < does and from_sortable_key inverts it
 {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> wide(-1e6f, 1e6f);
-    std::vector<float> v = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::min(),
-                            -std::numeric_limits<float>::min(), std::numeric_limits<float>::denorm_min(),
-                            std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
-                            std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    std::vector<float> v = {0.0f,
+                            -0.0f,
+                            1.0f,
+                            -1.0f,
+                            std::numeric_limits<float>::min(),
+                            -std::numeric_limits<float>::min(),
+                            std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::max(),
+                            -std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity()};
     for (int i = 0; i < 2000; ++i) v.push_back(wide(rng));
     for (const float a : v) {
         for (const float b : {v[0], v[3], v[7], v[100], v[1500]}) {

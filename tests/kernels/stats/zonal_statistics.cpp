@@ -70,7 +70,8 @@ TEST_CASE("stats/zonal_circular_statistics: mean across north, mode with ties, h
     const auto s = zonal_circular_statistics(labels, angles);
     REQUIRE(s.size() == 3);
     CHECK(s[1].count == 7);
-    CHECK(s[1].mean_deg == doctest::Approx(358.5682).epsilon(1e-6));  // offsets -10 10 -5 5 -0.4 0.4 -10: north, not 180
+    CHECK(s[1].mean_deg ==
+          doctest::Approx(358.5682).epsilon(1e-6));  // offsets -10 10 -5 5 -0.4 0.4 -10: north, not 180
     CHECK(s[1].resultant_length > 0.98);
     CHECK(s[1].mode_deg == 0.0);  // bins 350 (350, -10) and 0 (359.6, 0.4) hold two each: the smaller bin wins
     CHECK(s[1].histogram[350] == 2);

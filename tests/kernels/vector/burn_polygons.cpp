@@ -96,7 +96,8 @@ TEST_CASE("vector/burn_polygons: burning polygonize's outlines gives the labels 
         raster<std::int32_t> labels(g.rows, g.cols, 0);
         std::uniform_int_distribution<int> label(0, 4);
         for (std::ptrdiff_t r = 0; r < g.rows; ++r)
-            for (std::ptrdiff_t c = 0; c < g.cols; ++c) labels(r, c) = (r / 4 + c / 5 + trial) % 3 == 0 ? 0 : label(rng);
+            for (std::ptrdiff_t c = 0; c < g.cols; ++c)
+                labels(r, c) = (r / 4 + c / 5 + trial) % 3 == 0 ? 0 : label(rng);
         std::vector<labelled_polygon> fs;
         for (const label_polygons& lp : polygonize(labels, g)) fs.push_back({lp.label, lp.polygons});
         const burn_result back = burn_polygons(fs, g);
@@ -110,8 +111,8 @@ TEST_CASE("vector/burn_polygons: footprints sharing an edge through cell centres
 {
     // Vertical shared edge at x = 5.5 (a column of centres) and horizontal at y = 4.5 (a row of centres).
     const grid g{.x0 = 0, .y0 = 10, .cell = 1, .rows = 10, .cols = 10};
-    const std::vector<labelled_polygon> fs{{1, {box(1.5, 4.5, 5.5, 8.5)}}, {2, {box(5.5, 4.5, 8.5, 8.5)}},
-                                           {3, {box(1.5, 1.5, 8.5, 4.5)}}};
+    const std::vector<labelled_polygon> fs{
+        {1, {box(1.5, 4.5, 5.5, 8.5)}}, {2, {box(5.5, 4.5, 8.5, 8.5)}}, {3, {box(1.5, 1.5, 8.5, 4.5)}}};
     const burn_result b = burn_polygons(fs, g);
     std::size_t total = 0;
     for (const auto& a : b.footprints) {
@@ -120,7 +121,8 @@ TEST_CASE("vector/burn_polygons: footprints sharing an edge through cell centres
     }
     // Centres 2..8 by x and 2..8 by y lie in the union (7 x 7 = 49 cells), every one owned once.
     CHECK(total == 49);
-    CHECK(b.labels(10 - 1 - 5, 5) == 1);  // centre (5.5, 4.5) on both shared edges: west of x = 5.5 is 1, north of y = 4.5
+    CHECK(b.labels(10 - 1 - 5, 5) ==
+          1);  // centre (5.5, 4.5) on both shared edges: west of x = 5.5 is 1, north of y = 4.5
     CHECK(b.labels(10 - 1 - 5, 6) == 2);
 }
 

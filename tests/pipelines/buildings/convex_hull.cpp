@@ -56,7 +56,8 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
             CHECK(area_of(hull) > 0);  // counter-clockwise
             // Boost keeps only corners too (no collinear points on the boundary): the same vertex set.
             std::set<cell> ours(hull.begin(), hull.end()), theirs;
-            for (const auto& v : ref.outer()) theirs.insert({static_cast<std::int64_t>(v.x()), static_cast<std::int64_t>(v.y())});
+            for (const auto& v : ref.outer())
+                theirs.insert({static_cast<std::int64_t>(v.x()), static_cast<std::int64_t>(v.y())});
             CHECK(ours == theirs);
         }
     }

@@ -160,7 +160,8 @@ TEST_CASE("extract_buildings: empty raster, all NaN, one cell, same result for a
     const raster<float> empty(0, 0);
     CHECK(extract_buildings(empty, local_grid(empty, 1.0)).buildings.empty());
     const raster<float> none(5, 5, nan_f);
-    CHECK_THROWS_WITH_AS(extract_buildings(none, local_grid(none, 1.0)), doctest::Contains("no finite cell"), invalid_input);
+    CHECK_THROWS_WITH_AS(extract_buildings(none, local_grid(none, 1.0)), doctest::Contains("no finite cell"),
+                         invalid_input);
     const raster<float> one(1, 1, 3.0f);
     const auto b1 = extract_buildings(one, local_grid(one, 1.0));
     CHECK(b1.buildings.empty());

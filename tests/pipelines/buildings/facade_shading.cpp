@@ -2,8 +2,8 @@
 // facade_lit: every sub-patch's lit state equals a brute-force ray test, on boxes and random box towns.
 #include <doctest/doctest.h>
 
-#include <lidarfx/pipelines/buildings/facade_patches.hpp>
 #include <lidarfx/pipelines/buildings/facade_lit.hpp>
+#include <lidarfx/pipelines/buildings/facade_patches.hpp>
 
 #include <cmath>
 #include <random>
@@ -17,8 +17,8 @@ namespace {
 
 /// Lit states by the brute force `ref` (a reference:: function of a point) for every sub-patch.
 template <class Ref>
-std::vector<std::uint8_t> brute(const raster<float>& z, double cell_m, const std::vector<facade_patch>& subs,
-                                double az, double el, Ref&& ref)
+std::vector<std::uint8_t> brute(const raster<float>& z, double cell_m, const std::vector<facade_patch>& subs, double az,
+                                double el, Ref&& ref)
 {
     std::vector<std::uint8_t> out;
     for (const facade_patch& p : subs) {
@@ -124,7 +124,8 @@ TEST_CASE("buildings/facade_lit: agrees with a straight ray march from the front
         }
     }
     const double share = static_cast<double>(same) / static_cast<double>(total);
-    MESSAGE("facade_lit agrees with a straight (DDA) ray march on ", 100.0 * share, " % of ", total, " sub-patch states");
+    MESSAGE("facade_lit agrees with a straight (DDA) ray march on ", 100.0 * share, " % of ", total,
+            " sub-patch states");
     CHECK(share >= 0.97);
 }
 

@@ -44,8 +44,8 @@ TEST_CASE("buildings/facade_horizon: equals a direct search over its ray lines, 
             const auto got = facade_horizon(s.dsm, subs, 1.0, az);
             for (std::size_t i = 0; i < subs.size(); ++i) {
                 const facade_patch& p = subs[i];
-                const double want = reference::facade_horizon_on_line(s.dsm.view(), 1.0, p.front_row, p.front_col,
-                                                                      p.height_m, az);
+                const double want =
+                    reference::facade_horizon_on_line(s.dsm.view(), 1.0, p.front_row, p.front_col, p.height_m, az);
                 CHECK(got[i] == doctest::Approx(want).epsilon(1e-12));
                 largest = std::max(largest, want);
             }
@@ -109,8 +109,9 @@ TEST_CASE("buildings/facade_sky_view: the same result for any thread count; prog
     reference::progress_log log;
     facade_sky_view(s.dsm, subs, 1.0, {.directions = 8, .run = {.progress = log.callback()}});
     CHECK(log.monotone_to_one());
-    CHECK_THROWS_AS(facade_sky_view(s.dsm, subs, 1.0, {.directions = 8, .run = {.progress = [](double) { return false; }}}),
-                    cancelled);
+    CHECK_THROWS_AS(
+        facade_sky_view(s.dsm, subs, 1.0, {.directions = 8, .run = {.progress = [](double) { return false; }}}),
+        cancelled);
     CHECK_THROWS_AS(facade_sky_view(s.dsm, subs, 0.0), invalid_input);
     CHECK_THROWS_AS(facade_sky_view(s.dsm, subs, 1.0, {.directions = 3}), invalid_input);
     CHECK_THROWS_AS(facade_horizon(s.dsm, subs, 1.0, std::nan("")), invalid_input);

@@ -31,8 +31,8 @@ TEST_CASE("buildings/surface_patches: a box on flat ground gives flat roof and g
             CHECK(p.height_m == 10.0);
         }
     }
-    CHECK(roofs == 3 * 4);                // quads inside the 4 x 5 box
-    CHECK(grounds == 11 * 13 - 5 * 6);    // quads with no box cell
+    CHECK(roofs == 3 * 4);              // quads inside the 4 x 5 box
+    CHECK(grounds == 11 * 13 - 5 * 6);  // quads with no box cell
     CHECK(surface_patches(s.dsm, s.ids, 2.0, {.ground = false}).size() == roofs);
 }
 
@@ -94,7 +94,7 @@ TEST_CASE("buildings/facade_patches: a box has one wall per outline edge, 8 leve
 TEST_CASE("buildings/facade_patches: low steps, building neighbours, NaN fronts and the raster border make no wall")
 {
     auto s = reference::one_box(6, 6, 0, 0, 2, 2, 10.0f, 10.5f);  // 0.5 m high, at the north-west corner
-    CHECK(facade_patches(s.dsm, s.ids, 1.0).empty());                // 0.5 m <= min_height_m
+    CHECK(facade_patches(s.dsm, s.ids, 1.0).empty());             // 0.5 m <= min_height_m
     CHECK(facade_patches(s.dsm, s.ids, 1.0, {.min_height_m = 0.4}).size() == 8u * 4);  // only E and S walls
     s.dsm(2, 0) = std::numeric_limits<float>::quiet_NaN();
     s.ids(0, 2) = 2;  // a neighbouring building (same height as ground here) hides the east wall of (0, 1)

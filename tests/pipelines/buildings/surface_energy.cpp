@@ -4,8 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/kernels/solar/clear_sky.hpp>
-#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 #include <lidarfx/pipelines/buildings/surface_class_table.hpp>
+#include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
 #include <cmath>
 #include <random>
@@ -24,12 +24,13 @@ constexpr auto west = static_cast<std::size_t>(surface_class::west_facade);
 constexpr auto roof = static_cast<std::size_t>(surface_class::rooftop);
 
 /// Table 1 of a 12 x 10 m, 10 m tall box alone on flat ground at (lat, lon) under a clear-sky year.
-std::array<surface_class_row, 5> box_table(double lat, double lon, double utc_offset_h, surface_energy_result* out = nullptr)
+std::array<surface_class_row, 5> box_table(double lat, double lon, double utc_offset_h,
+                                           surface_energy_result* out = nullptr)
 {
     const auto s = reference::one_box(60, 60, 25, 24, 10, 12, 100.0f, 110.0f);
     const auto records = clear_sky_records(2021, lat, lon);
-    auto res = surface_energy(s.dsm, s.ids, 1.0, {.latitude_deg = lat, .longitude_deg = lon, .utc_offset_h = utc_offset_h},
-                              records);
+    auto res = surface_energy(s.dsm, s.ids, 1.0,
+                              {.latitude_deg = lat, .longitude_deg = lon, .utc_offset_h = utc_offset_h}, records);
     const auto table = surface_class_table(res);
     if (out) *out = std::move(res);
     return table;
@@ -66,7 +67,8 @@ TEST_CASE("buildings/surface_energy: a box at 40 N under clear sky -- the patter
         CHECK(t[roof].quarter_kwh_m2_day[q] == doctest::Approx(res.quarter_ghi_kwh_m2_day[q]).epsilon(1e-9));
     }
     CHECK(res.quarter_days[0] == doctest::Approx(90.0));
-    CHECK(res.quarter_days[0] + res.quarter_days[1] + res.quarter_days[2] + res.quarter_days[3] == doctest::Approx(365.0));
+    CHECK(res.quarter_days[0] + res.quarter_days[1] + res.quarter_days[2] + res.quarter_days[3] ==
+          doctest::Approx(365.0));
     // Quarterly daily means times days add up to the annual sum, per sub-patch.
     for (std::size_t i = 0; i < res.facades.size(); i += 37) {
         double sum = 0.0;
@@ -101,7 +103,8 @@ TEST_CASE("buildings/surface_energy: a neighbour's shadow lowers the lower level
         CHECK(one.facade_energy[i].annual_kwh_m2 == two.facade_energy[i].annual_kwh_m2);
         CHECK(one.facade_energy[i].quarter_kwh_m2_day == two.facade_energy[i].quarter_kwh_m2_day);
     }
-    for (std::size_t i = 0; i < one.roof_energy.size(); ++i) CHECK(one.roof_energy[i].annual_kwh_m2 == two.roof_energy[i].annual_kwh_m2);
+    for (std::size_t i = 0; i < one.roof_energy.size(); ++i)
+        CHECK(one.roof_energy[i].annual_kwh_m2 == two.roof_energy[i].annual_kwh_m2);
     // In a town the lowest level of a wall never gets more than its top level (more horizon, more shadow).
     std::size_t walls = 0, less = 0;
     for (std::size_t i = 0; i + 7 < one.facades.size(); i += 8) {
@@ -116,11 +119,15 @@ TEST_CASE("buildings/surface_energy: a neighbour's shadow lowers the lower level
 TEST_CASE("buildings/bill_savings: the dissertation's Table 1 gives its Table 2 with the default system")
 {
     // Table 1 (kWh/m^2/day per quarter, kWh/m^2/yr) and Table 2 ($/day, $/yr) of the dissertation.
-    const double t1[5][5] = {{0.74, 1.45, 1.23, 0.65, 374.05}, {2.98, 1.98, 2.23, 3.17, 944.49},
-                             {1.93, 2.66, 2.89, 1.82, 850.21}, {1.58, 2.64, 2.42, 1.50, 743.32},
+    const double t1[5][5] = {{0.74, 1.45, 1.23, 0.65, 374.05},
+                             {2.98, 1.98, 2.23, 3.17, 944.49},
+                             {1.93, 2.66, 2.89, 1.82, 850.21},
+                             {1.58, 2.64, 2.42, 1.50, 743.32},
                              {3.67, 6.27, 6.18, 3.38, 1780.80}};
-    const double t2[5][5] = {{0.23, 0.45, 0.38, 0.20, 114.99}, {0.92, 0.61, 0.69, 0.97, 290.36},
-                             {0.59, 0.82, 0.89, 0.56, 261.37}, {0.49, 0.81, 0.74, 0.46, 228.51},
+    const double t2[5][5] = {{0.23, 0.45, 0.38, 0.20, 114.99},
+                             {0.92, 0.61, 0.69, 0.97, 290.36},
+                             {0.59, 0.82, 0.89, 0.56, 261.37},
+                             {0.49, 0.81, 0.74, 0.46, 228.51},
                              {1.13, 1.93, 1.90, 1.04, 547.45}};
     std::array<surface_class_row, 5> table{};
     for (std::size_t k = 0; k < 5; ++k) {
@@ -131,7 +138,9 @@ TEST_CASE("buildings/bill_savings: the dissertation's Table 1 gives its Table 2 
     const auto bill = bill_savings(table);
     for (std::size_t k = 0; k < 5; ++k) {
         CHECK(bill[k].kind == table[k].kind);
-        for (std::size_t q = 0; q < 4; ++q) CHECK(std::fabs(bill[k].quarter_per_day[q] - t2[k][q]) < 0.01);  // 2 printed decimals; South Q4 is off by 0.008
+        for (std::size_t q = 0; q < 4; ++q)
+            CHECK(std::fabs(bill[k].quarter_per_day[q] - t2[k][q]) <
+                  0.01);  // 2 printed decimals; South Q4 is off by 0.008
         CHECK(bill[k].annual == doctest::Approx(t2[k][4]).epsilon(0.005));
     }
     // Twice the tariff, twice the saving; no modules' loss, more saving.

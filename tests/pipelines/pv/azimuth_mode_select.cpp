@@ -21,7 +21,8 @@ std::vector<std::uint32_t> roof(std::initializer_list<std::pair<int, std::uint32
 {
     std::vector<std::uint32_t> h(360, 0);
     for (const auto& [azimuth, cells] : planes) {
-        for (int d = -3; d <= 3; ++d) h[static_cast<std::size_t>(((azimuth + d) % 360 + 360) % 360)] += d == 0 ? cells : cells / 10;
+        for (int d = -3; d <= 3; ++d)
+            h[static_cast<std::size_t>(((azimuth + d) % 360 + 360) % 360)] += d == 0 ? cells : cells / 10;
     }
     return h;
 }
@@ -68,8 +69,8 @@ TEST_CASE("pv/azimuth_mode_select: four planes with an east-side mode turn to mo
     CHECK(southish.reason == azimuth_reason::kept);
     CHECK(southish.azimuth_deg == 165.0);
     // With the paper's printed bound (180) it turns.
-    const auto paper = azimuth_mode_select(roof({{165, 300}, {255, 290}, {345, 250}, {75, 200}}),
-                                           {.four_plane_high_deg = 180.0});
+    const auto paper =
+        azimuth_mode_select(roof({{165, 300}, {255, 290}, {345, 250}, {75, 200}}), {.four_plane_high_deg = 180.0});
     CHECK(paper.reason == azimuth_reason::turned_west);
     CHECK(paper.azimuth_deg == 255.0);
 

@@ -230,14 +230,14 @@ TEST_CASE("pv/roof_suitability: bad input is refused with the argument named")
     auto ids = in.ids;
     ids(0, 0) = -3;
     CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, ids, in.g), doctest::Contains("building_id"), invalid_input);
-    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, {.m2_per_kwp = 0}), doctest::Contains("m2_per_kwp"),
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, {.m2_per_kwp = 0}),
+                         doctest::Contains("m2_per_kwp"), invalid_input);
     CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, {.min_azimuth_deg = 300}),
                          doctest::Contains("min_azimuth_deg"), invalid_input);
     roof_suitability_options rough;
     rough.planes.max_plane_rms_m = 0;
-    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, rough), doctest::Contains("planes.max_plane_rms_m"),
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, in.g, rough),
+                         doctest::Contains("planes.max_plane_rms_m"), invalid_input);
     const grid other{0.0, 10.0, 1.0, 10, 10};
     CHECK_THROWS_WITH_AS(roof_suitability(in.dsm, in.dtm, in.ids, other), doctest::Contains("grid"), invalid_input);
 }
@@ -275,7 +275,8 @@ TEST_CASE("pv/roof_suitability: same result for any thread count and on a stride
                                         big_dtm.view().window(0, 0, t.g.rows, t.g.cols),
                                         big_ids.view().window(0, 0, t.g.rows, t.g.cols), t.g, o);
         REQUIRE(w.patches.size() == one.patches.size());
-        for (std::size_t k = 0; k < w.patches.size(); ++k) CHECK(w.patches[k].sloped_area_m2 == one.patches[k].sloped_area_m2);
+        for (std::size_t k = 0; k < w.patches.size(); ++k)
+            CHECK(w.patches[k].sloped_area_m2 == one.patches[k].sloped_area_m2);
     }
 }
 
@@ -309,18 +310,22 @@ synth::roof_scores score_family(roof_mode mode)
 
 void report(const char* name, synth::roof_scores s)
 {
-    MESSAGE(std::string(name), ": planes ", s.true_planes, ", found ", s.found_share(), ", tilt within 5 ", s.tilt5(), ", within 10 ",
-            s.tilt10(), ", azimuth within 15 ", s.azimuth15(), ", suitability recall ", s.recall(), " precision ",
-            s.precision(), ", sloped-area RMSE ", s.area_rmse());
-    std::sort(s.matches.begin(), s.matches.end(), [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
+    MESSAGE(std::string(name), ": planes ", s.true_planes, ", found ", s.found_share(), ", tilt within 5 ", s.tilt5(),
+            ", within 10 ", s.tilt10(), ", azimuth within 15 ", s.azimuth15(), ", suitability recall ", s.recall(),
+            " precision ", s.precision(), ", sloped-area RMSE ", s.area_rmse());
+    std::sort(s.matches.begin(), s.matches.end(),
+              [](const auto& a, const auto& b) { return a.tilt_error() > b.tilt_error(); });
     for (std::size_t k = 0; k < std::min<std::size_t>(3, s.matches.size()); ++k)
-        MESSAGE("worst tilt: building ", s.matches[k].building_id, " (", std::string(synth::kind_name(s.matches[k].kind)), ") ",
-                s.matches[k].tilt, " vs ", s.matches[k].true_tilt);
+        MESSAGE("worst tilt: building ", s.matches[k].building_id, " (",
+                std::string(synth::kind_name(s.matches[k].kind)), ") ", s.matches[k].tilt, " vs ",
+                s.matches[k].true_tilt);
     std::erase_if(s.matches, [](const auto& m) { return m.true_tilt < 5; });
-    std::sort(s.matches.begin(), s.matches.end(), [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
+    std::sort(s.matches.begin(), s.matches.end(),
+              [](const auto& a, const auto& b) { return a.azimuth_error() > b.azimuth_error(); });
     for (std::size_t k = 0; k < std::min<std::size_t>(3, s.matches.size()); ++k)
-        MESSAGE("worst azimuth: building ", s.matches[k].building_id, " (", std::string(synth::kind_name(s.matches[k].kind)), ") ",
-                s.matches[k].azimuth, " vs ", s.matches[k].true_azimuth);
+        MESSAGE("worst azimuth: building ", s.matches[k].building_id, " (",
+                std::string(synth::kind_name(s.matches[k].kind)), ") ", s.matches[k].azimuth, " vs ",
+                s.matches[k].true_azimuth);
 }
 
 }  // namespace

@@ -47,8 +47,9 @@ scene make_scene(bool tower)
 
 }  // namespace
 
-TEST_CASE("pv/roof_yield: each patch gets the mean of irradiance_maps over its cells on the patch's plane, with "
-          "and without a meridian convergence")
+TEST_CASE(
+    "pv/roof_yield: each patch gets the mean of irradiance_maps over its cells on the patch's plane, with "
+    "and without a meridian convergence")
 {
     const scene s = make_scene(true);
     const auto roofs = roof_suitability(s.dsm, s.dtm, s.ids, s.g);

@@ -114,24 +114,24 @@ TEST_CASE("solar/irradiance_maps: a cell in a block's shadow gets less than open
     const double south_of_block = res.annual_kwh_m2(24, 20);
     MESSAGE("open ", open, ", just north of the block ", north_of_block, ", just south ", south_of_block, " kWh/m^2");
     CHECK(north_of_block < 0.7 * open);
-    CHECK(south_of_block < open);                  // it sees less sky
-    CHECK(south_of_block > north_of_block);        // but keeps the midday sun
+    CHECK(south_of_block < open);            // it sees less sky
+    CHECK(south_of_block > north_of_block);  // but keeps the midday sun
     CHECK(res.month_kwh_m2[11](18, 20) < 0.5 * res.month_kwh_m2[11](0, 0));
     // Open ground far from the block keeps (nearly) the whole sky and (nearly) all its sun.
     CHECK(open > 0.95 * res.ghi_kwh_m2);
     CHECK(open <= res.ghi_kwh_m2 * (1.0 + 1e-6));
 }
 
-TEST_CASE("solar/irradiance_maps: a vertical south wall gets more than a north wall in the north, and walls get "
-          "half the sky")
+TEST_CASE(
+    "solar/irradiance_maps: a vertical south wall gets more than a north wall in the north, and walls get "
+    "half the sky")
 {
     const auto records = clear_days(golden_lat, golden_lon, 5);
     const raster<float> z(4, 6, 0.0f);
     raster<float> tilt(4, 6, 90.0f), azimuth(4, 6, 180.0f);
     for (std::ptrdiff_t r = 0; r < 4; ++r)
         for (std::ptrdiff_t c = 3; c < 6; ++c) azimuth(r, c) = 0.0f;  // east half faces north
-    const auto res = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records,
-                                     tilt.view(), azimuth.view());
+    const auto res = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view());
     const double south = res.annual_kwh_m2(1, 1), north = res.annual_kwh_m2(1, 4);
     MESSAGE("vertical walls at Golden: south ", south, ", north ", north, " kWh/m^2");
     CHECK(south > 2.0 * north);
@@ -139,13 +139,14 @@ TEST_CASE("solar/irradiance_maps: a vertical south wall gets more than a north w
     const auto flat = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
     CHECK(south < flat.annual_kwh_m2(1, 1));
     // Ground reflection adds to walls and only to walls.
-    const auto bright = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(),
-                                        {.sky = {.albedo = 0.2}});
+    const auto bright = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(),
+                                        azimuth.view(), {.sky = {.albedo = 0.2}});
     CHECK(bright.annual_kwh_m2(1, 4) == doctest::Approx(north + 0.2 * 0.5 * res.ghi_kwh_m2).epsilon(1e-5));
 }
 
-TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slope gets more than a south-facing "
-          "one")
+TEST_CASE(
+    "solar/irradiance_maps: in the southern hemisphere a north-facing slope gets more than a south-facing "
+    "one")
 {
     // An east-west ridge with 1:2 slopes: rows above row 20 face north, rows below face south.
     raster<float> z(41, 21);
@@ -157,13 +158,14 @@ TEST_CASE("solar/irradiance_maps: in the southern hemisphere a north-facing slop
     REQUIRE(sa.aspect_deg(10, 10) == doctest::Approx(0.0).epsilon(1e-6));
     REQUIRE(sa.aspect_deg(30, 10) == doctest::Approx(180.0));
     const auto cape = irradiance_maps(z, 1.0, solar_site{cape_lat, cape_lon}, clear_days(cape_lat, cape_lon, 5),
-                                     sa.slope_deg.view(), sa.aspect_deg.view());
-    MESSAGE("Cape Town: north-facing slope ", cape.annual_kwh_m2(10, 10), ", south-facing ",
-            cape.annual_kwh_m2(30, 10), " kWh/m^2");
+                                      sa.slope_deg.view(), sa.aspect_deg.view());
+    MESSAGE("Cape Town: north-facing slope ", cape.annual_kwh_m2(10, 10), ", south-facing ", cape.annual_kwh_m2(30, 10),
+            " kWh/m^2");
     CHECK(cape.annual_kwh_m2(10, 10) > 1.1 * cape.annual_kwh_m2(30, 10));
     // The same ridge in the north: the other way round.
-    const auto golden = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, clear_days(golden_lat, golden_lon, 5),
-                                       sa.slope_deg.view(), sa.aspect_deg.view());
+    const auto golden =
+        irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, clear_days(golden_lat, golden_lon, 5),
+                        sa.slope_deg.view(), sa.aspect_deg.view());
     CHECK(golden.annual_kwh_m2(30, 10) > 1.1 * golden.annual_kwh_m2(10, 10));
 }
 
@@ -172,8 +174,8 @@ TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI 
     const auto records = clear_days(golden_lat, golden_lon, 5);
     const raster<float> z(4, 6, 0.0f);
     const auto iso_flat = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
-    const auto perez_flat =
-        irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {}, {.sky = {.diffuse = diffuse_model::perez}});
+    const auto perez_flat = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {},
+                                            {.sky = {.diffuse = diffuse_model::perez}});
     // Flat and open: the circumsolar share lands whole on the cell while the sun is >= 5 deg high, and a little
     // less below (a / c = sin e / cos 85 < 1), so Perez gives slightly less than GHI, never more.
     const double ratio_flat = perez_flat.annual_kwh_m2(1, 1) / iso_flat.annual_kwh_m2(1, 1);
@@ -187,7 +189,8 @@ TEST_CASE("solar/irradiance_maps: the Perez sky keeps flat open ground near GHI 
     irradiance_maps_options south_perez;
     south_perez.sky.diffuse = diffuse_model::perez;
     const auto iso = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view());
-    const auto per = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), south_perez);
+    const auto per =
+        irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), south_perez);
     const double ratio = per.annual_kwh_m2(1, 1) / iso.annual_kwh_m2(1, 1);
     MESSAGE("35 deg south slope at Golden, clear sky: isotropic ", iso.annual_kwh_m2(1, 1), ", Perez ",
             per.annual_kwh_m2(1, 1), " kWh/m^2 (ratio ", ratio, ")");
@@ -213,8 +216,7 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky an open cell gets beam + pe
     REQUIRE(sky.circumsolar_w_m2 > 0.0);
     REQUIRE(sky.horizon_w_m2 > 0.0);
     CHECK(res.sky_view_factor(1, 1) == 1.0f);
-    CHECK(res.annual_kwh_m2(1, 1) ==
-          doctest::Approx((800.0 * cos_theta + sky.total_w_m2()) / 1000.0).epsilon(1e-6));
+    CHECK(res.annual_kwh_m2(1, 1) == doctest::Approx((800.0 * cos_theta + sky.total_w_m2()) / 1000.0).epsilon(1e-6));
 }
 
 TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the circumsolar diffuse with the beam")
@@ -222,7 +224,8 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the cir
     const auto records = clear_days(golden_lat, golden_lon, 7);
     const raster<float> z = block_scene();
     const auto iso = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records);
-    const auto per = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {}, {.sky = {.diffuse = diffuse_model::perez}});
+    const auto per = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, {}, {},
+                                     {.sky = {.diffuse = diffuse_model::perez}});
     // North of the block (row 18: 2 m away, in its shadow for most of the year) against open ground south of it.
     const double shaded = per.annual_kwh_m2(18, 20) / iso.annual_kwh_m2(18, 20);
     const double open = per.annual_kwh_m2(35, 20) / iso.annual_kwh_m2(35, 20);
@@ -239,8 +242,10 @@ TEST_CASE("solar/irradiance_maps: with the Perez sky a cast shadow hides the cir
             .run = {.threads = 1}};
         irradiance_maps_options o3 = o;
         o3.run.threads = 3;
-        const auto one = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o);
-        const auto three = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o3);
+        const auto one =
+            irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o);
+        const auto three =
+            irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), azimuth.view(), o3);
         CHECK(same_bits(one.annual_kwh_m2, three.annual_kwh_m2));
         CHECK(std::isnan(one.annual_kwh_m2(7, 7)));
         CHECK(one.annual_kwh_m2(18, 20) > 0.0);
@@ -254,10 +259,12 @@ TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN ce
     for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < z.cols(); ++c) z(r, c) += static_cast<float>((r * 7 + c * 13) % 5) * 0.3f;
     z(3, 4) = std::numeric_limits<float>::quiet_NaN();
-    const auto one = irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = 1}});
+    const auto one =
+        irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = 1}});
     for (int threads : {2, 3, 0}) {
         INFO("threads ", threads);
-        const auto many = irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = threads}});
+        const auto many =
+            irradiance_maps(z, 0.5, solar_site{golden_lat, golden_lon}, records, {}, {}, {.run = {.threads = threads}});
         CHECK(same_bits(one.annual_kwh_m2, many.annual_kwh_m2));
         for (std::size_t m = 0; m < 12; ++m) CHECK(same_bits(one.month_kwh_m2[m], many.month_kwh_m2[m]));
     }
@@ -273,8 +280,9 @@ TEST_CASE("solar/irradiance_maps: identical results for any thread count; NaN ce
                     cancelled);
 }
 
-TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from true to grid north (a_grid = a_true - "
-          "convergence)")
+TEST_CASE(
+    "solar/irradiance_maps: meridian_convergence_deg turns the sun from true to grid north (a_grid = a_true - "
+    "convergence)")
 {
     // One hour of beam only (DHI 0): a cell's sum is DNI sin e where it is lit and 0 in shadow.
     std::vector<irradiance_record> records(1);
@@ -284,7 +292,7 @@ TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from tr
     const auto sun = sun_position(records[0].middle_utc(), golden_lat, golden_lon);
     REQUIRE(sun.elevation_deg > 10.0);
     const raster<float> z = block_scene();
-    const double convergence = 25.0;   // grid north 25 degrees east of true north
+    const double convergence = 25.0;  // grid north 25 degrees east of true north
     const auto turned = irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, convergence}, records);
     const auto lit_grid = raylines_shadow(z, 1.0, sun.azimuth_deg - convergence, sun.elevation_deg, {.nan_cell = 0});
     const auto lit_true = raylines_shadow(z, 1.0, sun.azimuth_deg, sun.elevation_deg, {.nan_cell = 0});
@@ -297,20 +305,19 @@ TEST_CASE("solar/irradiance_maps: meridian_convergence_deg turns the sun from tr
         }
     }
     CHECK(shadow > 10);
-    CHECK(differ > 5);   // the turn moves the shadow: the check above tells the two apart
+    CHECK(differ > 5);  // the turn moves the shadow: the check above tells the two apart
     // 0 (the default) leaves the maps bit for bit as they were.
     CHECK(same_bits(irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon}, records).annual_kwh_m2,
-                    irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, 0.0}, records)
-                        .annual_kwh_m2));
+                    irradiance_maps(z, 1.0, solar_site{golden_lat, golden_lon, 0.0, 0.0}, records).annual_kwh_m2));
 
     // A tilted cell facing grid azimuth A under convergence g gets what a cell facing A + g gets without it.
     const raster<float> flat(3, 3, 0.0f), tilt(3, 3, 40.0f), facing_grid(3, 3, 150.0f), facing_true(3, 3, 175.0f);
     const auto on_grid = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon, 0.0, convergence}, records,
                                          tilt.view(), facing_grid.view());
-    const auto on_true = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(),
-                                         facing_true.view());
-    const auto unturned = irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(),
-                                          facing_grid.view());
+    const auto on_true =
+        irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), facing_true.view());
+    const auto unturned =
+        irradiance_maps(flat, 1.0, solar_site{golden_lat, golden_lon}, records, tilt.view(), facing_grid.view());
     CHECK(on_grid.annual_kwh_m2(1, 1) == doctest::Approx(on_true.annual_kwh_m2(1, 1)).epsilon(1e-6));
     CHECK(std::abs(on_grid.annual_kwh_m2(1, 1) - unturned.annual_kwh_m2(1, 1)) > 0.01f);
 
@@ -324,23 +331,23 @@ TEST_CASE("solar/irradiance_maps: bad input is refused with the argument's name"
     std::vector<irradiance_record> records(1);
     records[0].start_utc = std::chrono::sys_days{std::chrono::year{2021} / 6 / 21} + std::chrono::hours{18};
     records[0].ghi_w_m2 = 500.0;
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 0.0, solar_site{40.0, -105.0}, records), doctest::Contains("cell_m"), invalid_input);
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 0.0, solar_site{40.0, -105.0}, records), doctest::Contains("cell_m"),
+                         invalid_input);
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{95.0, -105.0}, records), doctest::Contains("latitude_deg"),
                          invalid_input);
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, tilt.view()),
                          doctest::Contains("surface_azimuth_deg"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, small.view(),
-                                         small.view()),
+    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, small.view(), small.view()),
                          doctest::Contains("same shape"), invalid_input);
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {}, {.sky = {.albedo = 1.5}}),
-                         doctest::Contains("albedo"),
-                         invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {}, {.sky = {.svf_directions = 2}}),
-                         doctest::Contains("irradiance_maps: sky.svf_directions"), invalid_input);
-    CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {},
-                                         {.sky = {.diffuse = diffuse_model::perez,
-                                                  .perez = {.solar_constant_w_m2 = -1.0}}}),
-                         doctest::Contains("perez.solar_constant_w_m2"), invalid_input);
+                         doctest::Contains("albedo"), invalid_input);
+    CHECK_THROWS_WITH_AS(
+        irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {}, {.sky = {.svf_directions = 2}}),
+        doctest::Contains("irradiance_maps: sky.svf_directions"), invalid_input);
+    CHECK_THROWS_WITH_AS(
+        irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records, {}, {},
+                        {.sky = {.diffuse = diffuse_model::perez, .perez = {.solar_constant_w_m2 = -1.0}}}),
+        doctest::Contains("perez.solar_constant_w_m2"), invalid_input);
     records[0].dni_w_m2 = -3.0;
     CHECK_THROWS_WITH_AS(irradiance_maps(z, 1.0, solar_site{40.0, -105.0}, records), doctest::Contains("records[0]"),
                          invalid_input);

@@ -146,9 +146,9 @@ TEST_CASE("water/assess_water_inputs: missing count and single returns are warni
 TEST_CASE("water/assess_water_inputs: every kind renders its own sentence")
 {
     std::set<std::string> texts;
-    for (const auto k : {water_issue_kind::no_returns, water_issue_kind::intensity_constant,
-                         water_issue_kind::density_too_low, water_issue_kind::density_unchecked,
-                         water_issue_kind::no_multiple_returns}) {
+    for (const auto k :
+         {water_issue_kind::no_returns, water_issue_kind::intensity_constant, water_issue_kind::density_too_low,
+          water_issue_kind::density_unchecked, water_issue_kind::no_multiple_returns}) {
         const auto text = water_issue{.kind = k}.message();
         CHECK_FALSE(text.empty());
         texts.insert(text);
@@ -163,8 +163,8 @@ TEST_CASE("water/assess_water_inputs: strided views give the same diagnostics")
     big.count(2, 2) = 1;
     big.drop(5, 6);
     const auto win = [](const auto& r) { return r.view().window(1, 2, 5, 6); };
-    const water_rasters in{win(big.min_z), win(big.max_z), win(big.intensity), win(big.dropout),
-                           win(big.multiple), win(big.count)};
+    const water_rasters in{win(big.min_z),   win(big.max_z),    win(big.intensity),
+                           win(big.dropout), win(big.multiple), win(big.count)};
     survey small(5, 6);
     for (std::ptrdiff_t r = 0; r < 5; ++r)
         for (std::ptrdiff_t c = 0; c < 6; ++c) {
@@ -185,14 +185,15 @@ TEST_CASE("water/assess_water_inputs: strided views give the same diagnostics")
 TEST_CASE("water/assess_water_inputs: bad arguments are refused")
 {
     survey s(2, 2);
-    CHECK_THROWS_WITH_AS(assess_water_inputs(s.view(), 0.0), "assess_water_inputs: cell_m must be finite and > 0 (got 0)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(assess_water_inputs(s.view(), 0.0),
+                         "assess_water_inputs: cell_m must be finite and > 0 (got 0)", invalid_input);
     CHECK_THROWS_WITH_AS(assess_water_inputs(s.view(), 1.0, {.min_points_per_cell = -1}),
                          "assess_water_inputs: min_points_per_cell must be >= 0 (got -1)", invalid_input);
 }
 
-TEST_CASE("water/assess_water_inputs: the intensity range and dropout share equal a plain loop, with NaN, inf, "
-          "signed zeros and a footprint")
+TEST_CASE(
+    "water/assess_water_inputs: the intensity range and dropout share equal a plain loop, with NaN, inf, "
+    "signed zeros and a footprint")
 {
     std::mt19937 rng(31);
     const float specials[] = {NAN, INFINITY, -INFINITY, 0.0f, -0.0f, -5.5f, 1e30f};

@@ -50,7 +50,7 @@ TEST_CASE("water/cut_at_level_bands: the plain loop over every cell")
     std::uint32_t state = 777;  // LCG: deterministic
     const auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
     constexpr float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0}, {1, 1}, {1, 70}, {70, 1}, {2, 2},
+    const std::pair<std::ptrdiff_t, std::ptrdiff_t> shapes[] = {{0, 0},  {1, 1},  {1, 70},   {70, 1},  {2, 2},
                                                                 {3, 64}, {5, 65}, {40, 130}, {64, 129}};
     for (const auto& item : shapes) {
         const auto& rows = std::get<0>(item);
@@ -64,9 +64,10 @@ TEST_CASE("water/cut_at_level_bands: the plain loop over every cell")
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     mask(r, c) = static_cast<std::uint8_t>(next() % 100 < density ? 1 + next() % 255 : 0);
                     const std::uint32_t x = next() % 40;
-                    z(r, c) = x == 0 ? nan : x == 1 && trial > 6 ? (next() % 2 ? inf : -inf)
-                                                                 : 10.0f + 0.013f * static_cast<float>(r + 2 * c) +
-                                                                       0.001f * static_cast<float>(next() % 50);
+                    z(r, c) = x == 0                ? nan
+                              : x == 1 && trial > 6 ? (next() % 2 ? inf : -inf)
+                                                    : 10.0f + 0.013f * static_cast<float>(r + 2 * c) +
+                                                          0.001f * static_cast<float>(next() % 50);
                 }
             }
             if (trial == 3) std::fill(z.begin(), z.end(), nan);  // a mask without returns: nothing is cut
@@ -83,7 +84,6 @@ TEST_CASE("water/cut_at_level_bands: the plain loop over every cell")
         }
     }
 }
-
 
 TEST_CASE("water/cut_at_level_bands: bad arguments are refused")
 {

@@ -4,8 +4,8 @@
 #include <lidarfx/kernels/label/connected_components.hpp>
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
-#include <lidarfx/synth/scenes.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/synth/scenes.hpp>
 
 #include "water_test_rasters.hpp"
 
@@ -16,7 +16,6 @@
 #include <limits>
 #include <utility>
 #include <vector>
-
 
 using namespace lidarfx;
 
@@ -77,7 +76,8 @@ TEST_CASE("water/extract_waterbodies: the synthetic lake scene is mapped to the 
     const auto bounds = component_bounds(land_inside);
     for (std::size_t l = 1; l < land_inside.sizes.size(); ++l) {
         const auto& b = bounds[l];
-        const bool touches_border = b.row_min == 0 || b.col_min == 0 || b.row_max == t.g.rows - 1 || b.col_max == t.g.cols - 1;
+        const bool touches_border =
+            b.row_min == 0 || b.col_min == 0 || b.row_max == t.g.rows - 1 || b.col_max == t.g.cols - 1;
         if (!touches_border) CHECK(static_cast<double>(land_inside.sizes[l]) * cell_area >= 200.0);
     }
 }
@@ -96,7 +96,9 @@ TEST_CASE("water/extract_waterbodies: the synthetic river is one body, across it
     CHECK(static_cast<double>(r.result.bodies[0].cells) >= 0.95 * static_cast<double>(water_cells));
 }
 
-TEST_CASE("water/extract_waterbodies: a pond with returns and 40 % scattered dropouts is seeded whole with flat_seed_dropouts")
+TEST_CASE(
+    "water/extract_waterbodies: a pond with returns and 40 % scattered dropouts is seeded whole with "
+    "flat_seed_dropouts")
 {
     // 60 x 60 cells of flat land (10 m, 4 returns, intensity 50-59) around a 30 x 30 pond at 9 m: level,
     // sparse (2 returns) and dark (20), 40 % of its cells dropouts scattered by a hash. No 3 x 3 block of
@@ -126,7 +128,8 @@ TEST_CASE("water/extract_waterbodies: a pond with returns and 40 % scattered dro
     const auto water_outside = [&](const extract_waterbodies_result& w) {
         long n = 0;
         for (std::ptrdiff_t r = 0; r < 60; ++r)
-            for (std::ptrdiff_t c = 0; c < 60; ++c) n += w.water.view()(r, c) && (r < 15 || r >= 45 || c < 15 || c >= 45);
+            for (std::ptrdiff_t c = 0; c < 60; ++c)
+                n += w.water.view()(r, c) && (r < 15 || r >= 45 || c < 15 || c >= 45);
         return n;
     };
     auto opt = flat_seed_water_method();
@@ -183,15 +186,17 @@ TEST_CASE("water/extract_waterbodies: its intermediate rasters are the public st
     const auto w = extract_waterbodies(pr, o);
     REQUIRE(w.ran);
     CHECK(w.vegetation == water_vegetation(in, {.height_m = 3.0, .closing_size_cells = 3}));
-    const auto angles = water_angles(in, pr.g.cell, {.radius_cells = 3, .input = angular_input::idw_filled,
-                                                     .dropouts_join_any_threshold = false});
+    const auto angles = water_angles(
+        in, pr.g.cell, {.radius_cells = 3, .input = angular_input::idw_filled, .dropouts_join_any_threshold = false});
     CHECK(std::memcmp(w.angle_deg.data(), angles.data(), static_cast<std::size_t>(angles.size()) * sizeof(float)) == 0);
     const auto seeds = water_seeds(pr.dropout, {.opening_size_cells = 3, .min_cells = 50});
     // The dropout seeds keep their labels 1..k; the seeds of flat_water_seeds (flat_seeds) follow as k + 1..
     const auto k = static_cast<std::int32_t>(seeds.count());
     for (std::ptrdiff_t i = 0; i < w.seeds.size(); ++i) {
-        if (seeds.labels.data()[i] > 0) REQUIRE(w.seeds.data()[i] == seeds.labels.data()[i]);
-        else REQUIRE((w.seeds.data()[i] == 0 || w.seeds.data()[i] > k));
+        if (seeds.labels.data()[i] > 0)
+            REQUIRE(w.seeds.data()[i] == seeds.labels.data()[i]);
+        else
+            REQUIRE((w.seeds.data()[i] == 0 || w.seeds.data()[i] > k));
     }
     CHECK(w.seeds_found >= seeds.count());
     o.flat_seeds = false;
@@ -221,7 +226,8 @@ TEST_CASE("water/extract_waterbodies: huge or infinite island areas and bridge s
     };
     const auto reference = with(whole_raster_m2, longest_run_m);
     for (const double island : {1e20, std::numeric_limits<double>::infinity()})
-        for (const double span : {1e10, std::numeric_limits<double>::infinity()}) CHECK(with(island, span) == reference);
+        for (const double span : {1e10, std::numeric_limits<double>::infinity()})
+            CHECK(with(island, span) == reference);
     CHECK_THROWS_AS(with(std::numeric_limits<double>::quiet_NaN(), 30.0), invalid_input);
     CHECK_THROWS_AS(with(200.0, std::numeric_limits<double>::quiet_NaN()), invalid_input);
 }
@@ -283,10 +289,12 @@ TEST_CASE("water/extract_waterbodies: the edge steps' options are checked up fro
     water_test::survey s(20, 20);
     auto o = flat_seed_water_method();
     o.trim.max_rise_m = o.trim.min_rise_m;
-    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"), invalid_input);
+    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"),
+                         invalid_input);
     o = flat_seed_water_method();
     o.shore.min_water_share = 0;
-    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"), invalid_input);
+    CHECK_THROWS_WITH_AS(extract_waterbodies(s.view(), 2.0, o), doctest::Contains("extract_waterbodies"),
+                         invalid_input);
     o.shore_cells = false;  // an unused step's options are not read
     CHECK_NOTHROW(extract_waterbodies(s.view(), 2.0, o));
     CHECK(!previous_water_method().trim_edges);

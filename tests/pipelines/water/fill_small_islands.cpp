@@ -17,17 +17,17 @@ TEST_CASE("water/fill_small_islands: small holes of one body fill, large ones an
     raster<std::int32_t> labels(12, 12, 0);
     for (std::ptrdiff_t r = 1; r < 11; ++r)
         for (std::ptrdiff_t c = 1; c < 11; ++c) labels(r, c) = 1;
-    labels(3, 3) = 0;                                       // 1-cell hole: filled
+    labels(3, 3) = 0;  // 1-cell hole: filled
     for (std::ptrdiff_t r = 5; r < 9; ++r)
         for (std::ptrdiff_t c = 5; c < 9; ++c) labels(r, c) = 0;  // 16-cell island: stays
     labels(2, 8) = 0;
-    labels(2, 9) = 2;                                       // hole touching another body: stays
+    labels(2, 9) = 2;  // hole touching another body: stays
     // 1 m cells: islands of 10 m² and more stay land.
     CHECK(fill_small_islands(labels, 1.0, {.island_min_area_m2 = 10.0}) == 1);
     CHECK(labels(3, 3) == 1);
     CHECK(labels(6, 6) == 0);
     CHECK(labels(2, 8) == 0);
-    CHECK(labels(0, 0) == 0);                               // land touching the border is never a hole
+    CHECK(labels(0, 0) == 0);  // land touching the border is never a hole
 }
 
 TEST_CASE("water/fill_small_islands: island_min_area_m2 is inclusive and in square metres")
@@ -44,7 +44,7 @@ TEST_CASE("water/fill_small_islands: island_min_area_m2 is inclusive and in squa
     CHECK(fill_small_islands(labels, 2.0, {.island_min_area_m2 = 16.5}) == 4);
     CHECK(labels == raster<std::int32_t>(6, 6, 3));
     labels = make();
-    CHECK(fill_small_islands(labels, 2.0, {.island_min_area_m2 = 0}) == 0);     // 0 keeps every hole
+    CHECK(fill_small_islands(labels, 2.0, {.island_min_area_m2 = 0}) == 0);  // 0 keeps every hole
     // Holes are 4-connected: a diagonal gap in the ring does not let the land out.
     raster<std::int32_t> ring(5, 5, 0);
     for (std::ptrdiff_t k = 1; k < 4; ++k) ring(1, k) = ring(3, k) = ring(k, 1) = ring(k, 3) = 5;
@@ -69,8 +69,8 @@ TEST_CASE("water/fill_small_islands: equals a whole-raster search for holes on r
         const std::size_t max_hole = 1 + rng() % 12;
         // Cells of 0.5 m: max_hole cells are max_hole / 4 m².
         auto fast = labels, slow = labels;
-        const auto n = fill_small_islands(fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole),
-                                                      .run = {.threads = 1 + trial % 3}});
+        const auto n = fill_small_islands(
+            fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole), .run = {.threads = 1 + trial % 3}});
         reference::fill_small_islands(slow, max_hole);
         CHECK(fast == slow);
         filled_scenes += !(fast == labels);

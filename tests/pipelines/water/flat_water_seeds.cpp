@@ -80,8 +80,8 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
         for (const bool west : {true, false}) {
             raster<std::int32_t> taken(all.rows(), all.cols(), 0);
             for (std::ptrdiff_t i = 0; i < taken.size(); ++i) {
-                const bool in_it = west ? i % taken.cols() < taken.cols() / 2
-                                        : parts.labels.data()[i] == parts.labels.data()[first];
+                const bool in_it =
+                    west ? i % taken.cols() < taken.cols() / 2 : parts.labels.data()[i] == parts.labels.data()[first];
                 taken.data()[i] = in_it ? 7 : 0;
             }
             const auto cleared = flat_water_seeds(in, {}, {}, source, taken, own);
@@ -93,7 +93,8 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
             CHECK(differ == 0);
             if (west) CHECK(kept > 0);  // the east half keeps its seeds
             const auto first_size = parts.sizes[static_cast<std::size_t>(parts.labels.data()[first])];
-            if (!west) CHECK(kept == std::count(all.begin(), all.end(), std::uint8_t{1}) - static_cast<long>(first_size));
+            if (!west)
+                CHECK(kept == std::count(all.begin(), all.end(), std::uint8_t{1}) - static_cast<long>(first_size));
         }
         CHECK_THROWS_AS(flat_water_seeds(in, {}, {}, source, raster<std::int32_t>(3, 3, 0), own), invalid_input);
     }
@@ -101,8 +102,8 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     const auto found = extract_waterbodies(pr, {.flat_seeds = true});
     REQUIRE(found.ran);
     const auto score = confusion_counts(found.water, lake.water_filled, lake.cell_m);
-    MESSAGE("turbid lake: sensitivity " << 100 * score.sensitivity() << " %, specificity "
-                                        << 100 * score.specificity() << " %");
+    MESSAGE("turbid lake: sensitivity " << 100 * score.sensitivity() << " %, specificity " << 100 * score.specificity()
+                                        << " %");
     CHECK(score.sensitivity() >= 0.9);
     CHECK(score.specificity() >= 0.995);
     // The asphalt lot (x 20-80 m, y 20-60 m) stays land.
@@ -115,7 +116,7 @@ TEST_CASE("flat_water_seeds: a turbid lake without dropout cells gets seeds, the
     }
     CHECK(lot_water == 0);
 
-    CHECK(extract_waterbodies(pr).bodies.empty());   // the defaults: dropout seeds only
+    CHECK(extract_waterbodies(pr).bodies.empty());  // the defaults: dropout seeds only
 }
 
 TEST_CASE("flat_water_seeds: flat dry ground gets none: a meadow, a dark lot on it, a raised flat roof")
@@ -201,7 +202,8 @@ TEST_CASE("flat_water_seeds: with a surface slope, a sloping sparse patch is no 
     const auto block = [&](float tilt_per_cell) {
         for (std::ptrdiff_t r = 10; r < 30; ++r) {
             for (std::ptrdiff_t c = 10; c < 30; ++c) {
-                s.min_z(r, c) = 9.5f + tilt_per_cell * static_cast<float>(c - 10) + 0.01f * static_cast<float>((r + c) % 3);
+                s.min_z(r, c) =
+                    9.5f + tilt_per_cell * static_cast<float>(c - 10) + 0.01f * static_cast<float>((r + c) % 3);
                 s.max_z(r, c) = s.min_z(r, c) + 0.03f;
                 s.count(r, c) = 3;
                 s.intensity(r, c) = 20.0f;
@@ -406,7 +408,8 @@ TEST_CASE("flat_water_seeds' slope test: drop_sloping against a plain median per
                 for (std::ptrdiff_t c = 0; c < cols;) {
                     const std::uint32_t kind = next() % 4;
                     const auto l = kind == 0 ? 0 : kind == 1 ? -1 : static_cast<std::int32_t>(1 + next() % count);
-                    for (std::ptrdiff_t e = std::min(cols, c + 1 + static_cast<std::ptrdiff_t>(next() % 90)); c < e; ++c) {
+                    for (std::ptrdiff_t e = std::min(cols, c + 1 + static_cast<std::ptrdiff_t>(next() % 90)); c < e;
+                         ++c) {
                         labels(r, c) = trial == 0 ? 0 : l;
                         if (labels(r, c) > 0) ++sizes[static_cast<std::size_t>(labels(r, c))];
                         const std::uint32_t x = next() % 20;
@@ -460,13 +463,16 @@ TEST_CASE("flat_water_seeds' level window (radii 1 and 2) against the window rea
                     const float* window[5];
                     for (std::ptrdiff_t d = -k; d <= k; ++d)
                         window[d + k] = r + d >= 0 && r + d < rows ? z0.view().row(r + d) : nan_row.data();
-                    (k == 1 ? detail::level_window_row<1> : detail::level_window_row<2>)(
-                        window, low.data(), high.data(), z0.view().row(r), z1.view().row(r), drop.view().row(r),
-                        inside.view().row(r), ex.view().row(r), out.data(), cols, max_rough, tolerance);
+                    (k == 1 ? detail::level_window_row<1>
+                            : detail::level_window_row<2>)(window, low.data(), high.data(), z0.view().row(r),
+                                                           z1.view().row(r), drop.view().row(r), inside.view().row(r),
+                                                           ex.view().row(r), out.data(), cols, max_rough, tolerance);
                     for (std::ptrdiff_t c = 0; c < cols; ++c) {
                         float lo = inf, hi = -inf;
-                        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k); ++rr)
-                            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k); cc <= std::min(cols - 1, c + k); ++cc)
+                        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - k); rr <= std::min(rows - 1, r + k);
+                             ++rr)
+                            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - k);
+                                 cc <= std::min(cols - 1, c + k); ++cc)
                                 if (std::isfinite(z0(rr, cc))) {
                                     lo = std::min(lo, z0(rr, cc));
                                     hi = std::max(hi, z0(rr, cc));

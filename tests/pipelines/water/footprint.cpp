@@ -25,7 +25,8 @@ synth::point_set clip_to_circle(const synth::scene& sc, double radius_m)
     for (std::size_t i = 0; i < p.size(); ++i) {
         if (std::hypot(p.x[i] - cx, p.y[i] - cy) > radius_m) continue;
         out.pulse_time_s = p.gps_time[i];
-        out.push(p.x[i], p.y[i], p.z[i], p.intensity[i], p.return_number[i], p.number_of_returns[i], p.classification[i]);
+        out.push(p.x[i], p.y[i], p.z[i], p.intensity[i], p.return_number[i], p.number_of_returns[i],
+                 p.classification[i]);
     }
     return out;
 }

@@ -73,7 +73,9 @@ TEST_CASE("water/grow_waterbodies: seeds grow in order, a seed inside a body is 
         }
 }
 
-TEST_CASE("water/grow_waterbodies: a seed partly inside a body grows from its free cells when they are at least min_free_seed_share of it")
+TEST_CASE(
+    "water/grow_waterbodies: a seed partly inside a body grows from its free cells when they are at least "
+    "min_free_seed_share of it")
 {
     // Seed 2 now also covers 3 cells of lake B: 3 of its 5 cells lie outside body 1 (60 %).
     const auto straddling = [](two_lakes& s) {
@@ -86,7 +88,7 @@ TEST_CASE("water/grow_waterbodies: a seed partly inside a body grows from its fr
     REQUIRE(g.bodies.size() == 2);
     CHECK(g.bodies[1].seed == 2);  // lake B grows from seed 2's free cells; seed 3 then lies in it
     CHECK(g.labels(0, 11) == 2);
-    CHECK(g.labels(3, 3) == 1);    // its cells in lake A stay lake A's
+    CHECK(g.labels(3, 3) == 1);  // its cells in lake A stay lake A's
     two_lakes t;
     straddling(t);
     const auto h = grow_waterbodies(t.field, t.seeds, t.min_z, t.max_z, {}, {}, {.min_free_seed_share = 1.0});
@@ -139,9 +141,10 @@ TEST_CASE("water/grow_waterbodies: bad arguments are refused")
 {
     two_lakes s;
     const components small{raster<std::int32_t>(4, 12, 0), {48}};
-    CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, small, s.min_z, s.max_z),
-                         "grow_waterbodies: field.eligible and seeds.labels must have the same shape (got 5x12 and 4x12)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(
+        grow_waterbodies(s.field, small, s.min_z, s.max_z),
+        "grow_waterbodies: field.eligible and seeds.labels must have the same shape (got 5x12 and 4x12)",
+        invalid_input);
     const raster<float> short_max_z(4, 12, 1.0f);
     CHECK_THROWS_WITH_AS(grow_waterbodies(s.field, s.seeds, s.min_z, short_max_z),
                          "grow_waterbodies: field.eligible and max_z must have the same shape (got 5x12 and 4x12)",
@@ -157,7 +160,8 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
     std::mt19937 rng(17);
     for (int trial = 0; trial < 30; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
         std::uniform_real_distribution<float> unit(0, 1);
         water_field field;
         field.angle_deg = raster<float>(rows, cols);
@@ -197,8 +201,9 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
                 if (seeds.labels.data()[i] == s) cells.push_back(i);
             for (const auto i : cells)
                 if (labels.data()[i] <= 0) free.push_back(i);
-            if (free.empty() || (free.size() < cells.size() &&
-                                 static_cast<double>(free.size()) < opt.min_free_seed_share * static_cast<double>(cells.size())))
+            if (free.empty() ||
+                (free.size() < cells.size() &&
+                 static_cast<double>(free.size()) < opt.min_free_seed_share * static_cast<double>(cells.size())))
                 continue;
             auto region = grow_waterbody(reference_field, free, grow, workspace);
             if (region.cells.empty()) continue;

@@ -57,7 +57,8 @@ TEST_CASE("water/grow_waterbody: one bucket-queue flood equals a BFS per thresho
     int rejections = 0, full_runs = 0;
     for (int trial = 0; trial < 60; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 60), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 70);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 60),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 70);
         const auto f = random_field(rng, rows, cols, 2 + static_cast<int>(rng() % 200));
         grow_waterbody_options o;
         o.theta_start_deg = static_cast<double>(rng() % 4);

@@ -24,11 +24,13 @@ intensity_bins_result reference_bins(const raster<float>& v, const raster<std::u
             distinct.push_back(std::nearbyint(static_cast<double>(v.data()[i]) * (1.0 / resolution)));
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    intensity_bins_result out{raster<std::int32_t>(v.rows(), v.cols(), -1), std::max(1, static_cast<int>(distinct.size()))};
+    intensity_bins_result out{raster<std::int32_t>(v.rows(), v.cols(), -1),
+                              std::max(1, static_cast<int>(distinct.size()))};
     for (std::ptrdiff_t i = 0; i < v.size(); ++i) {
         if (dropout.data()[i] || !std::isfinite(v.data()[i])) continue;
         const double q = std::nearbyint(static_cast<double>(v.data()[i]) * (1.0 / resolution));
-        out.bin.data()[i] = static_cast<std::int32_t>(std::lower_bound(distinct.begin(), distinct.end(), q) - distinct.begin());
+        out.bin.data()[i] =
+            static_cast<std::int32_t>(std::lower_bound(distinct.begin(), distinct.end(), q) - distinct.begin());
     }
     return out;
 }
@@ -75,8 +77,16 @@ TEST_CASE("water/intensity_bins: small, negative and very wide ranges all equal 
         // Five regimes: 16-bit LAS values, values with negatives, a range wider than 2^24, values on both
         // sides of the +-1e9 limit of the integer pass (a narrow range there), values far beyond it.
         const int regime = trial % 5;
-        const double lo = regime == 0 ? 0.0 : regime == 1 ? -500.0 : regime == 2 ? -3.0e7 : regime == 3 ? 0.99999e9 : -1.0e15;
-        const double hi = regime == 0 ? 65535.0 : regime == 1 ? 500.0 : regime == 2 ? 3.0e7 : regime == 3 ? 1.00001e9 : 1.0e15;
+        const double lo = regime == 0   ? 0.0
+                          : regime == 1 ? -500.0
+                          : regime == 2 ? -3.0e7
+                          : regime == 3 ? 0.99999e9
+                                        : -1.0e15;
+        const double hi = regime == 0   ? 65535.0
+                          : regime == 1 ? 500.0
+                          : regime == 2 ? 3.0e7
+                          : regime == 3 ? 1.00001e9
+                                        : 1.0e15;
         std::uniform_real_distribution<double> value(lo, hi);
         raster<float> v(rows, cols);
         raster<std::uint8_t> d(rows, cols);

@@ -57,8 +57,11 @@ TEST_CASE("water/join_across_bridges: one sweep equals walking every land cell's
         const double cell = trial % 2 ? 1.0 : 2.5;
         auto fast = labels, slow = labels;
         join_across_bridges(fast, z, level, cell,
-                            {.max_span_m = span * cell, .level_tolerance_m = 0.5, .min_clearance_m = 2.0,
-                             .water_tolerance_m = 0.15, .join_touching = false});  // the reference: bridges only
+                            {.max_span_m = span * cell,
+                             .level_tolerance_m = 0.5,
+                             .min_clearance_m = 2.0,
+                             .water_tolerance_m = 0.15,
+                             .join_touching = false});  // the reference: bridges only
         reference::join_across_bridges(slow, z, level, span, 0.5, 2.0, 0.15);
         CHECK(fast == slow);
         merged_scenes += !(fast == labels);
@@ -86,7 +89,8 @@ TEST_CASE("water/join_across_bridges: a deck joins the two halves of a river, a 
     CHECK(labels(6, 6) == 0);
 }
 
-TEST_CASE("water/join_across_bridges: bodies that touch at one level merge; at levels apart, or with join_touching off, not")
+TEST_CASE(
+    "water/join_across_bridges: bodies that touch at one level merge; at levels apart, or with join_touching off, not")
 {
     // Two stretches of one river grown from two seeds (labels 1 and 2) meet at column 5 (8-adjacent only
     // diagonally in row 1); a pond (label 3) touches stretch 2 at row 4 but lies 3 m higher.
@@ -99,9 +103,9 @@ TEST_CASE("water/join_across_bridges: bodies that touch at one level merge; at l
     const std::vector<double> level{0.0, 10.0, 9.9, 13.0};
     auto joined = labels;
     join_across_bridges(joined, z, level, 1.0, {.max_span_m = 0.5});  // span below a cell: no bridge
-    CHECK(joined(2, 7) == 1);   // stretch 2 merged into 1
+    CHECK(joined(2, 7) == 1);                                         // stretch 2 merged into 1
     CHECK(joined(1, 6) == 1);
-    CHECK(joined(4, 7) == 3);   // the pond stays apart: 3 m above the river (tolerance 1 m)
+    CHECK(joined(4, 7) == 3);  // the pond stays apart: 3 m above the river (tolerance 1 m)
     CHECK(joined(0, 0) == 0);
     auto apart = labels;
     join_across_bridges(apart, z, level, 1.0, {.max_span_m = 0.5, .join_touching = false});
@@ -192,12 +196,12 @@ TEST_CASE("water/join_across_bridges: bad arguments are refused")
     CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 1.0),
                          "join_across_bridges: labels must be < level.size() (got 2)", invalid_input);
     labels(0, 0) = -1;
-    CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 1.0), "join_across_bridges: labels must be >= 0 (got -1)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 1.0),
+                         "join_across_bridges: labels must be >= 0 (got -1)", invalid_input);
     CHECK_THROWS_WITH_AS(water_levels(labels, z), "water_levels: labels must be >= 0 (got -1)", invalid_input);
     labels(0, 0) = 1;
-    CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 0.0), "join_across_bridges: cell_m must be finite and > 0 (got 0)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 0.0),
+                         "join_across_bridges: cell_m must be finite and > 0 (got 0)", invalid_input);
     CHECK_THROWS_WITH_AS(join_across_bridges(labels, z, level, 1.0, {.max_span_m = -1}),
                          "join_across_bridges: max_span_m must be >= 0 (got -1)", invalid_input);
     CHECK_THROWS_AS(join_across_bridges(labels, raster<float>(2, 3), level, 1.0), invalid_input);

@@ -26,7 +26,8 @@ TEST_CASE("water/join_adjacent_dropouts: seed cells and the eligible dropouts am
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     bool near = false;
                     for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - 1); rr <= std::min(rows - 1, r + 1); ++rr)
-                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1); ++cc)
+                        for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - 1); cc <= std::min(cols - 1, c + 1);
+                             ++cc)
                             near = near || seed(rr, cc) != 0;
                     const bool on = seed(r, c) != 0 || (near && dropout(r, c) != 0 && eligible(r, c) != 0);
                     REQUIRE(got(r, c) == (on ? 1 : 0));

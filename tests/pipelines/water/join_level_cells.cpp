@@ -19,7 +19,8 @@ struct strip {
     raster<float> min_z, max_z;
     raster<std::uint8_t> eligible;
     explicit strip(std::initializer_list<float> z)
-        : min_z(1, static_cast<std::ptrdiff_t>(z.size())), max_z(1, static_cast<std::ptrdiff_t>(z.size())),
+        : min_z(1, static_cast<std::ptrdiff_t>(z.size())),
+          max_z(1, static_cast<std::ptrdiff_t>(z.size())),
           eligible(1, static_cast<std::ptrdiff_t>(z.size()), 1)
     {
         std::ptrdiff_t c = 0;
@@ -37,13 +38,17 @@ constexpr join_level_cells_options eighth{.tolerance_m = 0.125, .max_rise_m = 0.
 
 /// The refinement by definition: a FIFO walk started from EVERY region cell with a return (the step under
 /// test starts only from edge cells), each carrying the level of the cell it started from.
-cells reference_join(cells region, const raster<float>& lo, const raster<float>& hi, const raster<std::uint8_t>& eligible,
-                     const join_level_cells_options& o)
+cells reference_join(cells region, const raster<float>& lo, const raster<float>& hi,
+                     const raster<std::uint8_t>& eligible, const join_level_cells_options& o)
 {
     if (o.tolerance_m <= 0 || o.depth_cells <= 0) return region;
     const std::ptrdiff_t rows = lo.rows(), cols = lo.cols();
     std::vector<std::uint8_t> in(static_cast<std::size_t>(rows * cols), 0);
-    struct entry { std::ptrdiff_t cell; double level; int depth; };
+    struct entry {
+        std::ptrdiff_t cell;
+        double level;
+        int depth;
+    };
     std::deque<entry> queue;
     for (const auto i : region) in[static_cast<std::size_t>(i)] = 1;
     for (const auto i : region)
@@ -148,16 +153,15 @@ TEST_CASE("water/join_level_cells: starting from edge cells equals starting from
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
                 const double near = std::hypot(static_cast<double>(r - r0), static_cast<double>(c - c0));
-                const double far = std::hypot(static_cast<double>(r - (rows - 1 - r0)), static_cast<double>(c - (cols - 1 - c0)));
-                const bool in = shape == 0 ? near <= radius
-                              : shape == 1 ? u(rng) < 0.08f
-                                           : near <= 1.0 || far <= 1.0;
+                const double far =
+                    std::hypot(static_cast<double>(r - (rows - 1 - r0)), static_cast<double>(c - (cols - 1 - c0)));
+                const bool in = shape == 0 ? near <= radius : shape == 1 ? u(rng) < 0.08f : near <= 1.0 || far <= 1.0;
                 if (in) region.push_back(r * cols + c);
             }
         }
         std::shuffle(region.begin(), region.end(), rng);
-        const join_level_cells_options o{.tolerance_m = 0.05 + 0.2 * u(rng), .max_rise_m = 0.5 * u(rng),
-                                         .depth_cells = static_cast<int>(rng() % 4)};
+        const join_level_cells_options o{
+            .tolerance_m = 0.05 + 0.2 * u(rng), .max_rise_m = 0.5 * u(rng), .depth_cells = static_cast<int>(rng() % 4)};
         cells got = region;
         join_level_cells(got, lo, hi, eligible, o);
         CHECK(got == reference_join(region, lo, hi, eligible, o));

@@ -27,7 +27,7 @@ TEST_CASE("water/measure_waterbodies: renumbers by decreasing area and describes
     s.intensity(0, 5) = 30.0f;  // body 3 intensities 50, 50, 30, 50 over its cells with returns
     s.drop(0, 0);
     s.drop(0, 1);
-    s.drop(1, 0);               // body 1: dropouts only
+    s.drop(1, 0);  // body 1: dropouts only
     std::vector<waterbody> bodies(4);
     for (std::int32_t k = 0; k < 4; ++k) {
         bodies[static_cast<std::size_t>(k)].seed = 10 + k;

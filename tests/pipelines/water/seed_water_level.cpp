@@ -62,12 +62,14 @@ TEST_CASE("water/seed_water_level: equals the quantile of the ring's sorted dist
         std::vector<float> values;
         for (const auto i : cells) values.push_back(z.data()[i]);
         std::sort(values.begin(), values.end());
-        return static_cast<double>(values[static_cast<std::size_t>(std::floor(q * static_cast<double>(values.size() - 1)))]);
+        return static_cast<double>(
+            values[static_cast<std::size_t>(std::floor(q * static_cast<double>(values.size() - 1)))]);
     };
     std::mt19937 rng(5);
     for (int trial = 0; trial < 200; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 90), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 90);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 90),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 90);
         raster<float> z(rows, cols);
         std::vector<std::ptrdiff_t> seed;
         const float p_seed = static_cast<float>(rng() % 100) / 100.0f;
@@ -79,9 +81,12 @@ TEST_CASE("water/seed_water_level: equals the quantile of the ring's sorted dist
         }
         const int ring = 1 + static_cast<int>(rng() % 3);
         const double q = static_cast<double>(rng() % 11) / 10.0;
-        const double expected = reference(seed, z, ring, q), got = seed_water_level(seed, z, {.ring_cells = ring, .quantile = q});
-        if (std::isnan(expected)) CHECK(std::isnan(got));
-        else CHECK(got == expected);
+        const double expected = reference(seed, z, ring, q),
+                     got = seed_water_level(seed, z, {.ring_cells = ring, .quantile = q});
+        if (std::isnan(expected))
+            CHECK(std::isnan(got));
+        else
+            CHECK(got == expected);
     }
     CHECK(std::isnan(seed_water_level({}, raster<float>(3, 3, 1.0f))));  // no seed cell: no ring
 }

@@ -44,8 +44,10 @@ raster<std::int32_t> reference_shore(const raster<std::int32_t>& labels, const r
             for (std::ptrdiff_t rr = r - o.window_cells; rr <= r + o.window_cells; ++rr) {
                 for (std::ptrdiff_t cc = c - o.window_cells; cc <= c + o.window_cells; ++cc) {
                     if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
-                    if (labels(rr, cc) > 0) ws += count(rr, cc), wn += 1;
-                    else if (!next_to_body(rr, cc) && count(rr, cc) > 0 && !excluded(rr, cc)) ls += count(rr, cc), ln += 1;
+                    if (labels(rr, cc) > 0)
+                        ws += count(rr, cc), wn += 1;
+                    else if (!next_to_body(rr, cc) && count(rr, cc) > 0 && !excluded(rr, cc))
+                        ls += count(rr, cc), ln += 1;
                 }
             }
             if (wn == 0 || ln == 0) continue;
@@ -127,7 +129,8 @@ TEST_CASE("water/join_shore_cells: matches the per-cell reference on random rast
     const unsigned seed = 20261203;
     std::mt19937 rng(seed);
     for (int trial = 0; trial < 40; ++trial) {
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
         INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols);
         raster<std::int32_t> labels(rows, cols, 0);
         raster<std::uint32_t> count(rows, cols);
@@ -136,15 +139,17 @@ TEST_CASE("water/join_shore_cells: matches the per-cell reference on random rast
         const double share = (trial % 4) * 0.2;
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const bool wet = std::sin(0.4 * static_cast<double>(r) + trial) + std::cos(0.3 * static_cast<double>(c)) >
-                                 1.0 - 2 * share;
+                const bool wet =
+                    std::sin(0.4 * static_cast<double>(r) + trial) + std::cos(0.3 * static_cast<double>(c)) >
+                    1.0 - 2 * share;
                 labels(r, c) = wet ? 1 + static_cast<std::int32_t>(c * 3 / std::max<std::ptrdiff_t>(cols, 1)) : 0;
                 count(r, c) = wet ? static_cast<std::uint32_t>(rng() % 4) : static_cast<std::uint32_t>(rng() % 14);
                 excluded(r, c) = rng() % 7 == 0;
                 footprint(r, c) = rng() % 11 != 0;
             }
         }
-        const join_shore_cells_options o{.window_cells = 1 + trial % 3, .min_water_share = 0.3 + 0.1 * (trial % 5),
+        const join_shore_cells_options o{.window_cells = 1 + trial % 3,
+                                         .min_water_share = 0.3 + 0.1 * (trial % 5),
                                          .min_body_neighbours = 1 + trial % 4};
         const auto want = reference_shore(labels, count, excluded, footprint, o);
         auto got = labels;
@@ -211,11 +216,11 @@ TEST_CASE("water/trim_raised_edge_cells: a beach the level let in becomes land; 
     raster<float> z(9, 10, 11.0f);
     for (std::ptrdiff_t r = 0; r < 9; ++r)
         for (std::ptrdiff_t c = 0; c < 6; ++c) labels(r, c) = 1, z(r, c) = 10.0f + 0.01f * static_cast<float>(r % 3);
-    z(2, 5) = 10.12f;  // beach 0.11 above the local median 10.01: land
-    z(4, 5) = 10.04f;  // within the noise: water
-    z(6, 5) = 12.5f;   // a deck: left as it is
+    z(2, 5) = 10.12f;                                   // beach 0.11 above the local median 10.01: land
+    z(4, 5) = 10.04f;                                   // within the noise: water
+    z(6, 5) = 12.5f;                                    // a deck: left as it is
     z(7, 5) = std::numeric_limits<float>::quiet_NaN();  // a dropout: left
-    z(3, 3) = 10.3f;   // raised, but interior (no land neighbour): left
+    z(3, 3) = 10.3f;                                    // raised, but interior (no land neighbour): left
     CHECK(trim_raised_edge_cells(labels, z) == 1);
     CHECK(labels(2, 5) == 0);
     CHECK(labels(4, 5) == 1);
@@ -239,24 +244,28 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> noise(-0.1f, 0.4f);
     for (int trial = 0; trial < 40; ++trial) {
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 30), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 30);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 30),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 30);
         INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols);
         raster<std::int32_t> labels(rows, cols, 0);
         raster<float> z(rows, cols);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                labels(r, c) = std::sin(0.5 * static_cast<double>(r) + trial) + std::cos(0.35 * static_cast<double>(c)) > 0.2
-                                   ? 1 + static_cast<std::int32_t>(r % 2)
-                                   : 0;
+                labels(r, c) =
+                    std::sin(0.5 * static_cast<double>(r) + trial) + std::cos(0.35 * static_cast<double>(c)) > 0.2
+                        ? 1 + static_cast<std::int32_t>(r % 2)
+                        : 0;
                 const auto pick = rng() % 40;
-                z(r, c) = pick < 4   ? std::numeric_limits<float>::quiet_NaN()
+                z(r, c) = pick < 4    ? std::numeric_limits<float>::quiet_NaN()
                           : pick == 4 ? std::numeric_limits<float>::infinity()
                           : pick == 5 ? -std::numeric_limits<float>::infinity()
                                       : 5.0f + noise(rng);
             }
         }
-        const trim_raised_edge_cells_options o{.window_cells = 1 + trial % 3, .min_rise_m = 0.02 * (trial % 4),
-                                               .max_rise_m = 0.3, .min_level_cells = 1 + static_cast<std::size_t>(trial % 3)};
+        const trim_raised_edge_cells_options o{.window_cells = 1 + trial % 3,
+                                               .min_rise_m = 0.02 * (trial % 4),
+                                               .max_rise_m = 0.3,
+                                               .min_level_cells = 1 + static_cast<std::size_t>(trial % 3)};
         const auto want = reference_trim(labels, z, o);
         auto got = labels;
         const auto n = trim_raised_edge_cells(got, z, o);
@@ -274,14 +283,17 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
                     invalid_input);
 }
 
-TEST_CASE("water/shore steps: windows of more than 64 cells or past the raster, repeated heights and ±0, match the references")
+TEST_CASE(
+    "water/shore steps: windows of more than 64 cells or past the raster, repeated heights and ±0, match the "
+    "references")
 {
     // The class rows are kept for the rows in reach (all of them when the window is taller than the raster);
     // the level of up to 64 heights is found by counts, of more by nth_element; -0 and +0 are one height.
     const unsigned seed = 20261205;
     std::mt19937 rng(seed);
     for (int trial = 0; trial < 30; ++trial) {
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 25), cols = 1 + static_cast<std::ptrdiff_t>(rng() % 25);
+        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 25),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 25);
         const int window = std::vector<int>{4, 5, 7, 12, 40}[static_cast<std::size_t>(trial % 5)];
         INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols << ", window " << window);
         raster<std::int32_t> labels(rows, cols, 0);
@@ -290,7 +302,8 @@ TEST_CASE("water/shore steps: windows of more than 64 cells or past the raster, 
         raster<std::uint8_t> excluded(rows, cols), footprint(rows, cols, 1);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const bool wet = std::sin(0.3 * static_cast<double>(r) + trial) + std::cos(0.25 * static_cast<double>(c)) > 0;
+                const bool wet =
+                    std::sin(0.3 * static_cast<double>(r) + trial) + std::cos(0.25 * static_cast<double>(c)) > 0;
                 labels(r, c) = wet ? 1 + static_cast<std::int32_t>(rng() % 8 == 0) : 0;
                 const auto step = static_cast<int>(rng() % 5) - 1;  // heights -0.05 .. 0.15 in steps of 0.05, ±0
                 z(r, c) = step == 0 ? (rng() % 2 ? 0.0f : -0.0f) : 0.05f * static_cast<float>(step);
@@ -298,13 +311,13 @@ TEST_CASE("water/shore steps: windows of more than 64 cells or past the raster, 
                 excluded(r, c) = rng() % 9 == 0;
             }
         }
-        const trim_raised_edge_cells_options t{.window_cells = window, .min_rise_m = trial % 2 ? 0.0 : 0.04,
-                                               .max_rise_m = 0.3, .min_level_cells = 1};
+        const trim_raised_edge_cells_options t{
+            .window_cells = window, .min_rise_m = trial % 2 ? 0.0 : 0.04, .max_rise_m = 0.3, .min_level_cells = 1};
         auto got = labels;
         trim_raised_edge_cells(got, z, t);
         CHECK(got == reference_trim(labels, z, t));
-        const join_shore_cells_options j{.window_cells = window, .min_contrast = 0.2, .min_water_share = 0.4,
-                                         .min_body_neighbours = 1 + trial % 3};
+        const join_shore_cells_options j{
+            .window_cells = window, .min_contrast = 0.2, .min_water_share = 0.4, .min_body_neighbours = 1 + trial % 3};
         got = labels;
         join_shore_cells(got, count, excluded, footprint, j);
         CHECK(got == reference_shore(labels, count, excluded, footprint, j));

@@ -50,8 +50,8 @@ TEST_CASE("water/water_angles: the dissertation's reading gives dropouts an angl
     CHECK(literal(0, 5) == 90.0f);
     CHECK(literal(0, 4) == 0.0f);
     // With IDW-filled heights the dropout has a height (10 m, like its neighbours) and an angle of 0.
-    const auto filled = water_angles(s.view(), 1.0, {.radius_cells = 1, .input = angular_input::idw_filled,
-                                                     .dropouts_join_any_threshold = false});
+    const auto filled = water_angles(
+        s.view(), 1.0, {.radius_cells = 1, .input = angular_input::idw_filled, .dropouts_join_any_threshold = false});
     CHECK(filled(0, 5) == 0.0f);
 }
 
@@ -72,9 +72,11 @@ TEST_CASE("water/water_angles: equals angular_filter (of the IDW fill) with the 
         const int radius = 1 + static_cast<int>(rng() % 3);
         const auto input = trial % 2 ? angular_input::idw_filled : angular_input::returns_only;
         const bool join = trial % 4 < 2;
-        const auto got = water_angles(s.view(), cell, {.radius_cells = radius, .input = input,
-                                                       .dropouts_join_any_threshold = join,
-                                                       .run = {.threads = 1 + trial % 2}});
+        const auto got = water_angles(s.view(), cell,
+                                      {.radius_cells = radius,
+                                       .input = input,
+                                       .dropouts_join_any_threshold = join,
+                                       .run = {.threads = 1 + trial % 2}});
         auto expected = input == angular_input::idw_filled
                             ? angular_filter(idw_fill(s.min_z, cell).filled, cell, radius)
                             : angular_filter(s.min_z, cell, radius);
@@ -94,15 +96,15 @@ TEST_CASE("water/water_angles: equals angular_filter (of the IDW fill) with the 
 TEST_CASE("water/water_angles: progress is monotone and ends at 1; returning false cancels")
 {
     survey s(6, 6);
-    water_test::check_progress_and_cancel([&](const execution& run) { return water_angles(s.view(), 1.0, {.run = run}); },
-                                          "water_angles");
+    water_test::check_progress_and_cancel(
+        [&](const execution& run) { return water_angles(s.view(), 1.0, {.run = run}); }, "water_angles");
 }
 
 TEST_CASE("water/water_angles: options out of range are refused")
 {
     survey s(2, 2);
-    CHECK_THROWS_WITH_AS(water_angles(s.view(), 1.0, {.radius_cells = 0}), "water_angles: radius_cells must be >= 1 (got 0)",
-                         invalid_input);
+    CHECK_THROWS_WITH_AS(water_angles(s.view(), 1.0, {.radius_cells = 0}),
+                         "water_angles: radius_cells must be >= 1 (got 0)", invalid_input);
     CHECK_THROWS_WITH_AS(water_angles(s.view(), -1.0), "water_angles: cell_m must be finite and > 0 (got -1)",
                          invalid_input);
 }

@@ -26,8 +26,10 @@ long false_water_beyond(const raster<std::uint8_t>& found, const raster<std::uin
         for (std::ptrdiff_t c = 0; c < found.cols(); ++c) {
             if (!found.view()(r, c) || truth.view()(r, c)) continue;
             bool near = false;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - reach); rr <= std::min(found.rows() - 1, r + reach); ++rr)
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - reach); cc <= std::min(found.cols() - 1, c + reach); ++cc)
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - reach);
+                 rr <= std::min(found.rows() - 1, r + reach); ++rr)
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - reach);
+                     cc <= std::min(found.cols() - 1, c + reach); ++cc)
                     near = near || truth.view()(rr, cc);
             n += !near;
         }
@@ -78,7 +80,9 @@ TEST_CASE("water/family: bright specular stretches of a river near nadir are wat
     CHECK(score.specificity() >= 0.99);
 }
 
-TEST_CASE("water/family: a fixed subset of the family (seeds 501-503 per kind), mapped by flat_seed_water_method() to the thresholds measured")
+TEST_CASE(
+    "water/family: a fixed subset of the family (seeds 501-503 per kind), mapped by flat_seed_water_method() to the "
+    "thresholds measured")
 {
     for (const auto kind : {synth::water_family_kind::lake, synth::water_family_kind::river}) {
         double acc = 0, sens = 0, spec = 0;
@@ -90,8 +94,9 @@ TEST_CASE("water/family: a fixed subset of the family (seeds 501-503 per kind), 
             acc += c.accuracy() / 3, sens += c.sensitivity() / 3, spec += c.specificity() / 3;
         }
         const bool lake = kind == synth::water_family_kind::lake;
-        MESSAGE((lake ? std::string("lakes") : std::string("rivers")) << ": mean accuracy " << 100 * acc << " %, sensitivity " << 100 * sens
-                                            << " %, specificity " << 100 * spec << " %");
+        MESSAGE((lake ? std::string("lakes") : std::string("rivers"))
+                << ": mean accuracy " << 100 * acc << " %, sensitivity " << 100 * sens << " %, specificity "
+                << 100 * spec << " %");
         // Measured with flat_seed_water_method() (what `lidarfx water` runs): lakes 99.72 / 98.76 / 99.90 %,
         // rivers 99.42 / 97.16 / 99.58 % (the defaults with flat seeds alone, this test's earlier configuration:
         // lakes 99.51 / 97.00 / 99.99 %, rivers 98.46 / 97.33 / 98.55 %).

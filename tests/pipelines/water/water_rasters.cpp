@@ -91,8 +91,8 @@ TEST_CASE("water/water_rasters: the steps that read the survey give the same res
             big.count(r + r0, c + c0) = small.count(r, c);
         }
     const auto win = [&](const auto& ras) { return ras.view().window(r0, c0, rows, cols); };
-    const water_rasters strided{win(big.min_z), win(big.max_z), win(big.intensity), win(big.dropout),
-                                win(big.multiple), win(big.count)};
+    const water_rasters strided{win(big.min_z),   win(big.max_z),    win(big.intensity),
+                                win(big.dropout), win(big.multiple), win(big.count)};
     const water_rasters plain = small.view();
     CHECK(water_vegetation(strided) == water_vegetation(plain));
     for (const auto input : {angular_input::returns_only, angular_input::idw_filled}) {
@@ -128,16 +128,31 @@ TEST_CASE("water/median: the element at position n / 2 of the sorted values, bel
             std::uniform_int_distribution<int> few(-3, 3);
             for (std::size_t i = 0; i < n; ++i) {
                 switch (kind) {
-                case 0: v[i] = level(rng); break;                                  // heights of one level
-                case 1: v[i] = static_cast<float>(few(rng)) * 0.5f; break;         // ties, negatives, zeros
-                case 2: v[i] = i % 2 ? 0.0f : -0.0f; break;                        // signed zeros only
-                case 4: v[i] = 3.25f; break;                                       // one value (no spread)
-                case 5: v[i] = i % 3 == 0 ? std::numeric_limits<float>::max()     // the widest finite range,
-                             : i % 3 == 1 ? -std::numeric_limits<float>::max()     // and subnormals
-                                          : std::numeric_limits<float>::denorm_min() * static_cast<float>(i % 5); break;
-                case 6: v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -20); break;  // 2^17 keys (2 ulps a step)
-                case 7: v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -21); break;  // 2^16 + 1 keys: shift 1
-                default: v[i] = i % 97 == 0 ? std::numeric_limits<float>::infinity() : -level(rng);  // inf, < 0
+                    case 0:
+                        v[i] = level(rng);
+                        break;  // heights of one level
+                    case 1:
+                        v[i] = static_cast<float>(few(rng)) * 0.5f;
+                        break;  // ties, negatives, zeros
+                    case 2:
+                        v[i] = i % 2 ? 0.0f : -0.0f;
+                        break;  // signed zeros only
+                    case 4:
+                        v[i] = 3.25f;
+                        break;  // one value (no spread)
+                    case 5:
+                        v[i] = i % 3 == 0   ? std::numeric_limits<float>::max()   // the widest finite range,
+                               : i % 3 == 1 ? -std::numeric_limits<float>::max()  // and subnormals
+                                            : std::numeric_limits<float>::denorm_min() * static_cast<float>(i % 5);
+                        break;
+                    case 6:
+                        v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -20);
+                        break;  // 2^17 keys (2 ulps a step)
+                    case 7:
+                        v[i] = 7.0f + std::ldexp(static_cast<float>(i % 65537), -21);
+                        break;  // 2^16 + 1 keys: shift 1
+                    default:
+                        v[i] = i % 97 == 0 ? std::numeric_limits<float>::infinity() : -level(rng);  // inf, < 0
                 }
             }
             auto sorted = v;

@@ -88,7 +88,8 @@ TEST_CASE("water/seed_cells: blocks of empty cells are skipped; sizes that do no
         CAPTURE(trial);
         const std::ptrdiff_t rows = 1 + rng() % 9, cols = 1 + rng() % 300;  // rows longer than a 64-cell block
         const std::int32_t count = 1 + static_cast<std::int32_t>(rng() % 5);
-        components s{raster<std::int32_t>(rows, cols, 0), std::vector<std::size_t>(static_cast<std::size_t>(count) + 1, 0)};
+        components s{raster<std::int32_t>(rows, cols, 0),
+                     std::vector<std::size_t>(static_cast<std::size_t>(count) + 1, 0)};
         std::vector<std::vector<std::ptrdiff_t>> expected(static_cast<std::size_t>(count) + 1);
         for (std::ptrdiff_t i = 0; i < s.labels.size(); ++i) {
             if (rng() % 23 != 0) continue;  // sparse, so that most blocks are empty
@@ -97,8 +98,8 @@ TEST_CASE("water/seed_cells: blocks of empty cells are skipped; sizes that do no
             expected[static_cast<std::size_t>(l)].push_back(i);
         }
         for (std::size_t l = 1; l < expected.size(); ++l) s.sizes[l] = expected[l].size();
-        if (trial % 3 == 1) s.sizes[1] += 2;                            // too large
-        if (trial % 3 == 2 && s.sizes.back() > 0) --s.sizes.back();     // too small
+        if (trial % 3 == 1) s.sizes[1] += 2;                         // too large
+        if (trial % 3 == 2 && s.sizes.back() > 0) --s.sizes.back();  // too small
         CHECK(seed_cells(s) == expected);
     }
     components bad{water_test::grid_of<std::int32_t>({{0, 3}}), {0, 1}};  // label 3 of 1 seed
@@ -124,8 +125,8 @@ TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definitio
         }
         const int opening = 1 + 2 * static_cast<int>(rng() % 3);
         const std::size_t min_cells = 1 + rng() % 30;
-        const auto got = water_seeds(d, {.opening_size_cells = opening, .min_cells = min_cells,
-                                         .run = {.threads = 1 + trial % 3}});
+        const auto got =
+            water_seeds(d, {.opening_size_cells = opening, .min_cells = min_cells, .run = {.threads = 1 + trial % 3}});
         const auto expected = reference_seeds(d, opening, min_cells);
         CHECK(got.labels == expected.labels);
         CHECK(got.sizes == expected.sizes);

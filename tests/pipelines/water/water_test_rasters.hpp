@@ -40,8 +40,12 @@ struct survey {
     lidarfx::raster<std::uint32_t> count;
 
     survey(std::ptrdiff_t rows, std::ptrdiff_t cols)
-        : min_z(rows, cols, 10.0f), max_z(rows, cols, 10.0f), intensity(rows, cols, 50.0f), dropout(rows, cols, 0),
-          multiple(rows, cols, 0), count(rows, cols, 4)
+        : min_z(rows, cols, 10.0f),
+          max_z(rows, cols, 10.0f),
+          intensity(rows, cols, 50.0f),
+          dropout(rows, cols, 0),
+          multiple(rows, cols, 0),
+          count(rows, cols, 4)
     {
     }
     /// Makes (r, c) a cell without returns.

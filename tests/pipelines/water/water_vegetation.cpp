@@ -19,7 +19,7 @@ TEST_CASE("water/water_vegetation: height spread above h, plus multiple returns 
     s.max_z(0, 4) = 12.0f;  // spread exactly 2 m: not above h
     s.multiple(2, 1) = 1;   // multiple-return pulse over ground
     s.drop(3, 3);
-    s.multiple(3, 3) = 1;   // a flag on a cell without returns does not count
+    s.multiple(3, 3) = 1;  // a flag on a cell without returns does not count
     const auto v = water_vegetation(s.view(), {.closing_size_cells = 1});
     CHECK(v == grid_of<std::uint8_t>({{1, 0, 0, 0, 0},  //
                                       {0, 0, 0, 0, 0},
@@ -66,7 +66,8 @@ TEST_CASE("water/water_vegetation: equals vegetation_mask OR multiple returns on
             }
         const int closing = 1 + 2 * static_cast<int>(rng() % 3);
         const auto v = water_vegetation(s.view(), {.closing_size_cells = closing, .run = {.threads = 1 + trial % 3}});
-        auto expected = vegetation_mask(s.min_z, s.max_z, vegetation_mask_options{.height_m = 2.0, .closing_size_cells = closing});
+        auto expected =
+            vegetation_mask(s.min_z, s.max_z, vegetation_mask_options{.height_m = 2.0, .closing_size_cells = closing});
         for (std::ptrdiff_t r = 0; r < rows; ++r)
             for (std::ptrdiff_t c = 0; c < cols; ++c) expected(r, c) |= s.multiple(r, c) && !s.dropout(r, c);
         CHECK(v == expected);
@@ -76,8 +77,8 @@ TEST_CASE("water/water_vegetation: equals vegetation_mask OR multiple returns on
 TEST_CASE("water/water_vegetation: progress is monotone and ends at 1; returning false cancels")
 {
     survey s(6, 6);
-    water_test::check_progress_and_cancel([&](const execution& run) { return water_vegetation(s.view(), {.run = run}); },
-                                          "water_vegetation");
+    water_test::check_progress_and_cancel(
+        [&](const execution& run) { return water_vegetation(s.view(), {.run = run}); }, "water_vegetation");
 }
 
 TEST_CASE("water/water_vegetation: options out of range are refused")

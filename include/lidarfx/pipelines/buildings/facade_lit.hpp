@@ -17,8 +17,8 @@
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
-#include "lidarfx/pipelines/buildings/facade_patches.hpp"
 #include "lidarfx/pipelines/buildings/facade_observers.hpp"
+#include "lidarfx/pipelines/buildings/facade_patches.hpp"
 
 namespace lidarfx {
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// facade_observers (make_facade_observers): where facade sub-patches sit on the solar kernels' ray lines: the observer cells in front of the
-// walls, and a walk over the ray lines of one azimuth that visits every cell of a line in walk order.
+// facade_observers (make_facade_observers): where facade sub-patches sit on the solar kernels' ray lines: the observer
+// cells in front of the walls, and a walk over the ray lines of one azimuth that visits every cell of a line in walk
+// order.
 #pragma once
 
 #include <algorithm>

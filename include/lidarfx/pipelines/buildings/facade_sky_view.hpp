@@ -17,9 +17,9 @@
 #include "lidarfx/kernels/solar/horizon_map.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
-#include "lidarfx/pipelines/buildings/facade_patches.hpp"
-#include "lidarfx/pipelines/buildings/facade_observers.hpp"
 #include "lidarfx/pipelines/buildings/facade_lit.hpp"
+#include "lidarfx/pipelines/buildings/facade_observers.hpp"
+#include "lidarfx/pipelines/buildings/facade_patches.hpp"
 
 namespace lidarfx {
 

@@ -24,9 +24,9 @@
 #include "lidarfx/kernels/solar/sky_options.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/kernels/solar/sun_position.hpp"
-#include "lidarfx/pipelines/buildings/facade_patches.hpp"
-#include "lidarfx/pipelines/buildings/facade_observers.hpp"
 #include "lidarfx/pipelines/buildings/facade_lit.hpp"
+#include "lidarfx/pipelines/buildings/facade_observers.hpp"
+#include "lidarfx/pipelines/buildings/facade_patches.hpp"
 #include "lidarfx/pipelines/buildings/facade_sky_view.hpp"
 #include "lidarfx/pipelines/buildings/surface_patches.hpp"
 

@@ -20,8 +20,8 @@ struct point_set {
     std::vector<double> x, y, z;
     std::vector<std::uint16_t> intensity;
     std::vector<std::uint8_t> return_number, number_of_returns, classification;
-    std::vector<double> gps_time;   ///< seconds since the survey began: the time of the pulse (scan order)
-    double pulse_time_s = 0;        ///< the time push() stamps on the points it appends
+    std::vector<double> gps_time;  ///< seconds since the survey began: the time of the pulse (scan order)
+    double pulse_time_s = 0;       ///< the time push() stamps on the points it appends
 
     /// Number of points.
     std::size_t size() const noexcept { return x.size(); }

@@ -33,8 +33,7 @@ struct roof_match {
 /// Scores over one or more towns.
 struct roof_scores {
     std::size_t true_planes = 0, found = 0;
-    std::size_t tilt_within_5 = 0, tilt_within_10 = 0, azimuth_scored = 0, azimuth_within_15 = 0,
-                azimuth_within_45 = 0;
+    std::size_t tilt_within_5 = 0, tilt_within_10 = 0, azimuth_scored = 0, azimuth_within_15 = 0, azimuth_within_45 = 0;
     double area_sq = 0;
     std::size_t tp = 0, fp = 0, fn = 0, tn = 0;
     std::vector<roof_match> matches;
@@ -115,8 +114,8 @@ inline void score_roofs(const roof_town& t, const roof_suitability_result& r, co
         const roof_patch& p = *patch_by_id.at(patch);
         if (o.mode == roof_mode::paper) sloped = p.sloped_area_m2;
         ++s.found;
-        roof_match m{tp.building_id, tp.plane_id, kind_of[tp.building_id], tp.tilt_deg, p.tilt_deg, tp.azimuth_deg,
-                     p.azimuth_deg, tp.sloped_area_m2, sloped};
+        roof_match m{tp.building_id, tp.plane_id,   kind_of[tp.building_id], tp.tilt_deg, p.tilt_deg,
+                     tp.azimuth_deg, p.azimuth_deg, tp.sloped_area_m2,       sloped};
         s.tilt_within_5 += m.tilt_error() <= 5;
         s.tilt_within_10 += m.tilt_error() <= 10;
         if (tp.tilt_deg >= 5) {
@@ -144,11 +143,16 @@ inline void score_roofs(const roof_town& t, const roof_suitability_result& r, co
 inline const char* kind_name(roof_town_kind k)
 {
     switch (k) {
-        case roof_town_kind::flat: return "flat";
-        case roof_town_kind::shed: return "shed";
-        case roof_town_kind::gable: return "gable";
-        case roof_town_kind::hip: return "hip";
-        case roof_town_kind::l_shaped: return "L";
+        case roof_town_kind::flat:
+            return "flat";
+        case roof_town_kind::shed:
+            return "shed";
+        case roof_town_kind::gable:
+            return "gable";
+        case roof_town_kind::hip:
+            return "hip";
+        case roof_town_kind::l_shaped:
+            return "L";
     }
     return "?";
 }

@@ -22,14 +22,14 @@ namespace lidarfx::synth {
 
 /// Settings of roof_town. Distances in metres.
 struct roof_town_options {
-    std::uint64_t seed = 1;         ///< every random choice follows from it
-    int buildings = 36;             ///< number of buildings, placed one per cell of a square lattice
-    double spacing_m = 40.0;        ///< lattice pitch (>= 36: no two buildings or their trees touch)
-    double cell_m = 1.0;            ///< raster cell size
-    double density_per_m2 = 0.0;    ///< laser points per m^2; 0 = drawn per town in [1, 8]
-    double noise_m = 0.05;          ///< standard deviation of the elevation noise per cell
-    double tree_share = 0.35;       ///< share of buildings with a tree beside or over the roof
-    double clutter_share = 0.6;     ///< share of pitched roofs with a dormer and/or a chimney
+    std::uint64_t seed = 1;       ///< every random choice follows from it
+    int buildings = 36;           ///< number of buildings, placed one per cell of a square lattice
+    double spacing_m = 40.0;      ///< lattice pitch (>= 36: no two buildings or their trees touch)
+    double cell_m = 1.0;          ///< raster cell size
+    double density_per_m2 = 0.0;  ///< laser points per m^2; 0 = drawn per town in [1, 8]
+    double noise_m = 0.05;        ///< standard deviation of the elevation noise per cell
+    double tree_share = 0.35;     ///< share of buildings with a tree beside or over the roof
+    double clutter_share = 0.6;   ///< share of pitched roofs with a dormer and/or a chimney
 };
 
 /// Roof kinds of the family (L-shaped = two gable wings meeting at a right angle, one valley between them).
@@ -38,11 +38,11 @@ enum class roof_town_kind : std::uint8_t { flat, shed, gable, hip, l_shaped };
 /// One true roof plane: the part of a wing's face seen from above, dormers and chimneys taken out.
 struct roof_town_plane {
     std::int32_t building_id = 0;
-    std::int32_t plane_id = 0;      ///< 1.. over the town, as in roof_town::plane_id
-    double tilt_deg = 0;            ///< 0 horizontal
-    double azimuth_deg = 0;         ///< facing (down-slope) azimuth, clockwise from north; 0 for flat planes
-    double area_m2 = 0;             ///< horizontal visible area (0.25 m supersampling)
-    double sloped_area_m2 = 0;      ///< area_m2 / cos(tilt)
+    std::int32_t plane_id = 0;  ///< 1.. over the town, as in roof_town::plane_id
+    double tilt_deg = 0;        ///< 0 horizontal
+    double azimuth_deg = 0;     ///< facing (down-slope) azimuth, clockwise from north; 0 for flat planes
+    double area_m2 = 0;         ///< horizontal visible area (0.25 m supersampling)
+    double sloped_area_m2 = 0;  ///< area_m2 / cos(tilt)
 };
 
 /// One building of the town.
@@ -57,10 +57,10 @@ struct roof_town_building {
 /// A rendered town: rasters on `g` and the truth.
 struct roof_town {
     grid g;
-    raster<float> dsm;                   ///< highest of the laser samples of each cell plus noise
-    raster<float> dtm;                   ///< the bare ground (exact)
-    raster<std::int32_t> building_id;    ///< cell-centre rule on the wings' footprints; 0 outside
-    raster<std::int32_t> plane_id;       ///< true plane at the cell centre; 0 outside, on dormers and chimneys
+    raster<float> dsm;                 ///< highest of the laser samples of each cell plus noise
+    raster<float> dtm;                 ///< the bare ground (exact)
+    raster<std::int32_t> building_id;  ///< cell-centre rule on the wings' footprints; 0 outside
+    raster<std::int32_t> plane_id;     ///< true plane at the cell centre; 0 outside, on dormers and chimneys
     std::vector<roof_town_plane> planes;
     std::vector<roof_town_building> buildings;
     double density_per_m2 = 0;
@@ -110,12 +110,16 @@ inline hit roof_of(const house& h, double x, double y) noexcept
     if (best.key == -2) return best;
     for (const roof_box& box : h.boxes) {
         const auto [u, v] = h.b.wings[static_cast<std::size_t>(box.wing)].local(x, y);
-        if (std::abs(u - box.u0) <= box.hu && std::abs(v - box.v0) <= box.hv && box.top_z > best.z) best = {box.top_z, -1};
+        if (std::abs(u - box.u0) <= box.hu && std::abs(v - box.v0) <= box.hv && box.top_z > best.z)
+            best = {box.top_z, -1};
     }
     return best;
 }
 
-inline double ground_z(double x, double y) noexcept { return 50.0 + 0.01 * x - 0.006 * y; }
+inline double ground_z(double x, double y) noexcept
+{
+    return 50.0 + 0.01 * x - 0.006 * y;
+}
 
 inline double gaussian(rng& g) noexcept
 {
@@ -129,7 +133,7 @@ inline house make_house(rng& g, std::int32_t id, double cx, double cy, const roo
     house h;
     h.b.id = id;
     const double kind_draw = g.uniform();
-    h.b.kind = kind_draw < 0.15 ? roof_town_kind::flat
+    h.b.kind = kind_draw < 0.15   ? roof_town_kind::flat
                : kind_draw < 0.33 ? roof_town_kind::shed
                : kind_draw < 0.63 ? roof_town_kind::gable
                : kind_draw < 0.83 ? roof_town_kind::hip
@@ -146,11 +150,22 @@ inline house make_house(rng& g, std::int32_t id, double cx, double cy, const roo
     w.eave_z = ground + g.uniform(3.0, 10.0);
     w.shed_facing = g.between(0, 3);
     switch (h.b.kind) {
-        case roof_town_kind::flat: w.kind = roof_kind_truth::flat; w.tilt_deg = 0; break;
-        case roof_town_kind::shed: w.kind = roof_kind_truth::shed; break;
-        case roof_town_kind::gable: w.kind = roof_kind_truth::gable; break;
-        case roof_town_kind::hip: w.kind = roof_kind_truth::hip; break;
-        case roof_town_kind::l_shaped: w.kind = roof_kind_truth::gable; break;
+        case roof_town_kind::flat:
+            w.kind = roof_kind_truth::flat;
+            w.tilt_deg = 0;
+            break;
+        case roof_town_kind::shed:
+            w.kind = roof_kind_truth::shed;
+            break;
+        case roof_town_kind::gable:
+            w.kind = roof_kind_truth::gable;
+            break;
+        case roof_town_kind::hip:
+            w.kind = roof_kind_truth::hip;
+            break;
+        case roof_town_kind::l_shaped:
+            w.kind = roof_kind_truth::gable;
+            break;
     }
     if (h.b.kind == roof_town_kind::hip) w.tilt_deg = g.uniform(15.0, 55.0);  // a 5-degree hip is not built
     h.b.wings.push_back(w);
@@ -170,8 +185,12 @@ inline house make_house(rng& g, std::int32_t id, double cx, double cy, const roo
         // u unit (sin, cos), v unit (cos, -sin) in (x east, y north); the L is then centred on the lattice cell.
         b.x = a.x + uc * std::sin(ar) + vc * std::cos(ar);
         b.y = a.y + uc * std::cos(ar) - vc * std::sin(ar);
-        const double sx = -0.5 * uc * std::sin(ar) - 0.5 * vc * std::cos(ar), sy = -0.5 * uc * std::cos(ar) + 0.5 * vc * std::sin(ar);
-        a.x += sx; a.y += sy; b.x += sx; b.y += sy;
+        const double sx = -0.5 * uc * std::sin(ar) - 0.5 * vc * std::cos(ar),
+                     sy = -0.5 * uc * std::cos(ar) + 0.5 * vc * std::sin(ar);
+        a.x += sx;
+        a.y += sy;
+        b.x += sx;
+        b.y += sy;
         h.b.wings.push_back(b);
     }
     // Clutter on pitched roofs: a chimney near the ridge and/or a dormer on one face.
@@ -266,8 +285,10 @@ inline roof_town make_roof_town(const roof_town_options& o = {})
         return std::max(1, k);
     };
     const auto sample_at = [&](std::ptrdiff_t r, std::ptrdiff_t c, int s) {
-        const double ux = hash_unit(o.seed, 0x5A12, static_cast<std::uint64_t>(r * n + c), static_cast<std::uint64_t>(s));
-        const double uy = hash_unit(o.seed, 0x5A13, static_cast<std::uint64_t>(r * n + c), static_cast<std::uint64_t>(s));
+        const double ux =
+            hash_unit(o.seed, 0x5A12, static_cast<std::uint64_t>(r * n + c), static_cast<std::uint64_t>(s));
+        const double uy =
+            hash_unit(o.seed, 0x5A13, static_cast<std::uint64_t>(r * n + c), static_cast<std::uint64_t>(s));
         return std::array<double, 2>{t.g.x0 + (static_cast<double>(c) + ux) * o.cell_m,
                                      t.g.y0 - (static_cast<double>(r) + uy) * o.cell_m};
     };
@@ -286,13 +307,17 @@ inline roof_town make_roof_town(const roof_town_options& o = {})
     std::int32_t next_plane = 1;
     for (house& h : houses) {
         double reach = 0;
-        for (const auto& w : h.b.wings) reach = std::max(reach, std::hypot(w.x - h.b.wings[0].x, w.y - h.b.wings[0].y) + w.bounding_radius());
-        for (const auto& tr : h.trees) reach = std::max(reach, std::hypot(tr.x - h.b.wings[0].x, tr.y - h.b.wings[0].y) + tr.r);
+        for (const auto& w : h.b.wings)
+            reach = std::max(reach, std::hypot(w.x - h.b.wings[0].x, w.y - h.b.wings[0].y) + w.bounding_radius());
+        for (const auto& tr : h.trees)
+            reach = std::max(reach, std::hypot(tr.x - h.b.wings[0].x, tr.y - h.b.wings[0].y) + tr.r);
         const double cx = h.b.wings[0].x, cy = h.b.wings[0].y;
         const auto r0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((t.g.y0 - cy - reach) / o.cell_m) - 1);
-        const auto r1 = std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>((t.g.y0 - cy + reach) / o.cell_m) + 1);
+        const auto r1 =
+            std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>((t.g.y0 - cy + reach) / o.cell_m) + 1);
         const auto c0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((cx - reach - t.g.x0) / o.cell_m) - 1);
-        const auto c1 = std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>((cx + reach - t.g.x0) / o.cell_m) + 1);
+        const auto c1 =
+            std::min<std::ptrdiff_t>(n - 1, static_cast<std::ptrdiff_t>((cx + reach - t.g.x0) / o.cell_m) + 1);
         h.plane_of_face.assign(h.b.wings.size() * 4, 0);
         for (std::ptrdiff_t r = r0; r <= r1; ++r)
             for (std::ptrdiff_t c = c0; c <= c1; ++c) {

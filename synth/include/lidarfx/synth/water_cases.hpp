@@ -57,8 +57,12 @@ inline water_family_scene specular_river_scene(unsigned seed = 1)
     out.kind = water_family_kind::river;
     out.size_m = 400, out.density_per_m2 = 2.0, out.cell_m = 2;
     out.scan = {1000, 20, 0.0};
-    out.returns = {.drop_nadir = 0.3, .drop_edge = 0.5, .patch_share = 0.45, .glint = 0.95,
-                   .glint_width_deg = 3.0, .glint_intensity = 55};
+    out.returns = {.drop_nadir = 0.3,
+                   .drop_edge = 0.5,
+                   .patch_share = 0.45,
+                   .glint = 0.95,
+                   .glint_width_deg = 3.0,
+                   .glint_intensity = 55};
     const std::uint64_t ws = hash64(seed, 0x5BEC);
     internal::family_world w{water_family_kind::river, out.size_m, noise_field{hash64(ws, 1), 400.0, 4, 0.45},
                              noise_field{hash64(ws, 2), 70.0, 3, 0.5}, noise_field{hash64(ws, 3), 80.0, 3, 0.5}};
@@ -95,8 +99,8 @@ inline water_family_scene turbid_lake_scene(unsigned seed = 1)
     out.kind = water_family_kind::lake;
     out.size_m = 300, out.density_per_m2 = 4.0, out.cell_m = 2;
     out.scan = {1000, 15, 0.2};
-    out.returns = {.drop_nadir = 0.2, .drop_edge = 0.3, .patch_share = 0.0, .low_min = 25, .low_max = 55,
-                   .turbid = true};
+    out.returns = {
+        .drop_nadir = 0.2, .drop_edge = 0.3, .patch_share = 0.0, .low_min = 25, .low_max = 55, .turbid = true};
     const std::uint64_t ws = hash64(seed, 0x7B1D);
     auto w = internal::flat_plain_lake_world(ws, out.size_m);
     rng pick(ws, 1);

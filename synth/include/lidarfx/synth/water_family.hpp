@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -31,11 +31,11 @@ enum class water_family_kind { lake, river };
 
 /// What the land next to the water looks like.
 enum class shore_kind {
-    beach,        ///< sand rising 2-6 % from the waterline, intensity 90-140
-    steep_bank,   ///< 1.5-4 m bank within 3 m of the waterline
-    reeds,        ///< a 3-12 m belt of reeds 1-2.5 m tall (some pulses with two returns) on low ground
-    flat_field,   ///< grass (intensity ~86) on a plain 0.5-1 m above the water, no dropouts
-    wet_ground,   ///< dark wet ground (intensity 15-35) 0.15 m above the water, rising 2 %
+    beach,       ///< sand rising 2-6 % from the waterline, intensity 90-140
+    steep_bank,  ///< 1.5-4 m bank within 3 m of the waterline
+    reeds,       ///< a 3-12 m belt of reeds 1-2.5 m tall (some pulses with two returns) on low ground
+    flat_field,  ///< grass (intensity ~86) on a plain 0.5-1 m above the water, no dropouts
+    wet_ground,  ///< dark wet ground (intensity 15-35) 0.15 m above the water, rising 2 %
 };
 
 /// Settings of a family scene; everything else follows from the seed.
@@ -49,15 +49,15 @@ struct water_family_options {
 
 /// How the water of a scene returns pulses.
 struct water_family_returns {
-    double drop_nadir = 0.3, drop_edge = 0.6;   ///< pulse dropout probability at nadir and at the swath edge
-    double patch_share = 0.3;                   ///< approximate share of the water inside dropout patches
-    double glint = 0.0;                         ///< share of near-nadir pulses returning a bright specular echo
-    double glint_width_deg = 3.0;               ///< scan angle where the glint share falls to 1/e
-    double glint_intensity = 55;                ///< mean intensity of specular echoes
-    double low_min = 3, low_max = 25;           ///< range of ordinary water intensities (turbid: 25-55)
-    double wave_m = 0.02;                       ///< amplitude of the surface's height noise, metres
+    double drop_nadir = 0.3, drop_edge = 0.6;  ///< pulse dropout probability at nadir and at the swath edge
+    double patch_share = 0.3;                  ///< approximate share of the water inside dropout patches
+    double glint = 0.0;                        ///< share of near-nadir pulses returning a bright specular echo
+    double glint_width_deg = 3.0;              ///< scan angle where the glint share falls to 1/e
+    double glint_intensity = 55;               ///< mean intensity of specular echoes
+    double low_min = 3, low_max = 25;          ///< range of ordinary water intensities (turbid: 25-55)
+    double wave_m = 0.02;                      ///< amplitude of the surface's height noise, metres
     bool turbid = false;
-    double wind = 0;                            ///< 0 calm .. 1 windy
+    double wind = 0;  ///< 0 calm .. 1 windy
 };
 
 /// Scan geometry of a family scene: parallel north-south strips.
@@ -78,19 +78,19 @@ struct flat_building {
 struct water_family_scene {
     water_family_kind kind = water_family_kind::lake;
     point_set points;
-    grid g;                                  ///< truth grid, cell = cell_m, covering [0, size_m]²
-    raster<std::uint8_t> water;              ///< 1 = water surface (water under a bridge deck is 1)
-    raster<std::uint8_t> water_filled;       ///< water plus islands smaller than 200 m²
-    raster<std::int32_t> body_id;            ///< 0 land, 1.. waterbody (river = 1)
-    raster<float> water_z;                   ///< water level on water cells, NaN elsewhere
-    std::vector<double> body_level;          ///< per body id - 1: level at its centre (river: mid-length)
+    grid g;                             ///< truth grid, cell = cell_m, covering [0, size_m]²
+    raster<std::uint8_t> water;         ///< 1 = water surface (water under a bridge deck is 1)
+    raster<std::uint8_t> water_filled;  ///< water plus islands smaller than 200 m²
+    raster<std::int32_t> body_id;       ///< 0 land, 1.. waterbody (river = 1)
+    raster<float> water_z;              ///< water level on water cells, NaN elsewhere
+    std::vector<double> body_level;     ///< per body id - 1: level at its centre (river: mid-length)
     double size_m = 0, density_per_m2 = 0, cell_m = 2;
     water_family_scan scan;
     water_family_returns returns;
-    std::vector<shore_kind> shores;          ///< per lake, or river south and north bank
+    std::vector<shore_kind> shores;  ///< per lake, or river south and north bank
     int bridges = 0, islands = 0;
     std::vector<std::array<double, 2>> bridge_along;  ///< river: (along-river position, half width) of each bridge
-    double river_angle_rad = 0;              ///< river: direction of flow (along = x cos + y sin about the centre)
+    double river_angle_rad = 0;  ///< river: direction of flow (along = x cos + y sin about the centre)
     bool touches_edge = false;
 };
 
@@ -101,11 +101,16 @@ namespace internal {
 inline double family_shore_rise(shore_kind k, double d, double p) noexcept
 {
     switch (k) {
-    case shore_kind::beach: return 0.05 + (0.02 + 0.04 * p) * d;
-    case shore_kind::steep_bank: return (1.5 + 2.5 * p) * smoothstep(0.0, 3.0, d) + 0.02 * d;
-    case shore_kind::reeds: return 0.2 + 0.03 * d;
-    case shore_kind::flat_field: return (0.5 + 0.5 * p) * smoothstep(0.0, 1.5, d) + 0.002 * d;
-    case shore_kind::wet_ground: return 0.15 + 0.02 * d;
+        case shore_kind::beach:
+            return 0.05 + (0.02 + 0.04 * p) * d;
+        case shore_kind::steep_bank:
+            return (1.5 + 2.5 * p) * smoothstep(0.0, 3.0, d) + 0.02 * d;
+        case shore_kind::reeds:
+            return 0.2 + 0.03 * d;
+        case shore_kind::flat_field:
+            return (0.5 + 0.5 * p) * smoothstep(0.0, 1.5, d) + 0.002 * d;
+        case shore_kind::wet_ground:
+            return 0.15 + 0.02 * d;
     }
     return 0.5;
 }
@@ -126,10 +131,10 @@ struct family_tree {
 /// What lies at a point of a family scene beneath trees and buildings.
 struct family_sample {
     double z = 0;
-    std::int32_t body = -1;     ///< water body index, -1 on land
-    double intensity = 90;      ///< land cover intensity
-    double island_area = 0;     ///< area of the island holding the point, m²; 0 if none
-    double reeds_m = 0;         ///< height of reeds above the ground, 0 if none
+    std::int32_t body = -1;  ///< water body index, -1 on land
+    double intensity = 90;   ///< land cover intensity
+    double island_area = 0;  ///< area of the island holding the point, m²; 0 if none
+    double reeds_m = 0;      ///< height of reeds above the ground, 0 if none
     std::uint8_t cls = las_class::ground;
 };
 
@@ -149,12 +154,16 @@ struct family_world {
     std::vector<island_truth> islands;  ///< each in body island_body[i]
     std::vector<std::int32_t> island_body;
     river_channel river;
-    double angle = 0, ca = 1, sa = 0;   ///< river direction
+    double angle = 0, ca = 1, sa = 0;  ///< river direction
     std::array<shore_kind, 2> river_shore{};
     std::array<double, 2> river_shore_p{};
-    struct bridge { double along, half_width, half_reach, z, intensity; };
+    struct bridge {
+        double along, half_width, half_reach, z, intensity;
+    };
     std::vector<bridge> bridges;
-    struct asphalt { double x0, y0, x1, y1, intensity; };
+    struct asphalt {
+        double x0, y0, x1, y1, intensity;
+    };
     std::vector<asphalt> lots;
     std::vector<flat_building> buildings;
     std::vector<family_tree> trees;
@@ -327,7 +336,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
             if (out.water(r, c)) on_water.push_back(patch(out.g.center(r, c)[0], out.g.center(r, c)[1]));
     double patch_threshold = std::numeric_limits<double>::infinity();
     if (!on_water.empty()) {
-        const auto at = on_water.begin() + static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * static_cast<double>(on_water.size() - 1));
+        const auto at = on_water.begin() +
+                        static_cast<std::ptrdiff_t>((1.0 - wr.patch_share) * static_cast<double>(on_water.size() - 1));
         std::nth_element(on_water.begin(), at, on_water.end());
         patch_threshold = *at;
     }
@@ -342,8 +352,10 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
         const auto per_line = static_cast<long long>(std::ceil((x1 - x0) / step));
         for (long long i = 0; i < lines; ++i) {
             for (long long j = 0; j < per_line; ++j) {
-                const double x = std::clamp(x0 + (static_cast<double>(j) + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
-                const double y = std::clamp((static_cast<double>(i) + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
+                const double x =
+                    std::clamp(x0 + (static_cast<double>(j) + 0.5 + 0.35 * random.triangular()) * step, 0.0, S - 1e-6);
+                const double y =
+                    std::clamp((static_cast<double>(i) + 0.5 + 0.15 * random.triangular()) * step, 1e-6, S - 1e-6);
                 time += 1e-5;
                 pts.pulse_time_s = time;
                 const double angle = rad_to_deg(std::atan(std::abs(x - xc) / H));
@@ -351,21 +363,23 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
                 const int bridge = w.bridge_at(x, y);
                 if (bridge >= 0) {
                     const auto& b = w.bridges[static_cast<std::size_t>(bridge)];
-                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.15 * random.triangular()), 1, 1, las_class::bridge_deck);
+                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.15 * random.triangular()), 1, 1,
+                             las_class::bridge_deck);
                     continue;
                 }
                 const int building = w.building_at(x, y);
                 if (building >= 0) {
                     const auto& b = w.buildings[static_cast<std::size_t>(building)];
-                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.1 * random.triangular()), 1, 1, las_class::building);
+                    pts.push(x, y, b.z + noise, b.intensity * (1 + 0.1 * random.triangular()), 1, 1,
+                             las_class::building);
                     continue;
                 }
                 const auto s = w.at(x, y);
                 const double top = w.tree_top(x, y);
                 if (top > s.z + 2 && random.chance(0.9)) {
                     const bool ground_too = random.chance(0.5);
-                    pts.push(x, y, top - 2 * random.uniform() + noise, 60 + 30 * random.uniform(), 1, ground_too ? 2 : 1,
-                             las_class::high_vegetation);
+                    pts.push(x, y, top - 2 * random.uniform() + noise, 60 + 30 * random.uniform(), 1,
+                             ground_too ? 2 : 1, las_class::high_vegetation);
                     if (ground_too) pts.push(x, y, s.z + noise, 0.5 * s.intensity, 2, 2, las_class::ground);
                     continue;
                 }
@@ -384,7 +398,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
                         const double u = random.uniform();
                         intensity = wr.low_min + (wr.low_max - wr.low_min) * u * u;
                     }
-                    pts.push(x, y, s.z + wr.wave_m * random.triangular() + 0.5 * noise, intensity, 1, 1, las_class::water);
+                    pts.push(x, y, s.z + wr.wave_m * random.triangular() + 0.5 * noise, intensity, 1, 1,
+                             las_class::water);
                     continue;
                 }
                 if (s.reeds_m > 0 && random.chance(0.7)) {
@@ -411,8 +426,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
 /// pulses; 30 % turbid water with intensities 25-55), shores (beach, steep bank, reeds, flat field
 /// 0.5-1 m above the water, wet dark ground), distractors (dark asphalt lots, flat-roofed buildings with
 /// their scan shadows, trees). Lakes: 1-3 lakes at different levels, some side by side 10-40 m apart,
-/// some cut by the survey edge, islands of 50-2000 m² (at most 8 % of the lake). Rivers: 15-60 m wide meandering in any direction
-/// across the survey, level falling 0.1-1.5 m across it, 0-4 bridges (deck 3-8 m above the water, 8-20 m
+/// some cut by the survey edge, islands of 50-2000 m² (at most 8 % of the lake). Rivers: 15-60 m wide meandering in any
+/// direction across the survey, level falling 0.1-1.5 m across it, 0-4 bridges (deck 3-8 m above the water, 8-20 m
 /// wide), sometimes an island. Deterministic; about 0.3 s per scene at 2 points/m² on 600 m.
 /// @throws invalid_input on bad options.
 inline water_family_scene water_family(const water_family_options& options = {})
@@ -429,8 +444,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
     out.kind = options.kind;
     out.density_per_m2 = std::exp(pick.uniform(std::log(options.min_density), std::log(options.max_density)));
     out.cell_m = std::max(2.0, std::ceil(2.0 * std::sqrt(options.points_per_cell / out.density_per_m2)) / 2.0);
-    const auto cells = static_cast<std::ptrdiff_t>(
-        std::ceil(pick.uniform(options.min_size_m, options.max_size_m) / out.cell_m));
+    const auto cells =
+        static_cast<std::ptrdiff_t>(std::ceil(pick.uniform(options.min_size_m, options.max_size_m) / out.cell_m));
     out.size_m = static_cast<double>(cells) * out.cell_m;
     const double S = out.size_m;
     out.scan = {pick.uniform(300.0, 2000.0), pick.uniform(10.0, 30.0), pick.uniform(0.0, 0.5)};
@@ -472,8 +487,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
                 clear = clear && std::hypot(o.outline.x - x, o.outline.y - y) >
                                      o.outline.max_radius() + outline.max_radius() + gap;
             // At least a third of the lake inside the survey.
-            const bool inside = x > 0.1 * S - 0.3 * r && x < 0.9 * S + 0.3 * r && y > 0.1 * S - 0.3 * r &&
-                                y < 0.9 * S + 0.3 * r;
+            const bool inside =
+                x > 0.1 * S - 0.3 * r && x < 0.9 * S + 0.3 * r && y > 0.1 * S - 0.3 * r && y < 0.9 * S + 0.3 * r;
             if (!clear || !inside) continue;
             w.lakes.push_back({outline, w.base_z + pick.uniform(-3.0, 3.0), any_shore(), pick.uniform()});
         }
@@ -522,7 +537,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
             const double along = S * (static_cast<double>(i) + 0.5 + 0.3 * pick.triangular()) / nb;
             const double hw = 0.5 * pick.uniform(8.0, 20.0);
             const double reach = 0.5 * (ch.mean_width_m + ch.width_swing_m) + pick.uniform(8.0, 20.0);
-            w.bridges.push_back({along, hw, reach, ch.level(along) + pick.uniform(3.0, 8.0), pick.uniform(40.0, 100.0)});
+            w.bridges.push_back(
+                {along, hw, reach, ch.level(along) + pick.uniform(3.0, 8.0), pick.uniform(40.0, 100.0)});
             out.bridge_along.push_back({along, hw});
         }
         out.bridges = nb;
@@ -531,8 +547,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
             const double rr = std::min(0.3 * ch.mean_width_m, std::sqrt(pick.uniform(50.0, 1500.0) / std::numbers::pi));
             // island centre in world coordinates: the inverse of river_frame.
             const double du = u - 0.5 * S, dv = ch.centre_y(u) - 0.5 * S;
-            w.islands.push_back({du * w.ca - dv * w.sa + 0.5 * S, du * w.sa + dv * w.ca + 0.5 * S, rr,
-                                 pick.uniform(0.5, 3.0)});
+            w.islands.push_back(
+                {du * w.ca - dv * w.sa + 0.5 * S, du * w.sa + dv * w.ca + 0.5 * S, rr, pick.uniform(0.5, 3.0)});
             w.island_body.push_back(0);
         }
     }
@@ -566,7 +582,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
         const double x = pick.uniform(0.0, S - a), y = pick.uniform(0.0, S - b);
         if (!dry(x - 5, y - 5, x + a + 5, y + b + 5)) continue;
         const double z = w.at(x + 0.5 * a, y + 0.5 * b).z + pick.uniform(3.0, 12.0);
-        w.buildings.push_back({x, y, x + a, y + b, z, pick.chance(0.5) ? pick.uniform(15.0, 35.0) : pick.uniform(60.0, 140.0)});
+        w.buildings.push_back(
+            {x, y, x + a, y + b, z, pick.chance(0.5) ? pick.uniform(15.0, 35.0) : pick.uniform(60.0, 140.0)});
         ++i;
     }
     for (int i = 0, n = pick.between(0, 60), tries = 0; i < n && tries < 400; ++tries) {
