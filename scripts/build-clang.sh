@@ -6,6 +6,6 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --clang --mpi --gdal
 echo "build-clang.sh: configuring build/clang with $(clang++ --version | head -1)"
 CC=clang CXX=clang++ cmake -S . -B build/clang -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DLIDARFX_BUILD_TESTS=ON -DLIDARFX_BUILD_EXAMPLES=ON -DCMAKE_CXX_FLAGS=-Werror >/dev/null
+    -DLIDARFX_BUILD_TESTS=ON -DLIDARFX_BUILD_EXAMPLES=ON -DLIDARFX_BUILD_DOC_PICTURES=ON -DCMAKE_CXX_FLAGS=-Werror >/dev/null
 cmake --build build/clang
 echo "build-clang.sh: every target built with clang++, no warning"

@@ -5,6 +5,7 @@
 
 #include "reference/angular_filter.hpp"
 #include "reference/progress.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <limits>
@@ -16,8 +17,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 double deg(double rad)
 {

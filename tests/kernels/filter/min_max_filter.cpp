@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include "test_values.hpp"
+
 #include <lidarfx/kernels/filter/min_max_filter.hpp>
 
 #include <algorithm>
@@ -15,7 +17,6 @@ using namespace lidarfx;
 
 namespace {
 
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 constexpr float inf_f = std::numeric_limits<float>::infinity();
 
 /// The plain definition: scan every cell of the clipped window, skipping NaN; NaN when nothing is left.

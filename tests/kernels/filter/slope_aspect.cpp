@@ -6,6 +6,7 @@
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
 #include "reference/progress.hpp"
 #include "reference/slope_aspect.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -19,8 +20,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 // Error budget against the double reference. Slope: the float atan (relative error 1.4e-7, <= 6.3e-6 deg), the
 // float rounding of |grad| (<= 1.7e-6 deg), 90 - a (<= 3.8e-6) and the reference's own rounding (<= 3.8e-6):

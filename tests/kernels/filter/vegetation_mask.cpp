@@ -5,6 +5,7 @@
 
 #include "reference/morphology.hpp"
 #include "reference/progress.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -15,8 +16,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 /// min_z = 100 everywhere, max_z = 100 + spread; a 1 in `tall` gives a spread of 5 m, a 0 of 1 m.
 struct surfaces {

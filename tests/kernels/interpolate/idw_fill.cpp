@@ -6,6 +6,7 @@
 #include "reference/idw.hpp"
 #include "reference/progress.hpp"
 #include "reference/rasterize.hpp"  // same_bits
+#include "test_values.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -16,8 +17,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 raster<float> from_rows(std::ptrdiff_t rows, std::ptrdiff_t cols, std::vector<float> values)
 {

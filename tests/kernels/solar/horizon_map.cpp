@@ -6,6 +6,7 @@
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
 #include "reference/progress.hpp"
 #include "reference/solar.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <limits>
@@ -17,8 +18,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 // The hull sweep rounds the tangent to float (relative 6e-8) and takes lidarfx's float arctangent (relative
 // error 1.4e-7, core/fast_math.hpp); the direct search uses std::atan2 in double. At most 2e-7 * 90 = 1.8e-5

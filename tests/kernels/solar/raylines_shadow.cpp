@@ -6,6 +6,7 @@
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
 #include "reference/progress.hpp"
 #include "reference/solar.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -17,8 +18,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 // The first cell where two masks differ, or "" when they are equal.
 std::string first_difference(const raster<std::uint8_t>& got, const raster<std::uint8_t>& want)

@@ -6,6 +6,7 @@
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
 #include "reference/progress.hpp"
 #include "reference/solar.hpp"
+#include "test_values.hpp"
 
 #include <cmath>
 #include <limits>
@@ -17,8 +18,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 // The dissertation's count by brute force: one reference shadow pass (direct search over each cell's ray
 // line) per sky source, (lit sources + zenith) / (15 * directions + 1).

@@ -2,6 +2,8 @@
 // extract_buildings and ground_model on tiny hand-made rasters: each step's rule, one case at a time.
 #include <doctest/doctest.h>
 
+#include "test_values.hpp"
+
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
 #include <lidarfx/pipelines/buildings/ground_model.hpp>
 
@@ -12,8 +14,6 @@
 using namespace lidarfx;
 
 namespace {
-
-constexpr float nan_f = std::numeric_limits<float>::quiet_NaN();
 
 /// Flat ground at 100 m, 60 x 60 cells of 0.5 m, with a box of rows [r0, r1) x cols [c0, c1) at 100 + h.
 raster<float> box_scene(std::ptrdiff_t r0, std::ptrdiff_t r1, std::ptrdiff_t c0, std::ptrdiff_t c1, float h)
