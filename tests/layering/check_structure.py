@@ -171,6 +171,7 @@ DIARY = [
     (re.compile(r"\b(reporting|tuning)\s+run\s+\d+\b", re.I), "a numbered run"),
     (re.compile(r"\b(this|last|previous|next)\s+session\b", re.I), "a session"),
     (re.compile(r"\bDESIGN\b|\.\./shared\b"), "a file outside the repository"),
+    (re.compile(r"\bissues?\s+#?\d+", re.I), "a tracker issue number"),
 ]
 
 

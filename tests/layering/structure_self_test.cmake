@@ -23,6 +23,6 @@ expect_report(detail "${FIXTURE}/include" 2
     "lidarfx/pipelines/water/flood.hpp:6: detail::smooth_rows belongs to kernels/filter, not pipelines/water"
     "lidarfx/pipelines/water/flood.hpp:168: smooth_rows is internal to kernels/filter, not pipelines/water")
 expect_report(length "${FIXTURE}/include;150" 1 "flood.hpp:5: function body of 154 lines")
-expect_report(diary "${FIXTURE}/docs" 3 "page.md:4: a work-log date" "page.md:4: a numbered run"
-    "page.md:5: a file outside the repository")
+expect_report(diary "${FIXTURE}/docs" 4 "page.md:4: a work-log date" "page.md:4: a numbered run"
+    "page.md:5: a file outside the repository" "page.md:6: a tracker issue number")
 message(STATUS "check_structure.py reports the fixture's cross-area detail use, long function and diary lines, and only them")
