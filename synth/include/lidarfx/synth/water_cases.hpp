@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// water_cases: the failure modes of issue 17 rebuilt as fixed family scenes (a dropout-dominated pond in a
+// water_cases: fixed family scenes of the hard cases (a dropout-dominated pond in a
 // field just above its level; a river with bright specular stretches near nadir and a bridge; a turbid
 // lake without dropouts next to a meadow and a dark asphalt lot).
 #pragma once
