@@ -15,7 +15,7 @@ using namespace lidarfx;
 
 namespace {
 
-constexpr std::array<connectivity, 2> both{connectivity::four, connectivity::eight};
+constexpr std::array<connectivity, 2> both_connectivities{connectivity::four, connectivity::eight};
 
 // stitch_labels against connected_components, component_bounds and a plain per-label sum.
 void check_against_whole(raster_view<const std::uint8_t> m, const raster<std::int32_t>& values, connectivity conn,
@@ -65,7 +65,7 @@ TEST_CASE("tiling/stitch_labels: equals connected_components on random masks for
         const raster_view<const std::uint8_t> m = raster_view<const std::uint8_t>(big.view()).window(3, 5, 61, 67);
         raster<std::int32_t> values(61, 67);
         for (auto& v : values) v = value(rng);
-        for (const connectivity conn : both) {
+        for (const connectivity conn : both_connectivities) {
             for (const std::ptrdiff_t t : {1, 2, 7, 60, 100000}) check_against_whole(m, values, conn, t);
         }
         check_against_whole(m, values, connectivity::eight, 5, 2);  // threads change nothing
@@ -87,7 +87,7 @@ TEST_CASE("tiling/stitch_labels: one label across many tiles, a U joined only in
         "#...........###..",
     });
     const raster<std::int32_t> v = ramp(m.rows(), m.cols());
-    for (const connectivity conn : both) {
+    for (const connectivity conn : both_connectivities) {
         for (const std::ptrdiff_t t : {1, 2, 3, 5, 7, 10, 11, 60}) check_against_whole(m, v, conn, t);
     }
     // By hand: the snake (32 cells), then the chain of diagonal cells (5, 10), (6, 11), (7, 12..14), (6, 15);

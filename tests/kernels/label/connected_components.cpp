@@ -18,7 +18,7 @@ using namespace lidarfx;
 
 namespace {
 
-constexpr std::array<connectivity, 2> both{connectivity::four, connectivity::eight};
+constexpr std::array<connectivity, 2> both_connectivities{connectivity::four, connectivity::eight};
 
 const char* name(connectivity c)
 {
@@ -84,7 +84,7 @@ TEST_CASE("label/connected_components: matches a BFS flood fill on random masks"
         const std::ptrdiff_t rows = shape[0], cols = shape[1];
         for (double density : {0.1, 0.5, 0.6, 0.9}) {
             const auto m = reference::random_mask(rng, rows, cols, density);
-            for (connectivity c : both) {
+            for (connectivity c : both_connectivities) {
                 INFO(rows << "x" << cols << " density " << density << " " << name(c));
                 check_equal(connected_components(m, c), reference::flood_label(m, c));
             }
@@ -101,7 +101,7 @@ TEST_CASE("label/connected_components: all-0, all-1, checkerboards, spirals and 
             reference::checkerboard(rows, cols, 1), reference::checkerboard(rows, cols, 2),
             reference::spiral(rows, cols),          reference::comb(rows, cols)};
         for (std::size_t i = 0; i < masks.size(); ++i) {
-            for (connectivity c : both) {
+            for (connectivity c : both_connectivities) {
                 INFO(rows << "x" << cols << " mask " << i << " " << name(c));
                 check_equal(connected_components(masks[i], c), reference::flood_label(masks[i], c));
             }
@@ -123,7 +123,7 @@ TEST_CASE("label/connected_components: strided sub-views give the contiguous res
         for (std::uint8_t fill : {std::uint8_t{0}, std::uint8_t{1}}) {
             const auto e = reference::embed(m, 2, 1 + trial % 3, fill);
             REQUIRE(e.view.row_stride() > e.view.cols());
-            for (connectivity c : both) {
+            for (connectivity c : both_connectivities) {
                 INFO("trial " << trial << " fill " << int(fill) << " " << name(c));
                 check_equal(connected_components(e.view, c), connected_components(m, c));
             }
@@ -138,7 +138,7 @@ TEST_CASE("label/connected_components: results are identical for 1, 2 and 3 thre
     const std::vector<reference::mask> masks{reference::random_mask(rng, 900, 150, 0.6), reference::spiral(900, 60),
                                              reference::random_mask(rng, 300, 260, 0.4)};
     for (const auto& m : masks) {
-        for (connectivity c : both) {
+        for (connectivity c : both_connectivities) {
             const auto expected = reference::flood_label(m, c);
             for (int threads : {1, 2, 3}) {
                 INFO(m.rows() << "x" << m.cols() << " " << name(c) << " threads " << threads);
@@ -154,7 +154,7 @@ TEST_CASE("label/connected_components: labels are invariant under transposition 
     std::mt19937 rng(31);
     for (int trial = 0; trial < 10; ++trial) {
         const auto m = reference::random_mask(rng, 20 + 13 * trial, 90 - 7 * trial, 0.3 + 0.04 * trial);
-        for (connectivity c : both) {
+        for (connectivity c : both_connectivities) {
             INFO("trial " << trial << " " << name(c));
             const auto direct = connected_components(m, c);
             const auto transposed = connected_components(reference::transpose(m), c);

@@ -17,11 +17,11 @@ using namespace lidarfx;
 
 namespace {
 
-constexpr auto north = static_cast<std::size_t>(surface_class::north_facade);
-constexpr auto south = static_cast<std::size_t>(surface_class::south_facade);
-constexpr auto east = static_cast<std::size_t>(surface_class::east_facade);
-constexpr auto west = static_cast<std::size_t>(surface_class::west_facade);
-constexpr auto roof = static_cast<std::size_t>(surface_class::rooftop);
+constexpr auto north_row = static_cast<std::size_t>(surface_class::north_facade);
+constexpr auto south_row = static_cast<std::size_t>(surface_class::south_facade);
+constexpr auto east_row = static_cast<std::size_t>(surface_class::east_facade);
+constexpr auto west_row = static_cast<std::size_t>(surface_class::west_facade);
+constexpr auto roof_row = static_cast<std::size_t>(surface_class::rooftop);
 
 /// Table 1 of a 12 x 10 m, 10 m tall box alone on flat ground at (lat, lon) under a clear-sky year.
 std::array<surface_class_row, 5> box_table(double lat, double lon, double utc_offset_h,
@@ -47,24 +47,24 @@ TEST_CASE("buildings/surface_energy: a box at 40 N under clear sky -- the patter
                 row.quarter_kwh_m2_day[2], " ", row.quarter_kwh_m2_day[3], " kWh/m2/day, ", row.annual_kwh_m2,
                 " kWh/m2/yr, area ", row.area_m2, " m2");
     }
-    CHECK(t[south].area_m2 == doctest::Approx(12 * 10.0));
-    CHECK(t[east].area_m2 == doctest::Approx(10 * 10.0));
-    CHECK(t[roof].area_m2 == doctest::Approx(11 * 9.0));
+    CHECK(t[south_row].area_m2 == doctest::Approx(12 * 10.0));
+    CHECK(t[east_row].area_m2 == doctest::Approx(10 * 10.0));
+    CHECK(t[roof_row].area_m2 == doctest::Approx(11 * 9.0));
     // South > east ~ west > north over the year.
-    CHECK(t[south].annual_kwh_m2 > t[east].annual_kwh_m2);
-    CHECK(t[south].annual_kwh_m2 > t[west].annual_kwh_m2);
-    CHECK(t[east].annual_kwh_m2 == doctest::Approx(t[west].annual_kwh_m2).epsilon(0.03));
-    CHECK(t[east].annual_kwh_m2 > t[north].annual_kwh_m2);
-    CHECK(t[west].annual_kwh_m2 > t[north].annual_kwh_m2);
+    CHECK(t[south_row].annual_kwh_m2 > t[east_row].annual_kwh_m2);
+    CHECK(t[south_row].annual_kwh_m2 > t[west_row].annual_kwh_m2);
+    CHECK(t[east_row].annual_kwh_m2 == doctest::Approx(t[west_row].annual_kwh_m2).epsilon(0.03));
+    CHECK(t[east_row].annual_kwh_m2 > t[north_row].annual_kwh_m2);
+    CHECK(t[west_row].annual_kwh_m2 > t[north_row].annual_kwh_m2);
     // The south facade beats the rooftop in the winter quarters and falls below it in summer.
-    CHECK(t[south].quarter_kwh_m2_day[0] > t[roof].quarter_kwh_m2_day[0]);
-    CHECK(t[south].quarter_kwh_m2_day[3] > t[roof].quarter_kwh_m2_day[3]);
-    CHECK(t[south].quarter_kwh_m2_day[1] < t[roof].quarter_kwh_m2_day[1]);
-    CHECK(t[south].quarter_kwh_m2_day[2] < t[roof].quarter_kwh_m2_day[2]);
+    CHECK(t[south_row].quarter_kwh_m2_day[0] > t[roof_row].quarter_kwh_m2_day[0]);
+    CHECK(t[south_row].quarter_kwh_m2_day[3] > t[roof_row].quarter_kwh_m2_day[3]);
+    CHECK(t[south_row].quarter_kwh_m2_day[1] < t[roof_row].quarter_kwh_m2_day[1]);
+    CHECK(t[south_row].quarter_kwh_m2_day[2] < t[roof_row].quarter_kwh_m2_day[2]);
     // The flat open roof receives the year's GHI (clear-sky records are consistent: DNI sin e + DHI = GHI).
-    CHECK(t[roof].annual_kwh_m2 == doctest::Approx(res.ghi_kwh_m2).epsilon(1e-9));
+    CHECK(t[roof_row].annual_kwh_m2 == doctest::Approx(res.ghi_kwh_m2).epsilon(1e-9));
     for (std::size_t q = 0; q < 4; ++q) {
-        CHECK(t[roof].quarter_kwh_m2_day[q] == doctest::Approx(res.quarter_ghi_kwh_m2_day[q]).epsilon(1e-9));
+        CHECK(t[roof_row].quarter_kwh_m2_day[q] == doctest::Approx(res.quarter_ghi_kwh_m2_day[q]).epsilon(1e-9));
     }
     CHECK(res.quarter_days[0] == doctest::Approx(90.0));
     CHECK(res.quarter_days[0] + res.quarter_days[1] + res.quarter_days[2] + res.quarter_days[3] ==
@@ -80,13 +80,13 @@ TEST_CASE("buildings/surface_energy: a box at 40 N under clear sky -- the patter
 TEST_CASE("buildings/surface_energy: in the southern hemisphere the north facade is the sunniest")
 {
     const auto t = box_table(-33.9, 151.2, 10.0);  // Sydney
-    CHECK(t[north].annual_kwh_m2 > t[east].annual_kwh_m2);
-    CHECK(t[north].annual_kwh_m2 > t[west].annual_kwh_m2);
-    CHECK(t[north].annual_kwh_m2 > t[south].annual_kwh_m2);
-    CHECK(t[east].annual_kwh_m2 > t[south].annual_kwh_m2);
+    CHECK(t[north_row].annual_kwh_m2 > t[east_row].annual_kwh_m2);
+    CHECK(t[north_row].annual_kwh_m2 > t[west_row].annual_kwh_m2);
+    CHECK(t[north_row].annual_kwh_m2 > t[south_row].annual_kwh_m2);
+    CHECK(t[east_row].annual_kwh_m2 > t[south_row].annual_kwh_m2);
     // Winter there is the middle of the year: the north facade beats the roof in Apr-Jun and Jul-Sep.
-    CHECK(t[north].quarter_kwh_m2_day[1] > t[roof].quarter_kwh_m2_day[1]);
-    CHECK(t[north].quarter_kwh_m2_day[0] < t[roof].quarter_kwh_m2_day[0]);
+    CHECK(t[north_row].quarter_kwh_m2_day[1] > t[roof_row].quarter_kwh_m2_day[1]);
+    CHECK(t[north_row].quarter_kwh_m2_day[0] < t[roof_row].quarter_kwh_m2_day[0]);
 }
 
 TEST_CASE("buildings/surface_energy: a neighbour's shadow lowers the lower levels; results independent of threads")
