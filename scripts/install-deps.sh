@@ -5,7 +5,7 @@ packages=(cmake ninja-build g++ clang-format time python3 libeigen3-dev libboost
 for arg in "$@"; do
     case "$arg" in
         --peers) packages+=(python3-numpy python3-scipy python3-opencv) ;;
-        --gdal) packages+=(libgdal-dev gdal-bin) ;;
+        --gdal) packages+=(libgdal-dev libproj-dev gdal-bin python3-gdal) ;;  # GeoTIFF, OGR vectors, PROJ; gdalinfo in tests
         --clang) packages+=(clang lld) ;;
         --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
     esac
