@@ -170,7 +170,7 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& option)
 output_formats output_formats_from(const arguments& a)
 {
     if (!a.has("formats")) return {};
-    output_formats f{false, false, false};
+    output_formats f{false, false, false, false, false, false};
     const std::string text = a.text("formats", "");
     std::istringstream in(text);
     for (std::string name; std::getline(in, name, ',');) {
@@ -180,12 +180,34 @@ output_formats output_formats_from(const arguments& a)
             f.tif = true;
         else if (name == "png")
             f.png = true;
+        else if (name == "csv")
+            f.csv = true;
+        else if (name == "geojson")
+            f.geojson = true;
+        else if (name == "gpkg")
+            f.gpkg = true;
         else
-            throw usage_error("--formats takes a comma-separated list of asc, tif and png (got '" + text + "')");
+            throw usage_error("--formats takes a comma-separated list of asc, tif, png, csv, geojson and gpkg (got '" +
+                              text + "')");
     }
-    if (!f.asc && !f.tif && !f.png) throw usage_error("--formats names no format (got '" + text + "')");
-    if (f.tif && !io::geotiff_available())
+    const bool rasters = f.asc || f.tif || f.png, vectors = f.csv || f.geojson || f.gpkg;
+    if (!rasters && !vectors) throw usage_error("--formats names no format (got '" + text + "')");
+    const output_formats defaults;
+    if (!rasters) {
+        f.asc = defaults.asc;
+        f.tif = defaults.tif;
+        f.png = defaults.png;
+    }
+    if (!vectors) {
+        f.csv = defaults.csv;
+        f.geojson = defaults.geojson;
+        f.gpkg = defaults.gpkg;
+    }
+    if (f.tif && rasters && !io::geotiff_available())
         throw usage_error("--formats tif needs GeoTIFF support, and this lidarfx was built without GDAL; use asc");
+    if (f.gpkg && vectors && !io::vectors_available())
+        throw usage_error(std::string("--formats gpkg needs GeoPackage support (OGR), and ") +
+                          io::vectors_rebuild_hint + "; or use csv,geojson");
     return f;
 }
 
@@ -716,6 +738,27 @@ std::vector<std::string> raster_file_names(const std::string& name, const output
     std::vector<std::string> names;
     if (formats.asc) names.push_back(name + ".asc");
     if (formats.tif && io::geotiff_available()) names.push_back(name + ".tif");
+    return names;
+}
+
+void write_polygons(io::output_folder& out, const std::string& name, const std::vector<io::geojson_feature>& features,
+                    const std::string& crs_wkt, int epsg, const output_formats& formats)
+{
+    if (formats.geojson) {
+        const int code = epsg > 0 ? epsg : io::epsg_of_crs(crs_wkt);
+        out.write(name + ".geojson", [&](const std::string& path) { io::write_geojson(path, features, code); });
+    }
+    if (formats.gpkg && io::vectors_available()) {
+        out.write(name + ".gpkg",
+                  [&](const std::string& path) { io::write_geopackage(path, name, features, crs_wkt, epsg); });
+    }
+}
+
+std::vector<std::string> polygon_file_names(const std::string& name, const output_formats& formats)
+{
+    std::vector<std::string> names;
+    if (formats.geojson) names.push_back(name + ".geojson");
+    if (formats.gpkg && io::vectors_available()) names.push_back(name + ".gpkg");
     return names;
 }
 

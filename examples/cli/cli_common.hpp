@@ -20,7 +20,9 @@
 #include "io/crs.hpp"
 #include "io/las.hpp"
 #include "io/output_folder.hpp"
+#include "io/tables.hpp"
 #include "io/tmy3.hpp"
+#include "io/vectors.hpp"
 
 namespace lidarfx::cli {
 
@@ -55,9 +57,11 @@ struct usage_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// The file formats a command writes: ESRI ASCII grids, GeoTIFF (only when built with GDAL), PNG pictures.
+/// The file formats a command writes: ESRI ASCII grids, GeoTIFF (only when built with GDAL), PNG pictures;
+/// and for vector outputs (tables and polygons) CSV, GeoJSON and GeoPackage (only when built with GDAL).
 struct output_formats {
     bool asc = true, tif = true, png = true;
+    bool csv = true, geojson = true, gpkg = io::vectors_available();
 };
 
 /// How read_survey reads and what it refuses; survey_options_from() fills it from --cell, --threads,
@@ -73,8 +77,10 @@ struct survey_options {
     output_formats formats;                 ///< what the command writes (--formats)
 };
 
-/// --formats asc,tif,png (any non-empty subset, default all). @throws usage_error on an unknown name, or
-/// tif asked for explicitly in a build without GDAL.
+/// --formats: raster formats asc,tif,png and vector formats csv,geojson,gpkg, any non-empty subset. Each
+/// kind keeps its default when the list names none of it (rasters: all; vectors: csv and geojson, and gpkg
+/// when built with GDAL). @throws usage_error on an unknown name, or tif or gpkg asked for explicitly in a
+/// build without GDAL.
 output_formats output_formats_from(const arguments& a);
 
 /// Runs every job once on up to `threads` threads (0 = all cores); after all have stopped, rethrows the
@@ -206,6 +212,15 @@ grid to_crs_units(const grid& g, const survey& s);
 /// Writes `name`.asc and `name`.tif (when GDAL is available) of a float raster into `out`, as `formats` asks.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
                   const std::string& crs_wkt, int epsg, const output_formats& formats = {});
+
+/// Writes the polygons `features` as `name`.geojson and `name`.gpkg (layer `name`) into `out`, as `formats`
+/// asks, in the CRS of the survey: `epsg` when known, else its WKT `crs_wkt` (the GeoPackage holds that WKT; the
+/// GeoJSON's crs member names the EPSG code OGR identifies for it, and is left out when none matches).
+void write_polygons(io::output_folder& out, const std::string& name, const std::vector<io::geojson_feature>& features,
+                    const std::string& crs_wkt, int epsg, const output_formats& formats = {});
+
+/// Names `write_polygons` gives polygons called `name`.
+std::vector<std::string> polygon_file_names(const std::string& name, const output_formats& formats = {});
 
 /// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
 std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats = {});

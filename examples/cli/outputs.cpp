@@ -159,7 +159,9 @@ std::vector<std::string> point_raster_file_names(const output_formats& formats)
 
 std::vector<std::string> waterbody_file_names(const output_formats& formats)
 {
-    std::vector<std::string> names{"waterbodies.csv", "waterbodies.geojson"};
+    std::vector<std::string> names;
+    if (formats.csv) names.push_back("waterbodies.csv");
+    for (auto& n : polygon_file_names("waterbodies", formats)) names.push_back(std::move(n));
     if (formats.png) names.push_back("water_overlay.png");
     for (const char* r : {"water", "waterbody_labels"}) {
         for (auto& n : raster_file_names(r, formats)) names.push_back(std::move(n));
@@ -291,7 +293,8 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
             rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg,
                             b.stopped_by_ks, b.mean_intensity, b.water_level_m, b.dropout_fraction});
         }
-        dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
+        if (formats.csv)
+            dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
     });
     jobs.push_back([&] {
         std::vector<io::geojson_feature> features;
@@ -305,7 +308,7 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
                                      {"theta_deg", b.theta_deg}}});
             }
         }
-        dir.write("waterbodies.geojson", [&](const std::string& path) { io::write_geojson(path, features, s.epsg); });
+        write_polygons(dir, "waterbodies", features, s.crs_wkt, s.epsg, formats);
     });
     run_jobs(jobs, threads);
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <utility>
 
 #include <lidarfx/lidarfx.hpp>
 
@@ -47,7 +48,9 @@ io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const 
 
 std::vector<std::string> roof_patch_file_names(const output_formats& formats)
 {
-    std::vector<std::string> names{"roof_patches.csv", "roof_patches.geojson"};
+    std::vector<std::string> names;
+    if (formats.csv) names.push_back("roof_patches.csv");
+    for (auto& n : polygon_file_names("roof_patches", formats)) names.push_back(std::move(n));
     if (formats.png) names.push_back("roof_patches.png");
     return names;
 }
@@ -73,7 +76,7 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
         header.push_back("annual_kwh_m2");
         header.push_back("annual_kwh");
     }
-    out.write("roof_patches.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
+    if (formats.csv) out.write("roof_patches.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
     std::map<std::int32_t, std::size_t> index_of;
     for (std::size_t i = 0; i < r.patches.size(); ++i) index_of[r.patches[i].patch_id] = i;
     std::vector<io::geojson_feature> features;
@@ -96,7 +99,7 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
             }
         }
     }
-    out.write("roof_patches.geojson", [&](const std::string& path) { io::write_geojson(path, features, frame.epsg); });
+    write_polygons(out, "roof_patches", features, frame.crs_wkt, frame.epsg, formats);
     if (formats.png) {
         const io::rgb_image img = patch_picture(r, frame.dsm, frame.cell_m);
         out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });

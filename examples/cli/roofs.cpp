@@ -25,18 +25,23 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx roofs IN.las|IN.laz [MORE ...] FOOTPRINTS.geojson --out DIR [--cell M] [--mode planes|paper]\n"
-    "       lidarfx roofs DSM.asc DTM.asc FOOTPRINTS.geojson --out DIR [--mode planes|paper]\n"
-    "Rooftop PV suitability. Footprints: a GeoJSON FeatureCollection of Polygon/MultiPolygon features with an\n"
-    "integer building_id property, in the CRS of the input. From LAS files the DSM is the highest return per\n"
+    "usage: lidarfx roofs IN.las|IN.laz [MORE ...] FOOTPRINTS --out DIR [--cell M] [--mode planes|paper]\n"
+    "       lidarfx roofs DSM.asc DTM.asc FOOTPRINTS --out DIR [--mode planes|paper]\n"
+    "Rooftop PV suitability. FOOTPRINTS: Polygon/MultiPolygon features with an integer id (field building_id, or\n"
+    "--id-field): a GeoJSON FeatureCollection, or when built with GDAL any vector file OGR reads (GeoPackage,\n"
+    "Shapefile, FlatGeobuf, ...; a file without building_id then takes its feature ids). Footprints in another\n"
+    "CRS than the survey's are reprojected to it; a file that states no CRS (GeoJSON without a crs member) is\n"
+    "taken to be in the survey's. From LAS files the DSM is the highest return per\n"
     "cell (IDW-filled) and the DTM the terrain of ground_model (edge hulls, IDW inside them).\n"
     "Mode planes (default): every roof plane with its own fitted tilt, azimuth and area; mode paper: one PV\n"
     "plane per building by the published method (aspect mode, half-std band). Writes roof_patches.csv\n"
     "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,centroid_y,...;\n"
     "area_m2 horizontal, one row per plane or building, flat roofs included), roof_patches.geojson,\n"
     "roof_patches.png (patches coloured by azimuth, suitable ones outlined) and footprints.csv (what happened to\n"
-    "every footprint: used, invalid, outside the grid, no cells).\n"
+    "every footprint: used, invalid, outside the grid, no cells); with GDAL also roof_patches.gpkg.\n"
     "options (defaults in brackets):\n"
+    "  --id-field F   the footprints' integer id field [building_id]\n"
+    "  --formats L    what to write: png and csv, geojson, gpkg [all that this build can write]\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
     "  --mode M       planes | paper [planes]\n"
     "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
@@ -128,9 +133,40 @@ burned_footprints burn_footprints(io::footprint_collection file, const roof_inpu
     return b;
 }
 
+// Puts the footprints in the survey's CRS: a file without a CRS is taken to be in it (with a note), one in
+// another CRS is reprojected through OGR/PROJ; footprints with a CRS on a survey without one are refused.
+void place_footprints(io::footprint_collection& footprints, const std::string& file, const roof_inputs& in)
+{
+    const std::string survey_crs = !in.crs_wkt.empty() ? in.crs_wkt : in.epsg ? "EPSG:" + std::to_string(in.epsg) : "";
+    if (footprints.crs.empty()) {
+        if (!survey_crs.empty())
+            std::cerr << "note: " << file << " states no CRS; its footprints are taken to be in the survey's CRS\n";
+        return;
+    }
+    const int code = io::epsg_of_crs(footprints.crs);
+    const std::string named = code > 0 ? "EPSG:" + std::to_string(code) : "a CRS without EPSG code";
+    if (survey_crs.empty())
+        throw usage_error(
+            file + ": the footprints are in " + named +
+            " but the survey states no CRS, so lidarfx cannot place them on it; give the survey its CRS "
+            "(a .prj beside the DSM and DTM) or give footprints in the survey's coordinates without a CRS");
+    if (io::same_crs(footprints.crs, survey_crs)) return;
+    if (!io::vectors_available())
+        throw usage_error(
+            file + ": the footprints are in " + named +
+            ", not in the survey's CRS, and reprojecting them needs OGR/PROJ: " + io::vectors_rebuild_hint);
+    try {
+        io::reproject_footprints(footprints, footprints.crs, survey_crs, file);
+    } catch (const invalid_input& e) {
+        throw usage_error(e.what());
+    }
+    std::cerr << "note: " << file << ": footprints reprojected from " << named << " to the survey's CRS\n";
+}
+
 int run_roofs(const std::vector<std::string>& args)
 {
-    const arguments a(args, {"out", "cell", "mode", "threads", "memory", "crop", "formats", "tmy", "lat", "lon"},
+    const arguments a(args,
+                      {"out", "cell", "mode", "threads", "memory", "crop", "formats", "tmy", "lat", "lon", "id-field"},
                       {"help", "force"});
     if (const auto code = stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
@@ -139,10 +175,16 @@ int run_roofs(const std::vector<std::string>& args)
     if (mode != "planes" && mode != "paper") throw usage_error("--mode must be planes or paper (got " + mode + ")");
     const output_formats formats = output_formats_from(a);
     std::vector<std::string> inputs = a.positional();
-    if (inputs.size() < 2 || !(has_extension(inputs.back(), ".geojson") || has_extension(inputs.back(), ".json")))
+    if (inputs.size() < 2 || has_extension(inputs.back(), ".las") || has_extension(inputs.back(), ".laz") ||
+        has_extension(inputs.back(), ".asc") || has_extension(inputs.back(), ".tif") ||
+        has_extension(inputs.back(), ".tiff"))
         throw usage_error(
-            "the last input must be the footprints (.geojson): lidarfx roofs IN.las FOOTPRINTS.geojson --out DIR");
+            "the last input must be the footprints (.geojson; with GDAL also .gpkg, .shp, .fgb, ...): lidarfx roofs "
+            "IN.las FOOTPRINTS.geojson --out DIR");
     const std::string footprint_file = inputs.back();
+    if (!io::is_geojson_name(footprint_file) && !io::vectors_available())
+        throw usage_error(footprint_file + ": footprints other than GeoJSON are read through OGR, and " +
+                          io::vectors_rebuild_hint + "; or convert them: ogr2ogr footprints.geojson " + footprint_file);
     inputs.pop_back();
 
     // Weather for the yields (optional): a TMY3 year (its rows' own years), or the clear-sky year 2021 at
@@ -168,15 +210,18 @@ int run_roofs(const std::vector<std::string>& args)
     try {
         // The read counts against --memory on its own (0 = half the physical memory), before the grid exists.
         const std::uint64_t budget = memory_option(a);
-        footprints = io::read_footprints_geojson(footprint_file, {.memory_budget_bytes = budget});
+        footprints =
+            io::read_footprints(footprint_file, {.memory_budget_bytes = budget, .id_field = a.text("id-field", "")});
     } catch (const invalid_input& e) {
         throw usage_error(e.what());
     }
+    for (const std::string& note : footprints.notes) std::cerr << "note: " << note << "\n";
     io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
     std::vector<std::string> names = roof_patch_file_names(formats);
     names.push_back("footprints.csv");
     for (const auto& n : names) out.check_name(n);
     const roof_inputs in = read_roof_inputs(inputs, a, threads);
+    place_footprints(footprints, footprint_file, in);
     const burned_footprints fp = burn_footprints(std::move(footprints), in);
 
     roof_suitability_options opt;
@@ -225,7 +270,7 @@ int run_roofs(const std::vector<std::string>& args)
         std::cout << std::fixed << std::setprecision(0) << "annual yield of all patches: " << kwh << " kWh ("
                   << (a.has("tmy") ? "TMY3 " + a.text("tmy", "") : std::string("clear-sky year")) << ")\n";
     }
-    write_roof_patches(out, r, {in.dsm, in.g.cell, in.out_grid, in.unit_m, in.epsg}, formats, yields);
+    write_roof_patches(out, r, {in.dsm, in.g.cell, in.out_grid, in.unit_m, in.epsg, in.crs_wkt}, formats, yields);
 
     std::size_t suitable = 0;
     double kwp = 0;

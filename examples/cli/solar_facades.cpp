@@ -51,11 +51,19 @@ io::rgb_image energy_picture(const facade_run& run, const surface_energy_result&
 
 }  // namespace
 
+std::vector<std::string> facade_file_names(const output_formats& formats)
+{
+    std::vector<std::string> names = polygon_file_names("buildings", formats);
+    for (const char* n : {"facade_patches.csv", "surface_table.csv", "bill_savings.csv"}) names.emplace_back(n);
+    if (formats.png) names.push_back("buildings_energy.png");
+    return names;
+}
+
 std::vector<std::string> facade_file_names(bool png)
 {
-    std::vector<std::string> names{"buildings.geojson", "facade_patches.csv", "surface_table.csv", "bill_savings.csv"};
-    if (png) names.push_back("buildings_energy.png");
-    return names;
+    output_formats formats;
+    formats.png = png;
+    return facade_file_names(formats);
 }
 
 void write_facade_outputs(io::output_folder& out, const facade_run& run)
@@ -85,7 +93,7 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                                  {"roof_surfaces", static_cast<std::int64_t>(rec.surfaces.size())}}});
         }
     }
-    out.write("buildings.geojson", [&](const std::string& path) { io::write_geojson(path, features, run.epsg); });
+    write_polygons(out, "buildings", features, run.crs_wkt, run.epsg, run.formats);
 
     std::vector<std::vector<io::table_value>> rows;
     for (std::size_t i = 0; i < e.facades.size(); ++i) {

@@ -29,10 +29,14 @@ struct facade_run {
     std::span<const irradiance_record> records;
     int threads = 0;
     bool png = true;
+    output_formats formats{};  ///< the formats of buildings (geojson, gpkg); `png` above decides the picture
 };
 
-/// The files --facades adds: buildings.geojson, facade_patches.csv, surface_table.csv, bill_savings.csv and
-/// (with png) buildings_energy.png.
+/// The files --facades adds: buildings.geojson and buildings.gpkg (as `formats` asks), facade_patches.csv,
+/// surface_table.csv, bill_savings.csv and (with formats.png) buildings_energy.png.
+std::vector<std::string> facade_file_names(const output_formats& formats);
+
+/// facade_file_names with the default vector formats and the picture when `png`.
 std::vector<std::string> facade_file_names(bool png);
 
 /// Extracts the buildings (extract_buildings), computes the energy of every roof patch and facade sub-patch

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/footprints.hpp"
 
+#include "io/vectors.hpp"
+
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +15,7 @@
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
+#include <utility>
 
 #include <unistd.h>
 
@@ -40,7 +44,7 @@ bg_polygon to_boost(const polygon& p)
 }
 
 // Outer ring counter-clockwise, holes clockwise (RFC 7946), as lidarfx::polygon documents.
-void orient(polygon& p)
+void orient_part(polygon& p)
 {
     for (std::size_t k = 0; k < p.rings.size(); ++k) {
         auto& ring = p.rings[k];
@@ -51,25 +55,9 @@ void orient(polygon& p)
     }
 }
 
-// Why the footprint cannot be used as drawn ("" when it can): a ring crossing itself, zero area, or another
-// reason of Boost.Geometry's is_valid.
-std::string geometry_problem(const footprint& fp)
-{
-    bg::model::multi_polygon<bg_polygon> shape;
-    for (const polygon& p : fp.parts) shape.push_back(to_boost(p));
-    for (const bg_polygon& part : shape)
-        if (bg::intersects(part)) return "invalid polygon: a ring crosses itself (self-intersection)";
-    if (!(bg::area(shape) > 0)) return "empty (zero area)";
-    std::string reason;
-    if (!bg::is_valid(shape, reason)) return "invalid polygon: " + reason;
-    return {};
-}
-
 std::uint64_t budget_of(const footprint_read_options& opt)
 {
-    if (opt.memory_budget_bytes) return opt.memory_budget_bytes;
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
+    return footprint_memory_budget(opt);
 }
 
 std::string size_text(double bytes)
@@ -122,8 +110,12 @@ struct feature_text {
 // coordinates at a time. Values it does not need are checked for syntax and passed over.
 class geojson_reader {
 public:
-    geojson_reader(std::string_view text, const std::string& source, std::uint64_t budget)
-        : s_(text), source_(source), budget_(budget), text_bytes_(static_cast<double>(text.size()))
+    geojson_reader(std::string_view text, const std::string& source, std::uint64_t budget, std::string id_field)
+        : s_(text),
+          source_(source),
+          budget_(budget),
+          id_field_(std::move(id_field)),
+          text_bytes_(static_cast<double>(text.size()))
     {
     }
 
@@ -151,6 +143,8 @@ public:
                 if (key == "type" && !type_seen) {
                     type_seen = true;
                     if (!(peek('"') && string() == "FeatureCollection")) throw not_a_collection();
+                } else if (key == "crs" && out_.crs.empty() && peek('{')) {
+                    crs_member();
                 } else if (key == "features" && !features_seen) {
                     features_seen = true;
                     if (!peek('[')) throw invalid_input(source_ + ": the FeatureCollection has no \"features\" array");
@@ -366,6 +360,20 @@ private:
 
     // ---- structure ----
 
+    // {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32613"}}: the name, as written.
+    void crs_member()
+    {
+        object_members(1, [&](const std::string& key) {
+            if (key != "properties" || !peek('{')) return false;
+            object_members(2, [&](const std::string& name) {
+                if (name != "name" || !peek('"')) return false;
+                out_.crs = string();
+                return true;
+            });
+            return true;
+        });
+    }
+
     void features()
     {
         ++i_;  // '['
@@ -399,7 +407,7 @@ private:
             if (key == "properties" && !properties_seen && peek('{')) {
                 properties_seen = true;
                 object_members(3, [&](const std::string& name) {
-                    if (name != "building_id" || t.id_kind != 0) return false;
+                    if (name != id_field_ || t.id_kind != 0) return false;
                     if (number_next()) {
                         const number_text n = number();
                         t.id_kind = 1;
@@ -527,13 +535,13 @@ private:
         const std::string where = detail::concat(source_, ": feature ", feature_);
         if (!t.object) throw invalid_input(where + ": not a GeoJSON Feature object");
         if (t.id_kind == 0)
-            throw invalid_input(where + ": no integer \"building_id\" property (every footprint needs one)");
+            throw invalid_input(where + ": no integer \"" + id_field_ + "\" property (every footprint needs one)");
         if (t.id_kind == 2)
-            throw invalid_input(where + ": building_id " + t.id_token +
+            throw invalid_input(where + ": " + id_field_ + " " + t.id_token +
                                 " is not an integer (every footprint needs one)");
         if (t.id != std::floor(t.id) || t.id < 1 || t.id > 2147483647.0)
             throw invalid_input(
-                detail::concat(where, ": building_id ", t.id_token, " is not an integer in 1 .. 2147483647"));
+                detail::concat(where, ": ", id_field_, " ", t.id_token, " is not an integer in 1 .. 2147483647"));
         const auto building = static_cast<std::int32_t>(t.id);
         if (const auto [it, fresh] = first_feature_of_.emplace(building, feature_); !fresh)
             throw invalid_input(detail::concat(where, ": building_id ", building, " is used by feature ", it->second,
@@ -572,7 +580,7 @@ private:
         }
         std::string problem;
         try {
-            problem = geometry_problem(fp);
+            problem = footprint_geometry_problem(fp);
         } catch (const std::exception& e) {  // Boost.Geometry's own exceptions (e.g. a numeric cast)
             throw invalid_input(at + ": the polygon checks failed: " + e.what());
         }
@@ -584,8 +592,8 @@ private:
         }
         // Per vertex 16 bytes, per ring and part a vector and its allocation (48), per footprint its entry in
         // the list (which grows by doubling) and its id in first_feature_of_ (64).
-        for (polygon& p : fp.parts) {
-            orient(p);
+        orient_footprint(fp);
+        for (const polygon& p : fp.parts) {
             kept_bytes_ += 48.0;
             for (const auto& r : p.rings) {
                 kept_vertices_ += r.size();
@@ -599,6 +607,7 @@ private:
     std::string_view s_;
     const std::string& source_;
     std::uint64_t budget_;
+    std::string id_field_;
     std::size_t i_ = 0;
     std::size_t feature_ = 0;
     double text_bytes_, kept_bytes_ = 0, peak_ = 0;
@@ -610,10 +619,36 @@ private:
 
 }  // namespace
 
+std::uint64_t footprint_memory_budget(const footprint_read_options& opt)
+{
+    if (opt.memory_budget_bytes) return opt.memory_budget_bytes;
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2 : 0;
+}
+
+// Why the footprint cannot be used as drawn ("" when it can): a ring crossing itself, zero area, or another
+// reason of Boost.Geometry's is_valid.
+std::string footprint_geometry_problem(const footprint& fp)
+{
+    bg::model::multi_polygon<bg_polygon> shape;
+    for (const polygon& p : fp.parts) shape.push_back(to_boost(p));
+    for (const bg_polygon& part : shape)
+        if (bg::intersects(part)) return "invalid polygon: a ring crosses itself (self-intersection)";
+    if (!(bg::area(shape) > 0)) return "empty (zero area)";
+    std::string reason;
+    if (!bg::is_valid(shape, reason)) return "invalid polygon: " + reason;
+    return {};
+}
+
+void orient_footprint(footprint& fp)
+{
+    for (polygon& p : fp.parts) orient_part(p);
+}
+
 footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source,
                                               const footprint_read_options& opt)
 {
-    return geojson_reader(text, source, budget_of(opt)).read();
+    return geojson_reader(text, source, budget_of(opt), opt.id_field.empty() ? "building_id" : opt.id_field).read();
 }
 
 footprint_collection read_footprints_geojson(const std::string& path, const footprint_read_options& opt)
@@ -632,7 +667,29 @@ footprint_collection read_footprints_geojson(const std::string& path, const foot
     std::string text(static_cast<std::size_t>(size), '\0');
     in.seekg(0);
     if (!in.read(text.data(), size)) throw std::runtime_error(path + ": cannot read the footprint file");
-    return parse_footprints_geojson(text, path, {.memory_budget_bytes = budget});
+    return parse_footprints_geojson(text, path, {.memory_budget_bytes = budget, .id_field = opt.id_field});
+}
+
+bool is_geojson_name(const std::string& path)
+{
+    std::string lower = path;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    const auto ends = [&](std::string_view end) {
+        return lower.size() >= end.size() && lower.compare(lower.size() - end.size(), end.size(), end) == 0;
+    };
+    return ends(".geojson") || ends(".json");
+}
+
+footprint_collection read_footprints(const std::string& path, const footprint_read_options& opt)
+{
+    if (is_geojson_name(path)) return read_footprints_geojson(path, opt);
+    if (!vectors_available())
+        throw std::runtime_error(path +
+                                 ": footprints other than GeoJSON (GeoPackage, Shapefile, FlatGeobuf) are read "
+                                 "through OGR, and " +
+                                 vectors_rebuild_hint + "; or convert the file to GeoJSON (ogr2ogr out.geojson " +
+                                 path + ")");
+    return read_footprints_ogr(path, opt);
 }
 
 }  // namespace lidarfx::io

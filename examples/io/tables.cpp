@@ -148,6 +148,34 @@ std::string json_string(std::string_view text)
     return out;
 }
 
+std::vector<geo_ring> checked_rings(const geojson_feature& feature, std::size_t f, const char* fn)
+{
+    if (feature.rings.empty()) throw invalid_input(detail::concat(fn, ": feature ", f, " has no ring"));
+    std::vector<geo_ring> rings;
+    for (std::size_t k = 0; k < feature.rings.size(); ++k) {
+        geo_ring ring = feature.rings[k];
+        for (const auto& pt : ring) {
+            if (!std::isfinite(pt[0]) || !std::isfinite(pt[1])) {
+                throw invalid_input(detail::concat(fn, ": feature ", f, " ring ", k, " has a non-finite coordinate (",
+                                                   pt[0], ", ", pt[1], ")"));
+            }
+        }
+        if (!ring.empty() && ring.front() == ring.back()) ring.pop_back();  // work on the open ring
+        geo_ring distinct = ring;
+        std::sort(distinct.begin(), distinct.end());
+        if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) {
+            throw invalid_input(
+                detail::concat(fn, ": feature ", f, " ring ", k, " must have at least 3 distinct positions"));
+        }
+        const bool outer = k == 0;
+        const double area = signed_area(ring);
+        if ((outer && area < 0) || (!outer && area > 0)) std::reverse(ring.begin() + 1, ring.end());  // same start
+        ring.push_back(ring.front());
+        rings.push_back(std::move(ring));
+    }
+    return rings;
+}
+
 std::string to_geojson(const std::vector<geojson_feature>& features, int epsg)
 {
     constexpr const char* fn = "to_geojson";
@@ -173,25 +201,9 @@ std::string to_geojson(const std::vector<geojson_feature>& features, int epsg)
             out += json_string(name) + ":" + value.json();
         }
         out += "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[";
-        for (std::size_t k = 0; k < feature.rings.size(); ++k) {
-            geo_ring ring = feature.rings[k];
-            for (const auto& pt : ring) {
-                if (!std::isfinite(pt[0]) || !std::isfinite(pt[1])) {
-                    throw invalid_input(detail::concat(fn, ": feature ", f, " ring ", k,
-                                                       " has a non-finite coordinate (", pt[0], ", ", pt[1], ")"));
-                }
-            }
-            if (!ring.empty() && ring.front() == ring.back()) ring.pop_back();  // work on the open ring
-            geo_ring distinct = ring;
-            std::sort(distinct.begin(), distinct.end());
-            if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() < 3) {
-                throw invalid_input(
-                    detail::concat(fn, ": feature ", f, " ring ", k, " must have at least 3 distinct positions"));
-            }
-            const bool outer = k == 0;
-            const double area = signed_area(ring);
-            if ((outer && area < 0) || (!outer && area > 0)) std::reverse(ring.begin() + 1, ring.end());  // same start
-            ring.push_back(ring.front());
+        const std::vector<geo_ring> rings = checked_rings(feature, f, fn);
+        for (std::size_t k = 0; k < rings.size(); ++k) {
+            const geo_ring& ring = rings[k];
             out += k ? ",[" : "[";
             for (std::size_t i = 0; i < ring.size(); ++i) {
                 out += i ? ",[" : "[";

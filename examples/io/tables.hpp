@@ -42,8 +42,12 @@ public:
     /// The value as a JSON value: text quoted and escaped, non-finite reals and null as null.
     std::string json() const;
 
+    using variant = std::variant<std::monostate, bool, std::int64_t, std::uint64_t, double, std::string>;
+    /// The value itself (for writers that keep types, such as GeoPackage fields).
+    const variant& value() const noexcept { return v_; }
+
 private:
-    std::variant<std::monostate, bool, std::int64_t, std::uint64_t, double, std::string> v_;
+    variant v_;
 };
 
 /// A CSV field: quoted (with inner quotes doubled) when it holds a comma, a quote, CR, LF or leading or
@@ -69,6 +73,13 @@ struct geojson_feature {
     std::vector<geo_ring> rings;
     std::vector<std::pair<std::string, table_value>> properties;
 };
+
+/// The rings of `feature` (number `f` of its collection, for messages from `fn`) as written: closed (the first
+/// position repeated at the end when it is not already) and oriented by the right-hand rule of RFC 7946 (outer
+/// ring counter-clockwise, holes clockwise, by the sign of the shoelace area; the first position kept).
+/// @throws invalid_input when the feature has no ring, a ring has fewer than 3 distinct positions or a
+/// coordinate is not finite.
+std::vector<geo_ring> checked_rings(const geojson_feature& feature, std::size_t f, const char* fn);
 
 /// A GeoJSON FeatureCollection of polygons, one feature per line. Rings are closed (the first position
 /// repeated at the end when it is not already) and oriented by the right-hand rule of RFC 7946 (outer

@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
-// Building footprints from GeoJSON: what is read, what is refused and what is reported per building.
+// Building footprints from GeoJSON and (with GDAL) any OGR source: what is read, what is refused and what is
+// reported per building; their CRS, reprojection and GeoPackage outputs.
 #include <doctest/doctest.h>
 
 #include <lidarfx/core/error.hpp>
 
 #include "io/footprints.hpp"
+#include "io/vectors.hpp"
+#include "io_test_util.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -246,4 +250,192 @@ TEST_CASE("io/footprints: a file larger than the budget is refused before it is 
     }
     CHECK(io::read_footprints_geojson(path, {.memory_budget_bytes = 1 << 20}).footprints.size() == 100);
     std::remove(path.c_str());
+}
+
+TEST_CASE("io/footprints: a GeoJSON crs member is kept as written; --id-field reads another property")
+{
+    const std::string named = R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":)"
+                              R"("urn:ogc:def:crs:EPSG::32613"}},"features":[)" +
+                              feature("4", square) + "]}";
+    const auto c = io::parse_footprints_geojson(named, "f.geojson");
+    CHECK(c.crs == "urn:ogc:def:crs:EPSG::32613");
+    CHECK(io::parse_footprints_geojson(collection(feature("4", square)), "f.geojson").crs.empty());
+    const std::string other = collection(R"({"type":"Feature","properties":{"objid":12},"geometry":)" + square + "}");
+    const auto by_field = io::parse_footprints_geojson(other, "f.geojson", {.id_field = "objid"});
+    REQUIRE(by_field.footprints.size() == 1);
+    CHECK(by_field.footprints[0].building_id == 12);
+    try {
+        io::parse_footprints_geojson(other, "f.geojson");
+        FAIL("accepted");
+    } catch (const invalid_input& e) {
+        CHECK(std::string(e.what()).find("no integer \"building_id\" property") != std::string::npos);
+    }
+    CHECK(io::same_crs("urn:ogc:def:crs:EPSG::32613", "EPSG:32613"));
+    CHECK(!io::same_crs("urn:ogc:def:crs:EPSG::32613", "EPSG:32612"));
+}
+
+TEST_CASE("io/footprints: files other than GeoJSON go through OGR, or are refused saying how to get it")
+{
+    CHECK(io::is_geojson_name("a/B.GeoJSON"));
+    CHECK(io::is_geojson_name("b.json"));
+    CHECK(!io::is_geojson_name("b.gpkg"));
+    if (io::vectors_available()) return;  // the GDAL cases follow
+    try {
+        io::read_footprints("roofs.gpkg");
+        FAIL("accepted");
+    } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()).find("apt-get install libgdal-dev") != std::string::npos);
+    }
+}
+
+namespace {
+
+// Footprints 7 (a square with a hole) and 9 (two squares) near (500000, 4400000) as polygons to write, with
+// building_id and objid = building_id + 100.
+std::vector<io::geojson_feature> utm_features(bool with_building_id)
+{
+    const double x = 500000, y = 4400000;
+    std::vector<io::geojson_feature> f(3);
+    f[0].rings = {{{x, y}, {x + 20, y}, {x + 20, y + 12}, {x, y + 12}},
+                  {{x + 5, y + 3}, {x + 5, y + 6}, {x + 8, y + 6}, {x + 8, y + 3}}};
+    f[1].rings = {{{x + 40, y}, {x + 50, y}, {x + 50, y + 10}, {x + 40, y + 10}}};
+    f[2].rings = {{{x + 60, y}, {x + 65, y}, {x + 65, y + 5}, {x + 60, y + 5}}};
+    const int ids[] = {7, 9, 11};
+    for (int i = 0; i < 3; ++i) {
+        if (with_building_id) f[static_cast<std::size_t>(i)].properties.emplace_back("building_id", ids[i]);
+        f[static_cast<std::size_t>(i)].properties.emplace_back("objid", ids[i] + 100);
+    }
+    return f;
+}
+
+double area_of(const io::footprint& fp)
+{
+    double a = 0;
+    for (const auto& part : fp.parts)
+        for (const auto& ring : part.rings)
+            for (std::size_t i = 0; i + 1 < ring.size(); ++i)
+                a += 0.5 * (ring[i][0] * ring[i + 1][1] - ring[i + 1][0] * ring[i][1]);
+    return a;
+}
+
+}  // namespace
+
+TEST_CASE("io/vectors: a GeoPackage gives its footprints, its CRS and ids from building_id, --id-field or the FID")
+{
+    if (!io::vectors_available()) return;
+    io_test::temp_dir dir;
+    const std::string path = dir.file("fp.gpkg");
+    io::write_geopackage(path, "footprints", utm_features(true), "", 32613);
+    const auto c = io::read_footprints(path);
+    REQUIRE(c.footprints.size() == 3);
+    CHECK(c.problems.empty());
+    CHECK(c.notes.empty());
+    CHECK(io::epsg_of_crs(c.crs) == 32613);
+    CHECK(c.footprints[0].building_id == 7);
+    CHECK(c.footprints[0].parts[0].rings.size() == 2);
+    CHECK(area_of(c.footprints[0]) == doctest::Approx(240.0 - 9.0));  // oriented: outer ccw, hole cw
+    CHECK(c.footprints[2].feature == 2);
+    CHECK(c.peak_bytes > 0);
+
+    const auto by_field = io::read_footprints(path, {.id_field = "objid"});
+    CHECK(by_field.footprints[1].building_id == 109);
+    try {
+        io::read_footprints(path, {.id_field = "parcel"});
+        FAIL("accepted");
+    } catch (const invalid_input& e) {
+        const std::string m = e.what();
+        CHECK(m.find("no field \"parcel\"") != std::string::npos);
+        CHECK(m.find("building_id, objid") != std::string::npos);
+    }
+    // Without building_id: the FIDs (GeoPackage numbers from 1), said in a note.
+    const std::string bare = dir.file("bare.gpkg");
+    io::write_geopackage(bare, "footprints", utm_features(false), "", 0);
+    const auto by_fid = io::read_footprints(bare);
+    REQUIRE(by_fid.footprints.size() == 3);
+    CHECK(by_fid.footprints[2].building_id == 3);
+    REQUIRE(by_fid.notes.size() == 1);
+    CHECK(by_fid.notes[0].find("feature ids (FID)") != std::string::npos);
+    CHECK(by_fid.crs.empty());  // written without a CRS: GeoPackage's undefined cartesian SRS
+
+    // The memory budget counts the footprints as they are read.
+    try {
+        io::read_footprints(path, {.memory_budget_bytes = 600});
+        FAIL("accepted");
+    } catch (const invalid_input& e) {
+        CHECK(std::string(e.what()).find("over the memory budget of") != std::string::npos);
+    }
+}
+
+TEST_CASE("io/vectors: footprints reprojected to WGS 84 put x = longitude; back in UTM they land within 1 mm")
+{
+    if (!io::vectors_available()) return;
+    io_test::temp_dir dir;
+    const std::string path = dir.file("fp.gpkg");
+    io::write_geopackage(path, "footprints", utm_features(true), "", 32613);
+    const auto utm = io::read_footprints(path);
+    auto c = utm;
+    io::reproject_footprints(c, c.crs, "EPSG:4326", "fp.gpkg");
+    REQUIRE(c.footprints.size() == 3);
+    // x = 500000 is zone 13's central meridian, 105 W; y = 4.4e6 m is about 39.75 N.
+    const auto corner = c.footprints[0].parts[0].rings[0][0];
+    CHECK(corner[0] == doctest::Approx(-105.0).epsilon(1e-9));
+    CHECK(corner[1] > 39.7);
+    CHECK(corner[1] < 39.8);
+    io::reproject_footprints(c, "EPSG:4326", utm.crs, "fp.gpkg");
+    for (std::size_t f = 0; f < 3; ++f) {
+        const auto& a = utm.footprints[f].parts[0].rings[0];
+        const auto& b = c.footprints[f].parts[0].rings[0];
+        REQUIRE(a.size() == b.size());
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            CHECK(std::abs(a[i][0] - b[i][0]) < 1e-3);
+            CHECK(std::abs(a[i][1] - b[i][1]) < 1e-3);
+        }
+    }
+    // In the neighbouring zone (central meridian 111 W, 6 degrees away) the same buildings, their areas larger by
+    // the squared scale factor there: (1 + (6 deg * cos 39.75 deg)^2 / 2)^2 = 1.0065.
+    auto west = utm;
+    io::reproject_footprints(west, utm.crs, "EPSG:32612", "fp.gpkg");
+    for (std::size_t f = 0; f < 3; ++f) {
+        CHECK(west.footprints[f].building_id == utm.footprints[f].building_id);
+        CHECK(area_of(west.footprints[f]) / area_of(utm.footprints[f]) == doctest::Approx(1.0065).epsilon(3e-4));
+        CHECK(std::abs(west.footprints[f].parts[0].rings[0][0][0] - 500000.0) > 200000.0);  // moved
+    }
+    try {
+        io::reproject_footprints(c, "not a CRS", "EPSG:4326", "fp.gpkg");
+        FAIL("accepted");
+    } catch (const invalid_input& e) {
+        CHECK(std::string(e.what()).find("fp.gpkg: the footprints' CRS is not one OGR understands") !=
+              std::string::npos);
+    }
+}
+
+TEST_CASE("io/vectors: GeoPackage outputs keep fields, types and the CRS; a WKT-only CRS is identified")
+{
+    if (!io::vectors_available()) return;
+    io_test::temp_dir dir;
+    std::vector<io::geojson_feature> f = utm_features(true);
+    f[0].properties.emplace_back("kwp", 3.25);
+    f[0].properties.emplace_back("suitable", true);
+    f[0].properties.emplace_back("reason", "flat");
+    f[1].properties.emplace_back("kwp", std::nan(""));
+    const std::string path = dir.file("out.gpkg");
+    const std::string utm13 =
+        R"(PROJCS["WGS_1984_UTM_Zone_13N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,)"
+        R"(298.257223563]],PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433]],)"
+        R"(PROJECTION["Transverse_Mercator"],PARAMETER["False_Easting",500000.0],PARAMETER["False_Northing",0.0],)"
+        R"(PARAMETER["Central_Meridian",-105.0],PARAMETER["Scale_Factor",0.9996],PARAMETER["Latitude_Of_Origin",0.0],)"
+        R"(UNIT["Meter",1.0]])";
+    CHECK(io::epsg_of_crs(utm13) == 32613);  // an ESRI WKT without authority codes
+    io::write_geopackage(path, "roof_patches", f, utm13, 0);
+    const auto back = io::read_footprints(path);
+    REQUIRE(back.footprints.size() == 3);
+    CHECK(io::epsg_of_crs(back.crs) == 32613);
+    CHECK(io::same_crs(back.crs, "EPSG:32613"));
+    CHECK(area_of(back.footprints[1]) == doctest::Approx(100.0));
+    try {
+        io::write_geopackage(dir.file("bad.gpkg"), "x", {io::geojson_feature{}}, "", 0);
+        FAIL("accepted");
+    } catch (const invalid_input& e) {
+        CHECK(std::string(e.what()).find("feature 0 has no ring") != std::string::npos);
+    }
 }
