@@ -3,11 +3,17 @@
 
 #include "io/tables.hpp"
 
+#include "cli/cli_common.hpp"
+#include "io/footprints.hpp"
+#include "io/vectors.hpp"
+
 #include <lidarfx/core/error.hpp>
 
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "io_test_util.hpp"
 
@@ -170,4 +176,69 @@ TEST_CASE("io/to_geojson: polygons with holes, right-hand-rule rings, properties
     CHECK_THROWS_WITH_AS(to_geojson({{lake.rings, {{"a", 1}, {"a", 2}}}}),
                          "to_geojson: feature 0 has property 'a' twice", invalid_input);
     CHECK_THROWS_WITH_AS(to_geojson({lake}, -1), "to_geojson: epsg must be >= 0 (got -1)", invalid_input);
+}
+
+TEST_CASE("io/checked_rings: rings closed, outer counter-clockwise and holes clockwise, first position kept")
+{
+    io::geojson_feature f;
+    f.rings = {{{0, 0}, {0, 10}, {10, 10}, {10, 0}}, {{2, 2}, {4, 2}, {4, 4}, {2, 4}, {2, 2}}};
+    const auto rings = io::checked_rings(f, 3, "test");
+    REQUIRE(rings.size() == 2);
+    CHECK(rings[0] == io::geo_ring{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}});
+    CHECK(rings[1] == io::geo_ring{{2, 2}, {2, 4}, {4, 4}, {4, 2}, {2, 2}});
+    io::geojson_feature line;
+    line.rings = {{{0, 0}, {1, 1}, {0, 0}, {1, 1}}};
+    CHECK(io_test::error_of([&] { io::checked_rings(line, 3, "test"); }) ==
+          "test: feature 3 ring 0 must have at least 3 distinct positions");
+}
+
+namespace {
+
+cli::output_formats vector_formats_of(const std::string& list)
+{
+    return cli::output_formats_from(cli::arguments({"in.las", "--formats", list}, {"formats"}, {}));
+}
+
+}  // namespace
+
+TEST_CASE("cli/--formats: csv, geojson and gpkg pick the vector files; each kind keeps its defaults when not named")
+{
+    const cli::output_formats defaults;
+    CHECK((defaults.csv && defaults.geojson));
+    CHECK(defaults.gpkg == io::vectors_available());
+    const auto png = vector_formats_of("png");
+    CHECK((!png.asc && !png.tif && png.png && png.csv && png.geojson && png.gpkg == io::vectors_available()));
+    const auto geojson = vector_formats_of("geojson");
+    CHECK((geojson.asc && geojson.tif && geojson.png && !geojson.csv && geojson.geojson && !geojson.gpkg));
+    CHECK(cli::polygon_file_names("waterbodies", geojson) == std::vector<std::string>{"waterbodies.geojson"});
+    if (!io::vectors_available()) {
+        CHECK(io_test::error_of([] { vector_formats_of("gpkg"); }).find("apt-get install libgdal-dev") !=
+              std::string::npos);
+        return;
+    }
+    // A survey CRS known only as ESRI WKT: the GeoPackage keeps it, the GeoJSON names the EPSG code OGR finds.
+    const std::string utm13 =
+        R"(PROJCS["WGS_1984_UTM_Zone_13N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,)"
+        R"(298.257223563]],PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433]],)"
+        R"(PROJECTION["Transverse_Mercator"],PARAMETER["False_Easting",500000.0],PARAMETER["False_Northing",0.0],)"
+        R"(PARAMETER["Central_Meridian",-105.0],PARAMETER["Scale_Factor",0.9996],PARAMETER["Latitude_Of_Origin",0.0],)"
+        R"(UNIT["Meter",1.0]])";
+    io_test::temp_dir dir;
+    const auto both = vector_formats_of("geojson,gpkg");
+    CHECK(cli::polygon_file_names("roof_patches", both) ==
+          std::vector<std::string>{"roof_patches.geojson", "roof_patches.gpkg"});
+    io::geojson_feature f;
+    f.rings = {{{500000, 4400000}, {500010, 4400000}, {500010, 4400010}, {500000, 4400010}}};
+    f.properties = {{"building_id", 3}, {"kwp", 1.5}};
+    {
+        io::output_folder out(dir.file("out"));
+        cli::write_polygons(out, "roof_patches", {f}, utm13, 0, both);
+        out.commit("test");
+    }
+    const auto text = io_test::read_bytes(dir.file("out/roof_patches.geojson"));
+    CHECK(std::string(text.begin(), text.end()).find(R"("name":"urn:ogc:def:crs:EPSG::32613")") != std::string::npos);
+    const auto back = io::read_footprints(dir.file("out/roof_patches.gpkg"));
+    REQUIRE(back.footprints.size() == 1);
+    CHECK(back.footprints[0].building_id == 3);
+    CHECK(io::epsg_of_crs(back.crs) == 32613);
 }
