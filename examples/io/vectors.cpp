@@ -343,6 +343,11 @@ void reproject_footprints(footprint_collection& c, const std::string& from, cons
         throw invalid_input(source + ": the footprints' CRS is not one OGR understands: " + crs_head(from));
     if (!parse_crs(to, b))
         throw invalid_input(source + ": the survey's CRS is not one OGR understands: " + crs_head(to));
+    for (OGRSpatialReference* srs : {&a, &b}) {
+        if (!srs->IsCompound()) continue;
+        srs->StripVertical();  // footprints are 2D: the horizontal CRS places them
+        srs->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    }
     const std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&a, &b));
     if (!ct) {
         throw invalid_input(source + ": no transformation from the footprints' CRS (" + crs_head(from) +
@@ -495,14 +500,28 @@ footprint_collection read_footprints_ogr(const std::string& path, const footprin
     throw std::runtime_error(path + ": reading this footprint format needs OGR; " + vectors_rebuild_hint);
 }
 
-int epsg_of_crs(const std::string&)
+namespace {
+
+// The EPSG code at the end of "EPSG:n", "urn:ogc:def:crs:EPSG::n" or "http://www.opengis.net/def/crs/EPSG/0/n".
+int trailing_epsg(const std::string& crs)
 {
-    return 0;
+    const std::size_t at = crs.find("EPSG");
+    const std::size_t digits = crs.find_last_not_of("0123456789");
+    if (at == std::string::npos || digits == std::string::npos || digits + 1 >= crs.size() || digits < at) return 0;
+    return std::atoi(crs.c_str() + digits + 1);
+}
+
+}  // namespace
+
+int epsg_of_crs(const std::string& crs)
+{
+    return trailing_epsg(crs);
 }
 
 bool same_crs(const std::string& a, const std::string& b)
 {
-    return a == b;
+    const int code = trailing_epsg(a);
+    return a == b || (code > 0 && code == trailing_epsg(b));
 }
 
 void reproject_footprints(footprint_collection&, const std::string&, const std::string&, const std::string& source)

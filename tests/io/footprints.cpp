@@ -400,6 +400,11 @@ TEST_CASE("io/vectors: footprints reprojected to WGS 84 put x = longitude; back 
         CHECK(area_of(west.footprints[f]) / area_of(utm.footprints[f]) == doctest::Approx(1.0065).epsilon(3e-4));
         CHECK(std::abs(west.footprints[f].parts[0].rings[0][0][0] - 500000.0) > 200000.0);  // moved
     }
+    // A survey with a vertical CRS too (UTM 13N + NAVD88 height): the footprints are placed by its horizontal CRS.
+    auto compound = utm;
+    io::reproject_footprints(compound, utm.crs, "EPSG:32613+5703", "fp.gpkg");
+    CHECK(std::abs(compound.footprints[0].parts[0].rings[0][0][0] - utm.footprints[0].parts[0].rings[0][0][0]) < 1e-6);
+    CHECK(std::abs(compound.footprints[0].parts[0].rings[0][0][1] - utm.footprints[0].parts[0].rings[0][0][1]) < 1e-6);
     try {
         io::reproject_footprints(c, "not a CRS", "EPSG:4326", "fp.gpkg");
         FAIL("accepted");
