@@ -144,7 +144,9 @@ void place_footprints(io::footprint_collection& footprints, const std::string& f
         return;
     }
     const int code = io::epsg_of_crs(footprints.crs);
-    const std::string named = code > 0 ? "EPSG:" + std::to_string(code) : "a CRS without EPSG code";
+    const std::string named = code > 0                      ? "EPSG:" + std::to_string(code)
+                              : footprints.crs.size() <= 60 ? footprints.crs
+                                                            : "a CRS without EPSG code";
     if (survey_crs.empty())
         throw usage_error(
             file + ": the footprints are in " + named +

@@ -124,10 +124,13 @@ message(STATUS "--id-field objid gives 107 and 108; without building_id the FIDs
 
 # A survey with a CRS: test_utm17.las (EPSG:32617, 5 x 3 cells of 1 m from x 289814, y 4320978). A footprint
 # over x 289815..289818, y 4320979..4320981 covers 6 cell centres; the same in WGS 84 (GeoPackage) and in the
-# neighbouring zone 18 (Shapefile with its .prj) is reprojected back and covers the same 6 cells.
+# neighbouring zone 18 (a Shapefile with its .prj, a GeoJSON with a crs member) is reprojected back and covers the
+# same 6 cells.
 footprint_file("${WORK_DIR}/utm17.geojson" "{\"type\":\"Feature\",\"properties\":{\"building_id\":5},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[289815,4320979],[289818,4320979],[289818,4320981],[289815,4320981],[289815,4320979]]]}}")
 ogr2ogr(-f GPKG "${WORK_DIR}/wgs84.gpkg" "${WORK_DIR}/utm17.geojson" -s_srs EPSG:32617 -t_srs EPSG:4326)
 ogr2ogr(-f "ESRI Shapefile" "${WORK_DIR}/utm18.shp" "${WORK_DIR}/utm17.geojson" -s_srs EPSG:32617 -t_srs EPSG:32618)
+# GeoJSON in a projected CRS: ogr2ogr names it in a crs member, which lidarfx's GeoJSON reader keeps.
+ogr2ogr(-f GeoJSON "${WORK_DIR}/utm18.geojson" "${WORK_DIR}/utm17.geojson" -s_srs EPSG:32617 -t_srs EPSG:32618)
 set(inputs "${DATA}/test_utm17.las")
 roofs(las_utm17 "${WORK_DIR}/utm17.geojson")
 if(NOT roofs_err MATCHES "states no CRS; its footprints are taken to be in the survey's CRS")
@@ -137,7 +140,7 @@ file(READ "${WORK_DIR}/las_utm17/footprints.csv" report)
 if(NOT report MATCHES "\n5,0,used,6,")
     message(FATAL_ERROR "the UTM footprint should cover 6 cells:\n${report}")
 endif()
-foreach(case "las_wgs84|wgs84.gpkg|EPSG:4326" "las_utm18|utm18.shp|EPSG:32618")
+foreach(case "las_wgs84|wgs84.gpkg|EPSG:4326" "las_utm18|utm18.shp|EPSG:32618" "las_json18|utm18.geojson|EPSG:32618")
     string(REPLACE "|" ";" case "${case}")
     list(GET case 0 name)
     list(GET case 1 fp)
@@ -159,7 +162,7 @@ file(READ "${WORK_DIR}/las_wgs84/roof_patches.geojson" geojson)
 if(NOT geojson MATCHES "urn:ogc:def:crs:EPSG::32617")
     message(FATAL_ERROR "roof_patches.geojson should name EPSG:32617: ${geojson}")
 endif()
-message(STATUS "footprints in EPSG:4326 and EPSG:32618 reprojected onto the EPSG:32617 survey: the same 6 cells")
+message(STATUS "footprints in EPSG:4326 and EPSG:32618 (Shapefile, GeoJSON) reprojected onto the EPSG:32617 survey: the same 6 cells")
 
 # Footprints with a CRS on a survey without one: refused, exit code 2, nothing written.
 execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" ${units} "${WORK_DIR}/wgs84.gpkg"
