@@ -285,6 +285,11 @@ int run_roofs(const std::vector<std::string>& args)
               << fp.file.footprints.size() + fp.file.problems.size() << " (see footprints.csv)\n"
               << "roof patches (" << mode << " mode): " << r.patches.size() << ", suitable " << suitable << ", " << kwp
               << " kWp\n";
+    std::size_t outside = 0;
+    for (const burn_account& acc : fp.burn.footprints) outside += acc.outside ? 1 : 0;
+    if (outside > 0 && outside == fp.burn.footprints.size())
+        std::cerr << "note: every footprint lies outside the grid; are they in the survey's CRS? (a file that states "
+                     "no CRS is taken to be in it: a WGS 84 GeoJSON needs a crs member)\n";
     commit_and_report(out, command_line("roofs", args));
     return 0;
 }

@@ -162,6 +162,13 @@ file(READ "${WORK_DIR}/las_wgs84/roof_patches.geojson" geojson)
 if(NOT geojson MATCHES "urn:ogc:def:crs:EPSG::32617")
     message(FATAL_ERROR "roof_patches.geojson should name EPSG:32617: ${geojson}")
 endif()
+# A GeoJSON in WGS 84 without a crs member (RFC 7946 style) is taken to be in the survey's CRS: off the grid, said.
+ogr2ogr(-f GeoJSON "${WORK_DIR}/rfc7946.geojson" "${WORK_DIR}/wgs84.gpkg" -lco RFC7946=YES)
+roofs(las_rfc7946 "${WORK_DIR}/rfc7946.geojson")
+file(READ "${WORK_DIR}/las_rfc7946/footprints.csv" report)
+if(NOT report MATCHES "\n5,0,outside the grid" OR NOT roofs_err MATCHES "every footprint lies outside the grid")
+    message(FATAL_ERROR "an RFC 7946 GeoJSON on a UTM survey should be reported off the grid:\n${report}\n${roofs_err}")
+endif()
 message(STATUS "footprints in EPSG:4326 and EPSG:32618 (Shapefile, GeoJSON) reprojected onto the EPSG:32617 survey: the same 6 cells")
 
 # Footprints with a CRS on a survey without one: refused, exit code 2, nothing written.
