@@ -34,7 +34,8 @@ survey_waterbodies find_waterbodies(const survey& s, const extract_waterbodies_o
 
 /// water.asc (1 water, 0 land, -9999 no data: outside the footprint, or no return within 2 cells),
 /// waterbody_labels.asc (0 land, 1..n by decreasing area, -9999 outside the footprint), GeoTIFF twins,
-/// water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson.
+/// water_overlay.png (waterbodies over a hillshade), waterbodies.csv, waterbodies.geojson, waterbodies.gpkg
+/// (with GDAL); which of them follows `formats`.
 /// `footprint`: 1 = inside the area flown (footprint_of). The files are written on `threads` threads
 /// (0 = all cores); the same bytes whatever the count.
 void write_waterbodies(io::output_folder& dir, const survey& s, const extract_waterbodies_result& w,

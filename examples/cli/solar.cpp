@@ -36,7 +36,7 @@ constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
     "                     [--diffuse isotropic|perez] [--facades] [--threads N]\n"
-    "                     [--formats asc,tif,png]\n"
+    "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
@@ -294,7 +294,7 @@ int run_solar(const std::vector<std::string>& args)
         names.push_back("svf.png");
     }
     if (a.has("facades")) {
-        for (const std::string& n : cli::facade_file_names(formats.png)) names.push_back(n);
+        for (const std::string& n : cli::facade_file_names(formats)) names.push_back(n);
     }
     for (const auto& n : names) out.check_name(n);
 
@@ -346,7 +346,8 @@ int run_solar(const std::vector<std::string>& args)
                                         .site = site,
                                         .records = records,
                                         .threads = threads,
-                                        .png = formats.png});
+                                        .png = formats.png,
+                                        .formats = formats});
     }
     cli::commit_and_report(out, cli::command_line("solar", args));
     return 0;

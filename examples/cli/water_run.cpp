@@ -22,8 +22,9 @@ namespace {
 constexpr const char* usage =
     "usage: lidarfx water IN.las|IN.laz|DIR [MORE ...] --cell METRES --out DIR [options]\n"
     "Extracts waterbodies: writes water.asc (1 water, 0 land, -9999 no data), waterbody_labels.asc (0 land,\n"
-    "1..n by decreasing area), GeoTIFF twins when built with GDAL, water_overlay.png, waterbodies.csv and\n"
-    "waterbodies.geojson. Inputs that cannot support the method (no intensity, too few points per cell)\n"
+    "1..n by decreasing area), GeoTIFF twins when built with GDAL, water_overlay.png, waterbodies.csv,\n"
+    "waterbodies.geojson and (with GDAL) waterbodies.gpkg. Inputs that cannot support the method (no intensity, too "
+    "few points per cell)\n"
     "are refused with the reason and exit code 3; --force runs anyway. Lengths, heights and areas are metres\n"
     "whatever the files' unit (feet are converted); maps and polygons are in the files' CRS. Files in degrees\n"
     "(a geographic CRS) are refused (exit code 2): reproject them first. A folder given as input stands for\n"
