@@ -32,6 +32,7 @@
 #include <lidarfx/kernels/points/scan_coverage.hpp>
 
 #include "io/ascii_grid.hpp"
+#include "io/file_output.hpp"
 #include "io/geotiff.hpp"
 #include "io/las.hpp"
 
@@ -713,6 +714,26 @@ bool has_extension(const std::string& path, const std::string& extension)
            });
 }
 
+io::survey_crs ascii_grid_crs(const std::string& path)
+{
+    const std::string prj = io::read_prj_beside(path);
+    io::survey_crs crs = io::crs_of_wkt(prj);
+    for (const auto& w : crs.warnings) std::cerr << "lidarfx: warning: " << io::prj_path_of(path) << ": " << w << '\n';
+    if (crs.geographic) {
+        throw usage_error(path + ": x and y are longitude and latitude in degrees (" + crs.describe() + ", from " +
+                          io::prj_path_of(path) +
+                          "), but cells, heights and areas are measured in metres. Reproject it to a projected CRS "
+                          "first, e.g. gdalwarp -t_srs EPSG:<the UTM zone's code> IN.asc OUT.tif");
+    }
+    return crs;
+}
+
+void heights_to_metres(raster<float>& values, const io::survey_crs& crs)
+{
+    if (crs.vertical_unit_m == 1.0) return;
+    for (float& v : values) v = static_cast<float>(v * crs.vertical_unit_m);
+}
+
 grid to_crs_units(const grid& g, const survey& s)
 {
     grid out = g;
@@ -726,9 +747,14 @@ grid to_crs_units(const grid& g, const survey& s)
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
                   const std::string& crs_wkt, int epsg, const output_formats& formats)
 {
-    if (formats.asc) out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
+    const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
+    if (formats.asc) {
+        out.write(name + ".asc", [&](const std::string& path) { io::write_ascii_grid(path, values, g); });
+        // The CRS beside the grid, as GDAL reads it (the .asc format itself has no place for it).
+        if (const std::string prj = io::esri_prj_text(crs); !prj.empty())
+            out.write(name + ".prj", [&](const std::string& path) { io::write_file(path, prj); });
+    }
     if (formats.tif && io::geotiff_available()) {
-        const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
         out.write(name + ".tif", [&](const std::string& path) { io::write_geotiff(path, values, g, crs); });
     }
 }
@@ -736,7 +762,10 @@ void write_raster(io::output_folder& out, const std::string& name, raster_view<c
 std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats)
 {
     std::vector<std::string> names;
-    if (formats.asc) names.push_back(name + ".asc");
+    if (formats.asc) {
+        names.push_back(name + ".asc");
+        names.push_back(name + ".prj");  // written when the CRS is known
+    }
     if (formats.tif && io::geotiff_available()) names.push_back(name + ".tif");
     return names;
 }

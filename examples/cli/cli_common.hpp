@@ -184,6 +184,14 @@ std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes);
 void refuse_grid_over_budget(const std::string& path, const grid& g, double bytes_per_cell,
                              std::uint64_t memory_budget_bytes);
 
+/// The CRS and units of the ESRI ASCII grid `path`, from the .prj beside it (io::read_prj_beside, read by the rules
+/// of io::crs_of_wkt; its warnings go to stderr); without a .prj the grid has no CRS and is taken in metres.
+/// @throws usage_error when the CRS is geographic (cells in degrees).
+io::survey_crs ascii_grid_crs(const std::string& path);
+
+/// Multiplies every height by crs.vertical_unit_m: heights read from a raster file in metres.
+void heights_to_metres(raster<float>& values, const io::survey_crs& crs);
+
 /// Says on stderr how many cells of the grid read from `path` held no finite height (inf, -inf, nan: they are no
 /// data now), when there were any.
 void report_non_finite_heights(const std::string& path, std::size_t cells);
@@ -209,7 +217,8 @@ raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int thr
 /// heights stay in metres.
 grid to_crs_units(const grid& g, const survey& s);
 
-/// Writes `name`.asc and `name`.tif (when GDAL is available) of a float raster into `out`, as `formats` asks.
+/// Writes `name`.asc (with `name`.prj, its CRS as ESRI WKT, when the CRS is known) and `name`.tif (when GDAL is
+/// available; it holds the CRS) of a float raster into `out`, as `formats` asks.
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
                   const std::string& crs_wkt, int epsg, const output_formats& formats = {});
 

@@ -172,15 +172,24 @@ std::vector<std::string> waterbody_file_names(const output_formats& formats)
 void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats, int threads)
 {
     const auto& pr = s.rasters;
-    const grid g = to_crs_units(pr.g, s);  // georeferenced in the files' CRS; heights stay in metres
-    dir.set_units_note(units_note(s));
+    // A raster file speaks its CRS's units: placed in the files' CRS, heights in its vertical unit.
+    const grid g = to_crs_units(pr.g, s);
+    const double z_unit = s.crs.vertical_unit_m;
+    const auto in_z_unit = [z_unit](const raster<float>& metres) {
+        raster<float> out = metres;
+        for (float& v : out) v = static_cast<float>(v / z_unit);
+        return out;
+    };
+    const raster<float> min_z = z_unit == 1.0 ? raster<float>() : in_z_unit(pr.min_z);
+    const raster<float> max_z = z_unit == 1.0 ? raster<float>() : in_z_unit(pr.max_z);
+    dir.set_units_note("min_z and max_z in " + s.crs.vertical_unit + "; " + units_note(s));
     // Every file is one job; the jobs run side by side (each writer is single-threaded).
     std::vector<std::function<void()>> jobs;
     const auto grid_file = [&](const char* name, const raster_view<const float>& values) {
         jobs.emplace_back([&, name, values] { write_raster(dir, name, values, g, s.crs_wkt, s.epsg, formats); });
     };
-    grid_file("min_z", pr.min_z);
-    grid_file("max_z", pr.max_z);
+    grid_file("min_z", z_unit == 1.0 ? pr.min_z.view() : min_z.view());
+    grid_file("max_z", z_unit == 1.0 ? pr.max_z.view() : max_z.view());
     grid_file("mean_intensity", pr.mean_intensity);
     jobs.emplace_back(
         [&] { write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg, formats); });

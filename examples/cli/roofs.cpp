@@ -16,6 +16,7 @@
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
+#include "io/geotiff.hpp"
 #include "io/tables.hpp"
 #include "io/tmy3.hpp"
 #include "outputs.hpp"
@@ -85,12 +86,21 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
             throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
         const std::uint64_t budget = memory_option(a);
         refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
+        const io::survey_crs crs = ascii_grid_crs(inputs[0]);  // the DSM's .prj, else metres
         for (const auto& [path, target] : {std::pair{inputs[0], &in.dsm}, std::pair{inputs[1], &in.dtm}}) {
             std::size_t non_finite = 0;
             *target = io::read_ascii_grid(path, in.g, &non_finite);
             report_non_finite_heights(path, non_finite);
+            heights_to_metres(*target, crs);
         }
-        in.out_grid = in.g;
+        in.out_grid = in.g;  // in the CRS's units; in.g in metres
+        in.unit_m = crs.horizontal_unit_m;
+        in.g.x0 *= in.unit_m;
+        in.g.y0 *= in.unit_m;
+        in.g.cell *= in.unit_m;
+        if (io::crs_understood(crs.wkt)) in.crs_wkt = crs.wkt;
+        in.epsg = crs.epsg;
+        in.place_crs = crs.for_outputs();
         return in;
     }
     for (const std::string& f : inputs) {

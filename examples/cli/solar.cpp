@@ -220,8 +220,9 @@ int run_solar(const std::vector<std::string>& args)
     const bool single_grid =
         inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
     // Refusals that need no input read: nothing can give the place.
-    if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
-        cli::require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system");
+    if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc") &&
+        lidarfx::io::read_prj_beside(inputs[0]).empty()) {
+        cli::require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system (no .prj beside it)");
     }
     if (!a.has("tmy") && !lidarfx::io::proj_available())
         cli::require_place(lat, lon, "this lidarfx was built without PROJ");
@@ -239,9 +240,16 @@ int run_solar(const std::vector<std::string>& args)
         cli::refuse_grid_over_budget(inputs[0], lidarfx::io::read_ascii_grid_header(inputs[0]).g, solar_bytes_per_cell,
                                      memory_budget);
         std::size_t non_finite = 0;
+        const lidarfx::io::survey_crs crs = cli::ascii_grid_crs(inputs[0]);  // the .prj beside it, else metres
         dsm = lidarfx::io::read_ascii_grid(inputs[0], g, &non_finite);
         lidarfx::cli::report_non_finite_heights(inputs[0], non_finite);
-        cell_m = g.cell;  // taken as metres
+        cli::heights_to_metres(dsm, crs);
+        cell_m = g.cell * crs.horizontal_unit_m;
+        if (lidarfx::io::crs_understood(crs.wkt)) crs_wkt = crs.wkt;
+        epsg = crs.epsg;
+        place_crs = crs.for_outputs();
+        std::cout << "DSM: " << inputs[0] << ", " << g.rows << " x " << g.cols << " cells of " << fixed(cell_m, 3)
+                  << " m, " << crs.describe() << "\n";
     } else if (single_grid) {
         auto t = read_geotiff_dsm(inputs[0], memory_budget);
         dsm = std::move(t.values);

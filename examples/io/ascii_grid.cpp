@@ -267,4 +267,21 @@ raster<float> read_ascii_grid(const std::string& path, grid& g, std::size_t* non
     return values;
 }
 
+std::string prj_path_of(const std::string& asc_path)
+{
+    return std::filesystem::path(asc_path).replace_extension(".prj").string();
+}
+
+std::string read_prj_beside(const std::string& asc_path)
+{
+    const std::string path = prj_path_of(asc_path);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return {};
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in && !in.eof()) throw std::runtime_error(path + ": cannot read the grid's CRS file");
+    return text.str();
+}
+
 }  // namespace lidarfx::io

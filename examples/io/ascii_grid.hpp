@@ -51,4 +51,12 @@ ascii_grid_header read_ascii_grid_header(const std::string& path);
 /// (with their row and column), fewer or more values than nrows * ncols.
 raster<float> read_ascii_grid(const std::string& path, grid& g, std::size_t* non_finite_cells = nullptr);
 
+/// The path of the .prj file that holds the CRS of the ESRI ASCII grid `asc_path` (as GDAL writes and reads it):
+/// the same name with the extension .prj ("dsm.asc" gives "dsm.prj").
+std::string prj_path_of(const std::string& asc_path);
+
+/// The text of the .prj file beside the ESRI ASCII grid `asc_path` (prj_path_of), "" when there is none.
+/// @throws std::runtime_error naming the file when it exists but cannot be read.
+std::string read_prj_beside(const std::string& asc_path);
+
 }  // namespace lidarfx::io

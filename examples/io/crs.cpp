@@ -695,6 +695,36 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
     return c;
 }
 
+std::string esri_prj_text(const std::string& crs)
+{
+    if (blank(crs)) return {};
+#ifdef LIDARFX_HAVE_GDAL
+    register_drivers();
+    const quiet_gdal quiet;
+    std::string input = crs;
+    if (std::all_of(crs.begin(), crs.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))
+        input = "EPSG:" + crs;
+    srs_ptr srs(OSRNewSpatialReference(nullptr));
+    if (OSRSetFromUserInput(srs.get(), input.c_str()) != OGRERR_NONE) return {};
+    const char* options[] = {"FORMAT=WKT1_ESRI", nullptr};
+    const auto export_esri = [&]() -> std::string {
+        char* wkt = nullptr;
+        const bool ok = OSRExportToWktEx(srs.get(), &wkt, options) == OGRERR_NONE && wkt != nullptr;
+        std::string out = ok ? wkt : "";
+        CPLFree(wkt);
+        return out;
+    };
+    std::string out = export_esri();
+    if (out.empty() && OSRIsCompound(srs.get())) {
+        OSRStripVertical(srs.get());
+        out = export_esri();
+    }
+    return out;
+#else
+    return crs.find('[') != std::string::npos ? crs : std::string();
+#endif
+}
+
 survey_crs crs_of_wkt(const std::string& wkt, bool use_gdal)
 {
     las_header h;  // a LAS 1.4 header whose only CRS record is the WKT

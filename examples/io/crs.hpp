@@ -51,6 +51,12 @@ survey_crs crs_of(const las_header& h, bool use_gdal = true);
 /// LAS file whose only record is that WKT; "" gives no CRS, metres assumed. Never throws.
 survey_crs crs_of_wkt(const std::string& wkt, bool use_gdal = true);
 
+/// The text of the .prj file GDAL's AAIGrid driver writes beside an ESRI ASCII grid and reads back: `crs` ("EPSG:n",
+/// a bare code, WKT or PROJ text, as survey_crs::for_outputs gives it) as ESRI WKT (OGR's WKT1_ESRI export) with
+/// GDAL; a compound CRS that ESRI WKT cannot hold loses its vertical part. Without GDAL: `crs` itself when it is
+/// WKT. "" when `crs` is empty or cannot be read (then no .prj is written). Never throws.
+std::string esri_prj_text(const std::string& crs);
+
 /// True when a and b hold the same CRS records (GeoKeys, their parameters, WKT, the WKT flag), so that
 /// crs_of gives the same answer for both: tiles of one survey need to be interpreted once (GDAL's search
 /// for a matching EPSG code takes a quarter of a second).

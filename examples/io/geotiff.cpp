@@ -95,33 +95,37 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     register_drivers();
     const quiet_gdal quiet;
     const std::string wkt = crs_to_wkt(crs_wkt_or_epsg);
-    GDALDriverH driver = GDALGetDriverByName("GTiff");
-    if (driver == nullptr) throw std::runtime_error(path + ": GDAL has no GTiff driver");
-    const char* options[] = {"COMPRESS=DEFLATE", "ZLEVEL=1", "PREDICTOR=3", "TILED=YES", "BIGTIFF=IF_SAFER", nullptr};
-    dataset ds(GDALCreate(driver, path.c_str(), static_cast<int>(g.cols), static_cast<int>(g.rows), 1, GDT_Float32,
-                          const_cast<char**>(options)));
-    if (!ds) throw std::runtime_error(path + ": cannot create GeoTIFF" + gdal_message());
+    // The cells go into an in-memory dataset first: the COG driver writes a whole file at once (CreateCopy), with
+    // its overviews before the full-resolution tiles.
+    GDALDriverH mem_driver = GDALGetDriverByName("MEM");
+    GDALDriverH cog_driver = GDALGetDriverByName("COG");
+    if (mem_driver == nullptr || cog_driver == nullptr)
+        throw std::runtime_error(path + ": GDAL has no MEM or COG driver (GDAL 3.1 or later is needed)");
+    dataset mem(
+        GDALCreate(mem_driver, "", static_cast<int>(g.cols), static_cast<int>(g.rows), 1, GDT_Float32, nullptr));
+    if (!mem) throw std::runtime_error(path + ": cannot create the GeoTIFF in memory" + gdal_message());
     auto transform = to_gdal(g);
-    bool ok = GDALSetGeoTransform(ds.get(), transform.data()) == CE_None;
-    if (!wkt.empty()) ok = ok && GDALSetProjection(ds.get(), wkt.c_str()) == CE_None;
-    GDALRasterBandH band = GDALGetRasterBand(ds.get(), 1);
+    bool ok = GDALSetGeoTransform(mem.get(), transform.data()) == CE_None;
+    if (!wkt.empty()) ok = ok && GDALSetProjection(mem.get(), wkt.c_str()) == CE_None;
+    GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
     ok = ok && GDALSetRasterNoDataValue(band, geotiff_nodata) == CE_None;
-    // One strip of tiles at a time (256 rows, the tile height): each tile is compressed once, when full.
-    constexpr std::ptrdiff_t strip_rows = 256;
     const auto cols = static_cast<std::size_t>(g.cols);
-    std::vector<float> strip(cols * static_cast<std::size_t>(std::min(strip_rows, g.rows)));
-    for (std::ptrdiff_t r0 = 0; ok && r0 < g.rows; r0 += strip_rows) {
-        const std::ptrdiff_t n = std::min(strip_rows, g.rows - r0);
-        for (std::ptrdiff_t r = 0; r < n; ++r) {
-            const float* src = values.row(r0 + r);
-            float* dst = strip.data() + static_cast<std::size_t>(r) * cols;
-            for (std::size_t c = 0; c < cols; ++c)
-                dst[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
-        }
-        ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r0), static_cast<int>(g.cols), static_cast<int>(n),
-                          strip.data(), static_cast<int>(g.cols), static_cast<int>(n), GDT_Float32, 0, 0) == CE_None;
+    std::vector<float> row(cols);
+    for (std::ptrdiff_t r = 0; ok && r < g.rows; ++r) {
+        const float* src = values.row(r);
+        for (std::size_t c = 0; c < cols; ++c)
+            row[c] = std::isnan(src[c]) ? static_cast<float>(geotiff_nodata) : src[c];
+        ok = GDALRasterIO(band, GF_Write, 0, static_cast<int>(r), static_cast<int>(g.cols), 1, row.data(),
+                          static_cast<int>(g.cols), 1, GDT_Float32, 0, 0) == CE_None;
     }
-    if (!ok) throw std::runtime_error(path + ": writing the GeoTIFF failed" + gdal_message());
+    if (!ok) throw std::runtime_error(path + ": preparing the GeoTIFF failed" + gdal_message());
+    // Nearest-neighbour overviews: every value in them is a value of the grid (classes and labels stay whole).
+    const char* options[] = {"COMPRESS=DEFLATE", "LEVEL=1",        "PREDICTOR=FLOATING_POINT",
+                             "BLOCKSIZE=256",    "OVERVIEWS=AUTO", "OVERVIEW_RESAMPLING=NEAREST",
+                             "BIGTIFF=IF_SAFER", nullptr};
+    dataset ds(
+        GDALCreateCopy(cog_driver, path.c_str(), mem.get(), FALSE, const_cast<char**>(options), nullptr, nullptr));
+    if (!ds) throw std::runtime_error(path + ": writing the Cloud-Optimized GeoTIFF failed" + gdal_message());
     ds.reset();  // flushes and closes
     if (CPLGetLastErrorType() >= CE_Failure)
         throw std::runtime_error(path + ": closing the GeoTIFF failed" + gdal_message());

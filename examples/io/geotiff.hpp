@@ -19,8 +19,9 @@ bool geotiff_available() noexcept;
 /// True when write_geotiff understands `crs` ("" included); always true without GDAL (no GeoTIFF is written).
 bool crs_understood(const std::string& crs) noexcept;
 
-/// Writes `values` on `g` as a single-band float32 GeoTIFF (DEFLATE level 1 with the floating-point predictor,
-/// 256 x 256 tiles: level 1 is 2-3 times faster than 6 for files 4 % larger): geotransform
+/// Writes `values` on `g` as a single-band float32 Cloud-Optimized GeoTIFF (GDAL's COG driver: 256 x 256 tiles,
+/// nearest-neighbour overviews down to one tile, DEFLATE level 1 with the floating-point predictor: level 1 is 2-3
+/// times faster than 6 for files 4 % larger; memory: a second copy of the grid while writing): geotransform
 /// lidarfx::to_gdal(g) (north-up, square cells), NaN cells as NoData -9999. `crs` names the coordinate
 /// system: "EPSG:3645", a bare code "3645", any WKT or PROJ string GDAL understands, or "" for none.
 /// @throws invalid_input when the shapes differ, the raster is empty or the CRS is not understood;
