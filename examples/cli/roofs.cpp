@@ -44,6 +44,10 @@ constexpr const char* usage =
     "  --id-field F   the footprints' integer id field [building_id]\n"
     "  --formats L    what to write: png and csv, geojson, gpkg [all that this build can write]\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
+    "  --xy-unit U    unit of DSM.asc and DTM.asc corners and cell size when no .prj is beside the DSM (its CRS,\n"
+    "                 as GDAL writes it): m, ft (international foot), us-ft (US survey foot); refused without\n"
+    "                 one of the two; with a .prj it must agree with it\n"
+    "  --z-unit U     unit of their heights (m, ft, us-ft), as --xy-unit\n"
     "  --mode M       planes | paper [planes]\n"
     "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
     "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches\n"
@@ -86,7 +90,7 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
             throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
         const std::uint64_t budget = memory_option(a);
         refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
-        const io::survey_crs crs = ascii_grid_crs(inputs[0]);  // the DSM's .prj, else metres
+        const io::survey_crs crs = ascii_grid_crs(inputs[0], a);  // the DSM's .prj, else metres
         for (const auto& [path, target] : {std::pair{inputs[0], &in.dsm}, std::pair{inputs[1], &in.dtm}}) {
             std::size_t non_finite = 0;
             *target = io::read_ascii_grid(path, in.g, &non_finite);
@@ -111,7 +115,7 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const argum
     const survey s = read_survey(inputs, survey_opts);
     print_survey(s);
     in.g = s.rasters.g;
-    const ground_model_result ground = ground_model(s.rasters.max_z, in.g.cell, {.run = {.threads = threads}});
+    const ground_model_result ground = ground_model(s.rasters.max_z, in.g.cell, {}, {.threads = threads});
     in.dsm = ground.surface;
     in.dtm = ground.ground;
     in.out_grid = to_crs_units(in.g, s);
@@ -178,7 +182,8 @@ void place_footprints(io::footprint_collection& footprints, const std::string& f
 int run_roofs(const std::vector<std::string>& args)
 {
     const arguments a(args,
-                      {"out", "cell", "mode", "threads", "memory", "crop", "formats", "tmy", "lat", "lon", "id-field"},
+                      {"out", "cell", "mode", "threads", "memory", "crop", "formats", "tmy", "lat", "lon", "id-field",
+                       "xy-unit", "z-unit"},
                       {"help", "force"});
     if (const auto code = stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);

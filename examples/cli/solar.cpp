@@ -43,13 +43,18 @@ constexpr const char* usage =
     "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
     "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
     "IDW; a GeoTIFF DSM (needs GDAL) is read with its NoData as holes and its CRS's units (feet become metres,\n"
-    "degrees are refused); an ESRI ASCII grid is taken as metres. Weather: a TMY3 file (--tmy; its station gives\n"
+    "degrees are refused); an ESRI ASCII grid takes its CRS and units from the .prj beside it (as GDAL writes\n"
+    "it; lidarfx rasterize writes one), else from --xy-unit and --z-unit, and is refused without them. Weather: a TMY3 "
+    "file (--tmy; its station gives\n"
     "the time zone); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs). The place of the\n"
     "sun: --lat/--lon when given, else the survey's centre when its CRS is known and lidarfx has PROJ, else the TMY\n"
     "station. With a known CRS and PROJ, sun azimuths are also turned from true to grid north by the meridian\n"
     "convergence at the survey's centre (--lat/--lon given or not).\n"
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
+    "  --xy-unit U    unit of a DSM.asc's corner and cell size when no .prj is beside it: m, ft (international\n"
+    "                 foot), us-ft (US survey foot); with a .prj it must agree with it\n"
+    "  --z-unit U     unit of a DSM.asc's heights (m, ft, us-ft), as --xy-unit\n"
     "  --year Y       the year the records are placed in [2021]: the clear-sky year, or the year every TMY row\n"
     "                 is re-stamped to (same local month, day and hour), so the sun follows one calendar year\n"
     "  --year-from-tmy  keep the TMY rows' own years (a TMY takes each month from a different year) instead\n"
@@ -173,9 +178,10 @@ geotiff_dsm read_geotiff_dsm(const std::string& path, std::uint64_t memory_budge
 int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
-    const cli::arguments a(
-        args, {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats", "diffuse"},
-        {"help", "force", "year-from-tmy", "facades"});
+    const cli::arguments a(args,
+                           {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
+                            "diffuse", "xy-unit", "z-unit"},
+                           {"help", "force", "year-from-tmy", "facades"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
@@ -240,7 +246,7 @@ int run_solar(const std::vector<std::string>& args)
         cli::refuse_grid_over_budget(inputs[0], lidarfx::io::read_ascii_grid_header(inputs[0]).g, solar_bytes_per_cell,
                                      memory_budget);
         std::size_t non_finite = 0;
-        const lidarfx::io::survey_crs crs = cli::ascii_grid_crs(inputs[0]);  // the .prj beside it, else metres
+        const lidarfx::io::survey_crs crs = cli::ascii_grid_crs(inputs[0], a);  // the .prj beside it, else metres
         dsm = lidarfx::io::read_ascii_grid(inputs[0], g, &non_finite);
         lidarfx::cli::report_non_finite_heights(inputs[0], non_finite);
         cli::heights_to_metres(dsm, crs);

@@ -39,24 +39,24 @@ header() {  # ncols nrows: an ESRI ASCII header of 1 m cells
 
 # A 100-byte header declaring 20000 x 20000 cells, with three values.
 { header 20000 20000; echo "1 2 3"; } >"$work/huge.asc"
-run 2 "over the memory budget of 0.0625 GiB" solar "$work/huge.asc" --lat 35 --lon -80 --memory 64MiB --out "$work/o1"
-run 2 "over the memory budget" solar "$work/huge.asc" --lat 35 --lon -80 --out "$work/o2"   # the default budget
+run 2 "over the memory budget of 0.0625 GiB" solar "$work/huge.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 64MiB --out "$work/o1"
+run 2 "over the memory budget" solar "$work/huge.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --out "$work/o2"   # the default budget
 cp "$work/huge.asc" "$work/huge_dtm.asc"
 cat >"$work/footprints.geojson" <<'JSON'
 {"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"building_id": 1},
  "geometry": {"type": "Polygon", "coordinates": [[[500010, 4000010], [500020, 4000010], [500020, 4000020],
  [500010, 4000020], [500010, 4000010]]]}}]}
 JSON
-run 2 "huge_dtm.asc: a grid of 20000 x 20000 cells needs about 23.8 GiB" roofs "$work/huge.asc" "$work/huge_dtm.asc" \
+run 2 "huge_dtm.asc: a grid of 20000 x 20000 cells needs about 23.8 GiB" roofs "$work/huge.asc" "$work/huge_dtm.asc" --xy-unit m --z-unit m \
     "$work/footprints.geojson" --memory 64MiB --out "$work/o3"
 # ncols 2147483648: over any budget; with a budget that would hold it, the file is too short for its header.
 { header 2147483648 1; echo "1 2 3"; } >"$work/wide.asc"
-run 2 "over the memory budget" solar "$work/wide.asc" --lat 35 --lon -80 --memory 64MiB --out "$work/o4"
+run 2 "over the memory budget" solar "$work/wide.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 64MiB --out "$work/o4"
 run 1 "truncated data: expected 2147483648 values, but the 7 bytes after the header hold at most 4" \
-    solar "$work/wide.asc" --lat 35 --lon -80 --memory 1TiB --out "$work/o5"
+    solar "$work/wide.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 1TiB --out "$work/o5"
 # A complete 8000 x 8000 DSM (128 MB of text) with --memory 64MiB.
 { header 8000 8000; yes 0 | head -n 64000000 || true; } >"$work/valid.asc"  # yes ends on SIGPIPE
-run 2 "a grid of 8000 x 8000 cells needs about 5.72 GiB" solar "$work/valid.asc" --lat 35 --lon -80 --memory 64MiB \
+run 2 "a grid of 8000 x 8000 cells needs about 5.72 GiB" solar "$work/valid.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 64MiB \
     --out "$work/o6"
 rm -f "$work/valid.asc"
 # A sparse 30000 x 30000 GeoTIFF (a few hundred KB on disk).
@@ -70,7 +70,7 @@ else
 fi
 # inf and nan heights are no data, and the run says how many there were.
 { header 4 3; printf '10 10 inf 10\n10 -inf 10 10\nnan 10 10 10\n'; } >"$work/inf.asc"
-"$lidarfx" solar "$work/inf.asc" --lat 35 --lon -80 --out "$work/o8" >"$work/log" 2>&1 || fail "inf.asc: $(cat "$work/log")"
+"$lidarfx" solar "$work/inf.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --out "$work/o8" >"$work/log" 2>&1 || fail "inf.asc: $(cat "$work/log")"
 grep -q "inf.asc: 3 cells hold inf, -inf or nan: no data (NaN)" "$work/log" || fail "inf cells not reported: $(cat "$work/log")"
 # No output folder is left by a refused run.
 for o in o1 o2 o3 o4 o5 o6 o7; do [[ ! -e "$work/$o" ]] || fail "a refused run left $work/$o"; done

@@ -22,7 +22,7 @@ endfunction()
 feature(5 "${square}" f5)
 string(ASCII 239 187 191 bom)
 file(WRITE "${WORK_DIR}/bom.geojson" "${bom}${collection}${f5}]}")
-execute_process(COMMAND "${LIDARFX}" roofs "${d}" "${d}" "${WORK_DIR}/bom.geojson" --formats png --out "${WORK_DIR}/out_bom"
+execute_process(COMMAND "${LIDARFX}" roofs "${d}" "${d}" --xy-unit m --z-unit m "${WORK_DIR}/bom.geojson" --formats png --out "${WORK_DIR}/out_bom"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "a footprint file with a byte order mark was refused (${rc}):\n${said}\n${err}")
@@ -49,7 +49,7 @@ foreach(id RANGE 1 40)
     string(APPEND big "${f}")
 endforeach()
 file(WRITE "${WORK_DIR}/big.geojson" "${big}]}")
-execute_process(COMMAND "${LIDARFX}" roofs "${d}" "${d}" "${WORK_DIR}/big.geojson" --formats png --out "${WORK_DIR}/out_big"
+execute_process(COMMAND "${LIDARFX}" roofs "${d}" "${d}" --xy-unit m --z-unit m "${WORK_DIR}/big.geojson" --formats png --out "${WORK_DIR}/out_big"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the 2 MB footprint file was refused without --memory (${rc}):\n${said}\n${err}")
@@ -57,7 +57,7 @@ endif()
 
 set(out "${WORK_DIR}/refused")
 set(cases
-    "2|huge.geojson: feature 1 (building_id 12): coordinate x = 1e300 of vertex 0|beyond +-1e9|roofs^${d}^${d}^${WORK_DIR}/huge.geojson^--out^${out}"
-    "2|big.geojson: reading the footprints needs more than the file's 1.95 MiB|over the memory budget of 1 MiB|roofs^${d}^${d}^${WORK_DIR}/big.geojson^--memory^1MiB^--out^${out}"
-    "2|big.geojson: reading the footprints needs about|over the memory budget of 3 MiB|roofs^${d}^${d}^${WORK_DIR}/big.geojson^--memory^3MiB^--out^${out}")
+    "2|huge.geojson: feature 1 (building_id 12): coordinate x = 1e300 of vertex 0|beyond +-1e9|roofs^${d}^${d}^--xy-unit^m^--z-unit^m^${WORK_DIR}/huge.geojson^--out^${out}"
+    "2|big.geojson: reading the footprints needs more than the file's 1.95 MiB|over the memory budget of 1 MiB|roofs^${d}^${d}^--xy-unit^m^--z-unit^m^${WORK_DIR}/big.geojson^--memory^1MiB^--out^${out}"
+    "2|big.geojson: reading the footprints needs about|over the memory budget of 3 MiB|roofs^${d}^${d}^--xy-unit^m^--z-unit^m^${WORK_DIR}/big.geojson^--memory^3MiB^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

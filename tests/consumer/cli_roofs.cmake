@@ -49,7 +49,7 @@ file(WRITE "${WORK_DIR}/footprints.geojson" "{\"type\":\"FeatureCollection\",\"f
 
 foreach(mode planes paper)
     set(out "${WORK_DIR}/out_${mode}")
-    execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson"
+    execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" --xy-unit m --z-unit m "${WORK_DIR}/footprints.geojson"
                             --mode ${mode} --out "${out}"
                     RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
     if(NOT rc EQUAL 0)
@@ -96,7 +96,7 @@ endforeach()
 
 # With a place (clear-sky year) the patches carry their yield: the south-facing shed gets more per m2 than the
 # flat roof at 40 N.
-execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson"
+execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" --xy-unit m --z-unit m "${WORK_DIR}/footprints.geojson"
                         --lat 40 --lon -105 --formats png --out "${WORK_DIR}/out_yield"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -124,9 +124,9 @@ set(out "${WORK_DIR}/refused")
 set(d "${WORK_DIR}/dsm.asc")
 set(t "${WORK_DIR}/dtm.asc")
 set(cases
-    "2|building_id 3 is used by feature 0|unique|roofs^${d}^${t}^${WORK_DIR}/dup.geojson^--out^${out}"
-    "2|no integer \"building_id\"|every footprint|roofs^${d}^${t}^${WORK_DIR}/noid.geojson^--out^${out}"
-    "2|--mode must be planes or paper|(got best)|roofs^${d}^${t}^${WORK_DIR}/footprints.geojson^--mode^best^--out^${out}"
-    "2|the last input must be the footprints|.geojson|roofs^${d}^${t}^--out^${out}"
-    "2|--lat and --lon|go together|roofs^${d}^${t}^${WORK_DIR}/footprints.geojson^--lat^40^--out^${out}")
+    "2|building_id 3 is used by feature 0|unique|roofs^${d}^${t}^--xy-unit^m^--z-unit^m^${WORK_DIR}/dup.geojson^--out^${out}"
+    "2|no integer \"building_id\"|every footprint|roofs^${d}^${t}^--xy-unit^m^--z-unit^m^${WORK_DIR}/noid.geojson^--out^${out}"
+    "2|--mode must be planes or paper|(got best)|roofs^${d}^${t}^--xy-unit^m^--z-unit^m^${WORK_DIR}/footprints.geojson^--mode^best^--out^${out}"
+    "2|the last input must be the footprints|.geojson|roofs^${d}^${t}^--xy-unit^m^--z-unit^m^--out^${out}"
+    "2|--lat and --lon|go together|roofs^${d}^${t}^--xy-unit^m^--z-unit^m^${WORK_DIR}/footprints.geojson^--lat^40^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -9,7 +9,7 @@ include("${CMAKE_CURRENT_LIST_DIR}/block_dsm.cmake")
 write_block_dsm("${dsm}" 16 6 10 6 10 106)
 
 set(out "${WORK_DIR}/out")
-execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --lat 52.5 --lon 13.4 --formats asc,png --out "${out}"
+execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --formats asc,png --out "${out}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "lidarfx solar failed (${rc}):\n${said}\n${err}")
@@ -46,7 +46,7 @@ endif()
 message(STATUS "lidarfx solar: ${expected} written, 12 month rows")
 
 # The Perez sky option runs too.
-execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --lat 52.5 --lon 13.4 --diffuse perez --formats asc
+execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --diffuse perez --formats asc
                         --out "${WORK_DIR}/out_perez"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK_DIR}/out_perez/annual_kwh_m2.asc")
@@ -57,7 +57,7 @@ endif()
 # building found, the Table 1 header and rows, and the south facade above the north one at 52.5 N.
 write_block_dsm("${WORK_DIR}/box.asc" 40 14 24 14 26 110)
 set(fac "${WORK_DIR}/out_facades")
-execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/box.asc" --lat 52.5 --lon 13.4 --facades --formats asc,png
+execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/box.asc" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --facades --formats asc,png
                         --out "${fac}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
@@ -93,10 +93,10 @@ endif()
 message(STATUS "lidarfx solar --facades: south facade ${annual_south}, north ${annual_north} kWh/m2/yr")
 
 set(cases
-    "2|--lat must be given|[-90, 90]|solar^${dsm}^--out^${out}_refused"
-    "2|--lon must be given|[-180, 180]|solar^${dsm}^--lat^52^--out^${out}_refused"
-    "2|--year-from-tmy needs --tmy|FILE.csv|solar^${dsm}^--lat^52^--lon^13^--year-from-tmy^--out^${out}_refused"
-    "2|--year must be in|(got 1066)|solar^${dsm}^--lat^52^--lon^13^--year^1066^--out^${out}_refused"
-    "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused")
+    "2|--lat must be given|[-90, 90]|solar^${dsm}^--xy-unit^m^--z-unit^m^--out^${out}_refused"
+    "2|--lon must be given|[-180, 180]|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--out^${out}_refused"
+    "2|--year-from-tmy needs --tmy|FILE.csv|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year-from-tmy^--out^${out}_refused"
+    "2|--year must be in|(got 1066)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year^1066^--out^${out}_refused"
+    "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused")
 set(out "${out}_refused")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -40,13 +40,13 @@ foreach(days 31 28 31 30 31 30 31 31 30 31 30 31)
 endforeach()
 file(WRITE "${WORK_DIR}/year.csv" "${station}${header}${rows}")
 
-execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson"
+execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" --xy-unit m --z-unit m "${WORK_DIR}/footprints.geojson"
                         --tmy "${WORK_DIR}/year.csv" --formats asc --out "${WORK_DIR}/roofs"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE roofs_said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "lidarfx roofs --tmy failed (${rc}):\n${roofs_said}\n${err}")
 endif()
-execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/dsm.asc" --tmy "${WORK_DIR}/year.csv" --year-from-tmy
+execute_process(COMMAND "${LIDARFX}" solar "${WORK_DIR}/dsm.asc" --xy-unit m --z-unit m --tmy "${WORK_DIR}/year.csv" --year-from-tmy
                         --formats asc --out "${WORK_DIR}/solar"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE solar_said ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)

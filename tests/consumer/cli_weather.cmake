@@ -50,8 +50,8 @@ string(REPLACE "06/21/2001,13:00,0,0,500,1,0,600," "06/21/2001,13:00,0,0,500,1,0
 file(WRITE "${WORK_DIR}/dni.csv" "${station}${header}${dni_rows}")
 
 set(coverage "covers 8759 of 8760 hours of the year (1 missing, the first 12/31 24:00: they add nothing; at most 88")
-set(solar solar "${WORK_DIR}/dsm.asc" --formats asc)
-set(roofs roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson" --formats asc)
+set(solar solar "${WORK_DIR}/dsm.asc" --xy-unit m --z-unit m --formats asc)
+set(roofs roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" "${WORK_DIR}/footprints.geojson" --xy-unit m --z-unit m --formats asc)
 foreach(command solar roofs)
     execute_process(COMMAND "${LIDARFX}" ${${command}} --tmy "${WORK_DIR}/short.csv" --out "${WORK_DIR}/${command}"
                     RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
