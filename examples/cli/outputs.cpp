@@ -172,9 +172,12 @@ std::vector<std::string> waterbody_file_names(const output_formats& formats)
 void write_point_rasters(io::output_folder& dir, const survey& s, const output_formats& formats, int threads)
 {
     const auto& pr = s.rasters;
-    // A raster file speaks its CRS's units: placed in the files' CRS, heights in its vertical unit.
+    // A raster file speaks its CRS's units: placed in the files' CRS, heights in the vertical unit of the CRS the
+    // file records (the horizontal unit when that CRS has no vertical part, as a reader of the file assumes).
     const grid g = to_crs_units(pr.g, s);
-    const double z_unit = s.crs.vertical_unit_m;
+    const bool vertical_written = s.crs_wkt.find("VERT") != std::string::npos;  // VERT_CS (WKT1), VERTCRS (WKT2)
+    const double z_unit = vertical_written ? s.crs.vertical_unit_m : s.crs.horizontal_unit_m;
+    const std::string z_unit_name = vertical_written ? s.crs.vertical_unit : s.crs.horizontal_unit;
     const auto in_z_unit = [z_unit](const raster<float>& metres) {
         raster<float> out = metres;
         for (float& v : out) v = static_cast<float>(v / z_unit);
@@ -182,7 +185,7 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
     };
     const raster<float> min_z = z_unit == 1.0 ? raster<float>() : in_z_unit(pr.min_z);
     const raster<float> max_z = z_unit == 1.0 ? raster<float>() : in_z_unit(pr.max_z);
-    dir.set_units_note("min_z and max_z in " + s.crs.vertical_unit + "; " + units_note(s));
+    dir.set_units_note("min_z and max_z in " + z_unit_name + "; " + units_note(s));
     // Every file is one job; the jobs run side by side (each writer is single-threaded).
     std::vector<std::function<void()>> jobs;
     const auto grid_file = [&](const char* name, const raster_view<const float>& values) {
