@@ -56,7 +56,7 @@ TEST_CASE("io/write_geotiff: float32 round trip with NoData, geotransform and CR
                          "'EPSG:not-a-code')",
                          invalid_input);
     CHECK(starts_with(io_test::runtime_error_of([&] { write_geotiff(dir.file("no/dir.tif"), values, g); }),
-                      dir.file("no/dir.tif") + ": cannot create GeoTIFF"));
+                      dir.file("no/dir.tif") + ": writing the Cloud-Optimized GeoTIFF failed"));
     io_test::write_bytes(dir.file("text.tif"), {'n', 'o', 't', ' ', 'a', ' ', 't', 'i', 'f', 'f'});
     CHECK(starts_with(io_test::runtime_error_of([&] { (void)read_geotiff(dir.file("text.tif")); }),
                       dir.file("text.tif") + ": cannot open as a raster"));
