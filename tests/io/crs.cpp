@@ -533,3 +533,31 @@ TEST_CASE("io/water: a survey in feet clipped to a circle - water in m2 and m, n
         CHECK(b.water_level_m <= hi + 0.5);
     }
 }
+
+TEST_CASE("io/esri_prj_text: the CRS of a .prj beside an ESRI ASCII grid, read back in its units")
+{
+    CHECK(esri_prj_text("").empty());
+    CHECK(esri_prj_text("  ").empty());
+    if (!crs_gdal_available()) {
+        CHECK(esri_prj_text("EPSG:2994").empty());  // without GDAL only WKT passes
+        CHECK(esri_prj_text("PROJCS[\"x\"]") == "PROJCS[\"x\"]");
+        return;
+    }
+    CHECK(esri_prj_text("EPSG:not-a-code").empty());
+    for (const auto& [crs, unit_m] : {std::pair<std::string, double>{"EPSG:2994", international_foot_m},
+                                      {"32617", metre_m},
+                                      {"EPSG:2269", international_foot_m}}) {
+        CAPTURE(crs);
+        const std::string prj = esri_prj_text(crs);
+        CHECK(prj.rfind("PROJCS[", 0) == 0);  // ESRI WKT: WKT1 without AUTHORITY nodes
+        CHECK(!contains(prj, "AUTHORITY"));
+        const survey_crs back = crs_of_wkt(prj);
+        CHECK(back.horizontal_unit_m == doctest::Approx(unit_m).epsilon(1e-12));
+        CHECK(back.vertical_unit_m == doctest::Approx(unit_m).epsilon(1e-12));
+        CHECK(!back.geographic);
+    }
+    // A compound CRS keeps its horizontal part (ESRI WKT has no compound form GDAL reads from a .prj).
+    const survey_crs compound = crs_of_wkt(esri_prj_text("EPSG:32613+5703"));
+    CHECK(compound.horizontal_unit_m == doctest::Approx(1.0));
+    CHECK(!compound.source.empty());
+}
