@@ -121,13 +121,13 @@ void bm_water_step_4096(benchmark::State& state)
                 benchmark::DoNotOptimize(lidarfx::assess_water_inputs(in, cell).dropout_fraction);
                 break;
             case 1:
-                benchmark::DoNotOptimize(lidarfx::water_vegetation(in, {.run = run}).data());
+                benchmark::DoNotOptimize(lidarfx::water_vegetation(in, {}, run).data());
                 break;
             case 2:
-                benchmark::DoNotOptimize(lidarfx::water_angles(in, cell, {.run = run}).data());
+                benchmark::DoNotOptimize(lidarfx::water_angles(in, cell, {}, run).data());
                 break;
             case 3:
-                benchmark::DoNotOptimize(lidarfx::water_seeds(pr.dropout, {.run = run}).labels.data());
+                benchmark::DoNotOptimize(lidarfx::water_seeds(pr.dropout, {}, run).labels.data());
                 break;
             case 4:
                 benchmark::DoNotOptimize(lidarfx::intensity_bins(pr.mean_intensity, pr.dropout).bin.data());
@@ -144,7 +144,7 @@ void bm_water_step_4096(benchmark::State& state)
                 state.PauseTiming();
                 auto labels = labels_4096(true);
                 state.ResumeTiming();
-                benchmark::DoNotOptimize(lidarfx::fill_small_islands(labels, cell, {.run = run}));
+                benchmark::DoNotOptimize(lidarfx::fill_small_islands(labels, cell, {}, run));
                 break;
             }
             case 7: {
@@ -165,12 +165,12 @@ void bm_water_step_4096(benchmark::State& state)
                 break;
             }
             case 9: {  // with the vegetation mask excluded, as extract_waterbodies calls it
-                static const auto vegetation = lidarfx::water_vegetation(in, {.run = {.threads = 0}});
-                benchmark::DoNotOptimize(lidarfx::flat_water_seeds(in, vegetation, {.run = run}).data());
+                static const auto vegetation = lidarfx::water_vegetation(in, {}, {.threads = 0});
+                benchmark::DoNotOptimize(lidarfx::flat_water_seeds(in, vegetation, {}, {}, {}, run).data());
                 break;
             }
             case 10:
-                benchmark::DoNotOptimize(lidarfx::water_surface_slope(in.min_z, cell, {.run = run}).data());
+                benchmark::DoNotOptimize(lidarfx::water_surface_slope(in.min_z, cell, {}, run).data());
                 break;
         }
     }

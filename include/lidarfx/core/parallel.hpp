@@ -3,7 +3,9 @@
 // parallel-for over blocks of rows.
 //
 // Running: threads, progress, cancellation. Every algorithm that may run long takes, in its options
-// struct, the member `execution run = {};`, and nothing else about running:
+// struct, the member `execution run = {};`, and nothing else about running; a pipeline step whose options
+// are nested in a pipeline's options takes it as its last argument instead, `const execution& run = {}`
+// (the pipeline passes its own run):
 //   - run.threads: worker threads, 1 by default (the caller's thread only), 0 = all cores. Work is cut into
 //     blocks fixed by the input alone and every output cell is computed the same way in any block, so
 //     results never depend on the thread count, bit for bit.

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 using namespace lidarfx;
 
@@ -90,6 +91,31 @@ TEST_CASE("ground_model: replace_ground takes a given terrain and fills its hole
     const raster<float> none(60, 60, nan_f);
     CHECK_THROWS_WITH_AS(replace_ground(gm, none, 0.5), doctest::Contains("no finite cell"), invalid_input);
     CHECK_THROWS_AS(replace_ground(gm, raster<float>(3, 3, 1.0f), 0.5), invalid_input);
+}
+
+TEST_CASE("ground_model: the run argument drives threads, progress and cancellation, never the result")
+{
+    const auto z = box_scene(20, 40, 20, 40, 8.0f);
+    const auto plain = ground_model(z, 0.5);
+    std::vector<double> calls;
+    const auto reported = ground_model(z, 0.5, {}, {.threads = 3, .progress = [&calls](double f) {
+                                                        calls.push_back(f);
+                                                        return true;
+                                                    }});
+    CHECK(calls == std::vector<double>{0.3, 0.5, 1.0});
+    CHECK(reported.ground == plain.ground);
+    CHECK(reported.in_hull == plain.in_hull);
+    int stopped = 0;
+    const execution cancel{.threads = 1, .progress = [&stopped](double) {
+                               ++stopped;
+                               return false;
+                           }};
+    CHECK_THROWS_WITH_AS(ground_model(z, 0.5, {}, cancel), "ground_model: cancelled", cancelled);
+    CHECK(stopped == 1);
+    auto terrain = ground_model(z, 0.5);
+    CHECK_THROWS_WITH_AS(replace_ground(terrain, raster<float>(60, 60, 90.0f), 0.5, {}, {.threads = -1}),
+                         doctest::Contains("run.threads"), invalid_input);
+    CHECK_THROWS_WITH_AS(ground_model(z, 0.5, {}, {.threads = -1}), doctest::Contains("run.threads"), invalid_input);
 }
 
 TEST_CASE("extract_buildings: one box building: footprint, heights, one flat surface, outline")

@@ -156,13 +156,11 @@ TEST_CASE("water/extract_waterbodies: same result for any thread count")
     // Angles hold NaN (dropouts join at any θ): compared bit for bit.
     CHECK(std::memcmp(one.angle_deg.data(), three.angle_deg.data(),
                       static_cast<std::size_t>(one.angle_deg.size()) * sizeof(float)) == 0);
-    // The preset reads the surface slope (computed where read, on the calling thread): its options' run is
-    // ignored, as documented, whatever it holds.
+    // The preset reads the surface slope (computed where read, on the calling thread): the same result.
     auto preset = flat_seed_water_method();
     preset.run.threads = 1;
     const auto lazy_one = extract_waterbodies(pr, preset);
     preset.run.threads = 3;
-    preset.surface_slope.run.threads = -1;
     const auto lazy_three = extract_waterbodies(pr, preset);
     CHECK(lazy_one.labels == lazy_three.labels);
     CHECK(lazy_one.bodies.size() == lazy_three.bodies.size());

@@ -69,8 +69,8 @@ TEST_CASE("water/fill_small_islands: equals a whole-raster search for holes on r
         const std::size_t max_hole = 1 + rng() % 12;
         // Cells of 0.5 m: max_hole cells are max_hole / 4 m².
         auto fast = labels, slow = labels;
-        const auto n = fill_small_islands(
-            fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole), .run = {.threads = 1 + trial % 3}});
+        const auto n = fill_small_islands(fast, 0.5, {.island_min_area_m2 = 0.25 * static_cast<double>(max_hole)},
+                                          {.threads = 1 + trial % 3});
         reference::fill_small_islands(slow, max_hole);
         CHECK(fast == slow);
         filled_scenes += !(fast == labels);
@@ -137,7 +137,7 @@ TEST_CASE("water/fill_small_islands: progress is monotone and ends at 1; returni
     water_test::check_progress_and_cancel(
         [&](const execution& run) {
             auto copy = labels;
-            return fill_small_islands(copy, 1.0, {.run = run});
+            return fill_small_islands(copy, 1.0, {}, run);
         },
         "fill_small_islands");
 }

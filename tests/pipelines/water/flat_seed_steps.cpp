@@ -111,12 +111,10 @@ TEST_CASE("flat_level_cells: matches its definition for small and large windows,
     for (int trial = 0; trial < 30; ++trial) {
         std::uniform_int_distribution<int> dim(1, 45);
         const auto s = random_survey(rng, dim(rng), dim(rng));
-        const flat_water_seeds_options opt{.level_radius_cells = 1 + trial % 4,
-                                           .level_tolerance_m = 0.25,
-                                           .max_roughness_m = 0.125,
-                                           .run = {.threads = trial % 3}};
+        const flat_water_seeds_options opt{
+            .level_radius_cells = 1 + trial % 4, .level_tolerance_m = 0.25, .max_roughness_m = 0.125};
         INFO("seed " << seed << " trial " << trial << " radius " << opt.level_radius_cells);
-        CHECK(flat_level_cells(s.view(), {}, opt) == brute_level(s.view(), opt));
+        CHECK(flat_level_cells(s.view(), {}, opt, {.threads = trial % 3}) == brute_level(s.view(), opt));
     }
 }
 
@@ -147,11 +145,11 @@ TEST_CASE("label_flat_seed_components and measure_flat_seed_rings: match their d
         const flat_water_seeds_options opt{.level_tolerance_m = 0.25,
                                            .max_roughness_m = 0.125,
                                            .min_cells = 1 + static_cast<std::size_t>(trial % 6),
-                                           .ring_cells = 1 + trial % 5,
-                                           .run = {.threads = trial % 3}};
+                                           .ring_cells = 1 + trial % 5};
+        const execution run{.threads = trial % 3};
         INFO("seed " << seed << " trial " << trial);
-        const auto level = flat_level_cells(s.view(), {}, opt);
-        const auto comps = label_flat_seed_components(s.view(), level, {}, opt);
+        const auto level = flat_level_cells(s.view(), {}, opt, run);
+        const auto comps = label_flat_seed_components(s.view(), level, {}, opt, {}, run);
         // Labels: the components of >= min_cells cells numbered in raster-scan order, -1 the smaller ones.
         const auto all = connected_components(level, connectivity::eight);
         std::vector<std::int32_t> expected(all.sizes.size(), 0);
@@ -161,7 +159,7 @@ TEST_CASE("label_flat_seed_components and measure_flat_seed_rings: match their d
         for (std::ptrdiff_t i = 0; i < level.size(); ++i)
             labels_ok = labels_ok && comps.labels.data()[i] == expected[static_cast<std::size_t>(all.labels.data()[i])];
         CHECK(labels_ok);
-        const auto rings = measure_flat_seed_rings(s.view(), comps, opt);
+        const auto rings = measure_flat_seed_rings(s.view(), comps, opt, run);
         const auto brute = brute_rings(s.view(), comps, opt);
         CHECK(rings.cells == brute.cells);
         CHECK(rings.count_sum == brute.count_sum);

@@ -356,7 +356,7 @@ TEST_CASE("flat_water_seeds: more large components than 16-bit labels hold give 
         for (const int ring : {1, 2}) {
             for (const int threads : {1, 2}) {
                 const auto seeds =
-                    flat_water_seeds(s.view(), {}, {.min_cells = 1, .ring_cells = ring, .run = {.threads = threads}});
+                    flat_water_seeds(s.view(), {}, {.min_cells = 1, .ring_cells = ring}, {}, {}, {.threads = threads});
                 long wrong = 0, seeded = 0;
                 for (std::ptrdiff_t r = 0; r < side; ++r) {
                     for (std::ptrdiff_t c = 0; c < side; ++c) {

@@ -132,7 +132,7 @@ TEST_CASE("water/grow_waterbodies: progress is monotone and ends at 1; returning
     water_test::check_progress_and_cancel(
         [&](const execution& run) {
             two_lakes s;
-            return grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {}, {}, {.run = run});
+            return grow_waterbodies(s.field, s.seeds, s.min_z, s.max_z, {}, {}, {}, run);
         },
         "grow_waterbodies");
 }

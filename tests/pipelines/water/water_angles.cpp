@@ -72,11 +72,9 @@ TEST_CASE("water/water_angles: equals angular_filter (of the IDW fill) with the 
         const int radius = 1 + static_cast<int>(rng() % 3);
         const auto input = trial % 2 ? angular_input::idw_filled : angular_input::returns_only;
         const bool join = trial % 4 < 2;
-        const auto got = water_angles(s.view(), cell,
-                                      {.radius_cells = radius,
-                                       .input = input,
-                                       .dropouts_join_any_threshold = join,
-                                       .run = {.threads = 1 + trial % 2}});
+        const auto got =
+            water_angles(s.view(), cell, {.radius_cells = radius, .input = input, .dropouts_join_any_threshold = join},
+                         {.threads = 1 + trial % 2});
         auto expected = input == angular_input::idw_filled
                             ? angular_filter(idw_fill(s.min_z, cell).filled, cell, radius)
                             : angular_filter(s.min_z, cell, radius);
@@ -96,8 +94,8 @@ TEST_CASE("water/water_angles: equals angular_filter (of the IDW fill) with the 
 TEST_CASE("water/water_angles: progress is monotone and ends at 1; returning false cancels")
 {
     survey s(6, 6);
-    water_test::check_progress_and_cancel(
-        [&](const execution& run) { return water_angles(s.view(), 1.0, {.run = run}); }, "water_angles");
+    water_test::check_progress_and_cancel([&](const execution& run) { return water_angles(s.view(), 1.0, {}, run); },
+                                          "water_angles");
 }
 
 TEST_CASE("water/water_angles: options out of range are refused")

@@ -126,7 +126,7 @@ TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definitio
         const int opening = 1 + 2 * static_cast<int>(rng() % 3);
         const std::size_t min_cells = 1 + rng() % 30;
         const auto got =
-            water_seeds(d, {.opening_size_cells = opening, .min_cells = min_cells, .run = {.threads = 1 + trial % 3}});
+            water_seeds(d, {.opening_size_cells = opening, .min_cells = min_cells}, {.threads = 1 + trial % 3});
         const auto expected = reference_seeds(d, opening, min_cells);
         CHECK(got.labels == expected.labels);
         CHECK(got.sizes == expected.sizes);
@@ -144,8 +144,7 @@ TEST_CASE("water/water_seeds: equals opening + flood fill + ranking by definitio
 TEST_CASE("water/water_seeds: progress is monotone and ends at 1; returning false cancels")
 {
     raster<std::uint8_t> d(8, 8, 1);
-    water_test::check_progress_and_cancel([&](const execution& run) { return water_seeds(d, {.run = run}); },
-                                          "water_seeds");
+    water_test::check_progress_and_cancel([&](const execution& run) { return water_seeds(d, {}, run); }, "water_seeds");
 }
 
 TEST_CASE("water/water_seeds: options out of range are refused")

@@ -65,7 +65,7 @@ TEST_CASE("water/water_vegetation: equals vegetation_mask OR multiple returns on
                 if (u(rng) < 0.15f) s.drop(r, c);
             }
         const int closing = 1 + 2 * static_cast<int>(rng() % 3);
-        const auto v = water_vegetation(s.view(), {.closing_size_cells = closing, .run = {.threads = 1 + trial % 3}});
+        const auto v = water_vegetation(s.view(), {.closing_size_cells = closing}, {.threads = 1 + trial % 3});
         auto expected =
             vegetation_mask(s.min_z, s.max_z, vegetation_mask_options{.height_m = 2.0, .closing_size_cells = closing});
         for (std::ptrdiff_t r = 0; r < rows; ++r)
@@ -77,8 +77,8 @@ TEST_CASE("water/water_vegetation: equals vegetation_mask OR multiple returns on
 TEST_CASE("water/water_vegetation: progress is monotone and ends at 1; returning false cancels")
 {
     survey s(6, 6);
-    water_test::check_progress_and_cancel(
-        [&](const execution& run) { return water_vegetation(s.view(), {.run = run}); }, "water_vegetation");
+    water_test::check_progress_and_cancel([&](const execution& run) { return water_vegetation(s.view(), {}, run); },
+                                          "water_vegetation");
 }
 
 TEST_CASE("water/water_vegetation: options out of range are refused")
@@ -88,5 +88,5 @@ TEST_CASE("water/water_vegetation: options out of range are refused")
                          invalid_input);
     CHECK_THROWS_WITH_AS(water_vegetation(s.view(), {.closing_size_cells = 4}),
                          "water_vegetation: closing_size_cells must be odd and >= 1 (got 4)", invalid_input);
-    CHECK_THROWS_AS(water_vegetation(s.view(), {.run = {.threads = -1}}), invalid_input);
+    CHECK_THROWS_AS(water_vegetation(s.view(), {}, {.threads = -1}), invalid_input);
 }

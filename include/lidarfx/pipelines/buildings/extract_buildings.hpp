@@ -30,13 +30,13 @@ namespace lidarfx {
 
 /// Settings of extract_buildings: one member per step. Defaults are for 0.25-1 m cells of a first-return DSM.
 struct extract_buildings_options {
-    ground_model_options ground = {};  ///< edges (>= 45 deg), edge objects (>= 10 cells), hulls, IDW; its run is
-                                       ///< not used (run below)
+    ground_model_options ground = {};             ///< edges (>= 45 deg), edge objects (>= 10 cells), hulls, IDW
     building_candidates_options candidates = {};  ///< min_height_m (2.5 m), min_area_m2 (50 m^2)
     local_planes_options local_planes = {};       ///< plane window (1.5 m), planar tolerance, min_planar_share (0.25)
     grow_roof_surfaces_options surfaces = {};     ///< plane_angle_deg (6), step_m (0.3 m), min_surface_m2 (4 m^2)
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
-    execution run = {};  ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
+    execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
+                         ///< the result
 };
 
 /// One building.
@@ -129,11 +129,9 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     if (rows == 0 || cols == 0) return out;
     const execution inner{opt.run.threads, {}};  // steps report no progress of their own
 
-    ground_model_options terrain_opt = opt.ground;
-    terrain_opt.run = inner;
-    ground_model_result terrain = ground_model(dsm, cell_m, terrain_opt);
+    ground_model_result terrain = ground_model(dsm, cell_m, opt.ground, inner);
     detail::report(opt.run.progress, 0.3, function);
-    if (!ground.empty()) replace_ground(terrain, ground, cell_m, terrain_opt);
+    if (!ground.empty()) replace_ground(terrain, ground, cell_m, opt.ground, inner);
     building_candidates_result candidates =
         building_candidates(dsm, terrain, cell_m, vegetation, opt.candidates, inner);
     out.building_id = std::move(candidates.building_id);

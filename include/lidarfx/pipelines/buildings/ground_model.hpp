@@ -29,7 +29,6 @@ struct ground_model_options {
     std::size_t min_edge_cells = 10;  ///< an edge object (8-connected) needs at least this many cells (the n); >= 1
     int idw_k = 8;                    ///< ground cells averaged per filled cell (idw_fill); >= 1
     double idw_power = 1.0;           ///< IDW weight exponent (1 = dissertation eq. 3); > 0
-    execution run = {};               ///< threads, progress, cancellation (core/parallel.hpp); never changes the result
 };
 
 /// A terrain model and how it was found, each raster of the DSM's shape.
@@ -50,18 +49,21 @@ struct ground_model_result {
 /// (5) ground = the surface at cells outside every hull; inside the hulls it is IDW of the ground cells.
 /// nDSM = surface - ground (see ndsm). Elevations in metres, cell_m the cell size in metres. O(cells * (
 /// radius^2 + idw_k)) plus the hulls' bounding boxes. Same bits for any thread count.
-/// @throws invalid_input on bad options, cell_m not finite and > 0, or a DSM without a finite cell
+/// `run`: threads, progress and cancellation (core/parallel.hpp); never changes the result.
+/// @throws invalid_input on bad options or run, cell_m not finite and > 0, or a DSM without a finite cell
 /// ("...: dsm has no finite cell"); cancelled if run.progress returns false.
 template <raster_input In>
-ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt = {});
+ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt = {},
+                                 const execution& run = {});
 
 /// Replaces terrain.ground by a given terrain model `ground` (metres, the terrain's shape; e.g. min_z of
 /// class 2), its NaN and infinite cells filled by IDW from the finite ones (idw_fill with opt.idw_k and
 /// opt.idw_power, run.threads); terrain.surface, edges and hulls stay. cell_m in metres. O(cells * idw_k).
-/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, an option is out of range, or
-/// `ground` has no finite cell.
+/// `run`: threads (its progress is not called); never changes the result.
+/// @throws invalid_input if the shapes differ, cell_m is not finite and > 0, an option or run is out of range,
+/// or `ground` has no finite cell.
 inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
-                           const ground_model_options& opt = {});
+                           const ground_model_options& opt = {}, const execution& run = {});
 
 /// nDSM = surface - ground per cell (heights above the terrain, metres); NaN where either is NaN.
 /// @throws invalid_input if the shapes differ.
@@ -81,16 +83,16 @@ inline void check_ground_model(double cell_m, const ground_model_options& opt, c
     require(opt.min_edge_cells >= 1, function, "min_edge_cells", ">= 1", opt.min_edge_cells);
     require(opt.idw_k >= 1, function, "idw_k", ">= 1", opt.idw_k);
     require_positive(opt.idw_power, function, "idw_power");
-    check_execution(opt.run, function);
 }
 
 }  // namespace detail
 
 template <raster_input In>
-ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt)
+ground_model_result ground_model(const In& dsm, double cell_m, const ground_model_options& opt, const execution& run)
 {
     constexpr const char* function = "ground_model";
     detail::check_ground_model(cell_m, opt, function);
+    detail::check_execution(run, function);
     const std::ptrdiff_t rows = dsm.rows(), cols = dsm.cols();
     ground_model_result out;
     out.surface = raster<float>(rows, cols);
@@ -109,7 +111,7 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
         }
     }
     detail::require(any, function, "dsm has no finite cell: pass a surface model with at least one return");
-    const idw_fill_options fill{.k = opt.idw_k, .radius_m = 0, .power = opt.idw_power, .run = {opt.run.threads, {}}};
+    const idw_fill_options fill{.k = opt.idw_k, .radius_m = 0, .power = opt.idw_power, .run = {run.threads, {}}};
     if (holes) {
         raster<float> raw = out.surface;
         for (auto& v : raw) v = std::isfinite(v) ? v : std::numeric_limits<float>::quiet_NaN();
@@ -117,14 +119,14 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
     }
     const raster<float> angle =
         angular_filter(out.surface, cell_m,
-                       angular_filter_options{.radius_cells = opt.angular_radius_cells, .run = {opt.run.threads, {}}});
-    detail::report(opt.run.progress, 0.3, function);
+                       angular_filter_options{.radius_cells = opt.angular_radius_cells, .run = {run.threads, {}}});
+    detail::report(run.progress, 0.3, function);
     const auto threshold = static_cast<float>(opt.edge_angle_deg);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) out.edges(r, c) = angle(r, c) >= threshold ? 1 : 0;
     }
     components objects = connected_components(
-        out.edges, connected_components_options{.conn = connectivity::eight, .run = {opt.run.threads, {}}});
+        out.edges, connected_components_options{.conn = connectivity::eight, .run = {run.threads, {}}});
     rank_by_size(objects);
     std::size_t kept = 0;
     while (kept < objects.count() && objects.sizes[kept + 1] >= opt.min_edge_cells) ++kept;
@@ -139,7 +141,7 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
         }
     }
     for (auto& p : points) burn_convex(convex_hull(std::move(p)), out.in_hull.view());
-    detail::report(opt.run.progress, 0.5, function);
+    detail::report(run.progress, 0.5, function);
 
     raster<float> known(rows, cols, std::numeric_limits<float>::quiet_NaN());
     bool any_ground = false;
@@ -154,15 +156,16 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
         idw_fill(known, out.ground, cell_m, fill);
     else
         out.ground = out.surface;  // hulls cover everything: no ground to interpolate from, nDSM = 0
-    detail::report(opt.run.progress, 1.0, function);
+    detail::report(run.progress, 1.0, function);
     return out;
 }
 
 inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
-                           const ground_model_options& opt)
+                           const ground_model_options& opt, const execution& run)
 {
     constexpr const char* function = "replace_ground";
     detail::check_ground_model(cell_m, opt, function);
+    detail::check_execution(run, function);
     detail::require_same_shape(terrain.ground, ground, function, "terrain", "ground");
     const std::ptrdiff_t rows = ground.rows(), cols = ground.cols();
     raster<float> given(rows, cols);
@@ -176,7 +179,7 @@ inline void replace_ground(ground_model_result& terrain, raster_view<const float
     }
     detail::require(any, function, "ground has no finite cell: pass an empty view to estimate the terrain");
     idw_fill(given, terrain.ground, cell_m,
-             idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {opt.run.threads, {}}});
+             idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {run.threads, {}}});
 }
 
 template <raster_input Surface, raster_input Ground>

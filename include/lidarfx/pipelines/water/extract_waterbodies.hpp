@@ -81,8 +81,9 @@ struct extract_waterbodies_options {
                                                ///< they are mostly water join their body, after the trim
     join_shore_cells_options shore = {};       ///< join_shore_cells: window, contrast, water share, neighbours
     fill_small_islands_options islands = {};   ///< fill_small_islands: holes smaller than island_min_area_m2 fill
-    execution run = {};                        ///< threads of the raster kernels (0 = all cores; same result for any
-                                               ///< count); progress over seeds, returning false cancels
+    execution run = {};                        ///< drives every step: threads of the raster kernels (0 = all cores;
+                                               ///< same result for any count); progress over seeds, returning
+                                               ///< false cancels
 };
 
 /// The options of the method before the water family: no level gate (grow.level_gate_m = 0), no KS exemption

@@ -22,7 +22,6 @@ namespace lidarfx {
 struct fill_small_islands_options {
     double island_min_area_m2 = 200.0;  ///< holes of at least this area stay land (islands), smaller ones
                                         ///< become water, m²; >= 0, 0 keeps every hole. Default 200 m².
-    execution run = {};                 ///< threads of the labelling (same result for any count), progress
 };
 
 /// Fills the small holes of waterbodies. A hole is a 4-connected component of land cells (label 0) that
@@ -33,10 +32,11 @@ struct fill_small_islands_options {
 /// per body, over the body's bounding box grown by one cell, while the boxes' areas add up to at most the
 /// raster's cells (the usual case, and the least memory: a few compact bodies); otherwise in one labelling
 /// of the land inside the box of all bodies, so that nested boxes never cost more than O(cells).
-/// O(cells). Progress: 0 on entry, 1 when done. Returns the number of cells filled.
-/// @throws invalid_input on cell_m <= 0, options out of range, negative labels; cancelled.
+/// O(cells). `run`: threads of the labelling, progress (0 on entry, 1 when done) and cancellation; never changes
+/// the result. Returns the number of cells filled.
+/// @throws invalid_input on cell_m <= 0, options or run out of range, negative labels; cancelled.
 inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double cell_m,
-                                      const fill_small_islands_options& opt = {});
+                                      const fill_small_islands_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

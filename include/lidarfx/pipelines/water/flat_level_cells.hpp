@@ -17,15 +17,16 @@ namespace lidarfx {
 /// (2 opt.level_radius_cells + 1)² window around it, clipped at the border, span at most
 /// opt.level_tolerance_m); else 0. Thresholds compare in float, rounded down (float_at_most).
 /// Windows of radius 1 and 2 are read in place row by row; larger ones by running min/max filters over
-/// strips of rows (min_filter_rows, max_filter_rows): O(cells · log level_radius_cells). Threads:
-/// opt.run.threads, the same result for any count. Every cell of `level` is written.
-/// @throws invalid_input on rasters of different shapes or options out of range.
+/// strips of rows (min_filter_rows, max_filter_rows): O(cells · log level_radius_cells). `run`: threads
+/// (its progress is not called), the same result for any count. Every cell of `level` is written.
+/// @throws invalid_input on rasters of different shapes or options or run out of range.
 inline void flat_level_cells(const water_rasters& in, raster_view<const std::uint8_t> excluded,
-                             const flat_water_seeds_options& opt, raster_view<std::uint8_t> level);
+                             const flat_water_seeds_options& opt, raster_view<std::uint8_t> level,
+                             const execution& run = {});
 
 /// Returning form: a new mask of min z's shape (see the into form).
 inline raster<std::uint8_t> flat_level_cells(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
-                                             const flat_water_seeds_options& opt = {});
+                                             const flat_water_seeds_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

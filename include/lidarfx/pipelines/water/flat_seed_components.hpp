@@ -39,12 +39,12 @@ struct flat_seed_components {
 /// (optional, same shape; > 0 = a cell of a body grown before), in row order, and lists the roughness of
 /// every level cell. `storage`: memory for the labels (any shape; replaced when the shape differs; its
 /// contents are overwritten), so a caller that labels again reuses pages already touched. Needs in.count.
-/// O(cells); labelling on opt.run.threads, the same result for any count.
-/// @throws invalid_input on rasters of different shapes, no in.count, or options out of range.
+/// O(cells); labelling on run.threads (its progress is not called), the same result for any count.
+/// @throws invalid_input on rasters of different shapes, no in.count, or options or run out of range.
 inline flat_seed_components label_flat_seed_components(const water_rasters& in, raster_view<const std::uint8_t> level,
                                                        raster_view<const std::int32_t> taken = {},
                                                        const flat_water_seeds_options& opt = {},
-                                                       raster<std::int32_t> storage = {});
+                                                       raster<std::int32_t> storage = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -23,14 +23,15 @@ struct flat_seed_rings {
 /// Third step of flat_water_seeds: the ring of each component of `comps` that has free cells: the cells
 /// with a return (no dropout, finite min z, inside in.footprint) in no level component (label 0) within
 /// Chebyshev distance opt.ring_cells of one of its cells; a ring cell near two components counts for each.
-/// Sums are taken in row order whatever the thread count (opt.run.threads), so the result never depends on it.
+/// Sums are taken in row order whatever the thread count (run.threads; its progress is not called), so the
+/// result never depends on it.
 /// Method: per strip of rows, running maxima over rows of the labels (min_max_filter's max_filter_rows, on
 /// [label | zeros | K + 1 − label] so one pass gives the smallest and largest label within reach) and a
 /// running minimum of the components' min z; a cell with two labels within reach is read cell by cell.
 /// O(cells · log ring_cells) plus (2 ring_cells + 1)² per ring cell near two components or more.
-/// @throws invalid_input on rasters of different shapes, no in.count, or options out of range.
+/// @throws invalid_input on rasters of different shapes, no in.count, or options or run out of range.
 inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const flat_seed_components& comps,
-                                               const flat_water_seeds_options& opt = {});
+                                               const flat_water_seeds_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -46,38 +46,40 @@ struct flat_water_seeds_workspace {
 /// medians. A component entirely taken is not tested at all (its slope is not read).
 /// The windows are running min/max filters (min_filter_rows / max_filter_rows over strips of rows; the level
 /// window of radius 1 or 2 is read in place): O(cells · log(level_radius_cells · ring_cells)), plus
-/// (2 ring_cells + 1)² per ring cell within reach of two components or more.
-/// @throws invalid_input on rasters of different shapes or options out of range.
+/// (2 ring_cells + 1)² per ring cell within reach of two components or more. `run`: threads of the window
+/// filters and the labelling (its progress is not called); never changes the result.
+/// @throws invalid_input on rasters of different shapes or options or run out of range.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded = {},
                                              const flat_water_seeds_options& opt = {},
                                              surface_slope_source surface_slope = {},
-                                             raster_view<const std::int32_t> taken = {});
+                                             raster_view<const std::int32_t> taken = {}, const execution& run = {});
 
 /// flat_water_seeds (see above) reusing the memory of `workspace` (a caller that seeds or labels again,
 /// e.g. extract_waterbodies, saves the first touch of a new label raster). The same result.
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
                                              const flat_water_seeds_options& opt, surface_slope_source surface_slope,
                                              raster_view<const std::int32_t> taken,
-                                             flat_water_seeds_workspace& workspace);
+                                             flat_water_seeds_workspace& workspace, const execution& run = {});
 
 // ---- implementation ----
 
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
                                              const flat_water_seeds_options& opt, surface_slope_source surface_slope,
                                              raster_view<const std::int32_t> taken,
-                                             flat_water_seeds_workspace& workspace)
+                                             flat_water_seeds_workspace& workspace, const execution& run)
 {
     constexpr const char* fn = "flat_water_seeds";
     detail::validate(in, fn);
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     if (!excluded.empty()) detail::require_same_shape(in.min_z, excluded, fn, "min_z", "excluded");
     if (!surface_slope.empty()) detail::require_same_shape(in.min_z, surface_slope, fn, "min_z", "surface_slope");
     if (!taken.empty()) detail::require_same_shape(in.min_z, taken, fn, "min_z", "taken");
     if (in.count.empty()) return raster<std::uint8_t>(in.min_z.rows(), in.min_z.cols(), 0);
     // The level mask becomes the seed mask once labelled (the last step rewrites every cell).
-    auto mask = flat_level_cells(in, excluded, opt);
-    auto comps = label_flat_seed_components(in, mask, taken, opt, std::move(workspace.labels));
-    const auto rings = measure_flat_seed_rings(in, comps, opt);
+    auto mask = flat_level_cells(in, excluded, opt, run);
+    auto comps = label_flat_seed_components(in, mask, taken, opt, std::move(workspace.labels), run);
+    const auto rings = measure_flat_seed_rings(in, comps, opt, run);
     const auto keep = select_flat_seeds(comps, rings, opt, surface_slope);
     write_flat_seed_mask(comps, keep, mask, taken, surface_slope, opt);
     workspace.labels = std::move(comps.labels);
@@ -86,10 +88,10 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
 
 inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_view<const std::uint8_t> excluded,
                                              const flat_water_seeds_options& opt, surface_slope_source surface_slope,
-                                             raster_view<const std::int32_t> taken)
+                                             raster_view<const std::int32_t> taken, const execution& run)
 {
     flat_water_seeds_workspace workspace;
-    return flat_water_seeds(in, excluded, opt, surface_slope, taken, workspace);
+    return flat_water_seeds(in, excluded, opt, surface_slope, taken, workspace, run);
 }
 
 }  // namespace lidarfx

@@ -58,7 +58,6 @@ struct flat_water_seeds_options {
                                          ///< a river falls a few mm per metre; a beach rising 1-6 % has level 3 × 3
                                          ///< windows too, and joins the water's level cells); < 0 disables.
                                          ///< Default 0.008
-    execution run = {};  ///< threads of the window filters and the labelling (same result for any count)
 };
 
 namespace detail {
@@ -80,7 +79,6 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
     require(o.bright_density_ratio >= 0 && o.bright_density_ratio <= 1, fn, "bright_density_ratio", "in [0, 1]",
             o.bright_density_ratio);
     require(o.max_joint_ratio >= 0, fn, "max_joint_ratio", ">= 0", o.max_joint_ratio);
-    check_execution(o.run, fn);
 }
 
 }  // namespace detail

@@ -27,8 +27,6 @@ struct grow_waterbodies_options {
                                        ///< that a body reached but stopped short of is still water beyond it),
                                        ///< else it is skipped; in (0, 1], 1 = skip a seed with any cell in a body.
                                        ///< Default 0.5
-    execution run = {};                ///< progress per seed (fraction of seeds done); threads are not used:
-                                       ///< seeds grow one after another (the order decides who owns a cell)
 };
 
 /// Bodies grown from the seeds, in growth order.
@@ -46,19 +44,21 @@ struct grow_waterbodies_result {
 /// body; its cells stop being eligible in `field` for the seeds that follow. This form adds to `into`: its labels (the
 /// field's shape; 0 land, k + 1 for into.bodies[k]) and bodies are kept, new bodies are numbered after them and record
 /// seed label + seed_offset (so that several rounds of seeds grow into one raster without a merge). `field` must have
-/// the shape of the seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). Progress: the
-/// fraction of seeds done, 0 before the first, 1 at the end.
+/// the shape of the seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). `run`:
+/// progress (the fraction of seeds done, 0 before the first, 1 at the end) and cancellation; its threads are not
+/// used: seeds grow one after another (the order decides who owns a cell). It never changes the result.
 /// @throws invalid_input on shapes that differ or options out of range; cancelled.
 inline void grow_waterbodies(water_field& field, const components& seeds, raster_view<const float> min_z,
                              raster_view<const float> max_z, grow_waterbodies_result& into,
                              const grow_waterbody_options& grow = {}, const join_level_cells_options& level = {},
-                             const grow_waterbodies_options& opt = {}, std::int32_t seed_offset = 0);
+                             const grow_waterbodies_options& opt = {}, std::int32_t seed_offset = 0,
+                             const execution& run = {});
 /// Grows the seeds into waterbodies on a raster of land: the form above into an empty result.
 inline grow_waterbodies_result grow_waterbodies(water_field& field, const components& seeds,
                                                 raster_view<const float> min_z, raster_view<const float> max_z,
                                                 const grow_waterbody_options& grow = {},
                                                 const join_level_cells_options& level = {},
-                                                const grow_waterbodies_options& opt = {});
+                                                const grow_waterbodies_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

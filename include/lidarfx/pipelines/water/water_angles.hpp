@@ -30,7 +30,6 @@ struct water_angles_options {
     bool dropouts_join_any_threshold = true;            ///< dropout cells get NaN (join at any θ: their angle is
                                                         ///< unknown); false = the dissertation's literal behaviour
                                                         ///< (a dropout the filter gave no angle gets 90°)
-    execution run = {};  ///< threads of the kernels (same result for any count), progress
 };
 
 /// Angles for region growing: angular_filter of min z (per cell the largest
@@ -38,10 +37,11 @@ struct water_angles_options {
 /// NaN centre gives NaN), read on the returns only or on min z filled by idw_fill; then dropout cells get
 /// NaN (dropouts_join_any_threshold: grow_waterbody lets NaN join at any θ) or, otherwise, 90° where the
 /// filter left NaN. cell_m is the cell size, metres. O(cells · radius_cells) (plus IDW when idw_filled).
-/// Progress: 0 on entry, 1 when done.
-/// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, options out of range;
+/// `run`: threads of the kernels, progress (0 on entry, 1 when done) and cancellation; never changes the result.
+/// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, options or run out of range;
 /// cancelled.
-inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt = {});
+inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt = {},
+                                  const execution& run = {});
 
 }  // namespace lidarfx
 

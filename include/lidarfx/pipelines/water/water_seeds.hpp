@@ -20,7 +20,6 @@ namespace lidarfx {
 struct water_seeds_options {
     int opening_size_cells = 5;   ///< side of the square opening the dropout mask, cells; odd, >= 1. Default 5.
     std::size_t min_cells = 100;  ///< seeds keep components of at least this many cells; >= 1. Default 100.
-    execution run = {};           ///< threads of the kernels (same result for any count), progress
 };
 
 /// Seeds of waterbodies (dissertation 2.3.2): the dropout mask opened by an opening_size_cells square
@@ -29,14 +28,16 @@ struct water_seeds_options {
 /// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
 /// The labels are written into `labels` (given another shape, it is replaced by one of the mask's), whose
 /// memory the result takes: a caller that labels again reuses it (a new raster's pages cost their first touch).
-/// O(cells). Progress: 0 on entry, 1 when done.
-/// @throws invalid_input on options out of range; cancelled when progress returns false.
+/// O(cells). `run`: threads of the kernels, progress (0 on entry, 1 when done) and cancellation; never changes
+/// the result.
+/// @throws invalid_input on options or run out of range; cancelled when progress returns false.
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels);
+components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels,
+                       const execution& run = {});
 
 /// water_seeds (see above) with its labels in a raster of its own.
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt = {});
+components water_seeds(const Mask& dropout, const water_seeds_options& opt = {}, const execution& run = {});
 
 /// Cells of each component as linear indices r * cols + c in raster-scan order: result[label] for labels
 /// 1..count(), result[0] empty (the form grow_waterbody takes its seed in). O(cells).
@@ -51,18 +52,19 @@ inline void validate(const water_seeds_options& o, const char* fn)
     require(o.opening_size_cells >= 1 && o.opening_size_cells % 2 == 1, fn, "opening_size_cells", "odd and >= 1",
             o.opening_size_cells);
     require(o.min_cells >= 1, fn, "min_cells", ">= 1", o.min_cells);
-    check_execution(o.run, fn);
 }
 
 }  // namespace detail
 
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels)
+components water_seeds(const Mask& dropout, const water_seeds_options& opt, raster<std::int32_t>&& labels,
+                       const execution& run)
 {
     constexpr const char* fn = "water_seeds";
     detail::validate(opt, fn);
-    detail::report(opt.run.progress, 0.0, fn);
-    const int threads = opt.run.threads;
+    detail::check_execution(run, fn);
+    detail::report(run.progress, 0.0, fn);
+    const int threads = run.threads;
     const auto opened =
         morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
     detail::ensure_shape(labels, opened.rows(), opened.cols());  // every cell is written
@@ -86,14 +88,14 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     ranked.resize(kept + 1);
     relabel_components(seeds.labels, rank);
     seeds.sizes = std::move(ranked);
-    detail::report(opt.run.progress, 1.0, fn);
+    detail::report(run.progress, 1.0, fn);
     return seeds;
 }
 
 template <raster_input Mask>
-components water_seeds(const Mask& dropout, const water_seeds_options& opt)
+components water_seeds(const Mask& dropout, const water_seeds_options& opt, const execution& run)
 {
-    return water_seeds(dropout, opt, raster<std::int32_t>());
+    return water_seeds(dropout, opt, raster<std::int32_t>(), run);
 }
 
 namespace detail {

@@ -32,7 +32,6 @@ struct water_surface_slope_options {
     double band_m = 0.15;        ///< only returns within this of the cell's own min z are fitted (water next to a
                                  ///< bank sees the water, not the bank; on a beach rising 1-6 % the band still
                                  ///< spans several cells), metres, > 0. Default 0.15 (the level gate)
-    execution run = {};          ///< threads (rows are independent; same result for any count)
 };
 
 /// Slope of the water surface test: per cell, the magnitude of the gradient of the least-squares plane
@@ -42,15 +41,16 @@ struct water_surface_slope_options {
 /// surface is level to the range noise (a river falls a few mm per metre at most); beaches, banks and
 /// meadows rising from the water are not. cell_m in metres.
 /// O(cells · (2·radius_cells + 1)²), vectorized along rows, the window unrolled for radius_cells <= 4.
-/// @throws invalid_input on cell_m <= 0 or options out of range.
+/// `run`: threads (rows are independent; its progress is not called); never changes the result.
+/// @throws invalid_input on cell_m <= 0 or options or run out of range.
 inline raster<float> water_surface_slope(raster_view<const float> min_z, double cell_m,
-                                         const water_surface_slope_options& opt = {});
+                                         const water_surface_slope_options& opt = {}, const execution& run = {});
 
 /// water_surface_slope computed where it is read: a tile of 16 rows × 64 columns on the first read of one
 /// of its cells. Its readers (the growth's level gate, the flat and bridge seeds' slope tests) look only
 /// around water, often a fifth of a survey or less. The values are those of water_surface_slope bit for bit.
 /// Only the tiles read take memory (in chunks of 256 tiles, 1 MiB). Keeps a view of min z (keep it alive).
-/// Reading changes the cache: not for concurrent readers.
+/// Reading changes the cache: not for concurrent readers (a tile is computed on the reading thread).
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 class lazy_water_surface_slope {
 public:

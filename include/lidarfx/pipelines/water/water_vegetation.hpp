@@ -20,15 +20,16 @@ struct water_vegetation_options {
                                         ///< (1 = no closing). Default 5.
     bool from_multiple_returns = true;  ///< cells with returns and a multiple-return pulse are vegetation too
                                         ///< (needs the multiple_returns raster). Default true.
-    execution run = {};                 ///< threads of the kernels (same result for any count), progress
 };
 
 /// Vegetation mask of the waterbody method (dissertation 2.3.1): vegetation_mask (1 where max z − min z >
 /// height_m, closed by a closing_size_cells square), then OR cells with a return (dropout == 0) whose
 /// multiple_returns is set, when from_multiple_returns and that raster is given. 1 = vegetation.
-/// O(cells). Progress: 0 on entry, 1 when done.
-/// @throws invalid_input on rasters of different shapes or empty, options out of range; cancelled.
-inline raster<std::uint8_t> water_vegetation(const water_rasters& in, const water_vegetation_options& opt = {});
+/// O(cells). `run`: threads of the kernels, progress (0 on entry, 1 when done) and cancellation; never changes
+/// the result.
+/// @throws invalid_input on rasters of different shapes or empty, options or run out of range; cancelled.
+inline raster<std::uint8_t> water_vegetation(const water_rasters& in, const water_vegetation_options& opt = {},
+                                             const execution& run = {});
 
 }  // namespace lidarfx
 

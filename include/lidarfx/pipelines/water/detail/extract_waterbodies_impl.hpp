@@ -79,14 +79,6 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     check_execution(o.run, fn);
 }
 
-/// A step's options with the threads of extract_waterbodies' run (and no progress of their own).
-template <class Options>
-Options with_threads(Options o, int threads)
-{
-    o.run = {.threads = threads};
-    return o;
-}
-
 /// The growing field of extract_waterbodies: angles, intensity bins and min z of `in`; eligible = not
 /// vegetation and inside the footprint.
 inline water_field water_field_of(const water_rasters& in, double cell_m, raster_view<const std::uint8_t> vegetation,
@@ -94,24 +86,21 @@ inline water_field water_field_of(const water_rasters& in, double cell_m, raster
 {
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     auto bins = intensity_bins(in.mean_intensity, in.dropout, opt.intensity);
-    water_field field{water_angles(in, cell_m, with_threads(opt.angles, opt.run.threads)),
+    water_field field{water_angles(in, cell_m, opt.angles, {.threads = opt.run.threads}),
                       raster<std::uint8_t>(rows, cols, uninitialized), std::move(bins.bin), bins.bins, in.min_z};
     mask_not(vegetation, field.eligible);
     if (!in.footprint.empty()) clear_outside(field.eligible.view(), in.footprint);
     return field;
 }
 
-/// grow_waterbodies' options in extract_waterbodies: its progress runs from `from` over `share` of the run's
+/// grow_waterbodies' run in extract_waterbodies: its progress runs from `from` over `share` of the run's
 /// (cancelling throws in extract_waterbodies' name).
-inline grow_waterbodies_options growing_options(const extract_waterbodies_options& opt, double from, double share,
-                                                const char* fn)
+inline execution growing_run(const extract_waterbodies_options& opt, double from, double share, const char* fn)
 {
-    auto g = opt.growing;
-    g.run = {.progress = [&progress = opt.run.progress, from, share, fn](double f) {
+    return {.progress = [&progress = opt.run.progress, from, share, fn](double f) {
         report(progress, from + share * f, fn);
         return true;
     }};
-    return g;
 }
 
 /// Grows further seeds into the cells of `field` still eligible: their bodies are numbered after those in
@@ -121,8 +110,8 @@ inline void grow_more_seeds(water_field& field, const components& more, const wa
                             const extract_waterbodies_options& opt, double from, double share, const char* fn)
 {
     const auto k = static_cast<std::int32_t>(res.seeds_found);
-    grow_waterbodies(field, more, in.min_z, in.max_z, grown, opt.grow, opt.level, growing_options(opt, from, share, fn),
-                     k);
+    grow_waterbodies(field, more, in.min_z, in.max_z, grown, opt.grow, opt.level, opt.growing, k,
+                     growing_run(opt, from, share, fn));
     for (std::ptrdiff_t r = 0, cols = res.seeds.cols(); r < res.seeds.rows(); ++r) {
         std::int32_t* seed = res.seeds.view().row(r);
         for_each_run(more.labels.view().row(r), cols, [&](std::int32_t l, std::ptrdiff_t c0, std::ptrdiff_t c1) {
@@ -143,8 +132,7 @@ inline raster<std::uint8_t> flat_seed_mask(const water_rasters& in, const water_
 {
     const int threads = opt.run.threads;
     flat_water_seeds_workspace workspace{std::move(labels)};
-    auto mask =
-        flat_water_seeds(in, vegetation, with_threads(opt.flat, threads), field.surface_slope, taken, workspace);
+    auto mask = flat_water_seeds(in, vegetation, opt.flat, field.surface_slope, taken, workspace, {.threads = threads});
     labels = std::move(workspace.labels);
     if (!mask_any(mask)) return {};
     if (opt.flat_seed_dropouts) mask = join_adjacent_dropouts(mask, dropouts, field.eligible, {.threads = threads});
@@ -165,7 +153,7 @@ inline void refine_waterbodies(raster<std::int32_t>& labels, std::size_t bodies,
     if (opt.join_bridges && bodies > 1) join_across_bridges(labels, in.min_z, cell_m, opt.bridges);
     if (opt.trim_edges) trim_raised_edge_cells(labels, in.min_z, opt.trim);
     if (opt.shore_cells && !in.count.empty()) join_shore_cells(labels, in.count, vegetation, in.footprint, opt.shore);
-    fill_small_islands(labels, cell_m, with_threads(opt.islands, opt.run.threads));
+    fill_small_islands(labels, cell_m, opt.islands, {.threads = opt.run.threads});
     if (!in.footprint.empty()) clear_outside(labels.view(), in.footprint);
 }
 
@@ -190,13 +178,13 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     res.ran = true;
     detail::report(opt.run.progress, 0.0, fn);
 
-    res.vegetation = water_vegetation(in, detail::with_threads(opt.vegetation, threads));
+    res.vegetation = water_vegetation(in, opt.vegetation, {.threads = threads});
     water_field field = detail::water_field_of(in, cell_m, res.vegetation, opt);
     // The level follows min z only where the surface is level; the slope is computed tile by tile where it
     // is read (around water), by the one thread that reads it.
     std::optional<lazy_water_surface_slope> lazy_slope;  // field.surface_slope reads it; empty: no slope
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0)
-        field.surface_slope = lazy_slope.emplace(in.min_z, cell_m, detail::with_threads(opt.surface_slope, 0));
+        field.surface_slope = lazy_slope.emplace(in.min_z, cell_m, opt.surface_slope);
     // Outside the footprint nothing was flown: no seed starts there.
     raster<std::uint8_t> dropout_inside;
     if (!in.footprint.empty()) {
@@ -204,12 +192,12 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         mask_and(in.dropout, in.footprint, dropout_inside);
     }
     const raster_view<const std::uint8_t> dropouts = in.footprint.empty() ? in.dropout : dropout_inside.view();
-    const auto seed_opt = detail::with_threads(opt.seeds, threads);
+    const execution seed_run{.threads = threads};
 
     // Growing is the first 0.9 of the run's progress (0.8 for the dropout seeds when flat seeds follow).
-    auto seeds = water_seeds(dropouts, seed_opt);
-    auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, opt.grow, opt.level,
-                                  detail::growing_options(opt, 0.0, opt.flat_seeds ? 0.8 : 0.9, fn));
+    auto seeds = water_seeds(dropouts, opt.seeds, seed_run);
+    auto grown = grow_waterbodies(field, seeds, in.min_z, in.max_z, opt.grow, opt.level, opt.growing,
+                                  detail::growing_run(opt, 0.0, opt.flat_seeds ? 0.8 : 0.9, fn));
     res.seeds_found = seeds.count();
     res.seeds = std::move(seeds.labels);
     raster<std::int32_t> labels;  // reused by the labelling steps below
@@ -218,7 +206,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         if (mask.empty()) {
             detail::report(opt.run.progress, 0.9, fn);  // no flat seed: the step is passed over
         } else {
-            auto more = water_seeds(mask, seed_opt, std::move(labels));
+            auto more = water_seeds(mask, opt.seeds, std::move(labels), seed_run);
             detail::grow_more_seeds(field, more, in, grown, res, opt, 0.8, 0.1, fn);
             labels = std::move(more.labels);
         }
@@ -227,9 +215,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         const auto mask =
             seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, field.surface_slope);
         if (!mask_any(mask)) break;  // none: no labelling
-        auto more = water_seeds(
-            mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells, .run = {.threads = threads}},
-            std::move(labels));
+        auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells},
+                                std::move(labels), seed_run);
         if (more.count() == 0) break;
         detail::grow_more_seeds(field, more, in, grown, res, opt, 0.9, 0.0, fn);
         labels = std::move(more.labels);

@@ -139,12 +139,12 @@ inline std::size_t fill_holes_at_once(raster_view<std::int32_t> labels, std::siz
 }  // namespace detail
 
 inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double cell_m,
-                                      const fill_small_islands_options& opt)
+                                      const fill_small_islands_options& opt, const execution& run)
 {
     constexpr const char* fn = "fill_small_islands";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(opt.island_min_area_m2 >= 0, fn, "island_min_area_m2", ">= 0", opt.island_min_area_m2);
-    detail::check_execution(opt.run, fn);
+    detail::check_execution(run, fn);
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     // Clamped so that any area converts; no raster holds 2^60 cells.
     const auto max_hole_cells =
@@ -180,7 +180,7 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
         all = {std::min(all.row_min, r), std::min(all.col_min, first), r, std::max(all.col_max, last)};
     }
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
-    detail::report(opt.run.progress, 0.0, fn);
+    detail::report(run.progress, 0.0, fn);
     std::size_t filled = 0;
     if (max_hole_cells > 0 && !all.empty()) {
         // What the boxes cover, when there are boxes.
@@ -191,15 +191,15 @@ inline std::size_t fill_small_islands(raster_view<std::int32_t> labels, double c
                 if (!b.empty()) covered += (b.rows() + 2) * (b.cols() + 2);
         }
         if (covered <= rows * cols) {
-            filled = detail::fill_holes_per_body(labels, max_hole_cells, boxes, opt.run.threads);
+            filled = detail::fill_holes_per_body(labels, max_hole_cells, boxes, run.threads);
         } else {
             const cell_box grown{std::max<std::ptrdiff_t>(0, all.row_min - 1),
                                  std::max<std::ptrdiff_t>(0, all.col_min - 1), std::min(rows - 1, all.row_max + 1),
                                  std::min(cols - 1, all.col_max + 1)};
-            filled = detail::fill_holes_at_once(labels, max_hole_cells, grown, opt.run.threads);
+            filled = detail::fill_holes_at_once(labels, max_hole_cells, grown, run.threads);
         }
     }
-    detail::report(opt.run.progress, 1.0, fn);
+    detail::report(run.progress, 1.0, fn);
     return filled;
 }
 

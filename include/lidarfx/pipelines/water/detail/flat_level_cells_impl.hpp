@@ -159,29 +159,30 @@ inline void level_cells_large_window(const water_rasters& in, raster_view<const 
 }  // namespace detail
 
 inline void flat_level_cells(const water_rasters& in, raster_view<const std::uint8_t> excluded,
-                             const flat_water_seeds_options& opt, raster_view<std::uint8_t> level)
+                             const flat_water_seeds_options& opt, raster_view<std::uint8_t> level, const execution& run)
 {
     constexpr const char* fn = "flat_level_cells";
     detail::validate(in, fn);
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     if (!excluded.empty()) detail::require_same_shape(in.min_z, excluded, fn, "min_z", "excluded");
     detail::require_same_shape(in.min_z, level, fn, "min_z", "level");
     const float max_rough = detail::float_at_most(opt.max_roughness_m);
     const float tolerance = detail::float_at_most(opt.level_tolerance_m);
     if (opt.level_radius_cells <= 2)
-        detail::level_cells_small_window(in, excluded, opt.level_radius_cells, max_rough, tolerance, opt.run.threads,
-                                         level, fn);
+        detail::level_cells_small_window(in, excluded, opt.level_radius_cells, max_rough, tolerance, run.threads, level,
+                                         fn);
     else
-        detail::level_cells_large_window(in, excluded, opt.level_radius_cells, max_rough, tolerance, opt.run.threads,
-                                         level, fn);
+        detail::level_cells_large_window(in, excluded, opt.level_radius_cells, max_rough, tolerance, run.threads, level,
+                                         fn);
 }
 
 inline raster<std::uint8_t> flat_level_cells(const water_rasters& in, raster_view<const std::uint8_t> excluded,
-                                             const flat_water_seeds_options& opt)
+                                             const flat_water_seeds_options& opt, const execution& run)
 {
     detail::validate(in, "flat_level_cells");
     raster<std::uint8_t> level(in.min_z.rows(), in.min_z.cols(), uninitialized);  // every cell is written
-    flat_level_cells(in, excluded, opt, level);
+    flat_level_cells(in, excluded, opt, level, run);
     return level;
 }
 

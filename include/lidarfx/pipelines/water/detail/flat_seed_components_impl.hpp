@@ -121,11 +121,12 @@ inline void sum_flat_components(const water_rasters& in, const std::vector<std::
 inline flat_seed_components label_flat_seed_components(const water_rasters& in, raster_view<const std::uint8_t> level,
                                                        raster_view<const std::int32_t> taken,
                                                        const flat_water_seeds_options& opt,
-                                                       raster<std::int32_t> storage)
+                                                       raster<std::int32_t> storage, const execution& run)
 {
     constexpr const char* fn = "label_flat_seed_components";
     detail::validate(in, fn);
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     detail::require(!in.count.empty(), fn, "in.count is required (the densities of the components need it)");
     detail::require_same_shape(in.min_z, level, fn, "min_z", "level");
     if (!taken.empty()) detail::require_same_shape(in.min_z, taken, fn, "min_z", "taken");
@@ -134,7 +135,7 @@ inline flat_seed_components label_flat_seed_components(const water_rasters& in, 
     detail::ensure_shape(comps.labels, rows, cols);  // every cell is written
     const auto level_sizes = connected_components(
         level, comps.labels,
-        connected_components_options{.conn = connectivity::eight, .run = {.threads = opt.run.threads}});
+        connected_components_options{.conn = connectivity::eight, .run = {.threads = run.threads}});
     std::vector<std::ptrdiff_t> first_row, last_row;
     detail::renumber_flat_components(in, taken, level_sizes, opt.min_cells, comps, first_row, last_row);
     detail::sum_flat_components(in, first_row, last_row, comps);

@@ -167,11 +167,12 @@ inline void list_ring_cells(const water_rasters& in, const flat_seed_components&
 }  // namespace detail
 
 inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const flat_seed_components& comps,
-                                               const flat_water_seeds_options& opt)
+                                               const flat_water_seeds_options& opt, const execution& run)
 {
     constexpr const char* fn = "measure_flat_seed_rings";
     detail::validate(in, fn);
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     detail::require(!in.count.empty(), fn, "in.count is required (the densities of the rings need it)");
     detail::require_same_shape(in.min_z, comps.labels, fn, "min_z", "comps.labels");
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
@@ -183,7 +184,7 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
     const std::ptrdiff_t strip = min_max_strip_rows(rows, cols, g.qy);
     std::vector<std::vector<detail::ring_cell>> found(static_cast<std::size_t>((rows + strip - 1) / strip));
     for_each_row_strip<detail::ring_strip_scratch>(
-        rows, strip, opt.run.threads,
+        rows, strip, run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1, detail::ring_strip_scratch& w) {
             if (!detail::strip_near_free_component(comps, g, r0, r1)) return;
             detail::list_ring_cells(in, comps, g, r0, r1, w, found[static_cast<std::size_t>(r0 / strip)]);

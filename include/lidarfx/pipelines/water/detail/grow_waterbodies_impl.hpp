@@ -17,7 +17,7 @@ namespace lidarfx {
 inline void grow_waterbodies(water_field& field, const components& seeds, raster_view<const float> min_z,
                              raster_view<const float> max_z, grow_waterbodies_result& into,
                              const grow_waterbody_options& grow, const join_level_cells_options& level,
-                             const grow_waterbodies_options& opt, std::int32_t seed_offset)
+                             const grow_waterbodies_options& opt, std::int32_t seed_offset, const execution& run)
 {
     constexpr const char* fn = "grow_waterbodies";
     detail::require_same_shape(field.eligible, seeds.labels, fn, "field.eligible", "seeds.labels");
@@ -38,7 +38,7 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
     bool flooded = false;
     std::vector<std::ptrdiff_t> free_cells;
     for (std::size_t s = 1; s <= n; ++s) {
-        detail::report(opt.run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
+        detail::report(run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
         // The seed's cells outside the bodies so far (all of them, mostly: then the seed's own list).
         std::span<const std::ptrdiff_t> cells = seed_lists.of(s);
         const auto taken = static_cast<std::size_t>(
@@ -72,17 +72,17 @@ inline void grow_waterbodies(water_field& field, const components& seeds, raster
         ++out.seeds_grown;
     }
     if (flooded) workspace.clear_marks();
-    detail::report(opt.run.progress, 1.0, fn);
+    detail::report(run.progress, 1.0, fn);
 }
 
 inline grow_waterbodies_result grow_waterbodies(water_field& field, const components& seeds,
                                                 raster_view<const float> min_z, raster_view<const float> max_z,
                                                 const grow_waterbody_options& grow,
                                                 const join_level_cells_options& level,
-                                                const grow_waterbodies_options& opt)
+                                                const grow_waterbodies_options& opt, const execution& run)
 {
     grow_waterbodies_result out{raster<std::int32_t>(seeds.labels.rows(), seeds.labels.cols(), 0), {}, 0};
-    grow_waterbodies(field, seeds, min_z, max_z, out, grow, level, opt);
+    grow_waterbodies(field, seeds, min_z, max_z, out, grow, level, opt, 0, run);
     return out;
 }
 

@@ -14,15 +14,16 @@
 
 namespace lidarfx {
 
-inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt)
+inline raster<float> water_angles(const water_rasters& in, double cell_m, const water_angles_options& opt,
+                                  const execution& run)
 {
     constexpr const char* fn = "water_angles";
     detail::validate(in, fn);
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
-    detail::check_execution(opt.run, fn);
-    detail::report(opt.run.progress, 0.0, fn);
-    const int threads = opt.run.threads;
+    detail::check_execution(run, fn);
+    detail::report(run.progress, 0.0, fn);
+    const int threads = run.threads;
     const angular_filter_options af{.radius_cells = opt.radius_cells, .run = {.threads = threads}};
     raster<float> angle =
         opt.input == angular_input::idw_filled
@@ -38,7 +39,7 @@ inline raster<float> water_angles(const water_rasters& in, double cell_m, const 
             for (std::ptrdiff_t c = 0; c < angle.cols(); ++c) a[c] = dropout[c] && std::isnan(a[c]) ? 90.0f : a[c];
         }
     }
-    detail::report(opt.run.progress, 1.0, fn);
+    detail::report(run.progress, 1.0, fn);
     return angle;
 }
 

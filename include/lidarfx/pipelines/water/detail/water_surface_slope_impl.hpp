@@ -105,7 +105,6 @@ inline void validate(const water_surface_slope_options& opt, double cell_m, cons
     require(opt.radius_cells >= 1, fn, "radius_cells", ">= 1", opt.radius_cells);
     require(opt.min_cells >= 3, fn, "min_cells", ">= 3", opt.min_cells);
     require(opt.band_m > 0, fn, "band_m", "> 0", opt.band_m);
-    check_execution(opt.run, fn);
 }
 
 /// Row buffers of surface_slope_block: the nine window sums and the squared slope of up to `width` cells.
@@ -201,14 +200,15 @@ inline void surface_slope_block(raster_view<const float> min_z, double cell_m, c
 }  // namespace detail
 
 inline raster<float> water_surface_slope(raster_view<const float> min_z, double cell_m,
-                                         const water_surface_slope_options& opt)
+                                         const water_surface_slope_options& opt, const execution& run)
 {
     constexpr const char* fn = "water_surface_slope";
     detail::validate(opt, cell_m, fn);
+    detail::check_execution(run, fn);
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
     raster<float> out(rows, cols, uninitialized);  // every cell is written
     parallel_for_rows(
-        rows, 16, opt.run.threads,
+        rows, 16, run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
             detail::slope_scratch scratch(cols);
             detail::surface_slope_block(min_z, cell_m, opt, r0, r1, 0, cols, out.view().window(r0, 0, r1 - r0, cols),
