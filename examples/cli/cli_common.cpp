@@ -122,6 +122,22 @@ std::optional<int> stop_for_usage(const arguments& a, const char* usage, bool ne
 progress_callback progress_bar(const std::string& label)
 {
     auto last = std::make_shared<int>(-1);
+    if (::isatty(STDERR_FILENO) == 0) {
+        // Into a log or pipe: a plain line at most every 10 % and at most every 10 s, and the final 100 %.
+        using clock = std::chrono::steady_clock;
+        auto last_line = std::make_shared<clock::time_point>(clock::now());
+        return [label, last, last_line](double f) {
+            const int percent = static_cast<int>(std::floor(100.0 * f));
+            const bool done = percent >= 100 && *last < 100;
+            const bool due = percent / 10 > *last / 10 && clock::now() - *last_line >= std::chrono::seconds(10);
+            if (!done && !due) return true;
+            *last = percent;
+            *last_line = clock::now();
+            std::cerr << label << ' ' << percent << " %\n";
+            std::cerr.flush();
+            return true;
+        };
+    }
     return [label, last](double f) {
         const int percent = static_cast<int>(std::floor(100.0 * f));
         if (percent == *last) return true;

@@ -48,7 +48,8 @@ private:
 /// --out (usage on stderr, exit code 2); nullopt when the command should go on.
 std::optional<int> stop_for_usage(const arguments& a, const char* usage, bool needs_inputs_and_out);
 
-/// A progress bar on stderr: "label [#####.....]  45%"; returns true (never cancels).
+/// A progress bar on stderr: "label [#####.....]  45%" on a terminal; when stderr is not a terminal (a log, a
+/// pipe), plain lines "label 40 %" at most every 10 % and every 10 s, and "label 100 %". Returns true (never cancels).
 progress_callback progress_bar(const std::string& label);
 
 /// A refusal of what the command line asks (a value out of range, a grid over the memory budget, a cell far

@@ -206,13 +206,25 @@ output_folder::output_folder(std::filesystem::path dir, std::vector<std::filesys
     created_ = !std::filesystem::exists(dir_);
     std::filesystem::create_directories(dir_, ec);
     if (ec) throw failure(dir_, "cannot create the output folder: " + ec.message());
+    // The lock file is removed when the run ends, so a lock taken on a file that a finishing run has just
+    // removed is no lock: it is retaken until the locked file is the one at the lock's name.
     const auto lock = dir_ / lock_name;
-    lock_fd_ = ::open(lock.c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
-    if (lock_fd_ < 0) throw failure(dir_, "cannot write into the output folder: " + errno_text());
-    if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    for (;;) {
+        lock_fd_ = ::open(lock.c_str(), O_CREAT | O_RDWR | O_CLOEXEC | O_NOFOLLOW, 0644);
+        if (lock_fd_ < 0) throw failure(dir_, "cannot write into the output folder: " + errno_text());
+        if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+            ::close(lock_fd_);
+            lock_fd_ = -1;
+            throw failure(dir_, "another lidarfx run is writing into this folder; wait for it or choose another --out");
+        }
+        struct stat held {};
+        struct stat named {};
+        if (::fstat(lock_fd_, &held) == 0 && ::lstat(lock.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+            held.st_ino == named.st_ino) {
+            break;
+        }
         ::close(lock_fd_);
         lock_fd_ = -1;
-        throw failure(dir_, "another lidarfx run is writing into this folder; wait for it or choose another --out");
     }
     // Holding the lock, no other run is active: temporary files here are leftovers of killed runs.
     // Only names of the exact form temporary_name gives, and only regular files (a link is never removed).
@@ -231,8 +243,9 @@ output_folder::~output_folder()
     if (!committed_) {
         for (const auto& p : pending_) std::filesystem::remove(p.temporary, ec);
     }
+    // The lock file goes while still locked (no run is left with a lock on it), so no run leaves it behind.
+    if (lock_fd_ >= 0) std::filesystem::remove(dir_ / lock_name, ec);
     if (!committed_ && created_ && lock_fd_ >= 0) {
-        std::filesystem::remove(dir_ / lock_name, ec);
         std::filesystem::remove(dir_, ec);  // only succeeds when empty
     }
     if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock

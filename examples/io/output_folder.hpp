@@ -19,7 +19,8 @@ namespace lidarfx::io {
 ///   last, so a folder whose manifest is missing holds an incomplete run;
 /// - a symlink at an output name is never followed or replaced, and no output replaces an input of the run;
 /// - one run at a time: the folder is locked (flock on .lidarfx.lock, released by the kernel even after kill -9),
-///   and a second run into it fails at once with a message, touching nothing.
+///   and a second run into it fails at once with a message, touching nothing; the run removes .lidarfx.lock
+///   when it ends (a killed run leaves it, harmless: the next run takes and removes it).
 /// Errors are std::runtime_error naming the file.
 class output_folder {
 public:

@@ -64,7 +64,7 @@ TEST_CASE("io/output_folder: files appear under their names only at commit, with
         manifest,
         R"({"name": "b.txt", "bytes": 0, "sha256": "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"})"));
     CHECK(contains(manifest, R"("command": "lidarfx test \"quoted\"")"));
-    CHECK(entries(dir) == std::vector<std::string>{".lidarfx.lock", "a.txt", "b.txt", "manifest.json"});
+    CHECK(entries(dir) == std::vector<std::string>{"a.txt", "b.txt", "manifest.json"});  // no .lidarfx.lock left
     CHECK(sha256_of_file(dir / "a.txt") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
 }
 
@@ -87,7 +87,7 @@ TEST_CASE("io/output_folder: a run that fails before commit leaves the earlier o
                     std::runtime_error);
     CHECK(text_of(dir / "a.txt") == "first run");
     CHECK(text_of(dir / "manifest.json") == manifest);
-    CHECK(entries(dir) == std::vector<std::string>{".lidarfx.lock", "a.txt", "manifest.json"});  // no temporaries
+    CHECK(entries(dir) == std::vector<std::string>{"a.txt", "manifest.json"});  // no temporaries, no lock file
 }
 
 TEST_CASE("io/output_folder: a folder created by a run that fails is removed again")
@@ -140,6 +140,7 @@ TEST_CASE("io/output_folder: a second run into a locked folder fails at once and
         write_text(first, "a.txt", "first");
         const auto why = io_test::runtime_error_of([&] { output_folder second(dir); });
         CHECK(contains(why, "another lidarfx run is writing into this folder"));
+        CHECK(std::filesystem::exists(dir / ".lidarfx.lock"));  // held while the run is active
         first.commit();
     }
     CHECK(text_of(dir / "a.txt") == "first");
@@ -187,4 +188,18 @@ TEST_CASE("io/output_folder: only regular files named as this program names its 
         CHECK(text_of(dir / foreign) == "theirs");
     CHECK(std::filesystem::is_symlink(dir / ".b.txt.78.lidarfx-tmp"));
     CHECK(text_of(theirs) == "someone's");
+}
+
+TEST_CASE("io/output_folder: a lock file left by a killed run is taken and removed by the next run")
+{
+    temp_dir tmp;
+    const std::filesystem::path dir = tmp.file("out");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / ".lidarfx.lock").close();  // what kill -9 leaves (the kernel released its flock)
+    {
+        output_folder run(dir);
+        write_text(run, "a.txt", "a");
+        run.commit();
+    }
+    CHECK(entries(dir) == std::vector<std::string>{"a.txt", "manifest.json"});
 }

@@ -80,7 +80,7 @@ TEST_CASE("cli/write_point_rasters: exactly the files the formats name, the same
             folder.commit("test");
         }
         CHECK(files_in(out) == std::set<std::string>{"min_z.asc", "max_z.asc", "mean_intensity.asc", "count.asc",
-                                                     "dropout.asc", "manifest.json", ".lidarfx.lock"});
+                                                     "dropout.asc", "manifest.json"});
         CHECK(io_test::read_bytes((out / "count.asc").string()) ==
               io_test::read_bytes((std::filesystem::path(dir.file("asc_1")) / "count.asc").string()));
     }
@@ -91,7 +91,7 @@ TEST_CASE("cli/write_point_rasters: exactly the files the formats name, the same
         folder.commit("test");
     }
     CHECK(files_in(pictures) ==
-          std::set<std::string>{"min_z.png", "mean_intensity.png", "dropout.png", "manifest.json", ".lidarfx.lock"});
+          std::set<std::string>{"min_z.png", "mean_intensity.png", "dropout.png", "manifest.json"});
     CHECK(cli::point_raster_file_names(formats_of("png")).size() == 3);
 }
 
