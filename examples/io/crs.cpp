@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/crs.hpp"
+#include "io/gdal_session.hpp"
 
 #include <algorithm>
 #include <array>
@@ -316,14 +317,6 @@ found from_keys_alone(const las_header& h)
 
 #ifdef LIDARFX_HAVE_GDAL
 
-/// Silences GDAL's stderr reporting while alive (what fails becomes a warning of ours).
-struct quiet_gdal {
-    quiet_gdal() { CPLPushErrorHandler(CPLQuietErrorHandler); }
-    ~quiet_gdal() { CPLPopErrorHandler(); }
-    quiet_gdal(const quiet_gdal&) = delete;
-    quiet_gdal& operator=(const quiet_gdal&) = delete;
-};
-
 struct srs_deleter {
     void operator()(void* s) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(s)); }
 };
@@ -501,12 +494,6 @@ srs_ptr srs_from_geokeys(const las_header& h, std::string& why)
     return srs;
 }
 
-void register_drivers()
-{
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
-
 #endif
 
 /// The GeoKeys interpreted (by GDAL's GeoTIFF driver when `use_gdal`); warnings go to c.
@@ -514,7 +501,7 @@ found from_keys(const las_header& h, bool use_gdal, survey_crs& c)
 {
 #ifdef LIDARFX_HAVE_GDAL
     if (use_gdal) {
-        register_drivers();
+        register_gdal_drivers();
         const quiet_gdal quiet;
         CPLErrorReset();
         std::string why;
@@ -575,7 +562,7 @@ found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c)
 {
 #ifdef LIDARFX_HAVE_GDAL
     if (use_gdal) {
-        register_drivers();
+        register_gdal_drivers();
         const quiet_gdal quiet;
         srs_ptr srs(OSRNewSpatialReference(nullptr));
         if (OSRSetFromUserInput(srs.get(), wkt.c_str()) != OGRERR_NONE) return {};
@@ -699,7 +686,7 @@ std::string esri_prj_text(const std::string& crs)
 {
     if (blank(crs)) return {};
 #ifdef LIDARFX_HAVE_GDAL
-    register_drivers();
+    register_gdal_drivers();
     const quiet_gdal quiet;
     std::string input = crs;
     if (std::all_of(crs.begin(), crs.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))

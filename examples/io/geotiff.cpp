@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/geotiff.hpp"
+#include "io/gdal_session.hpp"
 
 #include <algorithm>
 #include <array>
@@ -25,30 +26,6 @@ namespace lidarfx::io {
 #ifdef LIDARFX_HAVE_GDAL
 
 namespace {
-
-void register_drivers()
-{
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
-
-/// Silences GDAL's default stderr reporting while alive; errors are turned into exceptions instead.
-struct quiet_gdal {
-    quiet_gdal()
-    {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
-        CPLErrorReset();
-    }
-    ~quiet_gdal() { CPLPopErrorHandler(); }
-    quiet_gdal(const quiet_gdal&) = delete;
-    quiet_gdal& operator=(const quiet_gdal&) = delete;
-};
-
-std::string gdal_message()
-{
-    const char* m = CPLGetLastErrorMsg();
-    return m != nullptr && *m != '\0' ? std::string(" (") + m + ")" : std::string();
-}
 
 struct dataset_closer {
     void operator()(void* ds) const { GDALClose(static_cast<GDALDatasetH>(ds)); }
@@ -92,7 +69,7 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     g.validate(fn);
     detail::require(values.rows() == g.rows && values.cols() == g.cols, fn, "values and grid must have the same shape");
     detail::require(!values.empty(), fn, "values must not be empty");
-    register_drivers();
+    register_gdal_drivers();
     const quiet_gdal quiet;
     const std::string wkt = crs_to_wkt(crs_wkt_or_epsg);
     // The cells go into an in-memory dataset first: the COG driver writes a whole file at once (CreateCopy), with
@@ -154,7 +131,7 @@ grid grid_of(GDALDatasetH ds, const std::string& path)
 
 grid read_geotiff_grid(const std::string& path)
 {
-    register_drivers();
+    register_gdal_drivers();
     const quiet_gdal quiet;
     dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
     if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
@@ -163,7 +140,7 @@ grid read_geotiff_grid(const std::string& path)
 
 geotiff_raster read_geotiff(const std::string& path)
 {
-    register_drivers();
+    register_gdal_drivers();
     const quiet_gdal quiet;
     dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
     if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
@@ -194,7 +171,7 @@ geotiff_raster read_geotiff(const std::string& path)
 bool crs_understood(const std::string& crs) noexcept
 {
     try {
-        register_drivers();
+        register_gdal_drivers();
         const quiet_gdal quiet;
         crs_to_wkt(crs);
         return true;

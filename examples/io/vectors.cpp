@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/vectors.hpp"
+#include "io/gdal_session.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -28,30 +29,6 @@ namespace lidarfx::io {
 #ifdef LIDARFX_HAVE_GDAL
 
 namespace {
-
-void register_drivers()
-{
-    static std::once_flag once;
-    std::call_once(once, [] { GDALAllRegister(); });
-}
-
-/// Silences GDAL's default stderr reporting while alive; errors are turned into exceptions instead.
-struct quiet_gdal {
-    quiet_gdal()
-    {
-        CPLPushErrorHandler(CPLQuietErrorHandler);
-        CPLErrorReset();
-    }
-    ~quiet_gdal() { CPLPopErrorHandler(); }
-    quiet_gdal(const quiet_gdal&) = delete;
-    quiet_gdal& operator=(const quiet_gdal&) = delete;
-};
-
-std::string gdal_message()
-{
-    const char* m = CPLGetLastErrorMsg();
-    return m != nullptr && *m != '\0' ? std::string(" (") + m + ")" : std::string();
-}
 
 struct dataset_closer {
     void operator()(GDALDataset* ds) const { GDALClose(GDALDataset::ToHandle(ds)); }
@@ -282,7 +259,7 @@ bool vectors_available() noexcept
 
 footprint_collection read_footprints_ogr(const std::string& path, const footprint_read_options& opt)
 {
-    register_drivers();
+    register_gdal_drivers();
     quiet_gdal quiet;
     dataset_ptr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
     if (!ds) throw std::runtime_error(path + ": cannot open the footprint file as vectors" + gdal_message());
@@ -298,7 +275,7 @@ footprint_collection read_footprints_ogr(const std::string& path, const footprin
 
 int epsg_of_crs(const std::string& crs)
 {
-    register_drivers();
+    register_gdal_drivers();
     quiet_gdal quiet;
     OGRSpatialReference srs;
     if (!parse_crs(crs, srs)) return 0;
@@ -324,7 +301,7 @@ int epsg_of_crs(const std::string& crs)
 bool same_crs(const std::string& a, const std::string& b)
 {
     if (a == b) return true;
-    register_drivers();
+    register_gdal_drivers();
     quiet_gdal quiet;
     OGRSpatialReference sa, sb;
     if (!parse_crs(a, sa) || !parse_crs(b, sb)) return false;
@@ -336,7 +313,7 @@ bool same_crs(const std::string& a, const std::string& b)
 void reproject_footprints(footprint_collection& c, const std::string& from, const std::string& to,
                           const std::string& source)
 {
-    register_drivers();
+    register_gdal_drivers();
     quiet_gdal quiet;
     OGRSpatialReference a, b;
     if (!parse_crs(from, a))
@@ -420,7 +397,7 @@ void write_geopackage(const std::string& path, const std::string& layer, const s
         }
     }
 
-    register_drivers();
+    register_gdal_drivers();
     quiet_gdal quiet;  // the GPKG driver warns about the temporary name's extension
     // The file's only time stamp (gpkg_contents.last_change) fixed, so that the same run writes the same bytes.
     struct fixed_date {
