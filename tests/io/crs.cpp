@@ -544,9 +544,11 @@ TEST_CASE("io/esri_prj_text: the CRS of a .prj beside an ESRI ASCII grid, read b
         return;
     }
     CHECK(esri_prj_text("EPSG:not-a-code").empty());
-    for (const auto& [crs, unit_m] : {std::pair<std::string, double>{"EPSG:2994", international_foot_m},
-                                      {"32617", metre_m},
-                                      {"EPSG:2269", international_foot_m}}) {
+    for (const auto& crs_and_unit : {std::pair<std::string, double>{"EPSG:2994", international_foot_m},
+                                     {"32617", metre_m},
+                                     {"EPSG:2269", international_foot_m}}) {
+        const std::string& crs = crs_and_unit.first;  // a plain reference: Clang 14's CAPTURE cannot take a binding
+        const double unit_m = crs_and_unit.second;
         CAPTURE(crs);
         const std::string prj = esri_prj_text(crs);
         CHECK(prj.rfind("PROJCS[", 0) == 0);  // ESRI WKT: WKT1 without AUTHORITY nodes
