@@ -578,30 +578,7 @@ private:
             }
             fp.parts.push_back(std::move(p));
         }
-        std::string problem;
-        try {
-            problem = footprint_geometry_problem(fp);
-        } catch (const std::exception& e) {  // Boost.Geometry's own exceptions (e.g. a numeric cast)
-            throw invalid_input(at + ": the polygon checks failed: " + e.what());
-        }
-        if (!problem.empty()) {
-            // Its entry in the list (which grows by doubling), its id in first_feature_of_, the reason.
-            kept_bytes_ += 2.0 * sizeof(footprint_problem) + 64.0 + static_cast<double>(problem.size());
-            out_.problems.push_back({building, feature_, std::move(problem)});
-            return;
-        }
-        // Per vertex 16 bytes, per ring and part a vector and its allocation (48), per footprint its entry in
-        // the list (which grows by doubling) and its id in first_feature_of_ (64).
-        orient_footprint(fp);
-        for (const polygon& p : fp.parts) {
-            kept_bytes_ += 48.0;
-            for (const auto& r : p.rings) {
-                kept_vertices_ += r.size();
-                kept_bytes_ += 48.0 + 16.0 * static_cast<double>(r.size());
-            }
-        }
-        kept_bytes_ += 2.0 * sizeof(footprint) + 64.0;
-        out_.footprints.push_back(std::move(fp));
+        keep_footprint(std::move(fp), at, out_, kept_bytes_, kept_vertices_);
     }
 
     std::string_view s_;
@@ -643,6 +620,32 @@ std::string footprint_geometry_problem(const footprint& fp)
 void orient_footprint(footprint& fp)
 {
     for (polygon& p : fp.parts) orient_part(p);
+}
+
+void keep_footprint(footprint&& fp, const std::string& at, footprint_collection& out, double& kept_bytes,
+                    std::size_t& kept_vertices)
+{
+    std::string problem;
+    try {
+        problem = footprint_geometry_problem(fp);
+    } catch (const std::exception& e) {  // Boost.Geometry's own exceptions (e.g. a numeric cast)
+        throw invalid_input(at + ": the polygon checks failed: " + e.what());
+    }
+    if (!problem.empty()) {
+        kept_bytes += 2.0 * sizeof(footprint_problem) + 64.0 + static_cast<double>(problem.size());
+        out.problems.push_back({fp.building_id, fp.feature, std::move(problem)});
+        return;
+    }
+    orient_footprint(fp);
+    for (const polygon& p : fp.parts) {
+        kept_bytes += 48.0;
+        for (const auto& r : p.rings) {
+            kept_vertices += r.size();
+            kept_bytes += 48.0 + 16.0 * static_cast<double>(r.size());
+        }
+    }
+    kept_bytes += 2.0 * sizeof(footprint) + 64.0;
+    out.footprints.push_back(std::move(fp));
 }
 
 footprint_collection parse_footprints_geojson(const std::string& text, const std::string& source,

@@ -65,6 +65,14 @@ std::string footprint_geometry_problem(const footprint& fp);
 /// Orients every part as lidarfx::polygon documents: outer ring counter-clockwise, holes clockwise.
 void orient_footprint(footprint& fp);
 
+/// Files a footprint just read: into out.problems with its reason when footprint_geometry_problem finds one, else
+/// oriented (orient_footprint) into out.footprints. Adds what it keeps to the read's memory estimate: per vertex
+/// 16 bytes, per ring and part 48 (a vector and its allocation), per footprint or problem its entry in a list
+/// that grows by doubling and its id in the reader's id table (64), a problem's text.
+/// @throws invalid_input naming `at` when the polygon checks themselves fail (Boost.Geometry's own exceptions).
+void keep_footprint(footprint&& fp, const std::string& at, footprint_collection& out, double& kept_bytes,
+                    std::size_t& kept_vertices);
+
 /// Parses GeoJSON text in one pass that keeps only the footprints (one feature's coordinates at a time, no
 /// document tree), so memory follows the vertices kept: about the text plus 16 bytes per vertex. A UTF-8
 /// byte order mark at the start is skipped. Structural errors throw invalid_input naming `source`, the

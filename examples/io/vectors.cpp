@@ -215,27 +215,7 @@ private:
             for (const OGRLinearRing* ring : *p) part.rings.push_back(ring_of(*ring, at, vertex));
             fp.parts.push_back(std::move(part));
         }
-        std::string problem;
-        try {
-            problem = footprint_geometry_problem(fp);
-        } catch (const std::exception& e) {
-            throw invalid_input(at + ": the polygon checks failed: " + e.what());
-        }
-        if (!problem.empty()) {
-            kept_bytes_ += 2.0 * sizeof(footprint_problem) + 64.0 + static_cast<double>(problem.size());
-            out_.problems.push_back({building, feature_, std::move(problem)});
-            return;
-        }
-        orient_footprint(fp);
-        for (const polygon& p : fp.parts) {
-            kept_bytes_ += 48.0;
-            for (const auto& r : p.rings) {
-                kept_vertices_ += r.size();
-                kept_bytes_ += 48.0 + 16.0 * static_cast<double>(r.size());
-            }
-        }
-        kept_bytes_ += 2.0 * sizeof(footprint) + 64.0;
-        out_.footprints.push_back(std::move(fp));
+        keep_footprint(std::move(fp), at, out_, kept_bytes_, kept_vertices_);
     }
 
     const std::string& path_;
