@@ -37,7 +37,7 @@ io_sources=(examples/io/las.cpp examples/io/laz.cpp examples/io/las_writer.cpp)
 "$cxx" "${flags[@]}" -fsanitize=address,undefined "${io_sources[@]}" tests/fuzz/make_seeds.cpp -o "$out/make_seeds"
 "$cxx" "${flags[@]}" "${fuzz_flags[@]}" "${io_sources[@]}" tests/fuzz/las_fuzz.cpp -o "$out/las_fuzz"
 "$cxx" "${flags[@]}" tests/fuzz/make_text_seeds.cpp -o "$out/make_text_seeds"
-"$cxx" "${flags[@]}" "${fuzz_flags[@]}" examples/io/footprints.cpp tests/fuzz/footprints_fuzz.cpp -o "$out/footprints_fuzz"
+"$cxx" "${flags[@]}" "${fuzz_flags[@]}" examples/io/footprints.cpp examples/io/vectors.cpp tests/fuzz/footprints_fuzz.cpp -o "$out/footprints_fuzz"
 "$cxx" "${flags[@]}" "${fuzz_flags[@]}" examples/io/tmy3.cpp tests/fuzz/tmy3_fuzz.cpp -o "$out/tmy3_fuzz"
 "$cxx" "${flags[@]}" "${fuzz_flags[@]}" examples/io/ascii_grid.cpp tests/fuzz/ascii_grid_fuzz.cpp -o "$out/ascii_grid_fuzz"
 
