@@ -60,17 +60,6 @@ std::uint64_t budget_of(const footprint_read_options& opt)
     return footprint_memory_budget(opt);
 }
 
-std::string size_text(double bytes)
-{
-    std::ostringstream s;
-    s << std::setprecision(3);
-    if (bytes >= 1073741824.0)
-        s << bytes / 1073741824.0 << " GiB";
-    else
-        s << bytes / 1048576.0 << " MiB";
-    return s.str();
-}
-
 // What one feature of the file says, as far as footprints need it: its building_id (as written), its
 // geometry's type, and its coordinates flattened (vertices, the end of each ring, the end of each part).
 struct feature_text {
@@ -176,12 +165,12 @@ private:
             // What the whole file would need if the rest is like what was read so far.
             const double read = std::max(1.0, static_cast<double>(i_)), share = std::min(1.0, read / text_bytes_);
             const double projected = std::max(need, text_bytes_ + (need - text_bytes_) / share);
-            throw invalid_input(detail::concat(source_, ": reading the footprints needs about ", size_text(projected),
-                                               " (the file's ", size_text(text_bytes_), ", and ", kept_vertices_,
-                                               " vertices kept by feature ", feature_, " in its first ",
-                                               std::floor(100 * share), " %), over the memory budget of ",
-                                               size_text(static_cast<double>(budget_)),
-                                               "; split the file into smaller ones or use a larger --memory"));
+            throw invalid_input(
+                detail::concat(source_, ": reading the footprints needs about ", footprint_size_text(projected),
+                               " (the file's ", footprint_size_text(text_bytes_), ", and ", kept_vertices_,
+                               " vertices kept by feature ", feature_, " in its first ", std::floor(100 * share),
+                               " %), over the memory budget of ", footprint_size_text(static_cast<double>(budget_)),
+                               "; split the file into smaller ones or use a larger --memory"));
         }
     }
 
@@ -617,6 +606,17 @@ std::string footprint_geometry_problem(const footprint& fp)
     return {};
 }
 
+std::string footprint_size_text(double bytes)
+{
+    std::ostringstream s;
+    s << std::setprecision(3);
+    if (bytes >= 1073741824.0)
+        s << bytes / 1073741824.0 << " GiB";
+    else
+        s << bytes / 1048576.0 << " MiB";
+    return s.str();
+}
+
 void orient_footprint(footprint& fp)
 {
     for (polygon& p : fp.parts) orient_part(p);
@@ -663,8 +663,9 @@ footprint_collection read_footprints_geojson(const std::string& path, const foot
     const std::uint64_t budget = budget_of(opt);
     if (budget > 0 && static_cast<std::uint64_t>(size) > budget) {
         throw invalid_input(detail::concat(path, ": reading the footprints needs more than the file's ",
-                                           size_text(static_cast<double>(size)), ", over the memory budget of ",
-                                           size_text(static_cast<double>(budget)),
+                                           footprint_size_text(static_cast<double>(size)),
+                                           ", over the memory budget of ",
+                                           footprint_size_text(static_cast<double>(budget)),
                                            "; split the file into smaller ones or use a larger --memory"));
     }
     std::string text(static_cast<std::size_t>(size), '\0');

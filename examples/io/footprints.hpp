@@ -62,6 +62,9 @@ std::uint64_t footprint_memory_budget(const footprint_read_options& opt);
 /// reason of Boost.Geometry's is_valid. @throws what Boost.Geometry throws (e.g. a numeric cast).
 std::string footprint_geometry_problem(const footprint& fp);
 
+/// A byte count as the readers' memory messages print it: "1.5 GiB" from 1 GiB up, else "12.3 MiB".
+std::string footprint_size_text(double bytes);
+
 /// Orients every part as lidarfx::polygon documents: outer ring counter-clockwise, holes clockwise.
 void orient_footprint(footprint& fp);
 

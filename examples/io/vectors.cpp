@@ -35,17 +35,6 @@ struct dataset_closer {
 };
 using dataset_ptr = std::unique_ptr<GDALDataset, dataset_closer>;
 
-std::string size_text(double bytes)
-{
-    std::ostringstream s;
-    s << std::setprecision(3);
-    if (bytes >= 1073741824.0)
-        s << bytes / 1073741824.0 << " GiB";
-    else
-        s << bytes / 1048576.0 << " MiB";
-    return s.str();
-}
-
 // The CRS `text` names (WKT, "EPSG:n", a URN), x = easting or longitude; false when OGR does not understand it.
 bool parse_crs(const std::string& text, OGRSpatialReference& srs)
 {
@@ -119,9 +108,10 @@ private:
         const double need = kept_bytes_ + transient;
         peak_ = std::max(peak_, need);
         if (budget_ > 0 && need > static_cast<double>(budget_)) {
-            throw invalid_input(detail::concat(path_, ": reading the footprints needs more than ", size_text(need),
-                                               " (", kept_vertices_, " vertices kept by feature ", feature_,
-                                               "), over the memory budget of ", size_text(static_cast<double>(budget_)),
+            throw invalid_input(detail::concat(path_, ": reading the footprints needs more than ",
+                                               footprint_size_text(need), " (", kept_vertices_,
+                                               " vertices kept by feature ", feature_, "), over the memory budget of ",
+                                               footprint_size_text(static_cast<double>(budget_)),
                                                "; split the file into smaller ones or use a larger --memory"));
         }
     }
