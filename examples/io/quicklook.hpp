@@ -34,11 +34,23 @@ rgb_image colorize(raster_view<const float> values);
 raster<std::uint8_t> hillshade(raster_view<const float> elevation, double cell_m, double azimuth_deg = 315.0,
                                double altitude_deg = 45.0);
 
-/// colorize(values, min, max) where `values` is finite; elsewhere a dim grey hillshade of `elevation` (half of
-/// hillshade(elevation, cell_m)), so coloured cells stand on the terrain. @throws as colorize and hillshade, and
-/// invalid_input if the shapes differ.
+/// The colour of t on a cyclic hue wheel (period 1: t and t + 1 give the same colour, and t -> 1 meets t = 0
+/// smoothly): hue = 240° - 360° t at saturation 0.75, value 0.95, so t = 0 is blue, 0.25 green, 0.5 yellow,
+/// 0.75 red-magenta. For angles, where 0° and 360° are one direction. NaN gives black.
+std::array<std::uint8_t, 3> cyclic_color(double t) noexcept;
+
+/// cyclic_color(azimuth_deg / 360): azimuth clockwise from grid north; north blue, east green, south yellow,
+/// west red-magenta; 0° and 359.9° are (nearly) the same colour.
+std::array<std::uint8_t, 3> azimuth_color(double azimuth_deg) noexcept;
+
+/// The colour function of a map: t in [0, 1] -> colour (ramp_color, or cyclic_color for angles).
+using color_ramp = std::array<std::uint8_t, 3> (*)(double) noexcept;
+
+/// colorize(values, min, max) where `values` is finite (through `ramp`); elsewhere a dim grey hillshade of
+/// `elevation` (half of hillshade(elevation, cell_m)), so coloured cells stand on the terrain. @throws as
+/// colorize and hillshade, and invalid_input if the shapes differ.
 rgb_image colorize_over_hillshade(raster_view<const float> values, double min, double max,
-                                  raster_view<const float> elevation, double cell_m);
+                                  raster_view<const float> elevation, double cell_m, color_ramp ramp = ramp_color);
 
 /// A distinct, saturated colour for each label (label 0 = background is black); the colour depends on the
 /// label alone (low-discrepancy hue, saturation and value sequences), so it is stable across pictures.
@@ -53,8 +65,8 @@ rgb_image overlay_mask(raster_view<const std::uint8_t> grey, raster_view<const s
                        std::array<std::uint8_t, 3> color = {0, 120, 255}, double opacity = 0.6);
 
 /// Pixels of one glyph of the built-in 5x7 bitmap font (7 rows of 5 columns, bit 4 = left column). It covers
-/// the digits, ". - + /", the superscript "²" and the letters of the units and numbers the program writes
-/// ("kWh/m²", "SVF", "° azimuth", "e", "n", "o", "a"); any other character is an empty box, space is blank.
+/// printable ASCII (' ' .. '~': letters of both cases, digits, punctuation), the superscript "²" and the
+/// degree sign "°"; any other character is an empty box, space is blank. A constexpr table, no font file.
 std::array<std::uint8_t, 7> glyph_rows(char32_t ch) noexcept;
 
 /// Width in pixels of `text` (UTF-8) drawn by draw_text at `scale`: 6 * scale per character (5 columns of

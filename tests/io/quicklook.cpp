@@ -237,13 +237,63 @@ TEST_CASE("io/draw_text: the built-in font draws each digit's bitmap, the same b
     CHECK(text_width_px("12", 1) == 11);
     CHECK(text_width_px("kWh/m²", 2) == (6 * 6 - 1) * 2);  // "²" is one character
     CHECK(glyph_rows(U'²') != glyph_rows(U'2'));
-    CHECK(glyph_rows(U'#') == glyph_rows(U'@'));  // unknown characters: the same empty box
-    CHECK(glyph_rows(U'#') != glyph_rows(U' '));
+    CHECK(glyph_rows(U'é') == glyph_rows(U'€'));  // unknown characters: the same empty box
+    CHECK(glyph_rows(U'é') != glyph_rows(U' '));
     rgb_image edge{3, 3, std::vector<std::uint8_t>(27, 0)};
     draw_text(edge, -2, -2, "8", {9, 9, 9});   // partly outside: clipped, no crash
     CHECK(pixel(edge, 0, 0) == rgb{0, 0, 0});  // glyph row 2 (10001), column 2: off
     CHECK(pixel(edge, 1, 0) == rgb{9, 9, 9});  // glyph row 3 (01110), column 2: on
     CHECK_THROWS_AS(draw_text(edge, 0, 0, "1", {0, 0, 0}, 0), invalid_input);
+}
+
+TEST_CASE("io/glyph_rows: every printable ASCII character, ² and ° have their own glyph")
+{
+    const auto box = glyph_rows(U'é');
+    std::set<std::array<std::uint8_t, 7>> seen;
+    for (char32_t ch = U'!'; ch <= U'~'; ++ch) {
+        CAPTURE(static_cast<int>(ch));
+        const auto g = glyph_rows(ch);
+        CHECK(g != box);
+        CHECK(g != glyph_rows(U' '));
+        for (const auto row : g) CHECK(row < 32);  // 5 columns
+        seen.insert(g);
+    }
+    seen.insert(glyph_rows(U'²'));
+    seen.insert(glyph_rows(U'°'));
+    CHECK(seen.size() == 94 + 2);  // no two characters look the same
+    // Upper and lower case differ, and a word draws as its letters side by side.
+    CHECK(glyph_rows(U'a') != glyph_rows(U'A'));
+    rgb_image word{23, 7, std::vector<std::uint8_t>(23 * 7 * 3, 0)};
+    draw_text(word, 0, 0, "Ab,", {255, 255, 255});
+    for (std::ptrdiff_t r = 0; r < 7; ++r)
+        for (std::ptrdiff_t c = 0; c < 5; ++c) {
+            const auto lit = [&](char32_t ch) {
+                return ((glyph_rows(ch)[static_cast<std::size_t>(r)] >> (4 - c)) & 1) != 0;
+            };
+            CHECK((pixel(word, r, c)[0] == 255) == lit(U'A'));
+            CHECK((pixel(word, r, c + 6)[0] == 255) == lit(U'b'));
+            CHECK((pixel(word, r, c + 12)[0] == 255) == lit(U','));
+        }
+}
+
+TEST_CASE("io/azimuth_color: a cyclic wheel, 0 and 359.9 degrees alike, opposite directions far apart")
+{
+    const auto distance = [](const rgb& a, const rgb& b) {
+        return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+    };
+    CHECK(distance(azimuth_color(0.0), azimuth_color(359.9)) <= 3);
+    CHECK(azimuth_color(0.0) == azimuth_color(360.0));
+    CHECK(azimuth_color(-90.0) == azimuth_color(270.0));
+    CHECK(distance(azimuth_color(90.0), azimuth_color(270.0)) > 200);
+    CHECK(distance(azimuth_color(0.0), azimuth_color(180.0)) > 200);
+    // Neighbouring directions are near: no jump anywhere on the wheel.
+    for (int a = 0; a < 360; ++a) {
+        CAPTURE(a);
+        CHECK(distance(azimuth_color(a), azimuth_color(a + 1)) <= 16);
+    }
+    const rgb north = azimuth_color(0.0);
+    CHECK(north[2] > north[0]);  // north is blue
+    CHECK(cyclic_color(std::nan("")) == rgb{0, 0, 0});
 }
 
 TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under the picture")
