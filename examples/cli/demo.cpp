@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 
 #include <lidarfx/kernels/metrics/confusion.hpp>
 #include <lidarfx/lidarfx.hpp>
@@ -16,8 +15,9 @@
 
 #include "cli_common.hpp"
 #include "command.hpp"
-#include "io/file_output.hpp"
+#include "io/figure.hpp"
 #include "io/png.hpp"
+#include "io/tables.hpp"
 #include "outputs.hpp"
 #include "roof_outputs.hpp"
 
@@ -132,19 +132,49 @@ roof_scored run_roof_town(const lidarfx::synth::roof_town& town, lidarfx::roof_m
     return out;
 }
 
-// roof_scores.csv: one row per mode, shares in [0, 1] (no run time: the file is the same on every run).
-std::string roof_scores_csv(const std::vector<roof_scored>& results)
+// roof_scores.csv: one row per mode, shares in percent (no run time: the file is the same on every run).
+void write_roof_scores(lidarfx::io::output_folder& top, const std::vector<roof_scored>& results)
 {
-    std::ostringstream csv;
-    csv << "mode,buildings,true_planes,patches,suitable_patches,planes_found,tilt_within_5,tilt_within_10,"
-           "azimuth_within_15,suitability_recall,suitability_precision,sloped_area_rmse\n";
+    namespace io = lidarfx::io;
+    std::vector<std::vector<io::table_value>> rows;
     for (const auto& r : results) {
         const auto& s = r.score;
-        csv << mode_name(r.mode) << ',' << r.buildings << ',' << s.true_planes << ',' << r.patches << ',' << r.suitable
-            << ',' << s.found_share() << ',' << s.tilt5() << ',' << s.tilt10() << ',' << s.azimuth15() << ','
-            << s.recall() << ',' << s.precision() << ',' << s.area_rmse() << '\n';
+        rows.push_back({mode_name(r.mode), r.buildings, s.true_planes, r.patches, r.suitable, 100 * s.found_share(),
+                        100 * s.tilt5(), 100 * s.tilt10(), 100 * s.azimuth15(), 100 * s.recall(), 100 * s.precision(),
+                        100 * s.area_rmse()});
     }
-    return csv.str();
+    top.write("roof_scores.csv", [&](const std::string& path) {
+        io::write_csv(
+            path,
+            {io::text_column("mode"), io::text_column("buildings"), io::text_column("true_planes"),
+             io::text_column("patches"), io::text_column("suitable_patches"), io::percent_column("planes_found_pct"),
+             io::percent_column("tilt_within_5_deg_pct"), io::percent_column("tilt_within_10_deg_pct"),
+             io::percent_column("azimuth_within_15_deg_pct"), io::percent_column("suitability_recall_pct"),
+             io::percent_column("suitability_precision_pct"), io::percent_column("sloped_area_rmse_pct")},
+            rows);
+    });
+}
+
+// scores.csv: one row per scene, the confusion scores in percent, the run time last.
+void write_water_scores(lidarfx::io::output_folder& top, const std::vector<scored>& results)
+{
+    namespace io = lidarfx::io;
+    std::vector<std::vector<io::table_value>> rows;
+    for (const auto& r : results) {
+        const auto& c = r.score;
+        rows.push_back({r.scene, r.bodies, 100 * c.accuracy(), 100 * c.sensitivity(), 100 * c.specificity(),
+                        100 * c.precision(), 100 * c.iou(), c.area_m2(c.true_positive + c.false_negative),
+                        c.area_m2(c.true_positive + c.false_positive), r.seconds});
+    }
+    top.write("scores.csv", [&](const std::string& path) {
+        io::write_csv(
+            path,
+            {io::text_column("scene"), io::text_column("waterbodies"), io::percent_column("accuracy_pct"),
+             io::percent_column("sensitivity_pct"), io::percent_column("specificity_pct"),
+             io::percent_column("precision_pct"), io::percent_column("iou_pct"), io::area_column("water_true_m2"),
+             io::area_column("water_found_m2"), io::seconds_column("run_time_s")},
+            rows);
+    });
 }
 
 int run_demo(const std::vector<std::string>& args)
@@ -162,15 +192,7 @@ int run_demo(const std::vector<std::string>& args)
     results.push_back(run_scene("lake", lidarfx::synth::lake_scene(so), out / "lake", threads));
     results.push_back(run_scene("river", lidarfx::synth::river_scene(so), out / "river", threads));
 
-    std::ostringstream csv;
-    csv << "scene,waterbodies,accuracy,sensitivity,specificity,precision,iou,water_true_m2,water_found_m2,seconds\n";
-    for (const auto& r : results) {
-        const auto& c = r.score;
-        csv << r.scene << ',' << r.bodies << ',' << c.accuracy() << ',' << c.sensitivity() << ',' << c.specificity()
-            << ',' << c.precision() << ',' << c.iou() << ',' << c.area_m2(c.true_positive + c.false_negative) << ','
-            << c.area_m2(c.true_positive + c.false_positive) << ',' << r.seconds << '\n';
-    }
-    top.write("scores.csv", [&](const std::string& path) { lidarfx::io::write_file(path, csv.str()); });
+    write_water_scores(top, results);
 
     lidarfx::synth::roof_town_options to;
     to.seed = roof_town_seed;
@@ -182,8 +204,7 @@ int run_demo(const std::vector<std::string>& args)
     std::vector<roof_scored> roofs;
     for (const auto mode : {lidarfx::roof_mode::planes, lidarfx::roof_mode::paper})
         roofs.push_back(run_roof_town(town, mode, out / (std::string("roofs_") + mode_name(mode)), threads));
-    top.write("roof_scores.csv",
-              [&](const std::string& path) { lidarfx::io::write_file(path, roof_scores_csv(roofs)); });
+    write_roof_scores(top, roofs);
     lidarfx::cli::commit_and_report(top, lidarfx::cli::command_line("demo", args));
 
     if (a.has("las")) {

@@ -286,24 +286,20 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
         write_raster(dir, "waterbody_labels", labels, in_crs, s.crs_wkt, s.epsg, formats);
     });
     jobs.push_back([&] {
-        std::vector<std::string> header{"label",
-                                        "area_m2",
-                                        "cells",
-                                        "xmin",
-                                        "ymin",
-                                        "xmax",
-                                        "ymax",
-                                        "seed",
-                                        "theta_deg",
-                                        "stopped_by_ks",
-                                        "mean_intensity",
-                                        "water_level_m",
-                                        "dropout_fraction"};
+        // Bounding boxes in the files' CRS unit; areas and levels in metres (the columns in docs/waterbodies.md).
+        const std::vector<io::csv_column> header{
+            io::text_column("label"),           io::area_column("area_m2"),
+            io::text_column("cells"),           io::crs_column("xmin_crs"),
+            io::crs_column("ymin_crs"),         io::crs_column("xmax_crs"),
+            io::crs_column("ymax_crs"),         io::degrees_column("theta_deg"),
+            io::text_column("stopped_by_ks"),   io::intensity_column("mean_intensity"),
+            io::metres_column("water_level_m"), io::fraction_column("dropout_fraction")};
         std::vector<std::vector<io::table_value>> rows;
         for (const auto& b : w.bodies) {
             const bounds box = in_crs.extent(b.box);
-            rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.seed, b.theta_deg,
-                            b.stopped_by_ks, b.mean_intensity, b.water_level_m, b.dropout_fraction});
+            rows.push_back({b.label, b.area_m2, b.cells, box.xmin, box.ymin, box.xmax, box.ymax, b.theta_deg,
+                            std::int64_t{b.stopped_by_ks ? 1 : 0}, b.mean_intensity, b.water_level_m,
+                            b.dropout_fraction});
         }
         if (formats.csv)
             dir.write("waterbodies.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });

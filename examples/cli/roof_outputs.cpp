@@ -70,11 +70,22 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
             rows.back().push_back(y.annual_kwh);
         }
     }
-    std::vector<std::string> header{"building_id", "patch_id", "tilt_deg",   "azimuth_deg", "area_m2", "sloped_area_m2",
-                                    "kwp",         "suitable", "centroid_x", "centroid_y",  "flat",    "reason"};
+    // The columns in docs/pv.md.
+    std::vector<io::csv_column> header{io::text_column("building_id"),
+                                       io::text_column("patch_id"),
+                                       io::degrees_column("tilt_deg"),
+                                       io::degrees_column("azimuth_deg"),
+                                       io::area_column("area_m2"),
+                                       io::area_column("sloped_area_m2"),
+                                       io::kwp_column("kwp"),
+                                       io::text_column("suitable"),
+                                       io::crs_column("centroid_x_crs"),
+                                       io::crs_column("centroid_y_crs"),
+                                       io::text_column("flat"),
+                                       io::text_column("reason")};
     if (!yields.empty()) {
-        header.push_back("annual_kwh_m2");
-        header.push_back("annual_kwh");
+        header.push_back(io::kwh_m2_column("annual_kwh_m2"));
+        header.push_back(io::kwh_column("annual_kwh"));
     }
     if (formats.csv) out.write("roof_patches.csv", [&](const std::string& path) { io::write_csv(path, header, rows); });
     std::map<std::int32_t, std::size_t> index_of;

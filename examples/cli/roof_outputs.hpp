@@ -31,9 +31,9 @@ struct roof_output_frame {
 /// The names write_roof_patches gives its files (for output_folder::check_name before long work).
 std::vector<std::string> roof_patch_file_names(const output_formats& formats = {});
 
-/// roof_patches.csv (building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,
-/// centroid_y,flat,reason; areas in m2, centroids in CRS units; when formats.csv), the patches' outlines as
-/// roof_patches.geojson and roof_patches.gpkg (write_polygons, as `formats` asks) and, when formats.png,
+/// roof_patches.csv (building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,
+/// centroid_x_crs,centroid_y_crs,flat,reason; areas in m2, centroids in CRS units; when formats.csv), the patches'
+/// outlines as roof_patches.geojson and roof_patches.gpkg (write_polygons, as `formats` asks) and, when formats.png,
 /// roof_patches.png (patches coloured by azimuth over a hillshade of the DSM, suitable ones outlined in white). Sets
 /// the folder's units note. With `yields` (roof_yield, one per patch in the same order) the table and the polygons also
 /// carry annual_kwh_m2 (irradiation on the patch's plane) and annual_kwh.

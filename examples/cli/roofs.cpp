@@ -36,7 +36,7 @@ constexpr const char* usage =
     "cell (IDW-filled) and the DTM the terrain of ground_model (edge hulls, IDW inside them).\n"
     "Mode planes (default): every roof plane with its own fitted tilt, azimuth and area; mode paper: one PV\n"
     "plane per building by the published method (aspect mode, half-std band). Writes roof_patches.csv\n"
-    "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x,centroid_y,...;\n"
+    "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x_crs,...;\n"
     "area_m2 horizontal, one row per plane or building, flat roofs included), roof_patches.geojson,\n"
     "roof_patches.png (patches coloured by azimuth, suitable ones outlined) and footprints.csv (what happened to\n"
     "every footprint: used, invalid, outside the grid, no cells); with GDAL also roof_patches.gpkg.\n"
@@ -269,7 +269,10 @@ int run_roofs(const std::vector<std::string>& args)
         report.push_back({p.building_id, static_cast<std::int64_t>(p.feature), p.problem, std::int64_t{0},
                           std::int64_t{0}, std::int64_t{0}});
     out.write("footprints.csv", [&](const std::string& path) {
-        io::write_csv(path, {"building_id", "feature", "status", "cells", "contested_cells", "patches"}, report);
+        io::write_csv(path,
+                      {io::text_column("building_id"), io::text_column("feature"), io::text_column("status"),
+                       io::text_column("cells"), io::text_column("contested_cells"), io::text_column("patches")},
+                      report);
     });
 
     std::vector<roof_patch_yield> yields;

@@ -332,7 +332,11 @@ int run_solar(const std::vector<std::string>& args)
     const map_stats year = stats_of(res.annual_kwh_m2);
     rows.push_back({"year", year.mean, year.min, year.max, res.ghi_kwh_m2});
     out.write("summary.csv", [&](const std::string& path) {
-        lidarfx::io::write_csv(path, {"month", "mean_kwh_m2", "min_kwh_m2", "max_kwh_m2", "ghi_kwh_m2"}, rows);
+        namespace io = lidarfx::io;
+        io::write_csv(path,
+                      {io::text_column("month"), io::kwh_m2_column("mean_kwh_m2"), io::kwh_m2_column("min_kwh_m2"),
+                       io::kwh_m2_column("max_kwh_m2"), io::kwh_m2_column("ghi_kwh_m2")},
+                      rows);
     });
     if (formats.png) {
         const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const char* unit) {

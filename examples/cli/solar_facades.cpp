@@ -104,10 +104,13 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                         en.quarter_kwh_m2_day[3]});
     }
     out.write("facade_patches.csv", [&](const std::string& path) {
-        io::write_csv(path,
-                      {"building_id", "patch_id", "level", "facing_azimuth_deg", "height_m", "area_m2", "annual_kwh_m2",
-                       "q1_kwh_m2_day", "q2_kwh_m2_day", "q3_kwh_m2_day", "q4_kwh_m2_day"},
-                      rows);
+        io::write_csv(
+            path,
+            {io::text_column("building_id"), io::text_column("patch_id"), io::text_column("level"),
+             io::degrees_column("facing_azimuth_deg"), io::metres_column("height_m"), io::area_column("area_m2"),
+             io::kwh_m2_column("annual_kwh_m2"), io::kwh_m2_column("q1_kwh_m2_day"), io::kwh_m2_column("q2_kwh_m2_day"),
+             io::kwh_m2_column("q3_kwh_m2_day"), io::kwh_m2_column("q4_kwh_m2_day")},
+            rows);
     });
 
     const auto table = surface_class_table(e);
@@ -118,8 +121,10 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
     }
     out.write("surface_table.csv", [&](const std::string& path) {
         io::write_csv(path,
-                      {"surface", "jan_mar_kwh_m2_day", "apr_jun_kwh_m2_day", "jul_sep_kwh_m2_day",
-                       "oct_dec_kwh_m2_day", "annual_kwh_m2_yr", "area_m2"},
+                      {io::text_column("surface"), io::kwh_m2_column("jan_mar_kwh_m2_day"),
+                       io::kwh_m2_column("apr_jun_kwh_m2_day"), io::kwh_m2_column("jul_sep_kwh_m2_day"),
+                       io::kwh_m2_column("oct_dec_kwh_m2_day"), io::kwh_m2_column("annual_kwh_m2_yr"),
+                       io::area_column("area_m2")},
                       t1);
     });
     for (const bill_savings_row& r : bill_savings(table)) {
@@ -128,7 +133,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
     }
     out.write("bill_savings.csv", [&](const std::string& path) {
         io::write_csv(path,
-                      {"surface", "jan_mar_per_day", "apr_jun_per_day", "jul_sep_per_day", "oct_dec_per_day", "annual"},
+                      {io::text_column("surface"), io::money_column("jan_mar_savings_per_day"),
+                       io::money_column("apr_jun_savings_per_day"), io::money_column("jul_sep_savings_per_day"),
+                       io::money_column("oct_dec_savings_per_day"), io::money_column("annual_savings")},
                       t2);
     });
     if (run.png) {

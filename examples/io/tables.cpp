@@ -23,6 +23,20 @@ std::string shortest(T v)
     return std::string(buf, res.ptr);
 }
 
+/// A column of `decimals` decimals whose name must `end` with (or, when !at_end, hold) `unit`: the unit is in
+/// the header, so a reader never guesses it.
+csv_column unit_column(std::string name, int decimals, std::string_view unit, bool at_end = true)
+{
+    const std::string_view n = name;
+    const bool named = at_end ? n.size() >= unit.size() && n.substr(n.size() - unit.size()) == unit
+                              : n.find(unit) != std::string_view::npos;
+    if (!named) {
+        throw invalid_input(
+            detail::concat("csv column '", name, "' must ", at_end ? "end in '" : "hold '", unit, "' (its unit)"));
+    }
+    return {std::move(name), decimals};
+}
+
 /// Signed area of a ring by the shoelace formula (positive = counter-clockwise with y up).
 double signed_area(const geo_ring& ring)
 {
@@ -63,6 +77,77 @@ std::string table_value::json() const
     return s.empty() ? "null" : s;
 }
 
+csv_column text_column(std::string name)
+{
+    return {std::move(name), -1};
+}
+csv_column metres_column(std::string name)
+{
+    return unit_column(std::move(name), 3, "_m");
+}
+csv_column area_column(std::string name)
+{
+    return unit_column(std::move(name), 1, "_m2");
+}
+csv_column crs_column(std::string name)
+{
+    return unit_column(std::move(name), 3, "_crs");
+}
+csv_column degrees_column(std::string name)
+{
+    return unit_column(std::move(name), 1, "_deg");
+}
+csv_column kwh_m2_column(std::string name)
+{
+    return unit_column(std::move(name), 3, "kwh_m2", false);
+}
+csv_column kwh_column(std::string name)
+{
+    return unit_column(std::move(name), 3, "_kwh");
+}
+csv_column kwp_column(std::string name)
+{
+    if (name == "kwp") return {std::move(name), 2};
+    return unit_column(std::move(name), 2, "_kwp");
+}
+csv_column fraction_column(std::string name)
+{
+    return unit_column(std::move(name), 2, "_fraction");
+}
+csv_column percent_column(std::string name)
+{
+    return unit_column(std::move(name), 2, "_pct");
+}
+csv_column seconds_column(std::string name)
+{
+    return unit_column(std::move(name), 2, "_s");
+}
+csv_column money_column(std::string name)
+{
+    return unit_column(std::move(name), 2, "savings", false);
+}
+csv_column intensity_column(std::string name)
+{
+    return unit_column(std::move(name), 1, "intensity");
+}
+
+std::string csv_text(const table_value& value, const csv_column& column)
+{
+    const auto* real = std::get_if<double>(&value.value());
+    if (!real) return value.format();
+    if (column.decimals < 0) {
+        throw invalid_input(detail::concat("to_csv: column '", column.name, "' takes no real numbers (got ", *real,
+                                           "); give it a kind with decimals"));
+    }
+    if (!std::isfinite(*real)) return "";
+    char buf[400];  // DBL_MAX in fixed notation has 309 digits before the point
+    const auto res = std::to_chars(buf, buf + sizeof buf, *real, std::chars_format::fixed, column.decimals);
+    std::string text(buf, res.ptr);
+    // A negative number rounded to zero reads as zero.
+    if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
+    return text;
+}
+
 std::string csv_field(std::string_view text)
 {
     const bool quote = text.find_first_of(",\"\r\n") != std::string_view::npos ||
@@ -78,29 +163,30 @@ std::string csv_field(std::string_view text)
     return out;
 }
 
-std::string to_csv(const std::vector<std::string>& header, const std::vector<std::vector<table_value>>& rows)
+std::string to_csv(const std::vector<csv_column>& header, const std::vector<std::vector<table_value>>& rows)
 {
     detail::require(!header.empty(), "to_csv", "header must not be empty");
     std::string out;
-    const auto line = [&out](const auto& fields, auto&& text_of) {
-        for (std::size_t i = 0; i < fields.size(); ++i) {
-            if (i) out += ',';
-            out += csv_field(text_of(fields[i]));
-        }
-        out += '\n';
-    };
-    line(header, [](const std::string& s) { return s; });
+    for (std::size_t i = 0; i < header.size(); ++i) {
+        if (i) out += ',';
+        out += csv_field(header[i].name);
+    }
+    out += '\n';
     for (std::size_t r = 0; r < rows.size(); ++r) {
         if (rows[r].size() != header.size()) {
             throw invalid_input(
                 detail::concat("to_csv: row ", r, " has ", rows[r].size(), " fields, the header ", header.size()));
         }
-        line(rows[r], [](const table_value& v) { return v.format(); });
+        for (std::size_t i = 0; i < header.size(); ++i) {
+            if (i) out += ',';
+            out += csv_field(csv_text(rows[r][i], header[i]));
+        }
+        out += '\n';
     }
     return out;
 }
 
-void write_csv(const std::string& path, const std::vector<std::string>& header,
+void write_csv(const std::string& path, const std::vector<csv_column>& header,
                const std::vector<std::vector<table_value>>& rows)
 {
     write_file(path, to_csv(header, rows));

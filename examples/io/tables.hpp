@@ -50,16 +50,59 @@ private:
     variant v_;
 };
 
+/// A CSV column: its header name, with the unit in it, and how its real numbers are written. Integers,
+/// booleans and text are written as they are in every column; a real number is written in fixed notation with
+/// `decimals` decimals (correctly rounded, "-0" written as "0"), or refused when decimals < 0 (a column of ids,
+/// counts, flags or text). Build columns with the kind functions below, one rounding rule per kind of quantity.
+struct csv_column {
+    std::string name;
+    int decimals = -1;  ///< decimals of a real number; < 0: the column takes no real numbers
+};
+
+/// Ids, counts, 0/1 flags and text (no real numbers). Any name.
+csv_column text_column(std::string name);
+/// Heights, levels and lengths in metres, to the mm (3 decimals). The name ends in "_m".
+csv_column metres_column(std::string name);
+/// Areas in m², to 0.1 m² (1 decimal). The name ends in "_m2".
+csv_column area_column(std::string name);
+/// Coordinates in the unit of the survey's CRS (metres or feet), to 0.001 of that unit (3 decimals). The name
+/// ends in "_crs".
+csv_column crs_column(std::string name);
+/// Angles in degrees, to 0.1° (1 decimal). The name ends in "_deg".
+csv_column degrees_column(std::string name);
+/// Irradiation in kWh/m² (per year, per month or per day), to 0.001 kWh/m² (3 decimals). The name holds
+/// "kwh_m2".
+csv_column kwh_m2_column(std::string name);
+/// Energy in kWh, to 0.001 kWh (3 decimals). The name ends in "_kwh".
+csv_column kwh_column(std::string name);
+/// Peak power in kW, to 0.01 kW (2 decimals). The name is "kwp" or ends in "_kwp".
+csv_column kwp_column(std::string name);
+/// Shares in [0, 1], to 0.01 (2 decimals). The name ends in "_fraction".
+csv_column fraction_column(std::string name);
+/// Scores and shares in percent, to 0.01 % (2 decimals). The name ends in "_pct".
+csv_column percent_column(std::string name);
+/// Durations in seconds, to 0.01 s (2 decimals). The name ends in "_s".
+csv_column seconds_column(std::string name);
+/// Amounts of money in the currency of a tariff, to 0.01 (2 decimals). The name holds "savings".
+csv_column money_column(std::string name);
+/// LiDAR return intensities (the sensor's unit-free numbers), to 0.1 (1 decimal). The name ends in "intensity".
+csv_column intensity_column(std::string name);
+
 /// A CSV field: quoted (with inner quotes doubled) when it holds a comma, a quote, CR, LF or leading or
 /// trailing white space, as RFC 4180 describes; otherwise as is.
 std::string csv_field(std::string_view text);
 
-/// CSV text: the header line, then one line per row, fields separated by commas, lines ended by "\n".
-/// @throws invalid_input if a row has not as many fields as the header (or the header is empty).
-std::string to_csv(const std::vector<std::string>& header, const std::vector<std::vector<table_value>>& rows);
+/// `value` as written in a CSV field of `column` (unquoted): a real number rounded to the column's decimals.
+/// @throws invalid_input naming the column when it takes no real numbers and `value` is one.
+std::string csv_text(const table_value& value, const csv_column& column);
+
+/// CSV text: the header line (the column names), then one line per row, fields separated by commas, lines
+/// ended by "\n"; each field as csv_text writes it.
+/// @throws invalid_input if a row has not as many fields as the header (or the header is empty), or as csv_text.
+std::string to_csv(const std::vector<csv_column>& header, const std::vector<std::vector<table_value>>& rows);
 
 /// Writes to_csv(header, rows) to `path`. @throws as to_csv; std::runtime_error naming the file on I/O errors.
-void write_csv(const std::string& path, const std::vector<std::string>& header,
+void write_csv(const std::string& path, const std::vector<csv_column>& header,
                const std::vector<std::vector<table_value>>& rows);
 
 /// A JSON string literal of `text` (quotes, backslash and control characters escaped; UTF-8 kept).

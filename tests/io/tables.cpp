@@ -78,18 +78,23 @@ TEST_CASE("io/csv_field: quotes exactly the fields that need it")
 
 TEST_CASE("io/to_csv: header and rows with numbers, text, booleans and empty cells")
 {
-    const std::vector<std::string> header{"id", "area m2", "name", "ok", "note"};
+    const std::vector<csv_column> header{text_column("id"), area_column("area_m2"), text_column("name"),
+                                         text_column("ok"), metres_column("note_m")};
     const std::vector<std::vector<table_value>> rows{
         {1, 12.5, "lake, north", true, {}},
         {std::size_t{2}, 0.1, "quote \"q\"", false, NAN},
         {std::int64_t{-9007199254740993}, 1e-300, "", std::numeric_limits<std::uint64_t>::max(), -0.0f}};
     CHECK(to_csv(header, rows) ==
-          "id,area m2,name,ok,note\n"
+          "id,area_m2,name,ok,note_m\n"
           "1,12.5,\"lake, north\",true,\n"
           "2,0.1,\"quote \"\"q\"\"\",false,\n"
-          "-9007199254740993,1e-300,,18446744073709551615,-0\n");
+          "-9007199254740993,0.0,,18446744073709551615,0.000\n");
     CHECK_THROWS_WITH_AS(to_csv(header, {{1, 2}}), "to_csv: row 0 has 2 fields, the header 5", invalid_input);
     CHECK_THROWS_WITH_AS(to_csv({}, {}), "to_csv: header must not be empty", invalid_input);
+    // A column of ids or text refuses a real number: every real is written by a kind's rounding rule.
+    CHECK_THROWS_WITH_AS(to_csv({text_column("cells")}, {{2.5}}),
+                         "to_csv: column 'cells' takes no real numbers (got 2.5); give it a kind with decimals",
+                         invalid_input);
 
     io_test::temp_dir dir;
     write_csv(dir.file("t.csv"), header, rows);
@@ -99,14 +104,64 @@ TEST_CASE("io/to_csv: header and rows with numbers, text, booleans and empty cel
                                dir.file("x/y.csv") + ": cannot open for writing"));
 }
 
-TEST_CASE("io/to_csv: random text and numbers read back unchanged by an RFC 4180 reader")
+TEST_CASE("io/csv_column: each kind names its unit and rounds to what the data supports")
+{
+    // Known values, rounded right (the float of a rasterized level prints as 111.648, not 111.64775848388672).
+    CHECK(csv_text(111.64775848388672, metres_column("water_level_m")) == "111.648");
+    CHECK(csv_text(static_cast<double>(111.64775848388672f), metres_column("height_m")) == "111.648");
+    CHECK(csv_text(1234.56, area_column("area_m2")) == "1234.6");
+    CHECK(csv_text(2230738.84449, crs_column("xmin_crs")) == "2230738.844");
+    CHECK(csv_text(179.96, degrees_column("azimuth_deg")) == "180.0");
+    CHECK(csv_text(1803.97449, kwh_m2_column("annual_kwh_m2")) == "1803.974");
+    CHECK(csv_text(4.2, kwh_m2_column("q1_kwh_m2_day")) == "4.200");
+    CHECK(csv_text(12345.6789, kwh_column("annual_kwh")) == "12345.679");
+    CHECK(csv_text(3.14159, kwp_column("kwp")) == "3.14");
+    CHECK(csv_text(0.126, fraction_column("dropout_fraction")) == "0.13");
+    CHECK(csv_text(99.7349, percent_column("accuracy_pct")) == "99.73");
+    CHECK(csv_text(1.23456, seconds_column("run_time_s")) == "1.23");
+    CHECK(csv_text(123.456, money_column("annual_savings")) == "123.46");
+    CHECK(csv_text(87.25, intensity_column("mean_intensity")) == "87.2");  // 87.25 is exact: ties to even
+    CHECK(csv_text(-0.0004, metres_column("z_m")) == "0.000");             // no "-0.000"
+    CHECK(csv_text(-0.0006, metres_column("z_m")) == "-0.001");
+    CHECK(csv_text(NAN, metres_column("z_m")) == "");
+    CHECK(csv_text(std::numeric_limits<double>::max(), area_column("a_m2")).size() == 311);  // 309 digits + ".0"
+    // Integers, booleans and text are written as they are, whatever the column.
+    CHECK(csv_text(7, area_column("area_m2")) == "7");
+    CHECK(csv_text(true, text_column("suitable")) == "true");
+    CHECK(csv_text("north", text_column("surface")) == "north");
+
+    // The unit is in the name, or the column is refused.
+    const auto refused = [](auto&& make, const char* name) { CHECK_THROWS_AS(make(name), invalid_input); };
+    refused(metres_column, "height");
+    refused(metres_column, "height_m2");
+    refused(area_column, "area");
+    refused(crs_column, "xmin");
+    refused(degrees_column, "tilt");
+    refused(kwh_m2_column, "annual_kwh");
+    refused(kwh_column, "annual_kwh_m2");
+    refused(kwp_column, "power");
+    refused(fraction_column, "dropout");
+    refused(percent_column, "accuracy");
+    refused(seconds_column, "seconds");
+    refused(money_column, "annual");
+    refused(intensity_column, "mean");
+    CHECK_THROWS_WITH_AS(area_column("area"), "csv column 'area' must end in '_m2' (its unit)", invalid_input);
+    CHECK(kwp_column("peak_kwp").decimals == 2);
+    CHECK(money_column("jan_mar_savings_per_day").decimals == 2);
+}
+
+TEST_CASE("io/to_csv: random text and rounded numbers read back by an RFC 4180 reader, within the column's step")
 {
     std::mt19937 rng(4180);
     const std::string alphabet[] = {"a", "b", ",", "\"", "\n", "\r", " ", "\xC3\xA9", ";", "'"};
+    const csv_column kinds[] = {metres_column("h_m"),         area_column("a_m2"),       crs_column("x_crs"),
+                                degrees_column("t_deg"),      kwh_m2_column("e_kwh_m2"), fraction_column("f_fraction"),
+                                intensity_column("intensity")};
     std::uniform_real_distribution<double> real(-1e6, 1e6);
     for (int trial = 0; trial < 50; ++trial) {
+        CAPTURE(trial);
         const std::size_t cols = 1 + rng() % 5, n = rng() % 8;
-        std::vector<std::string> header;
+        std::vector<csv_column> header;
         std::vector<std::vector<table_value>> rows(n);
         std::vector<std::vector<std::string>> expected;
         const auto text = [&] {
@@ -114,8 +169,13 @@ TEST_CASE("io/to_csv: random text and numbers read back unchanged by an RFC 4180
             for (std::size_t k = rng() % 6; k > 0; --k) s += alphabet[rng() % std::size(alphabet)];
             return s;
         };
-        for (std::size_t c = 0; c < cols; ++c) header.push_back(text());
-        expected.push_back(header);
+        for (std::size_t c = 0; c < cols; ++c) {
+            csv_column column = kinds[rng() % std::size(kinds)];
+            column.name = text() + column.name;  // any text before the unit
+            header.push_back(column);
+        }
+        expected.emplace_back();
+        for (const auto& column : header) expected.back().push_back(column.name);
         for (auto& row : rows) {
             std::vector<std::string> want;
             for (std::size_t c = 0; c < cols; ++c) {
@@ -125,8 +185,12 @@ TEST_CASE("io/to_csv: random text and numbers read back unchanged by an RFC 4180
                 } else {
                     const double v = real(rng);
                     row.emplace_back(v);
-                    want.push_back(row.back().format());
-                    CHECK(std::stod(want.back()) == v);  // shortest form, yet exact
+                    want.push_back(csv_text(row.back(), header[c]));
+                    // Exactly `decimals` decimals, and the nearest such number: within half a step.
+                    const std::size_t point = want.back().find('.');
+                    REQUIRE(point != std::string::npos);
+                    CHECK(want.back().size() - point - 1 == static_cast<std::size_t>(header[c].decimals));
+                    CHECK(std::abs(std::stod(want.back()) - v) <= 0.5 * std::pow(10.0, -header[c].decimals) * 1.000001);
                 }
             }
             expected.push_back(want);
