@@ -9,6 +9,8 @@
   check_structure.py length <include dir> N   no function body in a header is longer than N lines
   check_structure.py diary <docs dir> <file>…  user docs state the current truth: no work-log dates, sessions or
                                               numbered runs outside docs/history/
+  check_structure.py std_includes <dir>…      every header includes the standard header of each std:: name it
+                                              uses, itself (not through another header)
 
 Each violation is printed as "<file>:<line>: <what>"; the exit status is 1 when there is one.
 """
@@ -189,11 +191,74 @@ def check_diary(docs_dir, files):
     return violations
 
 
+# The standard header(s) that declare each std:: name the headers use; a file must include one of them itself.
+# A name not listed is reported, so the table grows with the code rather than silently passing it.
+_STD_HEADERS = {
+    "cstddef": "size_t ptrdiff_t byte nullptr_t",
+    "cstdint": "int8_t int16_t int32_t int64_t uint8_t uint16_t uint32_t uint64_t uintptr_t intptr_t",
+    "vector": "vector", "array": "array", "span": "span", "map": "map", "list": "list", "queue": "priority_queue queue",
+    "string": "string to_string", "string_view": "string_view", "optional": "optional nullopt",
+    "limits": "numeric_limits", "numbers": "numbers", "chrono": "chrono", "bit": "bit_cast popcount bit_width "
+    "countr_zero countl_zero bit_floor bit_ceil has_single_bit", "numeric": "iota accumulate reduce inner_product",
+    "cmath": "cos sin tan acos asin atan atan2 sqrt hypot exp log log10 log2 pow abs fabs floor ceil round lround "
+    "llround nearbyint fmod fmin fmax isfinite isnan isinf copysign nextafter",
+    "algorithm": "min max clamp sort stable_sort nth_element fill fill_n copy copy_n all_of any_of none_of unique "
+    "max_element min_element lower_bound upper_bound binary_search partition_point transform find find_if count "
+    "count_if reverse ranges",
+    "utility": "move forward swap exchange pair declval cmp_less cmp_greater cmp_less_equal cmp_greater_equal",
+    "type_traits": "is_arithmetic_v is_same_v is_floating_point_v is_integral_v is_const_v is_signed_v "
+    "is_nothrow_default_constructible_v is_invocable_v is_invocable_r_v remove_cvref_t remove_cv_t conditional_t "
+    "make_signed_t true_type false_type",
+    "concepts": "convertible_to same_as integral floating_point", "memory": "unique_ptr make_unique "
+    "make_unique_for_overwrite allocator", "functional": "function invoke greater less", "tuple": "tuple tie get",
+    "thread": "thread this_thread", "mutex": "mutex lock_guard", "atomic": "atomic memory_order_relaxed",
+    "cstring": "memcpy memset memcmp", "cstdlib": "malloc free abs", "sstream": "ostringstream ios",
+    "ios": "ios", "stdexcept": "runtime_error invalid_argument logic_error out_of_range",
+    "new": "bad_alloc bad_array_new_length", "exception": "exception_ptr current_exception rethrow_exception exception",
+    "initializer_list": "initializer_list",
+}
+STD_HEADERS_OF = {}
+for _header, _names in _STD_HEADERS.items():
+    for _name in _names.split():
+        STD_HEADERS_OF.setdefault(_name, set()).add(_header)
+# Names whose declaration comes with any of several headers by the standard's own synopsis.
+for _name, _also in {"get": "utility array", "initializer_list": "vector array map list string",
+                     "erase_if": "vector map list string", "string_view": "string",
+                     "ranges": "ranges"}.items():
+    STD_HEADERS_OF.setdefault(_name, set()).update(_also.split())
+
+
+def check_std_includes(dirs):
+    violations = []
+    for d in dirs:
+        for h in sorted(pathlib.Path(d).rglob("*.hpp")):
+            raw = h.read_text()
+            included = set(re.findall(r"^\s*#\s*include\s*<([a-z_0-9]+)>", raw, re.M))
+            text = strip_comments_and_strings(raw)
+            reported = set()
+            for number, line in enumerate(text.split("\n"), 1):
+                for name in re.findall(r"\bstd::([A-Za-z_0-9]+)", line):
+                    if name in reported:
+                        continue
+                    wanted = STD_HEADERS_OF.get(name)
+                    if wanted is None:
+                        violations.append(f"{h}:{number}: std::{name} is not in check_structure.py's table of "
+                                          "standard headers: add it")
+                    elif not wanted & included:
+                        violations.append(f"{h}:{number}: std::{name} is used but <{min(wanted)}> is not included")
+                    else:
+                        continue
+                    reported.add(name)
+    return violations
+
+
 def main(argv):
     if len(argv) >= 2 and argv[0] == "detail":
         violations = check_detail(argv[1])
     elif len(argv) == 3 and argv[0] == "length":
         violations = check_length(argv[1], int(argv[2]))
+    elif len(argv) >= 2 and argv[0] == "std_includes":
+        violations = check_std_includes(argv[1:])
     elif len(argv) >= 2 and argv[0] == "diary":
         violations = check_diary(argv[1], argv[2:])
     else:

@@ -2,7 +2,8 @@
 # check_structure.py must catch what it is for: on tests/layering/structure_fixture it reports exactly the
 # pipeline's uses of a kernel area's detail:: names, qualified and unqualified from inside its own namespace
 # detail (not the uses of core's or its own area's), exactly the
-# 154-line function (not the short one), and exactly the diary lines of the user doc (not docs/history/).
+# 154-line function (not the short one), exactly the diary lines of the user doc (not docs/history/), and exactly
+# the std:: names used without their standard header (once per name, not in comments) or missing from its table.
 # Usage: cmake -DPYTHON=<python3> -DCHECK=<check_structure.py> -DFIXTURE=<structure_fixture> -P structure_self_test.cmake
 function(expect_report mode args expected_count)
     execute_process(COMMAND ${PYTHON} ${CHECK} ${mode} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -25,4 +26,8 @@ expect_report(detail "${FIXTURE}/include" 2
 expect_report(length "${FIXTURE}/include;150" 1 "flood.hpp:5: function body of 154 lines")
 expect_report(diary "${FIXTURE}/docs" 4 "page.md:4: a work-log date" "page.md:4: a numbered run"
     "page.md:5: a file outside the repository" "page.md:6: a tracker issue number")
-message(STATUS "check_structure.py reports the fixture's cross-area detail use, long function and diary lines, and only them")
+expect_report(std_includes "${FIXTURE}/include" 3 "sizes.hpp:4: std::vector is used but <vector> is not included"
+    "sizes.hpp:6: std::pair is used but <utility> is not included"
+    "sizes.hpp:8: std::some_new_name is not in check_structure.py's table")
+message(STATUS "check_structure.py reports the fixture's cross-area detail use, long function, diary lines and "
+               "missing standard includes, and only them")

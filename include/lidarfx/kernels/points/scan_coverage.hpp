@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/grid.hpp"

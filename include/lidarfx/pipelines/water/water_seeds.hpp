@@ -2,6 +2,7 @@
 // water_seeds: where waterbodies start growing, from the dropout mask (cells without returns).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>

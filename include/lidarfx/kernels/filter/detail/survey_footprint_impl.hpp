@@ -4,6 +4,7 @@
 // after the declarations it defines; not a public header.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

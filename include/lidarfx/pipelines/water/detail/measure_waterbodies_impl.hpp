@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
