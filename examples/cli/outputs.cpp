@@ -8,6 +8,7 @@
 
 #include <lidarfx/kernels/vector/polygonize.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 #include "io/tables.hpp"
@@ -199,19 +200,42 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
     jobs.emplace_back(
         [&] { write_raster(dir, "dropout", as_float<std::uint8_t>(pr.dropout), g, s.crs_wkt, s.epsg, formats); });
     if (formats.png) {
-        const auto png = [&](const std::string& name, const io::rgb_image& img) {
-            dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, img); });
-        };
         const auto f = picture_factor(pr.g);
-        jobs.emplace_back(
-            [&, png, f] { png("min_z.png", io::colorize(block_reduce<float>(pr.min_z, f, finite_min))); });
-        jobs.emplace_back([&, png, f] {
-            png("mean_intensity.png", io::colorize(block_reduce<float>(pr.mean_intensity, f, finite_mean)));
+        const std::string xy_unit = io::short_unit_name(s.crs.horizontal_unit_m, s.crs.horizontal_unit);
+        const std::string z_short = io::short_unit_name(z_unit, z_unit_name);
+        // A figure: the picture grid's cells (f x f survey cells each) in the CRS's unit, NaN cells as no data.
+        const auto png = [&, f, xy_unit](const std::string& name, const io::rgb_image& map,
+                                         raster_view<const std::uint8_t> no_data, io::figure_options opt) {
+            opt.cell_size = g.cell * static_cast<double>(f);
+            opt.unit = xy_unit;
+            const io::figure fig = io::make_figure(map, no_data, opt);
+            dir.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
+        };
+        jobs.emplace_back([&, png, f, z_short] {
+            const auto z = block_reduce<float>(z_unit == 1.0 ? pr.min_z.view() : min_z.view(), f, finite_min);
+            const auto bar = io::finite_bar(z, "lowest return height (" + z_short + ")");
+            png("min_z.png", io::colorize(z, bar.min, bar.max), io::non_finite_cells(z),
+                {.title = "min_z.png: lowest return per cell (" + z_short + ")",
+                 .bar = bar,
+                 .no_data_name = "no return"});
         });
         jobs.emplace_back([&, png, f] {
-            const auto grey = io::hillshade(picture_elevation(pr, f), pr.g.cell * static_cast<double>(f));
+            const auto v = block_reduce<float>(pr.mean_intensity, f, finite_mean);
+            const auto bar = io::finite_bar(v, "mean intensity (LAS units)");
+            png("mean_intensity.png", io::colorize(v, bar.min, bar.max), io::non_finite_cells(v),
+                {.title = "mean_intensity.png: mean return intensity per cell",
+                 .bar = bar,
+                 .no_data_name = "no return"});
+        });
+        jobs.emplace_back([&, png, f] {
+            const auto z = picture_elevation(pr, f);
+            const auto grey = io::hillshade(z, pr.g.cell * static_cast<double>(f));
             png("dropout.png",
-                io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8));
+                io::overlay_mask(grey, block_reduce<std::uint8_t>(pr.dropout, f, mostly_set), {255, 40, 40}, 0.8),
+                io::non_finite_cells(z),
+                {.title = "dropout.png: cells without returns over the terrain's hillshade",
+                 .key = {{{230, 58, 58}, "dropout (no return)"}, {{128, 128, 128}, "returns (hillshade)"}},
+                 .no_data_name = "no data to shade"});
         });
     }
     run_jobs(jobs, threads);
@@ -251,7 +275,16 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
             const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
             const auto overlay =
                 io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
-            dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, overlay); });
+            auto unflown = block_reduce<std::uint8_t>(footprint, f, mostly_set);
+            for (auto& v : unflown) v = !v;
+            const io::figure fig =
+                io::make_figure(overlay, unflown,
+                                {.title = "water_overlay.png: waterbodies found, over the terrain's hillshade",
+                                 .cell_size = in_crs.cell * static_cast<double>(f),
+                                 .unit = io::short_unit_name(s.crs.horizontal_unit_m, s.crs.horizontal_unit),
+                                 .key = {{{64, 116, 211}, "water"}, {{128, 128, 128}, "land (hillshade)"}},
+                                 .no_data_name = "unflown (no data)"});
+            dir.write("water_overlay.png", [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
         });
     }
     jobs.push_back([&] {

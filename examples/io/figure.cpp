@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 
 #include <lidarfx/core/error.hpp>
 
@@ -99,6 +101,19 @@ raster<std::uint8_t> non_finite_cells(raster_view<const float> values)
     return out;
 }
 
+figure_bar finite_bar(raster_view<const float> values, std::string unit)
+{
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::ptrdiff_t r = 0; r < values.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < values.cols(); ++c)
+            if (const double v = values(r, c); std::isfinite(v)) {
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    if (!(lo <= hi)) lo = hi = 0.0;
+    return {lo, hi, std::move(unit)};
+}
+
 std::ptrdiff_t figure_factor(std::ptrdiff_t rows, std::ptrdiff_t cols, std::ptrdiff_t min_long_side,
                              std::ptrdiff_t max_factor) noexcept
 {
@@ -155,7 +170,7 @@ figure make_figure(const rgb_image& map, raster_view<const std::uint8_t> no_data
     const std::ptrdiff_t bar_need = opt.bar ? 2 * std::max(text_w(lo), text_w(hi)) + text_w(bar_unit) + 2 * margin : 0;
 
     std::vector<figure_key> key = opt.key;
-    key.push_back({hatch_light, "no data"});
+    key.push_back({hatch_light, opt.no_data_name});
     std::ptrdiff_t widest_entry = 0;
     for (const auto& k : key) widest_entry = std::max(widest_entry, entry_w(k));
 

@@ -27,13 +27,14 @@ struct figure_bar {
 };
 
 struct figure_options {
-    std::string title{};                 ///< the top line: what the map shows, its file and units
-    double cell_size = 1;                ///< ground size of one map pixel in CRS units (> 0), for the scale bar
-    std::string unit = "m";              ///< name of the CRS unit ("m", "ft", "US ft"), written on the scale bar
-    std::optional<figure_bar> bar{};     ///< a colour bar (continuous maps) ...
-    std::vector<figure_key> key{};       ///< ... and/or categorical swatches; "no data" is always appended
-    std::ptrdiff_t min_long_side = 800;  ///< the map is enlarged until its long side reaches this (pixels)
-    std::ptrdiff_t max_factor = 32;      ///< the largest enlargement (a huge grid is never enlarged)
+    std::string title{};                   ///< the top line: what the map shows, its file and units
+    double cell_size = 1;                  ///< ground size of one map pixel in CRS units (> 0), for the scale bar
+    std::string unit = "m";                ///< name of the CRS unit ("m", "ft", "US ft"), written on the scale bar
+    std::optional<figure_bar> bar{};       ///< a colour bar (continuous maps) ...
+    std::vector<figure_key> key{};         ///< ... and/or categorical swatches; "no data" is always appended
+    std::string no_data_name = "no data";  ///< the name of the no-data swatch, always last in the legend
+    std::ptrdiff_t min_long_side = 800;    ///< the map is enlarged until its long side reaches this (pixels)
+    std::ptrdiff_t max_factor = 32;        ///< the largest enlargement (a huge grid is never enlarged)
 };
 
 /// Where the parts of a figure are, in pixels of its image (for tests and callers that draw more).
@@ -61,6 +62,9 @@ bool is_no_data_color(std::array<std::uint8_t, 3> color) noexcept;
 
 /// 1 where `values` is NaN or infinite (no data), else 0. O(cells).
 raster<std::uint8_t> non_finite_cells(raster_view<const float> values);
+
+/// A colour bar over the range of the finite values of `values` (0 .. 0 when there are none).
+figure_bar finite_bar(raster_view<const float> values, std::string unit);
 
 /// The enlargement of a map of rows x cols pixels: the smallest integer factor that makes the long side at least
 /// min_long_side, at most max_factor; 1 when the map is already that large.

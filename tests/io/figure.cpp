@@ -1,11 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include "cli/cli_common.hpp"
+#include "cli/outputs.hpp"
 #include "io/figure.hpp"
 #include "io/quicklook.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <string>
+
+#include "io_test_util.hpp"
 
 using namespace lidarfx;
 using namespace lidarfx::io;
@@ -164,4 +169,43 @@ TEST_CASE("io/make_figure: the title and the colour bar's range and unit are dra
     CHECK_THROWS_AS(make_figure(map, {}, {.cell_size = 0}), invalid_input);
     CHECK_THROWS_AS(make_figure(map, raster<std::uint8_t>(2, 2), {}), invalid_input);
     CHECK_THROWS_AS(make_figure(map, {}, {.bar = figure_bar{2, 1, ""}}), invalid_input);
+}
+
+TEST_CASE("io/make_figure: the program's point-raster pictures are figures (long side >= 800 px on a 40 x 30 grid)")
+{
+    cli::survey s;
+    auto& pr = s.rasters;
+    pr.g = grid{1000.0, 2000.0, 2.0, 30, 40};
+    pr.min_z = raster<float>(30, 40, NAN);
+    pr.max_z = raster<float>(30, 40, NAN);
+    pr.mean_intensity = raster<float>(30, 40, 0.0f);
+    pr.count = raster<std::uint32_t>(30, 40, 0);
+    pr.dropout = raster<std::uint8_t>(30, 40, 1);
+    pr.multiple_returns = raster<std::uint8_t>(30, 40, 0);
+    for (std::ptrdiff_t r = 0; r < 30; ++r)
+        for (std::ptrdiff_t c = 0; c < 20; ++c) {
+            pr.min_z(r, c) = pr.max_z(r, c) = static_cast<float>(r + c);
+            pr.dropout(r, c) = 0;
+        }
+    io_test::temp_dir dir;
+    const auto out = std::filesystem::path(dir.file("png"));
+    {
+        io::output_folder folder(out);
+        cli::output_formats formats;
+        formats.asc = formats.tif = false;
+        cli::write_point_rasters(folder, s, formats, 1);
+        folder.commit("test");
+    }
+    const auto be32 = [](const std::vector<std::uint8_t>& b, std::size_t at) {
+        return (std::uint32_t{b[at]} << 24) | (std::uint32_t{b[at + 1]} << 16) | (std::uint32_t{b[at + 2]} << 8) |
+               std::uint32_t{b[at + 3]};
+    };
+    for (const char* name : {"min_z.png", "mean_intensity.png", "dropout.png"}) {
+        CAPTURE(name);
+        const auto bytes = io_test::read_bytes((out / name).string());
+        REQUIRE(bytes.size() > 24);
+        const auto width = be32(bytes, 16), height = be32(bytes, 20);  // IHDR
+        CHECK(width >= 40 * 20);                                       // 40 columns enlarged 20 times, plus the frame
+        CHECK(height >= 30 * 20);                                      // 30 rows, plus title, scale bar and legend
+    }
 }
