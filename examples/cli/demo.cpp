@@ -64,19 +64,28 @@ scored run_scene(const std::string& name, const lidarfx::synth::scene& sc, const
     lidarfx::cli::write_point_rasters(folder, s);
     lidarfx::cli::write_waterbodies(folder, s, w, found.footprint);
     const auto score = lidarfx::confusion_counts(w.water, sc.truth.water_filled, sc.truth.g.cell);
-    // Agreement picture: true water blue, water found on land red, water missed yellow, land grey.
+    // Agreement picture: true water blue, water found on land red, water missed yellow, land grey; cells
+    // outside the flown footprint are no data.
+    constexpr std::array<std::uint8_t, 3> true_water{40, 110, 255}, false_water{230, 30, 30}, missed{250, 210, 0},
+        land{200, 200, 200};
     lidarfx::io::rgb_image agreement;
     agreement.width = sc.truth.g.cols;
     agreement.height = sc.truth.g.rows;
+    lidarfx::raster<std::uint8_t> unflown(sc.truth.g.rows, sc.truth.g.cols, 0);
     for (std::ptrdiff_t i = 0; i < w.water.size(); ++i) {
         const bool detected = w.water.data()[i] != 0, truth = sc.truth.water_filled.data()[i] != 0;
-        const std::array<std::uint8_t, 3> color = detected && truth ? std::array<std::uint8_t, 3>{40, 110, 255}
-                                                  : detected        ? std::array<std::uint8_t, 3>{230, 30, 30}
-                                                  : truth           ? std::array<std::uint8_t, 3>{250, 210, 0}
-                                                                    : std::array<std::uint8_t, 3>{200, 200, 200};
+        const auto color = detected && truth ? true_water : detected ? false_water : truth ? missed : land;
         agreement.rgb.insert(agreement.rgb.end(), color.begin(), color.end());
+        unflown.data()[i] = found.footprint.data()[i] == 0;
     }
-    folder.write("agreement.png", [&](const std::string& path) { lidarfx::io::write_png_rgb(path, agreement); });
+    const auto figure = lidarfx::io::make_figure(
+        agreement, unflown,
+        {.title = "agreement.png: waterbodies found vs the " + name + " scene's truth",
+         .cell_size = sc.truth.g.cell,
+         .unit = "m",
+         .key = {{true_water, "true water"}, {false_water, "false water"}, {missed, "missed water"}, {land, "land"}},
+         .no_data_name = "no data (unflown)"});
+    folder.write("agreement.png", [&](const std::string& path) { lidarfx::io::write_png_rgb(path, figure.image); });
     lidarfx::cli::commit_and_report(folder, "lidarfx demo (" + name + " scene)");
     std::cout << std::fixed << std::setprecision(2) << "score vs truth: accuracy " << 100 * score.accuracy()
               << " %, sensitivity " << 100 * score.sensitivity() << " %, specificity " << 100 * score.specificity()
