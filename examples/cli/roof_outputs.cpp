@@ -9,6 +9,7 @@
 
 #include <lidarfx/lidarfx.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 #include "io/tables.hpp"
@@ -16,32 +17,55 @@
 namespace lidarfx::cli {
 namespace {
 
-// A picture of the patches: azimuth as a colour (north blue, east green, south yellow, west red: the viridis
-// ramp over 0..360 degrees), other roof cells grey, suitable patches outlined in white.
-io::rgb_image patch_picture(const roof_suitability_result& r, raster_view<const float> dsm, double cell_m)
+// A figure of the patches: azimuth (clockwise from grid north) on a cyclic wheel, so 0 and 359 degrees look
+// alike (north blue, east green, south yellow, west red-magenta), flat patches white, other cells a dim
+// hillshade, suitable patches outlined in black, cells without a surface height as no data.
+io::rgb_image patch_picture(const roof_suitability_result& r, const roof_output_frame& frame)
 {
     raster<float> azimuth(r.patch_id.rows(), r.patch_id.cols(), NAN);
     std::map<std::int32_t, const roof_patch*> by_id;
     for (const roof_patch& p : r.patches) by_id[p.patch_id] = &p;
     for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
         for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x)
-            if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end())
-                azimuth(y, x) = static_cast<float>(it->second->flat ? 180.0 : it->second->azimuth_deg);
-    io::rgb_image img = io::colorize_over_hillshade(azimuth.view(), 0.0, 360.0, dsm, cell_m);
-    const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
-        if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return false;
+            if (const auto it = by_id.find(r.patch_id(y, x)); it != by_id.end() && !it->second->flat)
+                azimuth(y, x) = static_cast<float>(it->second->azimuth_deg);
+    io::rgb_image img =
+        io::colorize_over_hillshade(azimuth.view(), 0.0, 360.0, frame.dsm, frame.cell_m, io::cyclic_color);
+    const auto patch = [&](std::ptrdiff_t y, std::ptrdiff_t x) -> const roof_patch* {
+        if (y < 0 || x < 0 || y >= azimuth.rows() || x >= azimuth.cols()) return nullptr;
         const auto it = by_id.find(r.patch_id(y, x));
-        return it != by_id.end() && it->second->suitable;
+        return it == by_id.end() ? nullptr : it->second;
+    };
+    const auto suitable = [&](std::ptrdiff_t y, std::ptrdiff_t x) {
+        const roof_patch* p = patch(y, x);
+        return p && p->suitable;
     };
     for (std::ptrdiff_t y = 0; y < azimuth.rows(); ++y)
         for (std::ptrdiff_t x = 0; x < azimuth.cols(); ++x) {
+            std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
+            if (const roof_patch* p = patch(y, x); p && p->flat) px[0] = px[1] = px[2] = 255;
             if (suitable(y, x) &&
                 !(suitable(y - 1, x) && suitable(y + 1, x) && suitable(y, x - 1) && suitable(y, x + 1))) {
-                std::uint8_t* px = &img.rgb[static_cast<std::size_t>((y * img.width + x) * 3)];
-                px[0] = px[1] = px[2] = 255;  // the edge of a suitable patch
+                px[0] = px[1] = px[2] = 0;  // the edge of a suitable patch
             }
         }
-    return io::with_legend(img, 0.0, 360.0, "° azimuth");
+    const double unit_cell = frame.grid_crs.cell > 0 ? frame.grid_crs.cell : frame.cell_m / frame.unit_m;
+    const auto fig = io::make_figure(img, io::non_finite_cells(frame.dsm),
+                                     {.title = "roof_patches.png: roof patches by azimuth (clockwise from grid north)",
+                                      .cell_size = unit_cell,
+                                      .unit = io::short_unit_name(frame.unit_m, "units"),
+                                      .key = {{io::azimuth_color(0), "N 0°"},
+                                              {io::azimuth_color(45), "NE"},
+                                              {io::azimuth_color(90), "E 90°"},
+                                              {io::azimuth_color(135), "SE"},
+                                              {io::azimuth_color(180), "S 180°"},
+                                              {io::azimuth_color(225), "SW"},
+                                              {io::azimuth_color(270), "W 270°"},
+                                              {io::azimuth_color(315), "NW"},
+                                              {{255, 255, 255}, "flat"},
+                                              {{0, 0, 0}, "suitable patch edge"},
+                                              {{64, 64, 64}, "other (hillshade)"}}});
+    return fig.image;
 }
 
 }  // namespace
@@ -112,7 +136,7 @@ void write_roof_patches(io::output_folder& out, const roof_suitability_result& r
     }
     write_polygons(out, "roof_patches", features, frame.crs_wkt, frame.epsg, formats);
     if (formats.png) {
-        const io::rgb_image img = patch_picture(r, frame.dsm, frame.cell_m);
+        const io::rgb_image img = patch_picture(r, frame);
         out.write("roof_patches.png", [&](const std::string& path) { io::write_png_rgb(path, img); });
     }
     out.set_units_note(

@@ -34,7 +34,8 @@ std::vector<std::string> roof_patch_file_names(const output_formats& formats = {
 /// roof_patches.csv (building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,
 /// centroid_x_crs,centroid_y_crs,flat,reason; areas in m2, centroids in CRS units; when formats.csv), the patches'
 /// outlines as roof_patches.geojson and roof_patches.gpkg (write_polygons, as `formats` asks) and, when formats.png,
-/// roof_patches.png (patches coloured by azimuth over a hillshade of the DSM, suitable ones outlined in white). Sets
+/// roof_patches.png (a figure: patches coloured by azimuth on a cyclic wheel over a hillshade of the DSM, flat
+/// ones white, suitable ones outlined in black). Sets
 /// the folder's units note. With `yields` (roof_yield, one per patch in the same order) the table and the polygons also
 /// carry annual_kwh_m2 (irradiation on the patch's plane) and annual_kwh.
 void write_roof_patches(io::output_folder& out, const roof_suitability_result& r, const roof_output_frame& frame,
