@@ -20,6 +20,7 @@
 #include "command.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/crs.hpp"
+#include "io/figure.hpp"
 #include "io/geographic.hpp"
 #include "io/geotiff.hpp"
 #include "io/png.hpp"
@@ -339,16 +340,20 @@ int run_solar(const std::vector<std::string>& args)
                       rows);
     });
     if (formats.png) {
-        const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const char* unit) {
-            const map_stats st = stats_of(m);
-            const double lo = std::isfinite(st.min) ? st.min : 0.0, hi = std::isfinite(st.max) ? st.max : 0.0;
-            out.write(name, [&](const std::string& path) {
-                lidarfx::io::write_png_rgb(
-                    path, lidarfx::io::with_legend(lidarfx::io::colorize(m.view(), lo, hi), lo, hi, unit));
-            });
+        namespace io = lidarfx::io;
+        // Figures on the input's grid: the cell in the CRS's unit, cells without a value as no data.
+        const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const std::string& what,
+                                    const char* unit) {
+            const io::figure_bar bar = io::finite_bar(m, unit);
+            const io::figure fig = io::make_figure(io::colorize(m.view(), bar.min, bar.max), io::non_finite_cells(m),
+                                                   {.title = name + ": " + what + " (" + unit + ")",
+                                                    .cell_size = g.cell,
+                                                    .unit = io::short_unit_name(cell_m / g.cell, "units"),
+                                                    .bar = bar});
+            out.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
         };
-        legend_png("annual_kwh_m2.png", res.annual_kwh_m2, "kWh/m²");
-        legend_png("svf.png", res.sky_view_factor, "SVF");
+        legend_png("annual_kwh_m2.png", res.annual_kwh_m2, "annual irradiation, horizontal surfaces", "kWh/m²");
+        legend_png("svf.png", res.sky_view_factor, "sky view factor", "SVF");
     }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";

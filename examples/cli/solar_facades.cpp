@@ -13,6 +13,7 @@
 #include <lidarfx/pipelines/buildings/surface_class_table.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 #include "io/tables.hpp"
@@ -46,7 +47,14 @@ io::rgb_image energy_picture(const facade_run& run, const surface_energy_result&
             }
     if (!(lo <= hi)) lo = hi = 0.0;
     const io::rgb_image img = io::colorize_over_hillshade(energy.view(), lo, hi, run.dsm, run.cell_m);
-    return io::with_legend(img, lo, hi, "kWh/m²");
+    const double unit_cell = run.grid_crs.cell > 0 ? run.grid_crs.cell : run.cell_m;
+    return io::make_figure(img, io::non_finite_cells(run.dsm),
+                           {.title = "buildings_energy.png: annual irradiation of roofs and walls (kWh/m²)",
+                            .cell_size = unit_cell,
+                            .unit = io::short_unit_name(run.cell_m / unit_cell, "units"),
+                            .bar = io::figure_bar{lo, hi, "kWh/m² per year"},
+                            .key = {{{64, 64, 64}, "ground (hillshade)"}}})
+        .image;
 }
 
 }  // namespace
