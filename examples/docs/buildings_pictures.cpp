@@ -15,6 +15,7 @@
 #include <lidarfx/lidarfx.hpp>
 #include <lidarfx/synth/town_family.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 
@@ -52,22 +53,13 @@ bool on_outline(const lidarfx::raster<std::int32_t>& id, std::ptrdiff_t i, std::
     return false;
 }
 
-// `img` with every pixel repeated as a factor x factor block (nearest neighbour).
-lidarfx::io::rgb_image enlarged(const lidarfx::io::rgb_image& img, int factor)
+// Writes `img` as a figure of the town's 0.5 m grid.
+void write(const std::filesystem::path& path, const lidarfx::io::rgb_image& img, lidarfx::io::figure_options opt,
+           const char* what)
 {
-    lidarfx::io::rgb_image big{img.width * factor, img.height * factor, {}};
-    big.rgb.resize(static_cast<std::size_t>(big.width * big.height) * 3);
-    for (std::ptrdiff_t i = 0; i < big.height; ++i)
-        for (std::ptrdiff_t j = 0; j < big.width; ++j)
-            for (int k = 0; k < 3; ++k)
-                big.rgb[static_cast<std::size_t>((i * big.width + j) * 3 + k)] =
-                    img.rgb[static_cast<std::size_t>(((i / factor) * img.width + j / factor) * 3 + k)];
-    return big;
-}
-
-void write(const std::filesystem::path& path, const lidarfx::io::rgb_image& img, const char* what)
-{
-    lidarfx::io::write_png_rgb(path.string(), img);
+    opt.cell_size = 0.5;
+    opt.unit = "m";
+    lidarfx::io::write_png_rgb(path.string(), lidarfx::io::make_figure(img, {}, opt).image);
     std::cout << "wrote " << path.string() << " (" << what << ")\n";
 }
 
@@ -106,7 +98,12 @@ int main(int argc, char** argv)
             else if (id != 0)
                 set_pixel(img, i, j, lidarfx::io::label_color(id), 0.6);
         }
-    write(out / "buildings-extracted.png", img, "buildings by id");
+    write(out / "buildings-extracted.png", img,
+          {.title = "Extracted buildings, family town seed 4 (colour per building)",
+           .key = {{lidarfx::io::label_color(1), "building (one colour each)"},
+                   {{0, 0, 0}, "outline"},
+                   {{180, 180, 180}, "ground, trees (hillshade)"}}},
+          "buildings by id");
 
     // (b) Roof surfaces coloured by the down-slope azimuth of their plane; flat surfaces (tilt < 1 deg) white.
     img = grey_picture(shade);
@@ -118,10 +115,22 @@ int main(int argc, char** argv)
             else if (s != 0) {
                 const auto& surf = b.surfaces[static_cast<std::size_t>(s - 1)];
                 set_pixel(img, i, j,
-                          surf.tilt_deg < 1.0 ? rgb{255, 255, 255} : lidarfx::io::ramp_color(surf.azimuth_deg / 360.0));
+                          surf.tilt_deg < 1.0 ? rgb{255, 255, 255} : lidarfx::io::azimuth_color(surf.azimuth_deg));
             }
         }
-    write(out / "buildings-roof-azimuth.png", lidarfx::io::with_legend(img, 0.0, 360.0, "° azimuth"),
+    namespace io = lidarfx::io;
+    write(out / "buildings-roof-azimuth.png", img,
+          {.title = "Roof surfaces by down-slope azimuth (clockwise from grid north)",
+           .key = {{io::azimuth_color(0), "N 0°"},
+                   {io::azimuth_color(45), "NE"},
+                   {io::azimuth_color(90), "E 90°"},
+                   {io::azimuth_color(135), "SE"},
+                   {io::azimuth_color(180), "S 180°"},
+                   {io::azimuth_color(225), "SW"},
+                   {io::azimuth_color(270), "W 270°"},
+                   {io::azimuth_color(315), "NW"},
+                   {{255, 255, 255}, "flat (tilt < 1°)"},
+                   {{0, 0, 0}, "building outline"}}},
           "roof surfaces by azimuth");
 
     // (c) Annual energy of a clear-sky year: each roof cell takes the mean of the roof patches (2 x 2 quads) it
@@ -162,8 +171,11 @@ int main(int argc, char** argv)
             }
     std::cout << e.roofs.size() << " roof patches, " << e.facades.size() << " facade sub-patches, GHI " << e.ghi_kwh_m2
               << " kWh/m², cells " << lo << " .. " << hi << " kWh/m²\n";
-    // Twice the size, so that the one-cell ring of facade values shows.
-    write(out / "buildings-energy.png", lidarfx::io::with_legend(enlarged(img, 2), lo, hi, "kWh/m²"),
+    // Enlarged (x2 on this 400-cell grid), so that the one-cell ring of facade values shows.
+    write(out / "buildings-energy.png", img,
+          {.title = "Annual irradiation of roof patches and facades, clear-sky year",
+           .bar = lidarfx::io::figure_bar{lo, hi, "kWh/m² per year"},
+           .key = {{{180, 180, 180}, "ground (hillshade)"}}},
           "annual energy of roofs and facades");
     return 0;
 }

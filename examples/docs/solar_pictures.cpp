@@ -11,6 +11,7 @@
 #include <lidarfx/lidarfx.hpp>
 #include <lidarfx/synth/scenes.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 
@@ -20,25 +21,16 @@ constexpr double latitude_deg = 52.5, longitude_deg = 13.4;  // Berlin
 constexpr int utc_offset_h = 1;                              // CET: local standard time = UTC + 1 h
 constexpr double cell_m = 1.0;
 
-// Lowest and highest finite value.
-std::pair<double, double> range_of(const lidarfx::raster<float>& m)
+// A figure of `m` with a colour bar over its finite range, 1 m cells.
+void legend_png(const std::filesystem::path& path, const lidarfx::raster<float>& m, const std::string& title,
+                const char* unit)
 {
-    double lo = 1e300, hi = -1e300;
-    for (const float v : m) {
-        if (std::isfinite(v)) {
-            lo = std::min(lo, static_cast<double>(v));
-            hi = std::max(hi, static_cast<double>(v));
-        }
-    }
-    return {lo, hi};
-}
-
-void legend_png(const std::filesystem::path& path, const lidarfx::raster<float>& m, const char* unit)
-{
-    const auto [lo, hi] = range_of(m);
-    lidarfx::io::write_png_rgb(path.string(),
-                               lidarfx::io::with_legend(lidarfx::io::colorize(m.view(), lo, hi), lo, hi, unit));
-    std::cout << "wrote " << path.string() << " (" << lo << " .. " << hi << " " << unit << ")\n";
+    const auto bar = lidarfx::io::finite_bar(m, unit);
+    const auto fig =
+        lidarfx::io::make_figure(lidarfx::io::colorize(m.view(), bar.min, bar.max), lidarfx::io::non_finite_cells(m),
+                                 {.title = title, .cell_size = cell_m, .unit = "m", .bar = bar});
+    lidarfx::io::write_png_rgb(path.string(), fig.image);
+    std::cout << "wrote " << path.string() << " (" << bar.min << " .. " << bar.max << " " << unit << ")\n";
 }
 
 }  // namespace
@@ -69,7 +61,16 @@ int main(int argc, char** argv)
             for (std::ptrdiff_t j = 0; j < lit.cols(); ++j) shadow(i, j) = lit(i, j) == 0 ? 1 : 0;
         char name[64];
         std::snprintf(name, sizeof name, "solar-shadow-%02dh.png", hour);
-        lidarfx::io::write_png_rgb((out / name).string(), lidarfx::io::overlay_mask(shade, shadow));
+        char title[128];
+        std::snprintf(title, sizeof title, "Cast shadows, 21 June %02d h CET (sun azimuth %.0f°, elevation %.0f°)",
+                      hour, sun.azimuth_deg, sun.elevation_deg);
+        const auto fig =
+            lidarfx::io::make_figure(lidarfx::io::overlay_mask(shade, shadow), {},
+                                     {.title = title,
+                                      .cell_size = cell_m,
+                                      .unit = "m",
+                                      .key = {{{72, 144, 225}, "shadow"}, {{180, 180, 180}, "sunlit (hillshade)"}}});
+        lidarfx::io::write_png_rgb((out / name).string(), fig.image);
         std::cout << "wrote " << (out / name).string() << " (sun azimuth " << sun.azimuth_deg << ", elevation "
                   << sun.elevation_deg << " deg)\n";
     }
@@ -78,7 +79,7 @@ int main(int argc, char** argv)
     const auto res = lidarfx::irradiance_maps(
         dsm, cell_m, {.latitude_deg = latitude_deg, .longitude_deg = longitude_deg, .utc_offset_h = utc_offset_h},
         lidarfx::clear_sky_records(2021, latitude_deg, longitude_deg));
-    legend_png(out / "solar-svf.png", res.sky_view_factor, "SVF");
-    legend_png(out / "solar-annual.png", res.annual_kwh_m2, "kWh/m²");
+    legend_png(out / "solar-svf.png", res.sky_view_factor, "Sky view factor (SVF, 0..1)", "SVF");
+    legend_png(out / "solar-annual.png", res.annual_kwh_m2, "Annual irradiation, clear-sky year (kWh/m²)", "kWh/m²");
     return 0;
 }

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The pictures of docs/synthetic-scenes.md (water family): a grid of family scenes, lakes on top and rivers
-// below (tuning seeds 1-4), and the two targeted cases, each as the hillshaded lowest return with truth water
-// in blue (dark blue: cells without a return) and what extract_waterbodies found marked: red = water found
-// on land, yellow = water missed.
+// below (tuning seeds 1-4), and the two targeted cases, each a figure (title, scale bar, north arrow, legend) of
+// the hillshaded lowest return with truth water found in blue (dark blue: cells without a return), red = water
+// found on land, yellow = water missed.
 // usage: lidarfx_water_family_pictures OUT_DIR   (writes water-family.png, water-cases.png)
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -14,43 +16,69 @@
 #include <lidarfx/synth/water_cases.hpp>
 #include <lidarfx/synth/water_family.hpp>
 
+#include "io/figure.hpp"
 #include "io/png.hpp"
 #include "io/quicklook.hpp"
 
 namespace {
 
-constexpr std::ptrdiff_t tile = 200;  // pixels per scene side
+using rgb = std::array<std::uint8_t, 3>;
+constexpr rgb found_water{60, 110, 220}, found_no_return{20, 40, 120}, missed{240, 210, 40}, false_water{220, 40, 40};
 
-/// Draws one scene into `img` at (x0, y0), nearest-neighbour scaled to tile x tile pixels.
-void draw(lidarfx::io::rgb_image& img, std::ptrdiff_t x0, std::ptrdiff_t y0,
-          const lidarfx::synth::water_family_scene& s)
+/// One scene as a figure: the hillshaded lowest return (holes filled), truth water found in blue (dark blue:
+/// cells without a return), water missed yellow, water found on land red; a title naming the scene.
+lidarfx::io::rgb_image panel(const lidarfx::synth::water_family_scene& s, const std::string& title)
 {
     const auto pr = lidarfx::rasterize(s.points.cloud(), s.g);
     const auto filled = lidarfx::idw_fill(pr.min_z, s.cell_m).filled;
     const auto shade = lidarfx::io::hillshade(filled, s.cell_m);
     const auto found = lidarfx::extract_waterbodies(pr);
-    for (std::ptrdiff_t py = 0; py < tile; ++py) {
-        for (std::ptrdiff_t px = 0; px < tile; ++px) {
-            const std::ptrdiff_t r = py * s.g.rows / tile, c = px * s.g.cols / tile;
-            const int g = shade.view()(r, c);
+    lidarfx::io::rgb_image map{s.g.cols, s.g.rows, {}};
+    for (std::ptrdiff_t r = 0; r < s.g.rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < s.g.cols; ++c) {
+            const std::uint8_t g = shade.view()(r, c);
             const bool truth = s.water_filled(r, c), hit = found.ran && found.water.view()(r, c);
-            std::array<int, 3> rgb{g, g, g};
+            rgb color{g, g, g};
             if (truth && hit)
-                rgb = pr.dropout(r, c) ? std::array<int, 3>{20, 40, 120} : std::array<int, 3>{60, 110, 220};
+                color = pr.dropout(r, c) ? found_no_return : found_water;
             else if (truth)
-                rgb = {240, 210, 40};
+                color = missed;
             else if (hit)
-                rgb = {220, 40, 40};
-            auto* p = &img.rgb[static_cast<std::size_t>(((y0 + py) * img.width + x0 + px) * 3)];
-            for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(rgb[static_cast<std::size_t>(k)]);
+                color = false_water;
+            map.rgb.insert(map.rgb.end(), color.begin(), color.end());
         }
     }
+    return lidarfx::io::make_figure(map, {},
+                                    {.title = title,
+                                     .cell_size = s.cell_m,
+                                     .unit = "m",
+                                     .key = {{found_water, "water found"},
+                                             {found_no_return, "found, no return"},
+                                             {missed, "missed"},
+                                             {false_water, "false water"}},
+                                     .min_long_side = 200})
+        .image;
 }
 
-lidarfx::io::rgb_image blank(std::ptrdiff_t cols, std::ptrdiff_t rows)
+/// The panels side by side, `columns` to a row, on white with 8 pixels between them.
+lidarfx::io::rgb_image tiled(const std::vector<lidarfx::io::rgb_image>& panels, std::ptrdiff_t columns)
 {
-    const std::ptrdiff_t w = cols * (tile + 4) + 4, h = rows * (tile + 4) + 4;
-    return {w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h * 3), 255)};
+    std::ptrdiff_t cell_w = 0, cell_h = 0;
+    for (const auto& p : panels) {
+        cell_w = std::max(cell_w, p.width);
+        cell_h = std::max(cell_h, p.height);
+    }
+    const auto rows = (static_cast<std::ptrdiff_t>(panels.size()) + columns - 1) / columns;
+    const std::ptrdiff_t w = columns * (cell_w + 8) - 8, h = rows * (cell_h + 8) - 8;
+    lidarfx::io::rgb_image out{w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h * 3), 255)};
+    for (std::size_t k = 0; k < panels.size(); ++k) {
+        const auto& p = panels[k];
+        const std::ptrdiff_t r0 = static_cast<std::ptrdiff_t>(k) / columns * (cell_h + 8),
+                             c0 = static_cast<std::ptrdiff_t>(k) % columns * (cell_w + 8);
+        for (std::ptrdiff_t r = 0; r < p.height; ++r)
+            std::copy_n(p.rgb.begin() + r * p.width * 3, p.width * 3, out.rgb.begin() + ((r0 + r) * w + c0) * 3);
+    }
+    return out;
 }
 
 }  // namespace
@@ -65,22 +93,23 @@ int main(int argc, char** argv)
     std::filesystem::create_directories(out);
     using lidarfx::synth::water_family_kind;
 
-    auto grid = blank(4, 2);
-    for (unsigned seed = 1; seed <= 4; ++seed) {
-        for (const auto kind : {water_family_kind::lake, water_family_kind::river}) {
+    std::vector<lidarfx::io::rgb_image> family;
+    for (const auto kind : {water_family_kind::lake, water_family_kind::river}) {
+        for (unsigned seed = 1; seed <= 4; ++seed) {
             const auto s = lidarfx::synth::water_family({.seed = seed, .kind = kind});
-            const std::ptrdiff_t row = kind == water_family_kind::lake ? 0 : 1;
-            draw(grid, 4 + (seed - 1) * (tile + 4), 4 + row * (tile + 4), s);
-            std::cout << (row ? "river " : "lake ") << seed << ": " << s.size_m << " m, " << s.density_per_m2
-                      << " pts/m2, cell " << s.cell_m << " m\n";
+            const bool lake = kind == water_family_kind::lake;
+            char title[96];
+            std::snprintf(title, sizeof title, "%s %u: %.0f m, %.3g pts/m², %.3g m cells", lake ? "lake" : "river",
+                          seed, s.size_m, s.density_per_m2, s.cell_m);
+            family.push_back(panel(s, title));
+            std::cout << title << "\n";
         }
     }
-    lidarfx::io::write_png_rgb((out / "water-family.png").string(), grid);
+    lidarfx::io::write_png_rgb((out / "water-family.png").string(), tiled(family, 4));
 
-    auto cases = blank(2, 1);
-    draw(cases, 4, 4, lidarfx::synth::dropout_pond_scene());
-    draw(cases, 4 + tile + 4, 4, lidarfx::synth::specular_river_scene());
-    lidarfx::io::write_png_rgb((out / "water-cases.png").string(), cases);
+    const std::vector<lidarfx::io::rgb_image> cases{panel(lidarfx::synth::dropout_pond_scene(), "dropout pond"),
+                                                    panel(lidarfx::synth::specular_river_scene(), "specular river")};
+    lidarfx::io::write_png_rgb((out / "water-cases.png").string(), tiled(cases, 2));
     std::cout << "wrote " << (out / "water-family.png").string() << " and " << (out / "water-cases.png").string()
               << "\n";
     return 0;
