@@ -194,7 +194,12 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
     };
     grid_file("min_z", z_unit == 1.0 ? pr.min_z.view() : min_z.view());
     grid_file("max_z", z_unit == 1.0 ? pr.max_z.view() : max_z.view());
-    grid_file("mean_intensity", pr.mean_intensity);
+    // The library keeps 0 in cells without a return (the water steps skip them by their dropout flag); the file
+    // says no data there, so a reader never averages a 0 that no return measured.
+    raster<float> mean_intensity = pr.mean_intensity;
+    for (std::ptrdiff_t i = 0; i < mean_intensity.size(); ++i)
+        if (pr.count.data()[i] == 0) mean_intensity.data()[i] = NAN;
+    grid_file("mean_intensity", mean_intensity);
     jobs.emplace_back(
         [&] { write_raster(dir, "count", as_float<std::uint32_t>(pr.count), g, s.crs_wkt, s.epsg, formats); });
     jobs.emplace_back(

@@ -1,0 +1,78 @@
+# SPDX-License-Identifier: Apache-2.0
+# `lidarfx rasterize` of a small real survey (tests/data/1.2-with-color.copc.laz, 1065 points with intensities, at
+# 200 m cells: 43 of 408 cells without a point) writes mean_intensity as no data where count is 0, never 0: the
+# .asc holds its NODATA_value there and a number elsewhere; with GDAL the .tif too (read back by gdal_translate).
+# -DLIDARFX=<lidarfx> -DDATA=<tests/data> -DHAVE_GDAL=ON|OFF [-DGDAL_TRANSLATE=<gdal_translate>] -DWORK_DIR=<folder>
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(formats asc)
+if(HAVE_GDAL)
+    set(formats asc,tif)
+endif()
+execute_process(COMMAND "${LIDARFX}" rasterize "${DATA}/1.2-with-color.copc.laz" --cell 200 --formats ${formats}
+                        --out "${WORK_DIR}/out"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "lidarfx rasterize failed (${rc}):\n${said}\n${err}")
+endif()
+
+# The cells of an ESRI ASCII grid as a list (row by row) and its NODATA_value.
+function(read_grid path cells_var nodata_var)
+    file(STRINGS "${path}" lines)
+    set(cells "")
+    set(nodata "")
+    foreach(line IN LISTS lines)
+        if(line MATCHES "^[Nn][Oo][Dd][Aa][Tt][Aa]_[Vv][Aa][Ll][Uu][Ee] +([^ ]+)")
+            set(nodata "${CMAKE_MATCH_1}")
+        elseif(NOT line MATCHES "^[A-Za-z]")
+            string(STRIP "${line}" line)
+            string(REGEX REPLACE " +" ";" values "${line}")
+            list(APPEND cells ${values})
+        endif()
+    endforeach()
+    if(nodata STREQUAL "")
+        message(FATAL_ERROR "${path} has no NODATA_value")
+    endif()
+    set(${cells_var} "${cells}" PARENT_SCOPE)
+    set(${nodata_var} "${nodata}" PARENT_SCOPE)
+endfunction()
+
+# mean_intensity (as `path`, an .asc) is no data exactly where count is 0.
+function(expect_no_data_where_empty path)
+    read_grid("${WORK_DIR}/out/count.asc" counts count_nodata)
+    read_grid("${path}" means nodata)
+    list(LENGTH counts n)
+    list(LENGTH means m)
+    if(NOT n EQUAL m OR n EQUAL 0)
+        message(FATAL_ERROR "${path}: ${m} cells, count.asc ${n}")
+    endif()
+    set(empty 0)
+    math(EXPR last "${n} - 1")
+    foreach(i RANGE ${last})
+        list(GET counts ${i} count)
+        list(GET means ${i} mean)
+        if(count EQUAL 0)
+            math(EXPR empty "${empty} + 1")
+            if(NOT mean EQUAL nodata)
+                message(FATAL_ERROR "${path}: cell ${i} has no point but holds ${mean}, not no data (${nodata})")
+            endif()
+        elseif(mean EQUAL nodata)
+            message(FATAL_ERROR "${path}: cell ${i} has ${count} points but holds no data")
+        endif()
+    endforeach()
+    if(empty LESS 10)
+        message(FATAL_ERROR "only ${empty} of ${n} cells without points: the check would prove little")
+    endif()
+    message(STATUS "${path}: no data in the ${empty} of ${n} cells without points, a mean elsewhere")
+endfunction()
+
+expect_no_data_where_empty("${WORK_DIR}/out/mean_intensity.asc")
+if(HAVE_GDAL AND GDAL_TRANSLATE)
+    execute_process(COMMAND "${GDAL_TRANSLATE}" -q -of AAIGrid "${WORK_DIR}/out/mean_intensity.tif"
+                            "${WORK_DIR}/tif_as_asc.asc"
+                    RESULT_VARIABLE rc ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "gdal_translate of mean_intensity.tif failed (${rc}): ${err}")
+    endif()
+    expect_no_data_where_empty("${WORK_DIR}/tif_as_asc.asc")
+endif()
