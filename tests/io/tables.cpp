@@ -4,10 +4,16 @@
 #include "io/tables.hpp"
 
 #include "cli/cli_common.hpp"
+#include "cli/outputs.hpp"
+#include "io/crs.hpp"
 #include "io/footprints.hpp"
+#include "io/las_writer.hpp"
+#include "io/output_folder.hpp"
 #include "io/vectors.hpp"
 
 #include <lidarfx/core/error.hpp>
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/synth/scenes.hpp>
 
 #include <cmath>
 #include <limits>
@@ -196,6 +202,58 @@ TEST_CASE("io/to_csv: random text and rounded numbers read back by an RFC 4180 r
             expected.push_back(want);
         }
         CHECK(parse_csv(to_csv(header, rows)) == expected);
+    }
+}
+
+TEST_CASE("io/waterbodies.csv: a lake surveyed in feet gives its boxes in feet (_crs) and its areas and levels in m")
+{
+    // The synthetic lake in international feet (x, y and z divided by 0.3048), EPSG:32633 with foot units.
+    io_test::temp_dir dir;
+    las_points feet = las_points_from(synth::lake_scene({.seed = 3, .size_m = 400}).points);
+    for (auto* v : {&feet.x, &feet.y, &feet.z})
+        for (double& value : *v) value /= international_foot_m;
+    const auto las = dir.file("lake_ft.las");
+    write_las(las, feet,
+              {.scale = {0.001, 0.001, 0.001},
+               .geo_keys = {{1024, 0, 1, 1}, {3072, 0, 1, 32633}, {3076, 0, 1, 9002}, {4099, 0, 1, 9002}}});
+    cli::survey_options options;
+    options.cell_m = 2.0;
+    options.show_progress = false;
+    const cli::survey s = cli::read_survey({las}, options);
+    REQUIRE(s.crs.horizontal_unit_m == international_foot_m);
+    const auto found = cli::find_waterbodies(s, {});
+    const auto& bodies = found.result.bodies;
+    REQUIRE(!bodies.empty());
+    io::output_folder folder(dir.file("out"));
+    cli::write_waterbodies(folder, s, found.result, found.footprint);
+    folder.commit("test");
+    const auto bytes = io_test::read_bytes(dir.file("out/waterbodies.csv"));
+    const auto rows = parse_csv(std::string(bytes.begin(), bytes.end()));
+    REQUIRE(rows.size() == bodies.size() + 1);
+    CHECK(rows[0] == std::vector<std::string>{"label", "area_m2", "cells", "xmin_crs", "ymin_crs", "xmax_crs",
+                                              "ymax_crs", "theta_deg", "stopped_by_ks", "mean_intensity",
+                                              "water_level_m", "dropout_fraction"});
+    const auto decimals = [](const std::string& field) {
+        const auto point = field.find('.');
+        return point == std::string::npos ? 0 : static_cast<int>(field.size() - point - 1);
+    };
+    const int wanted[] = {0, 1, 0, 3, 3, 3, 3, 1, 0, 1, 3, 2};  // as docs/waterbodies.md documents
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const auto& row = rows[i + 1];
+        const waterbody& b = bodies[i];
+        CAPTURE(i);
+        REQUIRE(row.size() == 12);
+        for (std::size_t c = 0; c < row.size(); ++c)
+            if (!row[c].empty()) CHECK(decimals(row[c]) == wanted[c]);
+        // Metres, rounded: area to 0.1 m2 and the level to the mm, whatever the CRS's unit.
+        CHECK(std::abs(std::stod(row[1]) - b.area_m2) <= 0.05 + 1e-9);
+        if (std::isfinite(b.water_level_m)) CHECK(std::abs(std::stod(row[10]) - b.water_level_m) <= 0.0005 + 1e-9);
+        // The box in feet: times 0.3048 it is the box of the metre grid the survey was read onto (to 0.001 ft).
+        const bounds metres = s.rasters.g.extent(b.box);
+        const double in_feet[] = {metres.xmin, metres.ymin, metres.xmax, metres.ymax};
+        for (int k = 0; k < 4; ++k)
+            CHECK(std::abs(std::stod(row[3 + k]) - in_feet[k] / international_foot_m) <= 0.0005 + 1e-6);
+        CHECK((row[8] == "0" || row[8] == "1"));
     }
 }
 
