@@ -225,7 +225,10 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
                  .no_data_name = "no return"});
         });
         jobs.emplace_back([&, png, f] {
-            const auto v = block_reduce<float>(pr.mean_intensity, f, finite_mean);
+            raster<float> intensity = pr.mean_intensity;  // 0 where no return: no data in the picture
+            for (std::ptrdiff_t i = 0; i < intensity.size(); ++i)
+                if (pr.count.data()[i] == 0) intensity.data()[i] = NAN;
+            const auto v = block_reduce<float>(intensity, f, finite_mean);
             const auto bar = io::finite_bar(v, "mean intensity (LAS units)");
             png("mean_intensity.png", io::colorize(v, bar.min, bar.max), io::non_finite_cells(v),
                 {.title = "mean_intensity.png: mean return intensity per cell",
