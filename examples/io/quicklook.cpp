@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -368,15 +367,6 @@ std::vector<char32_t> code_points(std::string_view text)
     return out;
 }
 
-std::string number_label(double v)
-{
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
-
-constexpr std::array<std::uint8_t, 3> black{0, 0, 0};
-
 }  // namespace
 
 std::ptrdiff_t text_width_px(std::string_view text, int scale) noexcept
@@ -405,50 +395,6 @@ void draw_text(rgb_image& img, std::ptrdiff_t row, std::ptrdiff_t col, std::stri
         }
         x += 6 * scale;
     }
-}
-
-int legend_scale(std::ptrdiff_t width) noexcept
-{
-    return static_cast<int>(std::clamp<std::ptrdiff_t>(width / 300, 1, 4));
-}
-
-std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept
-{
-    return 26 * legend_scale(width);
-}
-
-rgb_image with_legend(const rgb_image& picture, double min, double max, std::string_view unit)
-{
-    constexpr const char* fn = "with_legend";
-    detail::require(picture.width > 0 && picture.height > 0 &&
-                        picture.rgb.size() == static_cast<std::size_t>(picture.width * picture.height * 3),
-                    fn, "picture must not be empty and hold width * height * 3 bytes");
-    detail::require(std::isfinite(min) && std::isfinite(max) && min <= max, fn,
-                    "min and max must be finite with min <= max");
-    const int s = legend_scale(picture.width);
-    const std::string lo = number_label(min), hi = number_label(max);
-    const std::ptrdiff_t margin = 4 * s, gap = 3 * s * 2;  // gap: between the labels and the unit
-    // The unit is centred: room for the longer label on both sides.
-    const std::ptrdiff_t label = std::max(text_width_px(lo, s), text_width_px(hi, s));
-    const std::ptrdiff_t needed = 2 * margin + 2 * label + text_width_px(unit, s) + 2 * gap;
-    const std::ptrdiff_t width = std::max(picture.width, needed);
-    const std::ptrdiff_t height = picture.height + legend_height_px(picture.width);
-    rgb_image out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width * height) * 3, 255)};
-    for (std::ptrdiff_t r = 0; r < picture.height; ++r) {
-        std::copy_n(picture.rgb.begin() + r * picture.width * 3, picture.width * 3, out.rgb.begin() + r * width * 3);
-    }
-    // Colour bar: 8 * s rows, from the left margin to the right margin.
-    const std::ptrdiff_t bar_top = picture.height + margin, bar_left = margin, bar_width = width - 2 * margin;
-    for (std::ptrdiff_t c = 0; c < bar_width; ++c) {
-        const double t = bar_width > 1 ? static_cast<double>(c) / static_cast<double>(bar_width - 1) : 0.5;
-        const auto rgb = ramp_color(t);
-        for (std::ptrdiff_t r = 0; r < 8 * s; ++r) put(out, bar_top + r, bar_left + c, rgb);
-    }
-    const std::ptrdiff_t text_top = bar_top + 8 * s + 3 * s;
-    draw_text(out, text_top, bar_left, lo, black, s);
-    draw_text(out, text_top, bar_left + bar_width - text_width_px(hi, s), hi, black, s);
-    draw_text(out, text_top, (width - text_width_px(unit, s)) / 2, unit, black, s);
-    return out;
 }
 
 }  // namespace lidarfx::io

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Quicklook pictures of rasters: colour ramp, hillshade, label colours and mask overlays (for PNG output).
+// Quicklook pictures of rasters: colour ramps (viridis, cyclic), hillshade, label colours, mask overlays and a
+// 5x7 bitmap font; io/figure.hpp frames them for PNG output.
 #pragma once
 
 #include <array>
@@ -78,21 +79,5 @@ std::ptrdiff_t text_width_px(std::string_view text, int scale) noexcept;
 /// the same bytes on every platform. @throws invalid_input if scale < 1.
 void draw_text(rgb_image& img, std::ptrdiff_t row, std::ptrdiff_t col, std::string_view text,
                std::array<std::uint8_t, 3> color, int scale = 1);
-
-/// Font scale of the legend under a picture `width` pixels wide: clamp(width / 300, 1, 4), so the labels stay
-/// readable on large maps.
-int legend_scale(std::ptrdiff_t width) noexcept;
-
-/// Height in pixels of the legend strip under a picture `width` pixels wide: 26 * legend_scale(width)
-/// (margin 4, colour bar 8, gap 3, text 7, margin 4, all times the scale).
-std::ptrdiff_t legend_height_px(std::ptrdiff_t width) noexcept;
-
-/// `picture` with a legend strip below it on white: a colour bar running ramp_color(0) .. ramp_color(1) from
-/// left to right, `min` written under its left end, `max` right-aligned under its right end (printf "%.4g")
-/// and `unit` (UTF-8, e.g. "kWh/m²" or "SVF") centred between them, in black. The result is
-/// legend_height_px(width) rows taller; a picture too narrow for the labels is widened on the right with
-/// white. Pair it with colorize(values, min, max) so the bar matches the picture. O(pixels).
-/// @throws invalid_input if the picture is empty or min, max are not finite with min <= max.
-rgb_image with_legend(const rgb_image& picture, double min, double max, std::string_view unit);
 
 }  // namespace lidarfx::io

@@ -296,60 +296,6 @@ TEST_CASE("io/azimuth_color: a cyclic wheel, 0 and 359.9 degrees alike, opposite
     CHECK(cyclic_color(std::nan("")) == rgb{0, 0, 0});
 }
 
-TEST_CASE("io/with_legend: a colour bar, min and max labels and the unit under the picture")
-{
-    const raster<float> values(40, 360, 5.0f);
-    const rgb_image picture = colorize(values, 0, 10);
-    const rgb_image img = with_legend(picture, 0, 1234.4, "kWh/m²");
-    CHECK(legend_scale(360) == 1);
-    CHECK(legend_scale(1024) == 3);
-    CHECK(legend_scale(5000) == 4);
-    CHECK(legend_height_px(360) == 26);
-    CHECK(img.width == 360);
-    REQUIRE(img.height == 40 + 26);
-    CHECK(std::equal(picture.rgb.begin(), picture.rgb.end(), img.rgb.begin()));  // picture unchanged on top
-
-    // The bar: rows 44..51, columns 4..355, from ramp_color(0) to ramp_color(1), luminance rising.
-    CHECK(pixel(img, 44, 4) == ramp_color(0));
-    CHECK(pixel(img, 51, 355) == ramp_color(1));
-    CHECK(pixel(img, 47, 180) == ramp_color(176.0 / 351.0));
-    CHECK(luma(pixel(img, 47, 300)) > luma(pixel(img, 47, 60)));
-    CHECK(pixel(img, 43, 100) == rgb{255, 255, 255});  // margin between picture and bar
-
-    // Text rows 55..61: black pixels where the labels are, white elsewhere.
-    const auto dark_in = [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
-        int n = 0;
-        for (std::ptrdiff_t r = 55; r < 62; ++r)
-            for (std::ptrdiff_t c = c0; c < c1; ++c) n += pixel(img, r, c) == rgb{0, 0, 0};
-        return n;
-    };
-    CHECK(dark_in(4, 9) > 0);                                 // "0" under the left end
-    CHECK(dark_in(356 - text_width_px("1234", 1), 356) > 0);  // "1234" (%.4g) right-aligned
-    const std::ptrdiff_t unit_w = text_width_px("kWh/m²", 1);
-    CHECK(dark_in((360 - unit_w) / 2, (360 + unit_w) / 2) > 0);  // the unit in the middle
-    CHECK(dark_in(100, 150) == 0);
-    // The labels come from the numbers: another max changes only the right label.
-    const rgb_image other = with_legend(picture, 0, 999, "kWh/m²");
-    int changed_left = 0, changed_right = 0;
-    for (std::ptrdiff_t r = 0; r < img.height; ++r)
-        for (std::ptrdiff_t c = 0; c < img.width; ++c)
-            if (pixel(img, r, c) != pixel(other, r, c)) ++(c >= 300 ? changed_right : changed_left);
-    CHECK(changed_left == 0);
-    CHECK(changed_right > 0);
-    CHECK(with_legend(picture, 0, 1234.4, "kWh/m²").rgb == img.rgb);  // deterministic
-
-    // Wide pictures get a bigger font; narrow ones are widened on the right with white.
-    const rgb_image wide = with_legend(colorize(raster<float>(10, 900, 1.0f), 0, 1), 0, 1, "SVF");
-    CHECK(wide.height == 10 + 26 * 3);
-    const rgb_image narrow = with_legend(colorize(raster<float>(3, 2, 1.0f), 0, 2), 0.25, 0.75, "SVF");
-    CHECK(narrow.height == 3 + 26);
-    CHECK(narrow.width >= 2 * 4 + 2 * text_width_px("0.75", 1) + text_width_px("SVF", 1));
-    CHECK(pixel(narrow, 1, 1) == ramp_color(0.5));
-    CHECK(pixel(narrow, 1, 2) == rgb{255, 255, 255});
-    CHECK_THROWS_AS(with_legend(picture, 2, 1, "SVF"), invalid_input);
-    CHECK_THROWS_AS(with_legend(rgb_image{}, 0, 1, "SVF"), invalid_input);
-}
-
 TEST_CASE("io/colorize_over_hillshade: finite cells as colorize, the others a dim hillshade of the terrain")
 {
     raster<float> z(6, 7);
