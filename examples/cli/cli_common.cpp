@@ -799,6 +799,9 @@ grid to_crs_units(const grid& g, const survey& s)
 
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
                   const std::string& crs_wkt, int epsg, const output_formats& formats)
+    for (const auto& name : out.removed_stale()) {
+        std::cout << "  removed " << (out.path() / name).string() << " (an earlier run's, not made by this one)\n";
+    }
 {
     const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
     if (formats.asc) {

@@ -235,7 +235,7 @@ void write_polygons(io::output_folder& out, const std::string& name, const std::
 /// Names `write_polygons` gives polygons called `name`.
 std::vector<std::string> polygon_file_names(const std::string& name, const output_formats& formats = {});
 
-/// Names `write_raster` gives a raster called `name` (for output_folder::check_name before long work).
+/// Names `write_raster` gives a raster called `name` (for output_folder::declare before long work).
 std::vector<std::string> raster_file_names(const std::string& name, const output_formats& formats = {});
 
 /// True when `path` ends with `extension` (".asc", ".geojson"), letters compared without case.

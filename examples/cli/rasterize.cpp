@@ -33,7 +33,7 @@ int run_rasterize(const std::vector<std::string>& args)
     // Per cell: the accumulator (24 B), the rasters (18 B) and the writers' float copies and pictures.
     const auto options = lidarfx::cli::survey_options_from(a, 56);
     lidarfx::io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
-    for (const auto& name : lidarfx::cli::point_raster_file_names(options.formats)) out.check_name(name);
+    for (const auto& name : lidarfx::cli::point_raster_file_names(options.formats)) out.declare(name);
     const auto s = lidarfx::cli::read_survey(a.positional(), options);
     lidarfx::cli::print_survey(s);
     lidarfx::cli::write_point_rasters(out, s, options.formats, options.threads);

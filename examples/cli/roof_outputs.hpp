@@ -28,7 +28,7 @@ struct roof_output_frame {
     std::string crs_wkt{};
 };
 
-/// The names write_roof_patches gives its files (for output_folder::check_name before long work).
+/// The names write_roof_patches gives its files (for output_folder::declare before long work).
 std::vector<std::string> roof_patch_file_names(const output_formats& formats = {});
 
 /// roof_patches.csv (building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,

@@ -160,7 +160,7 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
          tile_edge_m);
     const auto files = survey_files(a.positional());
     io::output_folder out(a.text("out", ""), {files.begin(), files.end()});
-    for (const auto& name : waterbody_file_names(survey_options.formats)) out.check_name(name);
+    for (const auto& name : waterbody_file_names(survey_options.formats)) out.declare(name);
     const std::filesystem::path tiles_dir = out.path() / ".lidarfx-tiles";
     const auto s = source(files, survey_options, tile_edge_m, tiles_dir);
     print_survey(s);

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <future>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -82,6 +83,39 @@ void sync_path(const std::filesystem::path& path, bool directory)
     const bool ok = ::fsync(fd) == 0 || errno == EINVAL;  // EINVAL: the file system cannot sync (e.g. some tmpfs)
     ::close(fd);
     if (!ok) throw failure(path, "flushing to disk failed: " + errno_text());
+}
+
+/// The files manifest.json lists (name, bytes, sha256), as commit() writes it; empty when there is no manifest
+/// or it cannot be read (then nothing counts as an earlier run's unchanged output).
+struct listed_file {
+    std::string name;
+    std::uintmax_t bytes = 0;
+    std::string sha256;
+};
+std::vector<listed_file> files_in_manifest(const std::filesystem::path& manifest)
+{
+    std::ifstream in(manifest, std::ios::binary);
+    std::vector<listed_file> files;
+    // One line per file: {"name": "<name>", "bytes": <n>, "sha256": "<hex>"} (names are plain file names).
+    static const std::regex line(
+        R"re(\{"name": "((?:[^"\\]|\\.)*)", "bytes": ([0-9]+), "sha256": "([0-9a-f]{64})"\})re");
+    for (std::string text; std::getline(in, text);) {
+        std::smatch m;
+        if (!std::regex_search(text, m, line)) continue;
+        std::string name;
+        for (std::size_t i = 0; i < m[1].str().size(); ++i) {
+            const char c = m[1].str()[i];
+            if (c == '\\' && i + 1 < m[1].str().size()) {
+                const char e = m[1].str()[++i];
+                if (e != '"' && e != '\\') return {};  // an escape plain file names never need: not ours
+                name += e;
+            } else {
+                name += c;
+            }
+        }
+        files.push_back({name, std::stoull(m[2].str()), m[3].str()});
+    }
+    return files;
 }
 
 /// SHA-256 (FIPS 180-4), streaming.
@@ -269,6 +303,13 @@ void output_folder::check_name(const std::string& name) const
     }
 }
 
+void output_folder::declare(const std::string& name)
+{
+    check_name(name);
+    const std::lock_guard<std::mutex> guard(mutex_);
+    if (std::find(declared_.begin(), declared_.end(), name) == declared_.end()) declared_.push_back(name);
+}
+
 void output_folder::write(const std::string& name, const std::function<void(const std::string& temporary_path)>& writer)
 {
     const auto temporary = dir_ / temporary_name(name);
@@ -324,6 +365,7 @@ void output_folder::commit(const std::string& command)
     }
     manifest << "\n  ]\n}\n";
     check_name(manifest_name);
+    const std::vector<std::string> stale = stale_companions();
     std::error_code ec;
     std::filesystem::remove(dir_ / manifest_name, ec);  // from here until the new one exists, the folder is incomplete
     sync_path(dir_, true);
@@ -331,6 +373,12 @@ void output_folder::commit(const std::string& command)
         if (std::rename(p.temporary.c_str(), (dir_ / p.name).c_str()) != 0) {
             throw failure(dir_ / p.name, "cannot move into place: " + errno_text());
         }
+    }
+    for (const auto& name : stale) {
+        if (::unlink((dir_ / name).c_str()) != 0 && errno != ENOENT) {
+            throw failure(dir_ / name, "cannot remove this stale output of an earlier run: " + errno_text());
+        }
+        removed_.push_back(name);
     }
     const auto manifest_temporary = dir_ / temporary_name(manifest_name);
     write_file(manifest_temporary.string(), manifest.str());
@@ -340,6 +388,25 @@ void output_folder::commit(const std::string& command)
     }
     sync_path(dir_, true);
     committed_ = true;
+}
+
+std::vector<std::string> output_folder::stale_companions() const
+{
+    std::vector<std::string> stale;
+    const auto listed = files_in_manifest(dir_ / manifest_name);
+    for (const auto& name : declared_) {
+        if (std::any_of(pending_.begin(), pending_.end(), [&](const pending& p) { return p.name == name; })) continue;
+        const auto entry =
+            std::find_if(listed.begin(), listed.end(), [&](const listed_file& f) { return f.name == name; });
+        struct stat st {};
+        if (entry == listed.end() || !entry_at(dir_ / name, st) || !S_ISREG(st.st_mode)) continue;
+        check_name(name);  // never an input of this run, never through a link
+        if (static_cast<std::uintmax_t>(st.st_size) == entry->bytes && sha256_of_file(dir_ / name) == entry->sha256) {
+            stale.push_back(name);
+        }
+    }
+    std::sort(stale.begin(), stale.end());
+    return stale;
 }
 
 std::vector<std::filesystem::path> output_folder::files() const

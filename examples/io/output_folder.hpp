@@ -20,7 +20,10 @@ namespace lidarfx::io {
 /// - a symlink at an output name is never followed or replaced, and no output replaces an input of the run;
 /// - one run at a time: the folder is locked (flock on .lidarfx.lock, released by the kernel even after kill -9),
 ///   and a second run into it fails at once with a message, touching nothing; the run removes .lidarfx.lock
-///   when it ends (a killed run leaves it, harmless: the next run takes and removes it).
+///   when it ends (a killed run leaves it, harmless: the next run takes and removes it);
+/// - no stale companion: a name the run declared but did not write (a .prj when this survey has no CRS) is
+///   removed in commit() only when an earlier lidarfx run wrote it and it is unchanged since (manifest.json lists
+///   it with the same size and SHA-256); a file the manifest does not list, or that changed since, stays.
 /// Errors are std::runtime_error naming the file.
 class output_folder {
 public:
@@ -38,6 +41,12 @@ public:
     /// symlink or a folder stands there, or it is one of the inputs. Call it before long work.
     void check_name(const std::string& name) const;
 
+    /// check_name(name), and records `name` as an output this run may write (see "no stale companion" above).
+    void declare(const std::string& name);
+
+    /// Names commit() removed as stale companions of an earlier run (sorted).
+    const std::vector<std::string>& removed_stale() const noexcept { return removed_; }
+
     /// Writes the output `name` by calling `writer` with a temporary path in the folder; the file takes its
     /// final name in commit(). Writing a name twice in one run is an error. Several threads may write
     /// different names at once (the writers run concurrently; the bookkeeping is serialised).
@@ -53,6 +62,7 @@ public:
     std::vector<std::filesystem::path> files() const;
 
 private:
+    std::vector<std::string> stale_companions() const;  // declared, not written, unchanged since the last manifest
     struct pending {
         std::string name;
         std::filesystem::path temporary;
@@ -60,6 +70,7 @@ private:
     std::filesystem::path dir_;
     std::vector<std::filesystem::path> inputs_;
     std::vector<pending> pending_;
+    std::vector<std::string> declared_, removed_;
     mutable std::mutex mutex_;  // guards pending_ while writers run on several threads
     int lock_fd_ = -1;
     bool created_ = false;  // the folder did not exist before this run

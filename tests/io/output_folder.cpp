@@ -203,3 +203,50 @@ TEST_CASE("io/output_folder: a lock file left by a killed run is taken and remov
     }
     CHECK(entries(dir) == std::vector<std::string>{"a.txt", "manifest.json"});
 }
+
+TEST_CASE("io/output_folder: a declared name this run does not write goes only when it is an earlier run's, unchanged")
+{
+    temp_dir tmp;
+    const std::filesystem::path dir = tmp.file("out");
+    {  // the first run knows the CRS: each grid has its .prj
+        output_folder out(dir);
+        for (const char* name : {"dsm.asc", "dsm.prj", "dtm.asc", "dtm.prj"}) out.declare(name);
+        for (const char* name : {"dsm.asc", "dsm.prj", "dtm.asc", "dtm.prj"}) write_text(out, name, name);
+        out.commit("first");
+        CHECK(out.removed_stale().empty());
+    }
+    write_file((dir / "dtm.prj").string(), std::string("edited by the user"));
+    write_file((dir / "mine.prj").string(), std::string("never written by lidarfx"));
+    {  // the second run has no CRS: it writes the grids only
+        output_folder out(dir);
+        for (const char* name : {"dsm.asc", "dsm.prj", "dtm.asc", "dtm.prj", "mine.prj"}) out.declare(name);
+        for (const char* name : {"dsm.asc", "dtm.asc"}) write_text(out, name, std::string(name) + " again");
+        out.commit("second");
+        CHECK(out.removed_stale() == std::vector<std::string>{"dsm.prj"});
+    }
+    CHECK_FALSE(std::filesystem::exists(dir / "dsm.prj"));           // unchanged output of the first run
+    CHECK(text_of(dir / "dtm.prj") == "edited by the user");         // changed since: the user's now
+    CHECK(text_of(dir / "mine.prj") == "never written by lidarfx");  // in no manifest
+    CHECK(text_of(dir / "dsm.asc") == "dsm.asc again");
+    const std::string manifest = text_of(dir / "manifest.json");
+    CHECK(contains(manifest, "\"dsm.asc\""));
+    CHECK_FALSE(contains(manifest, "dsm.prj"));
+}
+
+TEST_CASE("io/output_folder: a name another command wrote is not removed when this run does not declare it")
+{
+    temp_dir tmp;
+    const std::filesystem::path dir = tmp.file("out");
+    {
+        output_folder out(dir);
+        out.declare("max_z.asc");
+        write_text(out, "max_z.asc", "1");
+        out.commit("rasterize");
+    }
+    output_folder out(dir);
+    out.declare("water.asc");
+    write_text(out, "water.asc", "0");
+    out.commit("water");
+    CHECK(out.removed_stale().empty());
+    CHECK(text_of(dir / "max_z.asc") == "1");
+}
