@@ -730,63 +730,6 @@ bool has_extension(const std::string& path, const std::string& extension)
            });
 }
 
-namespace {
-
-/// Metres per unit of the unit option `--option` (m, ft, us-ft) and the unit's name; {0, ""} when not given.
-std::pair<double, std::string> unit_option(const arguments& a, const std::string& option)
-{
-    if (!a.has(option)) return {0.0, ""};
-    const std::string u = a.text(option, "");
-    if (u == "m") return {io::metre_m, "metre"};
-    if (u == "ft") return {io::international_foot_m, "foot"};
-    if (u == "us-ft") return {io::us_survey_foot_m, "US survey foot"};
-    throw usage_error("--" + option + " must be m, ft (international foot) or us-ft (US survey foot) (got " + u + ")");
-}
-
-}  // namespace
-
-io::survey_crs ascii_grid_crs(const std::string& path, const arguments& a)
-{
-    const std::string prj_path = io::prj_path_of(path);
-    const std::string prj = io::read_prj_beside(path);
-    io::survey_crs crs = io::crs_of_wkt(prj);
-    for (const auto& w : crs.warnings) std::cerr << "lidarfx: warning: " << prj_path << ": " << w << '\n';
-    if (crs.geographic) {
-        throw usage_error(path + ": x and y are longitude and latitude in degrees (" + crs.describe() + ", from " +
-                          prj_path +
-                          "), but cells, heights and areas are measured in metres. Reproject it to a projected CRS "
-                          "first, e.g. gdalwarp -t_srs EPSG:<the UTM zone's code> IN.asc OUT.tif");
-    }
-    const auto [xy_m, xy_name] = unit_option(a, "xy-unit");
-    const auto [z_m, z_name] = unit_option(a, "z-unit");
-    if (crs.source.empty()) {  // no CRS beside the grid: its units are what the user says
-        if (xy_m == 0 || z_m == 0) {
-            throw usage_error(path + ": the units of this ESRI ASCII grid are unknown (" +
-                              (prj.empty() ? "no " + prj_path + " beside it" : prj_path + " names no CRS") +
-                              "): state them with --xy-unit m|ft|us-ft and --z-unit m|ft|us-ft, or put the grid's "
-                              "CRS beside it (gdalsrsinfo -o wkt_esri EPSG:<code> > " +
-                              prj_path + ")");
-        }
-        crs.horizontal_unit_m = xy_m;
-        crs.horizontal_unit = xy_name;
-        crs.vertical_unit_m = z_m;
-        crs.vertical_unit = z_name;
-        return crs;
-    }
-    const auto differs = [](double given, double m) { return given != 0 && std::abs(given - m) > 1e-12 * m; };
-    if (differs(xy_m, crs.horizontal_unit_m) || differs(z_m, crs.vertical_unit_m)) {
-        throw usage_error(path + ": --xy-unit/--z-unit disagree with its CRS in " + prj_path + " (" + crs.describe() +
-                          ", z in " + crs.vertical_unit + "): leave them out or fix the .prj");
-    }
-    return crs;
-}
-
-void heights_to_metres(raster<float>& values, const io::survey_crs& crs)
-{
-    if (crs.vertical_unit_m == 1.0) return;
-    for (float& v : values) v = static_cast<float>(v * crs.vertical_unit_m);
-}
-
 grid to_crs_units(const grid& g, const survey& s)
 {
     grid out = g;
@@ -799,9 +742,6 @@ grid to_crs_units(const grid& g, const survey& s)
 
 void write_raster(io::output_folder& out, const std::string& name, raster_view<const float> values, const grid& g,
                   const std::string& crs_wkt, int epsg, const output_formats& formats)
-    for (const auto& name : out.removed_stale()) {
-        std::cout << "  removed " << (out.path() / name).string() << " (an earlier run's, not made by this one)\n";
-    }
 {
     const std::string crs = !crs_wkt.empty() ? crs_wkt : (epsg ? "EPSG:" + std::to_string(epsg) : "");
     if (formats.asc) {
@@ -859,6 +799,9 @@ void commit_and_report(io::output_folder& out, const std::string& command)
     out.commit(command);
     for (const auto& path : out.files()) std::cout << "  wrote " << path.string() << '\n';
     std::cout << "  wrote " << (out.path() / "manifest.json").string() << '\n';
+    for (const auto& name : out.removed_stale()) {
+        std::cout << "  removed " << (out.path() / name).string() << " (an earlier run's, not made by this one)\n";
+    }
 }
 
 }  // namespace lidarfx::cli

@@ -185,17 +185,6 @@ std::uint64_t memory_budget_of(std::uint64_t memory_budget_bytes);
 void refuse_grid_over_budget(const std::string& path, const grid& g, double bytes_per_cell,
                              std::uint64_t memory_budget_bytes);
 
-/// The CRS and units of the ESRI ASCII grid `path`, from the .prj beside it (io::read_prj_beside, read by the rules
-/// of io::crs_of_wkt; its warnings go to stderr). Without a .prj (or with one whose CRS cannot be read) the units
-/// must be stated with --xy-unit and --z-unit (m, ft = international foot, us-ft = US survey foot); with a .prj
-/// they may be given but must agree with it.
-/// @throws usage_error when the units are unknown, a unit is not one of those, disagrees with the .prj, or the CRS
-/// is geographic (cells in degrees).
-io::survey_crs ascii_grid_crs(const std::string& path, const arguments& a);
-
-/// Multiplies every height by crs.vertical_unit_m: heights read from a raster file in metres.
-void heights_to_metres(raster<float>& values, const io::survey_crs& crs);
-
 /// Says on stderr how many cells of the grid read from `path` held no finite height (inf, -inf, nan: they are no
 /// data now), when there were any.
 void report_non_finite_heights(const std::string& path, std::size_t cells);

@@ -14,6 +14,7 @@
 
 #include "cli_common.hpp"
 #include "command.hpp"
+#include "elevation_input.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
 #include "io/geotiff.hpp"
@@ -27,7 +28,9 @@ namespace {
 
 constexpr const char* usage =
     "usage: lidarfx roofs IN.las|IN.laz [MORE ...] FOOTPRINTS --out DIR [--cell M] [--mode planes|paper]\n"
-    "       lidarfx roofs DSM.asc DTM.asc FOOTPRINTS --out DIR [--mode planes|paper]\n"
+    "       lidarfx roofs DSM DTM FOOTPRINTS --out DIR [--mode planes|paper]\n"
+    "DSM, DTM: rasters on one grid, ESRI ASCII (.asc with its .prj) or, with GDAL, GeoTIFF and any raster GDAL\n"
+    "reads; heights and cells in the units of the DSM's CRS.\n"
     "Rooftop PV suitability. FOOTPRINTS: Polygon/MultiPolygon features with an integer id (field building_id, or\n"
     "--id-field): a GeoJSON FeatureCollection, or when built with GDAL any vector file OGR reads (GeoPackage,\n"
     "Shapefile, FlatGeobuf, ...; a file without building_id then takes its feature ids). Footprints in another\n"
@@ -44,9 +47,9 @@ constexpr const char* usage =
     "  --id-field F   the footprints' integer id field [building_id]\n"
     "  --formats L    what to write: png and csv, geojson, gpkg [all that this build can write]\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
-    "  --xy-unit U    unit of DSM.asc and DTM.asc corners and cell size when no .prj is beside the DSM (its CRS,\n"
-    "                 as GDAL writes it): m, ft (international foot), us-ft (US survey foot); refused without\n"
-    "                 one of the two; with a .prj it must agree with it\n"
+    "  --xy-unit U    unit of the DSM's and DTM's corners and cell size when the DSM states no CRS (a .prj beside\n"
+    "                 an .asc, as GDAL writes it): m, ft (international foot), us-ft (US survey foot); such a\n"
+    "                 DSM is refused without them; with a CRS they must agree with it\n"
     "  --z-unit U     unit of their heights (m, ft, us-ft), as --xy-unit\n"
     "  --mode M       planes | paper [planes]\n"
     "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
@@ -72,7 +75,7 @@ constexpr double roofs_bytes_per_cell = 64;
 // The surface models of the run, in metres, on one grid.
 struct roof_inputs {
     raster<float> dsm, dtm;
-    grid g;               // metres (read_survey's grid, or the .asc grid taken as metres)
+    grid g;               // metres (read_survey's grid, or the DSM's grid in metres)
     grid out_grid;        // the same cells in the input's CRS units, for outputs
     double unit_m = 1.0;  // metres per CRS unit of x and y
     std::string crs_wkt;
@@ -80,35 +83,53 @@ struct roof_inputs {
     std::string place_crs;  // the CRS whose centre PROJ may place for the sun ("" when none)
 };
 
-roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const arguments& a, int threads)
+// A DSM and a DTM raster rather than LAS/LAZ files.
+bool grid_inputs(const std::vector<std::string>& inputs)
+{
+    return inputs.size() == 2 && !is_point_cloud_path(inputs[0]) && !is_point_cloud_path(inputs[1]);
+}
+
+// The survey's CRS from the DSM raster's CRS (an .asc's .prj) or the first LAS header alone, so footprints are checked
+// and placed before any point or cell is read; read_roof_inputs takes the grids' CRS from it.
+io::survey_crs inputs_crs(const std::vector<std::string>& inputs, const arguments& a)
+{
+    if (grid_inputs(inputs)) return raster_crs(inputs[0], a);  // the DSM's (its .prj for ESRI ASCII)
+    for (const std::string& f : inputs) {
+        if (!is_point_cloud_path(f))
+            throw usage_error(f + ": give either LAS/LAZ files or exactly two rasters, the DSM and the DTM");
+    }
+    return io::crs_of(io::las_reader(inputs[0]).header());  // read_survey warns, not this
+}
+
+// The CRS as footprints are compared with it: WKT, else "EPSG:n", "" when the survey states none.
+std::string crs_text(const io::survey_crs& crs)
+{
+    if (!crs.wkt.empty()) return crs.wkt;
+    return crs.epsg ? "EPSG:" + std::to_string(crs.epsg) : "";
+}
+
+roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const io::survey_crs& grid_crs, const arguments& a,
+                             int threads)
 {
     roof_inputs in;
-    if (inputs.size() == 2 && has_extension(inputs[0], ".asc") && has_extension(inputs[1], ".asc")) {
+    if (grid_inputs(inputs)) {
         // Both headers first: the grids must agree and fit --memory before any cell is allocated.
-        const grid g1 = io::read_ascii_grid_header(inputs[0]).g, g2 = io::read_ascii_grid_header(inputs[1]).g;
+        const grid g1 = raster_file_grid(inputs[0]), g2 = raster_file_grid(inputs[1]);
         if (g2.rows != g1.rows || g2.cols != g1.cols || g2.x0 != g1.x0 || g2.y0 != g1.y0 || g2.cell != g1.cell)
             throw usage_error(inputs[1] + ": the DTM must be on the DSM's grid (same origin, cell size and size)");
         const std::uint64_t budget = memory_option(a);
         refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
-        const io::survey_crs crs = ascii_grid_crs(inputs[0], a);  // the DSM's .prj, else metres
-        for (const auto& [path, target] : {std::pair{inputs[0], &in.dsm}, std::pair{inputs[1], &in.dtm}}) {
-            std::size_t non_finite = 0;
-            *target = io::read_ascii_grid(path, in.g, &non_finite);
-            report_non_finite_heights(path, non_finite);
-            heights_to_metres(*target, crs);
-        }
-        in.out_grid = in.g;  // in the CRS's units; in.g in metres
+        const io::survey_crs& crs = grid_crs;  // the DSM's, for both
+        elevation_raster dsm = read_elevation_raster(inputs[0], crs, roofs_bytes_per_cell, budget);
+        in.dtm = read_elevation_raster(inputs[1], crs, roofs_bytes_per_cell, budget).values;
+        in.dsm = std::move(dsm.values);
+        in.g = dsm.g;                 // in metres
+        in.out_grid = dsm.file_grid;  // in the CRS's units
         in.unit_m = crs.horizontal_unit_m;
-        in.g.x0 *= in.unit_m;
-        in.g.y0 *= in.unit_m;
-        in.g.cell *= in.unit_m;
-        if (io::crs_understood(crs.wkt)) in.crs_wkt = crs.wkt;
+        in.crs_wkt = crs.wkt;
         in.epsg = crs.epsg;
         in.place_crs = crs.for_outputs();
         return in;
-    }
-    for (const std::string& f : inputs) {
-        if (has_extension(f, ".asc")) throw usage_error(f + ": give either LAS/LAZ files or exactly DSM.asc DTM.asc");
     }
     auto survey_opts = survey_options_from(a, roofs_bytes_per_cell);
     if (!a.has("cell")) survey_opts.cell_m = 1.0;  // roofs' default: 1 m cells
@@ -149,9 +170,9 @@ burned_footprints burn_footprints(io::footprint_collection file, const roof_inpu
 
 // Puts the footprints in the survey's CRS: a file without a CRS is taken to be in it (with a note), one in
 // another CRS is reprojected through OGR/PROJ; footprints with a CRS on a survey without one are refused.
-void place_footprints(io::footprint_collection& footprints, const std::string& file, const roof_inputs& in)
+// `survey_crs` is the survey's CRS as WKT or "EPSG:n", "" when it states none (inputs_crs).
+void place_footprints(io::footprint_collection& footprints, const std::string& file, const std::string& survey_crs)
 {
-    const std::string survey_crs = !in.crs_wkt.empty() ? in.crs_wkt : in.epsg ? "EPSG:" + std::to_string(in.epsg) : "";
     if (footprints.crs.empty()) {
         if (!survey_crs.empty())
             std::cerr << "note: " << file << " states no CRS; its footprints are taken to be in the survey's CRS\n";
@@ -233,12 +254,13 @@ int run_roofs(const std::vector<std::string>& args)
         throw usage_error(e.what());
     }
     for (const std::string& note : footprints.notes) std::cerr << "note: " << note << "\n";
+    const io::survey_crs survey_crs = inputs_crs(inputs, a);
+    place_footprints(footprints, footprint_file, crs_text(survey_crs));
     io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
     std::vector<std::string> names = roof_patch_file_names(formats);
     names.push_back("footprints.csv");
-    for (const auto& n : names) out.check_name(n);
-    const roof_inputs in = read_roof_inputs(inputs, a, threads);
-    place_footprints(footprints, footprint_file, in);
+    for (const auto& n : names) out.declare(n);
+    const roof_inputs in = read_roof_inputs(inputs, survey_crs, a, threads);
     const burned_footprints fp = burn_footprints(std::move(footprints), in);
 
     roof_suitability_options opt;

@@ -18,6 +18,7 @@
 
 #include "cli_common.hpp"
 #include "command.hpp"
+#include "elevation_input.hpp"
 #include "io/ascii_grid.hpp"
 #include "io/crs.hpp"
 #include "io/figure.hpp"
@@ -34,7 +35,7 @@
 namespace {
 
 constexpr const char* usage =
-    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM.asc | DSM.tif --out DIR [--tmy FILE.csv]\n"
+    "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
     "                     [--diffuse isotropic|perez] [--facades] [--threads N]\n"
     "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
@@ -43,19 +44,19 @@ constexpr const char* usage =
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
     "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
     "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
-    "IDW; a GeoTIFF DSM (needs GDAL) is read with its NoData as holes and its CRS's units (feet become metres,\n"
-    "degrees are refused); an ESRI ASCII grid takes its CRS and units from the .prj beside it (as GDAL writes\n"
-    "it; lidarfx rasterize writes one), else from --xy-unit and --z-unit, and is refused without them. Weather: a TMY3 "
-    "file (--tmy; its station gives\n"
+    "IDW. A DSM raster: ESRI ASCII (.asc), or with GDAL a GeoTIFF or any raster GDAL reads; NoData cells are\n"
+    "holes, heights and cells are in its CRS's units (feet become metres, degrees are refused): an .asc takes its\n"
+    "CRS from the .prj beside it (as GDAL writes it; lidarfx rasterize writes one). A raster without a CRS needs\n"
+    "--xy-unit and --z-unit. Weather: a TMY3 file (--tmy; its station gives\n"
     "the time zone); without --tmy, a cloudless year from the clear-sky model (Haurwitz + Erbs). The place of the\n"
     "sun: --lat/--lon when given, else the survey's centre when its CRS is known and lidarfx has PROJ, else the TMY\n"
     "station. With a known CRS and PROJ, sun azimuths are also turned from true to grid north by the meridian\n"
     "convergence at the survey's centre (--lat/--lon given or not).\n"
     "options (defaults in brackets):\n"
     "  --cell M       cell size for LAS input, metres [1]\n"
-    "  --xy-unit U    unit of a DSM.asc's corner and cell size when no .prj is beside it: m, ft (international\n"
-    "                 foot), us-ft (US survey foot); with a .prj it must agree with it\n"
-    "  --z-unit U     unit of a DSM.asc's heights (m, ft, us-ft), as --xy-unit\n"
+    "  --xy-unit U    unit of a DSM raster's corner and cell size when it states no CRS: m, ft (international\n"
+    "                 foot), us-ft (US survey foot); with a CRS it must agree with it\n"
+    "  --z-unit U     unit of a DSM raster's heights (m, ft, us-ft), as --xy-unit\n"
     "  --year Y       the year the records are placed in [2021]: the clear-sky year, or the year every TMY row\n"
     "                 is re-stamped to (same local month, day and hour), so the sun follows one calendar year\n"
     "  --year-from-tmy  keep the TMY rows' own years (a TMY takes each month from a different year) instead\n"
@@ -118,11 +119,6 @@ std::vector<lidarfx::irradiance_record> restamp_year(std::vector<lidarfx::irradi
     return records;
 }
 
-bool is_geotiff(const std::string& path)
-{
-    return lidarfx::cli::has_extension(path, ".tif") || lidarfx::cli::has_extension(path, ".tiff");
-}
-
 std::string fixed(double v, int digits)
 {
     std::ostringstream o;
@@ -130,51 +126,9 @@ std::string fixed(double v, int digits)
     return o.str();
 }
 
-// A GeoTIFF surface model in metres: heights times the vertical unit, the cell in metres; grid and CRS as in the
-// file (for outputs that land where the input lies).
-struct geotiff_dsm {
-    lidarfx::raster<float> values;
-    lidarfx::grid g;    // in the CRS's units
-    double cell_m = 0;  // g.cell in metres
-    lidarfx::io::survey_crs crs;
-};
-
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
 constexpr double solar_bytes_per_cell = 96;
-
-geotiff_dsm read_geotiff_dsm(const std::string& path, std::uint64_t memory_budget_bytes)
-{
-    namespace io = lidarfx::io;
-    if (!io::geotiff_available()) {
-        throw lidarfx::cli::usage_error(path +
-                                        ": reading a GeoTIFF needs GDAL, and this lidarfx was built without "
-                                        "it: convert it to ESRI ASCII (gdal_translate -of AAIGrid DSM.tif DSM.asc, "
-                                        "heights and cells in metres) or install libgdal-dev and rebuild");
-    }
-    lidarfx::cli::refuse_grid_over_budget(path, io::read_geotiff_grid(path), solar_bytes_per_cell, memory_budget_bytes);
-    io::geotiff_raster t = io::read_geotiff(path);
-    lidarfx::cli::report_non_finite_heights(path, t.non_finite_cells);
-    geotiff_dsm d;
-    d.crs = io::crs_of_wkt(t.crs_wkt);
-    for (const auto& w : d.crs.warnings) std::cerr << "lidarfx: warning: " << path << ": " << w << '\n';
-    if (d.crs.geographic) {
-        throw lidarfx::cli::usage_error(path + ": x and y are longitude and latitude in degrees (" + d.crs.describe() +
-                                        "), but cells, heights and areas are measured in metres. Reproject it to a "
-                                        "projected CRS first, e.g. gdalwarp -t_srs EPSG:<the UTM zone's code> "
-                                        "IN.tif OUT.tif");
-    }
-    if (!io::crs_understood(d.crs.wkt)) d.crs.wkt.clear();
-    if (d.crs.vertical_unit_m != 1.0) {
-        for (float& v : t.values) v = static_cast<float>(v * d.crs.vertical_unit_m);
-    }
-    d.values = std::move(t.values);
-    d.g = t.g;
-    d.cell_m = t.g.cell * d.crs.horizontal_unit_m;
-    std::cout << "DSM: " << path << ", " << d.g.rows << " x " << d.g.cols << " cells of " << fixed(d.cell_m, 3)
-              << " m, " << d.crs.describe() << "\n";
-    return d;
-}
 
 int run_solar(const std::vector<std::string>& args)
 {
@@ -224,12 +178,13 @@ int run_solar(const std::vector<std::string>& args)
         }
     }
     const auto& inputs = a.positional();
-    const bool single_grid =
-        inputs.size() == 1 && (lidarfx::cli::has_extension(inputs[0], ".asc") || is_geotiff(inputs[0]));
-    // Refusals that need no input read: nothing can give the place.
-    if (!a.has("tmy") && single_grid && lidarfx::cli::has_extension(inputs[0], ".asc") &&
-        lidarfx::io::read_prj_beside(inputs[0]).empty()) {
-        cli::require_place(lat, lon, inputs[0] + " (ESRI ASCII) has no coordinate system (no .prj beside it)");
+    const bool single_grid = inputs.size() == 1 && !cli::is_point_cloud_path(inputs[0]);
+    // A raster's CRS and units first (from its header or .prj); refused when nothing can give the place.
+    lidarfx::io::survey_crs grid_crs;
+    if (single_grid) {
+        grid_crs = cli::raster_crs(inputs[0], a);
+        if (!a.has("tmy") && grid_crs.source.empty())
+            cli::require_place(lat, lon, inputs[0] + " states no coordinate system (no .prj beside an .asc)");
     }
     if (!a.has("tmy") && !lidarfx::io::proj_available())
         cli::require_place(lat, lon, "this lidarfx was built without PROJ");
@@ -242,29 +197,17 @@ int run_solar(const std::vector<std::string>& args)
     std::string crs_wkt, place_crs;
     int epsg = 0;
     const std::uint64_t memory_budget = cli::memory_option(a);
-    if (single_grid && lidarfx::cli::has_extension(inputs[0], ".asc")) {
+    if (single_grid) {
         // The header against --memory before any cell is allocated, as for a survey's grid.
-        cli::refuse_grid_over_budget(inputs[0], lidarfx::io::read_ascii_grid_header(inputs[0]).g, solar_bytes_per_cell,
-                                     memory_budget);
-        std::size_t non_finite = 0;
-        const lidarfx::io::survey_crs crs = cli::ascii_grid_crs(inputs[0], a);  // the .prj beside it, else metres
-        dsm = lidarfx::io::read_ascii_grid(inputs[0], g, &non_finite);
-        lidarfx::cli::report_non_finite_heights(inputs[0], non_finite);
-        cli::heights_to_metres(dsm, crs);
-        cell_m = g.cell * crs.horizontal_unit_m;
-        if (lidarfx::io::crs_understood(crs.wkt)) crs_wkt = crs.wkt;
-        epsg = crs.epsg;
-        place_crs = crs.for_outputs();
+        cli::elevation_raster e = cli::read_elevation_raster(inputs[0], grid_crs, solar_bytes_per_cell, memory_budget);
+        dsm = std::move(e.values);
+        g = e.file_grid;  // outputs land where the input lies, in its units
+        cell_m = e.g.cell;
+        crs_wkt = grid_crs.wkt;
+        epsg = grid_crs.epsg;
+        place_crs = grid_crs.for_outputs();
         std::cout << "DSM: " << inputs[0] << ", " << g.rows << " x " << g.cols << " cells of " << fixed(cell_m, 3)
-                  << " m, " << crs.describe() << "\n";
-    } else if (single_grid) {
-        auto t = read_geotiff_dsm(inputs[0], memory_budget);
-        dsm = std::move(t.values);
-        g = t.g;
-        cell_m = t.cell_m;
-        crs_wkt = t.crs.wkt;
-        epsg = t.crs.epsg;
-        place_crs = t.crs.for_outputs();
+                  << " m, " << grid_crs.describe() << "\n";
     } else {
         auto survey_options = cli::survey_options_from(a, solar_bytes_per_cell);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
@@ -311,7 +254,7 @@ int run_solar(const std::vector<std::string>& args)
     if (a.has("facades")) {
         for (const std::string& n : cli::facade_file_names(formats)) names.push_back(n);
     }
-    for (const auto& n : names) out.check_name(n);
+    for (const auto& n : names) out.declare(n);
 
     const lidarfx::irradiance_maps_options maps_options{
         .sky = {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez : lidarfx::diffuse_model::isotropic},

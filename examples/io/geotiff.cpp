@@ -138,6 +138,16 @@ grid read_geotiff_grid(const std::string& path)
     return grid_of(ds.get(), path);
 }
 
+std::string read_geotiff_crs(const std::string& path)
+{
+    register_gdal_drivers();
+    const quiet_gdal quiet;
+    dataset ds(GDALOpen(path.c_str(), GA_ReadOnly));
+    if (!ds) throw std::runtime_error(path + ": cannot open as a raster" + gdal_message());
+    const char* wkt = GDALGetProjectionRef(ds.get());
+    return wkt != nullptr ? wkt : "";
+}
+
 geotiff_raster read_geotiff(const std::string& path)
 {
     register_gdal_drivers();
@@ -214,6 +224,11 @@ geotiff_raster read_geotiff(const std::string& path)
 }
 
 grid read_geotiff_grid(const std::string& path)
+{
+    no_gdal(path);
+}
+
+std::string read_geotiff_crs(const std::string& path)
 {
     no_gdal(path);
 }

@@ -41,6 +41,10 @@ struct geotiff_raster {
 /// a caller can check it against a memory budget first. @throws as read_geotiff.
 grid read_geotiff_grid(const std::string& path);
 
+/// The CRS of a raster file as WKT (GDAL's projection), "" when it has none, without reading its values.
+/// @throws as read_geotiff.
+std::string read_geotiff_crs(const std::string& path);
+
 /// Reads band 1 of a raster file through GDAL (memory: the grid). Non-finite values are no data (NaN), counted. @throws
 /// std::runtime_error naming the file when it cannot be read, its geotransform is rotated or its cells are not square,
 /// or GDAL is not available.

@@ -4,7 +4,8 @@
 # another field; a file without building_id takes its FIDs (with a note); footprints in another CRS (WGS 84, the
 # neighbouring UTM zone) are reprojected onto a survey with a CRS and cover the same cells; GeoPackage outputs
 # carry the survey's EPSG code; footprints with a CRS on a survey without one are refused (exit code 2).
-# Needs: LIDARFX, OGR2OGR, OGRINFO, DATA (tests/data), WORK_DIR.
+# DSM and DTM as GeoTIFF give the same patches as ESRI ASCII.
+# Needs: LIDARFX, OGR2OGR, OGRINFO, DATA (tests/data), WORK_DIR; GDAL_TRANSLATE (optional).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
@@ -74,6 +75,24 @@ foreach(format gpkg shp fgb)
     expect_same(out_geojson out_${format} footprints.csv)
 endforeach()
 message(STATUS "GeoJSON, GeoPackage, Shapefile and FlatGeobuf footprints: the same roof_patches.csv (${n} lines)")
+
+# The DSM and DTM as GeoTIFFs (any raster GDAL reads will do) give the same patches as the ESRI ASCII grids.
+if(GDAL_TRANSLATE)
+    foreach(model dsm dtm)
+        execute_process(COMMAND "${GDAL_TRANSLATE}" -q -of GTiff "${WORK_DIR}/${model}.asc" "${WORK_DIR}/${model}.tif"
+                        RESULT_VARIABLE rc ERROR_VARIABLE err)
+        if(NOT rc EQUAL 0)
+            message(FATAL_ERROR "gdal_translate ${model}.asc failed: ${err}")
+        endif()
+    endforeach()
+    set(inputs_asc ${inputs})
+    set(inputs "${WORK_DIR}/dsm.tif" "${WORK_DIR}/dtm.tif" ${units})
+    roofs(out_tif "${WORK_DIR}/fp.geojson")
+    expect_same(out_geojson out_tif roof_patches.csv)
+    expect_same(out_geojson out_tif footprints.csv)
+    set(inputs ${inputs_asc})
+    message(STATUS "GeoTIFF DSM and DTM: the same roof_patches.csv as from ESRI ASCII")
+endif()
 
 # The GeoPackage output of a survey without a CRS: GeoPackage's undefined cartesian SRS; its patches as in the CSV.
 execute_process(COMMAND "${OGRINFO}" -so "${WORK_DIR}/out_gpkg/roof_patches.gpkg" roof_patches OUTPUT_VARIABLE info)
@@ -154,6 +173,18 @@ execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dt
 if(NOT rc EQUAL 2 OR NOT err MATCHES "the footprints are in EPSG:4326 but the survey states no CRS" OR
    EXISTS "${WORK_DIR}/refused")
     message(FATAL_ERROR "footprints with a CRS on a survey without one: exit ${rc}, ${err}")
+endif()
+# ... and refused before any cell is read: a DTM whose cells are cut off is never reached.
+file(READ "${WORK_DIR}/dtm.asc" dtm_text)
+string(FIND "${dtm_text}" "NODATA_value" header_end)
+math(EXPR cut "${header_end} + 40")
+string(SUBSTRING "${dtm_text}" 0 ${cut} dtm_cut)
+file(WRITE "${WORK_DIR}/dtm_cut.asc" "${dtm_cut}")
+execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm_cut.asc" ${units} "${WORK_DIR}/wgs84.gpkg"
+                        --out "${WORK_DIR}/refused" RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "the footprints are in EPSG:4326 but the survey states no CRS" OR
+   EXISTS "${WORK_DIR}/refused")
+    message(FATAL_ERROR "the footprints' CRS should be refused before the DTM's cells are read: exit ${rc}, ${err}")
 endif()
 execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" ${units} "${WORK_DIR}/fp.gpkg"
                         --id-field parcel --out "${WORK_DIR}/refused" RESULT_VARIABLE rc ERROR_VARIABLE err)

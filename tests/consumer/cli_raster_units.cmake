@@ -2,7 +2,8 @@
 # A survey in international feet (tests/data/scene_oregon_ft.las, EPSG:2994, x, y and z in feet): `lidarfx
 # rasterize` writes max_z in the CRS's units (3.28 ft cells, heights in feet, the CRS in max_z.prj and in
 # max_z.tif), and `lidarfx solar` on that max_z.asc and on max_z.tif gives the year's mean irradiation of `lidarfx
-# solar` on the LAS file within 0.5 %. HAVE_GDAL says how lidarfx was built.
+# solar` on the LAS file within 0.5 %, as does the same DSM in another format GDAL reads (Erdas Imagine .img,
+# made here with GDAL_TRANSLATE). HAVE_GDAL says how lidarfx was built.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 set(las "${DATA}/scene_oregon_ft.las")
@@ -52,6 +53,14 @@ year_mean(solar_las from_las)
 set(dsms "${WORK_DIR}/rasterize/max_z.asc")
 if(HAVE_GDAL)
     list(APPEND dsms "${WORK_DIR}/rasterize/max_z.tif")
+    if(GDAL_TRANSLATE)
+        execute_process(COMMAND "${GDAL_TRANSLATE}" -q -of HFA "${WORK_DIR}/rasterize/max_z.tif"
+                                "${WORK_DIR}/max_z.img" RESULT_VARIABLE rc ERROR_VARIABLE err)
+        if(NOT rc EQUAL 0)
+            message(FATAL_ERROR "gdal_translate -of HFA failed: ${err}")
+        endif()
+        list(APPEND dsms "${WORK_DIR}/max_z.img")
+    endif()
 endif()
 set(i 0)
 foreach(dsm IN LISTS dsms)
@@ -78,10 +87,16 @@ file(COPY "${WORK_DIR}/rasterize/max_z.asc" DESTINATION "${WORK_DIR}/bare")
 set(bare "${WORK_DIR}/bare/max_z.asc")
 set(out "${WORK_DIR}/refused")
 set(cases
-    "2|the units of this ESRI ASCII grid are unknown|--xy-unit m|solar^${bare}^--lat^44.06^--lon^-123.07^--out^${out}"
-    "2|the units of this ESRI ASCII grid are unknown|--z-unit|solar^${bare}^--lat^44.06^--lon^-123.07^--xy-unit^ft^--out^${out}"
+    "2|the units of this raster are unknown|--xy-unit m|solar^${bare}^--lat^44.06^--lon^-123.07^--out^${out}"
+    "2|the units of this raster are unknown|--z-unit|solar^${bare}^--lat^44.06^--lon^-123.07^--xy-unit^ft^--out^${out}"
     "2|--xy-unit must be m, ft|(got yard)|solar^${bare}^--lat^44.06^--lon^-123.07^--xy-unit^yard^--z-unit^ft^--out^${out}"
     "2|disagree with its CRS|max_z.prj|solar^${WORK_DIR}/rasterize/max_z.asc^--lat^44.06^--lon^-123.07^--xy-unit^m^--z-unit^m^--out^${out}")
+# A GeoTIFF without CRS keys has unknown units too (made from the bare grid, which has no .prj to carry over).
+if(HAVE_GDAL AND GDAL_TRANSLATE)
+    execute_process(COMMAND "${GDAL_TRANSLATE}" -q -of GTiff "${bare}" "${WORK_DIR}/bare/max_z.tif" RESULT_VARIABLE rc)
+    list(APPEND cases
+        "2|the units of this raster are unknown|the file states no CRS|solar^${WORK_DIR}/bare/max_z.tif^--lat^44.06^--lon^-123.07^--out^${out}")
+endif()
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
 run(solar_bare solar "${bare}" ${place} --xy-unit ft --z-unit ft --formats asc)
 year_mean(solar_bare from_bare)
@@ -90,3 +105,10 @@ if(off_ppm GREATER 5000 OR off_ppm LESS -5000)
     message(FATAL_ERROR "solar on ${bare} with --xy-unit ft --z-unit ft: mean ${from_bare} Wh/m2, on the LAS ${from_las}")
 endif()
 message(STATUS "solar on ${bare} with --xy-unit ft --z-unit ft: mean ${from_bare} Wh/m2 (no CRS: no meridian convergence)")
+if(HAVE_GDAL AND GDAL_TRANSLATE)
+    run(solar_bare_tif solar "${WORK_DIR}/bare/max_z.tif" ${place} --xy-unit ft --z-unit ft --formats asc)
+    year_mean(solar_bare_tif from_bare_tif)
+    if(NOT from_bare_tif EQUAL from_bare)
+        message(FATAL_ERROR "solar on the bare GeoTIFF: mean ${from_bare_tif} Wh/m2, on the bare ESRI ASCII ${from_bare}")
+    endif()
+endif()
