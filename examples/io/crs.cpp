@@ -335,6 +335,27 @@ srs_ptr srs_from_epsg(int code)
     return srs;
 }
 
+/// The CRS as WKT1, or WKT2 when it has no WKT1 form; "" when it cannot be exported.
+std::string wkt_of(OGRSpatialReferenceH srs)
+{
+    char* wkt = nullptr;
+    std::string out;
+    if (OSRExportToWkt(srs, &wkt) == OGRERR_NONE && wkt != nullptr) out = wkt;
+    CPLFree(wkt);
+    if (out.empty()) {
+        wkt = nullptr;
+        const char* options[] = {"FORMAT=WKT2_2019", nullptr};
+        if (OSRExportToWktEx(srs, &wkt, options) == OGRERR_NONE && wkt != nullptr) out = wkt;
+        CPLFree(wkt);
+    }
+    return out;
+}
+
+bool same_unit(double a_m, double b_m)
+{
+    return std::abs(a_m - b_m) <= 1e-12 * b_m;
+}
+
 /// What an OGR spatial reference says: horizontal part as WKT, its EPSG code (or the only EPSG CRS that
 /// matches it exactly), geographic or not, units of the horizontal and vertical parts.
 found from_srs(OGRSpatialReferenceH srs)
@@ -346,6 +367,7 @@ found from_srs(OGRSpatialReferenceH srs)
     }
     srs_ptr horizontal(OSRClone(srs));
     if (OSRIsCompound(horizontal.get())) OSRStripVertical(horizontal.get());
+    bool horizontal_replaced = false;  // the horizontal CRS is rebuilt from its code in another unit
     OGRSpatialReferenceH hz = horizontal.get();
     if (OSRIsGeographic(hz)) {
         f.geographic = true;
@@ -371,6 +393,7 @@ found from_srs(OGRSpatialReferenceH srs)
             const std::string unit = name != nullptr ? name : unit_name(*f.horizontal_m);
             horizontal.reset(OSRClone(by_code.get()));
             hz = horizontal.get();
+            horizontal_replaced = true;
             OSRSetLinearUnitsAndUpdateParameters(hz, unit.c_str(), *f.horizontal_m);
             f.epsg = 0;
         }
@@ -390,15 +413,11 @@ found from_srs(OGRSpatialReferenceH srs)
         CPLFree(confidence);
         if (exact_count == 1) f.epsg = exact;
     }
-    char* wkt = nullptr;
-    if (OSRExportToWkt(hz, &wkt) == OGRERR_NONE && wkt != nullptr) f.wkt = wkt;
-    CPLFree(wkt);
-    if (f.wkt.empty()) {  // some CRSs have no WKT1 form
-        wkt = nullptr;
-        const char* options[] = {"FORMAT=WKT2_2019", nullptr};
-        if (OSRExportToWktEx(hz, &wkt, options) == OGRERR_NONE && wkt != nullptr) f.wkt = wkt;
-        CPLFree(wkt);
-    }
+    // The vertical part travels with the horizontal one when heights can be written in its unit: when it is the
+    // horizontal unit (outputs hold heights in that unit, and an ESRI .prj can carry the horizontal part only).
+    const bool keep_vertical = OSRIsCompound(srs) && !horizontal_replaced && f.vertical_m && f.horizontal_m &&
+                               same_unit(*f.vertical_m, *f.horizontal_m);
+    f.wkt = wkt_of(keep_vertical ? srs : hz);
     return f;
 }
 
@@ -531,6 +550,20 @@ found from_keys(const las_header& h, bool use_gdal, survey_crs& c)
         if (!f.vertical_m && vertical != 0) {
             if (const auto v = srs_from_epsg(vertical); v && OSRIsVertical(v.get())) {
                 f.vertical_m = OSRGetTargetLinearUnits(v.get(), "VERT_CS", nullptr);
+                // VerticalCSTypeGeoKey names an EPSG vertical CRS: it travels with the horizontal one (as from a
+                // compound WKT) when its unit is the horizontal unit.
+                if (f.crs && !f.geographic && f.epsg != 0 && f.horizontal_m && f.vertical_m > 0 &&
+                    same_unit(*f.vertical_m, *f.horizontal_m)) {
+                    srs_ptr compound(OSRNewSpatialReference(nullptr));
+                    srs_ptr horizontal = srs_from_epsg(f.epsg);
+                    const char* hname = horizontal ? OSRGetName(horizontal.get()) : nullptr;
+                    const char* vname = OSRGetName(v.get());
+                    const std::string name = std::string(hname ? hname : "") + " + " + (vname ? vname : "");
+                    if (horizontal &&
+                        OSRSetCompoundCS(compound.get(), name.c_str(), horizontal.get(), v.get()) == OGRERR_NONE) {
+                        if (std::string w = wkt_of(compound.get()); !w.empty()) f.wkt = std::move(w);
+                    }
+                }
             }
         }
         return f;
@@ -701,12 +734,10 @@ std::string esri_prj_text(const std::string& crs)
         CPLFree(wkt);
         return out;
     };
-    std::string out = export_esri();
-    if (out.empty() && OSRIsCompound(srs.get())) {
-        OSRStripVertical(srs.get());
-        out = export_esri();
-    }
-    return out;
+    // GDAL's AAIGrid driver cannot read a .prj with a VERTCS after the PROJCS (it then reads no CRS at all), so the
+    // .prj holds the horizontal part; heights are in its unit (see survey_crs::wkt).
+    if (OSRIsCompound(srs.get())) OSRStripVertical(srs.get());
+    return export_esri();
 #else
     return crs.find('[') != std::string::npos ? crs : std::string();
 #endif

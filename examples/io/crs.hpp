@@ -17,8 +17,10 @@ inline constexpr double us_survey_foot_m = 1200.0 / 3937.0;
 /// What a LAS file says about its coordinate reference system (CRS), read from its GeoKeys (GeoKeyDirectory
 /// 34735 with GeoDoubleParams 34736 and GeoAsciiParams 34737) or its OGC WKT record (2112, VLR or EVLR).
 struct survey_crs {
-    std::string wkt;                        ///< the CRS as WKT, for outputs; empty when unknown (always without GDAL
-                                            ///< unless the file holds WKT)
+    std::string wkt;                        ///< the CRS as WKT, for outputs: the horizontal CRS, compound with the
+                                            ///< vertical CRS the file names when z has the same unit as x and y
+                                            ///< (with GDAL); empty when unknown (always without GDAL unless the
+                                            ///< file holds WKT)
     int epsg = 0;                           ///< EPSG code of the horizontal CRS, 0 when none or user-defined
     bool geographic = false;                ///< x and y are longitude and latitude in degrees
     double horizontal_unit_m = 1;           ///< metres per unit of x and y: 1, 0.3048, 1200/3937 (1 when geographic)

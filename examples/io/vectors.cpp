@@ -275,6 +275,9 @@ bool same_crs(const std::string& a, const std::string& b)
     quiet_gdal quiet;
     OGRSpatialReference sa, sb;
     if (!parse_crs(a, sa) || !parse_crs(b, sb)) return false;
+    for (OGRSpatialReference* srs : {&sa, &sb}) {
+        if (srs->IsCompound()) srs->StripVertical();  // footprints are 2D: the horizontal CRS places them
+    }
     if (sa.IsSame(&sb)) return true;
     const int ea = epsg_of_crs(a);
     return ea > 0 && ea == epsg_of_crs(b);

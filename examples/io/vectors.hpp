@@ -38,8 +38,9 @@ footprint_collection read_footprints_ogr(const std::string& path, const footprin
 /// the code at the end of "EPSG:n" or a URN.
 int epsg_of_crs(const std::string& crs);
 
-/// True when `a` and `b` (WKT, "EPSG:n" or a URN) describe the same CRS (OGR's IsSame; data axis order
-/// ignored) or identify as the same EPSG code. Without GDAL: equal texts or the same code at their ends.
+/// True when `a` and `b` (WKT, "EPSG:n" or a URN) describe the same horizontal CRS (OGR's IsSame of their
+/// horizontal parts; data axis order ignored) or identify as the same EPSG code. Without GDAL: equal texts or the same
+/// code at their ends.
 bool same_crs(const std::string& a, const std::string& b);
 
 /// Transforms every vertex of `c` from `from` to `to` (WKT, "EPSG:n" or a URN) through OGR/PROJ, x = easting

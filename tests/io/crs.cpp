@@ -559,7 +559,59 @@ TEST_CASE("io/esri_prj_text: the CRS of a .prj beside an ESRI ASCII grid, read b
         CHECK(!back.geographic);
     }
     // A compound CRS keeps its horizontal part (ESRI WKT has no compound form GDAL reads from a .prj).
-    const survey_crs compound = crs_of_wkt(esri_prj_text("EPSG:32613+5703"));
+    const std::string compound_prj = esri_prj_text("EPSG:32613+5703");
+    CHECK(!contains(compound_prj, "VERTCS"));
+    const survey_crs compound = crs_of_wkt(compound_prj);
     CHECK(compound.horizontal_unit_m == doctest::Approx(1.0));
     CHECK(!compound.source.empty());
+}
+
+TEST_CASE("io/crs_of: a vertical CRS in the unit of x and y travels to the outputs (GeoTIFF, GeoPackage), not the .prj")
+{
+    if (!crs_gdal_available()) return;
+    // UTM 14N + NAVD88 height in metres, as a compound WKT record and as GeoKeys (VerticalCSTypeGeoKey 5703).
+    std::string metres_wkt = compound_wkt;
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"NAVD88 height (ftUS)", "NAVD88 height"},
+                                   {R"(UNIT["US survey foot",0.304800609601219])", R"(UNIT["metre",1])"}}) {
+        const auto at = metres_wkt.find(from);
+        REQUIRE(at != std::string::npos);
+        metres_wkt.replace(at, from.size(), to);
+    }
+    const auto from_wkt = crs_written({.wkt = metres_wkt});
+    const auto from_keys = crs_written({.geo_keys = {key(1024, 1), key(3072, 32614), key(4096, 5703)}});
+    for (const survey_crs* c : {&from_wkt, &from_keys}) {
+        CHECK(c->epsg == 32614);
+        CHECK(c->vertical_unit_m == 1.0);
+        CHECK(contains(c->wkt, "VERT_CS"));
+        CHECK(contains(c->wkt, "32614"));
+        CHECK(!contains(esri_prj_text(c->wkt), "VERTCS"));  // the .prj: horizontal only, which GDAL reads
+    }
+    // Heights in another unit than x and y (2994 in feet + NAVD88 in metres; the compound of the WKT tests
+    // above): only the horizontal CRS is carried, as the heights are written in its unit.
+    const auto mixed = crs_written({.geo_keys = {key(1024, 1), key(3072, 2994), key(4096, 5703)}});
+    CHECK(mixed.horizontal_unit_m == international_foot_m);
+    CHECK(mixed.vertical_unit_m == 1.0);
+    CHECK(!contains(mixed.wkt, "VERT"));
+    CHECK(!contains(crs_written({.wkt = compound_wkt}).wkt, "VERT"));
+    // A GeoTIFF written with the compound CRS holds it: GDAL reads the vertical part back.
+    if (!geotiff_available()) return;
+    io_test::temp_dir tmp;
+    const std::string tif = tmp.file("compound.tif");
+    raster<float> values(2, 3, 1.5f);
+    write_geotiff(tif, values, grid{.x0 = 500000, .y0 = 4000000, .cell = 1, .rows = 2, .cols = 3}, from_keys.wkt);
+    const std::string back = read_geotiff(tif).crs_wkt;
+    CHECK(contains(back, "NAVD88"));
+    CHECK(crs_of_wkt(back).epsg == 32614);
+    // A survey with those GeoKeys: max_z.tif names the vertical CRS, max_z.prj the horizontal one, which GDAL
+    // reads beside max_z.asc.
+    const auto las = tmp.file("navd88.las");
+    write_las(las, square(20, 500000.0, 4000000.0), {.geo_keys = {key(1024, 1), key(3072, 32614), key(4096, 5703)}});
+    const auto s = cli::read_survey({las}, quiet(2.0));
+    io::output_folder folder(tmp.file("out"));
+    cli::write_point_rasters(folder, s);
+    folder.commit("test");
+    CHECK(contains(read_geotiff(tmp.file("out/max_z.tif")).crs_wkt, "NAVD88"));
+    const std::string asc_crs = read_geotiff(tmp.file("out/max_z.asc")).crs_wkt;  // GDAL's AAIGrid driver
+    CHECK(crs_of_wkt(asc_crs).epsg == 32614);
+    CHECK(!contains(asc_crs, "NAVD88"));
 }
