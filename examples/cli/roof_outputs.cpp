@@ -50,21 +50,13 @@ io::rgb_image patch_picture(const roof_suitability_result& r, const roof_output_
             }
         }
     const double unit_cell = frame.grid_crs.cell > 0 ? frame.grid_crs.cell : frame.cell_m / frame.unit_m;
-    const auto fig = io::make_figure(img, io::non_finite_cells(frame.dsm),
-                                     {.title = "roof_patches.png: roof patches by azimuth (clockwise from grid north)",
-                                      .cell_size = unit_cell,
-                                      .unit = io::short_unit_name(frame.unit_m, "units"),
-                                      .key = {{io::azimuth_color(0), "N 0°"},
-                                              {io::azimuth_color(45), "NE"},
-                                              {io::azimuth_color(90), "E 90°"},
-                                              {io::azimuth_color(135), "SE"},
-                                              {io::azimuth_color(180), "S 180°"},
-                                              {io::azimuth_color(225), "SW"},
-                                              {io::azimuth_color(270), "W 270°"},
-                                              {io::azimuth_color(315), "NW"},
-                                              {{255, 255, 255}, "flat"},
-                                              {{0, 0, 0}, "suitable patch edge"},
-                                              {{64, 64, 64}, "other (hillshade)"}}});
+    const auto fig = io::make_figure(
+        img, io::non_finite_cells(frame.dsm),
+        {.title = "roof_patches.png: roof patches by azimuth (clockwise from grid north)",
+         .cell_size = unit_cell,
+         .unit = io::short_unit_name(frame.unit_m, "units"),
+         .key = io::compass_key(
+             {{{255, 255, 255}, "flat"}, {{0, 0, 0}, "suitable patch edge"}, {{64, 64, 64}, "other (hillshade)"}})});
     return fig.image;
 }
 

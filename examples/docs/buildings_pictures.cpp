@@ -121,16 +121,7 @@ int main(int argc, char** argv)
     namespace io = lidarfx::io;
     write(out / "buildings-roof-azimuth.png", img,
           {.title = "Roof surfaces by down-slope azimuth (clockwise from grid north)",
-           .key = {{io::azimuth_color(0), "N 0°"},
-                   {io::azimuth_color(45), "NE"},
-                   {io::azimuth_color(90), "E 90°"},
-                   {io::azimuth_color(135), "SE"},
-                   {io::azimuth_color(180), "S 180°"},
-                   {io::azimuth_color(225), "SW"},
-                   {io::azimuth_color(270), "W 270°"},
-                   {io::azimuth_color(315), "NW"},
-                   {{255, 255, 255}, "flat (tilt < 1°)"},
-                   {{0, 0, 0}, "building outline"}}},
+           .key = io::compass_key({{{255, 255, 255}, "flat (tilt < 1°)"}, {{0, 0, 0}, "building outline"}})},
           "roof surfaces by azimuth");
 
     // (c) Annual energy of a clear-sky year: each roof cell takes the mean of the roof patches (2 x 2 quads) it

@@ -254,4 +254,13 @@ figure make_figure(const rgb_image& map, raster_view<const std::uint8_t> no_data
     return out;
 }
 
+std::vector<figure_key> compass_key(const std::vector<figure_key>& more)
+{
+    std::vector<figure_key> key;
+    const char* names[] = {"N 0°", "NE", "E 90°", "SE", "S 180°", "SW", "W 270°", "NW"};
+    for (int i = 0; i < 8; ++i) key.push_back({azimuth_color(45.0 * i), names[i]});
+    key.insert(key.end(), more.begin(), more.end());
+    return key;
+}
+
 }  // namespace lidarfx::io

@@ -20,6 +20,10 @@ struct figure_key {
     std::string name;
 };
 
+/// The legend of an azimuth map coloured by azimuth_color: the eight compass directions N, NE, ... NW (0°, 45°,
+/// ... 315° clockwise from grid north), then the swatches `more`.
+std::vector<figure_key> compass_key(const std::vector<figure_key>& more = {});
+
 /// A colour bar for a continuous map coloured by ramp_color((v - min) / (max - min)).
 struct figure_bar {
     double min = 0, max = 1;  ///< values at the left and right ends (finite, min <= max)

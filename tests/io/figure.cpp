@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io_test_survey.hpp"
 #include "io_test_util.hpp"
 
 using namespace lidarfx;
@@ -19,11 +20,7 @@ namespace {
 
 using rgb = std::array<std::uint8_t, 3>;
 
-rgb pixel(const rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)
-{
-    const auto* p = img.rgb.data() + (r * img.width + c) * 3;
-    return {p[0], p[1], p[2]};
-}
+using io_test::pixel;
 
 /// A rows x cols map whose cell (r, c) has colour (r, c, 7) (distinct per cell on small maps).
 rgb_image cell_map(std::ptrdiff_t rows, std::ptrdiff_t cols)
@@ -173,20 +170,7 @@ TEST_CASE("io/make_figure: the title and the colour bar's range and unit are dra
 
 TEST_CASE("io/make_figure: the program's point-raster pictures are figures (long side >= 800 px on a 40 x 30 grid)")
 {
-    cli::survey s;
-    auto& pr = s.rasters;
-    pr.g = grid{1000.0, 2000.0, 2.0, 30, 40};
-    pr.min_z = raster<float>(30, 40, NAN);
-    pr.max_z = raster<float>(30, 40, NAN);
-    pr.mean_intensity = raster<float>(30, 40, 0.0f);
-    pr.count = raster<std::uint32_t>(30, 40, 0);
-    pr.dropout = raster<std::uint8_t>(30, 40, 1);
-    pr.multiple_returns = raster<std::uint8_t>(30, 40, 0);
-    for (std::ptrdiff_t r = 0; r < 30; ++r)
-        for (std::ptrdiff_t c = 0; c < 20; ++c) {
-            pr.min_z(r, c) = pr.max_z(r, c) = static_cast<float>(r + c);
-            pr.dropout(r, c) = 0;
-        }
+    const cli::survey s = io_test::small_survey();
     io_test::temp_dir dir;
     const auto out = std::filesystem::path(dir.file("png"));
     {
@@ -208,4 +192,14 @@ TEST_CASE("io/make_figure: the program's point-raster pictures are figures (long
         CHECK(width >= 40 * 20);                                       // 40 columns enlarged 20 times, plus the frame
         CHECK(height >= 30 * 20);                                      // 30 rows, plus title, scale bar and legend
     }
+}
+
+TEST_CASE("io/compass_key: the eight compass swatches in azimuth colours, clockwise from north, then the others")
+{
+    const auto key = compass_key({{{255, 255, 255}, "flat"}});
+    REQUIRE(key.size() == 9);
+    for (int i = 0; i < 8; ++i) CHECK(key[static_cast<std::size_t>(i)].color == azimuth_color(45.0 * i));
+    CHECK(key[0].name == "N 0°");
+    CHECK(key[4].name == "S 180°");
+    CHECK(key[8].name == "flat");
 }

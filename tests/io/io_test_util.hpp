@@ -2,6 +2,7 @@
 // Helpers shared by the I/O tests: scratch folders, whole-file bytes, and catching error messages.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -19,8 +20,16 @@
 #include <doctest/doctest.h>
 
 #include "io/las.hpp"
+#include "io/png.hpp"
 
 namespace io_test {
+
+/// The colour of pixel (r, c) of a picture.
+inline std::array<std::uint8_t, 3> pixel(const lidarfx::io::rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)
+{
+    const auto* p = img.rgb.data() + (r * img.width + c) * 3;
+    return {p[0], p[1], p[2]};
+}
 
 /// A fresh folder under the system temp dir, removed with everything in it when the object dies.
 class temp_dir {

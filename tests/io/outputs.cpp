@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io_test_survey.hpp"
 #include "io_test_util.hpp"
 
 using namespace lidarfx;
@@ -23,29 +24,6 @@ namespace {
 cli::output_formats formats_of(const std::string& list)
 {
     return cli::output_formats_from(cli::arguments({"in.las", "--formats", list}, {"formats"}, {}));
-}
-
-/// A small survey without files: a 40 x 30 grid with returns on the left half.
-cli::survey small_survey()
-{
-    cli::survey s;
-    auto& pr = s.rasters;
-    pr.g = grid{1000.0, 2000.0, 2.0, 30, 40};
-    pr.min_z = raster<float>(30, 40, NAN);
-    pr.max_z = raster<float>(30, 40, NAN);
-    pr.mean_intensity = raster<float>(30, 40, 0.0f);
-    pr.count = raster<std::uint32_t>(30, 40, 0);
-    pr.dropout = raster<std::uint8_t>(30, 40, 1);
-    pr.multiple_returns = raster<std::uint8_t>(30, 40, 0);
-    for (std::ptrdiff_t r = 0; r < 30; ++r)
-        for (std::ptrdiff_t c = 0; c < 20; ++c) {
-            pr.min_z(r, c) = pr.max_z(r, c) = static_cast<float>(r + c);
-            pr.count(r, c) = 3;
-            pr.dropout(r, c) = 0;
-        }
-    s.points = 1800;
-    s.files = 1;
-    return s;
 }
 
 std::set<std::string> files_in(const std::filesystem::path& dir)
@@ -71,7 +49,7 @@ TEST_CASE("cli/--formats: any subset of asc, tif and png; unknown names and empt
 TEST_CASE("cli/write_point_rasters: exactly the files the formats name, the same on 1 and 4 threads")
 {
     io_test::temp_dir dir;
-    const auto s = small_survey();
+    const auto s = io_test::small_survey();
     for (const int threads : {1, 4}) {
         const auto out = std::filesystem::path(dir.file("asc_" + std::to_string(threads)));
         {

@@ -16,11 +16,7 @@ namespace {
 
 using rgb = std::array<std::uint8_t, 3>;
 
-rgb pixel(const rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)
-{
-    const auto* p = img.rgb.data() + (r * img.width + c) * 3;
-    return {p[0], p[1], p[2]};
-}
+using io_test::pixel;
 
 double luma(const rgb& c)
 {
