@@ -97,10 +97,9 @@ grid raster_file_grid(const std::string& path)
     return is_ascii_grid(path) ? io::read_ascii_grid_header(path).g : io::read_geotiff_grid(path);
 }
 
-elevation_raster read_elevation_raster(const std::string& path, const io::survey_crs& crs, double bytes_per_cell,
-                                       std::uint64_t memory_budget_bytes)
+elevation_raster read_elevation_raster(const std::string& path, const io::survey_crs& crs)
 {
-    refuse_grid_over_budget(path, raster_file_grid(path), bytes_per_cell, memory_budget_bytes);
+    require_reader(path);
     elevation_raster out;
     std::size_t non_finite = 0;
     if (is_ascii_grid(path)) {

@@ -2,7 +2,6 @@
 // Surface and terrain models read from raster files (ESRI ASCII, GeoTIFF or any raster GDAL opens), in metres.
 #pragma once
 
-#include <cstdint>
 #include <string>
 
 #include <lidarfx/core/grid.hpp>
@@ -35,11 +34,10 @@ struct elevation_raster {
 /// The grid of the raster file `path` as its header states it (no values read). @throws as raster_crs.
 grid raster_file_grid(const std::string& path);
 
-/// Reads the raster file `path` with the CRS `crs` (raster_crs): refuses it first when
-/// rows x cols x bytes_per_cell exceeds the memory budget (refuse_grid_over_budget), reports cells without a
-/// finite height on stderr, and converts heights and grid to metres. North-up files with square cells only.
-/// @throws usage_error over the budget; std::runtime_error naming the file when it cannot be read.
-elevation_raster read_elevation_raster(const std::string& path, const io::survey_crs& crs, double bytes_per_cell,
-                                       std::uint64_t memory_budget_bytes);
+/// Reads the raster file `path` with the CRS `crs` (raster_crs): reports cells without a finite height on stderr
+/// and converts heights and grid to metres. North-up files with square cells only. The caller checks the grid
+/// (raster_file_grid) against its memory budget first (refuse_grid_over_budget), for one grid or several.
+/// @throws std::runtime_error naming the file when it cannot be read.
+elevation_raster read_elevation_raster(const std::string& path, const io::survey_crs& crs);
 
 }  // namespace lidarfx::cli

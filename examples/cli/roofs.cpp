@@ -101,13 +101,6 @@ io::survey_crs inputs_crs(const std::vector<std::string>& inputs, const argument
     return io::crs_of(io::las_reader(inputs[0]).header());  // read_survey warns, not this
 }
 
-// The CRS as footprints are compared with it: WKT, else "EPSG:n", "" when the survey states none.
-std::string crs_text(const io::survey_crs& crs)
-{
-    if (!crs.wkt.empty()) return crs.wkt;
-    return crs.epsg ? "EPSG:" + std::to_string(crs.epsg) : "";
-}
-
 roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const io::survey_crs& grid_crs, const arguments& a,
                              int threads)
 {
@@ -120,8 +113,8 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const io::s
         const std::uint64_t budget = memory_option(a);
         refuse_grid_over_budget(inputs[0] + " and " + inputs[1], g1, roofs_bytes_per_cell, budget);
         const io::survey_crs& crs = grid_crs;  // the DSM's, for both
-        elevation_raster dsm = read_elevation_raster(inputs[0], crs, roofs_bytes_per_cell, budget);
-        in.dtm = read_elevation_raster(inputs[1], crs, roofs_bytes_per_cell, budget).values;
+        elevation_raster dsm = read_elevation_raster(inputs[0], crs);
+        in.dtm = read_elevation_raster(inputs[1], crs).values;
         in.dsm = std::move(dsm.values);
         in.g = dsm.g;                 // in metres
         in.out_grid = dsm.file_grid;  // in the CRS's units
@@ -255,7 +248,7 @@ int run_roofs(const std::vector<std::string>& args)
     }
     for (const std::string& note : footprints.notes) std::cerr << "note: " << note << "\n";
     const io::survey_crs survey_crs = inputs_crs(inputs, a);
-    place_footprints(footprints, footprint_file, crs_text(survey_crs));
+    place_footprints(footprints, footprint_file, survey_crs.for_outputs());
     io::output_folder out(a.text("out", ""), {a.positional().begin(), a.positional().end()});
     std::vector<std::string> names = roof_patch_file_names(formats);
     names.push_back("footprints.csv");

@@ -199,7 +199,8 @@ int run_solar(const std::vector<std::string>& args)
     const std::uint64_t memory_budget = cli::memory_option(a);
     if (single_grid) {
         // The header against --memory before any cell is allocated, as for a survey's grid.
-        cli::elevation_raster e = cli::read_elevation_raster(inputs[0], grid_crs, solar_bytes_per_cell, memory_budget);
+        cli::refuse_grid_over_budget(inputs[0], cli::raster_file_grid(inputs[0]), solar_bytes_per_cell, memory_budget);
+        cli::elevation_raster e = cli::read_elevation_raster(inputs[0], grid_crs);
         dsm = std::move(e.values);
         g = e.file_grid;  // outputs land where the input lies, in its units
         cell_m = e.g.cell;
