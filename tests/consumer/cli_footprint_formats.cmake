@@ -167,28 +167,19 @@ if(NOT report MATCHES "\n5,0,outside the grid" OR NOT roofs_err MATCHES "every f
 endif()
 message(STATUS "footprints in EPSG:4326 and EPSG:32618 (Shapefile, GeoJSON) reprojected onto the EPSG:32617 survey: the same 6 cells")
 
-# Footprints with a CRS on a survey without one: refused, exit code 2, nothing written.
-execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" ${units} "${WORK_DIR}/wgs84.gpkg"
-                        --out "${WORK_DIR}/refused" RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "the footprints are in EPSG:4326 but the survey states no CRS" OR
-   EXISTS "${WORK_DIR}/refused")
-    message(FATAL_ERROR "footprints with a CRS on a survey without one: exit ${rc}, ${err}")
-endif()
-# ... and refused before any cell is read: a DTM whose cells are cut off is never reached.
+# Refused, exit code 2, nothing written: footprints with a CRS on a survey without one, before any cell is read
+# (a DTM whose cells are cut off is never reached); an --id-field the file does not have.
 file(READ "${WORK_DIR}/dtm.asc" dtm_text)
 string(FIND "${dtm_text}" "NODATA_value" header_end)
 math(EXPR cut "${header_end} + 40")
 string(SUBSTRING "${dtm_text}" 0 ${cut} dtm_cut)
 file(WRITE "${WORK_DIR}/dtm_cut.asc" "${dtm_cut}")
-execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm_cut.asc" ${units} "${WORK_DIR}/wgs84.gpkg"
-                        --out "${WORK_DIR}/refused" RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "the footprints are in EPSG:4326 but the survey states no CRS" OR
-   EXISTS "${WORK_DIR}/refused")
-    message(FATAL_ERROR "the footprints' CRS should be refused before the DTM's cells are read: exit ${rc}, ${err}")
-endif()
-execute_process(COMMAND "${LIDARFX}" roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" ${units} "${WORK_DIR}/fp.gpkg"
-                        --id-field parcel --out "${WORK_DIR}/refused" RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "no field \"parcel\"" OR EXISTS "${WORK_DIR}/refused")
-    message(FATAL_ERROR "--id-field parcel on a file without it: exit ${rc}, ${err}")
-endif()
+list(JOIN units "^" unit_args)
+set(out "${WORK_DIR}/refused")
+set(no_crs "the footprints are in EPSG:4326 but the survey states no CRS")
+set(cases
+    "2|${no_crs}|give the survey its CRS|roofs^${WORK_DIR}/dsm.asc^${WORK_DIR}/dtm.asc^${unit_args}^${WORK_DIR}/wgs84.gpkg^--out^${out}"
+    "2|${no_crs}|give the survey its CRS|roofs^${WORK_DIR}/dsm.asc^${WORK_DIR}/dtm_cut.asc^${unit_args}^${WORK_DIR}/wgs84.gpkg^--out^${out}"
+    "2|no field \"parcel\"|fp.gpkg|roofs^${WORK_DIR}/dsm.asc^${WORK_DIR}/dtm.asc^${unit_args}^${WORK_DIR}/fp.gpkg^--id-field^parcel^--out^${out}")
+include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
 message(STATUS "refused: footprints with a CRS on a survey without one; an --id-field the file does not have")
