@@ -70,6 +70,15 @@ std::vector<score> run(const std::vector<prepared>& scenes, const extract_waterb
                          p.truth.kind == synth::water_family_kind::lake ? "lake" : "river", p.seed, w.ran,
                          w.seeds_found, w.seeds_grown, w.bodies.size(), w.diagnostics.dropout_fraction, 100 * s.acc,
                          100 * s.sens, 100 * s.spec, s.has_bridges ? int(s.one_body) : -1);
+        if (std::getenv("WATER_FAMILY_BODIES")) {
+            for (const auto& b : w.bodies)
+                std::fprintf(stderr,
+                             "      body %d: %.0f m2, level %.2f, intensity %.1f, dropouts %.3f, theta %.0f, ks %d, "
+                             "seed rank %d\n",
+                             b.label, b.area_m2, b.water_level_m, b.mean_intensity, b.dropout_fraction, b.theta_deg,
+                             int(b.stopped_by_ks), int(b.seed));
+            for (double level : p.truth.body_level) std::fprintf(stderr, "      true level %.2f\n", level);
+        }
         out.push_back(s);
     }
     return out;
@@ -98,6 +107,7 @@ int main(int argc, char** argv)
 {
     unsigned first = 1001, count = 50;
     bool ablation = false, list_scenes = false;
+    synth::water_family_options family;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--tuning"))
             first = 1, count = 20;
@@ -109,8 +119,24 @@ int main(int argc, char** argv)
             ablation = true;
         else if (!std::strcmp(argv[i], "--scenes"))
             list_scenes = true;
+        else if (!std::strcmp(argv[i], "--variant") && i + 1 < argc) {
+            const std::string v = argv[++i];
+            family.variant = v == "level-land"     ? synth::water_family_variant::level_land
+                             : v == "narrow-river" ? synth::water_family_variant::narrow_river
+                                                   : synth::water_family_variant::classic;
+            if (v != "level-land" && v != "narrow-river" && v != "classic") {
+                std::fprintf(stderr, "water_family: unknown variant %s\n", v.c_str());
+                return 2;
+            }
+        } else if (!std::strcmp(argv[i], "--density") && i + 2 < argc) {
+            family.min_density = std::atof(argv[++i]);
+            family.max_density = std::atof(argv[++i]);
+        } else if (!std::strcmp(argv[i], "--cell") && i + 1 < argc)
+            family.cell_m = std::atof(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]\n");
+            std::fprintf(stderr,
+                         "usage: water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes] "
+                         "[--variant classic|level-land|narrow-river] [--density MIN MAX] [--cell M]\n");
             return 2;
         }
     }
@@ -118,7 +144,9 @@ int main(int argc, char** argv)
     std::vector<prepared> lakes, rivers;
     for (unsigned seed = first; seed < first + count; ++seed) {
         for (const auto kind : {synth::water_family_kind::lake, synth::water_family_kind::river}) {
-            auto s = synth::water_family({.seed = seed, .kind = kind});
+            auto options = family;
+            options.seed = seed, options.kind = kind;
+            auto s = synth::water_family(options);
             auto pr = rasterize(s.points.cloud(), s.g);
             s.points = {};
             (kind == synth::water_family_kind::lake ? lakes : rivers).push_back({seed, std::move(s), std::move(pr)});
@@ -170,6 +198,8 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_FLAT_JOINT")) o.flat.max_joint_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_JOINTMIN"))
                  o.flat.joint_min_cells = static_cast<std::size_t>(std::atoi(v));
+             if (const char* v = std::getenv("WF_FLAT_LANDQ")) o.flat.land_intensity_quantile = std::atof(v);
+             if (const char* v = std::getenv("WF_FLAT_LANDDARK")) o.flat.max_land_intensity_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_RISE")) o.grow.level_rise_m = std::atof(v);
              if (const char* v = std::getenv("WF_FIRST")) o.grow.test_first_step = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_SLOPE")) o.grow.level_follow_max_slope = std::atof(v);

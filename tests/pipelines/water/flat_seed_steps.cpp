@@ -190,7 +190,8 @@ TEST_CASE("flat_water_seeds: the composition of its steps, with a surface slope 
         INFO("seed " << seed << " trial " << trial);
         auto mask = flat_level_cells(in, {}, opt);
         const auto comps = label_flat_seed_components(in, mask, taken, opt);
-        const auto rings = measure_flat_seed_rings(in, comps, opt);
+        auto rings = measure_flat_seed_rings(in, comps, opt);
+        rings.land_intensity = survey_land_intensity(in, comps, rings, opt);
         const auto keep = select_flat_seeds(comps, rings, opt, slope);
         write_flat_seed_mask(comps, keep, mask, taken, slope, opt);
         CHECK(mask == flat_water_seeds(in, {}, opt, slope, taken));

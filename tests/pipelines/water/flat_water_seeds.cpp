@@ -183,14 +183,73 @@ TEST_CASE("flat_water_seeds: a bright but very sparse pond seeds (specular echoe
     for (std::ptrdiff_t i = 0; i < s.count.size(); ++i) s.count.data()[i] = 10;
     pond(8, 45.0f, 0.03f);
     CHECK(flat_water_seeds(s.view()).view()(20, 20) == 1);
-    CHECK(flat_water_seeds(s.view(), {}, {.max_joint_ratio = 0}).view()(20, 20) == 0);
-    CHECK(flat_water_seeds(s.view(), {}, {.joint_min_cells = 325}).view()(20, 20) == 0);
+    // It is also dark against the survey's land (45 <= 0.8 · 80, the meadow being land): without that test
+    // only the joint path takes it.
+    CHECK(flat_water_seeds(s.view(), {}, {.max_joint_ratio = 0, .max_land_intensity_ratio = 0}).view()(20, 20) == 0);
+    CHECK(flat_water_seeds(s.view(), {}, {.max_joint_ratio = 0}).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.joint_min_cells = 325, .max_land_intensity_ratio = 0}).view()(20, 20) == 0);
     CHECK(flat_water_seeds(s.view()).view()(5, 5) == 0);
     // As dense as the meadow it is land (a dark, smooth lot returns every pulse), although the product
     // (0.48) is within max_joint_ratio: the joint path, like the dark and smooth ones, needs at most
     // dark_density_ratio of the ring's returns.
     pond(10, 45.0f, 0.03f);
     CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
+}
+
+TEST_CASE(
+    "flat_water_seeds: judged against the survey's land, a level lawn of land intensity is no seed, a dim pond is")
+{
+    // 60 × 60 cells of rough land (min z 10.0-10.2 m, not level), intensity 80, 8 returns per cell. A level
+    // lawn (20 × 20 cells, 3 cm rough) as bright as the land, with 6 returns per cell where strip overlap
+    // gives its ring 8: sparse by the ring (0.75), but land-like by the survey (its intensity is at the
+    // land's 10 % quantile) and not sparse enough for that (> bright_density_ratio 0.72). A pond 0.5 m lower,
+    // intensity 40, 7 returns per cell (0.875), inside a belt of dim wet ground (intensity 60): not dark
+    // against that ring (0.67 > 0.6), dark against the survey's land (40 <= 0.8 · 60, the land's 10 % quantile).
+    water_test::survey s(60, 60);
+    for (std::ptrdiff_t r = 0; r < 60; ++r) {
+        for (std::ptrdiff_t c = 0; c < 60; ++c) {
+            s.min_z(r, c) = 10.0f + 0.2f * static_cast<float>((r * 7 + c * 3) % 5) / 4.0f;
+            s.max_z(r, c) = s.min_z(r, c) + 0.05f;
+            s.intensity(r, c) = 80.0f;
+            s.count(r, c) = 8;
+        }
+    }
+    for (std::ptrdiff_t r = 8; r < 28; ++r) {
+        for (std::ptrdiff_t c = 8; c < 28; ++c) {
+            s.min_z(r, c) = 10.0f + 0.01f * static_cast<float>((r + c) % 3);
+            s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+            s.count(r, c) = 6;
+        }
+    }
+    for (std::ptrdiff_t r = 32; r < 60; ++r)
+        for (std::ptrdiff_t c = 32; c < 60; ++c) s.intensity(r, c) = 60.0f;
+    for (std::ptrdiff_t r = 36; r < 56; ++r) {
+        for (std::ptrdiff_t c = 36; c < 56; ++c) {
+            s.min_z(r, c) = 9.5f + 0.01f * static_cast<float>((r + c) % 3);
+            s.max_z(r, c) = s.min_z(r, c) + 0.03f;
+            s.intensity(r, c) = 40.0f;
+            s.count(r, c) = 7;
+        }
+    }
+    const auto seeds = flat_water_seeds(s.view());
+    CHECK(seeds.view()(18, 18) == 0);
+    CHECK(seeds.view()(46, 46) == 1);
+    // Each rule decides: without the land-like test the lawn seeds, without the survey's dark test the pond
+    // does not.
+    CHECK(flat_water_seeds(s.view(), {}, {.land_intensity_quantile = -1}).view()(18, 18) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.max_land_intensity_ratio = 0}).view()(46, 46) == 0);
+    // The survey's land is every cell with a return outside the lowest components (the lawn and the pond):
+    // its 10 % quantile is the belt's 60, its median the land's 80.
+    const auto level = flat_level_cells(s.view());
+    const auto comps = label_flat_seed_components(s.view(), level);
+    const auto rings = measure_flat_seed_rings(s.view(), comps);
+    CHECK(std::isnan(rings.land_intensity));
+    CHECK(survey_land_intensity(s.view(), comps, rings) == doctest::Approx(60.0).epsilon(0.01));
+    CHECK(survey_land_intensity(s.view(), comps, rings, {.land_intensity_quantile = 0.5}) ==
+          doctest::Approx(80.0).epsilon(0.01));
+    CHECK(std::isnan(survey_land_intensity(s.view(), comps, rings, {.land_intensity_quantile = -1})));
+    CHECK_THROWS_AS(survey_land_intensity(s.view(), comps, rings, {.land_intensity_quantile = 1.5}), invalid_input);
+    CHECK_THROWS_AS(survey_land_intensity(s.view(), comps, flat_seed_rings{}), invalid_input);
 }
 
 TEST_CASE("flat_water_seeds: with a surface slope, a sloping sparse patch is no seed, a level pond is")

@@ -2,6 +2,7 @@
 // measure_flat_seed_rings: the land around each component flat_water_seeds tests, and its sums.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "lidarfx/pipelines/water/flat_seed_components.hpp"
@@ -18,6 +19,9 @@ struct flat_seed_rings {
     std::vector<double> intensity_sum;  ///< sum of in.mean_intensity over them
     std::vector<double> lower;          ///< ring cells whose min z lies more than opt.level_tolerance_m below
                                         ///< the component's lowest min z within opt.ring_cells of the ring cell
+    double land_intensity = NAN;        ///< the survey's land intensity the land tests of select_flat_seeds compare
+                                        ///< with (survey_land_intensity); NaN (as measure_flat_seed_rings leaves
+                                        ///< it): those tests are off
 };
 
 /// Third step of flat_water_seeds: the ring of each component of `comps` that has free cells: the cells
@@ -32,6 +36,17 @@ struct flat_seed_rings {
 /// @throws invalid_input on rasters of different shapes, no in.count, or options or run out of range.
 inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const flat_seed_components& comps,
                                                const flat_water_seeds_options& opt = {}, const execution& run = {});
+
+/// The survey's land intensity, for the land tests of select_flat_seeds: the opt.land_intensity_quantile
+/// quantile of the mean intensity of the cells with a return (no dropout, finite min z and intensity, inside
+/// in.footprint) outside every component that could be water by its shape: lowest (rings.lower <=
+/// opt.max_lower_share · rings.cells, with a ring). Everything else is the survey's own land: vegetation,
+/// roofs, roads, rough and sloping ground, level ground above its surroundings. From a histogram of 4096
+/// bins between the lowest and highest of those intensities (known to 1/4096 of that range). NaN without
+/// such cells or with opt.land_intensity_quantile < 0. Two passes in row order: O(cells).
+/// @throws invalid_input on rasters of different shapes or rings or options that do not match.
+inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
+                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt = {});
 
 }  // namespace lidarfx
 

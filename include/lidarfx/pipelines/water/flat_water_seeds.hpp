@@ -27,24 +27,24 @@ struct flat_water_seeds_workspace {
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
 /// level cells {return, not excluded, max z − min z <= max_roughness_m, max − min of min z over the
-/// (2 level_radius_cells + 1)² window <= level_tolerance_m} that are sparse (mean count <=
-/// max_density_ratio · their ring's and not brighter, or <= bright_density_ratio · whatever the intensity),
+/// (2 level_radius_cells + 1)² window <= level_tolerance_m} that are sparse at bright_density_ratio, or,
+/// when not land-like (mean intensity below the land_intensity_quantile of the survey's land: the cells
+/// with a return outside the lowest components), sparse in one of the following ways (mean
+/// count <= max_density_ratio · their ring's and not brighter, or <= bright_density_ratio · whatever the intensity),
 /// or, on >= joint_min_cells, <= dark_density_ratio · with count ratio × intensity ratio × roughness ratio
 /// <= max_joint_ratio, or dark and sparse (<= dark_density_ratio · and mean intensity <=
-/// max_intensity_ratio · their ring's), or smooth and sparse (<= dark_density_ratio · and mean max z −
-/// min z <= max_roughness_ratio · median over level cells) and lowest (<= max_lower_share of the ring more than
-/// level_tolerance_m below the component's lowest min z within ring_cells of the ring cell); the ring:
-/// cells with returns within ring_cells of the component, not in a component.
-/// Steps, in order: flat_level_cells, label_flat_seed_components, measure_flat_seed_rings, select_flat_seeds,
-/// write_flat_seed_mask.
-/// With `surface_slope` (optional, same shape: water_surface_slope of min z, m/m), a component whose median
-/// slope exceeds max_surface_slope is no seed, nor is any cell where the slope exceeds it.
-/// Needs in.count (without it the mask is empty). `excluded` (optional, same shape; nonzero = never a
-/// seed, e.g. vegetation) and in.footprint keep cells out. Returns 1 = seed cell.
-/// `taken` (optional, same shape; > 0 = a cell of a body grown before) clears those cells from the mask and
-/// changes nothing else: they still count as level cells in the components, the rings and the slope
-/// medians. A component entirely taken is not tested at all (its slope is not read).
-/// The windows are running min/max filters (min_filter_rows / max_filter_rows over strips of rows; the level
+/// max_intensity_ratio · their ring's or <= max_land_intensity_ratio · the land quantile), or smooth and sparse (<=
+/// dark_density_ratio · and mean max z − min z <= max_roughness_ratio · median over level cells) and lowest (<=
+/// max_lower_share of the ring more than level_tolerance_m below the component's lowest min z within ring_cells of the
+/// ring cell); the ring: cells with returns within ring_cells of the component, not in a component. Steps, in order:
+/// flat_level_cells, label_flat_seed_components, measure_flat_seed_rings, survey_land_intensity (into the rings),
+/// select_flat_seeds, write_flat_seed_mask. With `surface_slope` (optional, same shape: water_surface_slope of min z,
+/// m/m), a component whose median slope exceeds max_surface_slope is no seed, nor is any cell where the slope exceeds
+/// it. Needs in.count (without it the mask is empty). `excluded` (optional, same shape; nonzero = never a seed, e.g.
+/// vegetation) and in.footprint keep cells out. Returns 1 = seed cell. `taken` (optional, same shape; > 0 = a cell of a
+/// body grown before) clears those cells from the mask and changes nothing else: they still count as level cells in the
+/// components, the rings and the slope medians. A component entirely taken is not tested at all (its slope is not
+/// read). The windows are running min/max filters (min_filter_rows / max_filter_rows over strips of rows; the level
 /// window of radius 1 or 2 is read in place): O(cells · log(level_radius_cells · ring_cells)), plus
 /// (2 ring_cells + 1)² per ring cell within reach of two components or more. `run`: threads of the window
 /// filters and the labelling (its progress is not called); never changes the result.
@@ -79,7 +79,8 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     // The level mask becomes the seed mask once labelled (the last step rewrites every cell).
     auto mask = flat_level_cells(in, excluded, opt, run);
     auto comps = label_flat_seed_components(in, mask, taken, opt, std::move(workspace.labels), run);
-    const auto rings = measure_flat_seed_rings(in, comps, opt, run);
+    auto rings = measure_flat_seed_rings(in, comps, opt, run);
+    rings.land_intensity = survey_land_intensity(in, comps, rings, opt);
     const auto keep = select_flat_seeds(comps, rings, opt, surface_slope);
     write_flat_seed_mask(comps, keep, mask, taken, surface_slope, opt);
     workspace.labels = std::move(comps.labels);

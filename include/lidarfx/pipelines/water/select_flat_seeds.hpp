@@ -16,9 +16,11 @@ namespace lidarfx {
 /// Fourth step of flat_water_seeds: keep[l] = 1 for each component l of `comps` that is a seed, else 0
 /// (count() + 1 entries, keep[0] = 0). A component with free cells and a ring is a seed when it is lowest
 /// (rings.lower <= opt.max_lower_share · ring cells) and sparse: its mean in.count over its ring's (the
-/// density ratio) is <= opt.max_density_ratio while its intensity ratio is <= 1, or <=
-/// opt.bright_density_ratio whatever the intensity; or <= opt.dark_density_ratio and dark (intensity ratio
-/// <= opt.max_intensity_ratio), smooth (mean max z − min z <= opt.max_roughness_ratio · the median of
+/// density ratio) is <= opt.bright_density_ratio whatever the intensity; or, when it is not land-like (mean
+/// intensity below rings.land_intensity, the survey's land quantile; NaN: never land-like), <=
+/// opt.max_density_ratio while its intensity ratio is <= 1, or <= opt.dark_density_ratio and dark (intensity
+/// ratio <= opt.max_intensity_ratio, or mean intensity <= opt.max_land_intensity_ratio ·
+/// rings.land_intensity), smooth (mean max z − min z <= opt.max_roughness_ratio · the median of
 /// comps.level_roughness) or, on >= opt.joint_min_cells cells, density · intensity · roughness ratios <=
 /// opt.max_joint_ratio. With `surface_slope` (optional, same shape, m/m) and opt.max_surface_slope >= 0, a
 /// seed whose median slope over its cells (NaN counted as 0, level) exceeds it is dropped.

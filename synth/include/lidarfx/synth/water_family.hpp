@@ -31,11 +31,22 @@ enum class water_family_kind { lake, river };
 
 /// What the land next to the water looks like.
 enum class shore_kind {
-    beach,       ///< sand rising 2-6 % from the waterline, intensity 90-140
-    steep_bank,  ///< 1.5-4 m bank within 3 m of the waterline
-    reeds,       ///< a 3-12 m belt of reeds 1-2.5 m tall (some pulses with two returns) on low ground
-    flat_field,  ///< grass (intensity ~86) on a plain 0.5-1 m above the water, no dropouts
-    wet_ground,  ///< dark wet ground (intensity 15-35) 0.15 m above the water, rising 2 %
+    beach,         ///< sand rising 2-6 % from the waterline, intensity 90-140
+    steep_bank,    ///< 1.5-4 m bank within 3 m of the waterline
+    reeds,         ///< a 3-12 m belt of reeds 1-2.5 m tall (some pulses with two returns) on low ground
+    flat_field,    ///< grass (intensity ~86) on a plain 0.5-1 m above the water, no dropouts
+    wet_ground,    ///< dark wet ground (intensity 15-35) 0.15 m above the water, rising 2 %
+    level_meadow,  ///< mown grass (land intensity) on a level plain 0.2-1 m above the water, out to 60-250 m
+    terrace,       ///< a level step 0.2-0.5 m above the water, a second one 0.3-0.6 m higher 15-40 m out
+    parking_lot,   ///< a level lot of concrete or pale asphalt (land intensity) 0.2-0.6 m above the water
+};
+
+/// Which scenes a family draws.
+enum class water_family_variant {
+    classic,       ///< lakes of 30-150 m radius and rivers 15-60 m wide with the five classic shores
+    level_land,    ///< ponds of 15-60 m radius and rivers 8-40 m wide beside level meadows, terraces and lots of
+                   ///< land intensity 0.2-1 m above the water, smooth land, dropouts on the water 0-15 %
+    narrow_river,  ///< rivers 5-15 m wide (lakes as classic)
 };
 
 /// Settings of a family scene; everything else follows from the seed.
@@ -45,6 +56,8 @@ struct water_family_options {
     double min_density = 0.5, max_density = 8.0;  ///< pulses per m², drawn log-uniformly in this range, > 0
     double min_size_m = 400, max_size_m = 700;    ///< side of the square survey, drawn uniformly, metres, > 0
     double points_per_cell = 4.0;                 ///< cell_m = max(2, ⌈2·sqrt(points_per_cell / density)⌉ / 2)
+    double cell_m = 0;                            ///< truth cell size in metres; 0 = from points_per_cell as above
+    water_family_variant variant = water_family_variant::classic;
 };
 
 /// How the water of a scene returns pulses.
@@ -111,6 +124,17 @@ inline double family_shore_rise(shore_kind k, double d, double p) noexcept
             return (0.5 + 0.5 * p) * smoothstep(0.0, 1.5, d) + 0.002 * d;
         case shore_kind::wet_ground:
             return 0.15 + 0.02 * d;
+        case shore_kind::level_meadow: {
+            const double reach = 60 + 190 * p;  // level out to here, then rising 3 %
+            return (0.2 + 0.8 * p) * smoothstep(0.0, 1.0, d) + 0.001 * d + 0.03 * std::max(0.0, d - reach);
+        }
+        case shore_kind::terrace: {
+            const double step = 15 + 25 * p;
+            return (0.2 + 0.3 * p) * smoothstep(0.0, 1.0, d) + (0.3 + 0.3 * p) * smoothstep(step, step + 2, d) +
+                   0.001 * d + 0.03 * std::max(0.0, d - 150);
+        }
+        case shore_kind::parking_lot:
+            return (0.2 + 0.4 * p) * smoothstep(0.0, 0.6, d) + 0.03 * std::max(0.0, d - 40);
     }
     return 0.5;
 }
@@ -169,6 +193,8 @@ struct family_world {
     std::vector<family_tree> trees;
     double reed_belt_m = 8, reed_height_m = 1.5;
     double wet_belt_m = 10;
+    double meadow_intensity = 86, lot_intensity = 80;  ///< level meadows (mown grass) and lots beside the water
+    double land_noise_m = 0.05;                        ///< amplitude of the land returns' height noise, metres
 
     /// (along, across) river coordinates: along the flow from the scene centre, across to the left.
     std::array<double, 2> river_frame(double x, double y) const noexcept
@@ -233,6 +259,11 @@ struct family_world {
         if (near_kind == shore_kind::flat_field && nearest < 200) s.intensity = 86 + 8 * cover(y, x);
         if (near_kind == shore_kind::beach && nearest < 15) s.intensity = 115 + 20 * cover(y, x);
         if (near_kind == shore_kind::wet_ground && nearest < wet_belt_m) s.intensity = 25 + 10 * cover(y, x);
+        if (near_kind == shore_kind::level_meadow && nearest < 250) s.intensity = meadow_intensity + 12 * cover(y, x);
+        if (near_kind == shore_kind::parking_lot && nearest < 40) {
+            s.intensity = lot_intensity + 6 * cover(y, x);
+            s.cls = las_class::road_surface;
+        }
         if (near_kind == shore_kind::reeds && nearest < reed_belt_m) s.reeds_m = reed_height_m;
         for (const auto& a : lots) {
             if (x >= a.x0 && x <= a.x1 && y >= a.y0 && y <= a.y1) {
@@ -359,7 +390,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
                 time += 1e-5;
                 pts.pulse_time_s = time;
                 const double angle = rad_to_deg(std::atan(std::abs(x - xc) / H));
-                const double noise = 0.05 * random.triangular();
+                const double unit_noise = random.triangular();
+                const double noise = 0.05 * unit_noise, land_noise = w.land_noise_m * unit_noise;
                 const int bridge = w.bridge_at(x, y);
                 if (bridge >= 0) {
                     const auto& b = w.bridges[static_cast<std::size_t>(bridge)];
@@ -410,7 +442,7 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
                     continue;
                 }
                 if (random.chance(0.003)) continue;  // an odd lost pulse on land
-                pts.push(x, y, s.z + noise, s.intensity * (1 + 0.1 * random.triangular()), 1, 1, s.cls);
+                pts.push(x, y, s.z + land_noise, s.intensity * (1 + 0.1 * random.triangular()), 1, 1, s.cls);
             }
         }
         time += 60;
@@ -438,12 +470,16 @@ inline water_family_scene water_family(const water_family_options& options = {})
     lidarfx::detail::require(options.min_size_m > 0 && options.min_size_m <= options.max_size_m, fn,
                              "sizes must satisfy 0 < min_size_m <= max_size_m");
     lidarfx::detail::require_positive(options.points_per_cell, fn, "points_per_cell");
+    lidarfx::detail::require(options.cell_m >= 0 && std::isfinite(options.cell_m), fn, "cell_m must be >= 0");
     const bool is_lake = options.kind == water_family_kind::lake;
     rng pick(hash64(options.seed, is_lake ? 0x1A4EFA : 0x71FEFA), 1);
     water_family_scene out;
     out.kind = options.kind;
     out.density_per_m2 = std::exp(pick.uniform(std::log(options.min_density), std::log(options.max_density)));
-    out.cell_m = std::max(2.0, std::ceil(2.0 * std::sqrt(options.points_per_cell / out.density_per_m2)) / 2.0);
+    out.cell_m = options.cell_m > 0
+                     ? options.cell_m
+                     : std::max(2.0, std::ceil(2.0 * std::sqrt(options.points_per_cell / out.density_per_m2)) / 2.0);
+    const bool level_land = options.variant == water_family_variant::level_land;
     const auto cells =
         static_cast<std::ptrdiff_t>(std::ceil(pick.uniform(options.min_size_m, options.max_size_m) / out.cell_m));
     out.size_m = static_cast<double>(cells) * out.cell_m;
@@ -463,6 +499,11 @@ inline water_family_scene water_family(const water_family_options& options = {})
     wr.turbid = pick.chance(0.3);
     if (wr.turbid) wr.low_min = 25, wr.low_max = 55;
     wr.wave_m = 0.01 + 0.05 * wr.wind;
+    if (level_land) {  // water that returns most pulses: with a few dropout patches or none
+        wr.drop_nadir = pick.uniform(0.0, 0.15);
+        wr.drop_edge = wr.drop_nadir + pick.uniform(0.0, 0.1);
+        wr.patch_share = pick.chance(0.5) ? pick.uniform(0.05, 0.3) : 0.0;
+    }
 
     const std::uint64_t ws = hash64(options.seed, is_lake ? 0xFA1A : 0xFA21);
     internal::family_world w{options.kind, S, noise_field{hash64(ws, 1), pick.uniform(200.0, 500.0), 4, 0.45},
@@ -472,12 +513,27 @@ inline water_family_scene water_family(const water_family_options& options = {})
     w.reed_belt_m = pick.uniform(3.0, 12.0);
     w.reed_height_m = pick.uniform(1.0, 2.5);
     w.wet_belt_m = pick.uniform(5.0, 15.0);
-    const auto any_shore = [&] { return static_cast<shore_kind>(pick.between(0, 4)); };
+    const double water_base = w.base_z;
+    const auto classic_shore = [&] { return static_cast<shore_kind>(pick.between(0, 4)); };
+    const auto level_shore = [&] {
+        const double u = pick.uniform();
+        return u < 0.4    ? shore_kind::level_meadow
+               : u < 0.65 ? shore_kind::terrace
+               : u < 0.85 ? shore_kind::parking_lot
+                          : shore_kind::flat_field;
+    };
+    const auto any_shore = [&] { return level_land ? level_shore() : classic_shore(); };
+    if (level_land) {  // the terrain lies below every water level: the shores' level land is the ground
+        w.base_z = water_base - 4 - w.relief_m;
+        w.meadow_intensity = pick.uniform(75.0, 120.0);
+        w.lot_intensity = pick.uniform(60.0, 110.0);
+        w.land_noise_m = pick.uniform(0.015, 0.05);
+    }
 
     if (is_lake) {
         const int n = pick.between(1, 3);
         for (int attempt = 0; attempt < 200 && static_cast<int>(w.lakes.size()) < n; ++attempt) {
-            const double r = pick.uniform(0.08, 0.22) * S;
+            const double r = level_land ? pick.uniform(15.0, 60.0) : pick.uniform(0.08, 0.22) * S;
             // Centres may lie just outside the survey: the lake is then cut by the edge.
             const double x = pick.uniform(-0.05, 1.05) * S, y = pick.uniform(-0.05, 1.05) * S;
             auto outline = lake_outline::random(pick, x, y, r, pick.uniform(0.1, 0.4));
@@ -490,7 +546,8 @@ inline water_family_scene water_family(const water_family_options& options = {})
             const bool inside =
                 x > 0.1 * S - 0.3 * r && x < 0.9 * S + 0.3 * r && y > 0.1 * S - 0.3 * r && y < 0.9 * S + 0.3 * r;
             if (!clear || !inside) continue;
-            w.lakes.push_back({outline, w.base_z + pick.uniform(-3.0, 3.0), any_shore(), pick.uniform()});
+            const double level = water_base + (level_land ? pick.uniform(-0.5, 0.5) : pick.uniform(-3.0, 3.0));
+            w.lakes.push_back({outline, level, any_shore(), pick.uniform()});
         }
         for (std::size_t k = 0; k < w.lakes.size(); ++k) {
             const auto& o = w.lakes[k].outline;
@@ -520,13 +577,15 @@ inline water_family_scene water_family(const water_family_options& options = {})
         ch.meander_amplitude_m = {pick.uniform(0.0, 0.12) * S, pick.uniform(0.0, 0.04) * S};
         ch.meander_wavelength_m = {pick.uniform(0.6, 1.2) * S, pick.uniform(0.25, 0.4) * S};
         ch.meander_phase = {pick.uniform(0.0, 6.28), pick.uniform(0.0, 6.28)};
-        ch.mean_width_m = pick.uniform(15.0, 60.0);
+        ch.mean_width_m = options.variant == water_family_variant::narrow_river ? pick.uniform(5.0, 15.0)
+                          : level_land                                          ? pick.uniform(8.0, 40.0)
+                                                                                : pick.uniform(15.0, 60.0);
         ch.width_swing_m = pick.uniform(0.0, 0.35) * ch.mean_width_m;
         ch.width_wavelength_m = {pick.uniform(0.4, 0.8) * S, pick.uniform(0.15, 0.3) * S};
         ch.width_phase = {pick.uniform(0.0, 6.28), pick.uniform(0.0, 6.28)};
         const double drop = pick.uniform(0.1, 1.5);
         ch.level_drop_per_m = drop / S;
-        ch.level_west_z = w.base_z + 0.5 * drop;
+        ch.level_west_z = water_base + 0.5 * drop;
         w.river_shore = {any_shore(), any_shore()};
         w.river_shore_p = {pick.uniform(), pick.uniform()};
         out.shores = {w.river_shore[0], w.river_shore[1]};

@@ -205,4 +205,54 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
     return rings;
 }
 
+inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
+                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt)
+{
+    constexpr const char* fn = "survey_land_intensity";
+    detail::validate(in, fn);
+    detail::validate(opt, fn);
+    detail::require_same_shape(in.min_z, comps.labels, fn, "min_z", "comps.labels");
+    const std::size_t nb = comps.count();
+    detail::require(rings.cells.size() == nb + 1 && rings.lower.size() == nb + 1, fn,
+                    "rings must hold comps.count() + 1 entries per measure");
+    const double quantile = opt.land_intensity_quantile;
+    if (quantile < 0) return NAN;
+    std::vector<std::uint8_t> candidates(nb + 1, 0);
+    for (std::size_t l = 1; l <= nb; ++l)
+        candidates[l] = rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l];
+    constexpr int bins = 4096;
+    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
+    const auto for_land = [&](auto&& f) {
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const std::int32_t* lab = comps.labels.view().row(r);
+            const std::uint8_t* drop = in.dropout.row(r);
+            const float* z = in.min_z.row(r);
+            const float* v = in.mean_intensity.row(r);
+            const std::uint8_t* inside = in.footprint.empty() ? nullptr : in.footprint.row(r);
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool candidate = lab[c] > 0 && candidates[static_cast<std::size_t>(lab[c])];
+                if (!candidate && !drop[c] && std::isfinite(z[c]) && std::isfinite(v[c]) && (!inside || inside[c]))
+                    f(v[c]);
+            }
+        }
+    };
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    std::size_t n = 0;
+    for_land([&](float v) { lo = std::min(lo, v), hi = std::max(hi, v), ++n; });
+    if (n == 0) return NAN;
+    if (!(hi > lo)) return lo;
+    const double width = (static_cast<double>(hi) - lo) / bins;
+    std::vector<std::size_t> histogram(bins, 0);
+    for_land([&](float v) {
+        histogram[static_cast<std::size_t>(std::min<double>(bins - 1, (static_cast<double>(v) - lo) / width))] += 1;
+    });
+    const double target = quantile * static_cast<double>(n);
+    std::size_t seen = 0;
+    for (int b = 0; b < bins; ++b) {
+        seen += histogram[static_cast<std::size_t>(b)];
+        if (static_cast<double>(seen) >= target && seen > 0) return lo + (b + 0.5) * width;
+    }
+    return hi;
+}
+
 }  // namespace lidarfx

@@ -81,10 +81,16 @@ inline bool sparse_enough(const flat_seed_components& comps, const flat_seed_rin
     const double density = comps.count_sum[l] / size / (rings.count_sum[l] / rings.cells[l]);
     const double intensity = comps.intensity_sum[l] / size / (rings.intensity_sum[l] / rings.cells[l]);
     // Sparse counts only when not brighter than the ring: a bright (specular) echo is one that arrived.
-    const bool sparse = (density <= opt.max_density_ratio && intensity <= 1) || density <= opt.bright_density_ratio;
+    if (density <= opt.bright_density_ratio) return true;
+    // Land-like: as bright as the survey's land; then only the lost pulses above say water.
+    const double mean_intensity = comps.intensity_sum[l] / size;
+    if (mean_intensity >= rings.land_intensity) return false;
+    const bool sparse = density <= opt.max_density_ratio && intensity <= 1;
     if (sparse) return true;
     if (!(density <= opt.dark_density_ratio)) return false;
-    if (intensity <= opt.max_intensity_ratio) return true;  // dark
+    // Dark against its ring or against the survey's land.
+    if (intensity <= opt.max_intensity_ratio) return true;
+    if (mean_intensity <= opt.max_land_intensity_ratio * rings.land_intensity) return true;
     // On perfectly smooth data (typical 0) a smooth component is 0, not 0 / 0.
     const double mean_rough = comps.roughness_sum[l] / size;
     const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical.get();
