@@ -189,10 +189,16 @@ TEST_CASE("flat_water_seeds: a bright but very sparse pond seeds (specular echoe
     CHECK(flat_water_seeds(s.view(), {}, {.max_joint_ratio = 0}).view()(20, 20) == 1);
     CHECK(flat_water_seeds(s.view(), {}, {.joint_min_cells = 325, .max_land_intensity_ratio = 0}).view()(20, 20) == 0);
     CHECK(flat_water_seeds(s.view()).view()(5, 5) == 0);
-    // As dense as the meadow it is land (a dark, smooth lot returns every pulse), although the product
-    // (0.48) is within max_joint_ratio: the joint path, like the dark and smooth ones, needs at most
-    // dark_density_ratio of the ring's returns.
+    // As dense as the meadow, the joint path does not take it although the product (0.48) is within
+    // max_joint_ratio: like the dark and smooth paths it needs at most dark_density_ratio of the ring's
+    // returns (a dark, smooth lot returns every pulse). Dark against the survey's land and 0.5 m below the
+    // meadow around it, it is a seed all the same (dark and sunken: water that returns every pulse); flush
+    // with the meadow, as a lot lies, it is not.
     pond(10, 45.0f, 0.03f);
+    CHECK(flat_water_seeds(s.view()).view()(20, 20) == 1);
+    CHECK(flat_water_seeds(s.view(), {}, {.min_raised_share = 2}).view()(20, 20) == 0);
+    for (std::ptrdiff_t r = 10; r < 30; ++r)
+        for (std::ptrdiff_t c = 10; c < 30; ++c) s.min_z(r, c) += 0.5f, s.max_z(r, c) += 0.5f;
     CHECK(flat_water_seeds(s.view()).view()(20, 20) == 0);
 }
 

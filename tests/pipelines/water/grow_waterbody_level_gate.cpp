@@ -101,6 +101,43 @@ TEST_CASE("water/grow_waterbody level gate: with level_rise_m 0 the level does n
     CHECK(held.cells.size() == 40 * 38);
 }
 
+TEST_CASE("water/grow_waterbody level gate: the level follows no cell of land intensity (level_follow_max_intensity)")
+{
+    // The gentle slope above (land from 2 cm above the pond rising 4 mm per column), now a lawn of intensity
+    // 80 against the pond's 10. The level follows the lawn up when allowed to; with
+    // level_follow_max_intensity 50 the lawn's cells pass the pond's level on unchanged, so the flood ends
+    // 0.15 m above the pond as with a level that never rises.
+    raster<float> min_z(40, 40), intensity(40, 40, 10.0f);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 0; r < 40; ++r) {
+        for (std::ptrdiff_t c = 0; c < 40; ++c) {
+            min_z.view()(r, c) = c <= 5 ? 100.0f : 100.02f + 0.004f * static_cast<float>(c - 5);
+            if (c > 5) intensity.view()(r, c) = 80.0f;
+            if (c <= 1) {
+                min_z.view()(r, c) = NAN;
+                intensity.view()(r, c) = NAN;
+                seed.push_back(r * 40 + c);
+            }
+        }
+    }
+    auto field = flat_field(min_z);
+    field.mean_intensity = intensity;
+    grow_waterbody_workspace workspace;
+    CHECK(grow_waterbody(field, seed, {}, workspace).cells.size() == 40 * 40);
+    grow_waterbody_options hold;
+    hold.level_follow_max_intensity = 50;
+    CHECK(grow_waterbody(field, seed, hold, workspace).cells.size() == 40 * 38);
+    hold.level_follow_max_intensity = 90;  // the lawn is below it: it leads the level up again
+    CHECK(grow_waterbody(field, seed, hold, workspace).cells.size() == 40 * 40);
+    // A field without intensities ignores the option; one of another shape is refused.
+    field.mean_intensity = {};
+    hold.level_follow_max_intensity = 50;
+    CHECK(grow_waterbody(field, seed, hold, workspace).cells.size() == 40 * 40);
+    const raster<float> wrong(3, 3, 0.0f);
+    field.mean_intensity = wrong;
+    CHECK_THROWS_AS(grow_waterbody(field, seed, hold, workspace), invalid_input);
+}
+
 TEST_CASE("water/grow_waterbody first-step test: a bright meadow 0.1 m above the pond, within the gate, stays out")
 {
     // 30 x 30: a pond at 100 m in rows/cols 8-21 (its middle 4 x 4 a seed of dropouts), intensity bins 0-9

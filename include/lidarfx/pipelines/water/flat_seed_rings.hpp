@@ -19,6 +19,8 @@ struct flat_seed_rings {
     std::vector<double> intensity_sum;  ///< sum of in.mean_intensity over them
     std::vector<double> lower;          ///< ring cells whose min z lies more than opt.level_tolerance_m below
                                         ///< the component's lowest min z within opt.ring_cells of the ring cell
+    std::vector<double> raised;         ///< ring cells whose min z lies more than opt.level_tolerance_m above it
+                                        ///< (banks: water lies below the land around it)
     double land_intensity = NAN;        ///< the survey's land intensity the land tests of select_flat_seeds compare
                                         ///< with (survey_land_intensity); NaN (as measure_flat_seed_rings leaves
                                         ///< it): those tests are off

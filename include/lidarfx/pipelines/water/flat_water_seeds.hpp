@@ -2,6 +2,7 @@
 // flat_water_seeds: seeds of waterbodies from cells with returns: level, smooth, low, and sparser than the land around.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -23,6 +24,8 @@ namespace lidarfx {
 struct flat_water_seeds_workspace {
     raster<std::int32_t> labels;  ///< the level cells' component labels of the last call; contents unspecified
                                   ///< between calls (a caller may move the raster out to reuse its memory)
+    double land_intensity = NAN;  ///< the survey's land intensity of the last call (survey_land_intensity), NaN
+                                  ///< when not measured
 };
 
 /// Seed mask of waterbodies that need no dropouts: seed = components (8-connected, >= min_cells) of the
@@ -81,6 +84,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     auto comps = label_flat_seed_components(in, mask, taken, opt, std::move(workspace.labels), run);
     auto rings = measure_flat_seed_rings(in, comps, opt, run);
     rings.land_intensity = survey_land_intensity(in, comps, rings, opt);
+    workspace.land_intensity = rings.land_intensity;
     const auto keep = select_flat_seeds(comps, rings, opt, surface_slope);
     write_flat_seed_mask(comps, keep, mask, taken, surface_slope, opt);
     workspace.labels = std::move(comps.labels);

@@ -62,6 +62,11 @@ struct flat_water_seeds_options {
                                             ///< most this share of that land quantile is dark (as with
                                             ///< max_intensity_ratio against its ring: turbid water beside a
                                             ///< dim shore), >= 0; 0 disables. Default 0.8
+    double min_raised_share = 0.5;          ///< dark and sunken: a component dark against the survey with at least this
+                                            ///< share of its ring more than level_tolerance_m above its lowest cell
+                                            ///< nearby (water below its banks) is a seed with no pulse lost (clear or
+                                            ///< turbid water that returns every pulse; a dark lot lies flush with the
+                                            ///< ground around it), in [0, 1]; > 1 disables. Default 0.5
     double max_surface_slope = 0.008;       ///< level: given a surface slope (water_surface_slope or its lazy form), a
                                             ///< component is a seed only when the median over its cells of the slope
                                             ///< of the plane fitted around them is at most this, and its cells where
@@ -90,6 +95,7 @@ inline void validate(const flat_water_seeds_options& o, const char* fn)
     require(o.bright_density_ratio >= 0 && o.bright_density_ratio <= 1, fn, "bright_density_ratio", "in [0, 1]",
             o.bright_density_ratio);
     require(o.max_joint_ratio >= 0, fn, "max_joint_ratio", ">= 0", o.max_joint_ratio);
+    require(o.min_raised_share >= 0, fn, "min_raised_share", ">= 0 (> 1 disables)", o.min_raised_share);
     require(o.max_land_intensity_ratio >= 0, fn, "max_land_intensity_ratio", ">= 0", o.max_land_intensity_ratio);
     require(o.land_intensity_quantile <= 1, fn, "land_intensity_quantile", "<= 1 (< 0 disables)",
             o.land_intensity_quantile);

@@ -31,6 +31,8 @@ struct water_field {
     surface_slope_source surface_slope = {};  ///< optional: water_surface_slope of min z (a raster or a
                                               ///< lazy_water_surface_slope), m/m, NaN = unknown; read with
                                               ///< grow_waterbody_options::level_follow_max_slope
+    raster_view<const float> mean_intensity = {};  ///< optional: mean intensity per cell (NaN = none); read with
+                                                   ///< grow_waterbody_options::level_follow_max_intensity
 };
 
 /// Which sample a growth step is compared with the previous region's sample.
@@ -68,6 +70,12 @@ struct grow_waterbody_options {
                                                ///< elsewhere it passes its level on unchanged, as a dropout does (a
                                                ///< flood no longer ratchets up a beach or down a falling bank); < 0
                                                ///< disables. Default -1 (0.008 with flat seeds: docs/waterbodies.md)
+    double level_follow_max_intensity = NAN;   ///< with the gate and field.mean_intensity: a joining cell whose mean
+                                               ///< intensity is at least this passes its level on unchanged, as a
+                                               ///< dropout does: a level lawn or lot of land intensity beside the
+                                               ///< water does not lead the level up to its own height; NaN disables.
+                                               ///< Default NaN (extract_waterbodies sets the survey's land intensity
+                                               ///< for the floods of flat seeds: flat_water_seeds_workspace)
     bool test_first_step = true;  ///< with the gate and level_ks_exempt_m >= 0: the first step, which has no
                                   ///< previous region to be tested against, is tested within itself. Its
                                   ///< cells with returns off the level they are reached at (|min z − L| >

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -87,7 +88,12 @@ inline water_field water_field_of(const water_rasters& in, double cell_m, raster
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
     auto bins = intensity_bins(in.mean_intensity, in.dropout, opt.intensity);
     water_field field{water_angles(in, cell_m, opt.angles, {.threads = opt.run.threads}),
-                      raster<std::uint8_t>(rows, cols, uninitialized), std::move(bins.bin), bins.bins, in.min_z};
+                      raster<std::uint8_t>(rows, cols, uninitialized),
+                      std::move(bins.bin),
+                      bins.bins,
+                      in.min_z,
+                      {},
+                      in.mean_intensity};
     mask_not(vegetation, field.eligible);
     if (!in.footprint.empty()) clear_outside(field.eligible.view(), in.footprint);
     return field;
@@ -128,12 +134,13 @@ inline raster<std::uint8_t> flat_seed_mask(const water_rasters& in, const water_
                                            raster_view<const std::uint8_t> vegetation,
                                            raster_view<const std::uint8_t> dropouts,
                                            raster_view<const std::int32_t> taken, raster<std::int32_t>& labels,
-                                           const extract_waterbodies_options& opt)
+                                           double& land_intensity, const extract_waterbodies_options& opt)
 {
     const int threads = opt.run.threads;
     flat_water_seeds_workspace workspace{std::move(labels)};
     auto mask = flat_water_seeds(in, vegetation, opt.flat, field.surface_slope, taken, workspace, {.threads = threads});
     labels = std::move(workspace.labels);
+    land_intensity = workspace.land_intensity;
     if (!mask_any(mask)) return {};
     if (opt.flat_seed_dropouts) mask = join_adjacent_dropouts(mask, dropouts, field.eligible, {.threads = threads});
     if (opt.grow.level_gate_m > 0) {
@@ -143,6 +150,19 @@ inline raster<std::uint8_t> flat_seed_mask(const water_rasters& in, const water_
         cut_at_level_bands(mask, labels, parts.empty() ? 0 : parts.size() - 1, in.min_z, 2 * opt.grow.level_gate_m);
     }
     return mask;
+}
+
+/// Clears the cells of `mask` whose intensity is at least `limit` (land-like: a seed beyond a bridge that lands
+/// on a level lawn of land intensity would flood it); NaN limit: none. O(cells).
+inline void clear_at_least(raster<std::uint8_t>& mask, raster_view<const float> intensity, double limit)
+{
+    if (std::isnan(limit)) return;
+    const auto at_least = static_cast<float>(limit);
+    for (std::ptrdiff_t r = 0; r < mask.rows(); ++r) {
+        std::uint8_t* m = mask.view().row(r);
+        const float* v = intensity.row(r);
+        for (std::ptrdiff_t c = 0, n = mask.cols(); c < n; ++c) m[c] = m[c] && !(v[c] >= at_least);
+    }
 }
 
 /// The refinements of the grown bodies, in order: join_across_bridges, trim_raised_edge_cells,
@@ -201,24 +221,31 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     res.seeds_found = seeds.count();
     res.seeds = std::move(seeds.labels);
     raster<std::int32_t> labels;  // reused by the labelling steps below
+    // The floods of flat seeds and of the seeds beyond bridges after them: the level follows no cell of land
+    // intensity (a flat seed has no lost pulses to vouch for it).
+    extract_waterbodies_options later = opt;
     if (opt.flat_seeds) {
-        auto mask = detail::flat_seed_mask(in, field, res.vegetation, dropouts, grown.labels, labels, opt);
+        double land_intensity = NAN;
+        auto mask =
+            detail::flat_seed_mask(in, field, res.vegetation, dropouts, grown.labels, labels, land_intensity, opt);
+        if (std::isnan(later.grow.level_follow_max_intensity)) later.grow.level_follow_max_intensity = land_intensity;
         if (mask.empty()) {
             detail::report(opt.run.progress, 0.9, fn);  // no flat seed: the step is passed over
         } else {
             auto more = water_seeds(mask, opt.seeds, std::move(labels), seed_run);
-            detail::grow_more_seeds(field, more, in, grown, res, opt, 0.8, 0.1, fn);
+            detail::grow_more_seeds(field, more, in, grown, res, later, 0.8, 0.1, fn);
             labels = std::move(more.labels);
         }
     }
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {  // each round's bodies may end at a bridge
-        const auto mask =
+        auto mask =
             seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, field.surface_slope);
+        detail::clear_at_least(mask, in.mean_intensity, later.grow.level_follow_max_intensity);
         if (!mask_any(mask)) break;  // none: no labelling
         auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells},
                                 std::move(labels), seed_run);
         if (more.count() == 0) break;
-        detail::grow_more_seeds(field, more, in, grown, res, opt, 0.9, 0.0, fn);
+        detail::grow_more_seeds(field, more, in, grown, res, later, 0.9, 0.0, fn);
         labels = std::move(more.labels);
     }
     res.seeds_grown = grown.seeds_grown;

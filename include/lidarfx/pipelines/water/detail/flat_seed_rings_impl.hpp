@@ -192,7 +192,8 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
         {}, fn);
     const std::size_t nb = comps.count();
     flat_seed_rings rings{std::vector<double>(nb + 1, 0), std::vector<double>(nb + 1, 0),
-                          std::vector<double>(nb + 1, 0), std::vector<double>(nb + 1, 0)};
+                          std::vector<double>(nb + 1, 0), std::vector<double>(nb + 1, 0),
+                          std::vector<double>(nb + 1, 0)};
     for (const auto& list : found) {
         for (const auto& e : list) {
             const auto m = static_cast<std::size_t>(e.label);
@@ -200,6 +201,7 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
             rings.cells[m] += 1;
             rings.intensity_sum[m] += in.mean_intensity(e.r, e.c);
             rings.lower[m] += in.min_z(e.r, e.c) < e.z - opt.level_tolerance_m;
+            rings.raised[m] += in.min_z(e.r, e.c) > e.z + opt.level_tolerance_m;
         }
     }
     return rings;

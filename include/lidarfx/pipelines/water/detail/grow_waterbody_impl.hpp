@@ -69,6 +69,8 @@ inline void validate(const water_field& field, const grow_waterbody_options& opt
     if (gate) require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
     if (gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty())
         require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
+    if (gate && !std::isnan(opt.level_follow_max_intensity) && !field.mean_intensity.empty())
+        require_same_shape(field.angle_deg, field.mean_intensity, fn, "field.angle_deg", "field.mean_intensity");
 }
 
 }  // namespace detail
@@ -109,10 +111,13 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
     const bool slope_gate = gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty();
     const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
+    const bool intensity_gate = gate && !std::isnan(opt.level_follow_max_intensity) && !field.mean_intensity.empty();
+    const auto max_intensity = static_cast<float>(opt.level_follow_max_intensity);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
     // The views in locals: the queue stores could alias their members, which would then be reloaded.
     const raster_view<const float> min_z = field.min_z;
     const surface_slope_source surface_slope = field.surface_slope;
+    const raster_view<const float> mean_intensity = field.mean_intensity;
     // Cell i = r * cols + c, not seen and eligible, reached at step from_step from a cell passing on
     // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
     // already, and a call per neighbour would cost more than the test.
@@ -131,8 +136,9 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    if (!slope_gate || !(surface_slope(r, c) > max_slope))
-                        level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
+                    const bool follows = (!slope_gate || !(surface_slope(r, c) > max_slope)) &&
+                                         (!intensity_gate || !(mean_intensity(r, c) >= max_intensity));
+                    if (follows) level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
             if (exempt && sample >= 0) {

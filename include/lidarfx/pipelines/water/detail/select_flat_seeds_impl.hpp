@@ -85,12 +85,14 @@ inline bool sparse_enough(const flat_seed_components& comps, const flat_seed_rin
     // Land-like: as bright as the survey's land; then only the lost pulses above say water.
     const double mean_intensity = comps.intensity_sum[l] / size;
     if (mean_intensity >= rings.land_intensity) return false;
+    const bool dark_for_survey = mean_intensity <= opt.max_land_intensity_ratio * rings.land_intensity;
+    if (dark_for_survey && rings.raised[l] >= opt.min_raised_share * rings.cells[l]) return true;  // and sunken
     const bool sparse = density <= opt.max_density_ratio && intensity <= 1;
     if (sparse) return true;
     if (!(density <= opt.dark_density_ratio)) return false;
     // Dark against its ring or against the survey's land.
     if (intensity <= opt.max_intensity_ratio) return true;
-    if (mean_intensity <= opt.max_land_intensity_ratio * rings.land_intensity) return true;
+    if (dark_for_survey) return true;
     // On perfectly smooth data (typical 0) a smooth component is 0, not 0 / 0.
     const double mean_rough = comps.roughness_sum[l] / size;
     const double roughness = mean_rough <= 0 ? 0.0 : mean_rough / typical.get();
@@ -108,11 +110,11 @@ inline std::vector<std::uint8_t> select_flat_seeds(const flat_seed_components& c
     constexpr const char* fn = "select_flat_seeds";
     detail::validate(opt, fn);
     const std::size_t nb = comps.count();
-    detail::require(comps.free_cells.size() == nb + 1 && comps.count_sum.size() == nb + 1 &&
-                        comps.intensity_sum.size() == nb + 1 && comps.roughness_sum.size() == nb + 1 &&
-                        rings.cells.size() == nb + 1 && rings.count_sum.size() == nb + 1 &&
-                        rings.intensity_sum.size() == nb + 1 && rings.lower.size() == nb + 1,
-                    fn, "comps and rings must hold count() + 1 entries per measure");
+    detail::require(
+        comps.free_cells.size() == nb + 1 && comps.count_sum.size() == nb + 1 && comps.intensity_sum.size() == nb + 1 &&
+            comps.roughness_sum.size() == nb + 1 && rings.cells.size() == nb + 1 && rings.count_sum.size() == nb + 1 &&
+            rings.intensity_sum.size() == nb + 1 && rings.lower.size() == nb + 1 && rings.raised.size() == nb + 1,
+        fn, "comps and rings must hold count() + 1 entries per measure");
     if (!surface_slope.empty()) detail::require_same_shape(comps.labels, surface_slope, fn, "labels", "surface_slope");
     std::vector<std::uint8_t> keep(nb + 1, 0);
     detail::typical_roughness typical(comps);
