@@ -43,9 +43,10 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
 /// quantile of the mean intensity of the cells with a return (no dropout, finite min z and intensity, inside
 /// in.footprint) outside every component that could be water by its shape: lowest (rings.lower <=
 /// opt.max_lower_share · rings.cells, with a ring). Everything else is the survey's own land: vegetation,
-/// roofs, roads, rough and sloping ground, level ground above its surroundings. From a histogram of 4096
-/// bins between the lowest and highest of those intensities (known to 1/4096 of that range). NaN without
-/// such cells or with opt.land_intensity_quantile < 0. Two passes in row order: O(cells).
+/// roofs, roads, rough and sloping ground, level ground above its surroundings. From a histogram of the
+/// intensities' float representations cut to 16 bits (bins 0.8 % of their value wide; the middle of the
+/// bin is returned; negative intensities count as 0). NaN without such cells or with
+/// opt.land_intensity_quantile < 0. One pass in row order: O(cells).
 /// @throws invalid_input on rasters of different shapes or rings or options that do not match.
 inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
                                     const flat_seed_rings& rings, const flat_water_seeds_options& opt = {});

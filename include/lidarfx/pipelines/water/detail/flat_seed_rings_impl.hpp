@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -219,42 +220,41 @@ inline double survey_land_intensity(const water_rasters& in, const flat_seed_com
                     "rings must hold comps.count() + 1 entries per measure");
     const double quantile = opt.land_intensity_quantile;
     if (quantile < 0) return NAN;
-    std::vector<std::uint8_t> candidates(nb + 1, 0);
+    // land_of[label + 1]: 1 when a cell of that label (-1, 0 or a component) is land.
+    std::vector<std::uint8_t> land_of(nb + 2, 1);
     for (std::size_t l = 1; l <= nb; ++l)
-        candidates[l] = rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l];
-    constexpr int bins = 4096;
+        land_of[l + 1] = !(rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l]);
+    // One pass: a histogram over the high 16 bits of the intensity's float representation (sign, exponent and
+    // 7 bits of mantissa), which orders non-negative floats; negative intensities count as 0.
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    const auto for_land = [&](auto&& f) {
-        for (std::ptrdiff_t r = 0; r < rows; ++r) {
-            const std::int32_t* lab = comps.labels.view().row(r);
-            const std::uint8_t* drop = in.dropout.row(r);
-            const float* z = in.min_z.row(r);
-            const float* v = in.mean_intensity.row(r);
-            const std::uint8_t* inside = in.footprint.empty() ? nullptr : in.footprint.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const bool candidate = lab[c] > 0 && candidates[static_cast<std::size_t>(lab[c])];
-                if (!candidate && !drop[c] && std::isfinite(z[c]) && std::isfinite(v[c]) && (!inside || inside[c]))
-                    f(v[c]);
-            }
+    const std::vector<std::uint8_t> ones(in.footprint.empty() ? static_cast<std::size_t>(cols) : 0, 1);
+    std::vector<std::size_t> histogram(std::size_t{1} << 15, 0);  // positive floats have the sign bit 0
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* lab = comps.labels.view().row(r);
+        const std::uint8_t* drop = in.dropout.row(r);
+        const float* z = in.min_z.row(r);
+        const float* v = in.mean_intensity.row(r);
+        const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const bool keep = land_of[static_cast<std::size_t>(lab[c] + 1)] & (drop[c] == 0) & (inside[c] != 0) &
+                              std::isfinite(z[c]) & std::isfinite(v[c]);
+            const float value = keep ? std::max(v[c], 0.0f) : 0.0f;
+            histogram[std::bit_cast<std::uint32_t>(value) >> 16] += keep;
         }
-    };
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    }
     std::size_t n = 0;
-    for_land([&](float v) { lo = std::min(lo, v), hi = std::max(hi, v), ++n; });
+    for (const std::size_t h : histogram) n += h;
     if (n == 0) return NAN;
-    if (!(hi > lo)) return lo;
-    const double width = (static_cast<double>(hi) - lo) / bins;
-    std::vector<std::size_t> histogram(bins, 0);
-    for_land([&](float v) {
-        histogram[static_cast<std::size_t>(std::min<double>(bins - 1, (static_cast<double>(v) - lo) / width))] += 1;
-    });
     const double target = quantile * static_cast<double>(n);
     std::size_t seen = 0;
-    for (int b = 0; b < bins; ++b) {
-        seen += histogram[static_cast<std::size_t>(b)];
-        if (static_cast<double>(seen) >= target && seen > 0) return lo + (b + 0.5) * width;
+    for (std::size_t b = 0; b < histogram.size(); ++b) {
+        seen += histogram[b];
+        if (static_cast<double>(seen) >= target && seen > 0) {
+            // The middle of the bin's values: its 16 high bits, then 1 and 15 zeros.
+            return std::bit_cast<float>(static_cast<std::uint32_t>((b << 16) | 0x8000u));
+        }
     }
-    return hi;
+    return NAN;  // not reached: seen reaches n
 }
 
 }  // namespace lidarfx
