@@ -17,7 +17,9 @@ namespace lidarfx {
 /// (count() + 1 entries, keep[0] = 0). A component with free cells and a ring is a seed when it is lowest
 /// (rings.lower <= opt.max_lower_share · ring cells) and sparse: its mean in.count over its ring's (the
 /// density ratio) is <= opt.bright_density_ratio whatever the intensity; or, when it is not land-like (mean
-/// intensity below rings.land_intensity, the survey's land quantile; NaN: never land-like), <=
+/// intensity below rings.land_intensity, the survey's land quantile; NaN: never land-like), dark against
+/// the survey (mean intensity <= opt.max_land_intensity_ratio · rings.land_intensity) and sunken
+/// (rings.raised >= opt.min_raised_share · ring cells) whatever its density, or <=
 /// opt.max_density_ratio while its intensity ratio is <= 1, or <= opt.dark_density_ratio and dark (intensity
 /// ratio <= opt.max_intensity_ratio, or mean intensity <= opt.max_land_intensity_ratio ·
 /// rings.land_intensity), smooth (mean max z − min z <= opt.max_roughness_ratio · the median of
