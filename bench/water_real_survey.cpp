@@ -131,7 +131,9 @@ int main(int argc, char** argv)
             }
         }
         const double n = static_cast<double>(tp + fp + fn + tn), area = g.cell * g.cell;
-        const auto pct = [](std::size_t a, std::size_t b) { return b ? 100.0 * static_cast<double>(a) / b : NAN; };
+        const auto pct = [](std::size_t a, std::size_t b) {
+            return b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : NAN;
+        };
         std::printf(
             "cells %.0f, water true %.0f m2, found %.0f m2: accuracy %.2f %%, sensitivity %.2f %%, "
             "specificity %.2f %%, IoU %.2f %%\n",
