@@ -58,6 +58,29 @@ inline int step_of_angle(const grow_waterbody_options& o, float angle, int last)
     return k;
 }
 
+/// Where a joining cell passes on a level that follows its min z (with the gate): not where the surface
+/// slope exceeds level_follow_max_slope, nor where the mean intensity reaches level_follow_max_intensity.
+/// Each test is on only when its option is set and the field holds its raster (else that view is empty).
+struct level_follow_rule {
+    surface_slope_source slope = {};
+    float max_slope = 0;
+    raster_view<const float> intensity = {};
+    float max_intensity = 0;
+
+    level_follow_rule(const water_field& field, const grow_waterbody_options& opt, bool gate)
+    {
+        if (gate && opt.level_follow_max_slope >= 0) slope = field.surface_slope;
+        if (gate && !std::isnan(opt.level_follow_max_intensity)) intensity = field.mean_intensity;
+        max_slope = static_cast<float>(opt.level_follow_max_slope);
+        max_intensity = static_cast<float>(opt.level_follow_max_intensity);
+    }
+    bool follows(std::ptrdiff_t r, std::ptrdiff_t c) const
+    {
+        return (slope.empty() || !(slope(r, c) > max_slope)) &&
+               (intensity.empty() || !(intensity(r, c) >= max_intensity));
+    }
+};
+
 /// grow_waterbody's checks of its field and options.
 inline void validate(const water_field& field, const grow_waterbody_options& opt, const char* fn)
 {
@@ -67,10 +90,11 @@ inline void validate(const water_field& field, const grow_waterbody_options& opt
     require(field.bins >= 1, fn, "field.bins", ">= 1", field.bins);
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     if (gate) require_same_shape(field.angle_deg, field.min_z, fn, "field.angle_deg", "field.min_z");
-    if (gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty())
-        require_same_shape(field.angle_deg, field.surface_slope, fn, "field.angle_deg", "field.surface_slope");
-    if (gate && !std::isnan(opt.level_follow_max_intensity) && !field.mean_intensity.empty())
-        require_same_shape(field.angle_deg, field.mean_intensity, fn, "field.angle_deg", "field.mean_intensity");
+    const level_follow_rule follow(field, opt, gate);
+    if (!follow.slope.empty())
+        require_same_shape(field.angle_deg, follow.slope, fn, "field.angle_deg", "field.surface_slope");
+    if (!follow.intensity.empty())
+        require_same_shape(field.angle_deg, follow.intensity, fn, "field.angle_deg", "field.mean_intensity");
 }
 
 }  // namespace detail
@@ -109,15 +133,10 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // Queues on huge pages when large: a big flood grows them by doubling, and fresh small pages are costly.
     using cell_queue = std::vector<queued, detail::raster_allocator<queued>>;
     std::vector<cell_queue> buckets(static_cast<std::size_t>(last + 1));
-    const bool slope_gate = gate && opt.level_follow_max_slope >= 0 && !field.surface_slope.empty();
-    const auto max_slope = static_cast<float>(opt.level_follow_max_slope);
-    const bool intensity_gate = gate && !std::isnan(opt.level_follow_max_intensity) && !field.mean_intensity.empty();
-    const auto max_intensity = static_cast<float>(opt.level_follow_max_intensity);
     const double rise = opt.level_rise_m < 0 ? opt.level_drift_m : std::min(opt.level_rise_m, opt.level_drift_m);
     // The views in locals: the queue stores could alias their members, which would then be reloaded.
     const raster_view<const float> min_z = field.min_z;
-    const surface_slope_source surface_slope = field.surface_slope;
-    const raster_view<const float> mean_intensity = field.mean_intensity;
+    const detail::level_follow_rule follow(field, opt, gate);
     // Cell i = r * cols + c, not seen and eligible, reached at step from_step from a cell passing on
     // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
     // already, and a call per neighbour would cost more than the test.
@@ -136,9 +155,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
-                    const bool follows = (!slope_gate || !(surface_slope(r, c) > max_slope)) &&
-                                         (!intensity_gate || !(mean_intensity(r, c) >= max_intensity));
-                    if (follows) level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
+                    if (follow.follows(r, c))
+                        level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
             }
             if (exempt && sample >= 0) {
