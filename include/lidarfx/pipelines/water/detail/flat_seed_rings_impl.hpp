@@ -208,6 +208,16 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
     return rings;
 }
 
+namespace detail {
+
+/// Whether component l is lowest: it has a ring, and at most opt.max_lower_share of it lies lower.
+inline bool lowest(const flat_seed_rings& rings, std::size_t l, const flat_water_seeds_options& opt) noexcept
+{
+    return rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l];
+}
+
+}  // namespace detail
+
 inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
                                     const flat_seed_rings& rings, const flat_water_seeds_options& opt)
 {
@@ -222,8 +232,7 @@ inline double survey_land_intensity(const water_rasters& in, const flat_seed_com
     if (quantile < 0) return NAN;
     // land_of[label + 1]: 1 when a cell of that label (-1, 0 or a component) is land.
     std::vector<std::uint8_t> land_of(nb + 2, 1);
-    for (std::size_t l = 1; l <= nb; ++l)
-        land_of[l + 1] = !(rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l]);
+    for (std::size_t l = 1; l <= nb; ++l) land_of[l + 1] = !detail::lowest(rings, l, opt);
     // One pass: a histogram over the high 16 bits of the intensity's float representation (sign, exponent and
     // 7 bits of mantissa), which orders non-negative floats; negative intensities count as 0.
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();

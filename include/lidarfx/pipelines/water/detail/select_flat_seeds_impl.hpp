@@ -122,7 +122,7 @@ inline std::vector<std::uint8_t> select_flat_seeds(const flat_seed_components& c
         // A component all taken leaves no seed cell. (Every component has >= min_cells cells.)
         if (comps.free_cells[l] == 0 || rings.cells[l] == 0) continue;
         if (!detail::sparse_enough(comps, rings, l, opt, typical)) continue;
-        if (!(rings.lower[l] <= opt.max_lower_share * rings.cells[l])) continue;
+        if (!detail::lowest(rings, l, opt)) continue;
         keep[l] = 1;
     }
     if (!surface_slope.empty() && opt.max_surface_slope >= 0)
