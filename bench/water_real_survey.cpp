@@ -9,8 +9,9 @@
 //     of empty cells inside the footprint) are: a lake's interior without returns, ringed by class-9 returns
 //     along its shore. Other gaps are not scored: a vendor classifies the returns it has, and the shore of
 //     a lake without returns is often left as ground;
-//   - polygon truth (--polygons, any file the program reads footprints from): a cell is water when its
-//     centre lies inside a polygon (even-odd over all rings); every cell inside the footprint counts,
+//   - polygon truth (--polygons, any file the program reads footprints from, read as footprints are: GeoJSON
+//     features need an integer building_id, OGR layers use their FIDs): a cell is water when its
+//     centre lies inside a polygon (even-odd over its rings); every cell inside the footprint counts,
 //     with or without points.
 // Noise points (classes 7 and 18) are left out. Cells holding a bridge-deck point (class 17), and the cells
 // next to them, are not scored. Prints accuracy, sensitivity, specificity and IoU in %, the cells scored
@@ -26,32 +27,13 @@
 
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/kernels/label/connected_components.hpp>
+#include <lidarfx/kernels/vector/burn_polygons.hpp>
 
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
 #include "io/las.hpp"
 
-namespace {
-
 using namespace lidarfx;
-
-/// True when (x, y) lies inside the polygons (even-odd rule over every ring of every part).
-bool inside(const std::vector<polygon>& parts, double x, double y)
-{
-    bool in = false;
-    for (const auto& p : parts) {
-        for (const auto& ring : p.rings) {
-            for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-                const auto [xi, yi] = ring[i];
-                const auto [xj, yj] = ring[j];
-                if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) in = !in;
-            }
-        }
-    }
-    return in;
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -75,10 +57,13 @@ int main(int argc, char** argv)
             water_points(r, c) += cls == 9;
             if (cls == 17) deck(r, c) = 1;
         }
-        std::vector<polygon> lakes;
-        if (argc == 5)
-            for (auto& fp : io::read_footprints(argv[4]).footprints)
-                for (auto& p : fp.parts) lakes.push_back(std::move(p));
+        // Polygon truth: the cells whose centre a polygon contains (burn_polygons' cell-centre rule).
+        raster<std::int32_t> lakes;
+        if (argc == 5) {
+            std::vector<labelled_polygon> polygons;
+            for (auto& fp : io::read_footprints(argv[4]).footprints) polygons.push_back({1, std::move(fp.parts)});
+            lakes = burn_polygons(polygons, g).labels;
+        }
         // Gaps: 8-connected components of empty cells inside the footprint, and the cells with points on
         // their rim (8-neighbours), counted as water or land.
         raster<std::uint8_t> empty(g.rows, g.cols, 0);
@@ -123,8 +108,7 @@ int main(int argc, char** argv)
                         truth = 2 * water_points(r, c) >= points(r, c);
                     }
                 } else {
-                    truth = inside(lakes, g.x0 + (static_cast<double>(c) + 0.5) * g.cell,
-                                   g.y0 - (static_cast<double>(r) + 0.5) * g.cell);
+                    truth = lakes(r, c) > 0;
                 }
                 const bool water = found(r, c) > 0.5f;
                 (truth ? (water ? tp : fn) : (water ? fp : tn)) += 1;
