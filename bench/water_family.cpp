@@ -7,7 +7,7 @@
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
 // WF_DRIFT, WF_EXEMPT (grow.level_*), WF_FIRST (0/1, grow.test_first_step), WF_Q (seed level quantile),
-// WF_SEEDMIN, WF_OPEN (seeds), WF_FLAT (0/1)
+// WF_SEEDMIN, WF_OPEN, WF_LINE (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
 // options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridges.join_touching), WF_SLOPE
 // (grow.level_follow_max_slope), WF_SLOPE_{RAD,MIN,BAND} (water_surface_slope options), WF_BSEED (rounds of
@@ -183,6 +183,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_Q")) o.grow.seed_level.quantile = std::atof(v);
              if (const char* v = std::getenv("WF_SEEDMIN")) o.seeds.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_OPEN")) o.seeds.opening_size_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_LINE")) o.seeds.line_length_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_FLAT")) o.flat_seeds = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_FLAT_TOL")) o.flat.level_tolerance_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_RAD")) o.flat.level_radius_cells = std::atoi(v);

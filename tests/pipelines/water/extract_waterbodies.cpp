@@ -138,6 +138,10 @@ TEST_CASE(
     CHECK(found_in_pond(with) == pond);
     CHECK(water_outside(with) == 0);
     opt.flat_seed_dropouts = false;
+    const auto runs = extract_waterbodies(s.view(), 2.0, opt);  // the dropouts' straight runs seed it as well
+    CHECK(found_in_pond(runs) == pond);
+    CHECK(water_outside(runs) == 0);
+    opt.seeds.line_length_cells = 0;
     const auto without = extract_waterbodies(s.view(), 2.0, opt);
     REQUIRE(without.ran);
     CHECK(found_in_pond(without) < pond / 2);  // the opened seed mask keeps too little of the pond

@@ -154,4 +154,24 @@ TEST_CASE("water/water_seeds: options out of range are refused")
                          "water_seeds: opening_size_cells must be odd and >= 1 (got 2)", invalid_input);
     CHECK_THROWS_WITH_AS(water_seeds(d, {.min_cells = 0}), "water_seeds: min_cells must be >= 1 (got 0)",
                          invalid_input);
+    CHECK_THROWS_WITH_AS(water_seeds(d, {.line_length_cells = 1}),
+                         "water_seeds: line_length_cells must be 0 or in [2, 255] (got 1)", invalid_input);
+}
+
+TEST_CASE("water/water_seeds: with line_length_cells a diagonal river two cells wide seeds; scattered dropouts do not")
+{
+    raster<std::uint8_t> d(60, 60, 0);
+    for (std::ptrdiff_t i = 0; i < 50; ++i) d(5 + i, 5 + i) = d(5 + i, 6 + i) = 1;  // 100 cells, no 3 x 3 inside
+    std::mt19937 rng(11);
+    std::bernoulli_distribution lost(0.15);  // land at a low density: single lost pulses
+    for (std::ptrdiff_t r = 0; r < 60; ++r)
+        for (std::ptrdiff_t c = 0; c < 60; ++c)
+            if (c > r + 10 && lost(rng)) d(r, c) = 1;
+    CHECK(water_seeds(d, {.opening_size_cells = 3, .min_cells = 50}).count() == 0);
+    const auto s = water_seeds(d, {.opening_size_cells = 3, .min_cells = 50, .line_length_cells = 4});
+    REQUIRE(s.count() == 1);
+    CHECK(s.labels(30, 30) == 1);
+    CHECK(s.labels(30, 31) == 1);
+    CHECK(s.sizes[1] >= 100);
+    CHECK(s.sizes[1] < 130);  // the scattered land dropouts stay out but for a few touching runs
 }

@@ -43,10 +43,11 @@ struct extract_waterbodies_options {
     water_vegetation_options vegetation = {};  ///< water_vegetation: height, closing, multiple returns
     water_angles_options angles = {};          ///< water_angles: radius, elevation read, dropouts at any θ
     intensity_bins_options intensity = {};     ///< intensity_bins: intensity quantum of the KS samples
-    water_seeds_options seeds = {
-        .opening_size_cells = 3,
-        .min_cells = 50};                   ///< water_seeds: opening and size
-                                            ///< of the seeds from dropouts and of the flat seeds (3 and 50 here)
+    water_seeds_options seeds = {.opening_size_cells = 3,
+                                 .min_cells = 50,
+                                 .line_length_cells = 4};  ///< water_seeds: opening, size and straight runs
+                                                           ///< of the seeds from dropouts and of the flat seeds
+                                                           ///< (3, 50 and 4 here: a river two cells wide seeds)
     bool flat_seeds = false;                ///< flat_water_seeds: also seed from level, low cells with fewer returns
                                             ///< than the land around them (or a few % fewer and dark or smooth):
                                             ///< water without dropouts (turbid, specular, dense surveys). These

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/mask_ops.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/filter/line_opening.hpp"
 #include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
 
@@ -21,10 +23,15 @@ namespace lidarfx {
 struct water_seeds_options {
     int opening_size_cells = 5;   ///< side of the square opening the dropout mask, cells; odd, >= 1. Default 5.
     std::size_t min_cells = 100;  ///< seeds keep components of at least this many cells; >= 1. Default 100.
+    int line_length_cells = 0;    ///< also keep the mask cells on a straight run (row, column or diagonal) of at
+                                  ///< least this many mask cells (line_opening): narrow water that the square
+                                  ///< opening erases, as a river a few cells wide on coarse cells; 0 = off,
+                                  ///< else in [2, 255]. Default 0 (the dissertation's seeds)
 };
 
 /// Seeds of waterbodies (dissertation 2.3.2): the dropout mask opened by an opening_size_cells square
-/// (morph_open; removes dropouts narrower than the square, as on land), its 8-connected components of at
+/// (morph_open; removes dropouts narrower than the square, as on land), with line_length_cells the cells of
+/// its straight runs of that length added (line_opening: thin but long water stays), its 8-connected components of at
 /// least min_cells cells, ranked by size: label 1 = largest, ties in raster-scan order of their first
 /// cell. Cells of smaller components are background (sizes[0] counts them). Mask: nonzero = dropout.
 /// The labels are written into `labels` (given another shape, it is replaced by one of the mask's), whose
@@ -53,6 +60,8 @@ inline void validate(const water_seeds_options& o, const char* fn)
     require(o.opening_size_cells >= 1 && o.opening_size_cells % 2 == 1, fn, "opening_size_cells", "odd and >= 1",
             o.opening_size_cells);
     require(o.min_cells >= 1, fn, "min_cells", ">= 1", o.min_cells);
+    require(o.line_length_cells == 0 || (o.line_length_cells >= 2 && o.line_length_cells <= 255), fn,
+            "line_length_cells", "0 or in [2, 255]", o.line_length_cells);
 }
 
 }  // namespace detail
@@ -66,8 +75,9 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     detail::check_execution(run, fn);
     detail::report(run.progress, 0.0, fn);
     const int threads = run.threads;
-    const auto opened =
+    auto opened =
         morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
+    if (opt.line_length_cells > 0) mask_or(line_opening(dropout, opt.line_length_cells), opened, opened);
     detail::ensure_shape(labels, opened.rows(), opened.cols());  // every cell is written
     components seeds{std::move(labels), {}};
     seeds.sizes = connected_components(
