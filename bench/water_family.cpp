@@ -184,6 +184,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_SEEDMIN")) o.seeds.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_OPEN")) o.seeds.opening_size_cells = std::atoi(v);
              if (const char* v = std::getenv("WF_LINE")) o.seeds.line_length_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_ANYANGLE")) o.grow.level_any_angle_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT")) o.flat_seeds = std::atoi(v) != 0;
              if (const char* v = std::getenv("WF_FLAT_TOL")) o.flat.level_tolerance_m = std::atof(v);
              if (const char* v = std::getenv("WF_FLAT_RAD")) o.flat.level_radius_cells = std::atoi(v);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include <lidarfx/core/error.hpp>
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/pipelines/water/grow_waterbody.hpp>
 
@@ -176,4 +177,41 @@ TEST_CASE("water/grow_waterbody first-step test: a bright meadow 0.1 m above the
     for (std::ptrdiff_t i = 0; i < dark.intensity_bin.size(); ++i)
         if (dark.intensity_bin.data()[i] >= 30) dark.intensity_bin.data()[i] -= 30;
     CHECK(grow_waterbody(dark, seed, {}, workspace).cells.size() == static_cast<std::size_t>(n * n));
+}
+
+TEST_CASE("water/grow_waterbody level gate: with level_any_angle_m a channel narrower than the angular window is "
+          "followed to its end")
+{
+    // 9 x 60: a channel two cells wide (rows 3-4) at 100 m, falling 0.002 m per column; banks 1.5 m above it.
+    // Every channel cell sees a bank within the angular window: its angle (40°) exceeds θ max (30°), the banks'
+    // own angles are 0. A seed of dropouts at the west end (cols 0-2).
+    const std::ptrdiff_t rows = 9, cols = 60;
+    raster<float> min_z(rows, cols);
+    std::vector<std::ptrdiff_t> seed;
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const bool channel = r == 3 || r == 4;
+            const float level = 100.0f - 0.002f * static_cast<float>(c);
+            min_z.view()(r, c) = channel ? (c <= 2 ? NAN : level) : level + 1.5f;
+            if (channel && c <= 2) seed.push_back(r * cols + c);
+        }
+    auto field = flat_field(min_z);
+    for (std::ptrdiff_t c = 0; c < cols; ++c)  // the seed's dropouts join at any angle, as water_angles gives them
+        field.angle_deg.view()(3, c) = field.angle_deg.view()(4, c) = c <= 2 ? NAN : 40.0f;
+    grow_waterbody_workspace workspace;
+    const auto by_angle = grow_waterbody(field, seed, {}, workspace);
+    CHECK(by_angle.cells.size() == seed.size());  // the angles keep every channel cell with a return out
+
+    grow_waterbody_options by_level;
+    by_level.level_any_angle_m = 0.05;
+    const auto followed = grow_waterbody(field, seed, by_level, workspace);
+    CHECK(followed.cells.size() == static_cast<std::size_t>(2 * cols));  // the whole channel, no bank cell
+    for (const auto i : followed.cells) CHECK((i / cols == 3 || i / cols == 4));
+
+    // A step of 0.1 m in the channel at column 30 is beyond 0.05 m of the level: the flood ends there.
+    for (std::ptrdiff_t c = 30; c < cols; ++c) min_z.view()(3, c) = min_z.view()(4, c) = min_z.view()(3, c) + 0.1f;
+    field.min_z = min_z;
+    CHECK(grow_waterbody(field, seed, by_level, workspace).cells.size() == static_cast<std::size_t>(2 * 30));
+    by_level.level_any_angle_m = NAN;
+    CHECK_THROWS_AS(grow_waterbody(field, seed, by_level, workspace), invalid_input);
 }

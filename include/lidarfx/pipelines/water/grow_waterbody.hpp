@@ -63,6 +63,11 @@ struct grow_waterbody_options {
     double level_ks_exempt_m = 0.05;  ///< with the gate: cells with min z <= L + this are water by level and
                                       ///< stay out of the KS increment sample (bright specular water near
                                       ///< nadir); metres; < 0 disables. Default 0.05 m
+    double level_any_angle_m = -1;    ///< with the gate: a cell with a return whose min z lies within this of
+                                      ///< the level it is reached at joins at the step it is reached, whatever
+                                      ///< its angle: in a channel narrower than the angular window every cell
+                                      ///< sees a bank, and its angles exceed θ max; metres; < 0 disables.
+                                      ///< Default -1
     seed_water_level_options seed_level = {};  ///< how the seed's level L is read from the returns around it
     double level_follow_max_slope = -1;        ///< with the gate and field.surface_slope: a joining cell passes on a
                                                ///< level that follows its min z (the drift) only where the surface

@@ -48,6 +48,8 @@ inline extract_waterbodies_options flat_seed_water_method()
     // at 2 m cells) without climbing a beach; and a single walk over a deck (4 cells) may seed beyond it.
     o.grow.level_drift_m = 0.01;
     o.bridge_seed_min_cells = 4;
+    // A river narrower than the angular window sees a bank from every cell: at its level it joins anyway.
+    o.grow.level_any_angle_m = 0.03;
     return o;
 }
 

@@ -29,6 +29,8 @@ inline void validate(const grow_waterbody_options& o, const char* function)
     require(o.ks.alpha > 0 && o.ks.alpha < 1, function, "ks.alpha", "in (0, 1)", o.ks.alpha);
     require(o.level_gate_m >= 0, function, "level_gate_m", ">= 0", o.level_gate_m);
     require(o.level_drift_m >= 0, function, "level_drift_m", ">= 0", o.level_drift_m);
+    require(!std::isnan(o.level_any_angle_m), function, "level_any_angle_m", "a number (< 0 disables)",
+            o.level_any_angle_m);
 }
 
 /// θ_k, computed the same way everywhere so that step membership is exact.
@@ -118,6 +120,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     const bool gate = opt.level_gate_m > 0 && !field.min_z.empty();
     const detail::cell_splitter split(cols);
     const bool exempt = gate && opt.level_ks_exempt_m >= 0;
+    const bool any_angle = gate && opt.level_any_angle_m >= 0;
     const auto exempt_m = static_cast<float>(opt.level_ks_exempt_m);
     // A queued cell: its index, the level it passes on (gate; NaN: unknown yet) and its intensity sample
     // (bin, -1 for none) with two bits read when it joins, all found while its row is in cache at the push.
@@ -141,8 +144,8 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
     // from_level. The callers test seen and eligible inline: most neighbours of a joining cell are seen
     // already, and a call per neighbour would cost more than the test.
     const auto push = [&](std::ptrdiff_t i, std::ptrdiff_t r, std::ptrdiff_t c, int from_step, float from_level) {
-        const int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
-        if (k > last) return;  // can never join: leave it unvisited, another path cannot lower its own angle
+        int k = std::max(from_step, detail::step_of_angle(opt, angle[i], last));
+        if (k > last && !any_angle) return;  // can never join: leave it unvisited (its angle is its own)
         float level = from_level;
         std::int32_t sample = bin[i];
         if (sample > bin_bits) [[unlikely]]
@@ -155,6 +158,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 } else {
                     const double d = static_cast<double>(z) - from_level;
                     if (std::abs(d) > opt.level_gate_m) return;  // off the level: another path may pass
+                    if (any_angle && std::abs(d) <= opt.level_any_angle_m) k = from_step;  // water by level
                     if (follow.follows(r, c))
                         level = static_cast<float>(from_level + std::clamp(d, -opt.level_drift_m, rise));
                 }
@@ -164,6 +168,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
                 if (std::abs(z - level) <= exempt_m) sample |= at_level_bit;
             }
         }
+        if (k > last) return;  // neither its angle nor its level lets it in
         seen[i] = stamp;
         buckets[static_cast<std::size_t>(k)].push_back({i, level, sample});
     };
