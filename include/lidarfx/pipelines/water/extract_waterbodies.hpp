@@ -97,9 +97,9 @@ inline extract_waterbodies_options previous_water_method();
 /// level-surface cue (grow.level_follow_max_slope = flat.max_surface_slope, 0.008 m/m), which makes a faster
 /// level drift safe (grow.level_drift_m = 0.01 m per cell), bridge seeds from a single walk over a deck
 /// (bridge_seed_min_cells = 4) and cells within 0.03 m of the level joining at any angle
-/// (grow.level_any_angle_m: narrow rivers). It also finds water without dropouts (turbid, specular, dense surveys) and is
-/// what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.4x the defaults' time on
-/// rasters (docs/performance.md).
+/// (grow.level_any_angle_m: narrow rivers). It also finds water without dropouts (turbid, specular, dense surveys) and
+/// is what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.4x the defaults' time on rasters
+/// (docs/performance.md).
 inline extract_waterbodies_options flat_seed_water_method();
 
 /// Result of extract_waterbodies, with the intermediate rasters for inspection.
