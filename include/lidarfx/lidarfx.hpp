@@ -19,6 +19,7 @@
 // kernels: single-purpose algorithms
 #include "lidarfx/kernels/filter/angular_filter.hpp"
 #include "lidarfx/kernels/filter/distance_transform.hpp"
+#include "lidarfx/kernels/filter/line_opening.hpp"
 #include "lidarfx/kernels/filter/min_max_filter.hpp"
 #include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/filter/slope_aspect.hpp"

@@ -179,8 +179,9 @@ TEST_CASE("water/grow_waterbody first-step test: a bright meadow 0.1 m above the
     CHECK(grow_waterbody(dark, seed, {}, workspace).cells.size() == static_cast<std::size_t>(n * n));
 }
 
-TEST_CASE("water/grow_waterbody level gate: with level_any_angle_m a channel narrower than the angular window is "
-          "followed to its end")
+TEST_CASE(
+    "water/grow_waterbody level gate: with level_any_angle_m a channel narrower than the angular window is "
+    "followed to its end")
 {
     // 9 x 60: a channel two cells wide (rows 3-4) at 100 m, falling 0.002 m per column; banks 1.5 m above it.
     // Every channel cell sees a bank within the angular window: its angle (40°) exceeds θ max (30°), the banks'
