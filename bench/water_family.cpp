@@ -6,7 +6,7 @@
 // sensitivity, specificity and IoU, and the share of rivers with bridges found as one body.
 //   water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes]
 // For tuning (on the tuning seeds only), environment variables override the defaults' row: WF_GATE,
-// WF_DRIFT, WF_EXEMPT (grow.level_*), WF_FIRST (0/1, grow.test_first_step), WF_Q (seed level quantile),
+// WF_DRIFT, WF_EXEMPT, WF_ANYANGLE (grow.level_*), WF_FIRST (0/1, grow.test_first_step), WF_Q (seed level quantile),
 // WF_SEEDMIN, WF_OPEN, WF_LINE (seeds), WF_FLAT (0/1)
 // and WF_FLAT_{TOL,RAD,ROUGH,MIN,RING,DENS,DARKDENS,DARK,SMOOTH,LOWER,BRIGHT,JOINT,JOINTMIN} (flat_water_seeds
 // options), WF_RISE (grow.level_rise_m), WF_TOUCH (0/1, bridges.join_touching), WF_SLOPE
