@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages lidarfx needs (only those missing). Usage: install-deps.sh [--peers] [--gdal] [--mpi]
+# Installs the Debian packages lidarfx needs (only those missing).
+# Usage: install-deps.sh [--peers] [--gdal] [--mpi] [--clang] [--python] [--qgis]
 set -euo pipefail
 packages=(cmake ninja-build g++ clang-format time python3 libeigen3-dev libboost-dev doctest-dev libbenchmark-dev zlib1g-dev)
 for arg in "$@"; do
@@ -8,6 +9,8 @@ for arg in "$@"; do
         --gdal) packages+=(libgdal-dev libproj-dev gdal-bin python3-gdal) ;;  # GeoTIFF, OGR vectors, PROJ; gdalinfo in tests
         --clang) packages+=(clang lld) ;;
         --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
+        --python) packages+=(python3-dev python3-numpy python3-pytest python3-pybind11 pybind11-dev) ;;  # the module
+        --qgis) packages+=(qgis python3-qgis python3-gdal) ;;  # the QGIS Processing provider and its headless test
     esac
 done
 missing=()

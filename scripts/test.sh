@@ -6,8 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
 step() { echo "test.sh [$(date +%H:%M:%S)] $*"; }
-step "1/4 Debian packages (compiler, CMake, Eigen, Boost, doctest, MPI, GDAL/PROJ): installing those missing"
-bash scripts/install-deps.sh --mpi --gdal   # the MPI driver and its test; GeoTIFF in and out (GDAL, PROJ)
+step "1/4 Debian packages (compiler, CMake, Eigen, Boost, doctest, MPI, GDAL/PROJ, pybind11, QGIS): installing those missing"
+bash scripts/install-deps.sh --mpi --gdal --python --qgis  # MPI driver; GeoTIFF (GDAL, PROJ); Python module; QGIS provider
 step "2/4 configuring build/$preset (cmake --preset $preset)"
 cmake --preset "$preset" >/dev/null
 step "2/4 configured; 3/4 building the library's tests, examples and the program"

@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: Apache-2.0
+// Bindings of the single-purpose kernels: angular filter, morphology, connected components, the one-sided
+// KS test and rasterization of points.
+#include <lidarfx/kernels/filter/angular_filter.hpp>
+#include <lidarfx/kernels/filter/morphology.hpp>
+#include <lidarfx/kernels/label/connected_components.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
+#include <lidarfx/kernels/stats/ks_one_sided.hpp>
+
+#include "binding.hpp"
+#include "grid_arg.hpp"
+
+namespace lidarfx::python {
+
+namespace {
+
+py::array angular_filter_binding(const py::handle& z, double cell_m, int radius_cells, int threads, py::object progress)
+{
+    const array_input<float> in(z, "angular_filter", "z");
+    run_settings rs(threads, std::move(progress));
+    const angular_filter_options opt{.radius_cells = radius_cells, .run = rs.run()};
+    return to_numpy(rs.call([&] { return angular_filter(in.view(), cell_m, opt); }));
+}
+
+template <class Operation>
+auto morphology_binding(const Operation& operation, const char* name)
+{
+    return
+        [&operation, name](const py::handle& mask, int size_cells, int height_cells, int threads, py::object progress) {
+            const array_input<std::uint8_t> in(mask, name, "mask");
+            run_settings rs(threads, std::move(progress));
+            const morphology_options opt{.size_cells = size_cells, .height_cells = height_cells, .run = rs.run()};
+            return to_numpy(rs.call([&] { return operation(in.view(), opt); }), true);
+        };
+}
+
+py::object connected_components_binding(const py::handle& mask, int connectivity_cells, int threads,
+                                        py::object progress)
+{
+    if (connectivity_cells != 4 && connectivity_cells != 8) {
+        value_error("connected_components",
+                    "connectivity must be 4 or 8 (got " + std::to_string(connectivity_cells) + ")");
+    }
+    const array_input<std::uint8_t> in(mask, "connected_components", "mask");
+    run_settings rs(threads, std::move(progress));
+    const connected_components_options opt{.conn = connectivity_cells == 4 ? connectivity::four : connectivity::eight,
+                                           .run = rs.run()};
+    components c = rs.call([&] { return connected_components(in.view(), opt); });
+    py::array_t<std::int64_t> sizes(static_cast<py::ssize_t>(c.sizes.size()));
+    for (std::size_t i = 0; i < c.sizes.size(); ++i)
+        sizes.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<std::int64_t>(c.sizes[i]);
+    py::dict fields;
+    fields["labels"] = to_numpy(std::move(c.labels));
+    fields["sizes"] = sizes;
+    return make_result("Components", fields);
+}
+
+py::object ks_one_sided_binding(const py::handle& previous, const py::handle& current, double alpha,
+                                const std::string& critical)
+{
+    ks_one_sided_options opt{.alpha = alpha};
+    if (critical == "documents_table") {
+        opt.critical = ks_critical::documents_table;
+    } else if (critical == "one_sided") {
+        opt.critical = ks_critical::one_sided;
+    } else {
+        value_error("ks_one_sided", "critical must be 'documents_table' or 'one_sided' (got '" + critical + "')");
+    }
+    const auto a = vector_input<double>(previous, "ks_one_sided", "previous");
+    const auto b = vector_input<double>(current, "ks_one_sided", "current");
+    const std::span<const double> sa(a.data(), static_cast<std::size_t>(a.size()));
+    const std::span<const double> sb(b.data(), static_cast<std::size_t>(b.size()));
+    ks_result r;
+    {
+        py::gil_scoped_release release;
+        r = ks_one_sided(sa, sb, opt);
+    }
+    py::dict fields;
+    fields["d"] = r.d;
+    fields["critical"] = r.critical;
+    fields["reject"] = r.reject;
+    fields["p_value"] = r.p_value;
+    return make_result("KsResult", fields);
+}
+
+template <class T>
+std::span<const T> optional_points(const std::optional<py::array_t<T, py::array::c_style | py::array::forcecast>>& a)
+{
+    if (!a) return {};
+    return {a->data(), static_cast<std::size_t>(a->size())};
+}
+
+py::object rasterize_binding(const py::handle& x, const py::handle& y, const py::handle& z, const py::handle& intensity,
+                             const py::handle& return_number, const py::handle& number_of_returns, double cell_m,
+                             const py::handle& classification, const py::handle& grid_arg, const std::string& returns,
+                             int threads, py::object progress)
+{
+    constexpr const char* fn = "rasterize";
+    const auto xs = vector_input<double>(x, fn, "x"), ys = vector_input<double>(y, fn, "y"),
+               zs = vector_input<double>(z, fn, "z");
+    using small = std::uint8_t;
+    std::optional<py::array_t<std::uint16_t, py::array::c_style | py::array::forcecast>> in;
+    std::optional<py::array_t<small, py::array::c_style | py::array::forcecast>> rn, nr, cls;
+    if (!intensity.is_none()) in = vector_input<std::uint16_t>(intensity, fn, "intensity");
+    if (!return_number.is_none()) rn = vector_input<small>(return_number, fn, "return_number");
+    if (!number_of_returns.is_none()) nr = vector_input<small>(number_of_returns, fn, "number_of_returns");
+    if (!classification.is_none()) cls = vector_input<small>(classification, fn, "classification");
+    rasterize_options opt;
+    if (returns == "first") {
+        opt.returns = return_selection::first;
+    } else if (returns == "last") {
+        opt.returns = return_selection::last;
+    } else if (returns != "all") {
+        value_error(fn, "returns must be 'all', 'first' or 'last' (got '" + returns + "')");
+    }
+    run_settings rs(threads, std::move(progress));
+    opt.run = rs.run();
+    const soa_cloud<> cloud({xs.data(), static_cast<std::size_t>(xs.size())},
+                            {ys.data(), static_cast<std::size_t>(ys.size())},
+                            {zs.data(), static_cast<std::size_t>(zs.size())}, optional_points(in), optional_points(rn),
+                            optional_points(nr), optional_points(cls));
+    const std::optional<grid> given = grid_from_python(grid_arg, fn);
+    rasterize_result r = rs.call([&] {
+        const grid g = given ? *given : snapped_grid(bounds_of(cloud), cell_m);
+        return rasterize(cloud, g, opt);
+    });
+    py::dict fields;
+    fields["grid"] = grid_to_python(r.g);
+    fields["min_z"] = to_numpy(std::move(r.min_z));
+    fields["max_z"] = to_numpy(std::move(r.max_z));
+    fields["mean_intensity"] = to_numpy(std::move(r.mean_intensity));
+    fields["count"] = to_numpy(std::move(r.count));
+    fields["dropout"] = to_numpy(std::move(r.dropout), true);
+    fields["multiple_returns"] = to_numpy(std::move(r.multiple_returns), true);
+    fields["points_used"] = r.points_used;
+    fields["points_outside"] = r.points_outside;
+    fields["points_nan"] = r.points_nan;
+    fields["points_unselected"] = r.points_unselected;
+    return make_result("Rasters", fields);
+}
+
+}  // namespace
+
+void bind_kernels(py::module_& m)
+{
+    using namespace pybind11::literals;
+    m.def("angular_filter", &angular_filter_binding, "z"_a, "cell_m"_a, "radius_cells"_a = 2, py::kw_only(),
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
+Angular filter: for every cell p, the steepest angle to any cell q of the (2 radius_cells + 1)^2 window around
+it, max atan(|z(q) - z(p)| / (cell_m |p - q|)), degrees in [0, 90]: 0 on flat ground, near 90 beside walls.
+NaN neighbours are skipped, a NaN centre gives NaN, a cell without a valid neighbour gives 0.
+
+z: 2-D elevations in metres (float32 read in place; other real or integer dtypes are converted).
+cell_m: cell size in metres, > 0. radius_cells: window half-size in cells, >= 1 (default 2).
+Returns a float32 array of z's shape.)doc");
+
+    const char* morph_doc = R"doc(
+Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
+masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape.)doc";
+    m.def("morph_dilate", morphology_binding(morph_dilate, "morph_dilate"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
+          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
+          (std::string("Dilation: a cell is set when any cell of the rectangle centred on it is set.") + morph_doc)
+              .c_str());
+    m.def("morph_erode", morphology_binding(morph_erode, "morph_erode"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
+          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
+          (std::string("Erosion: a cell stays set when every cell of the rectangle inside the raster is set.") +
+           morph_doc)
+              .c_str());
+    m.def("morph_open", morphology_binding(morph_open, "morph_open"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
+          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
+          (std::string("Opening: erosion then dilation; removes set parts narrower than the rectangle.") + morph_doc)
+              .c_str());
+    m.def("morph_close", morphology_binding(morph_close, "morph_close"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
+          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
+          (std::string("Closing: dilation then erosion; fills gaps narrower than the rectangle.") + morph_doc).c_str());
+
+    m.def("connected_components", &connected_components_binding, "mask"_a, "connectivity"_a = 8, py::kw_only(),
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
+Connected components of a mask (nonzero = foreground) under 4- or 8-connectivity (default 8).
+
+Returns Components(labels, sizes): labels, int32 of mask's shape, 0 = background and 1..n in raster order
+(first cell met row by row); sizes, int64 of length n + 1, sizes[0] = background cells, sizes[l] = cells of
+component l. The result does not depend on threads.)doc");
+
+    m.def("ks_one_sided", &ks_one_sided_binding, "previous"_a, "current"_a, "alpha"_a = 0.05, py::kw_only(),
+          "critical"_a = "documents_table", R"doc(
+One-sided two-sample Kolmogorov-Smirnov test: is `current` significantly larger (shifted up) than `previous`?
+
+d = sup_x (F_previous(x) - F_current(x)); reject when d > c(alpha) sqrt((n + m) / (n m)), n and m the sample
+sizes. critical='documents_table' (default) takes c(alpha) from the table 0.10, 0.05, 0.025, 0.01, 0.005, 0.001
+-> 1.22, 1.36, 1.48, 1.63, 1.73, 1.95 (sqrt(-ln(alpha / 2) / 2) for other alpha); 'one_sided' takes
+sqrt(-ln(alpha) / 2). p_value = exp(-2 d^2 n m / (n + m)). alpha in (0, 1), default 0.05.
+Returns KsResult(d, critical, reject, p_value).)doc");
+
+    m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(),
+          "return_number"_a = py::none(), "number_of_returns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(),
+          "classification"_a = py::none(), "grid"_a = py::none(), "returns"_a = "all", "threads"_a = 1,
+          "progress"_a = py::none(), R"doc(
+Bins points into rasters: per cell the lowest and highest z (metres, NaN where no point), the mean intensity
+(0 where no point), the point count, the dropout mask (True = no return) and the multiple-returns mask (True =
+some point has number_of_returns > 1).
+
+x, y, z: 1-D coordinates in metres (float64; others converted). intensity (uint16), return_number,
+number_of_returns, classification (uint8): optional, of the same length. cell_m: cell size in metres (default
+1). grid: a Grid to bin on; default the snapped grid around the points (corners on multiples of cell_m).
+returns: 'all' (default), 'first' or 'last'. Points outside the grid or with NaN coordinates are counted, not
+binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, grid, point counts).)doc");
+}
+
+}  // namespace lidarfx::python

@@ -1,0 +1,111 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The pipelines on scenes with known truth: a lake in a field, a gabled house."""
+import math
+
+import numpy as np
+import pytest
+
+import lidarfx
+
+
+def lake_survey(rng, density_per_m2=4.0):
+    """A 240 m x 240 m field rising gently away from a round lake (radius 45 m, level 100 m). Water returns are
+    rare (97 % of pulses lost) and dark; land is bright. Returns the points and the truth function."""
+    area = 240.0 * 240.0
+    n = int(area * density_per_m2)
+    x = rng.uniform(0, 240, n)
+    y = rng.uniform(0, 240, n)
+    r = np.hypot(x - 120, y - 120)
+    water = r < 45
+    keep = ~water | (rng.random(n) < 0.03)
+    x, y, r, water = x[keep], y[keep], r[keep], water[keep]
+    z = np.where(water, 100.0 + rng.normal(0, 0.01, water.size),
+                 100.4 + 0.04 * np.maximum(r - 45, 0) + rng.normal(0, 0.03, water.size))
+    intensity = np.where(water, rng.integers(5, 30, water.size), rng.integers(120, 220, water.size)).astype(np.uint16)
+    ones = np.ones(x.size, np.uint8)
+    return (x, y, z, intensity, ones, ones), (lambda xx, yy: np.hypot(xx - 120, yy - 120) < 45)
+
+
+def test_extract_waterbodies_finds_the_lake_and_its_level(rng):
+    points, truth = lake_survey(rng)
+    rasters = lidarfx.rasterize(*points, 2.0)
+    result = lidarfx.extract_waterbodies(rasters)
+    assert result.ran, [i.message for i in result.issues]
+    g = rasters.grid
+    cols, rows = np.meshgrid(np.arange(g.cols), np.arange(g.rows))
+    true_water = truth(g.x0 + (cols + 0.5) * g.cell_m, g.y0 - (rows + 0.5) * g.cell_m)
+    inter = (result.water & true_water).sum()
+    union = (result.water | true_water).sum()
+    assert inter / union > 0.9
+    lake = result.bodies[0]
+    assert lake.label == 1 and lake.area_m2 == pytest.approx(math.pi * 45 ** 2, rel=0.1)
+    assert lake.water_level_m == pytest.approx(100.0, abs=0.05)
+    np.testing.assert_array_equal(result.water, result.labels > 0)
+    # The library's defaults (dropout seeds only) find it too; a dict of rasters works like Rasters.
+    as_dict = {k: getattr(rasters, k) for k in ("min_z", "max_z", "mean_intensity", "dropout", "count")}
+    other = lidarfx.extract_waterbodies(as_dict, 2.0, method="dropout_seeds")
+    assert (other.water & true_water).sum() / (other.water | true_water).sum() > 0.9
+
+
+def test_extract_waterbodies_refuses_data_too_sparse_for_its_cells(rng):
+    points, _ = lake_survey(rng, density_per_m2=0.2)
+    result = lidarfx.extract_waterbodies(lidarfx.rasterize(*points, 1.0))
+    assert not result.ran and not result.water.any()
+    assert any(i.severity == "problem" and "points per" in i.message for i in result.issues)
+    assert result.suggested_cell_m > 1.0
+    with pytest.raises(ValueError, match="missing dropout"):
+        lidarfx.extract_waterbodies({"min_z": np.zeros((3, 3)), "max_z": np.zeros((3, 3)),
+                                     "mean_intensity": np.zeros((3, 3))}, 1.0)
+    with pytest.raises(ValueError, match="method must be"):
+        lidarfx.extract_waterbodies(lidarfx.rasterize(*points, 1.0), method="best")
+
+
+def gabled_house(rng):
+    """100 m x 100 m at 0.5 m cells: flat ground at 50 m, a 24 m x 14 m house (eaves 6 m, ridge 9.5 m, ridge
+    running east-west), so its roof planes face north and south with a tilt of atan(3.5 / 7) = 26.57 deg."""
+    cell = 0.5
+    rows = cols = 200
+    yy, xx = np.mgrid[0:rows, 0:cols] * cell + cell / 2
+    dsm = 50.0 + rng.normal(0, 0.02, (rows, cols))
+    inside = (np.abs(xx - 50) < 12) & (np.abs(yy - 50) < 7)
+    roof = 59.5 - 0.5 * np.abs(yy - 50)
+    dsm = np.where(inside, roof, dsm).astype(np.float32)
+    return dsm, cell, inside
+
+
+def test_extract_buildings_and_roof_suitability_on_a_gabled_house(rng):
+    dsm, cell, inside = gabled_house(rng)
+    grid = lidarfx.Grid(x0=1000.0, y0=2000.0, cell_m=cell, rows=dsm.shape[0], cols=dsm.shape[1])
+    b = lidarfx.extract_buildings(dsm, grid=grid)
+    assert len(b.buildings) == 1
+    house = b.buildings[0]
+    assert house.roof_area_horizontal_m2 == pytest.approx(24 * 14, rel=0.05)
+    assert house.ridge_z == pytest.approx(59.5, abs=0.2) and house.ground_z == pytest.approx(50, abs=0.1)
+    assert house.outline["type"] == "MultiPolygon"
+    xs = [p[0] for p in house.outline["coordinates"][0][0]]
+    assert min(xs) == pytest.approx(1000 + 50 - 12, abs=cell) and max(xs) == pytest.approx(1000 + 50 + 12, abs=cell)
+    big = [s for s in b.surfaces if s.horizontal_area_m2 > 50]
+    assert len(big) == 2
+    assert sorted(round(s.azimuth_deg) % 360 for s in big) == [0, 180]
+    for s in big:
+        assert s.tilt_deg == pytest.approx(math.degrees(math.atan(0.5)), abs=1.5)
+    pv = lidarfx.roof_suitability(dsm, b.ground, b.building_id, grid=grid)
+    south = [p for p in pv.patches if abs(p.azimuth_deg - 180) < 10]
+    north = [p for p in pv.patches if min(p.azimuth_deg, 360 - p.azimuth_deg) < 10]
+    assert south and all(p.suitable for p in south) and south[0].kwp == pytest.approx(south[0].sloped_area_m2 / 8)
+    assert north and not any(p.suitable for p in north)
+    assert pv.patch_id.shape == dsm.shape and (pv.patch_id[~inside] == 0).all()
+    with pytest.raises(ValueError, match="grid must have the DSM's shape"):
+        lidarfx.extract_buildings(dsm[:10], grid=grid)
+
+
+def test_azimuth_mode_select_swaps_a_north_facing_two_plane_roof():
+    h = np.zeros(360, np.uint32)
+    h[10] = 500     # the larger plane faces north
+    h[190] = 400
+    s = lidarfx.azimuth_mode_select(h)
+    assert s.planes == 2 and s.form == "two_planes" and s.reason == "swapped"
+    assert s.azimuth_deg == pytest.approx(190.5, abs=1) and s.suitable
+    assert not lidarfx.azimuth_mode_select(np.zeros(360)).suitable
+    with pytest.raises(ValueError, match="360"):
+        lidarfx.azimuth_mode_select(np.zeros(100))
