@@ -7,6 +7,9 @@
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
 
+#include <chrono>
+#include <vector>
+
 #include "binding.hpp"
 #include "grid_arg.hpp"
 
@@ -139,6 +142,23 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
     return make_result("Rasters", fields);
 }
 
+/// The benchmark's C++ side: seconds of each of `repeats` angular_filter calls made in C++ on the same view
+/// the binding reads (no Python between them), for bench/python_overhead.py.
+std::vector<double> angular_filter_cpp_seconds(const py::handle& z, double cell_m, int radius_cells, int threads,
+                                               int repeats)
+{
+    const array_input<float> in(z, "angular_filter", "z");
+    std::vector<double> seconds;
+    py::gil_scoped_release release;
+    for (int i = 0; i < repeats; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const raster<float> out =
+            angular_filter(in.view(), cell_m, {.radius_cells = radius_cells, .run = {threads, {}}});
+        seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return seconds;
+}
+
 }  // namespace
 
 void bind_kernels(py::module_& m)
@@ -192,6 +212,9 @@ sizes. critical='documents_table' (default) takes c(alpha) from the table 0.10, 
 -> 1.22, 1.36, 1.48, 1.63, 1.73, 1.95 (sqrt(-ln(alpha / 2) / 2) for other alpha); 'one_sided' takes
 sqrt(-ln(alpha) / 2). p_value = exp(-2 d^2 n m / (n + m)). alpha in (0, 1), default 0.05.
 Returns KsResult(d, critical, reject, p_value).)doc");
+
+    m.def("_angular_filter_cpp_seconds", &angular_filter_cpp_seconds, "z"_a, "cell_m"_a, "radius_cells"_a = 2,
+          "threads"_a = 1, "repeats"_a = 5, "Benchmark hook: seconds of each angular_filter call timed in C++.");
 
     m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(),
           "return_number"_a = py::none(), "number_of_returns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(),
