@@ -9,7 +9,7 @@ for arg in "$@"; do
         --gdal) packages+=(libgdal-dev libproj-dev gdal-bin python3-gdal) ;;  # GeoTIFF, OGR vectors, PROJ; gdalinfo in tests
         --clang) packages+=(clang lld) ;;
         --mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
-        --python) packages+=(python3-dev python3-numpy python3-pytest python3-pybind11 pybind11-dev) ;;  # the module
+        --python) packages+=(python3-dev python3-numpy python3-pytest python3-pybind11 pybind11-dev python3-matplotlib python3-gdal) ;;  # module, example
         --qgis) packages+=(qgis python3-qgis python3-gdal) ;;  # the QGIS Processing provider and its headless test
     esac
 done

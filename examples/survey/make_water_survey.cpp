@@ -33,7 +33,8 @@ int usage()
 
 int main(int argc, char** argv)
 {
-    if (argc < 2) return usage();
+    // An option where the folder should be (--help, a mistyped flag) is refused, never taken as a folder name.
+    if (argc < 2 || argv[1][0] == '-') return usage();
     const std::filesystem::path out = argv[1];
     double size = 600, density = 2, file = 200;
     unsigned seed = 1;
