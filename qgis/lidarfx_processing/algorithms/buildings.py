@@ -1,0 +1,59 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Buildings with the energy of their roofs and facades: `lidarfx solar --facades`."""
+import os
+
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
+                       QgsProcessingParameterRasterLayer, QgsProcessingParameterVectorDestination)
+
+from ..engine import LidarfxAlgorithm, deliver, layer_file, run_program, work_folder
+from .irradiation import add_place_parameters, place_arguments
+from .water import add_survey_parameters, survey_files
+
+
+class BuildingsAlgorithm(LidarfxAlgorithm):
+    _name = "buildings"
+    _display = "Buildings and facade energy"
+    _help = ("Finds the buildings of a LAS/LAZ survey or a DSM (raised, planar roofs of at least 50 m²) and the "
+             "solar energy of every roof patch and facade sub-patch over a year (cast shadows each daylight hour, "
+             "sky view of walls and roofs). Outputs: building outlines with their ground, eave and ridge heights "
+             "(m) and roof areas (m²); the facade patches table (building, facing azimuth, height, area, annual "
+             "kWh/m² and quarterly kWh/m²/day); the annual irradiation map (kWh/m²). Weather and place as in "
+             "'Annual solar irradiation'. Runs the lidarfx program (lidarfx solar --facades).")
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        add_survey_parameters(self)
+        self.addParameter(QgsProcessingParameterRasterLayer("DSM", "Or: surface model (DSM)", optional=True))
+        self.addParameter(QgsProcessingParameterNumber(
+            "CELL", "Cell size for a LAS/LAZ survey (metres)", QgsProcessingParameterNumber.Double, 1.0,
+            minValue=0.1))
+        add_place_parameters(self)
+        self.addParameter(QgsProcessingParameterVectorDestination(
+            "BUILDINGS", "Buildings", QgsProcessing.TypeVectorPolygon))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "FACADES", "Facade patches (CSV)", "CSV files (*.csv)"))
+        self.addParameter(QgsProcessingParameterRasterDestination(
+            "IRRADIATION", "Annual irradiation (kWh/m²)", optional=True, createByDefault=False))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        dsm_layer = self.parameterAsRasterLayer(parameters, "DSM", context)
+        if dsm_layer is not None:
+            inputs = [layer_file(dsm_layer, "DSM")]
+        else:
+            inputs = survey_files(self, parameters, context, "FILES", "FOLDER")
+            inputs += ["--cell", self.parameterAsDouble(parameters, "CELL", context)]
+        out = work_folder()
+        run_program(["solar", *inputs, "--out", out, "--facades", "--formats", "tif,csv,gpkg",
+                     *place_arguments(self, parameters, context)], feedback)
+        results = {
+            "BUILDINGS": deliver(os.path.join(out, "buildings.gpkg"),
+                                 self.parameterAsOutputLayer(parameters, "BUILDINGS", context), feedback),
+            "FACADES": deliver(os.path.join(out, "facade_patches.csv"),
+                               self.parameterAsFileOutput(parameters, "FACADES", context), feedback),
+        }
+        irradiation = self.parameterAsOutputLayer(parameters, "IRRADIATION", context)
+        if irradiation:
+            results["IRRADIATION"] = deliver(os.path.join(out, "annual_kwh_m2.tif"), irradiation, feedback)
+        if not os.path.exists(results["BUILDINGS"]):
+            raise QgsProcessingException("no buildings layer was written")
+        return results
