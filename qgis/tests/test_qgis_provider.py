@@ -21,6 +21,7 @@ if not os.path.exists(QGIS_PROCESS):
 from osgeo import gdal, ogr, osr  # noqa: E402  (python3-gdal comes with QGIS)
 
 gdal.UseExceptions()
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # QGIS in this process and in qgis_process: no display
 ogr.UseExceptions()
 PLUGIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "lidarfx_processing")
 EPSG = 32633
@@ -99,7 +100,25 @@ def survey(tmp_path_factory):
     return sorted(str(folder / f) for f in os.listdir(folder))
 
 
+@pytest.fixture(scope="module", autouse=True)
+def qgis_core():
+    """QGIS's core library in this process, to open every output as QGIS does."""
+    from qgis.core import QgsApplication
+    app = QgsApplication([], False)
+    app.initQgis()
+    yield app
+
+
+def opens_in_qgis(path, kind):
+    """The output loads as a valid QGIS layer; returns its CRS's authority id (e.g. EPSG:32633)."""
+    from qgis.core import QgsRasterLayer, QgsVectorLayer
+    layer = QgsRasterLayer(str(path), "out") if kind == "raster" else QgsVectorLayer(str(path), "out", "ogr")
+    assert layer.isValid(), path
+    return layer.crs().authid()
+
+
 def raster(path):
+    assert opens_in_qgis(path, "raster") == f"EPSG:{EPSG}"
     ds = gdal.Open(str(path))
     srs = osr.SpatialReference(wkt=ds.GetProjection())
     srs.AutoIdentifyEPSG()
@@ -107,6 +126,7 @@ def raster(path):
 
 
 def vector(path):
+    assert opens_in_qgis(path, "vector") == f"EPSG:{EPSG}"
     ds = ogr.Open(str(path))
     layer = ds.GetLayer(0)
     srs = layer.GetSpatialRef()
