@@ -27,17 +27,13 @@ mv "$plugins/lidarfx_processing.new" "$plugins/lidarfx_processing"
 QT_QPA_PLATFORM=offscreen qgis_process.bin plugins enable lidarfx_processing >/dev/null
 ini="$profile/QGIS/QGIS3.ini"
 mkdir -p "$(dirname "$ini")"
+# QSettings reads and writes the file exactly as QGIS does, changing only this one key.
 /usr/bin/python3 - "$ini" <<'PY'
-import configparser, sys
-path = sys.argv[1]
-ini = configparser.RawConfigParser(strict=False)
-ini.optionxform = str
-ini.read(path)
-if not ini.has_section("PythonPlugins"):
-    ini.add_section("PythonPlugins")
-ini.set("PythonPlugins", "lidarfx_processing", "true")
-with open(path, "w") as f:
-    ini.write(f, space_around_delimiters=False)
+import sys
+from qgis.PyQt.QtCore import QSettings
+settings = QSettings(sys.argv[1], QSettings.IniFormat)
+settings.setValue("PythonPlugins/lidarfx_processing", True)
+settings.sync()
 PY
 echo "install-qgis-plugin.sh: the lidarfx provider is installed in $plugins/lidarfx_processing and enabled:"
 QT_QPA_PLATFORM=offscreen qgis_process.bin list 2>/dev/null | grep "lidarfx:" || {

@@ -111,4 +111,9 @@ PYBIND11_MODULE(_lidarfx, m)
     bind_water(m);
     bind_buildings(m);
     bind_io(m);
+    // For the tests: whether an argument would be copied ("heights": float32, "mask": uint8 / bool).
+    m.def("_input_is_copied", [](const py::handle& a, const std::string& kind) {
+        return kind == "mask" ? array_input<std::uint8_t>(a, "_input_is_copied", "a").copied()
+                              : array_input<float>(a, "_input_is_copied", "a").copied();
+    });
 }

@@ -60,6 +60,18 @@ def test_every_memory_layout_gives_the_contiguous_result(rng):
     np.testing.assert_array_equal(lidarfx.angular_filter(zi, 1.0), lidarfx.angular_filter(zi.astype(np.float32), 1.0))
 
 
+def test_arrays_are_read_in_place_when_their_layout_allows():
+    from lidarfx._lidarfx import _input_is_copied as copied
+    z = np.zeros((30, 40), np.float32)
+    assert not copied(z, "heights") and not copied(z[3:20, 5:33], "heights") and not copied(z[::2], "heights")
+    assert copied(np.asfortranarray(z), "heights") and copied(z[:, ::2], "heights")
+    assert copied(z[::-1], "heights") and copied(z.astype(np.float64), "heights")
+    assert copied(z.astype(">f4"), "heights")  # big-endian cells are converted
+    m = np.zeros((30, 40), bool)
+    assert not copied(m, "mask") and not copied(m.view(np.uint8), "mask") and not copied(m[2:9, 1:7], "mask")
+    assert copied(m.astype(np.int32), "mask")
+
+
 def test_results_own_their_cells_without_a_copy_back():
     out = lidarfx.angular_filter(np.zeros((4, 5), np.float32), 1.0)
     assert not out.flags.owndata and type(out.base).__name__ == "PyCapsule"  # the library's raster, moved
