@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-# Type stubs of the lidarfx module (the extension _lidarfx re-exported); tests/test_stubs.py keeps them in step
-# with the module's signatures.
+# Type stubs of the lidarfx module (the extension _lidarfx re-exported), written by python/tools/make_stubs.py;
+# tests/test_stubs.py keeps them in step with the module's signatures and docstrings.
 from datetime import datetime
 from typing import Any, Callable, Mapping, Optional, Union
 

@@ -25,16 +25,25 @@ py::array angular_filter_binding(const py::handle& z, double cell_m, int radius_
     return to_numpy(rs.call([&] { return angular_filter(in.view(), cell_m, opt); }));
 }
 
+/// Defines morph_dilate, morph_erode, morph_open or morph_close: one docstring sentence, the shared rest.
 template <class Operation>
-auto morphology_binding(const Operation& operation, const char* name)
+void def_morphology(py::module_& m, const Operation& operation, const char* name, const char* sentence)
 {
-    return
+    using namespace pybind11::literals;
+    const std::string doc = std::string(sentence) + R"doc(
+Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
+masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape.)doc";
+    m.def(
+        name,
         [&operation, name](const py::handle& mask, int size_cells, int height_cells, int threads, py::object progress) {
             const array_input<std::uint8_t> in(mask, name, "mask");
             run_settings rs(threads, std::move(progress));
             const morphology_options opt{.size_cells = size_cells, .height_cells = height_cells, .run = rs.run()};
             return to_numpy(rs.call([&] { return operation(in.view(), opt); }), true);
-        };
+        },
+        "mask"_a, "size_cells"_a = 5, py::kw_only(), "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
+        doc.c_str());
 }
 
 py::object connected_components_binding(const py::handle& mask, int connectivity_cells, int threads,
@@ -174,26 +183,14 @@ z: 2-D elevations in metres (float32 read in place; other real or integer dtypes
 cell_m: cell size in metres, > 0. radius_cells: window half-size in cells, >= 1 (default 2).
 Returns a float32 array of z's shape.)doc");
 
-    const char* morph_doc = R"doc(
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
-the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape.)doc";
-    m.def("morph_dilate", morphology_binding(morph_dilate, "morph_dilate"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
-          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
-          (std::string("Dilation: a cell is set when any cell of the rectangle centred on it is set.") + morph_doc)
-              .c_str());
-    m.def("morph_erode", morphology_binding(morph_erode, "morph_erode"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
-          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
-          (std::string("Erosion: a cell stays set when every cell of the rectangle inside the raster is set.") +
-           morph_doc)
-              .c_str());
-    m.def("morph_open", morphology_binding(morph_open, "morph_open"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
-          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
-          (std::string("Opening: erosion then dilation; removes set parts narrower than the rectangle.") + morph_doc)
-              .c_str());
-    m.def("morph_close", morphology_binding(morph_close, "morph_close"), "mask"_a, "size_cells"_a = 5, py::kw_only(),
-          "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
-          (std::string("Closing: dilation then erosion; fills gaps narrower than the rectangle.") + morph_doc).c_str());
+    def_morphology(m, morph_dilate, "morph_dilate",
+                   "Dilation: a cell is set when any cell of the rectangle centred on it is set.");
+    def_morphology(m, morph_erode, "morph_erode",
+                   "Erosion: a cell stays set when every cell of the rectangle inside the raster is set.");
+    def_morphology(m, morph_open, "morph_open",
+                   "Opening: erosion then dilation; removes set parts narrower than the rectangle.");
+    def_morphology(m, morph_close, "morph_close",
+                   "Closing: dilation then erosion; fills gaps narrower than the rectangle.");
 
     m.def("connected_components", &connected_components_binding, "mask"_a, "connectivity"_a = 8, py::kw_only(),
           "threads"_a = 1, "progress"_a = py::none(), R"doc(

@@ -47,3 +47,12 @@ def test_every_function_documents_itself():
     for name in runtime_signatures():
         doc = getattr(lidarfx, name).__doc__
         assert len(doc.splitlines()) >= 3, name
+
+
+def test_the_stubs_carry_the_module_s_docstrings():
+    path = os.path.join(os.path.dirname(lidarfx.__file__), "__init__.pyi")
+    stubs = {n.name: ast.get_docstring(n, clean=False) for n in ast.parse(open(path).read()).body
+             if isinstance(n, ast.FunctionDef)}
+    for name in runtime_signatures():
+        runtime = getattr(lidarfx, name).__doc__.split("\n", 1)[1].strip()
+        assert (stubs[name] or "").strip() == runtime, name
