@@ -19,13 +19,13 @@ class Cancelled(RuntimeError):
     """A long call stopped because its progress callable returned False."""
 
 
-def angular_filter(z: ArrayLike, cell_m: float, radius_cells: int = 2, *, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
-    """Angular filter: for every cell p, the steepest angle to any cell q of the (2 radius_cells + 1)^2 window around
+def angular_filter(z: ArrayLike, cell_m: float, radius: int = 2, *, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+    """Angular filter: for every cell p, the steepest angle to any cell q of the (2 radius + 1)^2 window around
 it, max atan(|z(q) - z(p)| / (cell_m |p - q|)), degrees in [0, 90]: 0 on flat ground, near 90 beside walls.
 NaN neighbours are skipped, a NaN centre gives NaN, a cell without a valid neighbour gives 0.
 
 z: 2-D elevations in metres (float32 read in place; other real or integer dtypes are converted).
-cell_m: cell size in metres, > 0. radius_cells: window half-size in cells, >= 1 (default 2).
+cell_m: cell size in metres, > 0. radius: window half-size in cells, >= 1 (default 2: "two tiers").
 Returns a float32 array of z's shape."""
     ...
 
@@ -120,47 +120,52 @@ Returns KsResult(d, critical, reject, p_value)."""
     ...
 
 
-def morph_close(mask: ArrayLike, size_cells: int = 5, *, height_cells: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def morph_close(mask: ArrayLike, size: int = 5, *, height: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Closing: dilation then erosion; fills gaps narrower than the rectangle.
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+Binary morphology with a size x height rectangle of cells (height 0 = square), clipped at the border;
 the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape."""
+masks are converted. size: odd width of the rectangle in cells, >= 1 (default 5); height: its height in
+cells (0 = size). Returns a bool array of mask's shape."""
     ...
 
 
-def morph_dilate(mask: ArrayLike, size_cells: int = 5, *, height_cells: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def morph_dilate(mask: ArrayLike, size: int = 5, *, height: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Dilation: a cell is set when any cell of the rectangle centred on it is set.
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+Binary morphology with a size x height rectangle of cells (height 0 = square), clipped at the border;
 the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape."""
+masks are converted. size: odd width of the rectangle in cells, >= 1 (default 5); height: its height in
+cells (0 = size). Returns a bool array of mask's shape."""
     ...
 
 
-def morph_erode(mask: ArrayLike, size_cells: int = 5, *, height_cells: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def morph_erode(mask: ArrayLike, size: int = 5, *, height: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Erosion: a cell stays set when every cell of the rectangle inside the raster is set.
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+Binary morphology with a size x height rectangle of cells (height 0 = square), clipped at the border;
 the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape."""
+masks are converted. size: odd width of the rectangle in cells, >= 1 (default 5); height: its height in
+cells (0 = size). Returns a bool array of mask's shape."""
     ...
 
 
-def morph_open(mask: ArrayLike, size_cells: int = 5, *, height_cells: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def morph_open(mask: ArrayLike, size: int = 5, *, height: int = 0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Opening: erosion then dilation; removes set parts narrower than the rectangle.
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+Binary morphology with a size x height rectangle of cells (height 0 = square), clipped at the border;
 the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape."""
+masks are converted. size: odd width of the rectangle in cells, >= 1 (default 5); height: its height in
+cells (0 = size). Returns a bool array of mask's shape."""
     ...
 
 
-def rasterize(x: ArrayLike, y: ArrayLike, z: ArrayLike, intensity: Optional[ArrayLike] = None, return_number: Optional[ArrayLike] = None, number_of_returns: Optional[ArrayLike] = None, cell_m: float = 1.0, *, classification: Optional[ArrayLike] = None, grid: Optional[Grid] = None, returns: str = 'all', threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Rasters:
+def rasterize(x: ArrayLike, y: ArrayLike, z: ArrayLike, intensity: Optional[ArrayLike] = None, returns: Optional[float] = None, nreturns: Optional[float] = None, cell_m: float = 1.0, *, classification: Optional[ArrayLike] = None, grid: Optional[Grid] = None, return_selection: str = 'all', threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Rasters:
     """Bins points into rasters: per cell the lowest and highest z (metres, NaN where no point), the mean intensity
 (0 where no point), the point count, the dropout mask (True = no return) and the multiple-returns mask (True =
 some point has number_of_returns > 1).
 
-x, y, z: 1-D coordinates in metres (float64; others converted). intensity (uint16), return_number,
-number_of_returns, classification (uint8): optional, of the same length. cell_m: cell size in metres (default
+x, y, z: 1-D coordinates in metres (float64; others converted). intensity (uint16), returns (the return
+number of each point), nreturns (its pulse's number of returns), classification (uint8): optional, of the
+same length. cell_m: cell size in metres (default
 1). grid: a Grid to bin on; default the snapped grid around the points (corners on multiples of cell_m).
-returns: 'all' (default), 'first' or 'last'. Points outside the grid or with NaN coordinates are counted, not
+return_selection: the points binned, 'all' (default), 'first' or 'last' returns. Points outside the grid or with NaN coordinates are counted, not
 binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, grid, point counts)."""
     ...
 
@@ -212,9 +217,10 @@ azimuths of cos^2(horizon angle) (the SVF of GRASS r.skyview and SAGA). Returns 
     ...
 
 
-def sun_position(time: Union[datetime, str, float], latitude_deg: float, longitude_deg: float, *, model: str = 'spa', elevation_m: float = 0.0, pressure_mbar: float = 1013.25, temperature_c: float = 12.0, refraction: bool = True, delta_t_s: float = 69.0) -> SunPosition:
+def sun_position(time: Union[datetime, str, float], lat: float, lon: float, *, model: str = 'spa', elevation_m: float = 0.0, pressure_mbar: float = 1013.25, temperature_c: float = 12.0, refraction: bool = True, delta_t_s: float = 69.0) -> SunPosition:
     """Sun position at a time and place. time: a datetime (naive = UTC; aware ones are converted to UTC), an ISO 8601
-string (same rule) or POSIX seconds. latitude_deg north in [-90, 90], longitude_deg east in [-180, 180].
+string (same rule) or POSIX seconds. lat: latitude, degrees north in [-90, 90]; lon: longitude, degrees east
+in [-180, 180].
 model: 'spa' (NREL's Solar Position Algorithm, +-0.0003 deg; default) or 'simple' (equation of time,
 declination and hour angle). elevation_m: observer height above sea level, metres; pressure_mbar and
 temperature_c: annual means for refraction; delta_t_s: TT - UT in seconds (SPA).

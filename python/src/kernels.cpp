@@ -31,9 +31,10 @@ void def_morphology(py::module_& m, const Operation& operation, const char* name
 {
     using namespace pybind11::literals;
     const std::string doc = std::string(sentence) + R"doc(
-Binary morphology with a size_cells x height_cells rectangle (height 0 = square), clipped at the border;
+Binary morphology with a size x height rectangle of cells (height 0 = square), clipped at the border;
 the cost does not depend on the size. mask: 2-D bool or uint8 (nonzero = set; read in place), integer
-masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a bool array of mask's shape.)doc";
+masks are converted. size: odd width of the rectangle in cells, >= 1 (default 5); height: its height in
+cells (0 = size). Returns a bool array of mask's shape.)doc";
     m.def(
         name,
         [&operation, name](const py::handle& mask, int size_cells, int height_cells, int threads, py::object progress) {
@@ -42,8 +43,7 @@ masks are converted. size_cells: odd width in cells, >= 1 (default 5). Returns a
             const morphology_options opt{.size_cells = size_cells, .height_cells = height_cells, .run = rs.run()};
             return to_numpy(rs.call([&] { return operation(in.view(), opt); }), true);
         },
-        "mask"_a, "size_cells"_a = 5, py::kw_only(), "height_cells"_a = 0, "threads"_a = 1, "progress"_a = py::none(),
-        doc.c_str());
+        "mask"_a, "size"_a = 5, py::kw_only(), "height"_a = 0, "threads"_a = 1, "progress"_a = py::none(), doc.c_str());
 }
 
 py::object connected_components_binding(const py::handle& mask, int connectivity_cells, int threads,
@@ -114,8 +114,8 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
     std::optional<py::array_t<std::uint16_t, py::array::c_style | py::array::forcecast>> in;
     std::optional<py::array_t<small, py::array::c_style | py::array::forcecast>> rn, nr, cls;
     if (!intensity.is_none()) in = vector_input<std::uint16_t>(intensity, fn, "intensity");
-    if (!return_number.is_none()) rn = vector_input<small>(return_number, fn, "return_number");
-    if (!number_of_returns.is_none()) nr = vector_input<small>(number_of_returns, fn, "number_of_returns");
+    if (!return_number.is_none()) rn = vector_input<small>(return_number, fn, "returns");
+    if (!number_of_returns.is_none()) nr = vector_input<small>(number_of_returns, fn, "nreturns");
     if (!classification.is_none()) cls = vector_input<small>(classification, fn, "classification");
     rasterize_options opt;
     if (returns == "first") {
@@ -123,7 +123,7 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
     } else if (returns == "last") {
         opt.returns = return_selection::last;
     } else if (returns != "all") {
-        value_error(fn, "returns must be 'all', 'first' or 'last' (got '" + returns + "')");
+        value_error(fn, "return_selection must be 'all', 'first' or 'last' (got '" + returns + "')");
     }
     run_settings rs(threads, std::move(progress));
     opt.run = rs.run();
@@ -173,14 +173,14 @@ std::vector<double> angular_filter_cpp_seconds(const py::handle& z, double cell_
 void bind_kernels(py::module_& m)
 {
     using namespace pybind11::literals;
-    m.def("angular_filter", &angular_filter_binding, "z"_a, "cell_m"_a, "radius_cells"_a = 2, py::kw_only(),
-          "threads"_a = 1, "progress"_a = py::none(), R"doc(
-Angular filter: for every cell p, the steepest angle to any cell q of the (2 radius_cells + 1)^2 window around
+    m.def("angular_filter", &angular_filter_binding, "z"_a, "cell_m"_a, "radius"_a = 2, py::kw_only(), "threads"_a = 1,
+          "progress"_a = py::none(), R"doc(
+Angular filter: for every cell p, the steepest angle to any cell q of the (2 radius + 1)^2 window around
 it, max atan(|z(q) - z(p)| / (cell_m |p - q|)), degrees in [0, 90]: 0 on flat ground, near 90 beside walls.
 NaN neighbours are skipped, a NaN centre gives NaN, a cell without a valid neighbour gives 0.
 
 z: 2-D elevations in metres (float32 read in place; other real or integer dtypes are converted).
-cell_m: cell size in metres, > 0. radius_cells: window half-size in cells, >= 1 (default 2).
+cell_m: cell size in metres, > 0. radius: window half-size in cells, >= 1 (default 2: "two tiers").
 Returns a float32 array of z's shape.)doc");
 
     def_morphology(m, morph_dilate, "morph_dilate",
@@ -213,18 +213,18 @@ Returns KsResult(d, critical, reject, p_value).)doc");
     m.def("_angular_filter_cpp_seconds", &angular_filter_cpp_seconds, "z"_a, "cell_m"_a, "radius_cells"_a = 2,
           "threads"_a = 1, "repeats"_a = 5, "Benchmark hook: seconds of each angular_filter call timed in C++.");
 
-    m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(),
-          "return_number"_a = py::none(), "number_of_returns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(),
-          "classification"_a = py::none(), "grid"_a = py::none(), "returns"_a = "all", "threads"_a = 1,
-          "progress"_a = py::none(), R"doc(
+    m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(), "returns"_a = py::none(),
+          "nreturns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(), "classification"_a = py::none(),
+          "grid"_a = py::none(), "return_selection"_a = "all", "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Bins points into rasters: per cell the lowest and highest z (metres, NaN where no point), the mean intensity
 (0 where no point), the point count, the dropout mask (True = no return) and the multiple-returns mask (True =
 some point has number_of_returns > 1).
 
-x, y, z: 1-D coordinates in metres (float64; others converted). intensity (uint16), return_number,
-number_of_returns, classification (uint8): optional, of the same length. cell_m: cell size in metres (default
+x, y, z: 1-D coordinates in metres (float64; others converted). intensity (uint16), returns (the return
+number of each point), nreturns (its pulse's number of returns), classification (uint8): optional, of the
+same length. cell_m: cell size in metres (default
 1). grid: a Grid to bin on; default the snapped grid around the points (corners on multiples of cell_m).
-returns: 'all' (default), 'first' or 'last'. Points outside the grid or with NaN coordinates are counted, not
+return_selection: the points binned, 'all' (default), 'first' or 'last' returns. Points outside the grid or with NaN coordinates are counted, not
 binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, grid, point counts).)doc");
 }
 

@@ -246,11 +246,12 @@ py::object weather_from_records(const std::vector<irradiance_record>& records, d
 void bind_solar(py::module_& m)
 {
     using namespace pybind11::literals;
-    m.def("sun_position", &sun_position_binding, "time"_a, "latitude_deg"_a, "longitude_deg"_a, py::kw_only(),
-          "model"_a = "spa", "elevation_m"_a = 0.0, "pressure_mbar"_a = 1013.25, "temperature_c"_a = 12.0,
-          "refraction"_a = true, "delta_t_s"_a = 69.0, R"doc(
+    m.def("sun_position", &sun_position_binding, "time"_a, "lat"_a, "lon"_a, py::kw_only(), "model"_a = "spa",
+          "elevation_m"_a = 0.0, "pressure_mbar"_a = 1013.25, "temperature_c"_a = 12.0, "refraction"_a = true,
+          "delta_t_s"_a = 69.0, R"doc(
 Sun position at a time and place. time: a datetime (naive = UTC; aware ones are converted to UTC), an ISO 8601
-string (same rule) or POSIX seconds. latitude_deg north in [-90, 90], longitude_deg east in [-180, 180].
+string (same rule) or POSIX seconds. lat: latitude, degrees north in [-90, 90]; lon: longitude, degrees east
+in [-180, 180].
 model: 'spa' (NREL's Solar Position Algorithm, +-0.0003 deg; default) or 'simple' (equation of time,
 declination and hour angle). elevation_m: observer height above sea level, metres; pressure_mbar and
 temperature_c: annual means for refraction; delta_t_s: TT - UT in seconds (SPA).

@@ -201,9 +201,9 @@ def test_rasterize_bins_points_as_numpy_does(rng):
     np.testing.assert_array_equal(pr.dropout, ~has)
     np.testing.assert_array_equal(pr.multiple_returns, multi)
     assert pr.points_used == n
-    first = lidarfx.rasterize(x, y, z, intensity, rn, nret, 2.0, returns="first", grid=g)
+    first = lidarfx.rasterize(x, y, z, intensity, rn, nret, 2.0, return_selection="first", grid=g)
     assert first.points_used == int((rn == 1).sum()) and first.points_unselected == int((rn != 1).sum())
     with pytest.raises(ValueError, match="same length"):
         lidarfx.rasterize(x, y[:-1], z)
-    with pytest.raises(ValueError, match="returns must be"):
-        lidarfx.rasterize(x, y, z, returns="second")
+    with pytest.raises(ValueError, match="return_selection must be"):
+        lidarfx.rasterize(x, y, z, return_selection="second")

@@ -86,13 +86,12 @@ def test_two_calls_in_two_python_threads_run_at_once(terrain):
         spans.append((t0, time.perf_counter()))
 
     threads = [threading.Thread(target=timed) for _ in range(2)]
-    start = time.perf_counter()
     for t in threads:
         t.start()
     for t in threads:
         t.join()
-    both = time.perf_counter() - start
     (a0, a1), (b0, b1) = spans
     overlap = min(a1, b1) - max(a0, b0)
-    assert overlap > 0.5 * single, (single, spans)  # with the GIL held they would run one after the other
-    assert both < 1.75 * single, (single, both)
+    # With the GIL held the second call could only start when the first ended: no overlap at all. The
+    # overlap, unlike the wall time, does not depend on free cores (ctest runs other tests beside this one).
+    assert overlap > 0.5 * single, (single, spans)

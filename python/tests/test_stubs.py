@@ -56,3 +56,24 @@ def test_the_stubs_carry_the_module_s_docstrings():
     for name in runtime_signatures():
         runtime = getattr(lidarfx, name).__doc__.split("\n", 1)[1].strip()
         assert (stubs[name] or "").strip() == runtime, name
+
+
+def test_the_documented_spellings_work_as_keywords():
+    import numpy as np
+    z = np.zeros((8, 9), np.float32)
+    m = np.zeros((8, 9), bool)
+    lidarfx.angular_filter(z, cell_m=1.0, radius=2)
+    for op in (lidarfx.morph_open, lidarfx.morph_close, lidarfx.morph_dilate, lidarfx.morph_erode):
+        op(m, size=3)
+    lidarfx.connected_components(m, connectivity=8)
+    lidarfx.ks_one_sided(previous=[1, 2, 3], current=[2, 3, 4], alpha=0.05)
+    lidarfx.raylines_shadow(dsm=z, cell_m=1.0, azimuth_deg=180.0, elevation_deg=30.0)
+    lidarfx.horizon_map(dsm=z, cell_m=1.0, azimuth_deg=90.0)
+    lidarfx.sky_view_factor(dsm=z, cell_m=1.0, method="cosine_weighted")
+    lidarfx.sun_position(time="2024-06-21T12:00:00", lat=47.0, lon=8.0)
+    lidarfx.azimuth_mode_select(hist360=np.ones(360))
+    one = np.ones(3)
+    r = lidarfx.rasterize(x=one, y=one, z=one, intensity=one, returns=one, nreturns=one, cell_m=1.0)
+    lidarfx.extract_waterbodies(r, check_inputs=False)
+    b = lidarfx.extract_buildings(z, cell_m=1.0)
+    lidarfx.roof_suitability(z, z, b.building_id, cell_m=1.0)
