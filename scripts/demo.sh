@@ -3,7 +3,7 @@
 # when present); outputs go to ./lidarfx-demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh --gdal
+bash scripts/install-deps.sh --gdal --python   # the release preset also configures the Python module
 cmake --preset release >/dev/null
 cmake --build --preset release --target lidarfx_cli
 # The demo runs on its embedded scenes; the sample survey next to the repository is added when present.
