@@ -37,7 +37,7 @@ namespace {
 constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
-    "                     [--diffuse isotropic|perez] [--facades] [--threads N]\n"
+    "                     [--diffuse isotropic|perez] [--svf source_share|cosine_weighted] [--facades] [--threads N]\n"
     "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
     "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
     "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
@@ -63,6 +63,11 @@ constexpr const char* usage =
     "                 of re-stamping them; needs --tmy, excludes --year\n"
     "  --diffuse M    sky model of the diffuse part [isotropic]: isotropic = DHI * SVF (the dissertation's);\n"
     "                 perez = Perez et al. 1990 anisotropic sky, its circumsolar part shaded with the beam\n"
+    "  --svf D        sky view factor definition, written to svf.* and used for the diffuse part [source_share]:\n"
+    "                 source_share = the share of 1,081 point sources (15-85 degrees on 72 azimuths, and the\n"
+    "                 zenith) the cell sees (the dissertation's); cosine_weighted = the view factor of a\n"
+    "                 horizontal surface, the mean of cos^2(horizon angle) over 72 azimuths (the SVF of GRASS\n"
+    "                 r.skyview and SAGA; 0.01-0.02 lower where the horizon is low)\n"
     "  --facades      also find the buildings (extract_buildings) and the energy of every roof patch and facade\n"
     "                 sub-patch (8 per wall): buildings.geojson (outlines; id, ground/eave/ridge z, height, roof\n"
     "                 areas), facade_patches.csv (building_id,patch_id,level,facing_azimuth_deg,height_m (centre\n"
@@ -135,7 +140,7 @@ int run_solar(const std::vector<std::string>& args)
     namespace cli = lidarfx::cli;
     const cli::arguments a(args,
                            {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
-                            "diffuse", "xy-unit", "z-unit"},
+                            "diffuse", "svf", "xy-unit", "z-unit"},
                            {"help", "force", "year-from-tmy", "facades"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
@@ -144,6 +149,10 @@ int run_solar(const std::vector<std::string>& args)
     const std::string diffuse = a.text("diffuse", "isotropic");
     if (diffuse != "isotropic" && diffuse != "perez") {
         throw cli::usage_error("--diffuse must be isotropic or perez (got " + diffuse + ")");
+    }
+    const std::string svf = a.text("svf", "source_share");
+    if (svf != "source_share" && svf != "cosine_weighted") {
+        throw cli::usage_error("--svf must be source_share or cosine_weighted (got " + svf + ")");
     }
 
     // Weather first: a bad file fails before the survey is read.
@@ -258,9 +267,12 @@ int run_solar(const std::vector<std::string>& args)
     for (const auto& n : names) out.declare(n);
 
     const lidarfx::irradiance_maps_options maps_options{
-        .sky = {.diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez : lidarfx::diffuse_model::isotropic},
+        .sky = {.svf_method = svf == "cosine_weighted" ? lidarfx::sky_view_factor_method::cosine_weighted
+                                                       : lidarfx::sky_view_factor_method::source_share,
+                .diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez : lidarfx::diffuse_model::isotropic},
         .run = {.threads = threads, .progress = cli::progress_bar("irradiance")}};
     const auto res = lidarfx::irradiance_maps(dsm, cell_m, site, records, {}, {}, maps_options);
+    std::cout << "sky view factor: " << svf << " (svf.* and the diffuse part)\n";
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
               << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 

@@ -53,6 +53,21 @@ if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK_DIR}/out_perez/annual_kwh_m2.asc")
     message(FATAL_ERROR "lidarfx solar --diffuse perez failed (${rc}):\n${said}\n${err}")
 endif()
 
+# --svf: each definition is said in the log, and cosine_weighted (the SVF of GRASS and SAGA) writes another
+# svf.asc than the default source_share.
+foreach(method source_share cosine_weighted)
+    execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --svf ${method}
+                            --formats asc --out "${WORK_DIR}/out_svf_${method}"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0 OR NOT said MATCHES "sky view factor: ${method}")
+        message(FATAL_ERROR "lidarfx solar --svf ${method} failed (${rc}):\n${said}\n${err}")
+    endif()
+    file(READ "${WORK_DIR}/out_svf_${method}/svf.asc" svf_${method})
+endforeach()
+if(svf_source_share STREQUAL svf_cosine_weighted)
+    message(FATAL_ERROR "--svf cosine_weighted wrote the same svf.asc as the default source_share")
+endif()
+
 # --facades on a 40 x 40 DSM with one 12 x 10 m block 10 m tall: the buildings, facade, table and bill files, one
 # building found, the Table 1 header and rows, and the south facade above the north one at 52.5 N.
 write_block_dsm("${WORK_DIR}/box.asc" 40 14 24 14 26 110)
@@ -97,6 +112,7 @@ set(cases
     "2|--lon must be given|[-180, 180]|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--out^${out}_refused"
     "2|--year-from-tmy needs --tmy|FILE.csv|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year-from-tmy^--out^${out}_refused"
     "2|--year must be in|(got 1066)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year^1066^--out^${out}_refused"
-    "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused")
+    "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused"
+    "2|--svf must be source_share or cosine_weighted|(got grass)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--svf^grass^--out^${out}_refused")
 set(out "${out}_refused")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
