@@ -37,10 +37,12 @@ namespace {
 constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
-    "                     [--diffuse isotropic|perez] [--svf source_share|cosine_weighted] [--facades] [--threads N]\n"
+    "                     [--diffuse isotropic|perez] [--svf cosine|share] [--surface horizontal|terrain]\n"
+    "                     [--facades] [--threads N]\n"
     "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
-    "Irradiation of a surface model over a year (horizontal surfaces): beam = DNI * sin(e) where the cell sees\n"
-    "the sun (cast shadows per daylight hour), diffuse = DHI * sky view factor. Writes annual_kwh_m2.asc,\n"
+    "Irradiation of a surface model over a year, on horizontal surfaces or (--surface terrain) on each cell's own\n"
+    "plane: beam = DNI * cos(incidence) where the cell sees the sun (cast shadows per daylight hour), diffuse =\n"
+    "DHI * sky view factor (tilted: times (1 + cos tilt) / 2). Writes annual_kwh_m2.asc,\n"
     "month_01_kwh_m2.asc .. month_12_kwh_m2.asc, svf.asc (GeoTIFF twins when built with GDAL), annual_kwh_m2.png\n"
     "and svf.png (with a colour bar, its range and unit) and summary.csv (per month: mean, min, max kWh/m2 of\n"
     "the map and the weather's GHI sum). From LAS files the DSM is the highest return per cell, gaps filled by\n"
@@ -63,11 +65,13 @@ constexpr const char* usage =
     "                 of re-stamping them; needs --tmy, excludes --year\n"
     "  --diffuse M    sky model of the diffuse part [isotropic]: isotropic = DHI * SVF (the dissertation's);\n"
     "                 perez = Perez et al. 1990 anisotropic sky, its circumsolar part shaded with the beam\n"
-    "  --svf D        sky view factor definition, written to svf.* and used for the diffuse part [source_share]:\n"
-    "                 source_share = the share of 1,081 point sources (15-85 degrees on 72 azimuths, and the\n"
-    "                 zenith) the cell sees (the dissertation's); cosine_weighted = the view factor of a\n"
-    "                 horizontal surface, the mean of cos^2(horizon angle) over 72 azimuths (the SVF of GRASS\n"
-    "                 r.skyview and SAGA; 0.01-0.02 lower where the horizon is low)\n"
+    "  --svf D        sky view factor written to svf.* and used for the diffuse part [cosine]: cosine = the\n"
+    "                 view factor of a horizontal surface, the mean of cos^2(horizon angle) over the azimuths\n"
+    "                 (the SVF of GRASS r.skyview and SAGA); share = the share of point sources at 15-85 degrees\n"
+    "                 on each azimuth, and the zenith, that the cell sees (the dissertation's; 0.01-0.02 higher)\n"
+    "  --svf-directions N  azimuths of the horizon sweeps, i * 360 / N [72]\n"
+    "  --surface S    horizontal = every cell a horizontal surface [horizontal]; terrain = each cell tilted by\n"
+    "                 its own slope and aspect (Horn's 3x3 differences of the DSM): roofs and slopes as they are\n"
     "  --facades      also find the buildings (extract_buildings) and the energy of every roof patch and facade\n"
     "                 sub-patch (8 per wall): buildings.geojson (outlines; id, ground/eave/ridge z, height, roof\n"
     "                 areas), facade_patches.csv (building_id,patch_id,level,facing_azimuth_deg,height_m (centre\n"
@@ -135,12 +139,19 @@ std::string fixed(double v, int digits)
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
 constexpr double solar_bytes_per_cell = 96;
 
+/// How the log, the figure and the manifest name the SVF: "cosine-weighted, 72 azimuths".
+std::string svf_description(const std::string& svf, int directions)
+{
+    return std::string(svf == "cosine" ? "cosine-weighted" : "share of point sources") + ", " +
+           std::to_string(directions) + " azimuths";
+}
+
 int run_solar(const std::vector<std::string>& args)
 {
     namespace cli = lidarfx::cli;
     const cli::arguments a(args,
                            {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
-                            "diffuse", "svf", "xy-unit", "z-unit"},
+                            "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit"},
                            {"help", "force", "year-from-tmy", "facades"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
@@ -150,9 +161,15 @@ int run_solar(const std::vector<std::string>& args)
     if (diffuse != "isotropic" && diffuse != "perez") {
         throw cli::usage_error("--diffuse must be isotropic or perez (got " + diffuse + ")");
     }
-    const std::string svf = a.text("svf", "source_share");
-    if (svf != "source_share" && svf != "cosine_weighted") {
-        throw cli::usage_error("--svf must be source_share or cosine_weighted (got " + svf + ")");
+    const std::string svf = a.text("svf", "cosine");
+    if (svf != "cosine" && svf != "share") throw cli::usage_error("--svf must be cosine or share (got " + svf + ")");
+    const int svf_directions = a.integer("svf-directions", 72);
+    if (svf_directions < 4 || svf_directions > 3600) {
+        throw cli::usage_error("--svf-directions must be in [4, 3600] (got " + std::to_string(svf_directions) + ")");
+    }
+    const std::string surface = a.text("surface", "horizontal");
+    if (surface != "horizontal" && surface != "terrain") {
+        throw cli::usage_error("--surface must be horizontal or terrain (got " + surface + ")");
     }
 
     // Weather first: a bad file fails before the survey is read.
@@ -267,12 +284,18 @@ int run_solar(const std::vector<std::string>& args)
     for (const auto& n : names) out.declare(n);
 
     const lidarfx::irradiance_maps_options maps_options{
-        .sky = {.svf_method = svf == "cosine_weighted" ? lidarfx::sky_view_factor_method::cosine_weighted
-                                                       : lidarfx::sky_view_factor_method::source_share,
+        .sky = {.svf_method = svf == "cosine" ? lidarfx::sky_view_factor_method::cosine_weighted
+                                              : lidarfx::sky_view_factor_method::source_share,
+                .svf_directions = svf_directions,
                 .diffuse = diffuse == "perez" ? lidarfx::diffuse_model::perez : lidarfx::diffuse_model::isotropic},
         .run = {.threads = threads, .progress = cli::progress_bar("irradiance")}};
-    const auto res = lidarfx::irradiance_maps(dsm, cell_m, site, records, {}, {}, maps_options);
-    std::cout << "sky view factor: " << svf << " (svf.* and the diffuse part)\n";
+    // Each cell's own plane (--surface terrain): Horn's slope and aspect of the DSM, flat cells facing north.
+    lidarfx::slope_aspect_result orientation;
+    if (surface == "terrain") orientation = lidarfx::slope_aspect(dsm, cell_m, {.run = {.threads = threads}});
+    const auto res = lidarfx::irradiance_maps(dsm, cell_m, site, records, orientation.slope_deg.view(),
+                                              orientation.aspect_deg.view(), maps_options);
+    std::cout << "sky view factor: " << svf_description(svf, svf_directions) << " (svf.* and the diffuse part)\n";
+    std::cout << "surfaces: " << (surface == "terrain" ? "each cell's own slope and aspect" : "horizontal") << "\n";
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
               << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 
@@ -308,13 +331,18 @@ int run_solar(const std::vector<std::string>& args)
                                                     .bar = bar});
             out.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
         };
-        legend_png("annual_kwh_m2.png", res.annual_kwh_m2, "annual irradiation, horizontal surfaces", "kWh/m²");
-        legend_png("svf.png", res.sky_view_factor, "sky view factor", "SVF");
+        legend_png(
+            "annual_kwh_m2.png", res.annual_kwh_m2,
+            surface == "terrain" ? "annual irradiation, terrain surfaces" : "annual irradiation, horizontal surfaces",
+            "kWh/m²");
+        legend_png("svf.png", res.sky_view_factor, "sky view factor, " + svf_description(svf, svf_directions), "SVF");
     }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";
-    out.set_units_note("kWh/m2 per cell (horizontal surfaces), SVF in [0, 1], on the input's grid; sun for " +
-                       place.description);
+    out.set_units_note("kWh/m2 per cell (" +
+                       std::string(surface == "terrain" ? "each cell's own slope and aspect" : "horizontal surfaces") +
+                       "), SVF in [0, 1] (" + svf_description(svf, svf_directions) +
+                       "), on the input's grid; sun for " + place.description);
     if (a.has("facades")) {
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
                                         .vegetation = vegetation.view(),

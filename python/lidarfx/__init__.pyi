@@ -8,8 +8,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps, KsResult, Rasters,
-                     RoofPatch, RoofSuitability, RoofSurface, SunPosition, Survey, WaterIssue, Waterbodies, Waterbody,
-                     Weather)
+                     RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, Survey, WaterIssue, Waterbodies,
+                     Waterbody, Weather)
 
 __version__: str
 has_io: bool
@@ -214,6 +214,16 @@ method='source_share' (default): the share of point sources visible from the cel
 15, 20, ..., 85 degrees of each azimuth plus the zenith (1,081 sources for 72 azimuths).
 method='cosine_weighted': the view factor of a horizontal surface under an isotropic sky, the mean over the
 azimuths of cos^2(horizon angle) (the SVF of GRASS r.skyview and SAGA). Returns float32."""
+    ...
+
+
+def slope_aspect(z: ArrayLike, cell_m: float, *, flat_slope_deg: float = 0.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> SlopeAspect:
+    """Slope and aspect by Horn's 3 x 3 weighted differences (row 0 north): slope = atan(|grad z|), degrees in [0, 90];
+aspect = azimuth of the down-slope direction, degrees clockwise from north in [0, 360), NaN where flat (slope
+<= flat_slope_deg, default 0). At borders and beside NaN cells no cell is invented: one-sided differences are
+used, so planes come out exact everywhere. z in metres (float32 read in place), cell_m in metres.
+Returns SlopeAspect(slope_deg, aspect_deg: float32; flat: bool). slope_deg and aspect_deg are the
+surface_tilt_deg and surface_azimuth_deg of irradiance_maps."""
     ...
 
 

@@ -42,6 +42,15 @@ class Components:
 
 
 @dataclass(frozen=True)
+class SlopeAspect:
+    """slope_aspect: slope (degrees from horizontal), aspect (down-slope azimuth clockwise from north, NaN if
+    flat) and the flat mask."""
+    slope_deg: np.ndarray
+    aspect_deg: np.ndarray
+    flat: np.ndarray
+
+
+@dataclass(frozen=True)
 class KsResult:
     """ks_one_sided: statistic d, critical value, rejection (current significantly larger), p-value."""
     d: float

@@ -3,6 +3,7 @@
 // KS test and rasterization of points.
 #include <lidarfx/kernels/filter/angular_filter.hpp>
 #include <lidarfx/kernels/filter/morphology.hpp>
+#include <lidarfx/kernels/filter/slope_aspect.hpp>
 #include <lidarfx/kernels/label/connected_components.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
@@ -23,6 +24,20 @@ py::array angular_filter_binding(const py::handle& z, double cell_m, int radius_
     run_settings rs(threads, std::move(progress));
     const angular_filter_options opt{.radius_cells = radius_cells, .run = rs.run()};
     return to_numpy(rs.call([&] { return angular_filter(in.view(), cell_m, opt); }));
+}
+
+py::object slope_aspect_binding(const py::handle& z, double cell_m, double flat_slope_deg, int threads,
+                                py::object progress)
+{
+    const array_input<float> in(z, "slope_aspect", "z");
+    run_settings rs(threads, std::move(progress));
+    const slope_aspect_options opt{.flat_slope_deg = flat_slope_deg, .run = rs.run()};
+    slope_aspect_result r = rs.call([&] { return slope_aspect(in.view(), cell_m, opt); });
+    py::dict fields;
+    fields["slope_deg"] = to_numpy(std::move(r.slope_deg));
+    fields["aspect_deg"] = to_numpy(std::move(r.aspect_deg));
+    fields["flat"] = to_numpy(std::move(r.flat), true);
+    return make_result("SlopeAspect", fields);
 }
 
 /// Defines morph_dilate, morph_erode, morph_open or morph_close: one docstring sentence, the shared rest.
@@ -191,6 +206,15 @@ Returns a float32 array of z's shape.)doc");
                    "Opening: erosion then dilation; removes set parts narrower than the rectangle.");
     def_morphology(m, morph_close, "morph_close",
                    "Closing: dilation then erosion; fills gaps narrower than the rectangle.");
+
+    m.def("slope_aspect", &slope_aspect_binding, "z"_a, "cell_m"_a, py::kw_only(), "flat_slope_deg"_a = 0.0,
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
+Slope and aspect by Horn's 3 x 3 weighted differences (row 0 north): slope = atan(|grad z|), degrees in [0, 90];
+aspect = azimuth of the down-slope direction, degrees clockwise from north in [0, 360), NaN where flat (slope
+<= flat_slope_deg, default 0). At borders and beside NaN cells no cell is invented: one-sided differences are
+used, so planes come out exact everywhere. z in metres (float32 read in place), cell_m in metres.
+Returns SlopeAspect(slope_deg, aspect_deg: float32; flat: bool). slope_deg and aspect_deg are the
+surface_tilt_deg and surface_azimuth_deg of irradiance_maps.)doc");
 
     m.def("connected_components", &connected_components_binding, "mask"_a, "connectivity"_a = 8, py::kw_only(),
           "threads"_a = 1, "progress"_a = py::none(), R"doc(

@@ -163,10 +163,12 @@ def test_irradiation_and_its_sky_view_factor(qgis, town, tmp_path):
     assert 1500 < open_ground < 2600 and north_of_house < 0.8 * open_ground
     svf, epsg, _ = raster(tmp_path / "svf.tif")
     assert epsg == EPSG and svf[5, 5] == pytest.approx(1.0, abs=0.01) and svf[31, 40] < 0.95
-    qgis("run", "lidarfx:irradiation", "--", f"DSM={town['dsm']}", "SVF_METHOD=1", f"OUTPUT={tmp_path / 'a2.tif'}",
-         f"SVF={tmp_path / 'svf_cosine.tif'}")
-    cosine, _, _ = raster(tmp_path / "svf_cosine.tif")
-    assert not np.array_equal(cosine, svf) and 0 < cosine[31, 40] < 1
+    qgis("run", "lidarfx:irradiation", "--", f"DSM={town['dsm']}", "SVF_METHOD=1", "SURFACE=1",
+         f"OUTPUT={tmp_path / 'a2.tif'}", f"SVF={tmp_path / 'svf_share.tif'}")
+    share, _, _ = raster(tmp_path / "svf_share.tif")
+    assert not np.array_equal(share, svf) and 0 < share[31, 40] < 1
+    tilted, _, _ = raster(tmp_path / "a2.tif")
+    assert tilted[45, 40] > 1.1 * annual[45, 40]  # the south roof plane, on its own 26.6° tilt, gets more
 
 
 def test_sky_view_factor_both_definitions(qgis, town, tmp_path):

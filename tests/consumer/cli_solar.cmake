@@ -53,19 +53,31 @@ if(NOT rc EQUAL 0 OR NOT EXISTS "${WORK_DIR}/out_perez/annual_kwh_m2.asc")
     message(FATAL_ERROR "lidarfx solar --diffuse perez failed (${rc}):\n${said}\n${err}")
 endif()
 
-# --svf: each definition is said in the log, and cosine_weighted (the SVF of GRASS and SAGA) writes another
-# svf.asc than the default source_share.
-foreach(method source_share cosine_weighted)
-    execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --svf ${method}
-                            --formats asc --out "${WORK_DIR}/out_svf_${method}"
+# --svf: each definition is said in the log; share (the dissertation's) writes another svf.asc than the
+# default cosine (the SVF of GRASS and SAGA). --surface terrain tilts each cell by its own slope: another map.
+foreach(run "cosine;--svf;cosine" "share;--svf;share" "directions;--svf-directions;36" "terrain;--surface;terrain")
+    list(GET run 0 name)
+    list(SUBLIST run 1 2 option)
+    execute_process(COMMAND "${LIDARFX}" solar "${dsm}" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 ${option}
+                            --formats asc --out "${WORK_DIR}/out_svf_${name}"
                     RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
-    if(NOT rc EQUAL 0 OR NOT said MATCHES "sky view factor: ${method}")
-        message(FATAL_ERROR "lidarfx solar --svf ${method} failed (${rc}):\n${said}\n${err}")
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "lidarfx solar ${option} failed (${rc}):\n${said}\n${err}")
     endif()
-    file(READ "${WORK_DIR}/out_svf_${method}/svf.asc" svf_${method})
+    set(said_${name} "${said}")
+    file(READ "${WORK_DIR}/out_svf_${name}/svf.asc" svf_${name})
+    file(READ "${WORK_DIR}/out_svf_${name}/annual_kwh_m2.asc" annual_${name})
 endforeach()
-if(svf_source_share STREQUAL svf_cosine_weighted)
-    message(FATAL_ERROR "--svf cosine_weighted wrote the same svf.asc as the default source_share")
+if(NOT said_cosine MATCHES "sky view factor: cosine-weighted, 72 azimuths" OR NOT said_share MATCHES
+   "sky view factor: share of point sources, 72 azimuths" OR NOT said_directions MATCHES "cosine-weighted, 36 azimuths"
+   OR NOT said_terrain MATCHES "surfaces: each cell's own slope and aspect")
+    message(FATAL_ERROR "the log does not say which SVF and surfaces were used:\n${said_cosine}\n${said_share}")
+endif()
+if(svf_share STREQUAL svf_cosine OR svf_directions STREQUAL svf_cosine)
+    message(FATAL_ERROR "--svf share or --svf-directions 36 wrote the same svf.asc as the default")
+endif()
+if(annual_terrain STREQUAL annual_cosine)
+    message(FATAL_ERROR "--surface terrain wrote the same annual map as horizontal surfaces")
 endif()
 
 # --facades on a 40 x 40 DSM with one 12 x 10 m block 10 m tall: the buildings, facade, table and bill files, one
@@ -113,6 +125,8 @@ set(cases
     "2|--year-from-tmy needs --tmy|FILE.csv|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year-from-tmy^--out^${out}_refused"
     "2|--year must be in|(got 1066)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--year^1066^--out^${out}_refused"
     "2|--diffuse must be isotropic or perez|(got hay)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--diffuse^hay^--out^${out}_refused"
-    "2|--svf must be source_share or cosine_weighted|(got grass)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--svf^grass^--out^${out}_refused")
+    "2|--svf must be cosine or share|(got grass)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--svf^grass^--out^${out}_refused"
+    "2|--svf-directions must be in|(got 2)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--svf-directions^2^--out^${out}_refused"
+    "2|--surface must be horizontal or terrain|(got roof)|solar^${dsm}^--xy-unit^m^--z-unit^m^--lat^52^--lon^13^--surface^roof^--out^${out}_refused")
 set(out "${out}_refused")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -50,8 +50,11 @@ class IrradiationAlgorithm(LidarfxAlgorithm):
         self.addParameter(QgsProcessingParameterEnum(
             "DIFFUSE", "Diffuse sky model", ["isotropic", "perez"], defaultValue=0))
         self.addParameter(QgsProcessingParameterEnum(
-            "SVF_METHOD", "Sky view factor definition (source share: the dissertation's; cosine-weighted: as GRASS "
-            "and SAGA)", ["source_share", "cosine_weighted"], defaultValue=0))
+            "SVF_METHOD", "Sky view factor definition (cosine-weighted, as GRASS and SAGA; or the share of point "
+            "sources, the dissertation's)", ["cosine", "share"], defaultValue=0))
+        self.addParameter(QgsProcessingParameterEnum(
+            "SURFACE", "Surfaces (horizontal; or each cell's own slope and aspect)", ["horizontal", "terrain"],
+            defaultValue=0))
         self.addParameter(QgsProcessingParameterRasterDestination("OUTPUT", "Annual irradiation (kWh/m²)"))
         self.addParameter(QgsProcessingParameterRasterDestination(
             "SVF", "Sky view factor (0-1)", optional=True, createByDefault=False))
@@ -60,8 +63,10 @@ class IrradiationAlgorithm(LidarfxAlgorithm):
         dsm = layer_file(self.parameterAsRasterLayer(parameters, "DSM", context), "DSM")
         out = work_folder()
         diffuse = ["isotropic", "perez"][self.parameterAsEnum(parameters, "DIFFUSE", context)]
-        svf_method = ["source_share", "cosine_weighted"][self.parameterAsEnum(parameters, "SVF_METHOD", context)]
+        svf_method = ["cosine", "share"][self.parameterAsEnum(parameters, "SVF_METHOD", context)]
+        surface = ["horizontal", "terrain"][self.parameterAsEnum(parameters, "SURFACE", context)]
         run_program(["solar", dsm, "--out", out, "--formats", "tif,csv", "--diffuse", diffuse, "--svf", svf_method,
+                     "--surface", surface,
                      "--year", self.parameterAsInt(parameters, "YEAR", context),
                      *place_arguments(self, parameters, context)], feedback)
         results = {"OUTPUT": deliver(os.path.join(out, "annual_kwh_m2.tif"),
