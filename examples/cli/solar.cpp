@@ -70,6 +70,9 @@ constexpr const char* usage =
     "                 (the SVF of GRASS r.skyview and SAGA); share = the share of point sources at 15-85 degrees\n"
     "                 on each azimuth, and the zenith, that the cell sees (the dissertation's; 0.01-0.02 higher)\n"
     "  --svf-directions N  azimuths of the horizon sweeps, i * 360 / N [72]\n"
+    "  --keep-outliers  keep the DSM's isolated spikes and pits; by default a cell standing more than 10 m above\n"
+    "                 (below) all but a few of its 5 x 5 neighbours (a bird, a return through a canopy gap) takes\n"
+    "                 their median before shadows and sky view, and dsm_outliers.csv lists each such cell\n"
     "  --surface S    horizontal = every cell a horizontal surface [horizontal]; terrain = each cell tilted by\n"
     "                 its own slope and aspect (Horn's 3x3 differences of the DSM): roofs and slopes as they are\n"
     "  --facades      also find the buildings (extract_buildings) and the energy of every roof patch and facade\n"
@@ -139,6 +142,35 @@ std::string fixed(double v, int digits)
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
 constexpr double solar_bytes_per_cell = 96;
 
+/// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
+/// height before and after, metres.
+struct outlier_row {
+    std::string kind;
+    std::int64_t row = 0, col = 0;
+    double x = 0, y = 0, z_m = 0, replaced_by_m = 0;
+};
+
+/// The replaced cells in raster order; the log names the first ten.
+std::vector<outlier_row> list_outliers(const lidarfx::raster<float>& dsm, const lidarfx::surface_outliers_result& o,
+                                       const lidarfx::grid& g)
+{
+    std::vector<outlier_row> rows;
+    for (std::ptrdiff_t r = 0; r < dsm.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < dsm.cols(); ++c) {
+            if (o.outlier(r, c) == 0) continue;
+            const auto xy = g.center(r, c);
+            rows.push_back({o.outlier(r, c) == 1 ? "spike" : "pit", r, c, xy[0], xy[1], dsm(r, c), o.surface(r, c)});
+        }
+    }
+    for (std::size_t i = 0; i < rows.size() && i < 10; ++i) {
+        std::cout << "  " << rows[i].kind << " at row " << rows[i].row << ", col " << rows[i].col << " (x "
+                  << fixed(rows[i].x, 2) << ", y " << fixed(rows[i].y, 2) << "): " << fixed(rows[i].z_m, 2) << " m -> "
+                  << fixed(rows[i].replaced_by_m, 2) << " m\n";
+    }
+    if (rows.size() > 10) std::cout << "  ... and " << rows.size() - 10 << " more in dsm_outliers.csv\n";
+    return rows;
+}
+
 /// How the log, the figure and the manifest name the SVF: "cosine-weighted, 72 azimuths".
 std::string svf_description(const std::string& svf, int directions)
 {
@@ -152,7 +184,7 @@ int run_solar(const std::vector<std::string>& args)
     const cli::arguments a(args,
                            {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
                             "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit"},
-                           {"help", "force", "year-from-tmy", "facades"});
+                           {"help", "force", "year-from-tmy", "facades", "keep-outliers"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
     if (threads < 0) throw cli::usage_error("--threads must be >= 0 (got " + std::to_string(threads) + ")");
@@ -265,8 +297,22 @@ int run_solar(const std::vector<std::string>& args)
                   << records_year << "\n";
     }
 
+    std::vector<outlier_row> outlier_rows;
+    // Isolated spikes (birds, noise) and pits (returns through canopy gaps) out of the DSM before any shadow is cast.
+    const lidarfx::surface_outliers_result outliers =
+        a.has("keep-outliers") ? lidarfx::surface_outliers_result{}
+                               : lidarfx::remove_surface_outliers(dsm, {.run = {.threads = threads}});
+    if (a.has("keep-outliers")) {
+        std::cout << "DSM outliers: kept (--keep-outliers)\n";
+    } else {
+        std::cout << "DSM outliers: " << outliers.spikes << " spikes and " << outliers.pits
+                  << " pits replaced by the median of their 5 x 5 neighbourhood (dsm_outliers.csv)\n";
+        outlier_rows = list_outliers(dsm, outliers, g);
+        dsm = outliers.surface;
+    }
+
     lidarfx::io::output_folder out(a.text("out", ""), {inputs.begin(), inputs.end()});
-    std::vector<std::string> names{"summary.csv"};
+    std::vector<std::string> names{"summary.csv", "dsm_outliers.csv"};
     for (const std::string& n : cli::raster_file_names("annual_kwh_m2", formats)) names.push_back(n);
     for (const std::string& n : cli::raster_file_names("svf", formats)) names.push_back(n);
     for (int m = 1; m <= 12; ++m) {
@@ -311,6 +357,16 @@ int run_solar(const std::vector<std::string>& args)
     }
     const map_stats year = stats_of(res.annual_kwh_m2);
     rows.push_back({"year", year.mean, year.min, year.max, res.ghi_kwh_m2});
+    out.write("dsm_outliers.csv", [&](const std::string& path) {
+        namespace io = lidarfx::io;
+        std::vector<std::vector<io::table_value>> table;
+        for (const outlier_row& o : outlier_rows)
+            table.push_back({o.kind, o.row, o.col, o.x, o.y, o.z_m, o.replaced_by_m});
+        io::write_csv(path,
+                      {io::text_column("kind"), io::text_column("row"), io::text_column("col"), io::crs_column("x_crs"),
+                       io::crs_column("y_crs"), io::metres_column("z_m"), io::metres_column("replaced_by_m")},
+                      table);
+    });
     out.write("summary.csv", [&](const std::string& path) {
         namespace io = lidarfx::io;
         io::write_csv(path,

@@ -23,6 +23,7 @@
 #include "lidarfx/kernels/filter/min_max_filter.hpp"
 #include "lidarfx/kernels/filter/morphology.hpp"
 #include "lidarfx/kernels/filter/slope_aspect.hpp"
+#include "lidarfx/kernels/filter/surface_outliers.hpp"
 #include "lidarfx/kernels/filter/survey_footprint.hpp"
 #include "lidarfx/kernels/filter/vegetation_mask.hpp"
 #include "lidarfx/kernels/interpolate/idw_fill.hpp"

@@ -25,6 +25,7 @@ PAGES = {
     "footprints.csv": "pv.md",
     "roof_scores.csv": "pv.md",
     "summary.csv": "solar.md",
+    "dsm_outliers.csv": "solar.md",
     "facade_patches.csv": "solar.md",
     "surface_table.csv": "solar.md",
     "bill_savings.csv": "solar.md",
