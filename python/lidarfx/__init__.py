@@ -11,7 +11,8 @@ TypeError for a wrong type) with the library's message.
 from ._lidarfx import *  # noqa: F401,F403
 from ._lidarfx import Cancelled, has_io  # noqa: F401
 from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps,  # noqa: F401
-                     KsResult, Rasters, RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, Survey,
+                     KsResult, Rasters, RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers,
+                     Survey,
                      WaterIssue, Waterbodies, Waterbody, Weather)
 
 __version__ = "0.1.0"

@@ -8,8 +8,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps, KsResult, Rasters,
-                     RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, Survey, WaterIssue, Waterbodies,
-                     Waterbody, Weather)
+                     RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers, Survey, WaterIssue,
+                     Waterbodies, Waterbody, Weather)
 
 __version__: str
 has_io: bool
@@ -193,6 +193,16 @@ def read_tmy3(path: str) -> Weather:
     """Reads a TMY3 weather year (NREL CSV: station line, header line, 8760 hourly rows stamped at the end of the hour
 in local standard time). Returns a Weather: start_utc (datetime64[s], UTC start of each hour), dni_w_m2,
 dhi_w_m2, ghi_w_m2 (W/m^2), interval_s = 3600, and the station's latitude_deg, longitude_deg, utc_offset_h."""
+    ...
+
+
+def remove_surface_outliers(z: ArrayLike, *, radius: int = 2, spike_height_m: float = 10.0, pit_depth_m: float = 10.0, min_support_cells: int = 3, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> SurfaceOutliers:
+    """Isolated spikes (birds, noise) and pits (returns through canopy gaps) of a surface model, replaced by the median of
+their neighbours. A cell is a spike when fewer than k of the finite cells of its (2 radius + 1)^2 window stand at
+or above its height minus spike_height_m, a pit when fewer than k lie at or below its height plus pit_depth_m;
+k = min_support_cells (default 3) scaled to the part of the window inside the raster. Defaults: 5 x 5 window,
+10 m. z in metres (float32 read in place). Returns SurfaceOutliers(surface: float32, outlier: uint8 (0 none,
+1 spike, 2 pit), spikes, pits)."""
     ...
 
 

@@ -51,6 +51,16 @@ class SlopeAspect:
 
 
 @dataclass(frozen=True)
+class SurfaceOutliers:
+    """remove_surface_outliers: the surface with its outliers replaced, where they were (0 none, 1 spike, 2 pit),
+    and how many."""
+    surface: np.ndarray
+    outlier: np.ndarray
+    spikes: int
+    pits: int
+
+
+@dataclass(frozen=True)
 class KsResult:
     """ks_one_sided: statistic d, critical value, rejection (current significantly larger), p-value."""
     d: float

@@ -4,6 +4,7 @@
 #include <lidarfx/kernels/filter/angular_filter.hpp>
 #include <lidarfx/kernels/filter/morphology.hpp>
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
+#include <lidarfx/kernels/filter/surface_outliers.hpp>
 #include <lidarfx/kernels/label/connected_components.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
@@ -38,6 +39,25 @@ py::object slope_aspect_binding(const py::handle& z, double cell_m, double flat_
     fields["aspect_deg"] = to_numpy(std::move(r.aspect_deg));
     fields["flat"] = to_numpy(std::move(r.flat), true);
     return make_result("SlopeAspect", fields);
+}
+
+py::object remove_surface_outliers_binding(const py::handle& z, int radius, double spike_height_m, double pit_depth_m,
+                                           int min_support_cells, int threads, py::object progress)
+{
+    const array_input<float> in(z, "remove_surface_outliers", "z");
+    run_settings rs(threads, std::move(progress));
+    const surface_outliers_options opt{.radius_cells = radius,
+                                       .spike_height_m = spike_height_m,
+                                       .pit_depth_m = pit_depth_m,
+                                       .min_support_cells = min_support_cells,
+                                       .run = rs.run()};
+    surface_outliers_result r = rs.call([&] { return remove_surface_outliers(in.view(), opt); });
+    py::dict fields;
+    fields["surface"] = to_numpy(std::move(r.surface));
+    fields["outlier"] = to_numpy(std::move(r.outlier));
+    fields["spikes"] = r.spikes;
+    fields["pits"] = r.pits;
+    return make_result("SurfaceOutliers", fields);
 }
 
 /// Defines morph_dilate, morph_erode, morph_open or morph_close: one docstring sentence, the shared rest.
@@ -215,6 +235,16 @@ aspect = azimuth of the down-slope direction, degrees clockwise from north in [0
 used, so planes come out exact everywhere. z in metres (float32 read in place), cell_m in metres.
 Returns SlopeAspect(slope_deg, aspect_deg: float32; flat: bool). slope_deg and aspect_deg are the
 surface_tilt_deg and surface_azimuth_deg of irradiance_maps.)doc");
+
+    m.def("remove_surface_outliers", &remove_surface_outliers_binding, "z"_a, py::kw_only(), "radius"_a = 2,
+          "spike_height_m"_a = 10.0, "pit_depth_m"_a = 10.0, "min_support_cells"_a = 3, "threads"_a = 1,
+          "progress"_a = py::none(), R"doc(
+Isolated spikes (birds, noise) and pits (returns through canopy gaps) of a surface model, replaced by the median of
+their neighbours. A cell is a spike when fewer than k of the finite cells of its (2 radius + 1)^2 window stand at
+or above its height minus spike_height_m, a pit when fewer than k lie at or below its height plus pit_depth_m;
+k = min_support_cells (default 3) scaled to the part of the window inside the raster. Defaults: 5 x 5 window,
+10 m. z in metres (float32 read in place). Returns SurfaceOutliers(surface: float32, outlier: uint8 (0 none,
+1 spike, 2 pit), spikes, pits).)doc");
 
     m.def("connected_components", &connected_components_binding, "mask"_a, "connectivity"_a = 8, py::kw_only(),
           "threads"_a = 1, "progress"_a = py::none(), R"doc(

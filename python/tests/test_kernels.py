@@ -207,3 +207,17 @@ def test_rasterize_bins_points_as_numpy_does(rng):
         lidarfx.rasterize(x, y[:-1], z)
     with pytest.raises(ValueError, match="return_selection must be"):
         lidarfx.rasterize(x, y, z, return_selection="second")
+
+
+def test_remove_surface_outliers_replaces_a_bird_and_a_gap_by_their_neighbours_median(rng):
+    z = (100 + rng.normal(0, 0.5, (40, 40))).astype(np.float32)
+    z[10, 10] += 150  # a bird
+    z[30, 25] -= 20   # a return through a canopy gap
+    r = lidarfx.remove_surface_outliers(z)
+    assert (r.spikes, r.pits) == (1, 1) and r.outlier[10, 10] == 1 and r.outlier[30, 25] == 2
+    window = np.delete(z[8:13, 8:13].ravel(), 12)
+    assert r.surface[10, 10] == np.sort(window)[(len(window) - 1) // 2]
+    changed = r.outlier > 0
+    np.testing.assert_array_equal(r.surface[~changed], z[~changed])
+    with pytest.raises(ValueError, match="spike_height_m"):
+        lidarfx.remove_surface_outliers(z, spike_height_m=0)

@@ -11,7 +11,7 @@ RESULTS = {"azimuth_mode_select": "AzimuthSelection", "clear_sky_year": "Weather
            "connected_components": "Components", "extract_buildings": "Buildings",
            "extract_waterbodies": "Waterbodies", "irradiance_maps": "IrradianceMaps", "ks_one_sided": "KsResult",
            "rasterize": "Rasters", "read_survey": "Survey", "read_tmy3": "Weather",
-           "roof_suitability": "RoofSuitability", "slope_aspect": "SlopeAspect", "sun_position": "SunPosition"}
+           "roof_suitability": "RoofSuitability", "slope_aspect": "SlopeAspect", "remove_surface_outliers": "SurfaceOutliers", "sun_position": "SunPosition"}
 ARGUMENTS = {"rasters": "Union[Rasters, Mapping[str, ArrayLike], Any]", "weather": "Weather",
              "grid": "Optional[Grid]", "time": "Union[datetime, str, float]",
              "progress": "Optional[Callable[[float], Optional[bool]]]", "utc_offset_h": "Optional[float]"}
@@ -28,8 +28,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps, KsResult, Rasters,
-                     RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, Survey, WaterIssue, Waterbodies,
-                     Waterbody, Weather)
+                     RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers, Survey, WaterIssue,
+                     Waterbodies, Waterbody, Weather)
 
 __version__: str
 has_io: bool
