@@ -98,7 +98,8 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
                                  {"height_m", rec.ridge_z - rec.ground_z},
                                  {"roof_area_m2", rec.roof_area_horizontal_m2},
                                  {"roof_area_sloped_m2", rec.roof_area_sloped_m2},
-                                 {"roof_surfaces", static_cast<std::int64_t>(rec.surfaces.size())}}});
+                                 {"roof_surfaces", static_cast<std::int64_t>(rec.surfaces.size())},
+                                 {"clipped", rec.clipped}}});
         }
     }
     write_polygons(out, "buildings", features, run.crs_wkt, run.epsg, run.formats);

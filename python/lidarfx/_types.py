@@ -168,6 +168,7 @@ class Building:
     roof_area_horizontal_m2: float
     roof_area_sloped_m2: float
     surfaces: List[int]
+    clipped: bool  #: the building reaches the raster's border and may go on beyond it
 
 
 @dataclass(frozen=True)

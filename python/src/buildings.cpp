@@ -80,6 +80,7 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
         f["roof_area_horizontal_m2"] = b.roof_area_horizontal_m2;
         f["roof_area_sloped_m2"] = b.roof_area_sloped_m2;
         f["surfaces"] = py::cast(b.surfaces);
+        f["clipped"] = b.clipped;
         buildings.append(make_result("Building", f));
     }
     py::list surfaces;

@@ -81,7 +81,7 @@ def test_extract_buildings_and_roof_suitability_on_a_gabled_house(rng):
     house = b.buildings[0]
     assert house.roof_area_horizontal_m2 == pytest.approx(24 * 14, rel=0.05)
     assert house.ridge_z == pytest.approx(59.5, abs=0.2) and house.ground_z == pytest.approx(50, abs=0.1)
-    assert house.outline["type"] == "MultiPolygon"
+    assert house.outline["type"] == "MultiPolygon" and not house.clipped
     xs = [p[0] for p in house.outline["coordinates"][0][0]]
     assert min(xs) == pytest.approx(1000 + 50 - 12, abs=cell) and max(xs) == pytest.approx(1000 + 50 + 12, abs=cell)
     big = [s for s in b.surfaces if s.horizontal_area_m2 > 50]

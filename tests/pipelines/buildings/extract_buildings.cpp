@@ -206,3 +206,18 @@ TEST_CASE("extract_buildings: empty raster, all NaN, one cell, same result for a
     }
     CHECK(same);
 }
+
+TEST_CASE("extract_buildings: a building cut by the raster's border is kept and flagged as clipped")
+{
+    raster<float> z = box_scene(20, 36, 24, 40, 7.0f);  // 8 m x 8 m inside the raster
+    for (std::ptrdiff_t r = 44; r < 60; ++r)            // one cut by the south border
+        for (std::ptrdiff_t c = 10; c < 30; ++c) z(r, c) = 108.0f;
+    const auto b = extract_buildings(z, local_grid(z, 0.5));
+    REQUIRE(b.buildings.size() == 2);
+    const std::int32_t inner = b.building_id(28, 32), south = b.building_id(55, 20);
+    REQUIRE(inner > 0);
+    REQUIRE(south > 0);
+    CHECK(!b.buildings[static_cast<std::size_t>(inner - 1)].clipped);
+    CHECK(b.buildings[static_cast<std::size_t>(south - 1)].clipped);
+    CHECK(b.buildings[static_cast<std::size_t>(south - 1)].roof_area_horizontal_m2 == doctest::Approx(16 * 20 * 0.25));
+}

@@ -49,6 +49,9 @@ struct building_record {
     double roof_area_horizontal_m2 = 0;  ///< footprint area (cells x cell_m^2)
     double roof_area_sloped_m2 = 0;      ///< sum of its surfaces' sloped areas
     std::vector<std::int32_t> surfaces;  ///< ids of its roof surfaces, largest first
+    /// The building may go on beyond the raster: some cell of it lies on the raster's border (a survey's or a
+    /// tile's edge). Its footprint and areas are those of the part seen.
+    bool clipped = false;
 };
 
 /// Buildings of a surface model.
@@ -106,6 +109,27 @@ inline void check_extract_buildings(const grid& g, const extract_buildings_optio
     check_execution(opt.run, function);
 }
 
+/// clipped[b - 1] for buildings 1..count of `ids`: some cell of b lies on the raster's border
+/// (building_record::clipped). O(rows + cols).
+inline std::vector<bool> clipped_buildings(raster_view<const std::int32_t> ids, std::size_t count)
+{
+    std::vector<bool> clipped(count, false);
+    const std::ptrdiff_t rows = ids.rows(), cols = ids.cols();
+    const auto mark = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        const std::int32_t b = ids(r, c);
+        if (b > 0 && static_cast<std::size_t>(b) <= count) clipped[static_cast<std::size_t>(b - 1)] = true;
+    };
+    for (std::ptrdiff_t c = 0; c < cols && rows > 0; ++c) {
+        mark(0, c);
+        mark(rows - 1, c);
+    }
+    for (std::ptrdiff_t r = 0; r < rows && cols > 0; ++r) {
+        mark(r, 0);
+        mark(r, cols - 1);
+    }
+    return clipped;
+}
+
 }  // namespace detail
 
 // ---- implementation ----
@@ -156,6 +180,7 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     const std::vector<building_height> heights = building_heights(z, terrain.ground, out.building_id, kept, cell_m);
     std::vector<std::vector<polygon>> outlines = building_outlines(out.building_id, kept, g);
     out.buildings.resize(kept);
+    const std::vector<bool> clipped = detail::clipped_buildings(out.building_id.view(), kept);
     for (std::size_t b = 0; b < kept; ++b) {
         building_record& rec = out.buildings[b];
         rec.id = static_cast<std::int32_t>(b + 1);
@@ -164,6 +189,7 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
         rec.eave_z = heights[b].eave_z;
         rec.ridge_z = heights[b].ridge_z;
         rec.roof_area_horizontal_m2 = heights[b].footprint_m2;
+        rec.clipped = clipped[b];
     }
     for (const roof_surface& s : out.surfaces) {
         building_record& rec = out.buildings[static_cast<std::size_t>(s.building - 1)];
