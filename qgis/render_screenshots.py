@@ -40,8 +40,17 @@ def result_picture(surveys, path):
     ground = os.path.join(folder, "ground")
     subprocess.run([os.environ.get("LIDARFX_PROGRAM", "lidarfx"), "rasterize", *surveys, "--cell", "2", "--out",
                     ground, "--formats", "tif"], check=True, capture_output=True)
+    # The relief under the result: the lowest return per cell, its empty cells (water dropouts, gaps between
+    # flight lines) filled from their neighbours so that the hillshade has no holes, then shaded.
+    from osgeo import gdal
+    gdal.UseExceptions()
+    filled = os.path.join(folder, "min_z_filled.tif")
+    gdal.Translate(filled, os.path.join(ground, "min_z.tif"))
+    dataset = gdal.Open(filled, gdal.GA_Update)
+    gdal.FillNodata(dataset.GetRasterBand(1), None, 20, 0)
+    dataset = None
     shade = os.path.join(folder, "hillshade.tif")
-    subprocess.run(["gdaldem", "hillshade", "-q", os.path.join(ground, "min_z.tif"), shade], check=True)
+    subprocess.run(["gdaldem", "hillshade", "-q", "-compute_edges", filled, shade], check=True)
     relief = QgsRasterLayer(shade, "relief")
     water = QgsRasterLayer(result["WATER"], "water")
     ramp = QgsColorRampShader()

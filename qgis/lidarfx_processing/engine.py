@@ -126,6 +126,26 @@ def layer_file(layer, what):
     return path
 
 
+def vector_file(algorithm, parameters, name, context, feedback):
+    """A file holding the features of a vector source parameter as its first layer, for the program (which reads
+    the first layer of a file): the layer's own file when it can be, else a GeoPackage written for the run
+    (memory layers, selections, filters, the second layer of a GeoPackage)."""
+    path, layer_name = algorithm.parameterAsCompatibleSourceLayerPathAndLayerName(
+        parameters, name, context, ["gpkg", "geojson", "shp"], "gpkg", feedback)
+    if not layer_name:
+        return path
+    from osgeo import gdal, ogr
+    gdal.UseExceptions()
+    dataset = ogr.Open(path)
+    first = dataset.GetLayer(0).GetName() if dataset is not None and dataset.GetLayerCount() else None
+    dataset = None
+    if first == layer_name:
+        return path
+    copy = os.path.join(work_folder(), "footprints.gpkg")
+    gdal.VectorTranslate(copy, path, layers=[layer_name], format="GPKG")
+    return copy
+
+
 class Raster:
     """A single-band raster read with GDAL: heights as float32 (NoData as NaN), its geotransform and CRS."""
 

@@ -5,9 +5,11 @@ inputs; every output opens in GDAL/OGR with the input's CRS and plausible values
 The plugin under test is this checkout's (qgis/lidarfx_processing), linked into a temporary QGIS profile
 (QGIS_CUSTOM_CONFIG_PATH), never an installed copy. Environment: LIDARFX_PROGRAM (the lidarfx program),
 LIDARFX_MAKE_SURVEY (make_water_survey, for a LAS survey), PYTHONPATH (the lidarfx Python module)."""
+import json
 import math
 import os
 import shutil
+import struct
 import subprocess
 
 import numpy as np
@@ -87,6 +89,49 @@ def town(tmp_path_factory):
     paths["footprints"] = str(folder / "footprints.gpkg")
     paths["folder"] = folder
     return paths
+
+
+def write_las(path, x, y, z, epsg=EPSG):
+    """LAS 1.2, point format 0 (one return per pulse, intensity 100), GeoKeys naming EPSG (metres)."""
+    keys = [1, 1, 0, 4, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, epsg, 3076, 0, 1, 9001]
+    key_bytes = struct.pack("<%dH" % len(keys), *keys)
+    vlr = struct.pack("<H16sHH32s", 0, b"LASF_Projection", 34735, len(key_bytes), b"GeoKeyDirectoryTag")
+    vlr += key_bytes
+    scale, offset = 0.001, (float(np.floor(x.min())), float(np.floor(y.min())), 0.0)
+    header = struct.pack("<4sHH16sBB32s32sHHHIIBHI5I3d3d6d", b"LASF", 0, 0, bytes(16), 1, 2, b"lidarfx tests",
+                         b"test_qgis_provider.py", 1, 2026, 227, 227 + len(vlr), 1, 0, 20, len(x), len(x), 0, 0,
+                         0, 0, scale, scale, scale, *offset, x.max(), x.min(), y.max(), y.min(), z.max(), z.min())
+    points = np.zeros(len(x), np.dtype([("x", "<i4"), ("y", "<i4"), ("z", "<i4"), ("intensity", "<u2"),
+                                        ("flags", "u1"), ("cls", "u1"), ("angle", "i1"), ("user", "u1"),
+                                        ("source", "<u2")]))
+    points["x"] = np.round((x - offset[0]) / scale)
+    points["y"] = np.round((y - offset[1]) / scale)
+    points["z"] = np.round(z / scale)
+    points["intensity"] = 100
+    points["flags"] = 0b00001001  # return 1 of 1
+    with open(path, "wb") as f:
+        f.write(header + vlr + points.tobytes())
+
+
+@pytest.fixture(scope="module")
+def las_house(tmp_path_factory):
+    """The town's gabled house as a LAS survey (a folder with one file, points every 0.5 m, EPSG:32633) and its
+    footprint as GeoJSON whose integer id field is named 'bid' (value 7)."""
+    folder = tmp_path_factory.mktemp("las_house")
+    (folder / "las").mkdir()
+    yy, xx = np.mgrid[0:160, 0:160] * 0.5 + 0.25  # metres from the top-left (north-west) corner
+    inside = (np.abs(xx - 40) < 10) & (np.abs(yy - 40) < 7)
+    z = np.where(inside, 109.5 - 0.5 * np.abs(yy - 40), 100.0)
+    write_las(folder / "las" / "house.las", X0 + xx.ravel(), Y0 - yy.ravel(), z.ravel())
+    x0, x1, y0, y1 = X0 + 30, X0 + 50, Y0 - 47, Y0 - 33
+    footprints = {"type": "FeatureCollection",
+                  "crs": {"type": "name", "properties": {"name": f"urn:ogc:def:crs:EPSG::{EPSG}"}},
+                  "features": [{"type": "Feature", "properties": {"bid": 7, "name": "house"},
+                                "geometry": {"type": "Polygon", "coordinates": [
+                                    [[x0, y0], [x1, y0], [x1, y1], [x0, y1], [x0, y0]]]}}]}
+    (folder / "footprints.geojson").write_text(json.dumps(footprints))
+    return {"folder": str(folder / "las"), "file": str(folder / "las" / "house.las"),
+            "footprints": str(folder / "footprints.geojson")}
 
 
 @pytest.fixture(scope="module")
@@ -215,6 +260,49 @@ def test_buildings_and_facade_energy(qgis, town, tmp_path):
     assert buildings[0]["area"] == pytest.approx(20 * 14, rel=0.1)
     rows = open(tmp_path / "facades.csv").read().splitlines()
     assert rows[0].startswith("building_id") and len(rows) > 8
+
+
+def test_rooftop_pv_from_a_las_folder_and_geojson_footprints(qgis, las_house, tmp_path):
+    qgis("run", "lidarfx:rooftoppv", "--", f"FOLDER={las_house['folder']}", f"FOOTPRINTS={las_house['footprints']}",
+         "ID_FIELD=bid", "CELL=1", "LAT=36.1", "LON=15.0", f"OUTPUT={tmp_path / 'patches.gpkg'}")
+    patches, epsg = vector(tmp_path / "patches.gpkg")
+    assert epsg == EPSG and len(patches) == 2
+    assert all(int(p["building_id"]) == 7 for p in patches)  # the id came from the field chosen
+    south = [p for p in patches if abs(float(p["azimuth_deg"]) - 180) < 10]
+    assert len(south) == 1 and str(south[0]["suitable"]).lower() in ("1", "true", "yes")
+    assert float(south[0]["tilt_deg"]) == pytest.approx(math.degrees(math.atan(0.5)), abs=2)
+    assert 1500 < float(south[0]["annual_kwh_m2"]) < 3000  # a clear-sky year at 36° N on a 27° south roof
+
+
+def test_buildings_from_las_files(qgis, las_house, tmp_path):
+    qgis("run", "lidarfx:buildings", "--", f"FILES={las_house['file']}", "CELL=1", "LAT=36.1", "LON=15.0",
+         f"BUILDINGS={tmp_path / 'buildings.gpkg'}", f"FACADES={tmp_path / 'facades.csv'}",
+         f"IRRADIATION={tmp_path / 'annual.tif'}")
+    buildings, epsg = vector(tmp_path / "buildings.gpkg")
+    assert epsg == EPSG and len(buildings) == 1
+    assert buildings[0]["area"] == pytest.approx(20 * 14, rel=0.15)
+    facades = open(tmp_path / "facades.csv").read().splitlines()
+    header = facades[0].split(",")
+    energy = [float(row.split(",")[header.index("annual_kwh_m2")]) for row in facades[1:]]
+    assert len(energy) > 8 and max(energy) > 0
+    annual, epsg, _ = raster(tmp_path / "annual.tif")
+    assert epsg == EPSG and 1500 < annual[5, 5] < 2600
+
+
+def test_shadows_take_a_time_with_its_offset(qgis, town, tmp_path):
+    # 12:00 at +01:00 is the 11:00 UTC of the noon test: the same sun, the same shadows.
+    done = qgis("run", "lidarfx:shadows", "--", f"DSM={town['dsm']}", "DATETIME=2024-12-21T12:00:00+01:00",
+                f"OUTPUT={tmp_path / 'lit.tif'}")
+    assert "2024-12-21 11:00:00 UTC" in done.stdout and "SUN_ELEVATION_DEG" in done.stdout
+    lit, _, _ = raster(tmp_path / "lit.tif")
+    assert (lit[24:33, 40] == 0).all() and lit[20, 40] == 1
+
+
+def test_irradiation_refuses_tmy_years_without_a_tmy(qgis, town, tmp_path):
+    done = qgis("run", "lidarfx:irradiation", "--", f"DSM={town['dsm']}", "YEAR_FROM_TMY=true",
+                f"OUTPUT={tmp_path / 'annual.tif'}", check=False)
+    assert done.returncode != 0 and "needs a TMY3 file" in done.stdout + done.stderr
+    assert not (tmp_path / "annual.tif").exists()
 
 
 def test_a_failing_run_reports_the_program_s_reason(qgis, tmp_path):

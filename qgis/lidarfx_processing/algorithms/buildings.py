@@ -25,7 +25,7 @@ class BuildingsAlgorithm(LidarfxAlgorithm):
         add_survey_parameters(self)
         self.addParameter(QgsProcessingParameterRasterLayer("DSM", "Or: surface model (DSM)", optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            "CELL", "Cell size for a LAS/LAZ survey (metres)", QgsProcessingParameterNumber.Double, 1.0,
+            "CELL", "Cell size for a LAS/LAZ survey (metres) [1]", QgsProcessingParameterNumber.Double, 1.0,
             minValue=0.1))
         add_place_parameters(self)
         self.addParameter(QgsProcessingParameterVectorDestination(

@@ -2,7 +2,8 @@
 """Annual solar irradiation of a surface model: `lidarfx solar`."""
 import os
 
-from qgis.core import (QgsProcessingParameterEnum, QgsProcessingParameterFile, QgsProcessingParameterNumber,
+from qgis.core import (QgsProcessingException, QgsProcessingParameterBoolean, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFile, QgsProcessingParameterNumber,
                        QgsProcessingParameterRasterDestination, QgsProcessingParameterRasterLayer)
 
 from ..engine import LidarfxAlgorithm, deliver, layer_file, run_program, work_folder
@@ -45,16 +46,25 @@ class IrradiationAlgorithm(LidarfxAlgorithm):
         self.addParameter(QgsProcessingParameterRasterLayer("DSM", "Surface model (DSM)"))
         add_place_parameters(self)
         self.addParameter(QgsProcessingParameterNumber(
-            "YEAR", "Year the weather is placed in", QgsProcessingParameterNumber.Integer, 2021, minValue=1901,
-            maxValue=2099))
+            "YEAR", "Year the weather is placed in [2021]", QgsProcessingParameterNumber.Integer, 2021,
+            minValue=1901, maxValue=2099))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "YEAR_FROM_TMY", "Keep the TMY rows' own years instead of the year above (needs a TMY3 file) [off]",
+            False))
         self.addParameter(QgsProcessingParameterEnum(
-            "DIFFUSE", "Diffuse sky model", ["isotropic", "perez"], defaultValue=0))
+            "DIFFUSE", "Diffuse sky model [isotropic]", ["isotropic", "perez"], defaultValue=0))
         self.addParameter(QgsProcessingParameterEnum(
-            "SVF_METHOD", "Sky view factor definition (cosine-weighted, as GRASS and SAGA; or the share of point "
-            "sources, the dissertation's)", ["cosine", "share"], defaultValue=0))
+            "SVF_METHOD", "Sky view factor definition: cosine-weighted (as GRASS and SAGA) or the share of "
+            "point sources [cosine]", ["cosine", "share"], defaultValue=0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "SVF_DIRECTIONS", "Azimuths of the horizon sweeps (>= 4) [72]", QgsProcessingParameterNumber.Integer,
+            72, minValue=4, maxValue=3600))
         self.addParameter(QgsProcessingParameterEnum(
-            "SURFACE", "Surfaces (horizontal; or each cell's own slope and aspect)", ["horizontal", "terrain"],
-            defaultValue=0))
+            "SURFACE", "Surfaces: horizontal, or each cell's own slope and aspect (terrain) [horizontal]",
+            ["horizontal", "terrain"], defaultValue=0))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "KEEP_OUTLIERS", "Keep the DSM's isolated spikes and pits (birds, canopy gaps) instead of replacing "
+            "them by their neighbours' median [off]", False))
         self.addParameter(QgsProcessingParameterRasterDestination("OUTPUT", "Annual irradiation (kWh/m²)"))
         self.addParameter(QgsProcessingParameterRasterDestination(
             "SVF", "Sky view factor (0-1)", optional=True, createByDefault=False))
@@ -65,10 +75,18 @@ class IrradiationAlgorithm(LidarfxAlgorithm):
         diffuse = ["isotropic", "perez"][self.parameterAsEnum(parameters, "DIFFUSE", context)]
         svf_method = ["cosine", "share"][self.parameterAsEnum(parameters, "SVF_METHOD", context)]
         surface = ["horizontal", "terrain"][self.parameterAsEnum(parameters, "SURFACE", context)]
-        run_program(["solar", dsm, "--out", out, "--formats", "tif,csv", "--diffuse", diffuse, "--svf", svf_method,
-                     "--surface", surface,
-                     "--year", self.parameterAsInt(parameters, "YEAR", context),
-                     *place_arguments(self, parameters, context)], feedback)
+        arguments = ["solar", dsm, "--out", out, "--formats", "tif,csv", "--diffuse", diffuse, "--svf", svf_method,
+                     "--svf-directions", self.parameterAsInt(parameters, "SVF_DIRECTIONS", context),
+                     "--surface", surface, *place_arguments(self, parameters, context)]
+        if self.parameterAsBoolean(parameters, "YEAR_FROM_TMY", context):
+            if "--tmy" not in arguments:
+                raise QgsProcessingException("'Keep the TMY rows' own years' needs a TMY3 file")
+            arguments.append("--year-from-tmy")
+        else:
+            arguments += ["--year", self.parameterAsInt(parameters, "YEAR", context)]
+        if self.parameterAsBoolean(parameters, "KEEP_OUTLIERS", context):
+            arguments.append("--keep-outliers")
+        run_program(arguments, feedback)
         results = {"OUTPUT": deliver(os.path.join(out, "annual_kwh_m2.tif"),
                                      self.parameterAsOutputLayer(parameters, "OUTPUT", context), feedback)}
         svf = self.parameterAsOutputLayer(parameters, "SVF", context)

@@ -21,9 +21,10 @@ class SkyViewFactorAlgorithm(LidarfxAlgorithm):
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterRasterLayer("DSM", "Surface model (DSM)"))
-        self.addParameter(QgsProcessingParameterEnum("METHOD", "Definition", METHODS, defaultValue=0))
+        self.addParameter(QgsProcessingParameterEnum(
+            "METHOD", "Definition: cosine-weighted or source share [cosine_weighted]", METHODS, defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            "DIRECTIONS", "Azimuths swept (>= 4)", QgsProcessingParameterNumber.Integer, 72, minValue=4))
+            "DIRECTIONS", "Azimuths swept (>= 4) [72]", QgsProcessingParameterNumber.Integer, 72, minValue=4))
         self.addParameter(QgsProcessingParameterRasterDestination("OUTPUT", "Sky view factor (0-1)"))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802

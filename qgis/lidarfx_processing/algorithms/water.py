@@ -16,7 +16,7 @@ def survey_files(algorithm, parameters, context, files_name, folder_name):
     folder = algorithm.parameterAsFile(parameters, folder_name, context) if folder_name else ""
     if folder:
         files += sorted(glob.glob(os.path.join(folder, "*.las")) + glob.glob(os.path.join(folder, "*.laz")))
-    files = [f.split("|")[0] for f in files]
+    files = [f.split("|")[0] for f in files if f]  # an unset FILES parameter reads as ['']
     if not files:
         raise QgsProcessingException("Give LAS/LAZ files or a folder holding them")
     return files
@@ -24,7 +24,7 @@ def survey_files(algorithm, parameters, context, files_name, folder_name):
 
 def add_survey_parameters(algorithm, optional=False):
     algorithm.addParameter(QgsProcessingParameterMultipleLayers(
-        "FILES", "Survey: LAS/LAZ files", QgsProcessing.TypeFile, optional=True))
+        "FILES", "Survey: LAS/LAZ files (projected CRS, metres or feet)", QgsProcessing.TypeFile, optional=True))
     algorithm.addParameter(QgsProcessingParameterFile(
         "FOLDER", "Survey: a folder of LAS/LAZ files (its *.las and *.laz)", QgsProcessingParameterFile.Folder,
         optional=True))
@@ -45,12 +45,12 @@ class WaterAlgorithm(LidarfxAlgorithm):
     def initAlgorithm(self, config=None):  # noqa: N802
         add_survey_parameters(self)
         self.addParameter(QgsProcessingParameterNumber(
-            "CELL", "Cell size (metres)", QgsProcessingParameterNumber.Double, 2.0, minValue=0.1))
+            "CELL", "Cell size (metres) [2]", QgsProcessingParameterNumber.Double, 2.0, minValue=0.1))
         self.addParameter(QgsProcessingParameterBoolean(
             "DROPOUT_SEEDS_ONLY", "Seed only from cells without returns (faster; misses turbid water) [off]",
             False))
         self.addParameter(QgsProcessingParameterNumber(
-            "ISLAND_MIN_AREA", "Smallest island kept as land (m²)", QgsProcessingParameterNumber.Double, 200.0,
+            "ISLAND_MIN_AREA", "Smallest island kept as land (m²) [200]", QgsProcessingParameterNumber.Double, 200.0,
             minValue=0.0))
         self.addParameter(QgsProcessingParameterBoolean(
             "FORCE", "Run anyway when the data cannot support the method (too sparse, no intensity) [off]",
