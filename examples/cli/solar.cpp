@@ -203,6 +203,7 @@ int run_solar(const std::vector<std::string>& args)
     if (surface != "horizontal" && surface != "terrain") {
         throw cli::usage_error("--surface must be horizontal or terrain (got " + surface + ")");
     }
+    const bool terrain = surface == "terrain";
 
     // Weather first: a bad file fails before the survey is read.
     const bool year_from_tmy = a.has("year-from-tmy");
@@ -297,18 +298,17 @@ int run_solar(const std::vector<std::string>& args)
                   << records_year << "\n";
     }
 
-    std::vector<outlier_row> outlier_rows;
     // Isolated spikes (birds, noise) and pits (returns through canopy gaps) out of the DSM before any shadow is cast.
-    const lidarfx::surface_outliers_result outliers =
-        a.has("keep-outliers") ? lidarfx::surface_outliers_result{}
-                               : lidarfx::remove_surface_outliers(dsm, {.run = {.threads = threads}});
+    std::vector<outlier_row> outlier_rows;
     if (a.has("keep-outliers")) {
         std::cout << "DSM outliers: kept (--keep-outliers)\n";
     } else {
+        lidarfx::surface_outliers_result outliers =
+            lidarfx::remove_surface_outliers(dsm, {.run = {.threads = threads}});
         std::cout << "DSM outliers: " << outliers.spikes << " spikes and " << outliers.pits
                   << " pits replaced by the median of their 5 x 5 neighbourhood (dsm_outliers.csv)\n";
         outlier_rows = list_outliers(dsm, outliers, g);
-        dsm = outliers.surface;
+        dsm = std::move(outliers.surface);
     }
 
     lidarfx::io::output_folder out(a.text("out", ""), {inputs.begin(), inputs.end()});
@@ -337,11 +337,11 @@ int run_solar(const std::vector<std::string>& args)
         .run = {.threads = threads, .progress = cli::progress_bar("irradiance")}};
     // Each cell's own plane (--surface terrain): Horn's slope and aspect of the DSM, flat cells facing north.
     lidarfx::slope_aspect_result orientation;
-    if (surface == "terrain") orientation = lidarfx::slope_aspect(dsm, cell_m, {.run = {.threads = threads}});
+    if (terrain) orientation = lidarfx::slope_aspect(dsm, cell_m, {.run = {.threads = threads}});
     const auto res = lidarfx::irradiance_maps(dsm, cell_m, site, records, orientation.slope_deg.view(),
                                               orientation.aspect_deg.view(), maps_options);
     std::cout << "sky view factor: " << svf_description(svf, svf_directions) << " (svf.* and the diffuse part)\n";
-    std::cout << "surfaces: " << (surface == "terrain" ? "each cell's own slope and aspect" : "horizontal") << "\n";
+    std::cout << "surfaces: " << (terrain ? "each cell's own slope and aspect" : "horizontal") << "\n";
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
               << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 
@@ -387,16 +387,15 @@ int run_solar(const std::vector<std::string>& args)
                                                     .bar = bar});
             out.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
         };
-        legend_png(
-            "annual_kwh_m2.png", res.annual_kwh_m2,
-            surface == "terrain" ? "annual irradiation, terrain surfaces" : "annual irradiation, horizontal surfaces",
-            "kWh/m²");
+        legend_png("annual_kwh_m2.png", res.annual_kwh_m2,
+                   terrain ? "annual irradiation, terrain surfaces" : "annual irradiation, horizontal surfaces",
+                   "kWh/m²");
         legend_png("svf.png", res.sky_view_factor, "sky view factor, " + svf_description(svf, svf_directions), "SVF");
     }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";
     out.set_units_note("kWh/m2 per cell (" +
-                       std::string(surface == "terrain" ? "each cell's own slope and aspect" : "horizontal surfaces") +
+                       std::string(terrain ? "each cell's own slope and aspect" : "horizontal surfaces") +
                        "), SVF in [0, 1] (" + svf_description(svf, svf_directions) +
                        "), on the input's grid; sun for " + place.description);
     if (a.has("facades")) {

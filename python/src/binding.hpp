@@ -15,11 +15,13 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <lidarfx/core/error.hpp>
 #include <lidarfx/core/parallel.hpp>
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/core/raster_view.hpp>
+#include <lidarfx/kernels/solar/irradiance_record.hpp>
 
 namespace lidarfx::python {
 
@@ -92,6 +94,10 @@ py::object cancelled_exception();
 
 /// Registers the translators (invalid_input -> ValueError, cancelled -> lidarfx.Cancelled) and Cancelled.
 void register_errors(py::module_& m);
+
+/// A lidarfx.Weather of the records, with the site they belong to (solar.cpp; read_tmy3 uses it too).
+py::object weather_from_records(const std::vector<irradiance_record>& records, double latitude_deg,
+                                double longitude_deg, double utc_offset_h);
 
 /// "name: message" as a ValueError.
 [[noreturn]] void value_error(const char* function, const std::string& message);

@@ -4,8 +4,6 @@
 #include <system_error>
 #include <vector>
 
-#include <lidarfx/kernels/solar/irradiance_record.hpp>
-
 #include "binding.hpp"
 
 #ifdef LIDARFX_PYTHON_HAVE_IO
@@ -14,9 +12,6 @@
 #endif
 
 namespace lidarfx::python {
-
-py::object weather_from_records(const std::vector<irradiance_record>& records, double latitude_deg,
-                                double longitude_deg, double utc_offset_h);
 
 #ifdef LIDARFX_PYTHON_HAVE_IO
 namespace {

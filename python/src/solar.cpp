@@ -146,31 +146,6 @@ std::vector<irradiance_record> weather_records(const py::handle& weather, const 
     return records;
 }
 
-py::object weather_object(const std::vector<irradiance_record>& records, double latitude_deg, double longitude_deg,
-                          double utc_offset_h)
-{
-    const auto n = static_cast<py::ssize_t>(records.size());
-    py::array_t<std::int64_t> start(n);
-    py::array_t<double> dni(n), dhi(n), ghi(n);
-    for (py::ssize_t i = 0; i < n; ++i) {
-        const irradiance_record& r = records[static_cast<std::size_t>(i)];
-        start.mutable_at(i) = r.start_utc.time_since_epoch().count();
-        dni.mutable_at(i) = r.dni_w_m2;
-        dhi.mutable_at(i) = r.dhi_w_m2;
-        ghi.mutable_at(i) = r.ghi_w_m2;
-    }
-    py::dict fields;
-    fields["start_utc"] = start.attr("astype")("datetime64[s]");
-    fields["dni_w_m2"] = dni;
-    fields["dhi_w_m2"] = dhi;
-    fields["ghi_w_m2"] = ghi;
-    fields["interval_s"] = records.empty() ? 3600 : records.front().interval.count();
-    fields["latitude_deg"] = latitude_deg;
-    fields["longitude_deg"] = longitude_deg;
-    fields["utc_offset_h"] = utc_offset_h;
-    return make_result("Weather", fields);
-}
-
 py::object clear_sky_year_binding(int year, double latitude_deg, double longitude_deg, int interval_s)
 {
     clear_sky_options opt;
@@ -180,7 +155,7 @@ py::object clear_sky_year_binding(int year, double latitude_deg, double longitud
         py::gil_scoped_release release;
         records = clear_sky_records(year, latitude_deg, longitude_deg, opt);
     }
-    return weather_object(records, latitude_deg, longitude_deg, 0.0);
+    return weather_from_records(records, latitude_deg, longitude_deg, 0.0);
 }
 
 py::object irradiance_maps_binding(const py::handle& dsm, double cell_m, const py::handle& weather,
@@ -240,7 +215,26 @@ py::object irradiance_maps_binding(const py::handle& dsm, double cell_m, const p
 py::object weather_from_records(const std::vector<irradiance_record>& records, double latitude_deg,
                                 double longitude_deg, double utc_offset_h)
 {
-    return weather_object(records, latitude_deg, longitude_deg, utc_offset_h);
+    const auto n = static_cast<py::ssize_t>(records.size());
+    py::array_t<std::int64_t> start(n);
+    py::array_t<double> dni(n), dhi(n), ghi(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+        const irradiance_record& r = records[static_cast<std::size_t>(i)];
+        start.mutable_at(i) = r.start_utc.time_since_epoch().count();
+        dni.mutable_at(i) = r.dni_w_m2;
+        dhi.mutable_at(i) = r.dhi_w_m2;
+        ghi.mutable_at(i) = r.ghi_w_m2;
+    }
+    py::dict fields;
+    fields["start_utc"] = start.attr("astype")("datetime64[s]");
+    fields["dni_w_m2"] = dni;
+    fields["dhi_w_m2"] = dhi;
+    fields["ghi_w_m2"] = ghi;
+    fields["interval_s"] = records.empty() ? 3600 : records.front().interval.count();
+    fields["latitude_deg"] = latitude_deg;
+    fields["longitude_deg"] = longitude_deg;
+    fields["utc_offset_h"] = utc_offset_h;
+    return make_result("Weather", fields);
 }
 
 void bind_solar(py::module_& m)
