@@ -123,8 +123,9 @@ int main(int argc, char** argv)
             const std::string v = argv[++i];
             family.variant = v == "level-land"     ? synth::water_family_variant::level_land
                              : v == "narrow-river" ? synth::water_family_variant::narrow_river
+                             : v == "hydro"        ? synth::water_family_variant::hydro
                                                    : synth::water_family_variant::classic;
-            if (v != "level-land" && v != "narrow-river" && v != "classic") {
+            if (v != "level-land" && v != "narrow-river" && v != "hydro" && v != "classic") {
                 std::fprintf(stderr, "water_family: unknown variant %s\n", v.c_str());
                 return 2;
             }
@@ -136,7 +137,7 @@ int main(int argc, char** argv)
         else {
             std::fprintf(stderr,
                          "usage: water_family [--tuning] [--first N] [--count N] [--ablation] [--scenes] "
-                         "[--variant classic|level-land|narrow-river] [--density MIN MAX] [--cell M]\n");
+                         "[--variant classic|level-land|narrow-river|hydro] [--density MIN MAX] [--cell M]\n");
             return 2;
         }
     }

@@ -118,15 +118,14 @@ raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
     return fill_holes_pull_push(std::move(z));
 }
 
-/// What the manifest says about units: heights and areas in metres, places in the survey's CRS.
+}  // namespace
+
 std::string units_note(const survey& s)
 {
     const std::string where = s.crs.source.empty() ? std::string("coordinates as read (no CRS: taken as metres)")
                                                    : "the CRS of the input, " + s.crs.describe();
     return "cell values (heights, levels) in metres, areas in m2; grids, bounding boxes and polygons in " + where;
 }
-
-}  // namespace
 
 void print_survey(const survey& s)
 {

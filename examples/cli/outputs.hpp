@@ -11,6 +11,9 @@
 
 namespace lidarfx::cli {
 
+/// What a manifest says about units: heights and areas in metres, places in the survey's CRS.
+std::string units_note(const survey& s);
+
 /// Prints what a survey holds (files, points, grid, density, points ignored).
 void print_survey(const survey& s);
 

@@ -58,6 +58,16 @@ constexpr const char* usage =
     "  --crop X0,Y0,X1,Y1    only points inside this box, in the units of the files' CRS\n"
     "  --force               run even when the inputs cannot support the method\n";
 
+/// Refuses a flag's value (usage_error "--flag must be rule (got value)") unless `ok`.
+void need(bool ok, const char* flag, const char* rule, double value)
+{
+    if (!ok) {
+        std::ostringstream why;
+        why << "--" << flag << " must be " << rule << " (got " << value << ")";
+        throw usage_error(why.str());
+    }
+}
+
 }  // namespace
 
 const std::vector<std::string>& water_value_options()
@@ -95,10 +105,8 @@ survey read_survey_local(const std::vector<std::string>& files, const survey_opt
     return read_survey_tiled(files, opt, tile_edge_m, tiles_dir);
 }
 
-int run_water(const std::vector<std::string>& args, const survey_source& source)
+water_method water_method_from(const arguments& a)
 {
-    const arguments a(args, water_value_options(), water_flag_options());
-    if (const auto code = stop_for_usage(a, usage, true)) return *code;
     if (a.has("flat-seeds") && a.has("dropout-seeds-only"))
         throw usage_error("--flat-seeds and --dropout-seeds-only exclude each other");
     // What the water family reports as the method (flat seeds and the level-surface cue) unless told otherwise.
@@ -131,13 +139,6 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     opt.check_inputs = !a.has("force");
     opt.run.progress = progress_bar("waterbodies");
     // Each flag is checked under its own name before any work (the library would name its option instead).
-    const auto need = [](bool ok, const char* flag, const char* rule, double value) {
-        if (!ok) {
-            std::ostringstream why;
-            why << "--" << flag << " must be " << rule << " (got " << value << ")";
-            throw usage_error(why.str());
-        }
-    };
     const auto& g = opt.grow;
     need(opt.vegetation.height_m > 0 && std::isfinite(opt.vegetation.height_m), "veg-height", "a finite number > 0",
          opt.vegetation.height_m);
@@ -153,11 +154,24 @@ int run_water(const std::vector<std::string>& args, const survey_source& source)
     need(opt.bridges.max_span_m >= 0, "bridge-span", ">= 0 (metres; 0 disables)", opt.bridges.max_span_m);
     need(hull_radius_m >= 0 && std::isfinite(hull_radius_m), "hull-radius", "a finite number >= 0 (metres; 0 disables)",
          hull_radius_m);
+    return {opt, hull_radius_m};
+}
 
-    const auto survey_options = survey_options_from(a, water_bytes_per_cell);
+double tile_edge_from(const arguments& a)
+{
     const double tile_edge_m = a.number("tile", 0);
     need(tile_edge_m >= 0 && std::isfinite(tile_edge_m), "tile", "a finite number >= 0 (metres; 0 = untiled)",
          tile_edge_m);
+    return tile_edge_m;
+}
+
+int run_water(const std::vector<std::string>& args, const survey_source& source)
+{
+    const arguments a(args, water_value_options(), water_flag_options());
+    if (const auto code = stop_for_usage(a, usage, true)) return *code;
+    const auto [opt, hull_radius_m] = water_method_from(a);
+    const auto survey_options = survey_options_from(a, water_bytes_per_cell);
+    const double tile_edge_m = tile_edge_from(a);
     const auto files = survey_files(a.positional());
     io::output_folder out(a.text("out", ""), {files.begin(), files.end()});
     for (const auto& name : waterbody_file_names(survey_options.formats)) out.declare(name);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+
 #include "cli_common.hpp"
 
 namespace lidarfx::cli {
@@ -27,6 +29,17 @@ using survey_source = std::function<survey(const std::vector<std::string>& files
 /// read_survey when tile_edge_m is 0, else read_survey_tiled resuming in tiles_dir.
 survey read_survey_local(const std::vector<std::string>& files, const survey_options& opt, double tile_edge_m,
                          const std::filesystem::path& tiles_dir);
+
+/// The waterbody method of `lidarfx water` and the footprint's hull radius (metres), from its options in `a`
+/// (every flag checked under its own name; usage_error otherwise): what `lidarfx hydroflatten` runs too.
+struct water_method {
+    extract_waterbodies_options options;
+    double hull_radius_m = 50;
+};
+water_method water_method_from(const arguments& a);
+
+/// --tile (metres, 0 = untiled), checked. @throws usage_error when negative or not finite.
+double tile_edge_from(const arguments& a);
 
 /// `lidarfx water ARGS`: the exit code (0 written, 2 usage, 3 data that cannot support the method).
 int run_water(const std::vector<std::string>& args, const survey_source& source = read_survey_local);

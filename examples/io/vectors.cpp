@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/vectors.hpp"
 #include "io/gdal_session.hpp"
+#include "io/ogr_util.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -338,34 +339,30 @@ void reproject_footprints(footprint_collection& c, const std::string& from, cons
     c.footprints = std::move(kept);
 }
 
-void write_geopackage(const std::string& path, const std::string& layer, const std::vector<geojson_feature>& features,
-                      const std::string& crs_wkt, int epsg)
+void write_geopackage_layers(const std::string& path, const std::vector<geopackage_layer_source>& layers,
+                             const std::string& crs_wkt, int epsg, const char* fn)
 {
-    constexpr const char* fn = "write_geopackage";
-    detail::require(epsg >= 0, fn, "epsg", ">= 0", epsg);
-    std::vector<std::vector<geo_ring>> rings;  // checked before the file exists
-    rings.reserve(features.size());
-    for (std::size_t f = 0; f < features.size(); ++f) rings.push_back(checked_rings(features[f], f, fn));
-
-    // Fields in the order they first appear, typed by their first non-null value.
-    std::vector<std::pair<std::string, OGRFieldType>> fields;
-    std::map<std::string, std::size_t> field_index;
-    for (std::size_t f = 0; f < features.size(); ++f) {
-        std::set<std::string> names;
-        for (const auto& [name, value] : features[f].properties) {
-            if (!names.insert(name).second)
-                throw invalid_input(detail::concat(fn, ": feature ", f, " has property '", name, "' twice"));
-            const auto [it, fresh] = field_index.emplace(name, fields.size());
-            if (fresh) fields.emplace_back(name, OFTString);
-            OGRFieldType& type = fields[it->second].second;
-            if (fresh || type == OFTString) {
-                const auto& v = value.value();
-                if (std::holds_alternative<bool>(v))
-                    type = OFTInteger;
-                else if (std::holds_alternative<std::int64_t>(v) || std::holds_alternative<std::uint64_t>(v))
-                    type = OFTInteger64;
-                else if (std::holds_alternative<double>(v))
-                    type = OFTReal;
+    // Per layer, fields in the order they first appear, typed by their first non-null value.
+    std::vector<std::vector<std::pair<std::string, OGRFieldType>>> fields(layers.size());
+    std::vector<std::map<std::string, std::size_t>> field_index(layers.size());
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+        for (std::size_t f = 0; f < layers[l].properties.size(); ++f) {
+            std::set<std::string> names;
+            for (const auto& [name, value] : *layers[l].properties[f]) {
+                if (!names.insert(name).second)
+                    throw invalid_input(detail::concat(fn, ": feature ", f, " has property '", name, "' twice"));
+                const auto [it, fresh] = field_index[l].emplace(name, fields[l].size());
+                if (fresh) fields[l].emplace_back(name, OFTString);
+                OGRFieldType& type = fields[l][it->second].second;
+                if (fresh || type == OFTString) {
+                    const auto& v = value.value();
+                    if (std::holds_alternative<bool>(v))
+                        type = OFTInteger;
+                    else if (std::holds_alternative<std::int64_t>(v) || std::holds_alternative<std::uint64_t>(v))
+                        type = OFTInteger64;
+                    else if (std::holds_alternative<double>(v))
+                        type = OFTReal;
+                }
             }
         }
     }
@@ -391,34 +388,61 @@ void write_geopackage(const std::string& path, const std::string& layer, const s
     if (driver == nullptr) throw std::runtime_error(path + ": this GDAL has no GeoPackage driver");
     dataset_ptr ds(driver->Create(path.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
     if (!ds) throw std::runtime_error(path + ": cannot create the GeoPackage" + gdal_message());
-    OGRLayer* out = ds->CreateLayer(layer.c_str(), &srs, wkbPolygon, nullptr);
-    if (out == nullptr) throw std::runtime_error(path + ": cannot create the layer " + layer + gdal_message());
-    for (const auto& [name, type] : fields) {
-        OGRFieldDefn defn(name.c_str(), type);
-        if (type == OFTInteger) defn.SetSubType(OFSTBoolean);
-        if (out->CreateField(&defn) != OGRERR_NONE)
-            throw std::runtime_error(path + ": cannot create the field " + name + gdal_message());
-    }
-    if (out->StartTransaction() != OGRERR_NONE)
-        throw std::runtime_error(path + ": cannot start writing" + gdal_message());
-    for (std::size_t f = 0; f < features.size(); ++f) {
-        OGRFeature feature(out->GetLayerDefn());
-        for (const auto& [name, value] : features[f].properties) {
-            const int i = static_cast<int>(field_index.at(name));
-            const auto& v = value.value();
-            if (const auto* b = std::get_if<bool>(&v))
-                feature.SetField(i, *b ? 1 : 0);
-            else if (const auto* s = std::get_if<std::int64_t>(&v))
-                feature.SetField(i, static_cast<GIntBig>(*s));
-            else if (const auto* u = std::get_if<std::uint64_t>(&v))
-                feature.SetField(i, static_cast<GIntBig>(*u));
-            else if (const auto* d = std::get_if<double>(&v); d != nullptr && std::isfinite(*d))
-                feature.SetField(i, *d);
-            else if (const auto* t = std::get_if<std::string>(&v))
-                feature.SetField(i, t->c_str());
-            else
-                feature.SetFieldNull(i);  // null, NaN, infinite
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+        const geopackage_layer_source& layer = layers[l];
+        OGRLayer* out = ds->CreateLayer(layer.name.c_str(), &srs, layer.type, nullptr);
+        if (out == nullptr) throw std::runtime_error(path + ": cannot create the layer " + layer.name + gdal_message());
+        for (const auto& [name, type] : fields[l]) {
+            OGRFieldDefn defn(name.c_str(), type);
+            if (type == OFTInteger) defn.SetSubType(OFSTBoolean);
+            if (out->CreateField(&defn) != OGRERR_NONE)
+                throw std::runtime_error(path + ": cannot create the field " + name + gdal_message());
         }
+        if (out->StartTransaction() != OGRERR_NONE)
+            throw std::runtime_error(path + ": cannot start writing" + gdal_message());
+        for (std::size_t f = 0; f < layer.properties.size(); ++f) {
+            OGRFeature feature(out->GetLayerDefn());
+            for (const auto& [name, value] : *layer.properties[f]) {
+                const int i = static_cast<int>(field_index[l].at(name));
+                const auto& v = value.value();
+                if (const auto* b = std::get_if<bool>(&v))
+                    feature.SetField(i, *b ? 1 : 0);
+                else if (const auto* s = std::get_if<std::int64_t>(&v))
+                    feature.SetField(i, static_cast<GIntBig>(*s));
+                else if (const auto* u = std::get_if<std::uint64_t>(&v))
+                    feature.SetField(i, static_cast<GIntBig>(*u));
+                else if (const auto* d = std::get_if<double>(&v); d != nullptr && std::isfinite(*d))
+                    feature.SetField(i, *d);
+                else if (const auto* t = std::get_if<std::string>(&v))
+                    feature.SetField(i, t->c_str());
+                else
+                    feature.SetFieldNull(i);  // null, NaN, infinite
+            }
+            feature.SetGeometryDirectly(layer.geometry(f).release());
+            if (out->CreateFeature(&feature) != OGRERR_NONE) {
+                throw std::runtime_error(
+                    detail::concat(path, ": cannot write feature ", f, " of layer ", layer.name, gdal_message()));
+            }
+        }
+        if (out->CommitTransaction() != OGRERR_NONE)
+            throw std::runtime_error(path + ": cannot finish writing" + gdal_message());
+    }
+    CPLErrorReset();
+    ds.reset();  // closes the file
+    if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
+        throw std::runtime_error(path + ": cannot close the GeoPackage" + gdal_message());
+}
+
+void write_geopackage(const std::string& path, const std::string& layer, const std::vector<geojson_feature>& features,
+                      const std::string& crs_wkt, int epsg)
+{
+    constexpr const char* fn = "write_geopackage";
+    detail::require(epsg >= 0, fn, "epsg", ">= 0", epsg);
+    std::vector<std::vector<geo_ring>> rings;  // checked before the file exists
+    rings.reserve(features.size());
+    for (std::size_t f = 0; f < features.size(); ++f) rings.push_back(checked_rings(features[f], f, fn));
+    geopackage_layer_source source{layer, wkbPolygon, {}, nullptr};
+    source.geometry = [&](std::size_t f) -> std::unique_ptr<OGRGeometry> {
         auto poly = std::make_unique<OGRPolygon>();
         for (const geo_ring& ring : rings[f]) {
             auto r = std::make_unique<OGRLinearRing>();
@@ -426,16 +450,10 @@ void write_geopackage(const std::string& path, const std::string& layer, const s
             for (std::size_t k = 0; k < ring.size(); ++k) r->setPoint(static_cast<int>(k), ring[k][0], ring[k][1]);
             poly->addRingDirectly(r.release());
         }
-        feature.SetGeometryDirectly(poly.release());
-        if (out->CreateFeature(&feature) != OGRERR_NONE)
-            throw std::runtime_error(detail::concat(path, ": cannot write feature ", f, gdal_message()));
-    }
-    if (out->CommitTransaction() != OGRERR_NONE)
-        throw std::runtime_error(path + ": cannot finish writing" + gdal_message());
-    CPLErrorReset();
-    ds.reset();  // closes the file
-    if (CPLGetLastErrorType() == CE_Failure || CPLGetLastErrorType() == CE_Fatal)
-        throw std::runtime_error(path + ": cannot close the GeoPackage" + gdal_message());
+        return poly;
+    };
+    for (const geojson_feature& feature : features) source.properties.push_back(&feature.properties);
+    write_geopackage_layers(path, {std::move(source)}, crs_wkt, epsg, fn);
 }
 
 #else  // without GDAL

@@ -203,7 +203,7 @@ _STD_HEADERS = {
     "cmath": "cos sin tan acos asin atan atan2 sqrt hypot exp log log10 log2 pow abs fabs floor ceil round lround "
     "llround nearbyint fmod fmin fmax isfinite isnan isinf copysign nextafter",
     "algorithm": "min max clamp sort stable_sort nth_element fill fill_n copy copy_n all_of any_of none_of unique "
-    "max_element min_element lower_bound upper_bound binary_search partition_point transform find find_if count "
+    "max_element min_element minmax_element lower_bound upper_bound binary_search partition_point transform find find_if count "
     "count_if reverse ranges",
     "utility": "move forward swap exchange pair declval cmp_less cmp_greater cmp_less_equal cmp_greater_equal",
     "type_traits": "is_arithmetic_v is_same_v is_floating_point_v is_integral_v is_const_v is_signed_v "

@@ -47,6 +47,11 @@ enum class water_family_variant {
     level_land,    ///< ponds of 15-60 m radius and rivers 8-40 m wide beside level meadows, terraces and lots of
                    ///< land intensity 0.2-1 m above the water, smooth land, dropouts on the water 0-15 %
     narrow_river,  ///< rivers 5-15 m wide (lakes as classic)
+    hydro,         ///< scenes for hydro-flattening (USGS Lidar Base Specification), meant to be drawn at 2-8
+                   ///< pulses/m² (set min_density, max_density): lakes of 55-150 m mean radius keeping >= 9,000 m²
+                   ///< of water inside the survey, with islands in 60 % of them (4,200-12,000 m² or 100-3,800 m²);
+                   ///< rivers 30.5-60 m wide everywhere with 0-2 bridges and 0-2 weirs (drops 0.3-1.5 m, see
+                   ///< water_family_scene::weir_along); shores, returns and distractors as classic
 };
 
 /// Settings of a family scene; everything else follows from the seed.
@@ -96,14 +101,21 @@ struct water_family_scene {
     raster<std::uint8_t> water_filled;  ///< water plus islands smaller than 200 m²
     raster<std::int32_t> body_id;       ///< 0 land, 1.. waterbody (river = 1)
     raster<float> water_z;              ///< water level on water cells, NaN elsewhere
-    std::vector<double> body_level;     ///< per body id - 1: level at its centre (river: mid-length)
+    std::vector<double> body_level;     ///< per body id - 1: level at its centre (river: at along = size_m / 2)
     double size_m = 0, density_per_m2 = 0, cell_m = 2;
     water_family_scan scan;
     water_family_returns returns;
     std::vector<shore_kind> shores;  ///< per lake, or river south and north bank
     int bridges = 0, islands = 0;
     std::vector<std::array<double, 2>> bridge_along;  ///< river: (along-river position, half width) of each bridge
-    double river_angle_rad = 0;  ///< river: direction of flow (along = x cos + y sin about the centre)
+    /// River: (along-river position, drop in metres) of each weir, in increasing along; only the hydro variant
+    /// has weirs. The level steps down by the drop where the river crosses along = position downstream.
+    std::vector<std::array<double, 2>> weir_along;
+    /// River: direction of flow. The along-river position of (x, y) is along = (x - c) cos + (y - c) sin + c
+    /// with c = size_m / 2; the water flows toward increasing along (the upstream end is at the smallest
+    /// along) and its level falls monotonically downstream: linearly by 0.1-1.5 m per size_m, and by each
+    /// weir's drop past its weir.
+    double river_angle_rad = 0;
     bool touches_edge = false;
 };
 
@@ -178,7 +190,8 @@ struct family_world {
     std::vector<island_truth> islands;  ///< each in body island_body[i]
     std::vector<std::int32_t> island_body;
     river_channel river;
-    double angle = 0, ca = 1, sa = 0;  ///< river direction
+    std::vector<std::array<double, 2>> weirs;  ///< river: (along, drop) of each weir
+    double angle = 0, ca = 1, sa = 0;          ///< river direction
     std::array<shore_kind, 2> river_shore{};
     std::array<double, 2> river_shore_p{};
     struct bridge {
@@ -201,6 +214,16 @@ struct family_world {
     {
         const double dx = x - 0.5 * S, dy = y - 0.5 * S;
         return {dx * ca + dy * sa + 0.5 * S, -dx * sa + dy * ca + 0.5 * S};
+    }
+
+    /// Water level of the river at along-river position u: the channel's linear fall, stepped down by the
+    /// drop of each weir upstream of u.
+    double river_level(double u) const noexcept
+    {
+        double z = river.level(u);
+        for (const auto& weir : weirs)
+            if (u > weir[0]) z -= weir[1];
+        return z;
     }
 
     double land_intensity(double x, double y) const noexcept
@@ -229,7 +252,7 @@ struct family_world {
             }
         } else {
             const auto [u, v] = river_frame(x, y);
-            const double off = river.offset(u, v), half = 0.5 * river.width(u), level = river.level(u);
+            const double off = river.offset(u, v), half = 0.5 * river.width(u), level = river_level(u);
             const double d = std::abs(off) - half;
             if (d < 0) {
                 s.z = level;
@@ -449,6 +472,18 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
     }
 }
 
+/// Area of the lake inside the survey [0, S]², m², from 2 m samples.
+inline double lake_area_inside(const lake_outline& o, double S) noexcept
+{
+    constexpr double step = 2.0;
+    const double R = o.max_radius();
+    double area = 0;
+    for (double y = std::max(0.0, o.y - R) + 0.5 * step; y < std::min(S, o.y + R); y += step)
+        for (double x = std::max(0.0, o.x - R) + 0.5 * step; x < std::min(S, o.x + R); x += step)
+            if (o.shore_distance(x, y) < 0) area += step * step;
+    return area;
+}
+
 }  // namespace internal
 
 /// A randomized lake or river survey. Drawn from the seed: survey side (min..max_size_m), density
@@ -460,7 +495,8 @@ inline void render_family(const family_world& w, water_family_scene& out, unsign
 /// their scan shadows, trees). Lakes: 1-3 lakes at different levels, some side by side 10-40 m apart,
 /// some cut by the survey edge, islands of 50-2000 m² (at most 8 % of the lake). Rivers: 15-60 m wide meandering in any
 /// direction across the survey, level falling 0.1-1.5 m across it, 0-4 bridges (deck 3-8 m above the water, 8-20 m
-/// wide), sometimes an island. Deterministic; about 0.3 s per scene at 2 points/m² on 600 m.
+/// wide), sometimes an island. The variants (water_family_variant) change some of these ranges; rivers of the
+/// hydro variant also step down at 0-2 weirs. Deterministic; about 0.3 s per scene at 2 points/m² on 600 m.
 /// @throws invalid_input on bad options.
 inline water_family_scene water_family(const water_family_options& options = {})
 {
@@ -480,6 +516,7 @@ inline water_family_scene water_family(const water_family_options& options = {})
                      ? options.cell_m
                      : std::max(2.0, std::ceil(2.0 * std::sqrt(options.points_per_cell / out.density_per_m2)) / 2.0);
     const bool level_land = options.variant == water_family_variant::level_land;
+    const bool hydro = options.variant == water_family_variant::hydro;
     const auto cells =
         static_cast<std::ptrdiff_t>(std::ceil(pick.uniform(options.min_size_m, options.max_size_m) / out.cell_m));
     out.size_m = static_cast<double>(cells) * out.cell_m;
@@ -514,6 +551,7 @@ inline water_family_scene water_family(const water_family_options& options = {})
     w.reed_height_m = pick.uniform(1.0, 2.5);
     w.wet_belt_m = pick.uniform(5.0, 15.0);
     const double water_base = w.base_z;
+    constexpr double hydro_lake_water_m2 = 9000;  // water of each hydro lake inside the survey, at least
     const auto classic_shore = [&] { return static_cast<shore_kind>(pick.between(0, 4)); };
     const auto level_shore = [&] {
         const double u = pick.uniform();
@@ -533,7 +571,9 @@ inline water_family_scene water_family(const water_family_options& options = {})
     if (is_lake) {
         const int n = pick.between(1, 3);
         for (int attempt = 0; attempt < 200 && static_cast<int>(w.lakes.size()) < n; ++attempt) {
-            const double r = level_land ? pick.uniform(15.0, 60.0) : pick.uniform(0.08, 0.22) * S;
+            const double r = level_land ? pick.uniform(15.0, 60.0)
+                             : hydro    ? pick.uniform(55.0, 150.0)
+                                        : pick.uniform(0.08, 0.22) * S;
             // Centres may lie just outside the survey: the lake is then cut by the edge.
             const double x = pick.uniform(-0.05, 1.05) * S, y = pick.uniform(-0.05, 1.05) * S;
             auto outline = lake_outline::random(pick, x, y, r, pick.uniform(0.1, 0.4));
@@ -546,22 +586,45 @@ inline water_family_scene water_family(const water_family_options& options = {})
             const bool inside =
                 x > 0.1 * S - 0.3 * r && x < 0.9 * S + 0.3 * r && y > 0.1 * S - 0.3 * r && y < 0.9 * S + 0.3 * r;
             if (!clear || !inside) continue;
+            if (hydro && internal::lake_area_inside(outline, S) < hydro_lake_water_m2) continue;
             const double level = water_base + (level_land ? pick.uniform(-0.5, 0.5) : pick.uniform(-3.0, 3.0));
             w.lakes.push_back({outline, level, any_shore(), pick.uniform()});
         }
         for (std::size_t k = 0; k < w.lakes.size(); ++k) {
             const auto& o = w.lakes[k].outline;
-            const int isl = pick.between(0, 2);
-            for (int i = 0, tries = 0; i < isl && tries < 50; ++tries) {
-                const double rr =
-                    std::sqrt(pick.uniform(50.0, std::min(2000.0, 0.08 * o.mean_radius_m * o.mean_radius_m * 3.14)) /
-                              std::numbers::pi);
-                const double ix = o.x + pick.uniform(-1.0, 1.0) * o.mean_radius_m,
-                             iy = o.y + pick.uniform(-1.0, 1.0) * o.mean_radius_m;
-                if (o.shore_distance(ix, iy) > -(rr + 10)) continue;
-                w.islands.push_back({ix, iy, rr, pick.uniform(0.5, 4.0)});
-                w.island_body.push_back(static_cast<std::int32_t>(k));
-                ++i;
+            if (hydro) {
+                // Islands on both sides of the specification's 1-acre (4,047 m²) threshold, within a budget that
+                // keeps hydro_lake_water_m2 of water inside the survey.
+                double budget = internal::lake_area_inside(o, S) - hydro_lake_water_m2;
+                const double cap = 0.15 * std::numbers::pi * o.mean_radius_m * o.mean_radius_m;
+                const int isl = pick.chance(0.6) ? pick.between(1, 2) : 0;
+                for (int i = 0, tries = 0; i < isl && tries < 50; ++tries) {
+                    const double large = std::min({12000.0, cap, budget}), small = std::min({3800.0, cap, budget});
+                    if (small < 100) break;
+                    const double area =
+                        large >= 4200 && pick.chance(0.5) ? pick.uniform(4200.0, large) : pick.uniform(100.0, small);
+                    const double rr = std::sqrt(area / std::numbers::pi);
+                    const double ix = o.x + pick.uniform(-1.0, 1.0) * o.mean_radius_m,
+                                 iy = o.y + pick.uniform(-1.0, 1.0) * o.mean_radius_m;
+                    if (o.shore_distance(ix, iy) > -(rr + 10)) continue;
+                    w.islands.push_back({ix, iy, rr, pick.uniform(0.5, 4.0)});
+                    w.island_body.push_back(static_cast<std::int32_t>(k));
+                    budget -= area;
+                    ++i;
+                }
+            } else {
+                const int isl = pick.between(0, 2);
+                for (int i = 0, tries = 0; i < isl && tries < 50; ++tries) {
+                    const double rr = std::sqrt(
+                        pick.uniform(50.0, std::min(2000.0, 0.08 * o.mean_radius_m * o.mean_radius_m * 3.14)) /
+                        std::numbers::pi);
+                    const double ix = o.x + pick.uniform(-1.0, 1.0) * o.mean_radius_m,
+                                 iy = o.y + pick.uniform(-1.0, 1.0) * o.mean_radius_m;
+                    if (o.shore_distance(ix, iy) > -(rr + 10)) continue;
+                    w.islands.push_back({ix, iy, rr, pick.uniform(0.5, 4.0)});
+                    w.island_body.push_back(static_cast<std::int32_t>(k));
+                    ++i;
+                }
             }
             out.shores.push_back(w.lakes[k].shore);
             out.body_level.push_back(w.lakes[k].level);
@@ -579,8 +642,12 @@ inline water_family_scene water_family(const water_family_options& options = {})
         ch.meander_phase = {pick.uniform(0.0, 6.28), pick.uniform(0.0, 6.28)};
         ch.mean_width_m = options.variant == water_family_variant::narrow_river ? pick.uniform(5.0, 15.0)
                           : level_land                                          ? pick.uniform(8.0, 40.0)
+                          : hydro                                               ? pick.uniform(30.5, 60.0)
                                                                                 : pick.uniform(15.0, 60.0);
-        ch.width_swing_m = pick.uniform(0.0, 0.35) * ch.mean_width_m;
+        // hydro: the width stays within 30.5-60 m (the specification's minimum nominal width is 100 ft).
+        ch.width_swing_m =
+            hydro ? pick.uniform() * std::min({0.35 * ch.mean_width_m, ch.mean_width_m - 30.5, 60.0 - ch.mean_width_m})
+                  : pick.uniform(0.0, 0.35) * ch.mean_width_m;
         ch.width_wavelength_m = {pick.uniform(0.4, 0.8) * S, pick.uniform(0.15, 0.3) * S};
         ch.width_phase = {pick.uniform(0.0, 6.28), pick.uniform(0.0, 6.28)};
         const double drop = pick.uniform(0.1, 1.5);
@@ -591,7 +658,7 @@ inline water_family_scene water_family(const water_family_options& options = {})
         out.shores = {w.river_shore[0], w.river_shore[1]};
         out.body_level.push_back(ch.level(0.5 * S));
         out.touches_edge = true;
-        const int nb = pick.between(0, 4);
+        const int nb = hydro ? pick.between(0, 2) : pick.between(0, 4);
         for (int i = 0; i < nb; ++i) {
             const double along = S * (static_cast<double>(i) + 0.5 + 0.3 * pick.triangular()) / nb;
             const double hw = 0.5 * pick.uniform(8.0, 20.0);
@@ -601,14 +668,44 @@ inline water_family_scene water_family(const water_family_options& options = {})
             out.bridge_along.push_back({along, hw});
         }
         out.bridges = nb;
+        double island_u = 0, island_r = -1e9;  // along-river position and radius of the river's island
         if (ch.mean_width_m > 30 && pick.chance(0.5)) {
             const double u = pick.uniform(0.2, 0.8) * S;
             const double rr = std::min(0.3 * ch.mean_width_m, std::sqrt(pick.uniform(50.0, 1500.0) / std::numbers::pi));
+            island_u = u, island_r = rr;
             // island centre in world coordinates: the inverse of river_frame.
             const double du = u - 0.5 * S, dv = ch.centre_y(u) - 0.5 * S;
             w.islands.push_back(
                 {du * w.ca - dv * w.sa + 0.5 * S, du * w.sa + dv * w.ca + 0.5 * S, rr, pick.uniform(0.5, 3.0)});
             w.island_body.push_back(0);
+        }
+        if (hydro) {
+            // Weirs: the whole crossing at least 80 m inside the survey, 25 m clear of bridges, 20 m of the
+            // island and 60 m of each other.
+            const auto site_ok = [&](double u) {
+                const double s = ch.centre_slope(u), hv = 0.5 * ch.width(u) * std::sqrt(1 + s * s);
+                for (const double v : {ch.centre_y(u) - hv, ch.centre_y(u) + hv}) {
+                    const double du = u - 0.5 * S, dv = v - 0.5 * S;
+                    const double x = du * w.ca - dv * w.sa + 0.5 * S, y = du * w.sa + dv * w.ca + 0.5 * S;
+                    if (std::min(x, y) < 80 || std::max(x, y) > S - 80) return false;
+                }
+                for (const auto& b : w.bridges)
+                    if (std::abs(u - b.along) < b.half_width + 25) return false;
+                if (std::abs(u - island_u) < island_r + 20) return false;
+                for (const auto& weir : w.weirs)
+                    if (std::abs(u - weir[0]) < 60) return false;
+                return true;
+            };
+            for (int i = 0, n = pick.between(0, 2), tries = 0; i < n && tries < 100; ++tries) {
+                const double u = pick.uniform(-0.2, 1.2) * S, weir_drop = pick.uniform(0.3, 1.5);
+                if (!site_ok(u)) continue;
+                w.weirs.push_back({u, weir_drop});
+                ++i;
+            }
+            std::sort(w.weirs.begin(), w.weirs.end());
+            out.weir_along = w.weirs;
+            for (auto& b : w.bridges) b.z += w.river_level(b.along) - ch.level(b.along);
+            out.body_level[0] = w.river_level(0.5 * S);
         }
     }
     out.islands = static_cast<int>(w.islands.size());

@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: Apache-2.0
+// Implementation of river_profile (included at the end of pipelines/water/river_profile.hpp).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/kernels/filter/geodesic_distance.hpp"
+#include "lidarfx/kernels/stats/isotonic_regression.hpp"
+#include "lidarfx/pipelines/water/lake_level.hpp"
+
+namespace lidarfx {
+
+namespace detail {
+
+inline void validate(const river_profile_options& o, const char* fn)
+{
+    const auto positive = [fn](double v, const char* name) {
+        require(std::isfinite(v) && v > 0, fn, name, "finite and > 0", v);
+    };
+    positive(o.section_spacing_m, "section_spacing_m");
+    positive(o.return_tolerance_m, "return_tolerance_m");
+    positive(o.reference_window_m, "reference_window_m");
+    positive(o.level_tolerance_m, "level_tolerance_m");
+    require(o.min_return_share >= 0 && o.min_return_share <= 1, fn, "min_return_share", "in [0, 1]",
+            o.min_return_share);
+    positive(o.weir_min_drop_m, "weir_min_drop_m");
+}
+
+/// Fills the NaN entries of `level` by linear interpolation (in index) between the nearest finite entries on
+/// either side, or the nearest one's value at the ends; all NaN stays all NaN.
+inline void interpolate_gaps(std::vector<double>& level)
+{
+    const std::size_t n = level.size();
+    std::size_t prev = n;  // last finite index seen (n = none yet)
+    for (std::size_t k = 0; k < n; ++k) {
+        if (std::isnan(level[k])) continue;
+        if (prev == n) {
+            for (std::size_t j = 0; j < k; ++j) level[j] = level[k];
+        } else {
+            for (std::size_t j = prev + 1; j < k; ++j) {
+                const double t = static_cast<double>(j - prev) / static_cast<double>(k - prev);
+                level[j] = level[prev] + t * (level[k] - level[prev]);
+            }
+        }
+        prev = k;
+    }
+    if (prev != n)
+        for (std::size_t j = prev + 1; j < n; ++j) level[j] = level[prev];
+}
+
+/// Slope of the least-squares line through (k, level[k]) weighted by weight[k], over finite levels with weight > 0.
+inline double weighted_slope(const std::vector<double>& level, const std::vector<std::size_t>& weight)
+{
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t k = 0; k < level.size(); ++k) {
+        if (weight[k] == 0 || std::isnan(level[k])) continue;
+        const double w = static_cast<double>(weight[k]), x = static_cast<double>(k);
+        sw += w;
+        sx += w * x;
+        sy += w * level[k];
+        sxx += w * x * x;
+        sxy += w * x * level[k];
+    }
+    const double den = sw * sxx - sx * sx;
+    return den > 0 ? (sw * sxy - sx * sy) / den : 0.0;
+}
+
+}  // namespace detail
+
+inline river_profile trace_river_profile(raster_view<const std::int32_t> labels, std::int32_t label,
+                                         const cell_box& box, const hydro_body_shape& shape,
+                                         raster_view<const float> water_z, double cell_m,
+                                         const river_profile_options& opt)
+{
+    constexpr const char* fn = "trace_river_profile";
+    detail::require_same_shape(labels, water_z, fn, "labels", "water_z");
+    detail::require_positive(cell_m, fn, "cell_m");
+    detail::validate(opt, fn);
+    detail::check_body_box(labels, box, fn);
+    const raster<std::uint8_t> mask = body_mask(labels, label, box);
+    const std::ptrdiff_t ar = shape.end_a[0] - box.row_min, ac = shape.end_a[1] - box.col_min;
+    detail::require(ar >= 0 && ar < mask.rows() && ac >= 0 && ac < mask.cols() && mask(ar, ac), fn,
+                    "shape.end_a must be a cell of the body");
+    const raster<float> distance = geodesic_distance(mask, ar, ac, cell_m);
+    const double spacing = std::max(opt.section_spacing_m, cell_m);
+
+    river_profile p;
+    p.box = box;
+    p.section = raster<std::int32_t>(box.rows(), box.cols(), -1);
+    std::int32_t last = -1;
+    for (std::ptrdiff_t r = 0; r < mask.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < mask.cols(); ++c)
+            if (std::isfinite(distance(r, c))) {
+                p.section(r, c) = static_cast<std::int32_t>(std::floor(distance(r, c) / spacing));
+                last = std::max(last, p.section(r, c));
+            }
+    const auto n = static_cast<std::size_t>(last + 1);
+    std::vector<std::vector<float>> heights(n);
+    p.cells.assign(n, 0);
+    p.centre.assign(n, {0.0, 0.0});
+    for (std::ptrdiff_t r = 0; r < mask.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < mask.cols(); ++c) {
+            const std::int32_t k = p.section(r, c);
+            if (k < 0) continue;
+            const auto s = static_cast<std::size_t>(k);
+            ++p.cells[s];
+            p.centre[s][0] += static_cast<double>(box.row_min + r);
+            p.centre[s][1] += static_cast<double>(box.col_min + c);
+            if (const float z = water_z(box.row_min + r, box.col_min + c); std::isfinite(z)) heights[s].push_back(z);
+        }
+    for (std::size_t s = 0; s < n; ++s)
+        if (p.cells[s] > 0) {
+            p.centre[s][0] /= static_cast<double>(p.cells[s]);
+            p.centre[s][1] /= static_cast<double>(p.cells[s]);
+        }
+
+    // 1. section quartiles and their local level; 2. the water returns near it.
+    std::vector<double> quartile(n);
+    for (std::size_t s = 0; s < n; ++s) {
+        std::vector<float> copy = heights[s];
+        quartile[s] = detail::quantile_in_place(copy, 0.25);
+    }
+    const auto reach = static_cast<std::size_t>(std::floor(0.5 * opt.reference_window_m / spacing));
+    p.measured_m.assign(n, NAN);
+    p.returns.assign(n, 0);
+    for (std::size_t s = 0; s < n; ++s) {
+        std::vector<float> near;
+        for (std::size_t t = s > reach ? s - reach : 0; t <= std::min(n - 1, s + reach); ++t)
+            if (!std::isnan(quartile[t])) near.push_back(static_cast<float>(quartile[t]));
+        const double local = detail::upper_median_in_place(near);
+        std::vector<float> water;
+        for (const float z : heights[s])
+            if (std::isnan(local) || std::abs(z - local) <= opt.return_tolerance_m) water.push_back(z);
+        const double measured = detail::upper_median_in_place(water);
+        const bool enough = static_cast<double>(water.size()) >= opt.min_return_share * static_cast<double>(p.cells[s]);
+        if (enough && !water.empty() && (std::isnan(local) || std::abs(measured - local) <= opt.level_tolerance_m)) {
+            p.returns[s] = water.size();
+            p.measured_m[s] = measured;
+        }
+    }
+
+    // 3. downstream is where the measured levels fall.
+    if (detail::weighted_slope(p.measured_m, p.returns) > 0) {
+        for (auto& k : p.section)
+            if (k >= 0) k = last - k;
+        std::reverse(p.measured_m.begin(), p.measured_m.end());
+        std::reverse(p.returns.begin(), p.returns.end());
+        std::reverse(p.cells.begin(), p.cells.end());
+        std::reverse(p.centre.begin(), p.centre.end());
+    }
+
+    // 4. the monotone fit of the measured sections; the others interpolated.
+    std::vector<double> values, weights;
+    for (std::size_t s = 0; s < n; ++s)
+        if (p.returns[s] > 0) {
+            values.push_back(p.measured_m[s]);
+            weights.push_back(static_cast<double>(p.returns[s]));
+        }
+    const std::vector<double> fit = isotonic_regression(values, weights, monotone_direction::non_increasing);
+    p.level_m.assign(n, NAN);
+    for (std::size_t s = 0, i = 0; s < n; ++s)
+        if (p.returns[s] > 0) p.level_m[s] = fit[i++];
+    detail::interpolate_gaps(p.level_m);
+    for (std::size_t s = 0; s + 1 < n; ++s) {
+        const double fall = p.level_m[s] - p.level_m[s + 1];
+        if (fall >= opt.weir_min_drop_m) ++p.weirs;
+        if (fall > p.largest_step_m) p.largest_step_m = fall;
+    }
+    return p;
+}
+
+}  // namespace lidarfx

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: Apache-2.0
+// river_profile: a river's cross-sections and their water levels, falling monotonically downstream.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/water/hydro_body_shape.hpp"
+
+namespace lidarfx {
+
+/// Options of river_profile.
+struct river_profile_options {
+    double section_spacing_m = 5.0;     ///< length of a cross-section along the channel, metres, > 0; sections are
+                                        ///< never shorter than one cell. Default 5 m
+    double return_tolerance_m = 0.3;    ///< a cell whose water height lies further than this from its section's
+                                        ///< local level is not water (a deck, a pier, a bank), metres, > 0.
+                                        ///< Default 0.3 m
+    double reference_window_m = 200.0;  ///< the local water level of a section is the median of the section
+                                        ///< quartiles within half this distance along the channel, metres, > 0;
+                                        ///< more than twice the river length a deck hides (a
+                                        ///< diagonal deck hides more than its width). Default 200 m
+    double level_tolerance_m = 0.15;    ///< a section's median further than this from its local level is not
+                                        ///< measured (interpolated instead), metres, > 0. Default 0.15 m
+    double min_return_share = 0.25;     ///< a section whose water returns number fewer than this share of its cells
+                                        ///< is not measured (beside a deck, in a scan shadow, at a ragged end), in
+                                        ///< [0, 1]. Default 0.25
+    double weir_min_drop_m = 0.3;       ///< a fall of at least this between two neighbouring sections is counted as
+                                        ///< a weir or dam, metres, > 0. Default 0.3 m
+};
+
+/// A river's sections from upstream to downstream.
+struct river_profile {
+    cell_box box;                      ///< the body's cells, raster cells
+    raster<std::int32_t> section;      ///< box-sized: section of each body cell (0 = upstream), -1 off the body
+    std::vector<double> level_m;       ///< water level per section, metres: non-increasing downstream
+    std::vector<double> measured_m;    ///< median of the section's water returns, metres; NaN where none
+    std::vector<std::size_t> returns;  ///< water returns per section (cells with a water_z under the deck limit);
+                                       ///< 0 for a section that is not measured
+    std::vector<std::size_t> cells;    ///< cells per section
+    std::vector<std::array<double, 2>> centre;  ///< mean (row, col) of each section's cells, raster cells
+    std::size_t weirs = 0;                      ///< falls of at least weir_min_drop_m between neighbouring sections
+    double largest_step_m = 0;                  ///< the largest fall between neighbouring sections, metres
+};
+
+/// The cross-sections of river `label` (cells inside `box`, with `shape` from measure_hydro_body_shape) and their
+/// levels. Sections are cut from the geodesic distance to the shape's end_a: section k holds the body cells at
+/// distance [k·s, (k+1)·s), s = max(section_spacing_m, cell_m), so each lies across the channel. Levels, metres:
+///  1. each section's lower quartile of its cells' finite `water_z` (the height of their returns, metres, e.g.
+///     water_heights(labels, min_z, max_z); the value at position ⌊(n − 1) / 4⌋ of the n sorted values: a deck over
+///     less than three quarters of a section does not raise it), and its local level: the median of these
+///     quartiles over the sections within reference_window_m / 2 along the channel (a running median follows a
+///     steady fall exactly and keeps the step of a weir);
+///  2. a section's water returns are its cells with water_z within return_tolerance_m of its local level;
+///     their median is measured_m (NaN when none). A section is measured when it has such returns and
+///     measured_m lies within level_tolerance_m of its local level and its returns are at least min_return_share
+///     of its cells (a few returns off a bank, a ramp or beside a deck do not set a level);
+///  3. the river flows towards the end where a least-squares line through the measured levels (weighted by
+///     returns) is lower; sections are numbered from upstream (end_b is upstream when the line rises from
+///     end_a);
+///  4. the measured levels are fitted by isotonic_regression (non-increasing, weighted by returns); a section
+///     without returns (under a deck, or unflown) takes the level interpolated linearly between the nearest
+///     fitted sections on either side, or the nearest one's at the ends. So the profile only falls, and where
+///     nothing was measured the water surface continues at the interpolated level.
+/// O(n log n) in the body's n cells.
+/// @throws invalid_input on rasters of different shapes, options out of range, a box outside the raster or a
+/// label without a cell there.
+inline river_profile trace_river_profile(raster_view<const std::int32_t> labels, std::int32_t label,
+                                         const cell_box& box, const hydro_body_shape& shape,
+                                         raster_view<const float> water_z, double cell_m,
+                                         const river_profile_options& opt = {});
+
+}  // namespace lidarfx
+
+#include "lidarfx/pipelines/water/detail/river_profile_impl.hpp"
