@@ -19,18 +19,22 @@ namespace lidarfx {
 struct river_profile_options {
     double section_spacing_m = 5.0;     ///< length of a cross-section along the channel, metres, > 0; sections are
                                         ///< never shorter than one cell. Default 5 m
+    double deck_clearance_m = 2.0;      ///< a cell at least this far above the low water nearby is a deck, not water:
+                                        ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
+                                        ///< drop less. Default 2 m
+    double floor_window_m = 200.0;      ///< the low water nearby is the 10 % quantile of the section quartiles within
+                                        ///< half this distance along the channel, metres, > 0. Default 200 m
+    double level_window_m = 50.0;       ///< the local level of a section is the median of the section medians within
+                                        ///< half this distance along the channel, metres, > 0. Default 50 m: a
+                                        ///< stretch between weirs shorter than half of it takes its neighbours' level
     double return_tolerance_m = 0.3;    ///< a cell whose water height lies further than this from its section's
-                                        ///< local level is not water (a deck, a pier, a bank), metres, > 0.
-                                        ///< Default 0.3 m
-    double reference_window_m = 200.0;  ///< the local water level of a section is the median of the section
-                                        ///< quartiles within half this distance along the channel, metres, > 0;
-                                        ///< more than twice the river length a deck hides (a
-                                        ///< diagonal deck hides more than its width). Default 200 m
+                                        ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
     double level_tolerance_m = 0.15;    ///< a section's median further than this from its local level is not
                                         ///< measured (interpolated instead), metres, > 0. Default 0.15 m
-    double min_return_share = 0.25;     ///< a section whose water returns number fewer than this share of its cells
-                                        ///< is not measured (beside a deck, in a scan shadow, at a ragged end), in
-                                        ///< [0, 1]. Default 0.25
+    double min_return_share = 0.1;      ///< a section whose water returns number fewer than this share of its cells
+                                        ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
+                                        ///< water loses most pulses in dropout patches, and such stretches still
+                                        ///< hold their level
     double weir_min_drop_m = 0.3;       ///< a fall of at least this between two neighbouring sections is counted as
                                         ///< a weir or dam, metres, > 0. Default 0.3 m
 };
@@ -41,8 +45,8 @@ struct river_profile {
     raster<std::int32_t> section;      ///< box-sized: section of each body cell (0 = upstream), -1 off the body
     std::vector<double> level_m;       ///< water level per section, metres: non-increasing downstream
     std::vector<double> measured_m;    ///< median of the section's water returns, metres; NaN where none
-    std::vector<std::size_t> returns;  ///< water returns per section (cells with a water_z under the deck limit);
-                                       ///< 0 for a section that is not measured
+    std::vector<std::size_t> returns;  ///< water returns per section (cells within return_tolerance_m of the local
+                                       ///< level); 0 for a section that is not measured
     std::vector<std::size_t> cells;    ///< cells per section
     std::vector<std::array<double, 2>> centre;  ///< mean (row, col) of each section's cells, raster cells
     std::size_t weirs = 0;                      ///< falls of at least weir_min_drop_m between neighbouring sections
@@ -52,12 +56,15 @@ struct river_profile {
 /// The cross-sections of river `label` (cells inside `box`, with `shape` from measure_hydro_body_shape) and their
 /// levels. Sections are cut from the geodesic distance to the shape's end_a: section k holds the body cells at
 /// distance [k·s, (k+1)·s), s = max(section_spacing_m, cell_m), so each lies across the channel. Levels, metres:
-///  1. each section's lower quartile of its cells' finite `water_z` (the height of their returns, metres, e.g.
-///     water_heights(labels, min_z, max_z); the value at position ⌊(n − 1) / 4⌋ of the n sorted values: a deck over
-///     less than three quarters of a section does not raise it), and its local level: the median of these
-///     quartiles over the sections within reference_window_m / 2 along the channel (a running median follows a
-///     steady fall exactly and keeps the step of a weir);
-///  2. a section's water returns are its cells with water_z within return_tolerance_m of its local level;
+///  1. decks: each section's lower quartile of its cells' finite `water_z` (the height of their returns, metres,
+///     e.g. water_heights(labels, min_z, max_z); the value at position ⌊(n − 1) / 4⌋ of the n sorted values); the
+///     low water nearby is the 10 % quantile (position ⌊(n − 1) / 10⌋) of these quartiles over the sections within
+///     floor_window_m / 2; cells at least deck_clearance_m above it are a deck. A weir's upper pool stands less
+///     than deck_clearance_m above its lower one, so it is not taken for a deck;
+///  2. the local level of a section is the median of the sections' medians of their other cells over the
+///     sections within level_window_m / 2 (a running median follows a steady fall exactly and keeps the step of
+///     a weir; sections without such cells are skipped). A section's water returns are its cells with water_z
+///     within return_tolerance_m of its local level;
 ///     their median is measured_m (NaN when none). A section is measured when it has such returns and
 ///     measured_m lies within level_tolerance_m of its local level and its returns are at least min_return_share
 ///     of its cells (a few returns off a bank, a ramp or beside a deck do not set a level);

@@ -23,8 +23,10 @@ inline void validate(const river_profile_options& o, const char* fn)
         require(std::isfinite(v) && v > 0, fn, name, "finite and > 0", v);
     };
     positive(o.section_spacing_m, "section_spacing_m");
+    positive(o.deck_clearance_m, "deck_clearance_m");
+    positive(o.floor_window_m, "floor_window_m");
+    positive(o.level_window_m, "level_window_m");
     positive(o.return_tolerance_m, "return_tolerance_m");
-    positive(o.reference_window_m, "reference_window_m");
     positive(o.level_tolerance_m, "level_tolerance_m");
     require(o.min_return_share >= 0 && o.min_return_share <= 1, fn, "min_return_share", "in [0, 1]",
             o.min_return_share);
@@ -119,26 +121,36 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
             p.centre[s][1] /= static_cast<double>(p.cells[s]);
         }
 
-    // 1. section quartiles and their local level; 2. the water returns near it.
-    std::vector<double> quartile(n);
+    // 1. decks: cells far above the low water nearby; 2. the local level and the water returns near it.
+    std::vector<double> quartile(n), median(n);
     for (std::size_t s = 0; s < n; ++s) {
         std::vector<float> copy = heights[s];
         quartile[s] = detail::quantile_in_place(copy, 0.25);
     }
-    const auto reach = static_cast<std::size_t>(std::floor(0.5 * opt.reference_window_m / spacing));
+    const auto window = [&](const std::vector<double>& values, std::size_t s, double length_m, double q) {
+        const auto reach = static_cast<std::size_t>(std::floor(0.5 * length_m / spacing));
+        std::vector<float> near;
+        for (std::size_t t = s > reach ? s - reach : 0; t <= std::min(n - 1, s + reach); ++t)
+            if (!std::isnan(values[t])) near.push_back(static_cast<float>(values[t]));
+        return q == 0.5 ? detail::upper_median_in_place(near) : detail::quantile_in_place(near, q);
+    };
+    for (std::size_t s = 0; s < n; ++s) {
+        const double deck = window(quartile, s, opt.floor_window_m, 0.1) + opt.deck_clearance_m;
+        std::erase_if(heights[s], [&](float z) { return z >= deck; });
+        std::vector<float> copy = heights[s];
+        median[s] = detail::upper_median_in_place(copy);
+    }
     p.measured_m.assign(n, NAN);
     p.returns.assign(n, 0);
     for (std::size_t s = 0; s < n; ++s) {
-        std::vector<float> near;
-        for (std::size_t t = s > reach ? s - reach : 0; t <= std::min(n - 1, s + reach); ++t)
-            if (!std::isnan(quartile[t])) near.push_back(static_cast<float>(quartile[t]));
-        const double local = detail::upper_median_in_place(near);
+        const double local = window(median, s, opt.level_window_m, 0.5);
+        if (std::isnan(local)) continue;
         std::vector<float> water;
         for (const float z : heights[s])
-            if (std::isnan(local) || std::abs(z - local) <= opt.return_tolerance_m) water.push_back(z);
+            if (std::abs(z - local) <= opt.return_tolerance_m) water.push_back(z);
         const double measured = detail::upper_median_in_place(water);
         const bool enough = static_cast<double>(water.size()) >= opt.min_return_share * static_cast<double>(p.cells[s]);
-        if (enough && !water.empty() && (std::isnan(local) || std::abs(measured - local) <= opt.level_tolerance_m)) {
+        if (enough && !water.empty() && std::abs(measured - local) <= opt.level_tolerance_m) {
             p.returns[s] = water.size();
             p.measured_m[s] = measured;
         }
