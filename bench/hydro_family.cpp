@@ -114,7 +114,8 @@ void score(const synth::water_family_scene& s, const hydro_flatten_result& h, un
             ++t.deck_cells;
             if (h.body(r, c) == 0) continue;
             ++t.deck_flattened;
-            t.deck_worst_m = std::max(t.deck_worst_m, std::abs(static_cast<double>(h.water_surface(r, c)) - s.water_z(r, c)));
+            t.deck_worst_m =
+                std::max(t.deck_worst_m, std::abs(static_cast<double>(h.water_surface(r, c)) - s.water_z(r, c)));
         }
     if (scene_worst > t.worst_error_m) {
         t.worst_error_m = scene_worst;
@@ -158,9 +159,10 @@ int main(int argc, char** argv)
     knob("HF_SPACING", method.river.section_spacing_m);
     std::printf("hydro family, seeds %u-%u, %.1f-%.1f pulses/m2, flat_seed_water_method(), hydro_flatten defaults\n",
                 first, first + count - 1, low, high);
-    std::printf("| kind | scenes | bodies flattened / true | flatness fails | uphill steps | shoreline cells | level "
-                "error worst / p95 (m) | within 5 cm / 10 cm | deck cells flattened, worst (m) | weirs found / true | "
-                "worst scene |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| kind | scenes | bodies flattened / true | flatness fails | uphill steps | shoreline cells | level "
+        "error worst / p95 (m) | within 5 cm / 10 cm | deck cells flattened, worst (m) | weirs found / true | "
+        "worst scene |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto kind : {synth::water_family_kind::lake, synth::water_family_kind::river}) {
         tally t;
         for (unsigned seed = first; seed < first + count; ++seed) {
@@ -176,13 +178,13 @@ int main(int argc, char** argv)
             score(s, h, seed, t, verbose);
         }
         const bool lake = kind == synth::water_family_kind::lake;
-        std::printf("| %s | %d | %d / %d | %d | %d | %d | %.3f / %.3f | %.1f %% / %.1f %% | %zu of %zu, %.3f | %d / %d | "
-                    "%u (%.3f m) |\n",
-                    lake ? "lakes" : "rivers", t.scenes, t.bodies, t.truth_bodies, t.flatness_failures, t.uphill_steps,
-                    t.shoreline_cells, quantile(t.level_errors, 1.0), quantile(t.level_errors, 0.95),
-                    100 * share_within(t.level_errors, 0.05), 100 * share_within(t.level_errors, 0.10),
-                    t.deck_flattened, t.deck_cells, t.deck_worst_m, t.weirs_found, t.weirs_true, t.worst_seed,
-                    t.worst_error_m);
+        std::printf(
+            "| %s | %d | %d / %d | %d | %d | %d | %.3f / %.3f | %.1f %% / %.1f %% | %zu of %zu, %.3f | %d / %d | "
+            "%u (%.3f m) |\n",
+            lake ? "lakes" : "rivers", t.scenes, t.bodies, t.truth_bodies, t.flatness_failures, t.uphill_steps,
+            t.shoreline_cells, quantile(t.level_errors, 1.0), quantile(t.level_errors, 0.95),
+            100 * share_within(t.level_errors, 0.05), 100 * share_within(t.level_errors, 0.10), t.deck_flattened,
+            t.deck_cells, t.deck_worst_m, t.weirs_found, t.weirs_true, t.worst_seed, t.worst_error_m);
         std::fflush(stdout);
     }
     return 0;

@@ -29,8 +29,11 @@ struct flattened_scene {
 flattened_scene make(unsigned seed, synth::water_family_kind kind)
 {
     flattened_scene f;
-    f.scene = synth::water_family(
-        {.seed = seed, .kind = kind, .min_density = 2, .max_density = 8, .variant = synth::water_family_variant::hydro});
+    f.scene = synth::water_family({.seed = seed,
+                                   .kind = kind,
+                                   .min_density = 2,
+                                   .max_density = 8,
+                                   .variant = synth::water_family_variant::hydro});
     f.rasters = rasterize(f.scene.points.cloud(), f.scene.g);
     f.water = extract_waterbodies(f.rasters, flat_seed_water_method());
     f.dem = idw_fill(f.rasters.min_z, f.scene.cell_m).filled;
@@ -122,7 +125,8 @@ TEST_CASE("water/hydro_flatten: a river with a bridge and weirs falls monotonica
     std::size_t weirs = 0;
     for (const auto& b : h.bodies) {
         if (!b.flattened || b.type != hydro_body_type::river) continue;
-        for (std::size_t k = 0; k + 1 < b.river.level_m.size(); ++k) CHECK(b.river.level_m[k + 1] <= b.river.level_m[k]);
+        for (std::size_t k = 0; k + 1 < b.river.level_m.size(); ++k)
+            CHECK(b.river.level_m[k + 1] <= b.river.level_m[k]);
         const auto e = section_errors(f, b);
         errors.insert(errors.end(), e.begin(), e.end());
         weirs += b.river.weirs;

@@ -17,26 +17,26 @@ namespace lidarfx {
 
 /// Options of river_profile.
 struct river_profile_options {
-    double section_spacing_m = 5.0;     ///< length of a cross-section along the channel, metres, > 0; sections are
-                                        ///< never shorter than one cell. Default 5 m
-    double deck_clearance_m = 2.0;      ///< a cell at least this far above the low water nearby is a deck, not water:
-                                        ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
-                                        ///< drop less. Default 2 m
-    double floor_window_m = 200.0;      ///< the low water nearby is the 10 % quantile of the section quartiles within
-                                        ///< half this distance along the channel, metres, > 0. Default 200 m
-    double level_window_m = 50.0;       ///< the local level of a section is the median of the section medians within
-                                        ///< half this distance along the channel, metres, > 0. Default 50 m: a
-                                        ///< stretch between weirs shorter than half of it takes its neighbours' level
-    double return_tolerance_m = 0.3;    ///< a cell whose water height lies further than this from its section's
-                                        ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
-    double level_tolerance_m = 0.15;    ///< a section's median further than this from its local level is not
-                                        ///< measured (interpolated instead), metres, > 0. Default 0.15 m
-    double min_return_share = 0.1;      ///< a section whose water returns number fewer than this share of its cells
-                                        ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
-                                        ///< water loses most pulses in dropout patches, and such stretches still
-                                        ///< hold their level
-    double weir_min_drop_m = 0.3;       ///< a fall of at least this between two neighbouring sections is counted as
-                                        ///< a weir or dam, metres, > 0. Default 0.3 m
+    double section_spacing_m = 5.0;   ///< length of a cross-section along the channel, metres, > 0; sections are
+                                      ///< never shorter than one cell. Default 5 m
+    double deck_clearance_m = 2.0;    ///< a cell at least this far above the low water nearby is a deck, not water:
+                                      ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
+                                      ///< drop less. Default 2 m
+    double floor_window_m = 200.0;    ///< the low water nearby is the 10 % quantile of the section quartiles within
+                                      ///< half this distance along the channel, metres, > 0. Default 200 m
+    double level_window_m = 50.0;     ///< the local level of a section is the median of the section medians within
+                                      ///< half this distance along the channel, metres, > 0. Default 50 m: a
+                                      ///< stretch between weirs shorter than half of it takes its neighbours' level
+    double return_tolerance_m = 0.3;  ///< a cell whose water height lies further than this from its section's
+                                      ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
+    double level_tolerance_m = 0.15;  ///< a section's median further than this from its local level is not
+                                      ///< measured (interpolated instead), metres, > 0. Default 0.15 m
+    double min_return_share = 0.1;    ///< a section whose water returns number fewer than this share of its cells
+                                      ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
+                                      ///< water loses most pulses in dropout patches, and such stretches still
+                                      ///< hold their level
+    double weir_min_drop_m = 0.3;     ///< a fall of at least this between two neighbouring sections is counted as
+                                      ///< a weir or dam, metres, > 0. Default 0.3 m
 };
 
 /// A river's sections from upstream to downstream.
