@@ -19,7 +19,7 @@ namespace reference {
 /// no path leads. Sweeps all cells, relaxing each one's 8 edges, until a sweep changes nothing.
 /// O(cells * sweeps), sweeps <= cells.
 inline lidarfx::raster<float> geodesic_bellman_ford(lidarfx::raster_view<const std::uint8_t> inside,
-                                                     std::ptrdiff_t from_row, std::ptrdiff_t from_col, double cell_m)
+                                                    std::ptrdiff_t from_row, std::ptrdiff_t from_col, double cell_m)
 {
     const std::ptrdiff_t rows = inside.rows(), cols = inside.cols();
     const double infinity = std::numeric_limits<double>::infinity();

@@ -55,7 +55,8 @@ TEST_CASE("filter/geodesic_distance: equals Bellman-Ford relaxation on random ma
     std::mt19937 rng(seed);
     int compared = 0;
     for (const double density : {0.35, 0.55, 0.7, 0.9, 1.0}) {
-        for (const auto& [rows, cols] : {std::pair{1, 1}, {1, 40}, {40, 1}, {7, 9}, {23, 31}, {40, 40}}) {
+        for (const auto& size : {std::pair{1, 1}, {1, 40}, {40, 1}, {7, 9}, {23, 31}, {40, 40}}) {
+            const int rows = size.first, cols = size.second;  // named copies: CAPTURE cannot take a binding
             for (int trial = 0; trial < 2; ++trial) {
                 const auto m = reference::random_mask(rng, rows, cols, density);
                 const auto [r, c] = geodesic_test::random_inside(rng, m);
@@ -143,7 +144,8 @@ TEST_CASE("filter/geodesic_distance: refuses a start outside the raster or the m
 {
     reference::mask m(4, 5, 1);
     m(2, 2) = 0;
-    for (const auto& [r, c] : {std::pair{-1, 0}, {0, -1}, {4, 0}, {0, 5}, {4, 5}}) {
+    for (const auto& start : {std::pair{-1, 0}, {0, -1}, {4, 0}, {0, 5}, {4, 5}}) {
+        const int r = start.first, c = start.second;
         CAPTURE(r);
         CAPTURE(c);
         CHECK_THROWS_AS(geodesic_distance(m, r, c, 1.0), invalid_input);

@@ -71,7 +71,9 @@ struct river_profile {
 ///  3. the river flows towards the end where a least-squares line through the measured levels (weighted by
 ///     returns) is lower; sections are numbered from upstream (end_b is upstream when the line rises from
 ///     end_a);
-///  4. the measured levels are fitted by isotonic_regression (non-increasing, weighted by returns); a section
+///  4. the measured levels are fitted by isotonic_regression (non-increasing, weighted by returns); sections
+///     further than level_tolerance_m from the fit are no longer measured and the rest is fitted again (up to
+///     three rounds: a few returns of something in the channel do not hold up a stretch of the profile); a section
 ///     without returns (under a deck, or unflown) takes the level interpolated linearly between the nearest
 ///     fitted sections on either side, or the nearest one's at the ends. So the profile only falls, and where
 ///     nothing was measured the water surface continues at the interpolated level.

@@ -166,17 +166,29 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         std::reverse(p.centre.begin(), p.centre.end());
     }
 
-    // 4. the monotone fit of the measured sections; the others interpolated.
-    std::vector<double> values, weights;
-    for (std::size_t s = 0; s < n; ++s)
-        if (p.returns[s] > 0) {
-            values.push_back(p.measured_m[s]);
-            weights.push_back(static_cast<double>(p.returns[s]));
+    // 4. the monotone fit of the measured sections, without those far from it (up to 3 rounds); the others
+    // interpolated.
+    for (int round = 0; round < 3; ++round) {
+        std::vector<double> values, weights;
+        for (std::size_t s = 0; s < n; ++s)
+            if (p.returns[s] > 0) {
+                values.push_back(p.measured_m[s]);
+                weights.push_back(static_cast<double>(p.returns[s]));
+            }
+        const std::vector<double> fit = isotonic_regression(values, weights, monotone_direction::non_increasing);
+        p.level_m.assign(n, NAN);
+        bool dropped = false;
+        for (std::size_t s = 0, i = 0; s < n; ++s) {
+            if (p.returns[s] == 0) continue;
+            p.level_m[s] = fit[i++];
+            if (std::abs(p.measured_m[s] - p.level_m[s]) > opt.level_tolerance_m) {
+                p.returns[s] = 0;
+                p.measured_m[s] = NAN;
+                dropped = true;
+            }
         }
-    const std::vector<double> fit = isotonic_regression(values, weights, monotone_direction::non_increasing);
-    p.level_m.assign(n, NAN);
-    for (std::size_t s = 0, i = 0; s < n; ++s)
-        if (p.returns[s] > 0) p.level_m[s] = fit[i++];
+        if (!dropped) break;
+    }
     detail::interpolate_gaps(p.level_m);
     for (std::size_t s = 0; s + 1 < n; ++s) {
         const double fall = p.level_m[s] - p.level_m[s + 1];
