@@ -79,8 +79,9 @@ report() {
     echo
 }
 
-flattened_of() {  # the "N of M" of a run's log: N flattened of M waterbodies
-    sed -n 's/^hydro-flattened: \([0-9]*\) of \([0-9]*\) waterbodies.*/\1 \2/p' "$work/$1.log"
+flattened_of() {  # "N M" of a run: N bodies flattened of the M in hydro_bodies.csv
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "flattened") col = i; next }
+             { ++m; n += ($col == 1) } END { print n + 0, m + 0 }' "$work/$1/hydro_bodies.csv"
 }
 
 for entry in "${surveys[@]}"; do

@@ -14,7 +14,7 @@
       per cell, holes filled by inverse distance weighting), made by the same code. --note writes TEXT at X,Y
       (the survey's CRS) on both pictures, e.g. to point at water the method missed.
 
-Needs numpy, matplotlib and GDAL's Python bindings (Debian: python3-matplotlib python3-gdal).
+Needs numpy, matplotlib, Pillow and GDAL's Python bindings (Debian: python3-matplotlib python3-pil python3-gdal).
 Usage: /usr/bin/python3 bench/render_hydro_pictures.py pictures BEFORE AFTER docs/img   (bench/hydro_real_survey.sh
 runs it)"""
 import argparse
@@ -38,8 +38,11 @@ def read_dem(folder):
     if nodata is not None:
         z[z == nodata] = np.nan
     srs = osr.SpatialReference(wkt=ds.GetProjection())
-    srs.AutoIdentifyEPSG()
-    return z, ds.GetGeoTransform(), srs.GetAuthorityCode(None)
+    code = srs.GetAuthorityCode(None) if srs.AutoIdentifyEPSG() == 0 else None
+    if code is None:
+        matches = [m for m, confidence in srs.FindMatches() if confidence >= 70]
+        code = matches[0].GetAuthorityCode(None) if matches else None
+    return z, ds.GetGeoTransform(), code
 
 
 def read_layer(folder, name):
@@ -209,6 +212,10 @@ def pictures(before_dir, after_dir, img_dir, title, notes=()):
     bodies = read_layer(after_dir, "water_bodies")
     lines = read_layer(after_dir, "river_centrelines")
     options, _ = run_options(after_dir)
+    if not epsg:  # GDAL did not name the CRS: the manifest's units note does
+        units = json.loads((pathlib.Path(after_dir) / "manifest.json").read_text()).get("units", "")
+        m = re.search(r"EPSG:(\d+)", units)
+        epsg = m.group(1) if m else None
     water = body_masks(bodies, before.shape, gt)
     diff = after - before
     lifted = (~water) & (diff > 1e-6)
@@ -234,8 +241,9 @@ def pictures(before_dir, after_dir, img_dir, title, notes=()):
     fig = plt.figure(figsize=(12, 6.1), dpi=100)
     axes = [fig.add_axes([0.01, 0.12, 0.44, 0.74]), fig.add_axes([0.46, 0.12, 0.44, 0.74])]
     bar_ax = fig.add_axes([0.915, 0.18, 0.015, 0.6])
+    count = len({props["id"] for props, _ in bodies})
     panels = [(before, "before: lowest return per cell, empty cells filled by IDW"),
-              (after, f"after: lidarfx hydroflatten, {len({b[0]['id'] for b in bodies})} flattened water bodies")]
+              (after, f"after: lidarfx hydroflatten, {count} flattened water bod{'y' if count == 1 else 'ies'}")]
     for ax, (z, label) in zip(axes, panels):
         ax.imshow(tinted(z, hillshade(z, cell), cmap, norm), extent=extent, interpolation="nearest")
         outlines(ax, bodies, color="#0b3d91", lw=0.9, ls=(0, (3, 2)))
@@ -344,22 +352,57 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def qa_checks(path):
+    """hydro_qa.csv as {id: {check: {value, limit, unit, pass, worst_x_crs, worst_y_crs}}}. Reads both layouts:
+    one row per check (columns check, value, limit, unit, pass) and one row per body (flatness_m, ...)."""
+    rows = read_csv(path)
+    out = {}
+    if rows and "check" in rows[0]:
+        for r in rows:
+            out.setdefault(r["id"], {})[r["check"]] = r
+        return out
+    for r in rows:
+        def get(name):
+            return r.get(name) or ""
+
+        river = r.get("type") == "river"
+        worst = get("worst_check")
+        checks = {
+            "flatness": (get("flatness_m"), get("flatness_limit_m"), "m", get("flatness_pass")),
+            "monotonic_fall": (get("uphill_sections"), "0", "sections", get("monotonic_pass")),
+            "shoreline": (get("shore_cells_below"), "0", "cells", get("shoreline_pass")),
+            "minimum_size": ((get("width_m"), get("min_width_m"), "m") if river else
+                             (get("area_m2"), get("min_area_m2"), "m2")) + (get("size_pass"),),
+        }
+        body = out.setdefault(r["id"], {})
+        for name, (value, limit, unit, passed) in checks.items():
+            if passed == "" or (name == "monotonic_fall" and not river):
+                continue
+            here = name == worst
+            body[name] = {"value": value, "limit": limit, "unit": unit, "pass": passed,
+                          "worst_x_crs": get("worst_x_crs") if here else "",
+                          "worst_y_crs": get("worst_y_crs") if here else ""}
+            if name == "shoreline" and get("shore_worst_m"):
+                body[name]["worst_m"] = get("shore_worst_m")
+    return out
+
+
 def table(run_dir, flag_dir=None):
     """Prints the QA of one hydroflatten folder as a markdown table."""
     run_dir = pathlib.Path(run_dir)
     bodies = read_csv(run_dir / "hydro_bodies.csv")
-    qa = read_csv(run_dir / "hydro_qa.csv")
-    flag = {r["id"]: r for r in read_csv(pathlib.Path(flag_dir) / "hydro_qa.csv") if r["check"] == "shoreline"} \
-        if flag_dir else {}
+    qa = qa_checks(run_dir / "hydro_qa.csv")
+    flag = {i: c["shoreline"] for i, c in qa_checks(pathlib.Path(flag_dir) / "hydro_qa.csv").items()
+            if "shoreline" in c} if flag_dir else {}
     checks = ["flatness", "monotonic_fall", "shoreline", "minimum_size"]
     head = ["id", "type", "area m²", "level m", "width m", "flatness m", "monotonic fall", "shoreline cells",
             "minimum size", "worst offender"]
     if flag:
-        head.insert(-1, "shore cells lifted (deepest at)")
+        head.insert(-1, "shore cells lifted (the deepest)")
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for b in bodies:
-        mine = {q["check"]: q for q in qa if q["id"] == b["id"]}
+        mine = qa.get(b["id"], {})
         if b["flattened"] != "1":
             level = "not flattened"
         elif b["type"] == "lake":
@@ -377,8 +420,12 @@ def table(run_dir, flag_dir=None):
             row.append(f"{q['value']}{unit} {op} {q['limit']}{unit}: {'pass' if q['pass'] == '1' else '**FAIL**'}")
         if flag:
             f = flag.get(b["id"])
-            row.append(f"{f['value']} ({f['worst_x_crs']}, {f['worst_y_crs']})" if f and f["value"] != "0"
-                       else ("0" if f else "–"))
+            if f and f["value"] != "0":
+                depth = f" {float(f['worst_m']):.2f} m below the water" if f.get("worst_m") else ""
+                where = f" at {f['worst_x_crs']}, {f['worst_y_crs']}" if f["worst_x_crs"] else ""
+                row.append(f"{f['value']} (deepest{depth}{where})" if depth or where else f["value"])
+            else:
+                row.append("0" if f else "–")
         worst = [f"{n}: ({q['worst_x_crs']}, {q['worst_y_crs']})" for n, q in mine.items()
                  if q["pass"] != "1" and q["worst_x_crs"]]
         failed = [n for n, q in mine.items() if q["pass"] != "1"]

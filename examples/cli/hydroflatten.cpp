@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // lidarfx hydroflatten: a hydro-flattened bare-earth DEM, breaklines and the specification's checks from LAS files.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -163,12 +164,8 @@ void write_hydro_outputs(io::output_folder& out, const survey& s, const hydro_fl
             io::crs_column("ymax_crs")};
         std::vector<std::vector<io::table_value>> rows;
         for (const auto& b : h.bodies) {
-            cell_box box;
-            box.extend(b.shape.end_a[0], b.shape.end_a[1]);
-            box.extend(b.shape.end_b[0], b.shape.end_b[1]);
-            if (b.type == hydro_body_type::river && b.flattened) box = b.river.box;
             const bool lake = b.type == hydro_body_type::lake;
-            const bounds e = in_crs.extent(box);
+            const bounds e = in_crs.extent(b.box);
             rows.push_back({b.id, std::string(type_name(b)), std::int64_t{b.flattened ? 1 : 0}, b.shape.area_m2,
                             b.shape.length_m, b.shape.width_m, lake ? b.level_min_m : NAN, b.level_min_m, b.level_max_m,
                             b.flattened ? b.drop_m() : NAN, static_cast<std::uint64_t>(b.river.level_m.size()),
@@ -176,34 +173,72 @@ void write_hydro_outputs(io::output_folder& out, const survey& s, const hydro_fl
         }
         out.write("hydro_bodies.csv", [&](const std::string& path) { io::write_csv(path, bodies_header, rows); });
 
-        const std::vector<io::csv_column> qa_header{
-            io::text_column("id"),    io::text_column("type"),       io::text_column("check"),
-            io::text_column("value"), io::text_column("limit"),      io::text_column("unit"),
-            io::text_column("pass"),  io::crs_column("worst_x_crs"), io::crs_column("worst_y_crs")};
+        // One row per flattened body: each check's measure, limit and verdict, and where its worst offender is.
+        const std::vector<io::csv_column> qa_header{io::text_column("id"),
+                                                    io::text_column("type"),
+                                                    io::text_column("pass"),
+                                                    io::metres_column("flatness_m"),
+                                                    io::metres_column("flatness_limit_m"),
+                                                    io::text_column("flatness_pass"),
+                                                    io::text_column("uphill_sections"),
+                                                    io::text_column("monotonic_pass"),
+                                                    io::text_column("shore_cells_below"),
+                                                    io::metres_column("shore_worst_m"),
+                                                    io::text_column("shoreline_pass"),
+                                                    io::text_column("shore_cells_lifted"),
+                                                    io::area_column("area_m2"),
+                                                    io::area_column("min_area_m2"),
+                                                    io::metres_column("width_m"),
+                                                    io::metres_column("min_width_m"),
+                                                    io::text_column("size_pass"),
+                                                    io::text_column("worst_check"),
+                                                    io::crs_column("worst_x_crs"),
+                                                    io::crs_column("worst_y_crs")};
         std::vector<std::vector<io::table_value>> qa;
-        for (const auto& q : h.qa) {
-            const hydro_body& b = h.bodies[static_cast<std::size_t>(q.body - 1)];
+        for (std::size_t i = 0; i < h.qa.size();) {
+            const std::int32_t id = h.qa[i].body;
+            const hydro_body& b = h.bodies[static_cast<std::size_t>(id - 1)];
             const bool river = b.type == hydro_body_type::river;
-            std::string value, limit, unit;
-            switch (q.kind) {
-                case hydro_check_kind::flatness:
-                    value = fixed(q.value, 4), limit = fixed(q.limit, 4), unit = "m";
-                    break;
-                case hydro_check_kind::monotonic_fall:
-                case hydro_check_kind::shoreline:
-                    value = fixed(q.value, 0), limit = fixed(q.limit, 0), unit = "cells";
-                    if (q.kind == hydro_check_kind::monotonic_fall) unit = "sections";
-                    break;
-                case hydro_check_kind::minimum_size:
-                    value = fixed(q.value, river ? 2 : 1), limit = fixed(q.limit, river ? 2 : 1);
-                    unit = river ? "m" : "m2";
-                    break;
+            std::vector<io::table_value> row(qa_header.size());
+            const auto cell = [&](const char* name) -> io::table_value& {
+                const auto at = std::find_if(qa_header.begin(), qa_header.end(),
+                                             [&](const io::csv_column& column) { return column.name == name; });
+                return row[static_cast<std::size_t>(at - qa_header.begin())];
+            };
+            cell("id") = id, cell("type") = std::string(type_name(b));
+            cell("shore_cells_lifted") = static_cast<std::uint64_t>(b.shore_cells_lifted);
+            bool all = true;
+            const hydro_check* worst = nullptr;
+            for (; i < h.qa.size() && h.qa[i].body == id; ++i) {
+                const hydro_check& q = h.qa[i];
+                all = all && q.pass;
+                if (!q.pass && q.worst_row >= 0 && worst == nullptr) worst = &q;
+                const std::int64_t pass = q.pass ? 1 : 0;
+                switch (q.kind) {
+                    case hydro_check_kind::flatness:
+                        cell("flatness_m") = q.value, cell("flatness_limit_m") = q.limit, cell("flatness_pass") = pass;
+                        break;
+                    case hydro_check_kind::monotonic_fall:
+                        cell("uphill_sections") = static_cast<std::int64_t>(q.value), cell("monotonic_pass") = pass;
+                        break;
+                    case hydro_check_kind::shoreline:
+                        cell("shore_cells_below") = static_cast<std::int64_t>(q.value),
+                        cell("shore_worst_m") = q.worst_m;
+                        cell("shoreline_pass") = pass;
+                        break;
+                    case hydro_check_kind::minimum_size:
+                        cell(river ? "width_m" : "area_m2") = q.value;
+                        cell(river ? "min_width_m" : "min_area_m2") = q.limit, cell("size_pass") = pass;
+                        break;
+                }
             }
-            const bool located = q.worst_row >= 0;
-            qa.push_back({q.body, std::string(type_name(b)), std::string(hydro_check_name(q.kind)), value, limit, unit,
-                          std::int64_t{q.pass ? 1 : 0},
-                          located ? in_crs.x0 + (static_cast<double>(q.worst_col) + 0.5) * in_crs.cell : NAN,
-                          located ? in_crs.y0 - (static_cast<double>(q.worst_row) + 0.5) * in_crs.cell : NAN});
+            cell("pass") = std::int64_t{all ? 1 : 0};
+            if (worst != nullptr) {
+                cell("worst_check") = std::string(hydro_check_name(worst->kind));
+                cell("worst_x_crs") = in_crs.x0 + (static_cast<double>(worst->worst_col) + 0.5) * in_crs.cell;
+                cell("worst_y_crs") = in_crs.y0 - (static_cast<double>(worst->worst_row) + 0.5) * in_crs.cell;
+            }
+            qa.push_back(std::move(row));
         }
         out.write("hydro_qa.csv", [&](const std::string& path) { io::write_csv(path, qa_header, qa); });
     }

@@ -21,7 +21,8 @@ void usage(std::ostream& os)
           "  0  done\n"
           "  1  an error while running (a file that cannot be read or written, ...)\n"
           "  2  refused before any work: a bad option, an input over --memory or breaking the input rules\n"
-          "  3  water: the data cannot support the method (no map written; --force runs anyway)\n";
+          "  3  water, hydroflatten: the data cannot support the waterbody method (nothing written; --force runs "
+          "anyway)\n";
 }
 
 // "yes"/"no" for an optional part, from the compile definitions the build sets.

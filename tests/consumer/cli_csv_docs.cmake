@@ -4,7 +4,8 @@
 # flat roof (roof patches with yields, footprints) and `lidarfx solar --facades` on a block (summary, facade
 # patches, surface table, bill savings). Every column written is documented with its unit, every documented
 # column is written, names carry the documented unit and every number has the documented decimals.
-# -DLIDARFX=<lidarfx> -DPYTHON=<python3> -DDOCS=<docs folder> -DWORK_DIR=<scratch folder>
+# -DLIDARFX=<lidarfx> -DPYTHON=<python3> -DMAKE_SURVEY=<make_water_survey> -DDOCS=<docs folder>
+# -DWORK_DIR=<scratch folder>
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
@@ -39,6 +40,14 @@ run(roofs roofs "${WORK_DIR}/dsm.asc" "${WORK_DIR}/dtm.asc" --xy-unit m --z-unit
 include("${CMAKE_CURRENT_LIST_DIR}/block_dsm.cmake")
 write_block_dsm("${WORK_DIR}/box.asc" 40 14 24 14 26 110)
 run(solar solar "${WORK_DIR}/box.asc" --xy-unit m --z-unit m --lat 52.5 --lon 13.4 --facades --formats asc,csv)
+
+# Hydro-flattening on the synthetic water survey (its river and pond are under the specification's minimums).
+execute_process(COMMAND "${MAKE_SURVEY}" "${WORK_DIR}/survey" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "make_water_survey failed (${rc}):\n${err}")
+endif()
+run(hydro hydroflatten "${WORK_DIR}/survey" --cell 2 --min-river-width 10 --min-lake-area 2000 --shoreline flag
+    --formats csv)
 
 execute_process(COMMAND "${PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/cli_csv_docs.py" "${WORK_DIR}" "${DOCS}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)

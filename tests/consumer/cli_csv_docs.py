@@ -29,6 +29,8 @@ PAGES = {
     "facade_patches.csv": "solar.md",
     "surface_table.csv": "solar.md",
     "bill_savings.csv": "solar.md",
+    "hydro_bodies.csv": "hydro-flattening.md",
+    "hydro_qa.csv": "hydro-flattening.md",
 }
 # The unit a documented column states -> what its name must hold (a regex on the name).
 UNIT_NAMES = [

@@ -80,10 +80,10 @@ std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes)
 }
 
 /// Every point of a file as a sortable row: the las_points fields and the record's RGB (0 when none).
-using row = std::tuple<double, double, double, std::uint16_t, std::uint8_t, std::uint8_t, std::uint8_t, std::uint8_t,
-                       double, std::uint16_t, std::uint16_t, std::uint16_t>;
+using point_row = std::tuple<double, double, double, std::uint16_t, std::uint8_t, std::uint8_t, std::uint8_t,
+                             std::uint8_t, double, std::uint16_t, std::uint16_t, std::uint16_t>;
 
-std::vector<row> sorted_rows(const std::string& path)
+std::vector<point_row> sorted_rows(const std::string& path)
 {
     las_reader r(path);
     const las_points p = r.read_all();
@@ -91,7 +91,7 @@ std::vector<row> sorted_rows(const std::string& path)
     const las_header& h = r.header();
     const int f = h.point_format;
     const std::size_t rgb_at = f == 2 ? 20 : f == 3 ? 28 : f == 7 || f == 8 ? 30 : 0;
-    std::vector<row> rows;
+    std::vector<point_row> rows;
     for (std::size_t i = 0; i < p.size(); ++i) {
         std::uint16_t rgb[3]{};
         if (rgb_at) std::memcpy(rgb, rec.data() + i * h.point_record_length + rgb_at, 6);

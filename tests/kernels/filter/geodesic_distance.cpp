@@ -4,6 +4,7 @@
 #include <lidarfx/core/error.hpp>
 #include <lidarfx/kernels/filter/geodesic_distance.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -73,6 +74,33 @@ TEST_CASE("filter/geodesic_distance: equals Bellman-Ford relaxation on random ma
         }
     }
     CHECK(compared >= 55);  // only 1 x 1 masks may be empty
+}
+
+TEST_CASE("filter/geodesic_distance: a serpentine corridor and a checkerboard match the reference")
+{
+    // A serpentine: walls on every other row, each open at one end, alternately east and west; the path from the
+    // top-left corner winds through every row, 39 x 20 = 780 steps long.
+    reference::mask snake(39, 40, 1);
+    for (std::ptrdiff_t r = 1; r < 39; r += 2)
+        for (std::ptrdiff_t c = 0; c < 40; ++c) snake(r, c) = (r / 2) % 2 == 0 ? c == 39 : c == 0;
+    CHECK(geodesic_test::differences(snake, 0, 0, 1.0) == 0);
+    CHECK(geodesic_test::differences(snake, 38, 20, 0.7) == 0);
+    const auto d = geodesic_distance(snake, 0, 0, 1.0);
+    CHECK(d(38, 39) > 700.0f);  // along the winding corridor, not across it
+    // A checkerboard: cells touch at corners only, so every step is diagonal: max(r, c) of them.
+    const auto board = reference::checkerboard(25, 31);
+    CHECK(geodesic_test::differences(board, 0, 0, 1.0) == 0);
+    const auto g = geodesic_distance(board, 0, 0, 1.0);
+    for (std::ptrdiff_t r = 0; r < 25; ++r)
+        for (std::ptrdiff_t c = 0; c < 31; ++c) {
+            CAPTURE(r);
+            CAPTURE(c);
+            if ((r + c) % 2 == 0)  // float precision: the kernel sums in double and writes a float
+                CHECK(g(r, c) ==
+                      doctest::Approx(std::numbers::sqrt2 * static_cast<double>(std::max(r, c))).epsilon(1e-6));
+            else
+                CHECK(g(r, c) == geodesic_test::unreached);
+        }
 }
 
 TEST_CASE("filter/geodesic_distance: reads a strided window in place; the same as on a contiguous copy")

@@ -21,9 +21,9 @@ namespace {
 
 namespace bg = boost::geometry;
 using point = bg::model::d2::point_xy<double>;
-using cell = std::array<std::int64_t, 2>;
+using hull_cell = std::array<std::int64_t, 2>;
 
-double area_of(const std::vector<cell>& ring)
+double area_of(const std::vector<hull_cell>& ring)
 {
     double a2 = 0;
     for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -42,7 +42,7 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
     for (int trial = 0; trial < 300; ++trial) {
         const int spread = trial % 3 == 0 ? 3 : 40;  // small spreads give many collinear and repeated points
         std::uniform_int_distribution<std::int64_t> coord(-spread, spread);
-        std::vector<cell> pts(static_cast<std::size_t>(3 + trial % 60));
+        std::vector<hull_cell> pts(static_cast<std::size_t>(3 + trial % 60));
         for (auto& p : pts) p = {coord(rng), coord(rng)};
         const auto hull = lidarfx::convex_hull(pts);
 
@@ -55,7 +55,7 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
         if (hull.size() >= 3) {
             CHECK(area_of(hull) > 0);  // counter-clockwise
             // Boost keeps only corners too (no collinear points on the boundary): the same vertex set.
-            std::set<cell> ours(hull.begin(), hull.end()), theirs;
+            std::set<hull_cell> ours(hull.begin(), hull.end()), theirs;
             for (const auto& v : ref.outer())
                 theirs.insert({static_cast<std::int64_t>(v.x()), static_cast<std::int64_t>(v.y())});
             CHECK(ours == theirs);

@@ -68,7 +68,7 @@ struct river_strip {
     }
 };
 
-/// trace_river_profile's defaults: a 5 m section, a deck 2 m above the low water, a 50 m level window.
+/// The river tests hold with trace_river_profile's default options.
 constexpr river_profile_options strip_options{};
 
 /// The true level of each section: the median (position n / 2) of the noise-free surface over its cells.
@@ -129,7 +129,7 @@ struct shore_scene {
                                           {nan_f, nan_f, nan_f, nan_f, nan_f},
                                           {nan_f, nan_f, nan_f, nan_f, nan_f}});
     raster<float> ground =
-        grid_of<float>({{9.0f, 11.0f, 11.0f, 10.0f, 11.0f},  // (0, 0) beside 10 m water only
+        grid_of<float>({{9.0f, 11.0f, 11.0f, 10.0f, 11.0f},  // (0, 0) beside 10 m only; (0, 3) level with it
                         {11.0f, 5.0f, 5.0f, 10.2f, 11.0f},   // water on 5 m ground; (1, 3) beside 10.5
                         {11.0f, 5.0f, 5.0f, 11.0f, 11.0f},
                         {11.0f, 9.2f, 11.0f, nan_f, 11.0f},    // (3, 1) beside 10.5; NaN ground
@@ -232,17 +232,41 @@ TEST_CASE("water/water_heights: lowest return plus the body's median half spread
 
 TEST_CASE("water/water_heights: a deck's max_z does not raise the level; refuses other shapes and negative labels")
 {
-    raster<std::int32_t> labels(4, 4, 1);
-    raster<float> min_z(4, 4, 50.0f), max_z(4, 4, 50.5f);
+    // A 6 x 6 body inside land: 16 inner cells (all 8 neighbours in the body), 20 on its edge.
+    raster<std::int32_t> labels(8, 8, 0);
+    for (std::ptrdiff_t r = 1; r < 7; ++r)
+        for (std::ptrdiff_t c = 1; c < 7; ++c) labels(r, c) = 1;
+    raster<float> min_z(8, 8, 50.0f), max_z(8, 8, 50.5f);
     const auto open = water_heights(labels, min_z, max_z);
-    for (std::ptrdiff_t c = 0; c < 4; ++c) max_z(1, c) = 57.0f;  // a deck over a quarter of the body
+    for (std::ptrdiff_t c = 1; c < 7; ++c) max_z(2, c) = 57.0f;  // a deck over a row: 4 of the 16 inner cells
     const auto decked = water_heights(labels, min_z, max_z);
-    CHECK(decked == open);
-    for (const float z : decked) CHECK(z == 50.25f);
-    CHECK_THROWS_AS(water_heights(labels, raster<float>(4, 5), max_z), invalid_input);
-    CHECK_THROWS_AS(water_heights(labels, min_z, raster<float>(3, 4)), invalid_input);
+    for (std::ptrdiff_t r = 0; r < 8; ++r)
+        for (std::ptrdiff_t c = 0; c < 8; ++c) {
+            CAPTURE(r);
+            CAPTURE(c);
+            if (labels(r, c) == 0) continue;
+            CHECK(open(r, c) == 50.25f);
+            CHECK(decked(r, c) == 50.25f);
+        }
+    CHECK_THROWS_AS(water_heights(labels, raster<float>(8, 9), max_z), invalid_input);
+    CHECK_THROWS_AS(water_heights(labels, min_z, raster<float>(7, 8)), invalid_input);
     labels(2, 2) = -1;
     CHECK_THROWS_AS(water_heights(labels, min_z, max_z), invalid_input);
+}
+
+TEST_CASE("water/water_heights: the half spread is that of the open water when the body has inner cells")
+{
+    // Banks in every edge cell spread its returns over 2 m; the 16 inner cells over 0.5 m. Over all 36 cells the
+    // median half spread would be the banks' 1 m; over the inner ones it is 0.25 m.
+    raster<std::int32_t> labels(8, 8, 0);
+    raster<float> min_z(8, 8, 30.0f), max_z(8, 8, 32.0f);
+    for (std::ptrdiff_t r = 1; r < 7; ++r)
+        for (std::ptrdiff_t c = 1; c < 7; ++c) labels(r, c) = 4;
+    for (std::ptrdiff_t r = 2; r < 6; ++r)
+        for (std::ptrdiff_t c = 2; c < 6; ++c) max_z(r, c) = 30.5f;
+    const auto h = water_heights(labels, min_z, max_z);
+    for (std::ptrdiff_t r = 1; r < 7; ++r)
+        for (std::ptrdiff_t c = 1; c < 7; ++c) CHECK(h(r, c) == 30.25f);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -250,9 +274,9 @@ TEST_CASE("water/water_heights: a deck's max_z does not raise the level; refuses
 
 namespace hydro_steps_test {
 
-/// Lake 1 (rows 1-2, columns 1-3) with water heights 10.0 .. 10.4 m and one cell without a return; the land
-/// around it at 12 m, except two low shore cells, one NaN shore cell, and a pit (1 m) under lake 2, which
-/// touches lake 1 but is not its shore.
+/// Lake 1 (rows 1-2, columns 1-3) with water heights 10.0 .. 10.4 m and one cell without a return; its shore at
+/// 12 m, except two low cells and one NaN cell; lake 2 beside it on 1 m ground (not land, so not shore), and land
+/// beyond the shore at 1 m (not shore either).
 struct lake_scene {
     raster<std::int32_t> labels = grid_of<std::int32_t>({{0, 0, 0, 0, 0, 0},  //
                                                          {0, 1, 1, 1, 0, 0},
@@ -270,8 +294,10 @@ struct lake_scene {
                                            {12.0f, 3.0f, 3.0f, 3.0f, 12.0f, 1.0f},
                                            {12.0f, 12.0f, 12.0f, 10.05f, 1.0f, 1.0f},
                                            {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f}});
-    lake_level_result level(const lake_level_options& opt = {}) const
+    double mode_window_m = 1.0;  ///< taller than the heights' spread: the densest window holds them all
+    lake_level_result level(lake_level_options opt = {}) const
     {
+        opt.mode_window_m = mode_window_m;
         return lake_level(labels, 1, box, water_z, ground, opt);
     }
 };
@@ -280,18 +306,18 @@ struct lake_scene {
 
 TEST_CASE("water/lake_level: the median of the lake's water heights; cap_at_shore lowers it to the shore quantile")
 {
-    hydro_steps_test::lake_scene s;
+    hydro_steps_test::lake_scene s;  // its mode window holds all heights: the plain median
     // Shore: the 13 land cells 8-adjacent to the lake (rows 0-3, columns 0-4, less the lake and lake 2), one
     // with NaN ground: 12. Its ground sorted: 9.9, 10.05, then 12 x 10.
     const auto plain = s.level();
     CHECK(plain.returns == 5);
     CHECK(plain.shore_cells == 12);
-    CHECK(plain.returns_median_m == static_cast<double>(10.2f));  // position 5 / 2 = 2 of 10.0 .. 10.4
-    CHECK(plain.level_m == plain.returns_median_m);               // no cap by default
-    CHECK(plain.shore_low_m == static_cast<double>(9.9f));        // position floor(0.05 x 11) = 0
+    CHECK(plain.returns_level_m == static_cast<double>(10.2f));  // position 5 / 2 = 2 of 10.0 .. 10.4
+    CHECK(plain.level_m == plain.returns_level_m);               // no cap by default
+    CHECK(plain.shore_low_m == static_cast<double>(9.9f));       // position floor(0.05 x 11) = 0
     const auto capped = s.level({.cap_at_shore = true});
     CHECK(capped.level_m == static_cast<double>(9.9f));
-    CHECK(capped.returns_median_m == static_cast<double>(10.2f));
+    CHECK(capped.returns_level_m == static_cast<double>(10.2f));
     // Quantile 0.1: position floor(0.1 x 11) = 1, 10.05; 5 cm below it: 10.0.
     const auto tenth = s.level({.cap_at_shore = true, .shore_quantile = 0.1, .below_shore_m = 0.05});
     CHECK(tenth.shore_low_m == static_cast<double>(10.05f));
@@ -302,13 +328,32 @@ TEST_CASE("water/lake_level: the median of the lake's water heights; cap_at_shor
     CHECK(high.level_m == static_cast<double>(10.2f));
 }
 
+TEST_CASE("water/lake_level: the level is where the heights crowd: banks and reeds taken into the body do not lift it")
+{
+    // 40 cells of open water at 50.00-50.03 m and 60 cells of bank spread over 50.2-53.0 m: the median of all
+    // heights is on the bank; the densest 0.1 m window is the water.
+    raster<std::int32_t> labels(10, 10, 1);
+    raster<float> water_z(10, 10), ground(10, 10, 60.0f);
+    for (std::ptrdiff_t k = 0; k < 100; ++k)
+        water_z.data()[k] =
+            k < 40 ? 50.0f + 0.01f * static_cast<float>(k % 4) : 50.2f + 0.047f * static_cast<float>(k - 40);
+    const cell_box box{0, 0, 9, 9};
+    const auto densest = lake_level(labels, 1, box, water_z, ground);
+    CHECK(densest.returns == 100);
+    CHECK(densest.level_m >= 50.0);
+    CHECK(densest.level_m <= 50.03 + 1e-6);
+    const auto everything = lake_level(labels, 1, box, water_z, ground, {.mode_window_m = 10.0});
+    CHECK(everything.level_m > 50.5);  // the median of all 100 heights lies on the bank
+    CHECK_THROWS_AS(lake_level(labels, 1, box, water_z, ground, {.mode_window_m = 0}), invalid_input);
+}
+
 TEST_CASE("water/lake_level: a lake without returns takes its shore; without either it has no level")
 {
     hydro_steps_test::lake_scene s;
     s.water_z.fill(nan_f);
     const auto shore = s.level({.below_shore_m = 0.25});
     CHECK(shore.returns == 0);
-    CHECK(std::isnan(shore.returns_median_m));
+    CHECK(std::isnan(shore.returns_level_m));
     CHECK(shore.level_m == doctest::Approx(static_cast<double>(9.9f) - 0.25).epsilon(1e-12));
     s.ground.fill(nan_f);
     const auto nothing = s.level();
@@ -317,9 +362,10 @@ TEST_CASE("water/lake_level: a lake without returns takes its shore; without eit
     // A lake that fills the raster has no shore but keeps its returns' level, capped or not.
     raster<std::int32_t> all(2, 2, 1);
     raster<float> z = grid_of<float>({{4.0f, 5.0f}, {6.0f, 7.0f}});
-    const auto full = lake_level(all, 1, {0, 0, 1, 1}, z, raster<float>(2, 2, 0.0f), {.cap_at_shore = true});
+    const auto full =
+        lake_level(all, 1, {0, 0, 1, 1}, z, raster<float>(2, 2, 0.0f), {.mode_window_m = 10.0, .cap_at_shore = true});
     CHECK(full.shore_cells == 0);
-    CHECK(full.level_m == 6.0);  // position 4 / 2 = 2
+    CHECK(full.level_m == 6.0);  // position 4 / 2 = 2 of the window holding all four
 }
 
 TEST_CASE("water/lake_level: refuses other shapes, options out of range and boxes outside the raster")
@@ -379,7 +425,7 @@ TEST_CASE("water/measure_hydro_body_shape: a bend is measured along the channel;
     const auto bend = measure_hydro_body_shape(u, 1, {0, 0, 9, 9}, 1.0);
     CHECK(bend.length_m == doctest::Approx(23 + 2 * std::numbers::sqrt2 + 1).epsilon(1e-6));
     CHECK(bend.area_m2 == 28.0);
-    CHECK(bend.elongation() > 4);  // a river by hydro_flatten's default
+    CHECK(bend.elongation() >= hydro_flatten_options{}.min_river_elongation);  // a river by default
     // A square's longest path is its diagonal: elongation = diagonal^2 / area -> 2.
     raster<std::int32_t> square(20, 20, 3);
     const auto sq = measure_hydro_body_shape(square, 3, {0, 0, 19, 19}, 0.5);
@@ -395,6 +441,26 @@ TEST_CASE("water/measure_hydro_body_shape: a bend is measured along the channel;
     CHECK(round.elongation() >= 4 / std::numbers::pi);
     CHECK(round.elongation() <= 1.6);
     CHECK(round.elongation() < hydro_flatten_options{}.min_river_elongation);
+}
+
+TEST_CASE("water/measure_hydro_body_shape: refuses a cell_m not > 0, a box outside the raster, a label not in it")
+{
+    raster<std::int32_t> labels(4, 5, 0);
+    labels(1, 1) = labels(1, 2) = 2;
+    const cell_box box{1, 1, 1, 2};
+    for (const double cell_m : {0.0, -2.0, static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+        CAPTURE(cell_m);
+        CHECK_THROWS_AS(measure_hydro_body_shape(labels, 2, box, cell_m), invalid_input);
+    }
+    for (const cell_box& bad : {cell_box{}, cell_box{-1, 1, 1, 2}, cell_box{1, 1, 4, 2}, cell_box{1, 1, 1, 5}}) {
+        CHECK_THROWS_AS(measure_hydro_body_shape(labels, 2, bad, 1.0), invalid_input);
+        CHECK_THROWS_AS(body_mask(labels, 2, bad), invalid_input);
+    }
+    CHECK_THROWS_AS(measure_hydro_body_shape(labels, 3, box, 1.0), invalid_input);
+    CHECK_THROWS_AS(measure_hydro_body_shape(labels, 2, cell_box{2, 0, 3, 4}, 1.0), invalid_input);
+    const auto two = measure_hydro_body_shape(labels, 2, box, 1.0);  // two cells: one step plus one cell
+    CHECK(two.length_m == 2.0);
+    CHECK(two.width_m == 1.0);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -490,6 +556,38 @@ TEST_CASE("water/trace_river_profile: a deck is not measured; the level under it
     CHECK(p.weirs == 0);
 }
 
+TEST_CASE("water/trace_river_profile: a deck longer than half the level window is found by its clearance")
+{
+    // 40 m of deck over a 50 m level window: most of the sections near it stand on the deck, so only the deck's
+    // clearance above the low water within 100 m (deck_clearance_m, 2 m) tells it from the water.
+    hydro_steps_test::river_strip river;
+    for (std::ptrdiff_t r = 0; r < river.rows; ++r)
+        for (std::ptrdiff_t c = 60; c < 100; ++c) river.water_z(r, c) += 5.0f;
+    const auto p = river.profile(hydro_steps_test::strip_options, river.shape());
+    CHECK(hydro_steps_test::non_increasing(p.level_m));
+    CHECK(hydro_steps_test::worst_level_error(p, river.truth) <= 0.02);
+    for (std::size_t k = 0; k < p.level_m.size(); ++k)
+        if (p.centre[k][1] > 65 && p.centre[k][1] < 95) {
+            CAPTURE(k);
+            CHECK(p.returns[k] == 0);
+        }
+    CHECK(p.weirs == 0);
+}
+
+TEST_CASE("water/trace_river_profile: a few returns of something floating in a dropout stretch do not hold it up")
+{
+    // Columns 110-159 lost 6 of every 7 pulses to dropout; what returned there floats 0.5 m above the water. The
+    // first fit pools these sections with the ones upstream; those further than level_tolerance_m from the fit
+    // are dropped and the rest fitted again.
+    hydro_steps_test::river_strip river;
+    for (std::ptrdiff_t r = 0; r < river.rows; ++r)
+        for (std::ptrdiff_t c = 110; c < 160; ++c)
+            river.water_z(r, c) = (r * 200 + c) % 7 == 0 ? river.water_z(r, c) + 0.5f : nan_f;
+    const auto p = river.profile(hydro_steps_test::strip_options, river.shape());
+    CHECK(hydro_steps_test::non_increasing(p.level_m));
+    CHECK(hydro_steps_test::worst_level_error(p, river.truth) <= 0.02);
+}
+
 TEST_CASE("water/trace_river_profile: a weir stays a step; the sections either side are within 2 cm")
 {
     hydro_steps_test::river_strip river;
@@ -508,22 +606,27 @@ TEST_CASE("water/trace_river_profile: a weir stays a step; the sections either s
 TEST_CASE("water/trace_river_profile: a few high cells (a pier) leave their section's level where it was")
 {
     const hydro_steps_test::river_strip clean;
-    hydro_steps_test::river_strip pier;
-    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> piles{{2, 150}, {3, 150}, {2, 151}};
-    for (const auto& [r, c] : piles) pier.water_z(r, c) += 2.0f;
     const auto shape = clean.shape();
     const auto a = clean.profile(hydro_steps_test::strip_options, shape);
-    const auto b = pier.profile(hydro_steps_test::strip_options, shape);
-    REQUIRE(a.level_m.size() == b.level_m.size());
-    CHECK(a.section == b.section);
-    for (std::size_t s = 0; s < b.level_m.size(); ++s) {
-        std::size_t on_pier = 0;
-        for (const auto& [r, c] : piles) on_pier += b.section(r, c) == static_cast<std::int32_t>(s);
-        CAPTURE(s);
-        CHECK(b.returns[s] == a.returns[s] - on_pier);         // the piles (open water without them) are not returns
-        CHECK(std::abs(b.level_m[s] - a.level_m[s]) <= 0.01);  // the median of a few returns fewer
+    const std::vector<std::pair<std::ptrdiff_t, std::ptrdiff_t>> piles{{2, 150}, {3, 150}, {2, 151}};
+    // 1 m up: under the deck clearance, left out as further than return_tolerance_m from the local level;
+    // 3 m up: a deck.
+    for (const float height : {1.0f, 3.0f}) {
+        hydro_steps_test::river_strip pier;
+        for (const auto& [r, c] : piles) pier.water_z(r, c) += height;
+        const auto b = pier.profile(hydro_steps_test::strip_options, shape);
+        CAPTURE(height);
+        REQUIRE(a.level_m.size() == b.level_m.size());
+        CHECK(a.section == b.section);
+        for (std::size_t s = 0; s < b.level_m.size(); ++s) {
+            std::size_t on_pier = 0;
+            for (const auto& [r, c] : piles) on_pier += b.section(r, c) == static_cast<std::int32_t>(s);
+            CAPTURE(s);
+            CHECK(b.returns[s] == a.returns[s] - on_pier);         // the piles are not water returns
+            CHECK(std::abs(b.level_m[s] - a.level_m[s]) <= 0.01);  // the median of a few returns fewer
+        }
+        CHECK(hydro_steps_test::worst_level_error(b, pier.truth) <= 0.02);
     }
-    CHECK(hydro_steps_test::worst_level_error(b, pier.truth) <= 0.02);
 }
 
 TEST_CASE("water/trace_river_profile: refuses other shapes, options out of range, bad boxes and a foreign end_a")

@@ -18,7 +18,8 @@ struct hydro_body_shape {
     double length_m = 0;  ///< length of the longest path inside the body (geodesic diameter) plus one cell, metres
     double width_m = 0;   ///< area_m2 / length_m: a river's mean (nominal) width, metres
     std::array<std::ptrdiff_t, 2> end_a{}, end_b{};  ///< (row, col) of the longest path's two ends
-    /// length_m / width_m: about 1.3 for a round lake, the length in widths for a river.
+    /// length_m / width_m: about 1.6 for a round lake (the chamfer path of a raster disc), the length in widths for a
+    /// river.
     double elongation() const noexcept { return width_m > 0 ? length_m / width_m : 0; }
 };
 

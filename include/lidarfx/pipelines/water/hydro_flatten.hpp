@@ -26,9 +26,10 @@ struct hydro_flatten_options {
                                           ///< flattened (100 ft), metres, >= 0
     double min_island_area_m2 = 4046.86;  ///< holes in a body at least this large stay land (1 acre); smaller
                                           ///< ones are flattened with the water, m², >= 0
-    double min_river_elongation = 4.0;    ///< a body at least this many widths long (hydro_body_shape::elongation)
-                                          ///< is a river, else a lake, >= 1. Default 4 (a round lake is 1.3)
-    lake_level_options lake = {};         ///< lake_level: shore quantile, distance below the shore
+    double min_river_elongation = 6.0;    ///< a body at least this many widths long (hydro_body_shape::elongation)
+                                          ///< is a river, else a lake, >= 1. Default 6 (a round lake is about 1.6, a
+                                          ///< pond with a narrow tail 4-5)
+    lake_level_options lake = {};         ///< lake_level: whether the shore caps the level, and how
     river_profile_options river = {};     ///< trace_river_profile: section spacing, deck clearance, weirs
     shoreline_rule shoreline = shoreline_rule::lift;  ///< enforce_shorelines: lift the shore or only count it
     double flat_tolerance_m = 0.001;  ///< hydro_qa: largest max − min of a lake or a section, metres. 1 mm
@@ -47,6 +48,8 @@ struct hydro_body {
     hydro_body_type type = hydro_body_type::lake;
     bool flattened = false;                       ///< false: under the minimum size of its type, left to the terrain
     hydro_body_shape shape;                       ///< area, length, nominal width
+    cell_box box;                                 ///< its cells, raster cells
+    std::size_t shore_cells_lifted = 0;           ///< land cells beside it raised to its water (shoreline_rule::lift)
     double level_min_m = NAN, level_max_m = NAN;  ///< its lowest and highest water level, metres (a lake: equal)
     lake_level_result lake;                       ///< lakes: the level and what it came from
     river_profile river;                          ///< rivers: sections and levels, upstream first

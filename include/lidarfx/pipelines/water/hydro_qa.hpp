@@ -45,6 +45,8 @@ struct hydro_check {
     double value = 0;  ///< what was measured (units per kind)
     double limit = 0;  ///< the limit it is held to
     bool pass = false;
+    double worst_m = 0;  ///< flatness: = value; shoreline: the depth of the deepest shore cell below the water,
+                         ///< metres; 0 otherwise
     std::ptrdiff_t worst_row = -1, worst_col = -1;  ///< the worst offending cell, raster cells (-1 when none)
 };
 

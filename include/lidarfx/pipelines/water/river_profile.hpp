@@ -31,6 +31,8 @@ struct river_profile_options {
                                       ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
     double level_tolerance_m = 0.15;  ///< a section's median further than this from its local level is not
                                       ///< measured (interpolated instead), metres, > 0. Default 0.15 m
+    double mode_window_m = 0.1;       ///< a section's level is the median of its water returns inside their densest
+                                      ///< window of this height (lake_level's rule), metres, > 0. Default 0.1 m
     double min_return_share = 0.1;    ///< a section whose water returns number fewer than this share of its cells
                                       ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
                                       ///< water loses most pulses in dropout patches, and such stretches still
@@ -48,7 +50,8 @@ struct river_profile {
     std::vector<std::size_t> returns;  ///< water returns per section (cells within return_tolerance_m of the local
                                        ///< level); 0 for a section that is not measured
     std::vector<std::size_t> cells;    ///< cells per section
-    std::vector<std::array<double, 2>> centre;  ///< mean (row, col) of each section's cells, raster cells
+    std::vector<std::array<double, 2>> centre;  ///< mean (row, col) of each section's cells, raster cells;
+                                                ///< (0, 0) for a section without cells (cells[k] == 0)
     std::size_t weirs = 0;                      ///< falls of at least weir_min_drop_m between neighbouring sections
     double largest_step_m = 0;                  ///< the largest fall between neighbouring sections, metres
 };
@@ -62,12 +65,14 @@ struct river_profile {
 ///     floor_window_m / 2; cells at least deck_clearance_m above it are a deck. A weir's upper pool stands less
 ///     than deck_clearance_m above its lower one, so it is not taken for a deck;
 ///  2. the local level of a section is the median of the sections' medians of their other cells over the
-///     sections within level_window_m / 2 (a running median follows a steady fall exactly and keeps the step of
+///     sections within level_window_m / 2 (a running median follows a steady fall exactly, but within half a
+///     window of the ends, and keeps the step of
 ///     a weir; sections without such cells are skipped). A section's water returns are its cells with water_z
 ///     within return_tolerance_m of its local level;
-///     their median is measured_m (NaN when none). A section is measured when it has such returns and
-///     measured_m lies within level_tolerance_m of its local level and its returns are at least min_return_share
-///     of its cells (a few returns off a bank, a ramp or beside a deck do not set a level);
+///     the median of those inside their densest window of mode_window_m is measured_m (NaN when none). A section is
+///     measured when it has such returns and measured_m lies within level_tolerance_m of its local level and its
+///     returns are at least min_return_share of its cells (a few returns off a bank, a ramp or beside a deck do not set
+///     a level);
 ///  3. the river flows towards the end where a least-squares line through the measured levels (weighted by
 ///     returns) is lower; sections are numbered from upstream (end_b is upstream when the line rises from
 ///     end_a);

@@ -30,10 +30,10 @@ inline std::vector<double> isotonic_regression(std::span<const double> values, s
         detail::require(std::isfinite(values[i]), fn, "values[i]", "finite", values[i]);
         detail::require(std::isfinite(w) && w > 0, fn, "weights[i]", "finite and > 0", w);
         block b{sign * values[i], w, 1};
-        while (!blocks.empty() && blocks.back().mean >= b.mean) {
+        while (!blocks.empty() && blocks.back().mean > b.mean) {
             const block& last = blocks.back();
-            const double weight = last.weight + b.weight;
-            b = {(last.mean * last.weight + b.mean * b.weight) / weight, weight, last.count + b.count};
+            const double weight = last.weight + b.weight;  // the mean as a convex combination: no overflow
+            b = {last.mean * (last.weight / weight) + b.mean * (b.weight / weight), weight, last.count + b.count};
             blocks.pop_back();
         }
         blocks.push_back(b);

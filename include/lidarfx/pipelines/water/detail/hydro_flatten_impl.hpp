@@ -31,6 +31,25 @@ inline void validate(const hydro_flatten_options& o, const char* fn)
     check_execution(o.run, fn);
 }
 
+/// Land cells 8-adjacent to body `id` (inside `box` grown by one cell) whose value in `after` exceeds `before`.
+inline std::size_t cells_lifted_beside(raster_view<const std::int32_t> body, raster_view<const float> before,
+                                       raster_view<const float> after, std::int32_t id, const cell_box& box)
+{
+    std::size_t lifted = 0;
+    const std::ptrdiff_t rows = body.rows(), cols = body.cols();
+    for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(box.row_min - 1, 0); r <= std::min(box.row_max + 1, rows - 1); ++r)
+        for (std::ptrdiff_t c = std::max<std::ptrdiff_t>(box.col_min - 1, 0); c <= std::min(box.col_max + 1, cols - 1);
+             ++c) {
+            if (body(r, c) != 0 || !(after(r, c) > before(r, c))) continue;
+            bool beside = false;
+            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(r - 1, 0); rr <= std::min(r + 1, rows - 1); ++rr)
+                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(c - 1, 0); cc <= std::min(c + 1, cols - 1); ++cc)
+                    beside = beside || body(rr, cc) == id;
+            lifted += beside;
+        }
+    return lifted;
+}
+
 /// The bounding box of every label 1..top of `labels` (box[0] unused).
 inline std::vector<cell_box> label_boxes(raster_view<const std::int32_t> labels, std::int32_t top)
 {
@@ -109,6 +128,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
         // 2. Its shape and type, 3. its levels.
         hydro_body b;
         b.id = id;
+        b.box = bx;
         b.shape = measure_hydro_body_shape(filled, id, bx, cell_m);
         const bool river = b.shape.elongation() >= opt.min_river_elongation;
         b.type = river ? hydro_body_type::river : hydro_body_type::lake;
@@ -142,7 +162,11 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
         detail::report(opt.run.progress, static_cast<double>(id) / (top + 1.0), fn);
     }
     // 5. Shores, 6. the checks.
+    const raster<float> before = opt.shoreline == shoreline_rule::lift ? out.dem : raster<float>();
     out.shorelines = enforce_shorelines(out.dem, out.water_surface, opt.shoreline);
+    if (opt.shoreline == shoreline_rule::lift)
+        for (hydro_body& b : out.bodies)
+            if (b.flattened) b.shore_cells_lifted = detail::cells_lifted_beside(out.body, before, out.dem, b.id, b.box);
     for (const hydro_body& b : out.bodies) {
         if (!b.flattened) continue;
         const bool river = b.type == hydro_body_type::river;

@@ -25,7 +25,10 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
     detail::require_same_shape(dem, body, fn, "dem", "body");
     // The box of every id, in one pass.
     std::int32_t top = 0;
-    for (const auto& b : bodies) top = std::max(top, b.id);
+    for (const auto& b : bodies) {
+        detail::require(b.id > 0, fn, "bodies[i].id", "> 0", b.id);
+        top = std::max(top, b.id);
+    }
     std::vector<cell_box> box(static_cast<std::size_t>(top) + 1);
     for (std::ptrdiff_t r = 0; r < body.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < body.cols(); ++c)
@@ -62,6 +65,7 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
                 flat.worst_col = where[g][1];
             }
         flat.pass = flat.value <= flat_tolerance_m;
+        flat.worst_m = flat.value;
         out.push_back(flat);
         if (b.river) {
             const river_profile& p = *b.profile;
@@ -92,7 +96,9 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
                      ++rr)
                     for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(c - 1, 0); cc <= std::min(c + 1, dem.cols() - 1);
                          ++cc)
-                        if (body(rr, cc) == b.id && !(water_surface(rr, cc) <= h)) h = water_surface(rr, cc);
+                        if (body(rr, cc) == b.id && std::isfinite(water_surface(rr, cc)) &&
+                            !(water_surface(rr, cc) <= h))
+                            h = water_surface(rr, cc);
                 if (!(dem(r, c) < h)) continue;
                 shore.value += 1;
                 if (static_cast<double>(h) - dem(r, c) > worst) {
@@ -102,6 +108,7 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
                 }
             }
         shore.pass = shore.value == 0;
+        shore.worst_m = worst;
         out.push_back(shore);
         out.push_back({b.id, hydro_check_kind::minimum_size, b.size, b.min_size, b.size >= b.min_size});
     }

@@ -32,6 +32,24 @@ inline double upper_median_in_place(std::vector<float>& values)
     return values[static_cast<std::size_t>(k)];
 }
 
+/// The median (position m / 2) of the m values inside the window [v, v + width] that holds the most of `values`
+/// (which it sorts), v one of them, the lowest such window on ties; NaN when empty. O(n log n).
+inline double densest_window_median(std::vector<float>& values, double width)
+{
+    if (values.empty()) return NAN;
+    std::sort(values.begin(), values.end());
+    std::size_t best_from = 0, best_count = 0;
+    for (std::size_t from = 0, to = 0; from < values.size(); ++from) {
+        to = std::max(to, from);
+        while (to < values.size() && static_cast<double>(values[to]) <= static_cast<double>(values[from]) + width) ++to;
+        if (to - from > best_count) {
+            best_count = to - from;
+            best_from = from;
+        }
+    }
+    return values[best_from + best_count / 2];
+}
+
 /// Calls visit(r, c) once for every land cell (label 0) 8-adjacent to a cell of `label` inside `box`.
 template <class Visit>
 void for_each_shore_cell(raster_view<const std::int32_t> labels, std::int32_t label, const cell_box& box, Visit&& visit)
@@ -74,6 +92,7 @@ inline lake_level_result lake_level(raster_view<const std::int32_t> labels, std:
     detail::require_same_shape(labels, ground, fn, "labels", "ground");
     detail::require(opt.shore_quantile >= 0 && opt.shore_quantile <= 1, fn, "shore_quantile", "in [0, 1]",
                     opt.shore_quantile);
+    detail::require(opt.mode_window_m > 0, fn, "mode_window_m", "> 0", opt.mode_window_m);
     detail::require(opt.below_shore_m >= 0 && std::isfinite(opt.below_shore_m), fn, "below_shore_m", "finite and >= 0",
                     opt.below_shore_m);
     detail::check_body_box(labels, box, fn);
@@ -87,14 +106,14 @@ inline lake_level_result lake_level(raster_view<const std::int32_t> labels, std:
     lake_level_result out;
     out.returns = water.size();
     out.shore_cells = shore.size();
-    out.returns_median_m = detail::upper_median_in_place(water);
+    out.returns_level_m = detail::densest_window_median(water, opt.mode_window_m);
     out.shore_low_m = detail::quantile_in_place(shore, opt.shore_quantile);
     const double below_shore = out.shore_low_m - opt.below_shore_m;
-    if (std::isnan(out.returns_median_m))
+    if (std::isnan(out.returns_level_m))
         out.level_m = below_shore;
     else
-        out.level_m = opt.cap_at_shore && !std::isnan(below_shore) ? std::min(out.returns_median_m, below_shore)
-                                                                   : out.returns_median_m;
+        out.level_m = opt.cap_at_shore && !std::isnan(below_shore) ? std::min(out.returns_level_m, below_shore)
+                                                                   : out.returns_level_m;
     return out;
 }
 

@@ -28,6 +28,7 @@ inline void validate(const river_profile_options& o, const char* fn)
     positive(o.level_window_m, "level_window_m");
     positive(o.return_tolerance_m, "return_tolerance_m");
     positive(o.level_tolerance_m, "level_tolerance_m");
+    positive(o.mode_window_m, "mode_window_m");
     require(o.min_return_share >= 0 && o.min_return_share <= 1, fn, "min_return_share", "in [0, 1]",
             o.min_return_share);
     positive(o.weir_min_drop_m, "weir_min_drop_m");
@@ -148,7 +149,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         std::vector<float> water;
         for (const float z : heights[s])
             if (std::abs(z - local) <= opt.return_tolerance_m) water.push_back(z);
-        const double measured = detail::upper_median_in_place(water);
+        const double measured = detail::densest_window_median(water, opt.mode_window_m);
         const bool enough = static_cast<double>(water.size()) >= opt.min_return_share * static_cast<double>(p.cells[s]);
         if (enough && !water.empty() && std::abs(measured - local) <= opt.level_tolerance_m) {
             p.returns[s] = water.size();
@@ -168,7 +169,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
 
     // 4. the monotone fit of the measured sections, without those far from it (up to 3 rounds); the others
     // interpolated.
-    for (int round = 0; round < 3; ++round) {
+    for (int round = 0; round <= 3; ++round) {
         std::vector<double> values, weights;
         for (std::size_t s = 0; s < n; ++s)
             if (p.returns[s] > 0) {
@@ -181,7 +182,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         for (std::size_t s = 0, i = 0; s < n; ++s) {
             if (p.returns[s] == 0) continue;
             p.level_m[s] = fit[i++];
-            if (std::abs(p.measured_m[s] - p.level_m[s]) > opt.level_tolerance_m) {
+            if (round < 3 && std::abs(p.measured_m[s] - p.level_m[s]) > opt.level_tolerance_m) {
                 p.returns[s] = 0;
                 p.measured_m[s] = NAN;
                 dropped = true;
