@@ -93,6 +93,22 @@ convex hull sweep, O(cells). dsm in metres (float32 read in place), cell_m in me
     ...
 
 
+def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+    """Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
+its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
+(isotonic regression; decks and stretches without returns at the interpolated level), islands under
+min_island_area_m2 flattened with the water, and shore ground below the water beside it lifted to it
+(shoreline='lift') or only counted ('flag'). Water under the minimum sizes (defaults: the USGS Lidar Base
+Specification's 2 acres, 100 ft, 1 acre, in metres) is left to the terrain.
+
+dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (0 land, 1..n), e.g.
+extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
+cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
+flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
+minimum_size per flattened body), shore_cells_below)."""
+    ...
+
+
 def irradiance_maps(dsm: ArrayLike, cell_m: float, weather: Weather, *, latitude_deg: Optional[float] = None, longitude_deg: Optional[float] = None, utc_offset_h: Optional[float] = None, meridian_convergence_deg: float = 0.0, svf_method: str = 'source_share', svf_directions: int = 72, diffuse: str = 'isotropic', albedo: float = 0.0, surface_tilt_deg: Optional[ArrayLike] = None, surface_azimuth_deg: Optional[ArrayLike] = None, shadow_line_phases: int = 4, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> IrradianceMaps:
     """Annual and monthly irradiation of every cell, kWh/m^2: for each weather record with the sun up, beam
 DNI cos(incidence) on lit cells (raylines_shadow at the sun of the record's middle) plus diffuse light

@@ -158,6 +158,45 @@ class Waterbodies:
 
 
 @dataclass(frozen=True)
+class HydroBody:
+    """One waterbody as hydro_flatten saw it."""
+    id: int
+    type: str                       #: 'lake' or 'river'
+    flattened: bool                 #: False: under the minimum size of its type, left to the terrain
+    area_m2: float
+    length_m: float                 #: longest path inside the body, metres
+    width_m: float                  #: area / length, metres
+    level_min_m: float              #: lowest water level (a lake: its level), metres
+    level_max_m: float              #: highest water level (a river's upstream end), metres
+    section_levels_m: List[float]   #: rivers: the level of each cross-section, upstream first
+    weirs: int                      #: falls of at least 0.3 m between neighbouring sections
+    shore_cells_lifted: int
+
+
+@dataclass(frozen=True)
+class HydroCheck:
+    """One check of one flattened body: flatness (m), monotonic_fall (sections), shoreline (cells), minimum_size."""
+    body: int
+    check: str
+    value: float
+    limit: float
+    passed: bool
+    worst_row: int                  #: the worst offending cell, -1 when none
+    worst_col: int
+
+
+@dataclass(frozen=True)
+class HydroFlattened:
+    """hydro_flatten: the flattened DEM, the water surface and the checks."""
+    dem: np.ndarray                 #: float32, metres
+    water_surface: np.ndarray       #: float32, the level on flattened water, NaN elsewhere
+    body: np.ndarray                #: int32, id of the flattened body per cell, 0 elsewhere
+    bodies: List[HydroBody]
+    checks: List[HydroCheck]
+    shore_cells_below: int          #: shore cells found below the water (lifted with shoreline='lift')
+
+
+@dataclass(frozen=True)
 class Building:
     """One building of extract_buildings; outline is a GeoJSON MultiPolygon in the grid's world coordinates."""
     id: int

@@ -2,6 +2,7 @@
 // Binding of the waterbody method: rasters in, water map, labelled bodies with their levels and the
 // diagnostics out.
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
+#include <lidarfx/pipelines/water/hydro_flatten.hpp>
 
 #include "binding.hpp"
 
@@ -118,6 +119,66 @@ py::object extract_waterbodies_binding(const py::handle& rasters, const py::hand
     return make_result("Waterbodies", fields);
 }
 
+py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& labels_arg, const py::handle& min_z_arg,
+                                 const py::handle& max_z_arg, double cell_m, double min_lake_area_m2,
+                                 double min_river_width_m, double min_island_area_m2, const std::string& shoreline,
+                                 int threads, py::object progress)
+{
+    constexpr const char* fn = "hydro_flatten";
+    if (shoreline != "lift" && shoreline != "flag")
+        value_error(fn, "shoreline must be 'lift' or 'flag' (got '" + shoreline + "')");
+    const array_input<float> dem(dem_arg, fn, "dem");
+    const array_input<std::int32_t> labels(labels_arg, fn, "labels");
+    const array_input<float> min_z(min_z_arg, fn, "min_z");
+    const array_input<float> max_z(max_z_arg, fn, "max_z");
+    hydro_flatten_options opt;
+    opt.min_lake_area_m2 = min_lake_area_m2;
+    opt.min_river_width_m = min_river_width_m;
+    opt.min_island_area_m2 = min_island_area_m2;
+    opt.shoreline = shoreline == "lift" ? shoreline_rule::lift : shoreline_rule::flag;
+    run_settings rs(threads, std::move(progress));
+    opt.run = rs.run();
+    hydro_flatten_result r =
+        rs.call([&] { return hydro_flatten(dem.view(), labels.view(), min_z.view(), max_z.view(), cell_m, opt); });
+
+    py::list bodies;
+    for (const hydro_body& b : r.bodies) {
+        py::dict f;
+        f["id"] = b.id;
+        f["type"] = b.type == hydro_body_type::river ? "river" : "lake";
+        f["flattened"] = b.flattened;
+        f["area_m2"] = b.shape.area_m2;
+        f["length_m"] = b.shape.length_m;
+        f["width_m"] = b.shape.width_m;
+        f["level_min_m"] = b.level_min_m;
+        f["level_max_m"] = b.level_max_m;
+        f["section_levels_m"] = b.river.level_m;
+        f["weirs"] = b.river.weirs;
+        f["shore_cells_lifted"] = b.shore_cells_lifted;
+        bodies.append(make_result("HydroBody", f));
+    }
+    py::list checks;
+    for (const hydro_check& q : r.qa) {
+        py::dict f;
+        f["body"] = q.body;
+        f["check"] = std::string(hydro_check_name(q.kind));
+        f["value"] = q.value;
+        f["limit"] = q.limit;
+        f["passed"] = q.pass;
+        f["worst_row"] = q.worst_row;
+        f["worst_col"] = q.worst_col;
+        checks.append(make_result("HydroCheck", f));
+    }
+    py::dict fields;
+    fields["dem"] = to_numpy(std::move(r.dem));
+    fields["water_surface"] = to_numpy(std::move(r.water_surface));
+    fields["body"] = to_numpy(std::move(r.body));
+    fields["bodies"] = bodies;
+    fields["checks"] = checks;
+    fields["shore_cells_below"] = r.shorelines.below;
+    return make_result("HydroFlattened", fields);
+}
+
 }  // namespace
 
 void bind_water(py::module_& m)
@@ -140,6 +201,22 @@ why) data that cannot support the method, such as too few points per cell. islan
 inside a body become water (default 200 m^2). theta_max_deg: last angular threshold (default 30).
 Returns Waterbodies(water: bool map, labels: int32 (0 land, 1..n by decreasing area), bodies: list of
 Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...).)doc");
+
+    m.def("hydro_flatten", &hydro_flatten_binding, "dem"_a, "labels"_a, "min_z"_a, "max_z"_a, "cell_m"_a, py::kw_only(),
+          "min_lake_area_m2"_a = 8093.71, "min_river_width_m"_a = 30.48, "min_island_area_m2"_a = 4046.86,
+          "shoreline"_a = "lift", "threads"_a = 1, "progress"_a = py::none(), R"doc(
+Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
+its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
+(isotonic regression; decks and stretches without returns at the interpolated level), islands under
+min_island_area_m2 flattened with the water, and shore ground below the water beside it lifted to it
+(shoreline='lift') or only counted ('flag'). Water under the minimum sizes (defaults: the USGS Lidar Base
+Specification's 2 acres, 100 ft, 1 acre, in metres) is left to the terrain.
+
+dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (0 land, 1..n), e.g.
+extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
+cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
+flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
+minimum_size per flattened body), shore_cells_below).)doc");
 }
 
 }  // namespace lidarfx::python

@@ -47,6 +47,29 @@ def test_extract_waterbodies_finds_the_lake_and_its_level(rng):
     assert (other.water & true_water).sum() / (other.water | true_water).sum() > 0.9
 
 
+def test_hydro_flatten_puts_the_lake_at_one_level_and_lifts_no_shore_above_it(rng):
+    points, _ = lake_survey(rng)
+    rasters = lidarfx.rasterize(*points, 2.0)
+    water = lidarfx.extract_waterbodies(rasters)
+    dem = rasters.min_z.copy()
+    dem[np.isnan(dem)] = 100.0  # the lake's unreturned cells: any value, hydro_flatten replaces them
+    flat = lidarfx.hydro_flatten(dem, water.labels, rasters.min_z, rasters.max_z, 2.0, min_lake_area_m2=1000)
+    lake = [b for b in flat.bodies if b.flattened]
+    assert len(lake) == 1 and lake[0].type == "lake"
+    assert abs(lake[0].level_min_m - 100.0) < 0.05
+    on_lake = flat.body == lake[0].id
+    assert np.all(flat.dem[on_lake] == np.float32(lake[0].level_min_m))
+    assert np.all(np.isnan(flat.water_surface[~on_lake]))
+    assert all(c.passed for c in flat.checks)
+    assert {c.check for c in flat.checks} == {"flatness", "shoreline", "minimum_size"}
+    # Under the specification's 2 acres (8,094 m²) the 6,360 m² lake is left to the terrain.
+    spec = lidarfx.hydro_flatten(dem, water.labels, rasters.min_z, rasters.max_z, 2.0)
+    assert not any(b.flattened for b in spec.bodies)
+    assert np.array_equal(spec.dem, dem)
+    with pytest.raises(ValueError, match="shoreline"):
+        lidarfx.hydro_flatten(dem, water.labels, rasters.min_z, rasters.max_z, 2.0, shoreline="sideways")
+
+
 def test_extract_waterbodies_refuses_data_too_sparse_for_its_cells(rng):
     points, _ = lake_survey(rng, density_per_m2=0.2)
     result = lidarfx.extract_waterbodies(lidarfx.rasterize(*points, 1.0))

@@ -3,6 +3,7 @@
 from qgis.core import QgsProcessingProvider
 
 from .algorithms.buildings import BuildingsAlgorithm
+from .algorithms.hydroflatten import HydroFlattenAlgorithm
 from .algorithms.irradiation import IrradiationAlgorithm
 from .algorithms.rooftoppv import RooftopPvAlgorithm
 from .algorithms.shadows import ShadowsAlgorithm
@@ -18,9 +19,9 @@ class LidarfxProvider(QgsProcessingProvider):
         return "lidarfx"
 
     def longName(self):  # noqa: N802
-        return "lidarfx: waterbodies, sun, buildings and rooftop PV from airborne LiDAR"
+        return "lidarfx: waterbodies, hydro-flattening, sun, buildings and rooftop PV from airborne LiDAR"
 
     def loadAlgorithms(self):  # noqa: N802
-        for algorithm in (WaterAlgorithm(), IrradiationAlgorithm(), SkyViewFactorAlgorithm(), ShadowsAlgorithm(),
+        for algorithm in (WaterAlgorithm(), HydroFlattenAlgorithm(), IrradiationAlgorithm(), SkyViewFactorAlgorithm(), ShadowsAlgorithm(),
                           RooftopPvAlgorithm(), BuildingsAlgorithm()):
             self.addAlgorithm(algorithm)

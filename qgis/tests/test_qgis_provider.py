@@ -182,7 +182,7 @@ def vector(path):
 
 def test_the_toolbox_lists_every_lidarfx_algorithm(qgis):
     listed = qgis("list").stdout
-    for algorithm in ("water", "irradiation", "skyviewfactor", "shadows", "rooftoppv", "buildings"):
+    for algorithm in ("water", "hydroflatten", "irradiation", "skyviewfactor", "shadows", "rooftoppv", "buildings"):
         assert f"lidarfx:{algorithm}" in listed
     help_text = qgis("help", "lidarfx:water").stdout
     assert "Cell size (metres)" in help_text and "waterbody polygons" in help_text.lower()
@@ -197,6 +197,26 @@ def test_water_maps_the_survey_s_lakes_in_its_crs(qgis, survey, tmp_path):
     bodies, epsg = vector(tmp_path / "bodies.gpkg")
     assert epsg == EPSG and len(bodies) >= 2
     assert max(b["area"] for b in bodies) > 3000
+
+
+def test_hydroflatten_writes_a_flat_lake_its_breaklines_and_checks_in_the_survey_s_crs(qgis, survey, tmp_path):
+    args = [f"FILES={f}" for f in survey]
+    qgis("run", "lidarfx:hydroflatten", "--", *args, "CELL=2", "MIN_LAKE_AREA=2000", "MIN_RIVER_WIDTH=10",
+         f"DEM={tmp_path / 'dem.tif'}", f"BREAKLINES={tmp_path / 'breaklines.gpkg'}", f"QA={tmp_path / 'qa.csv'}")
+    dem, epsg, nodata = raster(tmp_path / "dem.tif")
+    assert epsg == EPSG
+    bodies, epsg = vector(tmp_path / "breaklines.gpkg")
+    assert epsg == EPSG and len(bodies) >= 1
+    for body in bodies:
+        assert body["type"] in ("lake", "river") and body["level_max_m"] >= body["level_min_m"]
+        assert body["type"] == "river" or body["level_max_m"] == body["level_min_m"]
+    # The flattened water holds its level exactly (float32): a lake over all its cells, a river over its lowest
+    # cross-section at least.
+    largest = max(bodies, key=lambda b: b["area"])
+    assert (dem == np.float32(largest["level_min_m"])).sum() >= 20
+    rows = (tmp_path / "qa.csv").read_text().splitlines()
+    header = rows[0].split(",")
+    assert len(rows) >= 2 and all(r.split(",")[header.index("pass")] == "1" for r in rows[1:])
 
 
 def test_irradiation_and_its_sky_view_factor(qgis, town, tmp_path):
