@@ -6,6 +6,7 @@ cmake_minimum_required(VERSION 3.25)
 # are 3D polygons and 3D lines in the survey's CRS.
 # -DLIDARFX=<lidarfx> -DMAKE_SURVEY=<make_water_survey> -DWORK_DIR=<scratch folder> [-DOGRINFO=<ogrinfo>]
 include("${CMAKE_CURRENT_LIST_DIR}/make_water_survey.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/same_files.cmake")
 
 # The survey's river is about 28 m wide and its pond 4,000 m²: under the specification's minimums, so both are
 # lowered to flatten everything the survey holds.
@@ -54,16 +55,7 @@ foreach(tile 200 310)
     foreach(threads 1 2)
         set(dir "${WORK_DIR}/tile_${tile}_threads_${threads}")
         run_hydro("${dir}" --tile ${tile} --threads ${threads})
-        foreach(f IN LISTS outputs)
-            file(SHA256 "${WORK_DIR}/untiled/${f}" want)
-            file(SHA256 "${dir}/${f}" got)
-            if(NOT want STREQUAL got)
-                message(FATAL_ERROR "--tile ${tile} --threads ${threads}: ${f} differs from the untiled run's")
-            endif()
-        endforeach()
-        if(EXISTS "${dir}/.lidarfx-tiles")
-            message(FATAL_ERROR "--tile ${tile} --threads ${threads}: the tile folder outlived the complete run")
-        endif()
+        expect_same_files("${WORK_DIR}/untiled" "${dir}" "--tile ${tile} --threads ${threads}")
     endforeach()
 endforeach()
 

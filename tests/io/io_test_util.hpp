@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include <lidarfx/core/error.hpp>
 #include <lidarfx/core/raster_view.hpp>
 
 #include <doctest/doctest.h>
@@ -23,6 +24,18 @@
 #include "io/png.hpp"
 
 namespace io_test {
+
+/// The message of the lidarfx::invalid_input that `f` throws, "<no error>" when it returns.
+template <class F>
+std::string invalid_input_of(F&& f)
+{
+    try {
+        f();
+    } catch (const lidarfx::invalid_input& e) {
+        return e.what();
+    }
+    return "<no error>";
+}
 
 /// The colour of pixel (r, c) of a picture.
 inline std::array<std::uint8_t, 3> pixel(const lidarfx::io::rgb_image& img, std::ptrdiff_t r, std::ptrdiff_t c)

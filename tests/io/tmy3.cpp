@@ -105,18 +105,6 @@ std::size_t hour_of(int month, int day, int hour)
     return static_cast<std::size_t>((days_before[month - 1] + day - 1) * 24 + hour - 1);
 }
 
-// The message of the invalid_input `f` throws, or "<no error>".
-template <class F>
-std::string invalid_input_of(F&& f)
-{
-    try {
-        f();
-    } catch (const invalid_input& e) {
-        return e.what();
-    }
-    return "<no error>";
-}
-
 std::string write(const io_test::temp_dir& dir, const std::string& text)
 {
     const std::string path = dir.file("tmy3.csv");
@@ -192,7 +180,7 @@ TEST_CASE("io/tmy3: bad files are refused with the file, the line and what is wr
     io_test::temp_dir dir;
     const auto error = [&](const std::string& text) {
         const std::string path = write(dir, text);
-        return invalid_input_of([&] { read_tmy3(path); });
+        return io_test::invalid_input_of([&] { read_tmy3(path); });
     };
     CHECK(contains(runtime_error_of([&] { read_tmy3(dir.file("missing.csv")); }), "missing.csv: cannot open"));
     CHECK(contains(error(""), "line 0: empty file"));
@@ -221,7 +209,7 @@ TEST_CASE("io/tmy3: a file larger than any year is refused before it is read")
     const std::string path = dir.file("huge.csv");
     std::ofstream(path, std::ios::binary) << station_line << header_line;
     std::filesystem::resize_file(path, tmy3_max_file_bytes + 1);  // sparse: no disk, and nothing to read
-    const std::string e = invalid_input_of([&] { read_tmy3(path); });
+    const std::string e = io_test::invalid_input_of([&] { read_tmy3(path); });
     CHECK(contains(e, "huge.csv: " + std::to_string(tmy3_max_file_bytes + 1) + " bytes, more than one TMY3 year"));
 }
 
@@ -231,16 +219,16 @@ TEST_CASE("io/tmy3: a year given twice (or twelve times) is refused at its first
     std::vector<std::string> twice = year;
     twice.insert(twice.end(), year.begin(), year.end());
     // Line 3 holds 01/01 01:00; the second year starts on line 3 + 8760.
-    const std::string e = invalid_input_of([&] { parse_tmy3(text_of(twice), "twice.csv"); });
+    const std::string e = io_test::invalid_input_of([&] { parse_tmy3(text_of(twice), "twice.csv"); });
     CHECK(contains(e, "twice.csv: line 8763: the hour 01/01 01:00 ('01/01/2001,01:00') is already on line 3"));
     std::vector<std::string> twelve;
     for (int i = 0; i < 12; ++i) twelve.insert(twelve.end(), year.begin(), year.end());
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(twelve), "twelve.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(twelve), "twelve.csv"); }),
                    "twelve.csv: line 8763: the hour 01/01 01:00"));
     // The year of the row does not make it another hour: a TMY takes each month from a different year.
     std::vector<std::string> other_year = year;
     other_year.push_back(row("07/04/1991", "13:00", 850, 700, 150));
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(other_year), "extra.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(other_year), "extra.csv"); }),
                    "extra.csv: line 8763: the hour 07/04 13:00 ('07/04/1991,13:00') is already on line " +
                        std::to_string(hour_of(7, 4, 13) + 3)));
 }
@@ -250,7 +238,7 @@ TEST_CASE("io/tmy3: one extra row is a repeated hour, wherever it is")
     std::vector<std::string> rows = year_rows();
     const std::size_t h = hour_of(6, 21, 12);
     rows.insert(rows.begin() + static_cast<std::ptrdiff_t>(h) + 1, rows[h]);  // the row twice, one after the other
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(rows), "extra.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(rows), "extra.csv"); }),
                    "extra.csv: line " + std::to_string(h + 4) +
                        ": the hour 06/21 12:00 ('06/21/2001,12:00') is "
                        "already on line " +
@@ -258,13 +246,13 @@ TEST_CASE("io/tmy3: one extra row is a repeated hour, wherever it is")
     // 00:00 is the previous day's 24:00: with both, the hour is there twice.
     std::vector<std::string> midnight = year_rows();
     midnight.push_back(row("03/01/2001", "00:00", 0, 0, 0));
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(midnight), "midnight.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(midnight), "midnight.csv"); }),
                    "line 8763: the hour 02/28 24:00 ('03/01/2001,00:00') is already on line " +
                        std::to_string(hour_of(2, 28, 24) + 3)));
     // 29 February has no hour in a TMY year (TMY3 files leave it out), even in a leap year.
     std::vector<std::string> leap = year_rows();
     leap[hour_of(2, 28, 12)] = row("02/29/1996", "12:00", 500, 600, 100);
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(leap), "leap.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(leap), "leap.csv"); }),
                    "leap.csv: line " + std::to_string(hour_of(2, 28, 12) + 3) +
                        ": '02/29/1996' is 29 February, which a TMY year (365 days, 8760 hours) does not have"));
 }
@@ -304,12 +292,12 @@ TEST_CASE("io/tmy3: up to 88 missing hours are reported and add nothing; more ar
     CHECK(g.coverage.hours_missing == 88);
     CHECK(g.coverage.first_missing == "05/10 08:00");
     kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(hour_of(1, 2, 3)));  // one more: 01/02 03:00
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(kept), "gaps.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(kept), "gaps.csv"); }),
                    "gaps.csv: 8671 of 8760 hours of the year have values, 89 are missing (the first 01/02 03:00, 0 "
                    "marked -9900): at most 88 (1 %) may be missing"));
     // A month alone is far from a year.
     const std::vector<std::string> january(rows.begin(), rows.begin() + 31 * 24);
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(january), "january.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(january), "january.csv"); }),
                    "january.csv: 744 of 8760 hours of the year have values, 8016 are missing (the first 02/01 01:00"));
 }
 
@@ -328,7 +316,7 @@ TEST_CASE("io/tmy3: -9900 (TMY3's missing value) makes the hour missing")
     // A marked hour is still on its row: a second row for it is a repeat.
     rows.push_back(row("04/02/2001", "11:00", 500, 600, 100));
     CHECK(contains(
-        invalid_input_of([&] { parse_tmy3(text_of(rows), "marked.csv"); }),
+        io_test::invalid_input_of([&] { parse_tmy3(text_of(rows), "marked.csv"); }),
         "the hour 04/02 11:00 ('04/02/2001,11:00') is already on line " + std::to_string(hour_of(4, 2, 11) + 3)));
     // 89 marked: refused like 89 absent rows.
     std::vector<std::string> many = year_rows();
@@ -336,7 +324,7 @@ TEST_CASE("io/tmy3: -9900 (TMY3's missing value) makes the hour missing")
         const std::string date = "01/" + two(i / 24 + 1) + "/2001";
         many[static_cast<std::size_t>(i)] = row(date, two(i % 24 + 1) + ":00", -9900, 0, 0);
     }
-    CHECK(contains(invalid_input_of([&] { parse_tmy3(text_of(many), "many.csv"); }),
+    CHECK(contains(io_test::invalid_input_of([&] { parse_tmy3(text_of(many), "many.csv"); }),
                    "many.csv: 8671 of 8760 hours of the year have values, 89 are missing (the first 01/01 01:00, 89 "
                    "marked -9900)"));
 }
@@ -347,7 +335,7 @@ TEST_CASE("io/tmy3: irradiances beyond physical bounds are refused, naming the l
     const auto with = [&](int ghi, int dni, int dhi) {
         std::vector<std::string> rows = year_rows();
         rows[h] = row("06/21/2001", "13:00", ghi, dni, dhi);
-        return invalid_input_of([&] { parse_tmy3(text_of(rows), "bounds.csv"); });
+        return io_test::invalid_input_of([&] { parse_tmy3(text_of(rows), "bounds.csv"); });
     };
     const std::string line = "bounds.csv: line " + std::to_string(h + 3) + ": ";
     CHECK(contains(with(900, 5000, 100), line + "DNI 5000 W/m^2 is above 1415 W/m^2 (the solar constant"));

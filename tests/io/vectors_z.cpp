@@ -63,18 +63,6 @@ std::unique_ptr<GDALDataset, dataset_closer> open_vectors(const std::string& pat
 }
 #endif
 
-// The message of the invalid_input `f` throws, "<no error>" when it returns.
-template <class F>
-std::string invalid_input_of(F&& f)
-{
-    try {
-        f();
-    } catch (const invalid_input& e) {
-        return e.what();
-    }
-    return "<no error>";
-}
-
 }  // namespace vectors_z_test
 
 #ifdef LIDARFX_HAVE_GDAL
@@ -178,11 +166,10 @@ TEST_CASE("io/vectors_z: the same layers give the same bytes; no CRS gives the u
 
 TEST_CASE("io/vectors_z: non-finite heights, short lines and rings, and differing properties are refused")
 {
-    using vectors_z_test::invalid_input_of;
     io_test::temp_dir dir;
     const std::string path = dir.file("bad.gpkg");
     const auto write = [&](const std::vector<io::layer_z>& layers) {
-        return invalid_input_of([&] { io::write_geopackage_z(path, layers, "", 25832); });
+        return io_test::invalid_input_of([&] { io::write_geopackage_z(path, layers, "", 25832); });
     };
     auto nan_z = vectors_z_test::two_layers();
     nan_z[1].features[0].parts[1][1][2] = std::nan("");
