@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -13,6 +14,7 @@
 #include <lidarfx/lidarfx.hpp>
 
 #include "command.hpp"
+#include "io/geotiff.hpp"
 #include "io/vectors.hpp"
 #include "io/vectors_z.hpp"
 #include "outputs.hpp"
@@ -30,10 +32,12 @@ constexpr const char* usage =
     "level and every river flat cross-sections whose levels only fall downstream (decks bridged at the interpolated\n"
     "level, islands under --min-island-area flattened with the water), raises shore ground that lies below the water\n"
     "beside it, and checks the result. Writes dem_hydroflattened.tif (GeoTIFF with the CRS; .asc with .prj under\n"
-    "--formats asc), breaklines.gpkg (layers water_bodies: 3D polygons at the water level, river_centrelines: 3D\n"
-    "lines through the sections), hydro_bodies.csv and hydro_qa.csv. The bare-earth DEM is the lowest return of each\n"
-    "cell, its empty cells filled by inverse distance weighting, NaN outside the area flown. Levels and heights in\n"
-    "metres; maps and lines in the files' CRS. Water smaller than the minimum sizes is left to the terrain.\n"
+    "--formats asc instead, both with asc,tif), breaklines.gpkg (layers water_bodies: 3D polygons at the water\n"
+    "level, river_centrelines: 3D lines through the sections), hydro_bodies.csv and hydro_qa.csv. Heights in the DEM\n"
+    "and the breaklines are in the CRS's height unit (metres, or feet for a survey in feet), in the tables metres.\n"
+    "The bare-earth DEM is the lowest return of each cell, its empty cells filled by inverse distance weighting, no\n"
+    "data outside the area flown. Maps and lines in the files' CRS. Water smaller than the minimum sizes is left to\n"
+    "the terrain.\n"
     "options (defaults in brackets; the options of `lidarfx water` apply too):\n"
     "  --cell M              cell size, metres [2]\n"
     "  --min-lake-area A     lakes and ponds at least this large are flattened, m2 [8093.71 = 2 acres]\n"
@@ -44,12 +48,13 @@ constexpr const char* usage =
     "  --tile M              read the survey in tiles of M x M metres (see lidarfx water --help) [0]; same result\n"
     "  --memory SIZE         refuse grids whose estimate exceeds SIZE (4GiB, 512MiB) [half the memory]\n"
     "  --crop X0,Y0,X1,Y1    only points inside this box, in the units of the files' CRS\n"
-    "  --formats LIST        asc,tif and csv,gpkg [tif,csv,gpkg; asc without GDAL]\n"
+    "  --formats LIST        any of asc,tif,csv,gpkg [tif,csv,gpkg; asc without GDAL]\n"
     "  --force               run even when the inputs cannot support the waterbody method\n";
 
 /// What hydroflatten keeps per cell beyond `lidarfx water`: the DEM and its flattened copy, the filled labels,
-/// the water heights and surface, the body ids and the IDW fill's index, bytes.
-constexpr double hydro_bytes_per_cell = water_bytes_per_cell + 40;
+/// the water heights and surface, the body ids, the IDW fill's index and a river's sections and geodesic distances,
+/// bytes.
+constexpr double hydro_bytes_per_cell = water_bytes_per_cell + 64;
 
 std::vector<std::string> hydro_value_options()
 {
@@ -65,12 +70,13 @@ output_formats hydro_formats(const arguments& a)
     output_formats f = output_formats_from(a);
     const std::string list = a.text("formats", "");
     const auto names = [&](const char* n) { return list.find(n) != std::string::npos; };
-    if (!names("asc") && !names("tif") && !names("png")) {
-        f.tif = io::vectors_available();
+    if (names("png") || names("geojson"))
+        throw usage_error("--formats of hydroflatten: asc, tif, csv and gpkg (png and geojson are not written)");
+    if (!names("asc") && !names("tif")) {
+        f.tif = io::geotiff_available();
         f.asc = !f.tif;
     }
-    f.png = false;
-    if (!names("geojson")) f.geojson = false;
+    f.png = f.geojson = false;
     return f;
 }
 
@@ -89,6 +95,15 @@ raster<float> bare_earth(const survey& s, raster_view<const std::uint8_t> footpr
         for (std::ptrdiff_t c = 0; c < dem.cols(); ++c)
             if (!footprint(r, c)) dem(r, c) = NAN;
     return dem;
+}
+
+/// The body `id` of `h` (its bodies are in increasing id).
+const hydro_body& body_of(const hydro_flatten_result& h, std::int32_t id)
+{
+    const auto at = std::lower_bound(h.bodies.begin(), h.bodies.end(), id,
+                                     [](const hydro_body& b, std::int32_t wanted) { return b.id < wanted; });
+    if (at == h.bodies.end() || at->id != id) throw std::logic_error("hydroflatten: no body " + std::to_string(id));
+    return *at;
 }
 
 const char* type_name(const hydro_body& b)
@@ -112,7 +127,7 @@ io::layer_z water_body_layer(const hydro_flatten_result& h, const grid& in_crs)
         return z;
     };
     for (const auto& lp : polygonize(h.body, in_crs)) {
-        const hydro_body& b = h.bodies[static_cast<std::size_t>(lp.label - 1)];
+        const hydro_body& b = body_of(h, lp.label);
         for (const auto& poly : lp.polygons) {
             io::feature_z f;
             for (const auto& ring : poly.rings) {
@@ -152,8 +167,13 @@ void write_hydro_outputs(io::output_folder& out, const survey& s, const hydro_fl
                          const output_formats& formats)
 {
     const grid in_crs = to_crs_units(s.rasters.g, s);
-    out.set_units_note(units_note(s));
-    write_raster(out, "dem_hydroflattened", h.dem, in_crs, s.crs_wkt, s.epsg, formats);
+    // The DEM and the breaklines' Z speak the CRS's height unit, as every raster file of the program does; the
+    // tables keep metres (their columns say so).
+    const height_unit heights = file_height_unit(s);
+    out.set_units_note("dem_hydroflattened and the breaklines' Z in " + heights.name + "; " + units_note(s));
+    raster<float> dem = h.dem;
+    for (float& v : dem) v = static_cast<float>(v / heights.metres);
+    write_raster(out, "dem_hydroflattened", dem, in_crs, s.crs_wkt, s.epsg, formats);
     if (formats.csv) {
         const std::vector<io::csv_column> bodies_header{
             io::text_column("id"),        io::text_column("type"),          io::text_column("flattened"),
@@ -197,7 +217,7 @@ void write_hydro_outputs(io::output_folder& out, const survey& s, const hydro_fl
         std::vector<std::vector<io::table_value>> qa;
         for (std::size_t i = 0; i < h.qa.size();) {
             const std::int32_t id = h.qa[i].body;
-            const hydro_body& b = h.bodies[static_cast<std::size_t>(id - 1)];
+            const hydro_body& b = body_of(h, id);
             const bool river = b.type == hydro_body_type::river;
             std::vector<io::table_value> row(qa_header.size());
             const auto cell = [&](const char* name) -> io::table_value& {
@@ -243,7 +263,11 @@ void write_hydro_outputs(io::output_folder& out, const survey& s, const hydro_fl
         out.write("hydro_qa.csv", [&](const std::string& path) { io::write_csv(path, qa_header, qa); });
     }
     if (formats.gpkg) {
-        const std::vector<io::layer_z> layers{water_body_layer(h, in_crs), river_centre_layer(h, in_crs)};
+        std::vector<io::layer_z> layers{water_body_layer(h, in_crs), river_centre_layer(h, in_crs)};
+        for (auto& layer : layers)
+            for (auto& feature : layer.features)
+                for (auto& part : feature.parts)
+                    for (auto& vertex : part) vertex[2] /= heights.metres;
         out.write("breaklines.gpkg",
                   [&](const std::string& path) { io::write_geopackage_z(path, layers, s.crs_wkt, s.epsg); });
     }

@@ -120,6 +120,13 @@ raster<float> picture_elevation(const rasterize_result& pr, std::ptrdiff_t f)
 
 }  // namespace
 
+height_unit file_height_unit(const survey& s)
+{
+    const bool vertical_written = s.crs_wkt.find("VERT") != std::string::npos;  // VERT_CS (WKT1), VERTCRS (WKT2)
+    if (vertical_written) return {s.crs.vertical_unit_m, s.crs.vertical_unit};
+    return {s.crs.horizontal_unit_m, s.crs.horizontal_unit};
+}
+
 std::string units_note(const survey& s)
 {
     const std::string where = s.crs.source.empty() ? std::string("coordinates as read (no CRS: taken as metres)")
@@ -175,9 +182,9 @@ void write_point_rasters(io::output_folder& dir, const survey& s, const output_f
     // A raster file speaks its CRS's units: placed in the files' CRS, heights in the vertical unit of the CRS the
     // file records (the horizontal unit when that CRS has no vertical part, as a reader of the file assumes).
     const grid g = to_crs_units(pr.g, s);
-    const bool vertical_written = s.crs_wkt.find("VERT") != std::string::npos;  // VERT_CS (WKT1), VERTCRS (WKT2)
-    const double z_unit = vertical_written ? s.crs.vertical_unit_m : s.crs.horizontal_unit_m;
-    const std::string z_unit_name = vertical_written ? s.crs.vertical_unit : s.crs.horizontal_unit;
+    const height_unit heights = file_height_unit(s);
+    const double z_unit = heights.metres;
+    const std::string z_unit_name = heights.name;
     const auto in_z_unit = [z_unit](const raster<float>& metres) {
         raster<float> out = metres;
         for (float& v : out) v = static_cast<float>(v / z_unit);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include <lidarfx/kernels/filter/survey_footprint.hpp>
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
@@ -10,6 +11,14 @@
 #include "cli_common.hpp"
 
 namespace lidarfx::cli {
+
+/// The unit of heights in a file placed in the survey's CRS: the vertical unit of the CRS the file records, or
+/// its horizontal unit when that CRS has no vertical part (as a reader of the file assumes).
+struct height_unit {
+    double metres = 1;  ///< metres per unit
+    std::string name;
+};
+height_unit file_height_unit(const survey& s);
 
 /// What a manifest says about units: heights and areas in metres, places in the survey's CRS.
 std::string units_note(const survey& s);

@@ -216,6 +216,17 @@ TEST_CASE("water/hydro_flatten: refuses rasters of different shapes and options 
     bad = {};
     bad.min_lake_area_m2 = -1;
     CHECK_THROWS_AS(hydro_flatten(dem, labels, dem, dem, 1.0, bad), invalid_input);
+    // The steps' options are checked before any work, with or without a body they would apply to.
+    bad = {};
+    bad.river.level_window_m = 0;
+    CHECK_THROWS_AS(hydro_flatten(dem, labels, dem, dem, 1.0, bad), invalid_input);
+    bad = {};
+    bad.lake.mode_window_m = -1;
+    CHECK_THROWS_AS(hydro_flatten(dem, labels, dem, dem, 1.0, bad), invalid_input);
+    raster<std::int32_t> negative(4, 4, 0);
+    negative(1, 1) = -2;
+    CHECK_THROWS_WITH_AS(hydro_flatten(dem, negative, dem, dem, 1.0), doctest::Contains("hydro_flatten"),
+                         invalid_input);
     const auto empty = hydro_flatten(dem, labels, dem, dem, 1.0);
     CHECK(empty.bodies.empty());
     CHECK(empty.dem == dem);

@@ -62,7 +62,8 @@ struct hydro_flatten_result {
     raster<float> dem;                       ///< the input DEM with flattened water and lifted shores, metres
     raster<float> water_surface;             ///< the water level on flattened water, NaN elsewhere, metres
     raster<std::int32_t> body;               ///< the id of the flattened body per cell, 0 elsewhere
-    std::vector<hydro_body> bodies;          ///< every body (after the split into connected parts), by id
+    std::vector<hydro_body> bodies;          ///< every body with cells (after the split into connected parts), in
+                                             ///< increasing id (bodies[i].id == i + 1 when the labels have no gap)
     std::vector<hydro_check> qa;             ///< hydro_qa of the flattened bodies
     std::size_t island_cells_flattened = 0;  ///< cells of islands under min_island_area_m2 flattened with the water
     shoreline_check shorelines;  ///< shore cells found below the water (and lifted, with shoreline_rule::lift)

@@ -29,6 +29,8 @@ inline void validate(const hydro_flatten_options& o, const char* fn)
     at_least(o.min_river_elongation, 1, "min_river_elongation");
     at_least(o.flat_tolerance_m, 0, "flat_tolerance_m");
     check_execution(o.run, fn);
+    validate(o.lake, fn);
+    validate(o.river, fn);
 }
 
 /// Land cells 8-adjacent to body `id` (inside `box` grown by one cell) whose value in `after` exceeds `before`.
@@ -103,16 +105,19 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
     detail::validate(opt, fn);
     detail::report(opt.run.progress, 0, fn);
 
-    // 1. Islands under the minimum flatten with their body.
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c)
+            detail::require(labels(r, c) >= 0, fn, "labels", ">= 0", labels(r, c));
+
+    // 1. Islands under the minimum flatten with their body (the first tenth of the progress).
     raster<std::int32_t> filled(labels);
     hydro_flatten_result out;
-    out.island_cells_flattened = fill_small_islands(filled, cell_m, {.island_min_area_m2 = opt.min_island_area_m2},
-                                                    {.threads = opt.run.threads});
+    execution fill_run{.threads = opt.run.threads};
+    if (opt.run.progress) fill_run.progress = [&](double f) { return opt.run.progress(0.1 * f); };
+    out.island_cells_flattened =
+        fill_small_islands(filled, cell_m, {.island_min_area_m2 = opt.min_island_area_m2}, fill_run);
     std::int32_t top = 0;
-    for (const std::int32_t l : filled) {
-        detail::require(l >= 0, fn, "labels", ">= 0", l);
-        top = std::max(top, l);
-    }
+    for (const std::int32_t l : filled) top = std::max(top, l);
     std::vector<cell_box> box = detail::label_boxes(filled, top);
     detail::split_into_parts(filled, box);
     top = static_cast<std::int32_t>(box.size()) - 1;
@@ -159,7 +164,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
                 }
         }
         out.bodies.push_back(std::move(b));
-        detail::report(opt.run.progress, static_cast<double>(id) / (top + 1.0), fn);
+        detail::report(opt.run.progress, 0.1 + 0.9 * static_cast<double>(id) / (top + 1.0), fn);
     }
     // 5. Shores, 6. the checks.
     const raster<float> before = opt.shoreline == shoreline_rule::lift ? out.dem : raster<float>();

@@ -74,6 +74,14 @@ void for_each_shore_cell(raster_view<const std::int32_t> labels, std::int32_t la
         }
 }
 
+inline void validate(const lake_level_options& opt, const char* fn)
+{
+    require(opt.shore_quantile >= 0 && opt.shore_quantile <= 1, fn, "shore_quantile", "in [0, 1]", opt.shore_quantile);
+    require(opt.mode_window_m > 0, fn, "mode_window_m", "> 0", opt.mode_window_m);
+    require(opt.below_shore_m >= 0 && std::isfinite(opt.below_shore_m), fn, "below_shore_m", "finite and >= 0",
+            opt.below_shore_m);
+}
+
 inline void check_body_box(raster_view<const std::int32_t> labels, const cell_box& box, const char* fn)
 {
     require(!box.empty() && box.row_min >= 0 && box.col_min >= 0 && box.row_max < labels.rows() &&
@@ -90,11 +98,7 @@ inline lake_level_result lake_level(raster_view<const std::int32_t> labels, std:
     constexpr const char* fn = "lake_level";
     detail::require_same_shape(labels, water_z, fn, "labels", "water_z");
     detail::require_same_shape(labels, ground, fn, "labels", "ground");
-    detail::require(opt.shore_quantile >= 0 && opt.shore_quantile <= 1, fn, "shore_quantile", "in [0, 1]",
-                    opt.shore_quantile);
-    detail::require(opt.mode_window_m > 0, fn, "mode_window_m", "> 0", opt.mode_window_m);
-    detail::require(opt.below_shore_m >= 0 && std::isfinite(opt.below_shore_m), fn, "below_shore_m", "finite and >= 0",
-                    opt.below_shore_m);
+    detail::validate(opt, fn);
     detail::check_body_box(labels, box, fn);
     std::vector<float> water, shore;
     for (std::ptrdiff_t r = box.row_min; r <= box.row_max; ++r)
