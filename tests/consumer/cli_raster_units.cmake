@@ -3,7 +3,8 @@
 # rasterize` writes max_z in the CRS's units (3.28 ft cells, heights in feet, the CRS in max_z.prj and in
 # max_z.tif), and `lidarfx solar` on that max_z.asc and on max_z.tif gives the year's mean irradiation of `lidarfx
 # solar` on the LAS file within 0.5 %, as does the same DSM in another format GDAL reads (Erdas Imagine .img,
-# made here with GDAL_TRANSLATE). HAVE_GDAL says how lidarfx was built.
+# made here with GDAL_TRANSLATE). `lidarfx hydroflatten` writes its DEM in feet too. HAVE_GDAL says how lidarfx was
+# built.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 set(las "${DATA}/scene_oregon_ft.las")
@@ -46,6 +47,15 @@ endif()
 file(READ "${WORK_DIR}/rasterize/max_z.asc" cells)
 if(NOT cells MATCHES " 354\\.33" OR NOT cells MATCHES " 328\\.08")
     message(FATAL_ERROR "max_z.asc does not hold heights in feet (354.33 ft, 328.08 ft)")
+endif()
+
+# lidarfx hydroflatten writes its DEM in the same units: feet, 3.28 ft cells, its .prj beside it.
+run(hydro hydroflatten "${las}" --cell 1 --force --formats asc,csv)
+file(STRINGS "${WORK_DIR}/hydro/dem_hydroflattened.asc" header LIMIT_COUNT 6)
+file(READ "${WORK_DIR}/hydro/dem_hydroflattened.asc" cells)
+if(NOT header MATCHES "cellsize 3\\.28083" OR NOT EXISTS "${WORK_DIR}/hydro/dem_hydroflattened.prj"
+   OR NOT cells MATCHES " 354\\.33" OR NOT cells MATCHES " 328\\.08")
+    message(FATAL_ERROR "dem_hydroflattened.asc of a survey in feet is not in feet with its .prj: ${header}")
 endif()
 
 run(solar_las solar "${las}" ${place} --formats asc)
