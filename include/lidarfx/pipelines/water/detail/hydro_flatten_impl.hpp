@@ -38,17 +38,8 @@ inline std::size_t cells_lifted_beside(raster_view<const std::int32_t> body, ras
                                        raster_view<const float> after, std::int32_t id, const cell_box& box)
 {
     std::size_t lifted = 0;
-    const std::ptrdiff_t rows = body.rows(), cols = body.cols();
-    for (std::ptrdiff_t r = std::max<std::ptrdiff_t>(box.row_min - 1, 0); r <= std::min(box.row_max + 1, rows - 1); ++r)
-        for (std::ptrdiff_t c = std::max<std::ptrdiff_t>(box.col_min - 1, 0); c <= std::min(box.col_max + 1, cols - 1);
-             ++c) {
-            if (body(r, c) != 0 || !(after(r, c) > before(r, c))) continue;
-            bool beside = false;
-            for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(r - 1, 0); rr <= std::min(r + 1, rows - 1); ++rr)
-                for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(c - 1, 0); cc <= std::min(c + 1, cols - 1); ++cc)
-                    beside = beside || body(rr, cc) == id;
-            lifted += beside;
-        }
+    for_each_shore_cell(body, id, box,
+                        [&](std::ptrdiff_t r, std::ptrdiff_t c) { lifted += after(r, c) > before(r, c); });
     return lifted;
 }
 

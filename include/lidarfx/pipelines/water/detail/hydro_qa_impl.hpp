@@ -13,6 +13,7 @@
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/grid.hpp"
+#include "lidarfx/pipelines/water/lake_level.hpp"
 
 namespace lidarfx {
 
@@ -84,13 +85,9 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
         // Shoreline: land beside the body below its water.
         hydro_check shore{b.id, hydro_check_kind::shoreline, 0, 0, true};
         double worst = 0;
-        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(bx.row_min - 1, 0),
-                             c0 = std::max<std::ptrdiff_t>(bx.col_min - 1, 0);
-        const std::ptrdiff_t r1 = std::min(bx.row_max + 1, dem.rows() - 1),
-                             c1 = std::min(bx.col_max + 1, dem.cols() - 1);
-        for (std::ptrdiff_t r = r0; r <= r1 && !bx.empty(); ++r)
-            for (std::ptrdiff_t c = c0; c <= c1; ++c) {
-                if (body(r, c) != 0 || std::isfinite(water_surface(r, c)) || !std::isfinite(dem(r, c))) continue;
+        if (!bx.empty())
+            detail::for_each_shore_cell(body, b.id, bx, [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+                if (std::isfinite(water_surface(r, c)) || !std::isfinite(dem(r, c))) return;
                 float h = NAN;
                 for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(r - 1, 0); rr <= std::min(r + 1, dem.rows() - 1);
                      ++rr)
@@ -99,14 +96,14 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
                         if (body(rr, cc) == b.id && std::isfinite(water_surface(rr, cc)) &&
                             !(water_surface(rr, cc) <= h))
                             h = water_surface(rr, cc);
-                if (!(dem(r, c) < h)) continue;
+                if (!(dem(r, c) < h)) return;
                 shore.value += 1;
                 if (static_cast<double>(h) - dem(r, c) > worst) {
                     worst = static_cast<double>(h) - dem(r, c);
                     shore.worst_row = r;
                     shore.worst_col = c;
                 }
-            }
+            });
         shore.pass = shore.value == 0;
         shore.worst_m = worst;
         out.push_back(shore);
