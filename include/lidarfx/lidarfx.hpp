@@ -91,6 +91,7 @@
 #include "lidarfx/pipelines/water/intensity_bins.hpp"
 #include "lidarfx/pipelines/water/join_across_bridges.hpp"
 #include "lidarfx/pipelines/water/join_adjacent_dropouts.hpp"
+#include "lidarfx/pipelines/water/join_channel_parts.hpp"
 #include "lidarfx/pipelines/water/join_level_cells.hpp"
 #include "lidarfx/pipelines/water/join_shore_cells.hpp"
 #include "lidarfx/pipelines/water/lake_level.hpp"

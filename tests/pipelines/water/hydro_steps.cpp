@@ -603,6 +603,34 @@ TEST_CASE("water/trace_river_profile: a weir stays a step; the sections either s
     }
 }
 
+TEST_CASE("water/trace_river_profile: an oblique weir is followed cell by cell; no section straddles it")
+{
+    hydro_steps_test::river_strip river;
+    for (std::ptrdiff_t r = 0; r < river.rows; ++r)  // the crest runs from column 96 to column 106
+        for (std::ptrdiff_t c = 96 + 2 * r; c < river.cols; ++c) {
+            river.truth(r, c) -= 0.6f;
+            river.water_z(r, c) -= 0.6f;
+        }
+    const auto level_error = [&](const river_profile& p) {
+        double worst = 0;
+        for (std::ptrdiff_t r = 0; r < river.rows; ++r)
+            for (std::ptrdiff_t c = 0; c < river.cols; ++c)
+                worst =
+                    std::max(worst, std::abs(p.level_m[static_cast<std::size_t>(p.section(r, c))] - river.truth(r, c)));
+        return worst;
+    };
+    const auto p = river.profile(hydro_steps_test::strip_options, river.shape());
+    CHECK(hydro_steps_test::non_increasing(p.level_m));
+    CHECK(p.weirs == 1);
+    CHECK(level_error(p) <= 0.05);  // the fall of 0.5 % over the 10 m the crest spans
+    std::size_t cells = 0;
+    for (const std::size_t n : p.cells) cells += n;
+    CHECK(cells == static_cast<std::size_t>(river.rows * river.cols));
+    auto straddling = hydro_steps_test::strip_options;
+    straddling.cut_sections_at_weirs = false;
+    CHECK(level_error(river.profile(straddling, river.shape())) > 0.2);
+}
+
 TEST_CASE("water/trace_river_profile: a few high cells (a pier) leave their section's level where it was")
 {
     const hydro_steps_test::river_strip clean;

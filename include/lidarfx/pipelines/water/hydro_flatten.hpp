@@ -13,6 +13,7 @@
 #include "lidarfx/pipelines/water/enforce_shorelines.hpp"
 #include "lidarfx/pipelines/water/hydro_body_shape.hpp"
 #include "lidarfx/pipelines/water/hydro_qa.hpp"
+#include "lidarfx/pipelines/water/join_channel_parts.hpp"
 #include "lidarfx/pipelines/water/lake_level.hpp"
 #include "lidarfx/pipelines/water/river_profile.hpp"
 #include "lidarfx/pipelines/water/water_heights.hpp"
@@ -29,8 +30,11 @@ struct hydro_flatten_options {
     double min_river_elongation = 6.0;    ///< a body at least this many widths long (hydro_body_shape::elongation)
                                           ///< is a river, else a lake, >= 1. Default 6 (a round lake is about 1.6, a
                                           ///< pond with a narrow tail 4-5)
-    lake_level_options lake = {};         ///< lake_level: whether the shore caps the level, and how
-    river_profile_options river = {};     ///< trace_river_profile: section spacing, deck clearance, weirs
+    bool join_channels = true;         ///< join_channel_parts: one body for the pieces of a river cut apart at a weir
+                                       ///< or a bridge deck, with the land under the deck
+    channel_join_options join = {};    ///< join_channel_parts: when two pieces are one channel
+    lake_level_options lake = {};      ///< lake_level: whether the shore caps the level, and how
+    river_profile_options river = {};  ///< trace_river_profile: section spacing, deck clearance, weirs
     shoreline_rule shoreline = shoreline_rule::lift;  ///< enforce_shorelines: lift the shore or only count it
     double flat_tolerance_m = 0.001;  ///< hydro_qa: largest max − min of a lake or a section, metres. 1 mm
     execution run = {};               ///< threads of the island fill; progress per body, false cancels
@@ -66,6 +70,7 @@ struct hydro_flatten_result {
                                              ///< increasing id (bodies[i].id == i + 1 when the labels have no gap)
     std::vector<hydro_check> qa;             ///< hydro_qa of the flattened bodies
     std::size_t island_cells_flattened = 0;  ///< cells of islands under min_island_area_m2 flattened with the water
+    std::vector<channel_join> joins;         ///< pieces of one channel joined (join_channels), by (kept, joined)
     shoreline_check shorelines;  ///< shore cells found below the water (and lifted, with shoreline_rule::lift)
 };
 
@@ -74,12 +79,14 @@ struct hydro_flatten_result {
 /// `max_z` (metres, NaN where none) on cells of cell_m metres, as a composition of public steps:
 ///  1. fill_small_islands: holes under min_island_area_m2 join their body; a body in several 8-connected parts
 ///     is split: its largest part keeps its id, the others take ids after the largest label (by decreasing
-///     size, then raster order), each then a body of its own;
+///     size, then raster order), each then a body of its own; with join_channels, join_channel_parts makes the
+///     pieces of one river cut apart at a weir or a deck one body again (the smallest label), with the land under
+///     the deck;
 ///  2. measure_hydro_body_shape per body: elongation >= min_river_elongation makes a river, else a lake; a lake
 ///     under min_lake_area_m2 or a river narrower than min_river_width_m is left to the terrain;
-///  3. water_heights(labels, min_z, max_z); lakes: lake_level, one level over the body; rivers: trace_river_profile,
-///  each cross-section at its level,
-///     non-increasing downstream, decks and unflown stretches at the interpolated level;
+///  3. water_heights(labels, min_z, max_z); lakes: lake_level, one level over the body; rivers:
+///     trace_river_profile, each cross-section at its level, non-increasing downstream, decks and unflown
+///     stretches at the interpolated level, the sections beside a weir cut along it;
 ///  4. the DEM takes the water level on the flattened water (also where it was NaN inside a body);
 ///  5. enforce_shorelines with `shoreline`: no shore ground below the water beside it;
 ///  6. hydro_qa of every flattened body.

@@ -17,28 +17,30 @@ namespace lidarfx {
 
 /// Options of river_profile.
 struct river_profile_options {
-    double section_spacing_m = 5.0;   ///< length of a cross-section along the channel, metres, > 0; sections are
-                                      ///< never shorter than one cell. Default 5 m
-    double deck_clearance_m = 2.0;    ///< a cell at least this far above the low water nearby is a deck, not water:
-                                      ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
-                                      ///< drop less. Default 2 m
-    double floor_window_m = 200.0;    ///< the low water nearby is the 10 % quantile of the section quartiles within
-                                      ///< half this distance along the channel, metres, > 0. Default 200 m
-    double level_window_m = 50.0;     ///< the local level of a section is the median of the section medians within
-                                      ///< half this distance along the channel, metres, > 0. Default 50 m: a
-                                      ///< stretch between weirs shorter than half of it takes its neighbours' level
-    double return_tolerance_m = 0.3;  ///< a cell whose water height lies further than this from its section's
-                                      ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
-    double level_tolerance_m = 0.15;  ///< a section's median further than this from its local level is not
-                                      ///< measured (interpolated instead), metres, > 0. Default 0.15 m
-    double mode_window_m = 0.1;       ///< a section's level is the median of its water returns inside their densest
-                                      ///< window of this height (lake_level's rule), metres, > 0. Default 0.1 m
-    double min_return_share = 0.1;    ///< a section whose water returns number fewer than this share of its cells
-                                      ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
-                                      ///< water loses most pulses in dropout patches, and such stretches still
-                                      ///< hold their level
-    double weir_min_drop_m = 0.3;     ///< a fall of at least this between two neighbouring sections is counted as
-                                      ///< a weir or dam, metres, > 0. Default 0.3 m
+    double section_spacing_m = 5.0;     ///< length of a cross-section along the channel, metres, > 0; sections are
+                                        ///< never shorter than one cell. Default 5 m
+    double deck_clearance_m = 2.0;      ///< a cell at least this far above the low water nearby is a deck, not water:
+                                        ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
+                                        ///< drop less. Default 2 m
+    double floor_window_m = 200.0;      ///< the low water nearby is the 10 % quantile of the section quartiles within
+                                        ///< half this distance along the channel, metres, > 0. Default 200 m
+    double level_window_m = 50.0;       ///< the local level of a section is the median of the section medians within
+                                        ///< half this distance along the channel, metres, > 0. Default 50 m: a
+                                        ///< stretch between weirs shorter than half of it takes its neighbours' level
+    double return_tolerance_m = 0.3;    ///< a cell whose water height lies further than this from its section's
+                                        ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
+    double level_tolerance_m = 0.15;    ///< a section's median further than this from its local level is not
+                                        ///< measured (interpolated instead), metres, > 0. Default 0.15 m
+    double mode_window_m = 0.1;         ///< a section's level is the median of its water returns inside their densest
+                                        ///< window of this height (lake_level's rule), metres, > 0. Default 0.1 m
+    double min_return_share = 0.1;      ///< a section whose water returns number fewer than this share of its cells
+                                        ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
+                                        ///< water loses most pulses in dropout patches, and such stretches still
+                                        ///< hold their level
+    double weir_min_drop_m = 0.3;       ///< a fall of at least this between two neighbouring sections is counted as
+                                        ///< a weir or dam, metres, > 0. Default 0.3 m
+    bool cut_sections_at_weirs = true;  ///< the sections around a weir follow the weir, cell by cell, rather than
+                                        ///< straddle it (step 5)
 };
 
 /// A river's sections from upstream to downstream.
@@ -81,7 +83,14 @@ struct river_profile {
 ///     three rounds: a few returns of something in the channel do not hold up a stretch of the profile); a section
 ///     without returns (under a deck, or unflown) takes the level interpolated linearly between the nearest
 ///     fitted sections on either side, or the nearest one's at the ends. So the profile only falls, and where
-///     nothing was measured the water surface continues at the interpolated level.
+///     nothing was measured the water surface continues at the interpolated level;
+///  5. with cut_sections_at_weirs, a weir (neighbouring sections whose levels fall by more than a quarter of
+///     weir_min_drop_m at every step, by at least weir_min_drop_m in all, from an upper level to a lower one)
+///     is followed cell by cell: within half the river's width plus one section of it, each cell takes the upper
+///     or the lower level, whichever its water_z is nearer (cells without a height near either take the side of
+///     the nearest cell that has one). The upper cells join the weir's last upper section, the lower cells its
+///     first lower section, and the sections between are left without cells (at the lower level). An oblique weir
+///     then leaves no section straddling it; every section stays flat and the profile still only falls.
 /// O(n log n) in the body's n cells.
 /// @throws invalid_input on rasters of different shapes, options out of range, a box outside the raster or a
 /// label without a cell there.

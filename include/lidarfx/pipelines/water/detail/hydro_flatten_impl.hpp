@@ -31,6 +31,7 @@ inline void validate(const hydro_flatten_options& o, const char* fn)
     check_execution(o.run, fn);
     validate(o.lake, fn);
     validate(o.river, fn);
+    validate(o.join, fn);
 }
 
 /// Land cells 8-adjacent to body `id` (inside `box` grown by one cell) whose value in `after` exceeds `before`.
@@ -111,6 +112,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
     for (const std::int32_t l : filled) top = std::max(top, l);
     std::vector<cell_box> box = detail::label_boxes(filled, top);
     detail::split_into_parts(filled, box);
+    if (opt.join_channels) out.joins = join_channel_parts(filled, box, cell_m, opt.join);
     top = static_cast<std::int32_t>(box.size()) - 1;
     const raster<float> water_z = water_heights(filled, min_z, max_z);
 

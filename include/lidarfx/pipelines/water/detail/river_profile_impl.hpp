@@ -73,6 +73,79 @@ inline double weighted_slope(const std::vector<double>& level, const std::vector
     return den > 0 ? (sw * sxy - sx * sy) / den : 0.0;
 }
 
+/// Re-cuts the sections around each weir along the weir itself. A weir zone is a run of neighbouring sections
+/// [a, b] whose levels fall by more than a quarter of weir_min_drop_m at every step and by at least
+/// weir_min_drop_m in all; around it (reach sections either side) each cell takes the upper level `level[a]`
+/// or the lower `level[b]`, whichever its water height is nearer (heights further than return_tolerance_m from
+/// both, and cells without one, take the side of the nearest cell that has one, by 8-connected steps). Upper
+/// cells downstream of a join section a, lower cells upstream of b join section b; the sections between are left
+/// without cells at the lower level. Updates cells and centre.
+inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> water_z, std::size_t reach,
+                                  const river_profile_options& opt)
+{
+    const std::size_t n = p.level_m.size();
+    const cell_box& box = p.box;
+    std::size_t done = 0;  // sections before this one belong to an earlier zone
+    for (std::size_t s = 0; s + 1 < n;) {
+        const auto falls = [&](std::size_t k) { return p.level_m[k] - p.level_m[k + 1] > 0.25 * opt.weir_min_drop_m; };
+        if (!falls(s)) {
+            ++s;
+            continue;
+        }
+        std::size_t a = s, b = s + 1;
+        while (b + 1 < n && falls(b)) ++b;
+        s = b;
+        const double upper = p.level_m[a], lower = p.level_m[b];
+        if (upper - lower < opt.weir_min_drop_m) continue;
+        const std::size_t lo = std::max(done, a > reach ? a - reach : 0), hi = std::min(n - 1, b + reach);
+        done = hi + 1;
+        // Sides: 0 upper, 1 lower, 2 not known yet, -1 outside the zone.
+        raster<std::int8_t> side(box.rows(), box.cols(), -1);
+        std::vector<std::ptrdiff_t> front;
+        for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
+            for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
+                const std::int32_t k = p.section(r, c);
+                if (k < 0 || static_cast<std::size_t>(k) < lo || static_cast<std::size_t>(k) > hi) continue;
+                const float z = water_z(box.row_min + r, box.col_min + c);
+                const double du = std::abs(z - upper), dl = std::abs(z - lower);
+                side(r, c) = std::isfinite(z) && std::min(du, dl) <= opt.return_tolerance_m ? (du < dl ? 0 : 1) : 2;
+                if (side(r, c) < 2) front.push_back(r * box.cols() + c);
+            }
+        for (std::size_t i = 0; i < front.size(); ++i) {  // breadth-first: the nearest known cell's side
+            const std::ptrdiff_t r = front[i] / box.cols(), c = front[i] % box.cols();
+            for (std::ptrdiff_t dr = -1; dr <= 1; ++dr)
+                for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                    const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                    if (rr < 0 || rr >= box.rows() || cc < 0 || cc >= box.cols() || side(rr, cc) != 2) continue;
+                    side(rr, cc) = side(r, c);
+                    front.push_back(rr * box.cols() + cc);
+                }
+        }
+        for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
+            for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
+                std::int32_t& k = p.section(r, c);
+                if (side(r, c) == 0 && k > static_cast<std::int32_t>(a)) k = static_cast<std::int32_t>(a);
+                if (side(r, c) == 1 && k < static_cast<std::int32_t>(b)) k = static_cast<std::int32_t>(b);
+            }
+        for (std::size_t k = a + 1; k < b; ++k) p.level_m[k] = lower;
+    }
+    p.cells.assign(n, 0);
+    p.centre.assign(n, {0.0, 0.0});
+    for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < box.cols(); ++c)
+            if (const std::int32_t k = p.section(r, c); k >= 0) {
+                const auto u = static_cast<std::size_t>(k);
+                ++p.cells[u];
+                p.centre[u][0] += static_cast<double>(box.row_min + r);
+                p.centre[u][1] += static_cast<double>(box.col_min + c);
+            }
+    for (std::size_t k = 0; k < n; ++k)
+        if (p.cells[k] > 0) {
+            p.centre[k][0] /= static_cast<double>(p.cells[k]);
+            p.centre[k][1] /= static_cast<double>(p.cells[k]);
+        }
+}
+
 }  // namespace detail
 
 inline river_profile trace_river_profile(raster_view<const std::int32_t> labels, std::int32_t label,
@@ -191,6 +264,11 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         if (!dropped) break;
     }
     detail::interpolate_gaps(p.level_m);
+    // 5. weirs: the sections around each follow it.
+    if (opt.cut_sections_at_weirs) {
+        const auto reach = static_cast<std::size_t>(std::ceil(0.5 * shape.width_m / spacing)) + 1;
+        detail::cut_sections_at_weirs(p, water_z, reach, opt);
+    }
     for (std::size_t s = 0; s + 1 < n; ++s) {
         const double fall = p.level_m[s] - p.level_m[s + 1];
         if (fall >= opt.weir_min_drop_m) ++p.weirs;
