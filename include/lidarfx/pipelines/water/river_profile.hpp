@@ -17,28 +17,32 @@ namespace lidarfx {
 
 /// Options of river_profile.
 struct river_profile_options {
-    double section_spacing_m = 5.0;     ///< length of a cross-section along the channel, metres, > 0; sections are
-                                        ///< never shorter than one cell. Default 5 m
-    double deck_clearance_m = 2.0;      ///< a cell at least this far above the low water nearby is a deck, not water:
-                                        ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
-                                        ///< drop less. Default 2 m
-    double floor_window_m = 200.0;      ///< the low water nearby is the 10 % quantile of the section quartiles within
-                                        ///< half this distance along the channel, metres, > 0. Default 200 m
-    double level_window_m = 50.0;       ///< the local level of a section is the median of the section medians within
-                                        ///< half this distance along the channel, metres, > 0. Default 50 m: a
-                                        ///< stretch between weirs shorter than half of it takes its neighbours' level
-    double return_tolerance_m = 0.3;    ///< a cell whose water height lies further than this from its section's
-                                        ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
-    double level_tolerance_m = 0.15;    ///< a section's median further than this from its local level is not
-                                        ///< measured (interpolated instead), metres, > 0. Default 0.15 m
-    double mode_window_m = 0.1;         ///< a section's level is the median of its water returns inside their densest
-                                        ///< window of this height (lake_level's rule), metres, > 0. Default 0.1 m
-    double min_return_share = 0.1;      ///< a section whose water returns number fewer than this share of its cells
-                                        ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
-                                        ///< water loses most pulses in dropout patches, and such stretches still
-                                        ///< hold their level
-    double weir_min_drop_m = 0.3;       ///< a fall of at least this between two neighbouring sections is counted as
-                                        ///< a weir or dam, metres, > 0. Default 0.3 m
+    double section_spacing_m = 5.0;   ///< length of a cross-section along the channel, metres, > 0; sections are
+                                      ///< never shorter than one cell. Default 5 m
+    double deck_clearance_m = 2.0;    ///< a cell at least this far above the low water nearby is a deck, not water:
+                                      ///< join_across_bridges' min_clearance_m, metres, > 0; weirs and dams must
+                                      ///< drop less. Default 2 m
+    double floor_window_m = 200.0;    ///< the low water nearby is the 10 % quantile of the section quartiles within
+                                      ///< half this distance along the channel, metres, > 0. Default 200 m
+    double level_window_m = 50.0;     ///< the local level of a section is the median of the section medians within
+                                      ///< half this distance along the channel, metres, > 0. Default 50 m: a
+                                      ///< stretch between weirs shorter than half of it takes its neighbours' level
+    double return_tolerance_m = 0.3;  ///< a cell whose water height lies further than this from its section's
+                                      ///< local level is not water (a pier, a bank), metres, > 0. Default 0.3 m
+    double level_tolerance_m = 0.15;  ///< a section's reading further than this from its local level is not
+                                      ///< measured (interpolated instead), metres, > 0. Default 0.15 m
+    double mode_window_m = 0.1;       ///< a section's level is the median of its water returns inside a window of this
+                                      ///< height (step 2), metres, > 0. Default 0.1 m
+    double lowest_mode_share = 0.25;  ///< a section's heights are read at their lowest window of mode_window_m that
+                                      ///< holds at least this share of their densest window's: water is the lowest
+                                      ///< surface across a channel, and a level field taken into the body stands
+                                      ///< above it. In (0, 1]; 1 reads the densest window. Default 0.25
+    double min_return_share = 0.1;    ///< a section whose water returns number fewer than this share of its cells
+                                      ///< is not measured (beside a deck, at a ragged end), in [0, 1]. Default 0.1:
+                                      ///< water loses most pulses in dropout patches, and such stretches still
+                                      ///< hold their level
+    double weir_min_drop_m = 0.3;     ///< a fall of at least this between two neighbouring sections is counted as
+                                      ///< a weir or dam, metres, > 0. Default 0.3 m
     bool cut_sections_at_weirs = true;  ///< the sections around a weir follow the weir, cell by cell, rather than
                                         ///< straddle it (step 5)
 };
@@ -66,15 +70,16 @@ struct river_profile {
 ///     low water nearby is the 10 % quantile (position ⌊(n − 1) / 10⌋) of these quartiles over the sections within
 ///     floor_window_m / 2; cells at least deck_clearance_m above it are a deck. A weir's upper pool stands less
 ///     than deck_clearance_m above its lower one, so it is not taken for a deck;
-///  2. the local level of a section is the median of the sections' medians of their other cells over the
-///     sections within level_window_m / 2 (a running median follows a steady fall exactly, but within half a
-///     window of the ends, and keeps the step of
+///  2. each section is read at its water: the median of its other cells' heights in their lowest window of
+///     mode_window_m that holds at least lowest_mode_share of their densest window's (and 3 heights; water is the
+///     lowest surface across a channel, so a level field or a bank taken into the body does not lift it). The
+///     local level of a section is the median of these readings over the sections within level_window_m / 2 (a
+///     running median follows a steady fall exactly, but within half a window of the ends, and keeps the step of
 ///     a weir; sections without such cells are skipped). A section's water returns are its cells with water_z
-///     within return_tolerance_m of its local level;
-///     the median of those inside their densest window of mode_window_m is measured_m (NaN when none). A section is
-///     measured when it has such returns and measured_m lies within level_tolerance_m of its local level and its
-///     returns are at least min_return_share of its cells (a few returns off a bank, a ramp or beside a deck do not set
-///     a level);
+///     within return_tolerance_m of its local level, read the same way as measured_m (NaN when none). A section
+///     is measured when it has such returns and measured_m lies within level_tolerance_m of its local level and
+///     its returns are at least min_return_share of its cells (a few returns off a bank, a ramp or beside a deck
+///     do not set a level);
 ///  3. the river flows towards the end where a least-squares line through the measured levels (weighted by
 ///     returns) is lower; sections are numbered from upstream (end_b is upstream when the line rises from
 ///     end_a);

@@ -32,6 +32,32 @@ inline void validate(const river_profile_options& o, const char* fn)
     require(o.min_return_share >= 0 && o.min_return_share <= 1, fn, "min_return_share", "in [0, 1]",
             o.min_return_share);
     positive(o.weir_min_drop_m, "weir_min_drop_m");
+    require(o.lowest_mode_share > 0 && o.lowest_mode_share <= 1, fn, "lowest_mode_share", "in (0, 1]",
+            o.lowest_mode_share);
+}
+
+/// The median of the lowest window of `width` in the sorted `values` whose count reaches `share` of the densest
+/// window's (and at least 3, or all of them when fewer): among the windows starting within `width` above that
+/// one, the densest. NaN when empty. Sorts `values`.
+inline double lowest_dense_window_median(std::vector<float>& values, double width, double share)
+{
+    if (values.empty()) return NAN;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    std::vector<std::size_t> count(n);
+    for (std::size_t from = 0, to = 0; from < n; ++from) {
+        to = std::max(to, from);
+        while (to < n && static_cast<double>(values[to]) <= static_cast<double>(values[from]) + width) ++to;
+        count[from] = to - from;
+    }
+    const std::size_t densest = *std::max_element(count.begin(), count.end());
+    const double enough = std::min(static_cast<double>(densest), std::max(3.0, share * static_cast<double>(densest)));
+    std::size_t first = 0;
+    while (static_cast<double>(count[first]) < enough) ++first;
+    std::size_t best = first;
+    for (std::size_t from = first; from < n && static_cast<double>(values[from]) <= values[first] + width; ++from)
+        if (count[from] > count[best]) best = from;
+    return values[best + count[best] / 2];
 }
 
 /// Fills the NaN entries of `level` by linear interpolation (in index) between the nearest finite entries on
@@ -212,7 +238,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         const double deck = window(quartile, s, opt.floor_window_m, 0.1) + opt.deck_clearance_m;
         std::erase_if(heights[s], [&](float z) { return z >= deck; });
         std::vector<float> copy = heights[s];
-        median[s] = detail::upper_median_in_place(copy);
+        median[s] = detail::lowest_dense_window_median(copy, opt.mode_window_m, opt.lowest_mode_share);
     }
     p.measured_m.assign(n, NAN);
     p.returns.assign(n, 0);
@@ -222,7 +248,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         std::vector<float> water;
         for (const float z : heights[s])
             if (std::abs(z - local) <= opt.return_tolerance_m) water.push_back(z);
-        const double measured = detail::densest_window_median(water, opt.mode_window_m);
+        const double measured = detail::lowest_dense_window_median(water, opt.mode_window_m, opt.lowest_mode_share);
         const bool enough = static_cast<double>(water.size()) >= opt.min_return_share * static_cast<double>(p.cells[s]);
         if (enough && !water.empty() && std::abs(measured - local) <= opt.level_tolerance_m) {
             p.returns[s] = water.size();
