@@ -10,7 +10,7 @@ TypeError for a wrong type) with the library's message.
 """
 from ._lidarfx import *  # noqa: F401,F403
 from ._lidarfx import Cancelled, has_io  # noqa: F401
-from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, HydroBody, HydroCheck,  # noqa: F401
+from ._types import (AzimuthSelection, Building, Buildings, ChannelJoin, Components, Grid, HydroBody, HydroCheck,  # noqa: F401
                      HydroFlattened, IrradianceMaps, KsResult, Rasters, RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers,
                      Survey,
                      WaterIssue, Waterbodies, Waterbody, Weather)

@@ -93,10 +93,12 @@ convex hull sweep, O(cells). dsm in metres (float32 read in place), cell_m in me
     ...
 
 
-def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
-(isotonic regression; decks and stretches without returns at the interpolated level), islands under
+(each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns
+at the interpolated level; sections beside a weir cut along its crest), pieces of one river cut apart at a weir
+or a deck joined into one body first (join_channels, with the water under the deck), islands under
 min_island_area_m2 flattened with the water, and shore ground below the water beside it lifted to it
 (shoreline='lift') or only counted ('flag'). Water under the minimum sizes (defaults: the USGS Lidar Base
 Specification's 2 acres, 100 ft, 1 acre, in metres) is left to the terrain.
@@ -105,7 +107,8 @@ dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (
 extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
 cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
 flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
-minimum_size per flattened body), shore_cells_below)."""
+minimum_size per flattened body), joins: list of ChannelJoin (kept, joined labels, gap_m, contact_m, gap_cells),
+shore_cells_below)."""
     ...
 
 

@@ -186,6 +186,16 @@ class HydroCheck:
 
 
 @dataclass(frozen=True)
+class ChannelJoin:
+    """Two pieces of one river that hydro_flatten joined (cut apart at a weir or a deck by the extraction)."""
+    kept: int                       #: the label the channel keeps (its smallest)
+    joined: int                     #: the label replaced
+    gap_m: float                    #: land crossed between the pieces, metres (0: they touch)
+    contact_m: float                #: how far the pieces face each other, metres
+    gap_cells: int                  #: land cells under the deck that joined the river
+
+
+@dataclass(frozen=True)
 class HydroFlattened:
     """hydro_flatten: the flattened DEM, the water surface and the checks."""
     dem: np.ndarray                 #: float32, metres
@@ -193,6 +203,7 @@ class HydroFlattened:
     body: np.ndarray                #: int32, id of the flattened body per cell, 0 elsewhere
     bodies: List[HydroBody]
     checks: List[HydroCheck]
+    joins: List[ChannelJoin]        #: pieces of one river joined (join_channels)
     shore_cells_below: int          #: shore cells found below the water (lifted with shoreline='lift')
 
 

@@ -122,7 +122,7 @@ py::object extract_waterbodies_binding(const py::handle& rasters, const py::hand
 py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& labels_arg, const py::handle& min_z_arg,
                                  const py::handle& max_z_arg, double cell_m, double min_lake_area_m2,
                                  double min_river_width_m, double min_island_area_m2, const std::string& shoreline,
-                                 int threads, py::object progress)
+                                 bool join_channels, int threads, py::object progress)
 {
     constexpr const char* fn = "hydro_flatten";
     if (shoreline != "lift" && shoreline != "flag")
@@ -136,6 +136,7 @@ py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& la
     opt.min_river_width_m = min_river_width_m;
     opt.min_island_area_m2 = min_island_area_m2;
     opt.shoreline = shoreline == "lift" ? shoreline_rule::lift : shoreline_rule::flag;
+    opt.join_channels = join_channels;
     run_settings rs(threads, std::move(progress));
     opt.run = rs.run();
     hydro_flatten_result r =
@@ -169,12 +170,23 @@ py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& la
         f["worst_col"] = q.worst_col;
         checks.append(make_result("HydroCheck", f));
     }
+    py::list joins;
+    for (const channel_join& j : r.joins) {
+        py::dict f;
+        f["kept"] = j.kept;
+        f["joined"] = j.joined;
+        f["gap_m"] = j.gap_m;
+        f["contact_m"] = j.contact_m;
+        f["gap_cells"] = j.gap_cells;
+        joins.append(make_result("ChannelJoin", f));
+    }
     py::dict fields;
     fields["dem"] = to_numpy(std::move(r.dem));
     fields["water_surface"] = to_numpy(std::move(r.water_surface));
     fields["body"] = to_numpy(std::move(r.body));
     fields["bodies"] = bodies;
     fields["checks"] = checks;
+    fields["joins"] = joins;
     fields["shore_cells_below"] = r.shorelines.below;
     return make_result("HydroFlattened", fields);
 }
@@ -204,10 +216,12 @@ Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...
 
     m.def("hydro_flatten", &hydro_flatten_binding, "dem"_a, "labels"_a, "min_z"_a, "max_z"_a, "cell_m"_a, py::kw_only(),
           "min_lake_area_m2"_a = 8093.71, "min_river_width_m"_a = 30.48, "min_island_area_m2"_a = 4046.86,
-          "shoreline"_a = "lift", "threads"_a = 1, "progress"_a = py::none(), R"doc(
+          "shoreline"_a = "lift", "join_channels"_a = true, "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
-(isotonic regression; decks and stretches without returns at the interpolated level), islands under
+(each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns
+at the interpolated level; sections beside a weir cut along its crest), pieces of one river cut apart at a weir
+or a deck joined into one body first (join_channels, with the water under the deck), islands under
 min_island_area_m2 flattened with the water, and shore ground below the water beside it lifted to it
 (shoreline='lift') or only counted ('flag'). Water under the minimum sizes (defaults: the USGS Lidar Base
 Specification's 2 acres, 100 ft, 1 acre, in metres) is left to the terrain.
@@ -216,7 +230,8 @@ dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (
 extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
 cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
 flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
-minimum_size per flattened body), shore_cells_below).)doc");
+minimum_size per flattened body), joins: list of ChannelJoin (kept, joined labels, gap_m, contact_m, gap_cells),
+shore_cells_below).)doc");
 }
 
 }  // namespace lidarfx::python

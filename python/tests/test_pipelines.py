@@ -70,6 +70,24 @@ def test_hydro_flatten_puts_the_lake_at_one_level_and_lifts_no_shore_above_it(rn
         lidarfx.hydro_flatten(dem, water.labels, rasters.min_z, rasters.max_z, 2.0, shoreline="sideways")
 
 
+def test_hydro_flatten_joins_a_river_cut_at_a_deck_and_flattens_under_it():
+    labels = np.zeros((100, 400), np.int32)
+    labels[40:80, :190] = 1
+    labels[40:80, 200:] = 2  # a 10 m deck over columns 190-199
+    water = 100.0 - 0.002 * np.arange(400, dtype=np.float32)
+    min_z = np.where(labels > 0, water, np.nan).astype(np.float32)
+    min_z[40:80, 190:200] = 106.0  # the deck
+    dem = np.where(np.isnan(min_z), 103.0, min_z).astype(np.float32)
+    flat = lidarfx.hydro_flatten(dem, labels, min_z, min_z, 1.0)
+    assert [(j.kept, j.joined, j.gap_cells) for j in flat.joins] == [(1, 2, 400)]
+    assert len(flat.bodies) == 1 and flat.bodies[0].type == "river"
+    assert np.all(flat.body[40:80, 190:200] == 1)
+    np.testing.assert_allclose(flat.dem[60, 190:200], water[190:200], atol=0.03)
+    apart = lidarfx.hydro_flatten(dem, labels, min_z, min_z, 1.0, join_channels=False)
+    assert apart.joins == [] and len(apart.bodies) == 2
+    assert np.all(apart.dem[60, 190:200] == 106.0)
+
+
 def test_extract_waterbodies_refuses_data_too_sparse_for_its_cells(rng):
     points, _ = lake_survey(rng, density_per_m2=0.2)
     result = lidarfx.extract_waterbodies(lidarfx.rasterize(*points, 1.0))

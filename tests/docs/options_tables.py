@@ -31,7 +31,7 @@ STRUCTS = [
                                 "sky_view_factor_options", "clear_sky_options", "irradiance_record"]),
     ("Solar irradiation", ["solar_site", "irradiance_maps_options", "sky_options", "perez_diffuse_options"]),
     ("Waterbodies", ["extract_waterbodies_options"]),
-    ("Hydro-flattening", ["hydro_flatten_options", "lake_level_options", "river_profile_options"]),
+    ("Hydro-flattening", ["hydro_flatten_options", "channel_join_options", "lake_level_options", "river_profile_options"]),
     ("Buildings", ["extract_buildings_options", "ground_model_options", "building_candidates_options",
                    "local_planes_options", "grow_roof_surfaces_options", "merge_roof_surfaces_options"]),
     ("Rooftop PV", ["roof_suitability_options", "roof_planes_options", "azimuth_mode_select_options",

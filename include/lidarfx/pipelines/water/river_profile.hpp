@@ -93,7 +93,9 @@ struct river_profile {
 ///     weir_min_drop_m at every step, by at least weir_min_drop_m in all, from an upper level to a lower one)
 ///     is followed cell by cell: within half the river's width plus one section of it, each cell takes the upper
 ///     or the lower level, whichever its water_z is nearer (cells without a height near either take the side of
-///     the nearest cell that has one). The upper cells join the weir's last upper section, the lower cells its
+///     the nearest cell that has one). A cell the crest crosses reads the lower pool (its lowest return), so when
+///     those cells lie along a straight line, the cells within one cell of it take the side their centre lies on.
+///     The upper cells join the weir's last upper section, the lower cells its
 ///     first lower section, and the sections between are left without cells (at the lower level). An oblique weir
 ///     then leaves no section straddling it; every section stays flat and the profile still only falls.
 /// O(n log n) in the body's n cells.

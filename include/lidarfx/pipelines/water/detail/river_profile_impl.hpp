@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -99,6 +100,70 @@ inline double weighted_slope(const std::vector<double>& level, const std::vector
     return den > 0 ? (sw * sxy - sx * sy) / den : 0.0;
 }
 
+/// Places the crest of a straight weir to within a fraction of a cell. `side` holds 0 (upper pool), 1 (lower pool)
+/// or -1 (elsewhere) per cell. A cell the crest crosses holds returns of the lower pool, so its lowest return puts
+/// it there: the lower cells beside upper ones are the cells the crest crosses, and their centres lie either side
+/// of it. When they lie along a straight line (root mean square distance at most 0.6 cells, at least 4 of them),
+/// the cells within one cell of that line take the side their centre lies on.
+inline void place_straight_crest(raster<std::int8_t>& side)
+{
+    std::vector<std::array<double, 2>> crossed;
+    const auto is = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int8_t v) {
+        return r >= 0 && r < side.rows() && c >= 0 && c < side.cols() && side(r, c) == v;
+    };
+    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
+            if (side(r, c) == 1 && (is(r - 1, c, 0) || is(r + 1, c, 0) || is(r, c - 1, 0) || is(r, c + 1, 0)))
+                crossed.push_back({static_cast<double>(r), static_cast<double>(c)});
+    if (crossed.size() < 4) return;
+    double mr = 0, mc = 0;
+    for (const auto& x : crossed) {
+        mr += x[0];
+        mc += x[1];
+    }
+    mr /= static_cast<double>(crossed.size());
+    mc /= static_cast<double>(crossed.size());
+    double srr = 0, src = 0, scc = 0;
+    for (const auto& x : crossed) {
+        srr += (x[0] - mr) * (x[0] - mr);
+        src += (x[0] - mr) * (x[1] - mc);
+        scc += (x[1] - mc) * (x[1] - mc);
+    }
+    const double count = static_cast<double>(crossed.size());
+    srr /= count;
+    src /= count;
+    scc /= count;
+    // The smaller eigenvalue of the covariance is the mean squared distance to the best line; its eigenvector is
+    // the line's normal.
+    const double half_trace = 0.5 * (srr + scc), root = std::sqrt(0.25 * (srr - scc) * (srr - scc) + src * src);
+    const double minor = half_trace - root;
+    if (minor > 0.36) return;
+    double nr = src, nc = minor - srr;  // (srr − λ) nr + src nc = 0
+    if (std::abs(nr) + std::abs(nc) < 1e-12) {
+        nr = srr <= scc ? 1 : 0;
+        nc = srr <= scc ? 0 : 1;
+    }
+    const double norm = std::hypot(nr, nc);
+    nr /= norm;
+    nc /= norm;
+    const auto offset = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return (static_cast<double>(r) - mr) * nr + (static_cast<double>(c) - mc) * nc;
+    };
+    double upper_side = 0;  // the upper cells near the line lie on the negative side
+    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
+            if (side(r, c) >= 0 && std::abs(offset(r, c)) <= 3)
+                upper_side += side(r, c) == 0 ? offset(r, c) : -offset(r, c);
+    if (upper_side > 0) {
+        nr = -nr;
+        nc = -nc;
+    }
+    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
+            if (const double d = offset(r, c); side(r, c) >= 0 && std::abs(d) <= 1 && d != 0)
+                side(r, c) = d < 0 ? 0 : 1;
+}
+
 /// Re-cuts the sections around each weir along the weir itself. A weir zone is a run of neighbouring sections
 /// [a, b] whose levels fall by more than a quarter of weir_min_drop_m at every step and by at least
 /// weir_min_drop_m in all; around it (reach sections either side) each cell takes the upper level `level[a]`
@@ -147,6 +212,7 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
                     front.push_back(rr * box.cols() + cc);
                 }
         }
+        place_straight_crest(side);
         for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
             for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
                 std::int32_t& k = p.section(r, c);
