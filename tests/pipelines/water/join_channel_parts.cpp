@@ -45,6 +45,17 @@ std::vector<cell_box> boxes_of(const raster<std::int32_t>& labels)
     return box;
 }
 
+/// The water's heights: 100 m on every body, or `level[l]` on label l; NaN on land.
+raster<float> heights_of(const raster<std::int32_t>& labels, const std::vector<float>& level = {})
+{
+    raster<float> z(labels.rows(), labels.cols(), NAN);
+    for (std::ptrdiff_t r = 0; r < labels.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < labels.cols(); ++c)
+            if (const std::int32_t l = labels(r, c); l > 0)
+                z(r, c) = static_cast<std::size_t>(l) < level.size() ? level[static_cast<std::size_t>(l)] : 100.0f;
+    return z;
+}
+
 std::size_t cells_of(const raster<std::int32_t>& labels, std::int32_t l)
 {
     std::size_t n = 0;
@@ -56,6 +67,7 @@ std::size_t cells_of(const raster<std::int32_t>& labels, std::int32_t l)
 
 using join_channel_parts_test::boxes_of;
 using join_channel_parts_test::cells_of;
+using join_channel_parts_test::heights_of;
 using join_channel_parts_test::paint;
 
 TEST_CASE("water/join_channel_parts: two pieces of a channel that touch at a weir become one body")
@@ -64,7 +76,7 @@ TEST_CASE("water/join_channel_parts: two pieces of a channel that touch at a wei
     paint(labels, 1, 40, 60, 20, 200);   // 20 m wide, 180 m long
     paint(labels, 2, 40, 60, 200, 380);  // the pool below the weir
     auto box = boxes_of(labels);
-    const auto joins = join_channel_parts(labels, box, 1.0);
+    const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
     REQUIRE(joins.size() == 1);
     CHECK(joins[0].kept == 1);
     CHECK(joins[0].joined == 2);
@@ -83,7 +95,7 @@ TEST_CASE("water/join_channel_parts: across a deck the water under it joins, the
     paint(labels, 1, 40, 60, 20, 200);
     paint(labels, 2, 40, 60, 212, 380);  // a 12 m deck over columns 200-211
     auto box = boxes_of(labels);
-    const auto joins = join_channel_parts(labels, box, 1.0);
+    const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
     REQUIRE(joins.size() == 1);
     CHECK(joins[0].gap_m == doctest::Approx(12).epsilon(0.01));
     CHECK(joins[0].gap_cells == 12 * 20);
@@ -97,6 +109,34 @@ TEST_CASE("water/join_channel_parts: across a deck the water under it joins, the
     CHECK(cells_of(labels, 1) == 20 * 360);
 }
 
+TEST_CASE("water/join_channel_parts: pools a weir apart join; water a dam or a bank apart does not")
+{
+    auto labels = join_channel_parts_test::land();
+    paint(labels, 1, 40, 60, 20, 200);
+    paint(labels, 2, 40, 60, 200, 380);
+    auto box = boxes_of(labels);
+    auto weir = labels, dam = labels;
+    auto weir_box = box, dam_box = box;
+    CHECK(join_channel_parts(weir, weir_box, heights_of(labels, {0, 100, 98.6f}), 1.0).size() == 1);  // 1.4 m
+    CHECK(join_channel_parts(dam, dam_box, heights_of(labels, {0, 100, 97}), 1.0).empty());           // 3 m
+    CHECK(dam == labels);
+    CHECK(join_channel_parts(dam, dam_box, heights_of(labels, {0, 100, 97}), 1.0, {.max_level_step_m = INFINITY})
+              .size() == 1);
+    CHECK_THROWS_AS(join_channel_parts(dam, dam_box, heights_of(labels), 1.0, {.max_level_step_m = NAN}),
+                    invalid_input);
+    raster<float> other_shape(10, 10, 100.0f);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, other_shape, 1.0), invalid_input);
+}
+
+TEST_CASE("water/join_channel_parts: a pond beside a stream, its water 1 m higher and together no river, stays apart")
+{
+    auto labels = join_channel_parts_test::land();
+    paint(labels, 1, 10, 30, 20, 220);  // a 20 m stream, 200 m long
+    paint(labels, 2, 30, 70, 60, 150);  // a pond along its side, 40 m wide and 90 m long
+    auto box = boxes_of(labels);
+    CHECK(join_channel_parts(labels, box, heights_of(labels, {0, 100, 101}), 1.0).empty());
+}
+
 TEST_CASE("water/join_channel_parts: a gap wider than max_gap_m stays land, as a wider one at a larger max_gap_m joins")
 {
     auto labels = join_channel_parts_test::land();
@@ -105,9 +145,9 @@ TEST_CASE("water/join_channel_parts: a gap wider than max_gap_m stays land, as a
     auto box = boxes_of(labels);
     auto kept = labels;
     auto kept_box = box;
-    CHECK(join_channel_parts(kept, kept_box, 1.0).empty());
+    CHECK(join_channel_parts(kept, kept_box, heights_of(kept), 1.0).empty());
     CHECK(kept == labels);
-    const auto joins = join_channel_parts(labels, box, 1.0, {.max_gap_m = 45});
+    const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0, {.max_gap_m = 45});
     REQUIRE(joins.size() == 1);
     CHECK(joins[0].gap_cells == 40 * 20);
 }
@@ -122,7 +162,7 @@ TEST_CASE(
         paint(labels, 1, 10, 30, 40, 340);
         paint(labels, 2, 40, 60, 40, 340);
         auto box = boxes_of(labels);
-        CHECK(join_channel_parts(labels, box, 1.0).empty());
+        CHECK(join_channel_parts(labels, box, heights_of(labels), 1.0).empty());
     }
     SUBCASE("a 20 m river touching a lake 90 m across")
     {
@@ -130,7 +170,7 @@ TEST_CASE(
         paint(labels, 1, 40, 60, 0, 250);
         paint(labels, 2, 5, 95, 250, 340);
         auto box = boxes_of(labels);
-        CHECK(join_channel_parts(labels, box, 1.0).empty());
+        CHECK(join_channel_parts(labels, box, heights_of(labels), 1.0).empty());
     }
     SUBCASE("two 40 m ponds either side of a 3 m dam")
     {
@@ -138,8 +178,9 @@ TEST_CASE(
         paint(labels, 1, 30, 70, 100, 140);
         paint(labels, 2, 30, 70, 143, 183);
         auto box = boxes_of(labels);
-        CHECK(join_channel_parts(labels, box, 1.0).empty());
-        CHECK(join_channel_parts(labels, box, 1.0, {.min_elongation = 2}).size() == 1);  // as one body, 2 long
+        CHECK(join_channel_parts(labels, box, heights_of(labels), 1.0).empty());
+        CHECK(join_channel_parts(labels, box, heights_of(labels), 1.0, {.min_elongation = 2}).size() ==
+              1);  // as one body, 2 long
     }
     SUBCASE("a ditch 6 m wide touching a channel end to end")
     {
@@ -147,7 +188,7 @@ TEST_CASE(
         paint(labels, 1, 40, 60, 20, 200);
         paint(labels, 2, 47, 53, 200, 380);
         auto box = boxes_of(labels);
-        CHECK(join_channel_parts(labels, box, 1.0).empty());
+        CHECK(join_channel_parts(labels, box, heights_of(labels), 1.0).empty());
     }
 }
 
@@ -159,7 +200,7 @@ TEST_CASE("water/join_channel_parts: a chain of pieces takes the smallest label;
     paint(labels, 2, 40, 60, 258, 400);  // beyond a deck
     paint(labels, 4, 80, 90, 10, 30);    // a small pond, nowhere near
     auto box = boxes_of(labels);
-    const auto joins = join_channel_parts(labels, box, 1.0);
+    const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
     REQUIRE(joins.size() == 2);
     CHECK(joins[0].kept == 1);
     CHECK(joins[0].joined == 2);
@@ -176,18 +217,18 @@ TEST_CASE("water/join_channel_parts: refuses options out of range, negative labe
     auto labels = join_channel_parts_test::land();
     paint(labels, 1, 40, 60, 20, 200);
     auto box = boxes_of(labels);
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 0.0), invalid_input);
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0, {.max_gap_m = -1}), invalid_input);
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0, {.min_contact_share = 0}), invalid_input);
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0, {.max_width_ratio = 0.5}), invalid_input);
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0, {.min_elongation = NAN}), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 0.0), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0, {.max_gap_m = -1}), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0, {.min_contact_share = 0}), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0, {.max_width_ratio = 0.5}), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0, {.min_elongation = NAN}), invalid_input);
     auto narrow = box;
     narrow[1].col_max = 100;
-    CHECK_THROWS_AS(join_channel_parts(labels, narrow, 1.0), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, narrow, heights_of(labels), 1.0), invalid_input);
     labels(0, 0) = 5;  // no box for it
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0), invalid_input);
     labels(0, 0) = -1;
-    CHECK_THROWS_AS(join_channel_parts(labels, box, 1.0), invalid_input);
+    CHECK_THROWS_AS(join_channel_parts(labels, box, heights_of(labels), 1.0), invalid_input);
 }
 
 TEST_CASE(

@@ -23,7 +23,11 @@ struct channel_join_options {
                                      ///< one's width, in (0, 1]. Default 0.5
     double max_width_ratio = 2.5;    ///< the wider part is at most this many times as wide as the narrower
                                      ///< (a river's pool, not a lake it flows into), >= 1. Default 2.5
-    double min_elongation = 6.0;     ///< the two parts end to end are at least this many widths long (a river,
+    double max_level_step_m = 2.0;   ///< the water either side of where they meet (the median lowest return of
+                                     ///< the facing cells) differs by at most this: a weir, not a dam between a
+                                     ///< reservoir and the river below it, nor a pond beside a stream, metres,
+                                     ///< >= 0 (+inf: any). Default 2 m
+    double min_elongation = 6.0;     ///< the two parts as one body are at least this many widths long (a river,
                                      ///< not two ponds beside a dam), >= 1. Default 6, hydro_flatten's
                                      ///< min_river_elongation
 };
@@ -45,17 +49,23 @@ struct channel_join {
 ///    √2 cells, through no third body) crosses at most max_gap_m of it;
 ///  - they face each other along at least min_contact_share of the narrower width: the cells of each part within
 ///    3 cells of the other's closest approach span that far (their two farthest cell centres, plus a cell);
-///    across a gap also at most twice the wider width (parallel channels beside each other are not one);
-///  - end to end they are a river: (length_a + length_b + gap)² / (area_a + area_b) >= min_elongation.
+///    across a gap also at most twice the wider width (parallel channels beside each other are not one; pieces
+///    that touch may face each other further: a strip of one pool taken into the other's piece);
+///  - the median of `heights` (the water's heights, e.g. the lowest return per cell, metres, NaN where none) over
+///    each part's facing cells differ by at most max_level_step_m (not checked when a side has none);
+///  - together, with the land between them that a join adds, they are a river: their hydro_body_shape's
+///    elongation is at least min_elongation.
 /// Pairs are decided independently, then joined transitively, every part taking the smallest label of its
 /// channel (empty boxes are left for the labels that went). Across a gap, the land cells inside the convex hull
 /// of both sides' facing cells take the label: the water under the deck, not the banks beside it.
-/// O(cells + sum over parts wider than min_part_width_m of the land within max_gap_m of them, times its log).
+/// O(cells + sum over parts wider than min_part_width_m of the land within max_gap_m of them, times its log, +
+/// the boxes of the pairs that pass the other tests).
 /// Returns the joins, ordered by (kept, joined).
-/// @throws invalid_input on cell_m not finite and > 0, options out of range, a negative label or a label without
-/// its box.
+/// @throws invalid_input on rasters of different shapes, cell_m not finite and > 0, options out of range, a
+/// negative label or a label without its box.
 inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> labels, std::vector<cell_box>& box,
-                                                    double cell_m, const channel_join_options& opt = {});
+                                                    raster_view<const float> heights, double cell_m,
+                                                    const channel_join_options& opt = {});
 
 }  // namespace lidarfx
 

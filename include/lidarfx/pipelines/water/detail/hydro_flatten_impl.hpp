@@ -112,7 +112,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
     for (const std::int32_t l : filled) top = std::max(top, l);
     std::vector<cell_box> box = detail::label_boxes(filled, top);
     detail::split_into_parts(filled, box);
-    if (opt.join_channels) out.joins = join_channel_parts(filled, box, cell_m, opt.join);
+    if (opt.join_channels) out.joins = join_channel_parts(filled, box, min_z, cell_m, opt.join);
     top = static_cast<std::int32_t>(box.size()) - 1;
     const raster<float> water_z = water_heights(filled, min_z, max_z);
 

@@ -35,6 +35,7 @@ inline void validate(const channel_join_options& o, const char* fn)
             o.max_width_ratio);
     require(std::isfinite(o.min_elongation) && o.min_elongation >= 1, fn, "min_elongation", "finite and >= 1",
             o.min_elongation);
+    require(o.max_level_step_m >= 0, fn, "max_level_step_m", ">= 0", o.max_level_step_m);
 }
 
 using grid_cell = std::array<std::ptrdiff_t, 2>;  // (row, col)
@@ -167,12 +168,46 @@ inline std::size_t fill_hull(raster_view<std::int32_t> labels, std::vector<grid_
     return filled;
 }
 
+/// The elongation (hydro_body_shape) of parts `a` and `b` of `labels` taken as one body, with the land in the
+/// convex hull of their facing cells (what a join across a gap adds).
+inline double joined_elongation(raster_view<const std::int32_t> labels, std::int32_t a, std::int32_t b,
+                                const cell_box& box_a, const cell_box& box_b, const std::vector<grid_cell>& facing,
+                                double cell_m)
+{
+    const cell_box u{std::min(box_a.row_min, box_b.row_min), std::min(box_a.col_min, box_b.col_min),
+                     std::max(box_a.row_max, box_b.row_max), std::max(box_a.col_max, box_b.col_max)};
+    raster<std::int32_t> both(u.rows(), u.cols(), 0);
+    for (std::ptrdiff_t r = 0; r < u.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < u.cols(); ++c) {
+            const std::int32_t l = labels(u.row_min + r, u.col_min + c);
+            both(r, c) = l == a || l == b ? 1 : (l == 0 ? 0 : -1);
+        }
+    std::vector<grid_cell> local;
+    for (const grid_cell& g : facing) local.push_back({g[0] - u.row_min, g[1] - u.col_min});
+    cell_box whole{0, 0, u.rows() - 1, u.cols() - 1};
+    fill_hull(both, std::move(local), 1, whole);
+    return measure_hydro_body_shape(both, 1, {0, 0, u.rows() - 1, u.cols() - 1}, cell_m).elongation();
+}
+
+/// The median of the finite `heights` at `cells` (the upper one of an even count), NaN when none.
+inline double median_height(raster_view<const float> heights, const std::vector<grid_cell>& cells)
+{
+    std::vector<float> v;
+    for (const grid_cell& g : cells)
+        if (const float z = heights(g[0], g[1]); std::isfinite(z)) v.push_back(z);
+    if (v.empty()) return NAN;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
 }  // namespace detail
 
 inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> labels, std::vector<cell_box>& box,
-                                                    double cell_m, const channel_join_options& opt)
+                                                    raster_view<const float> heights, double cell_m,
+                                                    const channel_join_options& opt)
 {
     constexpr const char* fn = "join_channel_parts";
+    detail::require_same_shape(labels, heights, fn, "labels", "heights");
     detail::require_positive(cell_m, fn, "cell_m");
     detail::validate(opt, fn);
     std::vector<std::size_t> cells(box.size(), 0);
@@ -225,13 +260,16 @@ inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> la
             const double gap_m = touch ? 0.0 : std::min(of_a.closest_m, of_b.closest_m) - cell_m;
             const double contact_m =
                 std::min(detail::spread_m(of_a.cells, cell_m), detail::spread_m(of_b.cells, cell_m));
-            const double length_m = shape[a].length_m + shape[ub].length_m + gap_m;
-            const double area_m2 = shape[a].area_m2 + shape[ub].area_m2;
             if (broad > opt.max_width_ratio * narrow || contact_m < opt.min_contact_share * narrow ||
-                (!touch && contact_m > 2 * broad) || length_m * length_m < opt.min_elongation * area_m2)
+                (!touch && contact_m > 2 * broad))
                 continue;
+            const double step_m =
+                std::abs(detail::median_height(heights, of_a.cells) - detail::median_height(heights, of_b.cells));
+            if (step_m > opt.max_level_step_m) continue;  // NaN (no heights on a side) does not refuse
             accepted p{static_cast<std::int32_t>(a), b, gap_m, contact_m, of_a.cells};
             p.facing.insert(p.facing.end(), of_b.cells.begin(), of_b.cells.end());
+            if (detail::joined_elongation(labels, p.a, p.b, box[a], box[ub], p.facing, cell_m) < opt.min_elongation)
+                continue;
             const std::int32_t ra = find(p.a), rb = find(p.b);
             root[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
             pairs.push_back(std::move(p));
