@@ -48,13 +48,13 @@
 #include "lidarfx/kernels/stats/ks_one_sided.hpp"
 #include "lidarfx/kernels/stats/zonal_statistics.hpp"
 #include "lidarfx/kernels/vector/burn_polygons.hpp"
+#include "lidarfx/kernels/vector/convex_hull.hpp"
 #include "lidarfx/kernels/vector/polygonize.hpp"
 
 // pipelines: methods composed of kernels
 #include "lidarfx/pipelines/buildings/building_candidates.hpp"
 #include "lidarfx/pipelines/buildings/building_heights.hpp"
 #include "lidarfx/pipelines/buildings/building_outlines.hpp"
-#include "lidarfx/pipelines/buildings/convex_hull.hpp"
 #include "lidarfx/pipelines/buildings/extract_buildings.hpp"
 #include "lidarfx/pipelines/buildings/facade_lit.hpp"
 #include "lidarfx/pipelines/buildings/facade_observers.hpp"

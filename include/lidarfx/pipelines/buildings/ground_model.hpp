@@ -19,7 +19,7 @@
 #include "lidarfx/kernels/filter/angular_filter.hpp"
 #include "lidarfx/kernels/interpolate/idw_fill.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
-#include "lidarfx/pipelines/buildings/convex_hull.hpp"
+#include "lidarfx/kernels/vector/convex_hull.hpp"
 
 namespace lidarfx {
 

@@ -18,6 +18,7 @@
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/vector/convex_hull.hpp"
 #include "lidarfx/pipelines/water/hydro_body_shape.hpp"
 
 namespace lidarfx {
@@ -127,38 +128,26 @@ inline double spread_m(const std::vector<grid_cell>& cells, double cell_m)
 
 /// Gives `label` to the land cells of `labels` whose centre lies inside the convex hull of `cells` (or within
 /// half a cell of its edges). Returns how many.
-inline std::size_t fill_hull(raster_view<std::int32_t> labels, std::vector<grid_cell> cells, std::int32_t label,
+inline std::size_t fill_hull(raster_view<std::int32_t> labels, const std::vector<grid_cell>& cells, std::int32_t label,
                              cell_box& box)
 {
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-    const auto cross = [](const grid_cell& o, const grid_cell& a, const grid_cell& b) {
-        return static_cast<double>(a[0] - o[0]) * static_cast<double>(b[1] - o[1]) -
-               static_cast<double>(a[1] - o[1]) * static_cast<double>(b[0] - o[0]);
-    };
-    std::vector<grid_cell> hull(2 * cells.size());  // Andrew's monotone chain
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], cells[i]) <= 0) --k;
-        hull[k++] = cells[i];
-    }
-    for (std::size_t i = cells.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && cross(hull[k - 2], hull[k - 1], cells[i]) <= 0) --k;
-        hull[k++] = cells[i];
-    }
-    hull.resize(k > 1 ? k - 1 : k);
+    std::vector<cell_point> points;  // (col, row)
+    for (const grid_cell& g : cells) points.push_back({g[1], g[0]});
+    const std::vector<cell_point> hull = convex_hull(std::move(points));
     if (hull.size() < 3) return 0;
     cell_box span;
-    for (const grid_cell& h : hull) span.extend(h[0], h[1]);
+    for (const cell_point& h : hull) span.extend(h[1], h[0]);
     std::size_t filled = 0;
     for (std::ptrdiff_t r = span.row_min; r <= span.row_max; ++r)
         for (std::ptrdiff_t c = span.col_min; c <= span.col_max; ++c) {
             if (labels(r, c) != 0) continue;
-            bool inside = true;
+            bool inside = true;  // counter-clockwise in (col, row): inside is left of every edge
             for (std::size_t i = 0; i < hull.size() && inside; ++i) {
-                const grid_cell& a = hull[i];
-                const grid_cell& b = hull[(i + 1) % hull.size()];
-                inside = cross(a, b, {r, c}) >= -0.5 * std::sqrt(cell_distance2(a, b));
+                const cell_point& a = hull[i];
+                const cell_point& b = hull[(i + 1) % hull.size()];
+                const auto dc = static_cast<double>(b[0] - a[0]), dr = static_cast<double>(b[1] - a[1]);
+                const double left = dc * static_cast<double>(r - a[1]) - dr * static_cast<double>(c - a[0]);
+                inside = left >= -0.5 * std::hypot(dc, dr);
             }
             if (!inside) continue;
             labels(r, c) = label;
@@ -185,7 +174,7 @@ inline double joined_elongation(raster_view<const std::int32_t> labels, std::int
     std::vector<grid_cell> local;
     for (const grid_cell& g : facing) local.push_back({g[0] - u.row_min, g[1] - u.col_min});
     cell_box whole{0, 0, u.rows() - 1, u.cols() - 1};
-    fill_hull(both, std::move(local), 1, whole);
+    fill_hull(both, local, 1, whole);
     return measure_hydro_body_shape(both, 1, {0, 0, u.rows() - 1, u.cols() - 1}, cell_m).elongation();
 }
 
@@ -291,8 +280,7 @@ inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> la
     for (accepted& p : pairs) {
         const std::int32_t kept = find(p.a);
         channel_join j{kept, p.b, p.gap_m, p.contact_m, 0};
-        if (p.gap_m > 0)
-            j.gap_cells = detail::fill_hull(labels, std::move(p.facing), kept, box[static_cast<std::size_t>(kept)]);
+        if (p.gap_m > 0) j.gap_cells = detail::fill_hull(labels, p.facing, kept, box[static_cast<std::size_t>(kept)]);
         joins.push_back(j);
     }
     std::sort(joins.begin(), joins.end(), [](const channel_join& x, const channel_join& y) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // convex_hull: the exact convex hull of integer cell positions, and burn_convex, which marks the cells whose
-// centres lie inside (or on) such a hull (ground_model's hull of each edge object).
+// centres lie inside (or on) such a hull (ground_model's hull of each edge object; join_channel_parts' deck).
 #pragma once
 
 #include <algorithm>

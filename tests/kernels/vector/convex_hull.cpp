@@ -5,7 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/core/raster.hpp>
-#include <lidarfx/pipelines/buildings/convex_hull.hpp>
+#include <lidarfx/kernels/vector/convex_hull.hpp>
 
 #include <algorithm>
 #include <array>
