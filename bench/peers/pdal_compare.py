@@ -6,6 +6,7 @@ comparison of lidarfx's min_z / max_z / count GeoTIFFs with the bands of PDAL's 
     pdal_compare.py compare  LIDARFX_DIR LIDARFX_LOG CELL IN.las PDAL.tif         -> table of differing cells;
                                                                                      exit 1 if a difference
                                                                                      is not the edge rule's
+    pdal_compare.py gdalopts                                                       -> PDAL's creation options
 LIDARFX_DIR holds the outputs of `lidarfx rasterize IN.las --cell CELL`, LIDARFX_LOG its standard output.
 
 Same coordinates: lidarfx works in metres (x, y and z of a file in feet are multiplied by the metres per
@@ -13,6 +14,10 @@ unit, then binned on a grid of CELL-metre cells); for such a file PDAL gets the 
 (filters.assign X = X * u, Y = Y * u, Z = Z * u_z), so both bin and write the same doubles. The unit comes
 from lidarfx's grid (CELL over its GeoTIFF's pixel size, snapped to the unit it names) and its log line
 "read in <unit> (z <unit>), converted to metres".
+
+Same files: PDAL's writers.gdal (GDAL's GTiff driver) gets the creation options lidarfx's COG writer uses,
+read from examples/io/geotiff.cpp: the compression and its level (COG's LEVEL is GTiff's ZLEVEL), the
+predictor and the tile size. lidarfx also writes overviews, PDAL does not.
 
 Same grid: PDAL gets origin_x = x0, origin_y = y0 - rows * cell, width = cols and height = rows of lidarfx's
 grid. Two binning rules remain (docs/conventions.md, "One edge rule"): lidarfx puts a point on an interior
@@ -23,13 +28,18 @@ both rules in NumPy; a cell whose points differ between the rules is "explained 
 other differing cell is a real mismatch. Run with Debian's /usr/bin/python3 (python3-gdal, numpy).
 """
 import json
+import os
 import re
 import sys
 
-import numpy as np
-from osgeo import gdal
+try:  # `gdalopts` needs neither
+    import numpy as np
+    from osgeo import gdal
+except ImportError:
+    np = gdal = None
 
-gdal.UseExceptions()
+if gdal is not None:
+    gdal.UseExceptions()
 
 
 # Metres per unit, by the names lidarfx prints (examples/io/crs.cpp).
@@ -84,6 +94,22 @@ def pdal_origin_y(grid):
     return float(repr(y0 - rows * cell))
 
 
+GEOTIFF_CPP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "io", "geotiff.cpp")
+
+
+def gdalopts(source=None):
+    """GTiff creation options equal to the COG options of lidarfx's GeoTIFF writer (examples/io/geotiff.cpp):
+    COMPRESS, its LEVEL (as ZLEVEL), PREDICTOR (FLOATING_POINT = 3) and BLOCKSIZE (as 256 x 256 tiles)."""
+    text = open(source or GEOTIFF_CPP, encoding="utf-8").read()
+    found = dict(re.findall(r'"(COMPRESS|LEVEL|PREDICTOR|BLOCKSIZE)=([A-Z0-9_]+)"', text))
+    missing = {"COMPRESS", "LEVEL", "PREDICTOR", "BLOCKSIZE"} - set(found)
+    if missing:
+        raise SystemExit(f"pdal_compare.py: {sorted(missing)} not found in {source or GEOTIFF_CPP}")
+    predictor = {"FLOATING_POINT": "3", "HORIZONTAL": "2", "NO": "1"}.get(found["PREDICTOR"], found["PREDICTOR"])
+    return (f"COMPRESS={found['COMPRESS']},ZLEVEL={found['LEVEL']},PREDICTOR={predictor},TILED=YES,"
+            f"BLOCKXSIZE={found['BLOCKSIZE']},BLOCKYSIZE={found['BLOCKSIZE']},BIGTIFF=IF_SAFER")
+
+
 def pipeline(lidarfx_dir, log, cell_m, las, out_tif, threads):
     """readers.las [-> filters.assign to metres] -> writers.gdal (binmode, min/max/count/mean, float32,
     DEFLATE tiled, the same creation options as lidarfx's examples/io/geotiff.cpp) on lidarfx's grid."""
@@ -97,7 +123,7 @@ def pipeline(lidarfx_dir, log, cell_m, las, out_tif, threads):
     stages.append({"type": "writers.gdal", "filename": out_tif, "resolution": cell, "binmode": True,
                    "output_type": "min,max,count,mean", "data_type": "float", "nodata": -9999,
                    "origin_x": x0, "origin_y": pdal_origin_y(grid), "width": cols, "height": rows,
-                   "gdalopts": "COMPRESS=DEFLATE,PREDICTOR=3,TILED=YES,BIGTIFF=IF_SAFER"})
+                   "gdalopts": gdalopts()})
     return {"pipeline": stages}
 
 
@@ -216,6 +242,9 @@ def main(argv):
         return 0
     if len(argv) == 7 and argv[1] == "compare":
         return compare(*argv[2:])
+    if len(argv) == 2 and argv[1] == "gdalopts":
+        print(gdalopts())
+        return 0
     sys.exit(__doc__)
 
 

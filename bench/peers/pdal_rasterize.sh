@@ -6,7 +6,8 @@
 # PDAL / lidarfx (> 1: lidarfx is faster) and the CPU's vector extensions, and compares lidarfx's min_z,
 # max_z and count GeoTIFFs with PDAL's bands cell for cell (bench/peers/pdal_compare.py: differing cells,
 # how many the documented edge rule explains, largest difference; exit 1 when a difference is not the edge
-# rule's). PDAL writes with lidarfx's GeoTIFF creation options and, for a file in feet, gets lidarfx's
+# rule's). PDAL writes with lidarfx's GeoTIFF creation options (compression, level, predictor, tile size, read
+# from examples/io/geotiff.cpp by pdal_compare.py gdalopts; printed below) and, for a file in feet, gets lidarfx's
 # conversion to metres first (filters.assign). Skips with a message when pdal is absent.
 #
 # Usage: bash bench/peers/pdal_rasterize.sh [IN.las] [CELL]    (after `cmake --preset bench &&
@@ -93,6 +94,7 @@ print(min(r["times"]), r["user"] + r["system"])' "$work/hf.json"
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores; vector extensions:" \
      "$(grep -m1 -o -w -E 'avx512f|avx2|sse4_2' /proc/cpuinfo | sort -u | xargs)"
 echo "file: $input ($(du -h "$input" | cut -f1)), cell $cell, threads $threads; $pdal ($pdal_version)"
+echo "GeoTIFF creation options of both: $("$python" "$compare_py" gdalopts) (lidarfx also writes overviews)"
 # An untimed run of each first: it warms the page cache, and lidarfx's grid and log set PDAL's grid and
 # unit conversion (pdal_compare.py).
 "${lidarfx_cmd[@]}" >"$work/lidarfx.log" 2>&1 || { cat "$work/lidarfx.log" >&2; exit 1; }
