@@ -7,7 +7,8 @@ from typing import Any, Callable, Mapping, Optional, Union
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps, KsResult, Rasters,
+from ._types import (AzimuthSelection, Building, Buildings, ChannelJoin, Components, Grid, HydroBody, HydroCheck,
+                     HydroFlattened, IrradianceMaps, KsResult, Rasters,
                      RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers, Survey, WaterIssue,
                      Waterbodies, Waterbody, Weather)
 
@@ -93,7 +94,7 @@ convex hull sweep, O(cells). dsm in metres (float32 read in place), cell_m in me
     ...
 
 
-def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> HydroFlattened:
     """Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
 (each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns

@@ -9,7 +9,7 @@ import lidarfx._lidarfx as extension
 
 RESULTS = {"azimuth_mode_select": "AzimuthSelection", "clear_sky_year": "Weather",
            "connected_components": "Components", "extract_buildings": "Buildings",
-           "extract_waterbodies": "Waterbodies", "irradiance_maps": "IrradianceMaps", "ks_one_sided": "KsResult",
+           "extract_waterbodies": "Waterbodies", "hydro_flatten": "HydroFlattened", "irradiance_maps": "IrradianceMaps", "ks_one_sided": "KsResult",
            "rasterize": "Rasters", "read_survey": "Survey", "read_tmy3": "Weather",
            "roof_suitability": "RoofSuitability", "slope_aspect": "SlopeAspect", "remove_surface_outliers": "SurfaceOutliers", "sun_position": "SunPosition"}
 ARGUMENTS = {"rasters": "Union[Rasters, Mapping[str, ArrayLike], Any]", "weather": "Weather",
@@ -27,7 +27,8 @@ from typing import Any, Callable, Mapping, Optional, Union
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._types import (AzimuthSelection, Building, Buildings, Components, Grid, IrradianceMaps, KsResult, Rasters,
+from ._types import (AzimuthSelection, Building, Buildings, ChannelJoin, Components, Grid, HydroBody, HydroCheck,
+                     HydroFlattened, IrradianceMaps, KsResult, Rasters,
                      RoofPatch, RoofSuitability, RoofSurface, SlopeAspect, SunPosition, SurfaceOutliers, Survey, WaterIssue,
                      Waterbodies, Waterbody, Weather)
 
