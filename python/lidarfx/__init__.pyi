@@ -108,7 +108,7 @@ dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (
 extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
 cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
 flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
-minimum_size per flattened body), joins: list of ChannelJoin (kept, joined labels, gap_m, contact_m, gap_cells),
+minimum_size per flattened body), joins: list of ChannelJoin (kept, part_a, part_b labels, gap_m, contact_m, gap_cells),
 shore_cells_below)."""
     ...
 

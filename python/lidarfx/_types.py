@@ -187,9 +187,10 @@ class HydroCheck:
 
 @dataclass(frozen=True)
 class ChannelJoin:
-    """Two pieces of one river that hydro_flatten joined (cut apart at a weir or a deck by the extraction)."""
+    """A pair of pieces of one river that hydro_flatten joined (cut apart at a weir or a deck by the extraction)."""
     kept: int                       #: the label the channel keeps (its smallest)
-    joined: int                     #: the label replaced
+    part_a: int                     #: the pair's smaller label, as extracted
+    part_b: int                     #: the pair's larger label
     gap_m: float                    #: land crossed between the pieces, metres (0: they touch)
     contact_m: float                #: how far the pieces face each other, metres
     gap_cells: int                  #: land cells under the deck that joined the river

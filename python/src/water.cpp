@@ -174,7 +174,8 @@ py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& la
     for (const channel_join& j : r.joins) {
         py::dict f;
         f["kept"] = j.kept;
-        f["joined"] = j.joined;
+        f["part_a"] = j.part_a;
+        f["part_b"] = j.part_b;
         f["gap_m"] = j.gap_m;
         f["contact_m"] = j.contact_m;
         f["gap_cells"] = j.gap_cells;
@@ -230,7 +231,7 @@ dem: float32 bare-earth DEM, metres (NaN = unknown). labels: int32 waterbodies (
 extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest return per cell, metres.
 cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
 flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
-minimum_size per flattened body), joins: list of ChannelJoin (kept, joined labels, gap_m, contact_m, gap_cells),
+minimum_size per flattened body), joins: list of ChannelJoin (kept, part_a, part_b labels, gap_m, contact_m, gap_cells),
 shore_cells_below).)doc");
 }
 

@@ -79,7 +79,7 @@ def test_hydro_flatten_joins_a_river_cut_at_a_deck_and_flattens_under_it():
     min_z[40:80, 190:200] = 106.0  # the deck
     dem = np.where(np.isnan(min_z), 103.0, min_z).astype(np.float32)
     flat = lidarfx.hydro_flatten(dem, labels, min_z, min_z, 1.0)
-    assert [(j.kept, j.joined, j.gap_cells) for j in flat.joins] == [(1, 2, 400)]
+    assert [(j.kept, j.part_a, j.part_b, j.gap_cells) for j in flat.joins] == [(1, 1, 2, 400)]
     assert len(flat.bodies) == 1 and flat.bodies[0].type == "river"
     assert np.all(flat.body[40:80, 190:200] == 1)
     np.testing.assert_allclose(flat.dem[60, 190:200], water[190:200], atol=0.03)

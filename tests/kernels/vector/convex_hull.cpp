@@ -36,7 +36,7 @@ double area_of(const std::vector<hull_cell>& ring)
 
 }  // namespace
 
-TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and vertices) on random point sets")
+TEST_CASE("vector/convex_hull: equals Boost.Geometry's convex hull (area and vertices) on random point sets")
 {
     std::mt19937 rng(2024);
     for (int trial = 0; trial < 300; ++trial) {
@@ -63,7 +63,7 @@ TEST_CASE("buildings/convex_hull: equals Boost.Geometry's convex hull (area and 
     }
 }
 
-TEST_CASE("buildings/convex_hull: one point, two points, a line")
+TEST_CASE("vector/convex_hull: one point, two points, a line")
 {
     CHECK(lidarfx::convex_hull({{2, 3}}).size() == 1);
     CHECK(lidarfx::convex_hull({{2, 3}, {2, 3}, {5, 3}}).size() == 2);
@@ -71,7 +71,7 @@ TEST_CASE("buildings/convex_hull: one point, two points, a line")
     CHECK(std::abs(area_of(line)) == 0.0);
 }
 
-TEST_CASE("buildings/burn_convex: the cells whose centres lie inside or on the hull; a point; a segment")
+TEST_CASE("vector/burn_convex: the cells whose centres lie inside or on the hull; a point; a segment")
 {
     lidarfx::raster<std::uint8_t> m(6, 6, 0);
     lidarfx::burn_convex(lidarfx::convex_hull({{1, 1}, {4, 1}, {1, 4}}), m.view());  // triangle (col, row)

@@ -639,6 +639,40 @@ TEST_CASE("water/trace_river_profile: an oblique weir is followed cell by cell; 
     }
 }
 
+TEST_CASE("water/trace_river_profile: a steep river is no weir; a stray low return beside a weir stays in its pool")
+{
+    SUBCASE("a 2 % fall: every step is 10 cm, none is a weir, nothing is re-cut")
+    {
+        hydro_steps_test::river_strip river;
+        for (std::ptrdiff_t r = 0; r < river.rows; ++r)
+            for (std::ptrdiff_t c = 0; c < river.cols; ++c) {
+                river.truth(r, c) = 100.0f - 0.02f * static_cast<float>(c);
+                river.water_z(r, c) = river.truth(r, c);
+            }
+        const auto p = river.profile(hydro_steps_test::strip_options, river.shape());
+        CHECK(p.weirs == 0);
+        CHECK(std::count(p.cells.begin(), p.cells.end(), std::size_t{0}) == 0);
+        auto uncut = hydro_steps_test::strip_options;
+        uncut.cut_sections_at_weirs = false;
+        const auto q = river.profile(uncut, river.shape());
+        CHECK(p.level_m == q.level_m);  // no section re-cut
+        CHECK(p.section == q.section);
+    }
+    SUBCASE("a 0.4 m weir at column 100 and a cell 8 m upstream reading 30 cm low, nearer the lower pool")
+    {
+        hydro_steps_test::river_strip river;
+        river.step_at(100, -0.4f);
+        river.water_z(2, 92) -= 0.3f;
+        const auto p = river.profile(hydro_steps_test::strip_options, river.shape());
+        CHECK(p.weirs == 1);
+        const auto level = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+            return p.level_m[static_cast<std::size_t>(p.section(r, c))];
+        };
+        CHECK(level(2, 92) == level(1, 92));
+        CHECK(std::abs(level(2, 92) - river.truth(2, 92)) <= 0.03);
+    }
+}
+
 TEST_CASE("water/trace_river_profile: a level field taken into the body beside the channel does not lift its level")
 {
     // The 6-cell channel of river_strip, and beside it along columns 50-149 a field 10 cells wide, 0.5 m above

@@ -79,7 +79,8 @@ TEST_CASE("water/join_channel_parts: two pieces of a channel that touch at a wei
     const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
     REQUIRE(joins.size() == 1);
     CHECK(joins[0].kept == 1);
-    CHECK(joins[0].joined == 2);
+    CHECK(joins[0].part_a == 1);
+    CHECK(joins[0].part_b == 2);
     CHECK(joins[0].gap_m == 0);
     CHECK(joins[0].gap_cells == 0);
     CHECK(joins[0].contact_m == doctest::Approx(20).epsilon(0.2));
@@ -203,13 +204,46 @@ TEST_CASE("water/join_channel_parts: a chain of pieces takes the smallest label;
     const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
     REQUIRE(joins.size() == 2);
     CHECK(joins[0].kept == 1);
-    CHECK(joins[0].joined == 2);
+    CHECK(joins[0].part_a == 1);
+    CHECK(joins[0].part_b == 2);
     CHECK(joins[1].kept == 1);
-    CHECK(joins[1].joined == 3);
+    CHECK(joins[1].part_a == 1);
+    CHECK(joins[1].part_b == 3);
     CHECK(cells_of(labels, 1) == 20 * 400);
     CHECK(cells_of(labels, 4) == 200);
     CHECK(box[2].empty());
     CHECK(box[3].empty());
+}
+
+TEST_CASE("water/join_channel_parts: every pair is reported, also one whose smaller label is not the channel's")
+{
+    auto labels = join_channel_parts_test::land();
+    paint(labels, 1, 40, 60, 0, 150);
+    paint(labels, 3, 40, 60, 150, 300);
+    paint(labels, 2, 40, 60, 300, 400);
+    auto box = boxes_of(labels);
+    const auto joins = join_channel_parts(labels, box, heights_of(labels), 1.0);
+    REQUIRE(joins.size() == 2);
+    CHECK((joins[0].kept == 1 && joins[0].part_a == 1 && joins[0].part_b == 3));
+    CHECK((joins[1].kept == 1 && joins[1].part_a == 2 && joins[1].part_b == 3));
+    CHECK(cells_of(labels, 1) == 20 * 400);
+}
+
+TEST_CASE("water/join_channel_parts: pieces a third body separates are not joined, and hydro_flatten keeps them apart")
+{
+    raster<std::int32_t> labels(60, 800, 0);
+    paint(labels, 1, 10, 50, 5, 605);
+    paint(labels, 3, 10, 50, 607, 608);  // a thin third body across the whole gap
+    paint(labels, 2, 10, 50, 610, 760);
+    auto box = boxes_of(labels);
+    auto joined = labels;
+    CHECK(join_channel_parts(joined, box, heights_of(labels), 1.0).empty());
+    CHECK(joined == labels);
+    const raster<float> z = heights_of(labels);
+    raster<float> dem(labels.rows(), labels.cols(), 12.0f);
+    const auto flat = hydro_flatten(dem, labels, z, z, 1.0);
+    CHECK(flat.joins.empty());
+    CHECK(flat.bodies.size() == 3);
 }
 
 TEST_CASE("water/join_channel_parts: refuses options out of range, negative labels and labels outside their box")

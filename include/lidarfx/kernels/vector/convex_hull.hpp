@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // convex_hull: the exact convex hull of integer cell positions, and burn_convex, which marks the cells whose
-// centres lie inside (or on) such a hull (ground_model's hull of each edge object; join_channel_parts' deck).
+// centres lie inside (or on) such a hull (ground_model's hull of each edge object; join_channel_parts takes the
+// hull of a deck's two water edges).
 #pragma once
 
 #include <algorithm>
@@ -18,7 +19,7 @@ using cell_point = std::array<std::int64_t, 2>;
 
 /// Convex hull of integer points (col, row) by Andrew's monotone chain: the hull's vertices counter-clockwise in
 /// (col, row) axes, starting at the smallest point; duplicates and collinear points dropped; fewer than three
-/// distinct points come back sorted and unique. Exact: 64-bit cross products (coordinates up to 2^31).
+/// distinct points come back sorted and unique. Exact: 64-bit cross products (coordinates in [0, 2^31)).
 /// O(n log n). Never throws except std::bad_alloc.
 inline std::vector<cell_point> convex_hull(std::vector<cell_point> points);
 

@@ -67,11 +67,12 @@ struct hydro_flatten_result {
     raster<float> water_surface;             ///< the water level on flattened water, NaN elsewhere, metres
     raster<std::int32_t> body;               ///< the id of the flattened body per cell, 0 elsewhere
     std::vector<hydro_body> bodies;          ///< every body with cells (after the split into connected parts), in
-                                             ///< increasing id (bodies[i].id == i + 1 when the labels have no gap)
+                                             ///< increasing id (ids of pieces joined to a smaller one are absent)
     std::vector<hydro_check> qa;             ///< hydro_qa of the flattened bodies
     std::size_t island_cells_flattened = 0;  ///< cells of islands under min_island_area_m2 flattened with the water
-    std::vector<channel_join> joins;         ///< pieces of one channel joined (join_channels), by (kept, joined)
-    shoreline_check shorelines;  ///< shore cells found below the water (and lifted, with shoreline_rule::lift)
+    std::vector<channel_join> joins;  ///< pairs of pieces of one channel joined (join_channels), by (kept, part_a,
+                                      ///< part_b)
+    shoreline_check shorelines;       ///< shore cells found below the water (and lifted, with shoreline_rule::lift)
 };
 
 /// Hydro-flattens `dem` (a bare-earth DEM, metres, NaN where unknown) with the waterbodies `labels` (0 land,
@@ -87,7 +88,8 @@ struct hydro_flatten_result {
 ///  3. water_heights(labels, min_z, max_z); lakes: lake_level, one level over the body; rivers:
 ///     trace_river_profile, each cross-section at its level, non-increasing downstream, decks and unflown
 ///     stretches at the interpolated level, the sections beside a weir cut along it;
-///  4. the DEM takes the water level on the flattened water (also where it was NaN inside a body);
+///  4. the DEM takes the water level on the flattened water (also where it was NaN inside a body; a river's cell
+///     without a section, which its profile could not reach, stays as it was);
 ///  5. enforce_shorelines with `shoreline`: no shore ground below the water beside it;
 ///  6. hydro_qa of every flattened body.
 /// O(cells + sum over bodies of n log n). Same result for any thread count. Progress: 0, per body, 1.

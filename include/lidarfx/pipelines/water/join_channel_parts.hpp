@@ -32,11 +32,13 @@ struct channel_join_options {
                                      ///< min_river_elongation
 };
 
-/// One join: part `joined` took the label `kept`.
+/// One pair of parts found to be one channel; both now carry the label `kept`.
 struct channel_join {
-    std::int32_t kept = 0;      ///< the smaller label of the pair's channel
-    std::int32_t joined = 0;    ///< the label that was replaced
-    double gap_m = 0;           ///< land crossed between the parts at their closest, metres (0: they touch)
+    std::int32_t kept = 0;      ///< the smallest label of the channel the pair belongs to
+    std::int32_t part_a = 0;    ///< the pair's smaller label, as given
+    std::int32_t part_b = 0;    ///< the pair's larger label, as given
+    double gap_m = 0;           ///< land crossed between the parts at their closest, metres (0: they touch); up to
+                                ///< max_gap_m plus a diagonal step's 0.41 cell
     double contact_m = 0;       ///< how far the parts face each other across the gap, metres
     std::size_t gap_cells = 0;  ///< land cells between them (under the deck) that took the label `kept`
 };
@@ -53,14 +55,16 @@ struct channel_join {
 ///    that touch may face each other further: a strip of one pool taken into the other's piece);
 ///  - the median of `heights` (the water's heights, e.g. the lowest return per cell, metres, NaN where none) over
 ///    each part's facing cells differ by at most max_level_step_m (not checked when a side has none);
-///  - together, with the land between them that a join adds, they are a river: their hydro_body_shape's
-///    elongation is at least min_elongation.
+///  - together, with the land between them that a join adds, they are one 8-connected body and a river: its
+///    hydro_body_shape's elongation is at least min_elongation.
 /// Pairs are decided independently, then joined transitively, every part taking the smallest label of its
 /// channel (empty boxes are left for the labels that went). Across a gap, the land cells inside the convex hull
-/// of both sides' facing cells take the label: the water under the deck, not the banks beside it.
-/// O(cells + sum over parts wider than min_part_width_m of the land within max_gap_m of them, times its log, +
-/// the boxes of the pairs that pass the other tests).
-/// Returns the joins, ordered by (kept, joined).
+/// of both sides' facing cells (a cell whose centre lies within half a cell outside an edge counts) take the
+/// label: the water under the deck, not the banks beside it. Where the hulls of two pairs overlap the first pair
+/// (in that order) gets the land.
+/// O(cells + sum over parts wider than min_part_width_m of the cells of their box grown by max_gap_m, times the
+/// log of the land reached, + the union boxes of the pairs that pass the other tests).
+/// Returns one record per pair found, ordered by (kept, part_a, part_b).
 /// @throws invalid_input on rasters of different shapes, cell_m not finite and > 0, options out of range, a
 /// negative label or a label without its box.
 inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> labels, std::vector<cell_box>& box,

@@ -89,16 +89,19 @@ struct river_profile {
 ///     without returns (under a deck, or unflown) takes the level interpolated linearly between the nearest
 ///     fitted sections on either side, or the nearest one's at the ends. So the profile only falls, and where
 ///     nothing was measured the water surface continues at the interpolated level;
-///  5. with cut_sections_at_weirs, a weir (neighbouring sections whose levels fall by more than a quarter of
-///     weir_min_drop_m at every step, by at least weir_min_drop_m in all, from an upper level to a lower one)
-///     is followed cell by cell: within half the river's width plus one section of it, each cell takes the upper
-///     or the lower level, whichever its water_z is nearer (cells without a height near either take the side of
-///     the nearest cell that has one). A cell the crest crosses reads the lower pool (its lowest return), so when
-///     those cells lie along a straight line, the cells within one cell of it take the side their centre lies on.
-///     The upper cells join the weir's last upper section, the lower cells its
-///     first lower section, and the sections between are left without cells (at the lower level). An oblique weir
-///     then leaves no section straddling it; every section stays flat and the profile still only falls.
-/// O(n log n) in the body's n cells.
+///  5. with cut_sections_at_weirs, a weir is followed cell by cell. A weir is a run of at most (width / spacing
+///     + 3) neighbouring sections whose levels fall, beyond the river's own fall (the median fall over
+///     level_window_m / 2 plus such a run either side), by more than a quarter of weir_min_drop_m at every step and by
+///     at least weir_min_drop_m in all: a steep river is not a weir. Within half the river's width plus one section of
+///     it (not into the next weir's reach), each cell takes the upper or the lower level, whichever its water_z is
+///     nearer; cells without a height near either take the side of the nearest cell that has one; a cell of one
+///     side not connected through its side to its own pool takes the other (a stray return does not cross the
+///     weir). A cell the crest crosses reads the lower pool (its lowest return), so when those cells lie along a
+///     straight line, the cells within one cell of it take the side their centre lies on. The upper cells join the
+///     weir's last upper section, the lower cells its first lower section, and the sections between are left
+///     without cells (at the lower level, no longer measured). An oblique weir then leaves no section straddling
+///     it; every section stays flat and the profile still only falls.
+/// O(n log n) in the body's n cells, plus O(cells of the box) per weir.
 /// @throws invalid_input on rasters of different shapes, options out of range, a box outside the raster or a
 /// label without a cell there.
 inline river_profile trace_river_profile(raster_view<const std::int32_t> labels, std::int32_t label,

@@ -149,6 +149,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
                     double level = b.level_min_m;
                     if (river) {
                         const std::int32_t k = b.river.section(r - bx.row_min, c - bx.col_min);
+                        if (k < 0) continue;  // a cell the profile could not reach stays as it was
                         level = b.river.level_m[static_cast<std::size_t>(k)];
                     }
                     out.water_surface(r, c) = static_cast<float>(level);

@@ -13,11 +13,13 @@
 #include <numbers>
 #include <numeric>
 #include <queue>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/vector/convex_hull.hpp"
 #include "lidarfx/pipelines/water/hydro_body_shape.hpp"
 
@@ -53,7 +55,9 @@ inline std::map<std::int32_t, facing_cells> parts_within_reach(raster_view<const
                                                                std::int32_t label, const cell_box& box, double reach_m,
                                                                double cell_m)
 {
-    const auto grow = static_cast<std::ptrdiff_t>(std::ceil(reach_m / cell_m)) + 2;
+    const auto grow = static_cast<std::ptrdiff_t>(
+                          std::min(std::ceil(reach_m / cell_m), static_cast<double>(labels.rows() + labels.cols()))) +
+                      2;
     const cell_box win{std::max<std::ptrdiff_t>(0, box.row_min - grow), std::max<std::ptrdiff_t>(0, box.col_min - grow),
                        std::min(labels.rows() - 1, box.row_max + grow),
                        std::min(labels.cols() - 1, box.col_max + grow)};
@@ -158,7 +162,8 @@ inline std::size_t fill_hull(raster_view<std::int32_t> labels, const std::vector
 }
 
 /// The elongation (hydro_body_shape) of parts `a` and `b` of `labels` taken as one body, with the land in the
-/// convex hull of their facing cells (what a join across a gap adds).
+/// convex hull of their facing cells (what a join across a gap adds); 0 when that body is not 8-connected (a third
+/// body in the way, facing cells on one line).
 inline double joined_elongation(raster_view<const std::int32_t> labels, std::int32_t a, std::int32_t b,
                                 const cell_box& box_a, const cell_box& box_b, const std::vector<grid_cell>& facing,
                                 double cell_m)
@@ -175,7 +180,9 @@ inline double joined_elongation(raster_view<const std::int32_t> labels, std::int
     for (const grid_cell& g : facing) local.push_back({g[0] - u.row_min, g[1] - u.col_min});
     cell_box whole{0, 0, u.rows() - 1, u.cols() - 1};
     fill_hull(both, local, 1, whole);
-    return measure_hydro_body_shape(both, 1, {0, 0, u.rows() - 1, u.cols() - 1}, cell_m).elongation();
+    const cell_box all{0, 0, u.rows() - 1, u.cols() - 1};
+    if (connected_components(body_mask(both, 1, all)).count() != 1) return 0;  // the fill does not link them
+    return measure_hydro_body_shape(both, 1, all, cell_m).elongation();
 }
 
 /// The median of the finite `heights` at `cells` (the upper one of an even count), NaN when none.
@@ -279,12 +286,12 @@ inline std::vector<channel_join> join_channel_parts(raster_view<std::int32_t> la
     std::vector<channel_join> joins;
     for (accepted& p : pairs) {
         const std::int32_t kept = find(p.a);
-        channel_join j{kept, p.b, p.gap_m, p.contact_m, 0};
+        channel_join j{kept, p.a, p.b, p.gap_m, p.contact_m, 0};
         if (p.gap_m > 0) j.gap_cells = detail::fill_hull(labels, p.facing, kept, box[static_cast<std::size_t>(kept)]);
         joins.push_back(j);
     }
     std::sort(joins.begin(), joins.end(), [](const channel_join& x, const channel_join& y) {
-        return std::pair{x.kept, x.joined} < std::pair{y.kept, y.joined};
+        return std::tuple{x.kept, x.part_a, x.part_b} < std::tuple{y.kept, y.part_a, y.part_b};
     });
     return joins;
 }

@@ -38,8 +38,8 @@ inline void validate(const river_profile_options& o, const char* fn)
 }
 
 /// The median of the lowest window of `width` in the sorted `values` whose count reaches `share` of the densest
-/// window's (and at least 3, or all of them when fewer): among the windows starting within `width` above that
-/// one, the densest. NaN when empty. Sorts `values`.
+/// window's (and at least 3, or the densest window's count when that is smaller): among the windows starting within
+/// `width` above that one, the densest. NaN when empty. Sorts `values`.
 inline double lowest_dense_window_median(std::vector<float>& values, double width, double share)
 {
     if (values.empty()) return NAN;
@@ -164,32 +164,84 @@ inline void place_straight_crest(raster<std::int8_t>& side)
                 side(r, c) = d < 0 ? 0 : 1;
 }
 
-/// Re-cuts the sections around each weir along the weir itself. A weir zone is a run of neighbouring sections
-/// [a, b] whose levels fall by more than a quarter of weir_min_drop_m at every step and by at least
-/// weir_min_drop_m in all; around it (reach sections either side) each cell takes the upper level `level[a]`
-/// or the lower `level[b]`, whichever its water height is nearer (heights further than return_tolerance_m from
-/// both, and cells without one, take the side of the nearest cell that has one, by 8-connected steps). Upper
-/// cells downstream of a join section a, lower cells upstream of b join section b; the sections between are left
-/// without cells at the lower level. Updates cells and centre.
+/// Keeps a side of a weir only where it is connected to its own pool: a cell of `side` 0 (upper) that is not
+/// 8-connected through upper cells to an upper cell of a section <= a becomes lower, and a lower cell not
+/// connected to a lower cell of a section >= b becomes upper (a stray low or high return far from the crest does
+/// not move its cell to the other pool).
+inline void keep_connected_sides(raster<std::int8_t>& side, const raster<std::int32_t>& section, std::size_t a,
+                                 std::size_t b)
+{
+    raster<std::uint8_t> reached(side.rows(), side.cols(), 0);
+    std::vector<std::ptrdiff_t> front;
+    const auto sec = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return static_cast<std::size_t>(section(r, c)); };
+    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
+            if ((side(r, c) == 0 && sec(r, c) <= a) || (side(r, c) == 1 && sec(r, c) >= b)) {
+                reached(r, c) = 1;
+                front.push_back(r * side.cols() + c);
+            }
+    for (std::size_t i = 0; i < front.size(); ++i) {
+        const std::ptrdiff_t r = front[i] / side.cols(), c = front[i] % side.cols();
+        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr)
+            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                if (rr < 0 || rr >= side.rows() || cc < 0 || cc >= side.cols() || reached(rr, cc) ||
+                    side(rr, cc) != side(r, c))
+                    continue;
+                reached(rr, cc) = 1;
+                front.push_back(rr * side.cols() + cc);
+            }
+    }
+    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
+            if ((side(r, c) == 0 || side(r, c) == 1) && !reached(r, c))
+                side(r, c) = static_cast<std::int8_t>(1 - side(r, c));
+}
+
+/// Re-cuts the sections around each weir along the weir itself. The falls between neighbouring sections are
+/// measured against the river's own: the median fall over the `background` sections either side (more than a
+/// zone's 2 · reach + 1). A weir zone is a
+/// run of at most 2 · reach + 1 neighbouring sections [a, b] that each fall more than a quarter of weir_min_drop_m
+/// beyond that median and by at least weir_min_drop_m beyond it in all (a steep river is not a weir). Zones are
+/// found first; around each (reach sections either side, not into the next zone) each cell takes the upper level
+/// `level[a]` or the lower `level[b]`, whichever its water height is nearer (heights further than
+/// return_tolerance_m from both, and cells without one, take the side of the nearest cell that has one, by
+/// 8-connected steps); a side keeps only the cells connected to its own pool (keep_connected_sides); a straight
+/// crest is placed (place_straight_crest). Upper cells downstream of a join section a, lower cells upstream of b
+/// join section b, cells left between take the nearer of a and b; the sections between are left without cells at
+/// the lower level. Updates cells and centre; a section left without cells is no longer measured.
+/// O(cells of the box) per weir.
 inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> water_z, std::size_t reach,
-                                  const river_profile_options& opt)
+                                  std::size_t background, const river_profile_options& opt)
 {
     const std::size_t n = p.level_m.size();
     const cell_box& box = p.box;
-    std::size_t done = 0;  // sections before this one belong to an earlier zone
+    if (n < 2) return;
+    std::vector<double> fall(n - 1), excess(n - 1);
+    for (std::size_t k = 0; k + 1 < n; ++k) fall[k] = p.level_m[k] - p.level_m[k + 1];
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        std::vector<float> near;
+        for (std::size_t t = k > background ? k - background : 0; t <= std::min(n - 2, k + background); ++t)
+            near.push_back(static_cast<float>(fall[t]));
+        excess[k] = fall[k] - upper_median_in_place(near);
+    }
+    std::vector<std::array<std::size_t, 2>> zones;
     for (std::size_t s = 0; s + 1 < n;) {
-        const auto falls = [&](std::size_t k) { return p.level_m[k] - p.level_m[k + 1] > 0.25 * opt.weir_min_drop_m; };
-        if (!falls(s)) {
+        if (excess[s] <= 0.25 * opt.weir_min_drop_m) {
             ++s;
             continue;
         }
         std::size_t a = s, b = s + 1;
-        while (b + 1 < n && falls(b)) ++b;
+        double total = excess[s];
+        while (b + 1 < n && excess[b] > 0.25 * opt.weir_min_drop_m) total += excess[b++];
         s = b;
+        if (total >= opt.weir_min_drop_m && b - a <= 2 * reach + 1) zones.push_back({a, b});
+    }
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+        const auto [a, b] = zones[z];
         const double upper = p.level_m[a], lower = p.level_m[b];
-        if (upper - lower < opt.weir_min_drop_m) continue;
-        const std::size_t lo = std::max(done, a > reach ? a - reach : 0), hi = std::min(n - 1, b + reach);
-        done = hi + 1;
+        const std::size_t lo = std::max(z > 0 ? zones[z - 1][1] + 1 : 0, a > reach ? a - reach : 0);
+        const std::size_t hi = std::min({n - 1, b + reach, z + 1 < zones.size() ? zones[z + 1][0] - 1 : n - 1});
         // Sides: 0 upper, 1 lower, 2 not known yet, -1 outside the zone.
         raster<std::int8_t> side(box.rows(), box.cols(), -1);
         std::vector<std::ptrdiff_t> front;
@@ -197,9 +249,9 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
             for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
                 const std::int32_t k = p.section(r, c);
                 if (k < 0 || static_cast<std::size_t>(k) < lo || static_cast<std::size_t>(k) > hi) continue;
-                const float z = water_z(box.row_min + r, box.col_min + c);
-                const double du = std::abs(z - upper), dl = std::abs(z - lower);
-                side(r, c) = std::isfinite(z) && std::min(du, dl) <= opt.return_tolerance_m ? (du < dl ? 0 : 1) : 2;
+                const float h = water_z(box.row_min + r, box.col_min + c);
+                const double du = std::abs(h - upper), dl = std::abs(h - lower);
+                side(r, c) = std::isfinite(h) && std::min(du, dl) <= opt.return_tolerance_m ? (du < dl ? 0 : 1) : 2;
                 if (side(r, c) < 2) front.push_back(r * box.cols() + c);
             }
         for (std::size_t i = 0; i < front.size(); ++i) {  // breadth-first: the nearest known cell's side
@@ -212,12 +264,17 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
                     front.push_back(rr * box.cols() + cc);
                 }
         }
+        keep_connected_sides(side, p.section, a, b);
         place_straight_crest(side);
         for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
             for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
                 std::int32_t& k = p.section(r, c);
-                if (side(r, c) == 0 && k > static_cast<std::int32_t>(a)) k = static_cast<std::int32_t>(a);
-                if (side(r, c) == 1 && k < static_cast<std::int32_t>(b)) k = static_cast<std::int32_t>(b);
+                if (k < 0) continue;
+                const auto u = static_cast<std::size_t>(k);
+                if (side(r, c) == 0 && u > a) k = static_cast<std::int32_t>(a);
+                if (side(r, c) == 1 && u < b) k = static_cast<std::int32_t>(b);
+                if (u > a && u < b && (side(r, c) < 0 || side(r, c) == 2))  // a cell no side reached
+                    k = static_cast<std::int32_t>(u - a <= b - u ? a : b);
             }
         for (std::size_t k = a + 1; k < b; ++k) p.level_m[k] = lower;
     }
@@ -231,11 +288,15 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
                 p.centre[u][0] += static_cast<double>(box.row_min + r);
                 p.centre[u][1] += static_cast<double>(box.col_min + c);
             }
-    for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t k = 0; k < n; ++k) {
         if (p.cells[k] > 0) {
             p.centre[k][0] /= static_cast<double>(p.cells[k]);
             p.centre[k][1] /= static_cast<double>(p.cells[k]);
+        } else {
+            p.returns[k] = 0;
+            p.measured_m[k] = NAN;
         }
+    }
 }
 
 }  // namespace detail
@@ -359,7 +420,11 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
     // 5. weirs: the sections around each follow it.
     if (opt.cut_sections_at_weirs) {
         const auto reach = static_cast<std::size_t>(std::ceil(0.5 * shape.width_m / spacing)) + 1;
-        detail::cut_sections_at_weirs(p, water_z, reach, opt);
+        // The river's own fall: the median over more sections than a weir zone holds, so that a weir's fall
+        // spread over the sections interpolated across it stays above it.
+        const auto background =
+            static_cast<std::size_t>(std::floor(0.5 * opt.level_window_m / spacing)) + 2 * reach + 1;
+        detail::cut_sections_at_weirs(p, water_z, reach, background, opt);
     }
     for (std::size_t s = 0; s + 1 < n; ++s) {
         const double fall = p.level_m[s] - p.level_m[s + 1];
