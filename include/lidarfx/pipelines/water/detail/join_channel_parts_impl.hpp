@@ -22,6 +22,7 @@
 #include "lidarfx/kernels/label/connected_components.hpp"
 #include "lidarfx/kernels/vector/convex_hull.hpp"
 #include "lidarfx/pipelines/water/hydro_body_shape.hpp"
+#include "lidarfx/pipelines/water/lake_level.hpp"
 
 namespace lidarfx {
 
@@ -191,9 +192,7 @@ inline double median_height(raster_view<const float> heights, const std::vector<
     std::vector<float> v;
     for (const grid_cell& g : cells)
         if (const float z = heights(g[0], g[1]); std::isfinite(z)) v.push_back(z);
-    if (v.empty()) return NAN;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
+    return upper_median_in_place(v);
 }
 
 }  // namespace detail

@@ -164,6 +164,27 @@ inline void place_straight_crest(raster<std::int8_t>& side)
                 side(r, c) = d < 0 ? 0 : 1;
 }
 
+/// Counts the cells of each of the n sections of `p.section` into `p.cells` and puts their mean (row, col) into
+/// `p.centre` ((0, 0) for a section without cells).
+inline void count_section_cells(river_profile& p, std::size_t n)
+{
+    p.cells.assign(n, 0);
+    p.centre.assign(n, {0.0, 0.0});
+    for (std::ptrdiff_t r = 0; r < p.box.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < p.box.cols(); ++c)
+            if (const std::int32_t k = p.section(r, c); k >= 0) {
+                const auto u = static_cast<std::size_t>(k);
+                ++p.cells[u];
+                p.centre[u][0] += static_cast<double>(p.box.row_min + r);
+                p.centre[u][1] += static_cast<double>(p.box.col_min + c);
+            }
+    for (std::size_t k = 0; k < n; ++k)
+        if (p.cells[k] > 0) {
+            p.centre[k][0] /= static_cast<double>(p.cells[k]);
+            p.centre[k][1] /= static_cast<double>(p.cells[k]);
+        }
+}
+
 /// Keeps a side of a weir only where it is connected to its own pool: a cell of `side` 0 (upper) that is not
 /// 8-connected through upper cells to an upper cell of a section <= a becomes lower, and a lower cell not
 /// connected to a lower cell of a section >= b becomes upper (a stray low or high return far from the crest does
@@ -278,25 +299,12 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
             }
         for (std::size_t k = a + 1; k < b; ++k) p.level_m[k] = lower;
     }
-    p.cells.assign(n, 0);
-    p.centre.assign(n, {0.0, 0.0});
-    for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < box.cols(); ++c)
-            if (const std::int32_t k = p.section(r, c); k >= 0) {
-                const auto u = static_cast<std::size_t>(k);
-                ++p.cells[u];
-                p.centre[u][0] += static_cast<double>(box.row_min + r);
-                p.centre[u][1] += static_cast<double>(box.col_min + c);
-            }
-    for (std::size_t k = 0; k < n; ++k) {
-        if (p.cells[k] > 0) {
-            p.centre[k][0] /= static_cast<double>(p.cells[k]);
-            p.centre[k][1] /= static_cast<double>(p.cells[k]);
-        } else {
+    count_section_cells(p, n);
+    for (std::size_t k = 0; k < n; ++k)
+        if (p.cells[k] == 0) {
             p.returns[k] = 0;
             p.measured_m[k] = NAN;
         }
-    }
 }
 
 }  // namespace detail
@@ -329,24 +337,13 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
                 last = std::max(last, p.section(r, c));
             }
     const auto n = static_cast<std::size_t>(last + 1);
+    detail::count_section_cells(p, n);
     std::vector<std::vector<float>> heights(n);
-    p.cells.assign(n, 0);
-    p.centre.assign(n, {0.0, 0.0});
     for (std::ptrdiff_t r = 0; r < mask.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < mask.cols(); ++c) {
-            const std::int32_t k = p.section(r, c);
-            if (k < 0) continue;
-            const auto s = static_cast<std::size_t>(k);
-            ++p.cells[s];
-            p.centre[s][0] += static_cast<double>(box.row_min + r);
-            p.centre[s][1] += static_cast<double>(box.col_min + c);
-            if (const float z = water_z(box.row_min + r, box.col_min + c); std::isfinite(z)) heights[s].push_back(z);
-        }
-    for (std::size_t s = 0; s < n; ++s)
-        if (p.cells[s] > 0) {
-            p.centre[s][0] /= static_cast<double>(p.cells[s]);
-            p.centre[s][1] /= static_cast<double>(p.cells[s]);
-        }
+        for (std::ptrdiff_t c = 0; c < mask.cols(); ++c)
+            if (const std::int32_t k = p.section(r, c); k >= 0)
+                if (const float z = water_z(box.row_min + r, box.col_min + c); std::isfinite(z))
+                    heights[static_cast<std::size_t>(k)].push_back(z);
 
     // 1. decks: cells far above the low water nearby; 2. the local level and the water returns near it.
     std::vector<double> quartile(n), median(n);
