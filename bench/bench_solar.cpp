@@ -61,7 +61,7 @@ void bm_irradiance_year(benchmark::State& state)
     state.SetItemsProcessed(state.iterations() * n * n);
 }
 BENCHMARK(bm_irradiance_year)
-    ->ArgsProduct({{1024}, {0}, {4, 1}})
+    ->ArgsProduct({{1024}, {1, 0}, {4, 1}})
     ->ArgNames({"n", "threads", "phases"})
     ->Iterations(1)
     ->UseRealTime()

@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/kernels/solar/horizon_map.hpp>
+#include <lidarfx/kernels/solar/raylines_shadow.hpp>
 
 #include "reference/angular_filter.hpp"  // random_raster, with_margin, inner
 #include "reference/progress.hpp"
@@ -100,14 +101,45 @@ TEST_CASE("solar/horizon_map: a mast's angle is atan(height / distance); NaN cel
     CHECK(h(0, 10) == 0.0f);  // the mast stands in row 1 only
 }
 
+TEST_CASE("solar/horizon_map: with line families a cell is lit by a sun exactly when its horizon is below the sun")
+{
+    // raylines_shadow with P families and horizon_map with the same P read every cell along the same line, so for
+    // any elevation e the shadow is "horizon > e". Cells within 1e-3 degrees of e are left out (float rounding).
+    std::mt19937 rng(4242);
+    const auto town = reference::box_town(rng, 90, 110, 30);
+    const auto rough = reference::random_raster(rng, 70, 60, 0.0, 6.0, 0.03);  // NaN cells hide nothing
+    for (const raster<float>* z : {&town, &rough}) {
+        for (int phases : {1, 2, 4}) {
+            for (double a : {0.0, 17.0, 45.0, 71.0, 100.0, 160.0, 203.0, 250.0, 300.0, 341.0}) {
+                const auto h = horizon_map(*z, 1.0, a, {.line_phases = phases});
+                std::size_t wrong = 0, compared = 0;
+                for (double e : {3.0, 11.0, 27.0, 52.0}) {
+                    const auto lit = raylines_shadow(*z, 1.0, a, e, {.line_phases = phases});
+                    for (std::ptrdiff_t r = 0; r < z->rows(); ++r) {
+                        for (std::ptrdiff_t c = 0; c < z->cols(); ++c) {
+                            if (std::isnan(h(r, c)) || std::fabs(h(r, c) - e) < 1e-3) continue;
+                            ++compared;
+                            wrong += (lit(r, c) == 1) != (h(r, c) <= e);
+                        }
+                    }
+                }
+                CAPTURE(phases);
+                CAPTURE(a);
+                CHECK(compared > 0);
+                CHECK(wrong == 0);
+            }
+        }
+    }
+}
+
 TEST_CASE("solar/horizon_map: the same result for any thread count; progress and cancellation")
 {
     std::mt19937 rng(2718);
     const auto z = reference::box_town(rng, 600, 500, 200);
     for (double a : {0.0, 60.0, 90.0, 181.0, 250.0}) {
-        const auto one = horizon_map(z, 1.0, a);
+        const auto one = horizon_map(z, 1.0, a, {.line_phases = 4});
         for (int threads : {2, 3, 0}) {
-            const auto many = horizon_map(z, 1.0, a, {.run = {.threads = threads}});
+            const auto many = horizon_map(z, 1.0, a, {.line_phases = 4, .run = {.threads = threads}});
             bool same = true;
             for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
                 for (std::ptrdiff_t c = 0; c < z.cols(); ++c) same = same && many(r, c) == one(r, c);
@@ -115,7 +147,7 @@ TEST_CASE("solar/horizon_map: the same result for any thread count; progress and
         }
     }
     reference::progress_log log;
-    horizon_map(z, 1.0, 33.0, {.run = {.threads = 2, .progress = log.callback()}});
+    horizon_map(z, 1.0, 33.0, {.line_phases = 4, .run = {.threads = 2, .progress = log.callback()}});
     CHECK(log.monotone_to_one());  // with a helper thread the caller may report once
     CHECK_THROWS_AS(horizon_map(z, 1.0, 33.0, {.run = {.progress = reference::cancel_at_once()}}), cancelled);
 }
@@ -143,6 +175,8 @@ TEST_CASE("solar/horizon_map: bad input is refused with invalid_input")
     CHECK_THROWS_AS(horizon_map(z, nan, 90.0), invalid_input);
     CHECK_THROWS_AS(horizon_map(z, 1.0, nan), invalid_input);
     CHECK_THROWS_AS(horizon_map(z, 1.0, 90.0, {.run = {.threads = -1}}), invalid_input);
+    CHECK_THROWS_AS(horizon_map(z, 1.0, 90.0, {.line_phases = 0}), invalid_input);
+    CHECK_THROWS_AS(horizon_stack(z, 1.0, 4, {.line_phases = 65}), invalid_input);
     raster<float> wrong(5, 4);
     CHECK_THROWS_AS(horizon_map(z, wrong, 1.0, 90.0), invalid_input);
     CHECK(horizon_map(raster<float>(0, 3), 1.0, 10.0).rows() == 0);

@@ -79,6 +79,29 @@ TEST_CASE("solar/raylines_shadow: equals a direct search over its ray lines for 
     }
 }
 
+TEST_CASE(
+    "solar/raylines_shadow: shallow lines (swept in tiles of the transposed raster) equal the direct search on "
+    "wide, tall and strided rasters")
+{
+    // Shallow azimuths (closer to east-west than to north-south) take the transposed sweep: 16 columns at a time,
+    // blocks of 512 lines. These rasters cross several tiles and blocks, end in partial tiles, and come as views
+    // with a row stride wider than their columns.
+    std::mt19937 rng(1606);
+    const auto wide = reference::random_raster(rng, 41, 700, 0.0, 10.0, 0.03);
+    const auto tall_big = reference::with_margin(reference::random_raster(rng, 300, 37, 0.0, 10.0, 0.03), 3, 7.0f);
+    const auto tall = reference::inner(tall_big, 3, 300, 37);
+    for (const double a : {48.0, 80.0, 90.0, 101.0, 133.0, 228.0, 265.0, 270.0, 312.0}) {
+        for (const int phases : {1, 4}) {
+            INFO("azimuth ", a, " line_phases ", phases);
+            const raylines_shadow_options opt{.line_phases = phases};
+            CHECK(first_difference(raylines_shadow(wide, 0.7, a, 9.0, opt),
+                                   reference::shadow_on_lines(wide.view(), 0.7, a, 9.0, 255, phases)) == "");
+            CHECK(first_difference(raylines_shadow(tall, 0.7, a, 4.0, opt),
+                                   reference::shadow_on_lines(tall, 0.7, a, 4.0, 255, phases)) == "");
+        }
+    }
+}
+
 // A family of ray lines and a ray from each cell's own centre pick cells up to 1 / (2 line_phases) apart across
 // the ray, so they can differ along the lateral edges of shadows; the share of such cells falls as buildings
 // grow. Two brute forces that differ only in how a straight ray picks cells (nearest cell per row, or every

@@ -4,11 +4,17 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/kernels/solar/clear_sky.hpp>
+#include <lidarfx/kernels/solar/raylines_shadow.hpp>
+#include <lidarfx/pipelines/buildings/facade_lit.hpp>
 #include <lidarfx/pipelines/buildings/surface_class_table.hpp>
 #include <lidarfx/pipelines/buildings/surface_energy.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
+#include <span>
+#include <vector>
 
 #include "../../reference/facades.hpp"
 #include "../../reference/progress.hpp"
@@ -164,6 +170,44 @@ TEST_CASE("buildings/facade_class: facing-azimuth quadrants")
     CHECK(facade_class(225.0) == surface_class::west_facade);
     CHECK(facade_class(315.0) == surface_class::north_facade);
     CHECK(facade_class(-90.0) == surface_class::west_facade);
+}
+
+TEST_CASE("buildings/surface_energy: every patch's sum is its formula added sun by sun with the public kernels")
+{
+    // surface_energy sweeps its suns in batches, side by side; the sums must still be, per patch, the sum over the
+    // daylight suns of beam (raylines_shadow's single family for roofs, facade_lit for walls) and diffuse.
+    std::mt19937 rng(31);
+    const auto s = reference::box_town_ids(rng, 48, 52, 10);
+    const auto records = clear_sky_records(2021, 40.0, -75.0, {.interval = std::chrono::hours{6}});
+    const solar_site site{40.0, -75.0};
+    const auto res = surface_energy(s.dsm, s.ids, 1.0, site, records, {.run = {.threads = 2}});
+    std::vector<double> roof(res.roofs.size(), 0.0), facade(res.facades.size(), 0.0);
+    for (const daylight_sun& d : daylight_suns(records, site)) {
+        const double dni = d.dni_w_m2 * d.kwh_per_w_m2, dhi = d.dhi_w_m2 * d.kwh_per_w_m2;
+        const auto lit = raylines_shadow(s.dsm, 1.0, d.azimuth_deg, d.elevation_deg, {.nan_cell = 0, .line_phases = 1});
+        for (std::size_t i = 0; i < res.roofs.size(); ++i) {
+            const surface_patch& p = res.roofs[i];
+            const double share =
+                0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) + lit(p.row + 1, p.col) + lit(p.row + 1, p.col + 1));
+            const double cos_t = enu_dot(d.sun, p.normal);
+            roof[i] += (cos_t > 0.0 ? dni * cos_t * share : 0.0) + dhi * res.roof_sky_view[i];
+        }
+        const auto walls =
+            facade_lit(s.dsm, std::span<const facade_patch>(res.facades), 1.0, d.azimuth_deg, d.elevation_deg);
+        for (std::size_t i = 0; i < res.facades.size(); ++i) {
+            const double cos_t =
+                std::cos(d.elevation_deg * std::numbers::pi / 180.0) *
+                std::cos((d.azimuth_deg - res.facades[i].facing_azimuth_deg) * std::numbers::pi / 180.0);
+            facade[i] += (walls[i] == 1 ? dni * cos_t : 0.0) + dhi * res.facade_sky_view[i];
+        }
+    }
+    REQUIRE(res.facades.size() > 100);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < roof.size(); ++i)
+        worst = std::max(worst, std::fabs(res.roof_energy[i].annual_kwh_m2 - roof[i]) / roof[i]);
+    for (std::size_t i = 0; i < facade.size(); ++i)
+        worst = std::max(worst, std::fabs(res.facade_energy[i].annual_kwh_m2 - facade[i]) / facade[i]);
+    CHECK(worst < 1e-9);
 }
 
 TEST_CASE("buildings/surface_energy: progress, cancellation and refusals")

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <type_traits>
@@ -23,6 +24,10 @@ namespace lidarfx {
 
 /// Settings of horizon_map and horizon_stack.
 struct horizon_map_options {
+    /// Families of parallel ray lines, as raylines_shadow_options::line_phases, in [1, 64]: each cell's horizon is
+    /// read along the line of the family nearest its centre (at most 1 / (2 line_phases) cells off). 1 (default)
+    /// is one sweep; each further family costs one more sweep, except along the grid axes and diagonals.
+    int line_phases = 1;
     execution run = {};  ///< threads, progress and cancellation (core/parallel.hpp); never changes the result
 };
 
@@ -70,10 +75,18 @@ void tangents_to_degrees(T* o, std::ptrdiff_t c0, std::ptrdiff_t c1) noexcept
     }
 }
 
+/// Which cells of a line family a sweep writes: those of the major indices i with owner[i] == family, or every
+/// cell when owner is null (one family). The other cells still join their lines' hulls.
+struct family_cells {
+    const std::uint8_t* owner = nullptr;
+    std::uint8_t family = 0;
+    bool writes(std::ptrdiff_t i) const noexcept { return owner == nullptr || owner[i] == family; }
+};
+
 /// Steep lines [k0, k1): a sweep over rows in walk order with one hull per line (cache-friendly reads).
 template <class T>
 void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l, double cell_m,
-                         std::ptrdiff_t k0, std::ptrdiff_t k1)
+                         family_cells own, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
     std::vector<horizon_hull_point> hulls(static_cast<std::size_t>(lines * rows));
@@ -85,8 +98,17 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
         const std::ptrdiff_t s = l.shift(r);
         const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, k0 + s), c1 = std::min(cols, k1 + s);
         const float* zr = z.row(r);
-        T* o = out.row(r);
         const double tr = (static_cast<double>(r) + 0.5) * b;
+        if (!own.writes(r)) {  // another family writes this row: only the hulls grow
+            for (std::ptrdiff_t c = c0; c < c1; ++c) {
+                if (zr[c] != zr[c]) continue;
+                const std::ptrdiff_t line = c - s - k0;
+                horizon_hull_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
+                                  (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
+            }
+            continue;
+        }
+        T* o = out.row(r);
         for (std::ptrdiff_t c = c0; c < c1; ++c) {
             if (zr[c] != zr[c]) {
                 o[c] = nan;
@@ -102,10 +124,11 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
 }
 
 /// Shallow lines [k0, k1): a sweep over rows and, within a row, over the lines' columns in walk order (as in
-/// raylines_shadow), one hull per line.
+/// raylines_shadow), one hull per line. With several families, the degrees conversion waits for the end.
 template <class T>
 void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const ray_lines& l, double cell_m,
-                           const std::vector<std::ptrdiff_t>& sh, std::ptrdiff_t k0, std::ptrdiff_t k1)
+                           const std::vector<std::ptrdiff_t>& sh, family_cells own, std::ptrdiff_t k0,
+                           std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), lines = k1 - k0;
     std::vector<horizon_hull_point> hulls(static_cast<std::size_t>(lines * cols));
@@ -122,38 +145,61 @@ void horizon_shallow_block(raster_view<const float> z, raster_view<T> out, const
         const double tr = (static_cast<double>(r) + 0.5) * b;
         for (std::ptrdiff_t j = c0; j < c1; ++j) {
             const std::ptrdiff_t c = fwd ? j : c0 + c1 - 1 - j;
+            const bool writes = own.writes(c);
             if (zr[c] != zr[c]) {
-                o[c] = nan;
+                if (writes) o[c] = nan;
                 continue;
             }
             const std::ptrdiff_t line = r - sh[static_cast<std::size_t>(c)] - k0;
-            o[c] =
-                static_cast<T>(horizon_hull_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
-                                                 (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+            const double tangent =
+                horizon_hull_step(hulls.data() + line * cols, sizes[static_cast<std::size_t>(line)],
+                                  (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
+            if (writes) o[c] = static_cast<T>(tangent);
         }
-        tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
+        if (own.owner == nullptr) tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
 }
 
-/// Horizon angles in degrees (T = float) or horizon tangents (T = double) of every cell towards azimuth_deg.
+/// Refuses bad horizon_map_options: line_phases outside [1, 64] or run.threads < 0.
+inline void check_horizon_options(const horizon_map_options& opt, const char* fn)
+{
+    require(opt.line_phases >= 1 && opt.line_phases <= 64, fn, "line_phases", "in [1, 64]", opt.line_phases);
+    check_execution(opt.run, fn);
+}
+
+/// Horizon angles in degrees (T = float) or horizon tangents (T = double) of every cell towards azimuth_deg, each
+/// cell from the line family of opt.line_phases nearest its centre.
 template <class T>
 void horizon_map_view(raster_view<const float> z, raster_view<T> out, double cell_m, double azimuth_deg,
                       const horizon_map_options& opt, const char* fn)
 {
     const ray_lines l = make_ray_lines(azimuth_deg, z.rows(), z.cols());
-    const std::ptrdiff_t first = l.first_line();
-    const std::vector<std::ptrdiff_t> sh = l.shifts();
-    // Blocks of lines fixed by the input; each line is swept by one thread, so any split gives the same bits.
-    parallel_for_rows(
-        l.count(), 64, opt.run.threads,
-        [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
-            if (l.steep) {
-                horizon_steep_block(z, out, l, cell_m, first + b0, first + b1);
-            } else {
-                horizon_shallow_block(z, out, l, cell_m, sh, first + b0, first + b1);
-            }
-        },
-        opt.run.progress, fn);
+    const line_families fam = make_line_families(l, opt.line_phases);
+    const bool one = fam.lines.size() == 1;
+    const std::size_t families = fam.lines.size();
+    for (std::size_t f = 0; f < families; ++f) {
+        const ray_lines& lf = fam.lines[f];
+        const family_cells own{one ? nullptr : fam.owner.data(), static_cast<std::uint8_t>(f)};
+        const std::ptrdiff_t first = lf.first_line();
+        const std::vector<std::ptrdiff_t>& sh = fam.shifts[f];
+        const double from = static_cast<double>(f) / static_cast<double>(families);
+        // Blocks of lines fixed by the input; each line is swept by one thread, so any split gives the same bits.
+        parallel_for_rows(
+            lf.count(), 64, opt.run.threads,
+            [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
+                if (lf.steep) {
+                    horizon_steep_block(z, out, lf, cell_m, own, first + b0, first + b1);
+                } else {
+                    horizon_shallow_block(z, out, lf, cell_m, sh, own, first + b0, first + b1);
+                }
+            },
+            progress_phase(opt.run.progress, from, from + 1.0 / static_cast<double>(families)), fn);
+    }
+    if (!one && !l.steep && std::is_same_v<T, float>) {  // shallow sweeps left their tangents for here
+        parallel_for_rows(z.rows(), 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            for (std::ptrdiff_t r = r0; r < r1; ++r) tangents_to_degrees(out.row(r), 0, z.cols());
+        });
+    }
 }
 
 }  // namespace detail
@@ -162,10 +208,13 @@ void horizon_map_view(raster_view<const float> z, raster_view<T> out, double cel
 /// non-NaN cells q before p on p's ray line of atan((z_q - z_p) / (t_p - t_q))), degrees in [0, 90). Ray lines
 /// as in raylines_shadow (kernels/solar/ray_lines.hpp), t = projection of the cell centre on the walk away
 /// from the azimuth, in metres. A sweep keeping the upper convex hull of the profile behind each cell
-/// (Stewart 1998): O(rows * cols). Beyond the raster border nothing rises above the horizontal, so a cell with
-/// nothing higher towards the azimuth, the border cells facing it, and a flat plane give 0. NaN cells give
-/// NaN and hide nothing. Azimuth clockwise from north (row 0 north). @throws invalid_input if shapes differ,
-/// cell_m is not finite and > 0, the azimuth is not finite or run.threads < 0; cancelled if asked to stop.
+/// (Stewart 1998): O(rows * cols) per line family. With opt.line_phases = P families, each cell's line is the
+/// one of the family nearest its centre (as in raylines_shadow with the same P), so the cell is lit by a sun of
+/// this azimuth and elevation e exactly when its horizon is <= e (up to rounding). Beyond the raster border
+/// nothing rises above the horizontal, so a cell with nothing higher towards the azimuth, the border cells facing
+/// it, and a flat plane give 0. NaN cells give NaN and hide nothing. Azimuth clockwise from north (row 0 north).
+/// @throws invalid_input if shapes differ, cell_m is not finite and > 0, the azimuth is not finite,
+/// line_phases is outside [1, 64] or run.threads < 0; cancelled if asked to stop.
 template <raster_input In, class Out>
 requires raster_output_of<Out, float>
 void horizon_map(const In& dsm, Out&& horizon_deg, double cell_m, double azimuth_deg,
@@ -174,7 +223,7 @@ void horizon_map(const In& dsm, Out&& horizon_deg, double cell_m, double azimuth
     constexpr const char* fn = "horizon_map";
     detail::require_positive(cell_m, fn, "cell_m");
     detail::require(std::isfinite(azimuth_deg), fn, "azimuth_deg", "finite", azimuth_deg);
-    detail::check_execution(opt.run, fn);
+    detail::check_horizon_options(opt, fn);
     detail::require_same_shape(dsm, horizon_deg, fn, "dsm", "horizon_deg");
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         detail::write_through<float>(std::forward<Out>(horizon_deg), [&](raster_view<float> out) {
@@ -203,7 +252,7 @@ horizon_stack_result horizon_stack(const In& dsm, double cell_m, int directions,
     constexpr const char* fn = "horizon_stack";
     detail::require(directions >= 1, fn, "directions", ">= 1", directions);
     detail::require_positive(cell_m, fn, "cell_m");
-    detail::check_execution(opt.run, fn);
+    detail::check_horizon_options(opt, fn);
     horizon_stack_result result;
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         for (int i = 0; i < directions; ++i) {

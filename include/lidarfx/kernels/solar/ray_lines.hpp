@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -39,10 +40,6 @@ inline std::array<double, 2> sincos_deg(double deg) noexcept
     const double rad = a * (std::numbers::pi / 180.0);
     return {std::sin(rad), std::cos(rad)};
 }
-
-namespace detail {
-
-}  // namespace detail
 
 /// The family of lines that walks away from an azimuth (clockwise from north) over a rows x cols raster (see the
 /// geometry above): every cell lies on exactly one line, and along a line the walk visits the cells in the order
@@ -136,5 +133,44 @@ inline ray_lines make_ray_lines(double azimuth_deg, std::ptrdiff_t rows, std::pt
     l.cols = cols;
     return l;
 }
+
+namespace detail {
+
+/// The line families of one azimuth (see raylines_shadow_options::line_phases): `phases` families of lines with
+/// phases 0.5 + j / phases, and for every major index (row if steep, column if shallow) the family whose line passes
+/// nearest the centres of its cells (line_phase_of), which alone writes them. Only families that own some major index
+/// are kept. Used by raylines_shadow and horizon_map.
+struct line_families {
+    std::vector<ray_lines> lines;                     ///< the families some major index uses
+    std::vector<std::vector<std::ptrdiff_t>> shifts;  ///< shifts() of each
+    std::vector<std::uint8_t> owner;                  ///< per major index: position of its family in `lines`
+    std::ptrdiff_t first = 0, last = 0;               ///< line indices [first, last) holding a cell in any family
+};
+
+inline line_families make_line_families(const ray_lines& l, int phases)
+{
+    line_families f;
+    std::vector<int> of(static_cast<std::size_t>(l.major()));
+    std::vector<int> slot(static_cast<std::size_t>(phases), -1);
+    for (std::ptrdiff_t i = 0; i < l.major(); ++i) of[static_cast<std::size_t>(i)] = line_phase_of(l.slope, i, phases);
+    for (const int j : of) slot[static_cast<std::size_t>(j)] = 0;
+    for (int j = 0; j < phases; ++j) {
+        if (slot[static_cast<std::size_t>(j)] < 0) continue;
+        slot[static_cast<std::size_t>(j)] = static_cast<int>(f.lines.size());
+        ray_lines lf = l;
+        lf.phase = 0.5 + static_cast<double>(j) / phases;
+        f.shifts.push_back(lf.shifts());
+        const std::ptrdiff_t first = lf.first_line();
+        f.first = f.lines.empty() ? first : std::min(f.first, first);
+        f.last = f.lines.empty() ? first + lf.count() : std::max(f.last, first + lf.count());
+        f.lines.push_back(lf);
+    }
+    f.owner.resize(of.size());
+    for (std::size_t i = 0; i < of.size(); ++i)
+        f.owner[i] = static_cast<std::uint8_t>(slot[static_cast<std::size_t>(of[i])]);
+    return f;
+}
+
+}  // namespace detail
 
 }  // namespace lidarfx

@@ -75,7 +75,9 @@ struct surface_energy_result {
 /// in UTC + site.utc_offset_h; quarter_kwh_m2_day = the quarter's sum / its days of records. Cost: one sky view
 /// factor of the raster and facade_sky_view (2 svf_directions sweeps), then per daylight record one ray-line
 /// sweep of the raster (shadows of the cells and of every sub-patch at once) and O(patches):
-/// O(records * rows * cols + records * patches). Results are the same for any thread count. dsm and cell_m in
+/// O(records * rows * cols + records * patches). The sweeps of 8 records at a time run side by side (one thread
+/// each, a byte per cell and 8 bytes per observer cell each), then the 8 are added to every patch in record order,
+/// so results are the same for any thread count. dsm and cell_m in
 /// metres. @throws invalid_input if shapes differ, cell_m is not finite and > 0, an option is out of range (or asks
 /// for the Perez sky or an albedo), or daylight_suns refuses a record, the site or a time; cancelled if
 /// run.progress returns false.

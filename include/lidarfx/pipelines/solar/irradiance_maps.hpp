@@ -58,10 +58,13 @@ struct irradiance_maps_result {
 /// the SVF as the isotropic part does; with opt.sky.perez.nonnegative = false the sum is clamped at 0).
 /// On open horizontal ground a record adds DNI sin e + DHI (either sky model, for e >= 5 deg), which is GHI for
 /// consistent records, so the annual map equals ghi_kwh_m2 there. Records may come in any order; each goes to the
-/// month of its middle in UTC + site.utc_offset_h. dsm heights and cell_m in metres. Cost per daylight record
-/// O(rows * cols) (one raylines_shadow pass and one accumulation pass) plus one sky view factor (svf_directions
-/// sweeps). Memory per cell: 2 doubles, 14 floats and a byte (plus 32 bytes with per-cell surfaces, 36 with the
-/// Perez sky). Results are the same for any thread count.
+/// month of its middle in UTC + site.utc_offset_h. dsm heights and cell_m in metres. The terms that do not depend
+/// on "lit" (isotropic sky, horizon band, reflected light) are summed per month first and meet each cell once per
+/// month; a record without beam or circumsolar light casts no shadow to compute. The shadows of up to 8 records of
+/// a month are swept side by side (one thread each), then added to the month in one pass. Cost per daylight record
+/// with beam light O(rows * cols) (one raylines_shadow pass and part of an accumulation pass) plus one sky view
+/// factor (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and 8 bytes (plus 20 bytes with per-cell
+/// surfaces, 24 with the Perez sky). Results are the same for any thread count.
 /// @throws invalid_input if cell_m is not finite and > 0, the surface rasters' shapes differ from the DSM's or
 /// only one is given, a tilt is outside [0, 180], an option is out of range, or daylight_suns refuses a record,
 /// the site or a time; cancelled if run.progress returns false.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -24,44 +25,11 @@ namespace lidarfx {
 
 namespace detail {
 
-/// The line families of one sun position (see raylines_shadow_options::line_phases): the families in use, and
-/// for every major index (row if steep, column if shallow) the family that writes its cells.
-struct shadow_families {
-    std::vector<ray_lines> lines;                     ///< the families some major index uses
-    std::vector<std::vector<std::ptrdiff_t>> shifts;  ///< shifts() of each
-    std::vector<std::uint8_t> owner;                  ///< per major index: position of its family in `lines`
-    std::ptrdiff_t first = 0, last = 0;               ///< line indices [first, last) holding a cell in any family
-};
-
-inline shadow_families make_shadow_families(const ray_lines& l, int phases)
-{
-    shadow_families f;
-    std::vector<int> of(static_cast<std::size_t>(l.major()));
-    std::vector<int> slot(static_cast<std::size_t>(phases), -1);
-    for (std::ptrdiff_t i = 0; i < l.major(); ++i) of[static_cast<std::size_t>(i)] = line_phase_of(l.slope, i, phases);
-    for (const int j : of) slot[static_cast<std::size_t>(j)] = 0;
-    for (int j = 0; j < phases; ++j) {
-        if (slot[static_cast<std::size_t>(j)] < 0) continue;
-        slot[static_cast<std::size_t>(j)] = static_cast<int>(f.lines.size());
-        ray_lines lf = l;
-        lf.phase = 0.5 + static_cast<double>(j) / phases;
-        f.shifts.push_back(lf.shifts());
-        const std::ptrdiff_t first = lf.first_line();
-        f.first = f.lines.empty() ? first : std::min(f.first, first);
-        f.last = f.lines.empty() ? first + lf.count() : std::max(f.last, first + lf.count());
-        f.lines.push_back(lf);
-    }
-    f.owner.resize(of.size());
-    for (std::size_t i = 0; i < of.size(); ++i)
-        f.owner[i] = static_cast<std::uint8_t>(slot[static_cast<std::size_t>(of[i])]);
-    return f;
-}
-
 /// Steep lines [k0, k1) of every family: a sweep over rows in walk order. Each row's keys are computed once;
 /// every family then raises the running maximum key of its lines (`limit`, one array per family), and the
 /// family that owns the row first compares the row's keys with it. A family's lines hold contiguous cells in
 /// one row and are independent, so the inner loops carry no dependency.
-inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const shadow_families& fam,
+inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
                                const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
@@ -103,68 +71,122 @@ inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint
     }
 }
 
-/// Shallow lines [k0, k1) of every family: a sweep over rows (in the order of the walk's row direction) and,
-/// within a row, over each family's columns of these lines in walk order; a line crosses a row in a run of
-/// adjacent columns, so every line still meets its cells in walk order. A column's cells are written by the
-/// family that owns the column.
-inline void shadow_shallow_block(raster_view<const float> z, raster_view<std::uint8_t> out, const shadow_families& fam,
-                                 const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
+/// Shallow lines [k0, k1) of every family, swept as the steep lines of the transposed raster (see transposed):
+/// shadow_steep_block's sweep, with row r' and column c' of the sweep at column r' and row c' of z and out. The
+/// sweep takes 16 rows' at a time: their cells are copied from z into a small tile (the 16 contiguous floats of
+/// each row of z side by side), swept there, and written back 16 bytes per row of out, so z and out are read and
+/// written a cache line at a time and the tile stays in the first-level cache.
+inline void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
+                                    const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0,
+                                    std::ptrdiff_t k1)
 {
-    const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
-    const std::size_t families = fam.lines.size();
+    constexpr std::ptrdiff_t chunk = 16;
+    const std::ptrdiff_t rows = z.cols(), cols = z.rows(), n = k1 - k0;  // of the transposed raster
+    const std::size_t families = fam.lines.size(), ucols = static_cast<std::size_t>(cols);
     std::vector<double> limits(families * static_cast<std::size_t>(n), -std::numeric_limits<double>::infinity());
-    std::vector<double> keys(static_cast<std::size_t>(cols));
-    const ray_lines& l = fam.lines.front();
-    const bool fwd = l.forward();
-    std::array<const std::ptrdiff_t*, 64> shift{};
-    for (std::size_t f = 0; f < families; ++f) shift[f] = fam.shifts[f].data();
-    std::ptrdiff_t lo_row = rows, hi_row = 0;
-    for (std::size_t f = 0; f < families; ++f) {
-        const auto [a, b] = ray_lines::rows_of(fam.shifts[f], k0, k1, rows);
-        lo_row = std::min(lo_row, a);
-        hi_row = std::max(hi_row, b);
-    }
-    for (std::ptrdiff_t i = lo_row; i < hi_row; ++i) {
-        const std::ptrdiff_t r = l.rows_forward() ? i : lo_row + hi_row - 1 - i;
-        const float* zr = z.row(r);
-        std::uint8_t* o = out.row(r);
-        const double rl = lift.row_lift[static_cast<std::size_t>(r)];
-        std::array<std::array<std::ptrdiff_t, 2>, 64> span;  // each family's columns [c0, c1) of this row
+    std::vector<double> keys(ucols);
+    // A chunk's columns' span lines [k0, k1) of every family across 16 rows': n plus at most 16 |slope| + 1 shifts.
+    const std::size_t span = static_cast<std::size_t>(n + 2 * chunk + 2);
+    std::vector<float> tile(chunk * span);        // tile[(c - lo) * chunk + j]: row' c0 + j, column' c
+    std::vector<std::uint8_t> lit(chunk * span);  // the same layout
+    const double* col_lift = lift.col_lift.data();
+    const bool forward = fam.lines.front().forward();
+    // Columns' [lo, hi) of row' r on lines [k0, k1) of some family, and of its owner family.
+    const auto span_of = [&](std::ptrdiff_t r, bool owner_only) {
         std::ptrdiff_t lo = cols, hi = 0;
         for (std::size_t f = 0; f < families; ++f) {
-            span[f] = fam.lines[f].columns(fam.shifts[f], r, k0, k1);
-            if (span[f][0] < span[f][1]) {
-                lo = std::min(lo, span[f][0]);
-                hi = std::max(hi, span[f][1]);
+            if (owner_only && fam.owner[static_cast<std::size_t>(r)] != f) continue;
+            const std::ptrdiff_t s = fam.shifts[f][static_cast<std::size_t>(r)];
+            lo = std::min(lo, std::max<std::ptrdiff_t>(0, k0 + s));
+            hi = std::max(hi, std::min(cols, k1 + s));
+        }
+        return std::array<std::ptrdiff_t, 2>{lo, hi};
+    };
+    for (std::ptrdiff_t i0 = 0; i0 < rows; i0 += chunk) {
+        const std::ptrdiff_t i1 = std::min(rows, i0 + chunk);
+        // Rows' of this chunk are z's columns [c0, c0 + m); tile row j holds column c0 + j.
+        const std::ptrdiff_t m = i1 - i0, c0 = forward ? i0 : rows - i1;
+        std::ptrdiff_t lo = cols, hi = 0;
+        for (std::ptrdiff_t j = 0; j < m; ++j) {
+            const auto [a, b] = span_of(c0 + j, false);
+            lo = std::min(lo, a);
+            hi = std::max(hi, b);
+        }
+        assert(hi <= lo || static_cast<std::size_t>(hi - lo) <= span);
+        for (std::ptrdiff_t r = lo; r < hi; ++r) {
+            const float* zr = z.row(r) + c0;
+            float* t = tile.data() + (r - lo) * chunk;
+            if (m == chunk) {
+                std::copy_n(zr, chunk, t);  // a fixed size: a few vector moves, no call
+            } else {
+                std::copy_n(zr, m, t);
             }
         }
-        double* key = keys.data();
-        for (std::ptrdiff_t c = lo; c < hi; ++c)
-            key[c] = static_cast<double>(zr[c]) + (lift.col_lift[static_cast<std::size_t>(c)] + rl);
-        if (families == 1) {  // one chain per line: the plain walk
-            double* lim = limits.data() - k0;
-            for (std::ptrdiff_t j = lo; j < hi; ++j) {
-                const std::ptrdiff_t c = fwd ? j : lo + hi - 1 - j;
-                double& m = lim[r - shift[0][c]];
-                o[c] = zr[c] != zr[c] ? nan_cell : (m > key[c] ? 0 : 1);
-                m = key[c] > m ? key[c] : m;  // false for a NaN key: NaN cells cast no shadow
-            }
-            continue;
-        }
-        // Columns in walk order, every family at each column: the families' running maxima are independent
-        // chains, so interleaving them hides the latency of each chain (consecutive cells of one line).
-        for (std::ptrdiff_t j = lo; j < hi; ++j) {
-            const std::ptrdiff_t c = fwd ? j : lo + hi - 1 - j;
-            const double kc = key[c];
-            const std::size_t own = fam.owner[static_cast<std::size_t>(c)];
+        for (std::ptrdiff_t step = 0; step < m; ++step) {
+            const std::ptrdiff_t j = forward ? step : m - 1 - step, r = c0 + j;
+            const std::size_t ri = static_cast<std::size_t>(r);
+            const auto [a, b] = span_of(r, false);
+            if (a >= b) continue;
+            const float* zt = tile.data() + j - lo * chunk;  // zt[c * chunk]: column' c of row' r
+            std::uint8_t* o = lit.data() + j - lo * chunk;
+            const double rl = lift.row_lift[ri];
+            double* key = keys.data();
+            for (std::ptrdiff_t c = a; c < b; ++c) key[c] = static_cast<double>(zt[c * chunk]) + (col_lift[c] + rl);
             for (std::size_t f = 0; f < families; ++f) {
-                if (c < span[f][0] || c >= span[f][1]) continue;
-                double& m = limits[f * static_cast<std::size_t>(n) + static_cast<std::size_t>(r - shift[f][c] - k0)];
-                if (f == own) o[c] = zr[c] != zr[c] ? nan_cell : (m > kc ? 0 : 1);
-                m = kc > m ? kc : m;  // false for a NaN key: NaN cells cast no shadow
+                const std::ptrdiff_t s = fam.shifts[f][ri];
+                const std::ptrdiff_t f0 = std::max<std::ptrdiff_t>(0, k0 + s), f1 = std::min(cols, k1 + s);
+                double* lim = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);
+                if (fam.owner[ri] == f) {
+                    for (std::ptrdiff_t c = f0; c < f1; ++c) {
+                        const double mx = lim[c];
+                        const std::uint8_t v = mx > key[c] ? 0 : 1;
+                        o[c * chunk] = key[c] != key[c] ? nan_cell : v;  // a NaN key is a NaN cell
+                        lim[c] = key[c] > mx ? key[c] : mx;  // false for a NaN key: NaN cells cast no shadow
+                    }
+                } else {
+                    for (std::ptrdiff_t c = f0; c < f1; ++c) lim[c] = key[c] > lim[c] ? key[c] : lim[c];
+                }
+            }
+        }
+        // Back to out, row by row: each row' wrote the cells of its owner family's lines [k0, k1) only.
+        std::array<std::array<std::ptrdiff_t, 2>, chunk> own;
+        for (std::ptrdiff_t j = 0; j < m; ++j) own[static_cast<std::size_t>(j)] = span_of(c0 + j, true);
+        // Rows inside every row's own span take the tile's bytes whole; the few at the spans' ends, cell by cell.
+        std::ptrdiff_t all_lo = lo, all_hi = hi;
+        for (std::ptrdiff_t j = 0; j < m; ++j) {
+            all_lo = std::max(all_lo, own[static_cast<std::size_t>(j)][0]);
+            all_hi = std::min(all_hi, own[static_cast<std::size_t>(j)][1]);
+        }
+        for (std::ptrdiff_t r = lo; r < hi; ++r) {
+            std::uint8_t* orow = out.row(r) + c0;
+            const std::uint8_t* l = lit.data() + (r - lo) * chunk;
+            if (r >= all_lo && r < all_hi && m == chunk) {
+                std::copy_n(l, chunk, orow);
+                continue;
+            }
+            for (std::ptrdiff_t j = 0; j < m; ++j) {
+                const auto [a, b] = own[static_cast<std::size_t>(j)];
+                if (r >= a && r < b) orow[j] = l[j];
             }
         }
     }
+}
+
+/// Shallow lines, swept as steep ones: in the transposed raster (row' = column, column' = row) a shallow line of
+/// `l` holds one cell per row', at column' k + shift(row'), with the same slope, shifts, phases and families, and
+/// its walk visits rows' in the same order. The lifts swap too (col_lift' = row_lift and row_lift' = col_lift),
+/// and z + (col_lift' + row_lift') adds the same two numbers, so every key and every output bit is the one a
+/// walk in the raster's own layout gives. Steep sweeps carry no dependency from one cell to the next, which a
+/// walk along shallow lines in row order cannot avoid.
+inline ray_lines transposed(const ray_lines& l) noexcept
+{
+    ray_lines t = l;
+    t.dcol = l.drow;
+    t.drow = l.dcol;
+    t.steep = !l.steep;
+    t.rows = l.cols;
+    t.cols = l.rows;
+    return t;
 }
 
 inline void raylines_shadow_view(raster_view<const float> z, raster_view<std::uint8_t> out, double cell_m,
@@ -185,8 +207,11 @@ inline void raylines_shadow_view(raster_view<const float> z, raster_view<std::ui
         return;
     }
     const ray_lines l = make_ray_lines(sun_azimuth_deg, rows, cols);
-    const shadow_lifts lift = make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
-    const shadow_families fam = make_shadow_families(l, opt.line_phases);
+    const double tan_e = std::tan(sun_elevation_deg * (std::numbers::pi / 180.0));
+    // Shallow lines are swept as steep lines of the transposed raster (see transposed).
+    const ray_lines s = l.steep ? l : transposed(l);
+    const shadow_lifts lift = make_shadow_lifts(s, cell_m, tan_e);
+    const line_families fam = make_line_families(s, opt.line_phases);
     // Blocks of lines fixed by the input; each line of each family is walked by one thread and each cell is
     // written by one family, so any split gives the same bits.
     const std::ptrdiff_t block = 512;
@@ -196,7 +221,7 @@ inline void raylines_shadow_view(raster_view<const float> z, raster_view<std::ui
             if (l.steep) {
                 shadow_steep_block(z, out, fam, lift, opt.nan_cell, fam.first + b0, fam.first + b1);
             } else {
-                shadow_shallow_block(z, out, fam, lift, opt.nan_cell, fam.first + b0, fam.first + b1);
+                shadow_transposed_block(z, out, fam, lift, opt.nan_cell, fam.first + b0, fam.first + b1);
             }
         },
         opt.run.progress, fn);

@@ -4,6 +4,7 @@
 #pragma once
 // Included at the end of its public header, which declares what is defined here.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -83,56 +84,70 @@ inline void surface_sky_views(raster_view<const float> z, double cell_m, const s
     }
 }
 
-/// Per-sun scratch of surface_energy: the observers in front of the walls, the cells' lit state and the
-/// observers' shadow limits.
-struct surface_sun_scratch {
-    facade_observers obs;
+/// One daylight sun's sweep for surface_energy: its ray lines' shadow lifts, the cells' lit state and the observers'
+/// shadow limits.
+struct surface_sun_sweep {
+    shadow_lifts lift;
     raster<std::uint8_t> lit;
     std::vector<double> limit;
+    bool zenith = false;  ///< the sun at the zenith: nothing casts a shadow, walls get no beam
 };
 
-/// Adds one daylight sun to the quarter sums of every roof patch and facade sub-patch.
-inline void add_surface_sun(raster_view<const float> z, double cell_m, const daylight_sun& day,
-                            const surface_energy_result& res, surface_sun_scratch& s,
-                            std::vector<std::array<double, 4>>& roof_sum,
-                            std::vector<std::array<double, 4>>& facade_sum, int threads, const char* fn)
+/// Sweeps one daylight sun over the DSM on one thread (the suns of a batch are swept side by side).
+inline void sweep_surface_sun(raster_view<const float> z, double cell_m, const daylight_sun& day,
+                              const facade_observers& obs, surface_sun_sweep& s, const char* fn)
 {
-    const double dni = day.dni_w_m2 * day.kwh_per_w_m2, dhi = day.dhi_w_m2 * day.kwh_per_w_m2;
-    const enu_vector& sun = day.sun;
-    const bool zenith = day.elevation_deg >= 90.0;  // nothing casts a shadow; walls get no beam
+    s.zenith = day.elevation_deg >= 90.0;
     const ray_lines l = make_ray_lines(day.azimuth_deg, z.rows(), z.cols());
-    const shadow_lifts lift =
-        make_shadow_lifts(l, cell_m, zenith ? 0.0 : std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
-    if (!zenith) facade_shadow_sweep(z, s.obs, l, lift, s.limit, s.lit.view(), threads, fn);
-    const auto q = static_cast<std::size_t>(day.month / 3);
-    const facade_cos_table cos_theta(day.azimuth_deg, day.elevation_deg);
-    const raster<std::uint8_t>& lit = s.lit;
+    s.lift = make_shadow_lifts(l, cell_m, s.zenith ? 0.0 : std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
+    if (s.lit.rows() != z.rows() || s.lit.cols() != z.cols()) s.lit = raster<std::uint8_t>(z.rows(), z.cols());
+    if (!s.zenith) facade_shadow_sweep(z, obs, l, s.lift, s.limit, s.lit.view(), 1, fn);
+}
+
+/// Adds a batch of swept daylight suns, in order, to the quarter sums of every roof patch and facade sub-patch.
+inline void add_surface_suns(std::span<const daylight_sun* const> days, std::span<const surface_sun_sweep> sweeps,
+                             const facade_observers& obs, const surface_energy_result& res,
+                             std::vector<std::array<double, 4>>& roof_sum,
+                             std::vector<std::array<double, 4>>& facade_sum, int threads)
+{
+    std::vector<facade_cos_table> cos_theta;
+    for (const daylight_sun* d : days) cos_theta.emplace_back(d->azimuth_deg, d->elevation_deg);
     parallel_for_rows(
         static_cast<std::ptrdiff_t>(res.roofs.size()), 4096, threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
             for (std::ptrdiff_t i = i0; i < i1; ++i) {
                 const surface_patch& p = res.roofs[static_cast<std::size_t>(i)];
-                const double share = zenith ? 1.0
-                                            : 0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) +
-                                                      lit(p.row + 1, p.col) + lit(p.row + 1, p.col + 1));
-                const double cos_t = enu_dot(sun, p.normal);
-                roof_sum[static_cast<std::size_t>(i)][q] +=
-                    (cos_t > 0.0 ? dni * cos_t * share : 0.0) + dhi * res.roof_sky_view[static_cast<std::size_t>(i)];
+                for (std::size_t k = 0; k < days.size(); ++k) {
+                    const daylight_sun& day = *days[k];
+                    const raster<std::uint8_t>& lit = sweeps[k].lit;
+                    const double share = sweeps[k].zenith ? 1.0
+                                                          : 0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) +
+                                                                    lit(p.row + 1, p.col) + lit(p.row + 1, p.col + 1));
+                    const double dni = day.dni_w_m2 * day.kwh_per_w_m2, dhi = day.dhi_w_m2 * day.kwh_per_w_m2;
+                    const double cos_t = enu_dot(day.sun, p.normal);
+                    roof_sum[static_cast<std::size_t>(i)][static_cast<std::size_t>(day.month / 3)] +=
+                        (cos_t > 0.0 ? dni * cos_t * share : 0.0) +
+                        dhi * res.roof_sky_view[static_cast<std::size_t>(i)];
+                }
             }
         });
-    parallel_for_rows(static_cast<std::ptrdiff_t>(res.facades.size()), 4096, threads,
-                      [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
-                          for (std::ptrdiff_t i = i0; i < i1; ++i) {
-                              const facade_patch& p = res.facades[static_cast<std::size_t>(i)];
-                              double beam = 0.0;
-                              if (!zenith) {
-                                  const auto o = static_cast<std::size_t>(s.obs.index(p.front_row, p.front_col));
-                                  const double cos_t = cos_theta(p.facing_azimuth_deg);
-                                  if (facade_patch_lit(p, cos_t, s.limit[o], lift) == 1) beam = dni * cos_t;
-                              }
-                              facade_sum[static_cast<std::size_t>(i)][q] +=
-                                  beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
-                          }
-                      });
+    parallel_for_rows(
+        static_cast<std::ptrdiff_t>(res.facades.size()), 4096, threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+            for (std::ptrdiff_t i = i0; i < i1; ++i) {
+                const facade_patch& p = res.facades[static_cast<std::size_t>(i)];
+                const auto o = static_cast<std::size_t>(obs.index(p.front_row, p.front_col));
+                for (std::size_t k = 0; k < days.size(); ++k) {
+                    const daylight_sun& day = *days[k];
+                    const double dni = day.dni_w_m2 * day.kwh_per_w_m2, dhi = day.dhi_w_m2 * day.kwh_per_w_m2;
+                    double beam = 0.0;
+                    if (!sweeps[k].zenith) {
+                        const double cos_t = cos_theta[k](p.facing_azimuth_deg);
+                        if (facade_patch_lit(p, cos_t, sweeps[k].limit[o], sweeps[k].lift) == 1) beam = dni * cos_t;
+                    }
+                    facade_sum[static_cast<std::size_t>(i)][static_cast<std::size_t>(day.month / 3)] +=
+                        beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
+                }
+            }
+        });
 }
 
 }  // namespace lidarfx::detail
@@ -159,15 +174,29 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const double sky_share = 0.1;  // share of the progress taken by the two sky views
         detail::surface_sky_views(z, cell_m, opt, sky_share, res);
-        detail::surface_sun_scratch scratch{detail::make_facade_observers(z.rows(), z.cols(), res.facades),
-                                            raster<std::uint8_t>(z.rows(), z.cols()),
-                                            {}};
+        const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), res.facades);
         std::vector<std::array<double, 4>> roof_sum(res.roofs.size()), facade_sum(res.facades.size());
-        for (std::size_t d = 0; d < suns.size(); ++d) {
-            detail::add_surface_sun(z, cell_m, suns[d], res, scratch, roof_sum, facade_sum, opt.run.threads, fn);
+        // Batches of suns: each sun of a batch swept on its own thread, then the batch added to every patch in
+        // sun order (so the sums are the same for any thread count).
+        const std::size_t batch = 8;
+        std::vector<detail::surface_sun_sweep> sweeps(std::min(batch, suns.size()));
+        std::vector<const daylight_sun*> days;
+        for (std::size_t d0 = 0; d0 < suns.size(); d0 += batch) {
+            const std::size_t n = std::min(batch, suns.size() - d0);
+            days.clear();
+            for (std::size_t k = 0; k < n; ++k) days.push_back(&suns[d0 + k]);
+            parallel_for_rows(static_cast<std::ptrdiff_t>(n), 1, opt.run.threads,
+                              [&](std::ptrdiff_t k0, std::ptrdiff_t k1) {
+                                  for (std::ptrdiff_t k = k0; k < k1; ++k) {
+                                      const auto u = static_cast<std::size_t>(k);
+                                      detail::sweep_surface_sun(z, cell_m, *days[u], obs, sweeps[u], fn);
+                                  }
+                              });
+            detail::add_surface_suns(days, std::span<const detail::surface_sun_sweep>(sweeps.data(), n), obs, res,
+                                     roof_sum, facade_sum, opt.run.threads);
             detail::report(
                 opt.run.progress,
-                sky_share + (1.0 - sky_share) * static_cast<double>(d + 1) / static_cast<double>(suns.size() + 1), fn);
+                sky_share + (1.0 - sky_share) * static_cast<double>(d0 + n) / static_cast<double>(suns.size() + 1), fn);
         }
         res.roof_energy = detail::to_patch_energy(roof_sum, res.quarter_days);
         res.facade_energy = detail::to_patch_energy(facade_sum, res.quarter_days);

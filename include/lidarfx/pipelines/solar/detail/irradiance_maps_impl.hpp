@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Implementation of irradiance_maps (pipelines/solar/irradiance_maps.hpp): per-cell surfaces, the per-record
-// terms, the accumulation of one daylight sun into a month and the month and annual outputs.
+// terms, the accumulation of one daylight sun's lit-dependent light into a month, the month's sky terms summed once,
+// and the month and annual outputs.
 #pragma once
 // Included at the end of its public header, which declares what is defined here.
 
@@ -29,10 +30,11 @@
 
 namespace lidarfx::detail {
 
-/// Per-cell incidence terms of a tilted surface: normal vector, (1 + cos b) / 2, (1 - cos b) / 2 and, for the
-/// Perez sky only, sin b. Empty for horizontal cells.
+/// Per-cell incidence terms of a tilted surface: the normal vector as three float planes (read for every sun, so
+/// kept small and contiguous), (1 + cos b) / 2, (1 - cos b) / 2 and, for the Perez sky only, sin b. Empty for
+/// horizontal cells.
 struct cell_surface {
-    std::vector<enu_vector> normal;
+    std::vector<float> east, north, up;
     std::vector<float> sky, ground, sin_tilt;
     bool tilted() const noexcept { return !sky.empty(); }
 };
@@ -89,7 +91,9 @@ inline cell_surface make_cell_surfaces(raster_view<const float> tilt, raster_vie
     const std::ptrdiff_t rows = tilt.rows(), cols = tilt.cols();
     const std::size_t n = static_cast<std::size_t>(rows * cols);
     if (n == 0) return surf;
-    surf.normal.resize(n);
+    surf.east.resize(n);
+    surf.north.resize(n);
+    surf.up.resize(n);
     surf.sky.resize(n);
     surf.ground.resize(n);
     if (perez) surf.sin_tilt.resize(n);
@@ -98,14 +102,17 @@ inline cell_surface make_cell_surfaces(raster_view<const float> tilt, raster_vie
             const double b = tilt(r, c), a = azimuth(r, c);
             const std::size_t k = static_cast<std::size_t>(r * cols + c);
             if (b != b) {
-                const double nan = std::numeric_limits<double>::quiet_NaN();
-                surf.normal[k] = {nan, nan, nan};
-                surf.sky[k] = surf.ground[k] = std::numeric_limits<float>::quiet_NaN();
+                const float nan = std::numeric_limits<float>::quiet_NaN();
+                surf.east[k] = surf.north[k] = surf.up[k] = nan;
+                surf.sky[k] = surf.ground[k] = nan;
                 if (perez) surf.sin_tilt[k] = std::numeric_limits<float>::quiet_NaN();
                 continue;
             }
             require(b >= 0.0 && b <= 180.0, fn, "surface_tilt_deg", "in [0, 180] degrees", b);
-            surf.normal[k] = surface_normal(b, a == a ? a : 0.0);
+            const enu_vector normal = surface_normal(b, a == a ? a : 0.0);
+            surf.east[k] = static_cast<float>(normal.east);
+            surf.north[k] = static_cast<float>(normal.north);
+            surf.up[k] = static_cast<float>(normal.up);
             const double cb = std::cos(b * (std::numbers::pi / 180.0));
             surf.sky[k] = static_cast<float>((1.0 + cb) / 2.0);
             surf.ground[k] = static_cast<float>((1.0 - cb) / 2.0);
@@ -133,87 +140,160 @@ inline perez_record_terms record_terms(const daylight_sun& d, const sky_options&
             .clamp = !sky.perez.nonnegative};
 }
 
-/// Adds one record's beam, Perez diffuse and reflected irradiation to one row (acc) of cols cells: lit and svf
-/// the row's shadow and sky view factor, surf the per-cell surfaces (nullptr: horizontal) from cell index k0.
-inline void add_perez_row(double* acc, const std::uint8_t* lit, const float* svf, std::ptrdiff_t cols,
-                          const cell_surface* surf, std::size_t k0, const enu_vector& sun,
-                          const perez_record_terms& t) noexcept
-{
-    if (surf == nullptr) {
-        const double circumsolar = t.circumsolar * sun.up;
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            double diffuse = t.isotropic * static_cast<double>(svf[c]) + (lit[c] == 1 ? circumsolar : 0.0);
-            if (t.clamp) diffuse = std::max(0.0, diffuse);
-            acc[c] += (lit[c] == 1 ? t.beam_flat : 0.0) + diffuse;
+/// The sky terms of a month that do not depend on the shadows, summed over its records (they multiply per-cell
+/// factors that do not change from hour to hour): the isotropic part (times the SVF and (1 + cos b) / 2), the
+/// Perez horizon band (times the SVF and sin b) and the reflected part (times (1 - cos b) / 2). Under the clamped
+/// Perez sky the diffuse sum is not separable, so only the reflected part is summed here.
+struct month_sky_sums {
+    double isotropic = 0, horizon = 0, reflected = 0;
+    void add(const perez_record_terms& t) noexcept
+    {
+        if (!t.clamp) {
+            isotropic += t.isotropic;
+            horizon += t.horizon;
         }
+        reflected += t.reflected;
+    }
+};
+
+/// One daylight sun as the accumulation needs it: its terms, and what a lit cell gets from it besides the sky
+/// terms: DNI sin e plus the circumsolar part times sin e on horizontal cells, (DNI + the circumsolar factor)
+/// times max(0, cos theta) on tilted ones.
+struct lit_sun {
+    enu_vector sun = {};
+    perez_record_terms terms = {};
+    double flat = 0, tilted = 0;
+    /// True if the sun's light depends on the shadows at all (no beam and no circumsolar light: it does not).
+    bool casts_shadows() const noexcept { return flat != 0.0 || tilted != 0.0 || terms.clamp; }
+};
+
+inline lit_sun make_lit_sun(const daylight_sun& d, const sky_options& sky)
+{
+    lit_sun s{.sun = d.sun, .terms = record_terms(d, sky)};
+    s.flat = s.terms.beam_flat + s.terms.circumsolar * d.sun.up;
+    s.tilted = s.terms.dni + s.terms.circumsolar;
+    return s;
+}
+
+/// One row of cells as the accumulation reads it: its shadows (1 lit), its SVF, and the per-cell surfaces from cell
+/// index k0 (null when every cell is horizontal).
+struct lit_row {
+    const std::uint8_t* lit;
+    const float* svf;
+    std::ptrdiff_t cols;
+    const cell_surface* surf;
+    std::size_t k0;
+};
+
+/// Adds one sun's shadow-dependent light to one row of month sums (acc, kWh/m^2): its beam and circumsolar light
+/// where the cell is lit and faces the sun. The plain loops vectorize.
+inline void add_lit_row(double* acc, const lit_row& row, const lit_sun& s) noexcept
+{
+    const std::uint8_t* lit = row.lit;
+    const double flat = s.flat, tilted = s.tilted;  // locals: acc cannot alias them, so the loops vectorize
+    if (row.surf == nullptr) {
+        for (std::ptrdiff_t c = 0; c < row.cols; ++c) acc[c] += lit[c] == 1 ? flat : 0.0;
         return;
     }
-    for (std::ptrdiff_t c = 0; c < cols; ++c) {
-        const std::size_t k = k0 + static_cast<std::size_t>(c);
-        const double cos_t = enu_dot(sun, surf->normal[k]);
-        const bool sunny = lit[c] == 1 && cos_t > 0.0;
-        const double sky =
-            t.isotropic * static_cast<double>(surf->sky[k]) + t.horizon * static_cast<double>(surf->sin_tilt[k]);
-        double diffuse = sky * static_cast<double>(svf[c]) + (sunny ? t.circumsolar * cos_t : 0.0);
-        if (t.clamp) diffuse = std::max(0.0, diffuse);
-        acc[c] += (sunny ? t.dni * cos_t : 0.0) + diffuse + t.reflected * static_cast<double>(surf->ground[k]);
+    const float* ne = row.surf->east.data() + row.k0;
+    const float* nn = row.surf->north.data() + row.k0;
+    const float* nu = row.surf->up.data() + row.k0;
+    const float se = static_cast<float>(s.sun.east), sn = static_cast<float>(s.sun.north);
+    const float su = static_cast<float>(s.sun.up);
+    for (std::ptrdiff_t c = 0; c < row.cols; ++c) {
+        const float cos_t = se * ne[c] + sn * nn[c] + su * nu[c];
+        acc[c] += lit[c] == 1 && cos_t > 0.0f ? tilted * static_cast<double>(cos_t) : 0.0;
     }
 }
 
-/// Adds one record's beam, isotropic diffuse and reflected irradiation to one row (acc) of cols cells.
-inline void add_isotropic_row(double* acc, const std::uint8_t* lit, const float* svf, std::ptrdiff_t cols,
-                              const cell_surface* surf, std::size_t k0, const enu_vector& sun,
-                              const perez_record_terms& t) noexcept
+/// add_lit_row under the clamped Perez sky, whose diffuse sum max(0, sky + circumsolar) depends on the shadow:
+/// the sun's whole beam and diffuse light, per cell (its reflected part is in the month's sums).
+inline void add_lit_row_clamped(double* acc, const lit_row& row, const lit_sun& s) noexcept
 {
-    const double dhi = t.isotropic;
-    if (surf == nullptr) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            acc[c] += (lit[c] == 1 ? t.beam_flat : 0.0) + dhi * static_cast<double>(svf[c]);
+    const perez_record_terms& t = s.terms;
+    for (std::ptrdiff_t c = 0; c < row.cols; ++c) {
+        const bool lit = row.lit[c] == 1;
+        const double svf = row.svf[c];
+        if (row.surf == nullptr) {
+            acc[c] +=
+                (lit ? t.beam_flat : 0.0) + std::max(0.0, t.isotropic * svf + (lit ? t.circumsolar * s.sun.up : 0.0));
+            continue;
         }
-        return;
-    }
-    for (std::ptrdiff_t c = 0; c < cols; ++c) {
-        const std::size_t k = k0 + static_cast<std::size_t>(c);
-        const double cos_t = enu_dot(sun, surf->normal[k]);
-        const double beam = lit[c] == 1 && cos_t > 0.0 ? t.dni * cos_t : 0.0;
-        acc[c] += beam + dhi * static_cast<double>(svf[c]) * surf->sky[k] + t.reflected * surf->ground[k];
+        const std::size_t k = row.k0 + static_cast<std::size_t>(c);
+        const double cos_t =
+            s.sun.east * row.surf->east[k] + s.sun.north * row.surf->north[k] + s.sun.up * row.surf->up[k];
+        const bool sunny = lit && cos_t > 0.0;
+        const double sky = t.isotropic * static_cast<double>(row.surf->sky[k]) +
+                           t.horizon * static_cast<double>(row.surf->sin_tilt[k]);
+        acc[c] += (sunny ? t.dni * cos_t : 0.0) + std::max(0.0, sky * svf + (sunny ? t.circumsolar * cos_t : 0.0));
     }
 }
 
-/// Adds one daylight sun to `month`: its cast shadows into `lit`, then every row's irradiation.
-inline void add_daylight_sun(raster_view<const float> z, double cell_m, const daylight_sun& d, const cell_surface& surf,
-                             const raster<float>& svf, raster<std::uint8_t>& lit, raster<double>& month,
-                             const irradiance_maps_options& opt)
+/// Suns whose shadows are swept before their light is added, so that each row of month sums is read and written
+/// once per batch rather than once per sun (the accumulation is bound by memory traffic).
+constexpr std::size_t suns_per_batch = 8;
+
+/// Adds a batch of daylight suns' shadow-dependent light to `month`: each sun's cast shadows into its own `lit`
+/// raster (one thread per sun), then every row once, with every sun of the batch in order.
+inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::span<const daylight_sun* const> d,
+                              std::span<const lit_sun> s, const cell_surface& surf, const raster<float>& svf,
+                              std::span<raster<std::uint8_t>> lit, raster<double>& month,
+                              const irradiance_maps_options& opt)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-    raylines_shadow(z, lit, cell_m, d.azimuth_deg, d.elevation_deg,
-                    {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = opt.run.threads}});
-    const perez_record_terms terms = record_terms(d, opt.sky);
-    const bool perez = opt.sky.diffuse == diffuse_model::perez;
-    const cell_surface* s = surf.tilted() ? &surf : nullptr;
-    parallel_for_rows(rows, 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    // The suns' shadows are independent: each is swept by one thread, all of them side by side.
+    parallel_for_rows(
+        static_cast<std::ptrdiff_t>(d.size()), 1, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+            for (std::ptrdiff_t i = i0; i < i1; ++i) {
+                const std::size_t k = static_cast<std::size_t>(i);
+                raylines_shadow(z, lit[k], cell_m, d[k]->azimuth_deg, d[k]->elevation_deg,
+                                {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = 1}});
+            }
+        });
+    const cell_surface* tilted = surf.tilted() ? &surf : nullptr;
+    parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
-            const auto add = perez ? add_perez_row : add_isotropic_row;
-            add(month.view().row(r), lit.view().row(r), svf.view().row(r), cols, s, static_cast<std::size_t>(r * cols),
-                d.sun, terms);
+            double* acc = month.view().row(r);
+            for (std::size_t i = 0; i < d.size(); ++i) {
+                const lit_row row{lit[i].view().row(r), svf.view().row(r), cols, tilted,
+                                  static_cast<std::size_t>(r * cols)};
+                if (s[i].terms.clamp) {
+                    add_lit_row_clamped(acc, row, s[i]);
+                } else {
+                    add_lit_row(acc, row, s[i]);
+                }
+            }
         }
     });
 }
 
-/// Month m's map as floats (NaN on NaN cells and NaN surfaces), and the month added to `annual`.
-inline raster<float> finish_month(raster_view<const float> z, const cell_surface& surf, const raster<double>& month,
-                                  raster<double>& annual)
+/// Month m's map as floats: its shadow-dependent sums plus its sky terms (NaN on NaN cells and NaN surfaces); the
+/// month is added to `annual`.
+inline raster<float> finish_month(raster_view<const float> z, const cell_surface& surf, const month_sky_sums& sky,
+                                  const raster<float>& svf, const raster<double>& month, raster<double>& annual,
+                                  int threads)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     raster<float> out(rows, cols);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::size_t k = static_cast<std::size_t>(r * cols + c);
-            const bool nodata = z(r, c) != z(r, c) || (surf.tilted() && surf.sky[k] != surf.sky[k]);
-            annual(r, c) += month(r, c);
-            out(r, c) = nodata ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(month(r, c));
+    parallel_for_rows(rows, 64, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const std::size_t k = static_cast<std::size_t>(r * cols + c);
+                const double f = svf(r, c);
+                double diffuse = sky.isotropic * f;  // horizontal cells: no horizon band, no reflected light
+                if (surf.tilted()) {
+                    const double band =
+                        surf.sin_tilt.empty() ? 0.0 : sky.horizon * static_cast<double>(surf.sin_tilt[k]);
+                    diffuse = f * (sky.isotropic * static_cast<double>(surf.sky[k]) + band) +
+                              sky.reflected * static_cast<double>(surf.ground[k]);
+                }
+                const double total = month(r, c) + diffuse;
+                const bool nodata = z(r, c) != z(r, c) || (surf.tilted() && surf.sky[k] != surf.sky[k]);
+                annual(r, c) += total;
+                out(r, c) = nodata ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(total);
+            }
         }
-    }
+    });
     return out;
 }
 
@@ -226,17 +306,38 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
     std::array<std::vector<const daylight_sun*>, 12> by_month;
     for (const daylight_sun& d : suns) by_month[static_cast<std::size_t>(d.month)].push_back(&d);
     raster<double> annual(rows, cols, 0.0), month(rows, cols, 0.0);
-    raster<std::uint8_t> lit(rows, cols);
+    std::vector<raster<std::uint8_t>> lit;
     std::size_t done = 0;
+    std::vector<const daylight_sun*> batch;
+    std::vector<lit_sun> batch_suns;
+    const auto flush = [&] {
+        if (batch.empty()) return;
+        if (lit.size() < batch.size()) lit.resize(batch.size(), raster<std::uint8_t>(rows, cols));
+        add_daylight_suns(z, cell_m, batch, batch_suns, surf, res.sky_view_factor, lit, month, opt);
+        done += batch.size();
+        report(opt.run.progress,
+               progress_from + (1.0 - progress_from) * static_cast<double>(done) / static_cast<double>(suns.size() + 1),
+               fn);
+        batch.clear();
+        batch_suns.clear();
+    };
     for (std::size_t m = 0; m < 12; ++m) {
         for (std::ptrdiff_t r = 0; r < rows; ++r)
             for (std::ptrdiff_t c = 0; c < cols; ++c) month(r, c) = 0.0;
+        month_sky_sums sky;
         for (const daylight_sun* d : by_month[m]) {
-            add_daylight_sun(z, cell_m, *d, surf, res.sky_view_factor, lit, month, opt);
-            const double fraction = static_cast<double>(++done) / static_cast<double>(suns.size() + 1);
-            report(opt.run.progress, progress_from + (1.0 - progress_from) * fraction, fn);
+            const lit_sun s = make_lit_sun(*d, opt.sky);
+            sky.add(s.terms);
+            if (!s.casts_shadows()) {
+                ++done;
+                continue;
+            }
+            batch.push_back(d);
+            batch_suns.push_back(s);
+            if (batch.size() == suns_per_batch) flush();
         }
-        res.month_kwh_m2[m] = finish_month(z, surf, month, annual);
+        flush();
+        res.month_kwh_m2[m] = finish_month(z, surf, sky, res.sky_view_factor, month, annual, opt.run.threads);
     }
     res.annual_kwh_m2 = raster<float>(rows, cols);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
