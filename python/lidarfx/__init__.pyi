@@ -87,10 +87,13 @@ Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...
     ...
 
 
-def horizon_map(dsm: ArrayLike, cell_m: float, azimuth_deg: float, *, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
+def horizon_map(dsm: ArrayLike, cell_m: float, azimuth_deg: float, *, line_phases: int = 1, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> np.ndarray:
     """Horizon angle of every cell looking towards azimuth_deg (clockwise from north): max(0, max over the cells q
 before p on p's ray line of atan((z_q - z_p) / distance)), degrees in [0, 90); NaN for NaN cells. Exact upper
-convex hull sweep, O(cells). dsm in metres (float32 read in place), cell_m in metres. Returns float32."""
+convex hull sweep, O(cells) per line family. line_phases (1..64, default 1): each cell's line comes from the
+nearest of that many families of parallel lines, as in raylines_shadow; with the same line_phases a cell is lit
+by a sun of this azimuth exactly when its horizon is at or below the sun's elevation. dsm in metres (float32
+read in place), cell_m in metres. Returns float32."""
     ...
 
 

@@ -95,12 +95,12 @@ py::array raylines_shadow_binding(const py::handle& dsm, double cell_m, double a
     return to_numpy(rs.call([&] { return raylines_shadow(z.view(), cell_m, azimuth_deg, elevation_deg, opt); }));
 }
 
-py::array horizon_map_binding(const py::handle& dsm, double cell_m, double azimuth_deg, int threads,
+py::array horizon_map_binding(const py::handle& dsm, double cell_m, double azimuth_deg, int line_phases, int threads,
                               py::object progress)
 {
     const array_input<float> z(dsm, "horizon_map", "dsm");
     run_settings rs(threads, std::move(progress));
-    const horizon_map_options opt{.run = rs.run()};
+    const horizon_map_options opt{.line_phases = line_phases, .run = rs.run()};
     return to_numpy(rs.call([&] { return horizon_map(z.view(), cell_m, azimuth_deg, opt); }));
 }
 
@@ -262,11 +262,14 @@ dsm: 2-D heights in metres, row 0 north (float32 read in place). cell_m: cell si
 azimuth_deg: clockwise from north (grid north); elevation_deg above the horizon (<= 0: all shadow).
 Returns a uint8 array of dsm's shape.)doc");
 
-    m.def("horizon_map", &horizon_map_binding, "dsm"_a, "cell_m"_a, "azimuth_deg"_a, py::kw_only(), "threads"_a = 1,
-          "progress"_a = py::none(), R"doc(
+    m.def("horizon_map", &horizon_map_binding, "dsm"_a, "cell_m"_a, "azimuth_deg"_a, py::kw_only(), "line_phases"_a = 1,
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Horizon angle of every cell looking towards azimuth_deg (clockwise from north): max(0, max over the cells q
 before p on p's ray line of atan((z_q - z_p) / distance)), degrees in [0, 90); NaN for NaN cells. Exact upper
-convex hull sweep, O(cells). dsm in metres (float32 read in place), cell_m in metres. Returns float32.)doc");
+convex hull sweep, O(cells) per line family. line_phases (1..64, default 1): each cell's line comes from the
+nearest of that many families of parallel lines, as in raylines_shadow; with the same line_phases a cell is lit
+by a sun of this azimuth exactly when its horizon is at or below the sun's elevation. dsm in metres (float32
+read in place), cell_m in metres. Returns float32.)doc");
 
     m.def("sky_view_factor", &sky_view_factor_binding, "dsm"_a, "cell_m"_a, py::kw_only(), "method"_a = "source_share",
           "directions"_a = 72, "threads"_a = 1, "progress"_a = py::none(), R"doc(

@@ -49,6 +49,21 @@ def horizon_reference_south(z, cell_m):
     return out
 
 
+def test_horizon_with_line_families_tells_which_cells_a_sun_lights(rng):
+    # With the same line_phases, horizon_map and raylines_shadow read each cell along the same line, so a cell is
+    # lit by a sun of that azimuth exactly when its horizon is at or below the sun's elevation.
+    z = rng.uniform(0, 8, (45, 52)).astype(np.float32)
+    for azimuth in (70.0, 200.0, 313.0):
+        h = lidarfx.horizon_map(z, 1.0, azimuth, line_phases=4)
+        for e in (8.0, 25.0):
+            lit = lidarfx.raylines_shadow(z, 1.0, azimuth, e, line_phases=4)
+            clear = np.abs(h - e) > 1e-3
+            assert clear.sum() > 0.9 * z.size
+            np.testing.assert_array_equal((lit == 1)[clear], (h <= e)[clear])
+    with pytest.raises(ValueError):
+        lidarfx.horizon_map(z, 1.0, 10.0, line_phases=0)
+
+
 def test_shadows_and_horizons_along_a_grid_axis_equal_a_ray_march(rng):
     z = rng.uniform(0, 10, (40, 30)).astype(np.float32)
     for e in (5.0, 30.0, 60.0):

@@ -109,11 +109,13 @@ TEST_CASE("solar/irradiance_maps: equal to the sum of its formula record by reco
     const auto sa = slope_aspect(z, 1.0);
     const solar_site site{golden_lat, golden_lon};
     const auto records = clear_days(golden_lat, golden_lon, 23);
-    for (int mode = 0; mode < 5; ++mode) {
+    // Modes: 0 flat isotropic; 1 tilted isotropic with albedo; 2 tilted Perez; 3 flat Perez; 4 tilted Perez
+    // clamped at 0; 5 tilted isotropic with the Perez clamp asked for (the isotropic sky ignores it).
+    for (int mode = 0; mode < 6; ++mode) {
         irradiance_maps_options opt;
-        if (mode >= 2) opt.sky.diffuse = diffuse_model::perez;
+        if (mode >= 2 && mode <= 4) opt.sky.diffuse = diffuse_model::perez;
         if (mode >= 1) opt.sky.albedo = 0.25;
-        if (mode == 4) opt.sky.perez.nonnegative = false;
+        if (mode >= 4) opt.sky.perez.nonnegative = false;
         const bool tilted = mode != 3;
         const auto got =
             irradiance_maps(z, 1.0, site, records, tilted ? sa.slope_deg.view() : raster_view<const float>{},

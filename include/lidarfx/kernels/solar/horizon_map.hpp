@@ -234,7 +234,7 @@ void horizon_map(const In& dsm, Out&& horizon_deg, double cell_m, double azimuth
 }
 
 /// Horizon elevation angle towards one azimuth (returning form); see the into form. Degrees in [0, 90),
-/// NaN on NaN cells. O(rows * cols).
+/// NaN on NaN cells. O(rows * cols) per line family.
 template <raster_input In>
 raster<float> horizon_map(const In& dsm, double cell_m, double azimuth_deg, const horizon_map_options& opt = {})
 {
@@ -245,7 +245,7 @@ raster<float> horizon_map(const In& dsm, double cell_m, double azimuth_deg, cons
 
 /// Horizon maps towards `directions` azimuths i * 360 / directions (i = 0 .. directions - 1), each as
 /// horizon_map; progress runs once from 0 to 1 over all of them. Memory: directions * rows * cols floats.
-/// O(directions * rows * cols). @throws invalid_input as horizon_map, or if directions < 1.
+/// O(directions * rows * cols) per line family. @throws invalid_input as horizon_map, or if directions < 1.
 template <raster_input In>
 horizon_stack_result horizon_stack(const In& dsm, double cell_m, int directions, const horizon_map_options& opt = {})
 {

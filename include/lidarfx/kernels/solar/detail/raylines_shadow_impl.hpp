@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Implementation of raylines_shadow (kernels/solar/raylines_shadow.hpp): the line families of a sun position and
-// the sweeps of steep and shallow lines that carry the running shadow key.
+// Implementation of raylines_shadow (kernels/solar/raylines_shadow.hpp): the sweeps of steep lines, and of shallow
+// lines as steep lines of the transposed raster, that carry the running shadow key of every line family.
 #pragma once
 // Included at the end of its public header, which declares what is defined here.
 
@@ -140,7 +140,7 @@ inline void shadow_transposed_block(raster_view<const float> z, raster_view<std:
                     for (std::ptrdiff_t c = f0; c < f1; ++c) {
                         const double mx = lim[c];
                         const std::uint8_t v = mx > key[c] ? 0 : 1;
-                        o[c * chunk] = key[c] != key[c] ? nan_cell : v;  // a NaN key is a NaN cell
+                        o[c * chunk] = zt[c * chunk] != zt[c * chunk] ? nan_cell : v;
                         lim[c] = key[c] > mx ? key[c] : mx;  // false for a NaN key: NaN cells cast no shadow
                     }
                 } else {

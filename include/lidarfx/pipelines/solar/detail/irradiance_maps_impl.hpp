@@ -137,7 +137,7 @@ inline perez_record_terms record_terms(const daylight_sun& d, const sky_options&
             .horizon = dhi * p.f2,
             .circumsolar = dhi * p.f1 / std::max(perez_cos_85, d.sun.up),
             .reflected = d.ghi_w_m2 * sky.albedo * hours_k,
-            .clamp = !sky.perez.nonnegative};
+            .clamp = perez && !sky.perez.nonnegative};  // the isotropic sky is never negative
 }
 
 /// The sky terms of a month that do not depend on the shadows, summed over its records (they multiply per-cell
@@ -185,6 +185,13 @@ struct lit_row {
     std::size_t k0;
 };
 
+/// cos theta of cell k's surface under sun s, in float from the float normal planes (both accumulations use it).
+inline float cell_cos_incidence(const cell_surface& surf, std::size_t k, const enu_vector& s) noexcept
+{
+    return static_cast<float>(s.east) * surf.east[k] + static_cast<float>(s.north) * surf.north[k] +
+           static_cast<float>(s.up) * surf.up[k];
+}
+
 /// Adds one sun's shadow-dependent light to one row of month sums (acc, kWh/m^2): its beam and circumsolar light
 /// where the cell is lit and faces the sun. The plain loops vectorize.
 inline void add_lit_row(double* acc, const lit_row& row, const lit_sun& s) noexcept
@@ -195,13 +202,10 @@ inline void add_lit_row(double* acc, const lit_row& row, const lit_sun& s) noexc
         for (std::ptrdiff_t c = 0; c < row.cols; ++c) acc[c] += lit[c] == 1 ? flat : 0.0;
         return;
     }
-    const float* ne = row.surf->east.data() + row.k0;
-    const float* nn = row.surf->north.data() + row.k0;
-    const float* nu = row.surf->up.data() + row.k0;
-    const float se = static_cast<float>(s.sun.east), sn = static_cast<float>(s.sun.north);
-    const float su = static_cast<float>(s.sun.up);
+    const cell_surface& surf = *row.surf;
+    const enu_vector sun = s.sun;
     for (std::ptrdiff_t c = 0; c < row.cols; ++c) {
-        const float cos_t = se * ne[c] + sn * nn[c] + su * nu[c];
+        const float cos_t = cell_cos_incidence(surf, row.k0 + static_cast<std::size_t>(c), sun);
         acc[c] += lit[c] == 1 && cos_t > 0.0f ? tilted * static_cast<double>(cos_t) : 0.0;
     }
 }
@@ -220,11 +224,10 @@ inline void add_lit_row_clamped(double* acc, const lit_row& row, const lit_sun& 
             continue;
         }
         const std::size_t k = row.k0 + static_cast<std::size_t>(c);
-        const double cos_t =
-            s.sun.east * row.surf->east[k] + s.sun.north * row.surf->north[k] + s.sun.up * row.surf->up[k];
+        const double cos_t = cell_cos_incidence(*row.surf, k, s.sun);
         const bool sunny = lit && cos_t > 0.0;
-        const double sky = t.isotropic * static_cast<double>(row.surf->sky[k]) +
-                           t.horizon * static_cast<double>(row.surf->sin_tilt[k]);
+        const double band = row.surf->sin_tilt.empty() ? 0.0 : t.horizon * static_cast<double>(row.surf->sin_tilt[k]);
+        const double sky = t.isotropic * static_cast<double>(row.surf->sky[k]) + band;
         acc[c] += (sunny ? t.dni * cos_t : 0.0) + std::max(0.0, sky * svf + (sunny ? t.circumsolar * cos_t : 0.0));
     }
 }
