@@ -99,27 +99,20 @@ void horizon_steep_block(raster_view<const float> z, raster_view<T> out, const r
         const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, k0 + s), c1 = std::min(cols, k1 + s);
         const float* zr = z.row(r);
         const double tr = (static_cast<double>(r) + 0.5) * b;
-        if (!own.writes(r)) {  // another family writes this row: only the hulls grow
-            for (std::ptrdiff_t c = c0; c < c1; ++c) {
-                if (zr[c] != zr[c]) continue;
-                const std::ptrdiff_t line = c - s - k0;
-                horizon_hull_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
-                                  (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
-            }
-            continue;
-        }
+        const bool writes = own.writes(r);  // else another family writes this row: only the hulls grow
         T* o = out.row(r);
         for (std::ptrdiff_t c = c0; c < c1; ++c) {
             if (zr[c] != zr[c]) {
-                o[c] = nan;
+                if (writes) o[c] = nan;
                 continue;
             }
             const std::ptrdiff_t line = c - s - k0;
-            o[c] =
-                static_cast<T>(horizon_hull_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
-                                                 (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c])));
+            const double tangent =
+                horizon_hull_step(hulls.data() + line * rows, sizes[static_cast<std::size_t>(line)],
+                                  (static_cast<double>(c) + 0.5) * a + tr, static_cast<double>(zr[c]));
+            if (writes) o[c] = static_cast<T>(tangent);
         }
-        tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
+        if (writes) tangents_to_degrees(o, c0, c1);  // these lines' cells of row r are all written now
     }
 }
 

@@ -160,7 +160,7 @@ struct month_sky_sums {
 /// terms: DNI sin e plus the circumsolar part times sin e on horizontal cells, (DNI + the circumsolar factor)
 /// times max(0, cos theta) on tilted ones.
 struct lit_sun {
-    enu_vector sun = {};
+    const daylight_sun* day = nullptr;  ///< the sun itself (its position and vector)
     perez_record_terms terms = {};
     double flat = 0, tilted = 0;
     /// True if the sun's light depends on the shadows at all (no beam and no circumsolar light: it does not).
@@ -169,7 +169,7 @@ struct lit_sun {
 
 inline lit_sun make_lit_sun(const daylight_sun& d, const sky_options& sky)
 {
-    lit_sun s{.sun = d.sun, .terms = record_terms(d, sky)};
+    lit_sun s{.day = &d, .terms = record_terms(d, sky)};
     s.flat = s.terms.beam_flat + s.terms.circumsolar * d.sun.up;
     s.tilted = s.terms.dni + s.terms.circumsolar;
     return s;
@@ -184,6 +184,14 @@ struct lit_row {
     const cell_surface* surf;
     std::size_t k0;
 };
+
+/// The factor of tilted cell k's diffuse sky before the SVF: isotropic (1 + cos b) / 2 + horizon sin b (the horizon
+/// band exists under the Perez sky only, whose surfaces carry sin b).
+inline double cell_sky_factor(const cell_surface& surf, std::size_t k, double isotropic, double horizon) noexcept
+{
+    const double band = surf.sin_tilt.empty() ? 0.0 : horizon * static_cast<double>(surf.sin_tilt[k]);
+    return isotropic * static_cast<double>(surf.sky[k]) + band;
+}
 
 /// cos theta of cell k's surface under sun s, in float from the float normal planes (both accumulations use it).
 inline float cell_cos_incidence(const cell_surface& surf, std::size_t k, const enu_vector& s) noexcept
@@ -203,7 +211,7 @@ inline void add_lit_row(double* acc, const lit_row& row, const lit_sun& s) noexc
         return;
     }
     const cell_surface& surf = *row.surf;
-    const enu_vector sun = s.sun;
+    const enu_vector sun = s.day->sun;
     for (std::ptrdiff_t c = 0; c < row.cols; ++c) {
         const float cos_t = cell_cos_incidence(surf, row.k0 + static_cast<std::size_t>(c), sun);
         acc[c] += lit[c] == 1 && cos_t > 0.0f ? tilted * static_cast<double>(cos_t) : 0.0;
@@ -219,15 +227,14 @@ inline void add_lit_row_clamped(double* acc, const lit_row& row, const lit_sun& 
         const bool lit = row.lit[c] == 1;
         const double svf = row.svf[c];
         if (row.surf == nullptr) {
-            acc[c] +=
-                (lit ? t.beam_flat : 0.0) + std::max(0.0, t.isotropic * svf + (lit ? t.circumsolar * s.sun.up : 0.0));
+            acc[c] += (lit ? t.beam_flat : 0.0) +
+                      std::max(0.0, t.isotropic * svf + (lit ? t.circumsolar * s.day->sun.up : 0.0));
             continue;
         }
         const std::size_t k = row.k0 + static_cast<std::size_t>(c);
-        const double cos_t = cell_cos_incidence(*row.surf, k, s.sun);
+        const double cos_t = cell_cos_incidence(*row.surf, k, s.day->sun);
         const bool sunny = lit && cos_t > 0.0;
-        const double band = row.surf->sin_tilt.empty() ? 0.0 : t.horizon * static_cast<double>(row.surf->sin_tilt[k]);
-        const double sky = t.isotropic * static_cast<double>(row.surf->sky[k]) + band;
+        const double sky = cell_sky_factor(*row.surf, k, t.isotropic, t.horizon);
         acc[c] += (sunny ? t.dni * cos_t : 0.0) + std::max(0.0, sky * svf + (sunny ? t.circumsolar * cos_t : 0.0));
     }
 }
@@ -238,18 +245,17 @@ constexpr std::size_t suns_per_batch = 8;
 
 /// Adds a batch of daylight suns' shadow-dependent light to `month`: each sun's cast shadows into its own `lit`
 /// raster (one thread per sun), then every row once, with every sun of the batch in order.
-inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::span<const daylight_sun* const> d,
-                              std::span<const lit_sun> s, const cell_surface& surf, const raster<float>& svf,
-                              std::span<raster<std::uint8_t>> lit, raster<double>& month,
-                              const irradiance_maps_options& opt)
+inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::span<const lit_sun> s,
+                              const cell_surface& surf, const raster<float>& svf, std::span<raster<std::uint8_t>> lit,
+                              raster<double>& month, const irradiance_maps_options& opt)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     // The suns' shadows are independent: each is swept by one thread, all of them side by side.
     parallel_for_rows(
-        static_cast<std::ptrdiff_t>(d.size()), 1, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+        static_cast<std::ptrdiff_t>(s.size()), 1, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
             for (std::ptrdiff_t i = i0; i < i1; ++i) {
                 const std::size_t k = static_cast<std::size_t>(i);
-                raylines_shadow(z, lit[k], cell_m, d[k]->azimuth_deg, d[k]->elevation_deg,
+                raylines_shadow(z, lit[k], cell_m, s[k].day->azimuth_deg, s[k].day->elevation_deg,
                                 {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = 1}});
             }
         });
@@ -257,7 +263,7 @@ inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::sp
     parallel_for_rows(rows, 16, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             double* acc = month.view().row(r);
-            for (std::size_t i = 0; i < d.size(); ++i) {
+            for (std::size_t i = 0; i < s.size(); ++i) {
                 const lit_row row{lit[i].view().row(r), svf.view().row(r), cols, tilted,
                                   static_cast<std::size_t>(r * cols)};
                 if (s[i].terms.clamp) {
@@ -285,9 +291,7 @@ inline raster<float> finish_month(raster_view<const float> z, const cell_surface
                 const double f = svf(r, c);
                 double diffuse = sky.isotropic * f;  // horizontal cells: no horizon band, no reflected light
                 if (surf.tilted()) {
-                    const double band =
-                        surf.sin_tilt.empty() ? 0.0 : sky.horizon * static_cast<double>(surf.sin_tilt[k]);
-                    diffuse = f * (sky.isotropic * static_cast<double>(surf.sky[k]) + band) +
+                    diffuse = f * cell_sky_factor(surf, k, sky.isotropic, sky.horizon) +
                               sky.reflected * static_cast<double>(surf.ground[k]);
                 }
                 const double total = month(r, c) + diffuse;
@@ -311,18 +315,16 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
     raster<double> annual(rows, cols, 0.0), month(rows, cols, 0.0);
     std::vector<raster<std::uint8_t>> lit;
     std::size_t done = 0;
-    std::vector<const daylight_sun*> batch;
-    std::vector<lit_sun> batch_suns;
+    std::vector<lit_sun> batch;
     const auto flush = [&] {
         if (batch.empty()) return;
         if (lit.size() < batch.size()) lit.resize(batch.size(), raster<std::uint8_t>(rows, cols));
-        add_daylight_suns(z, cell_m, batch, batch_suns, surf, res.sky_view_factor, lit, month, opt);
+        add_daylight_suns(z, cell_m, batch, surf, res.sky_view_factor, lit, month, opt);
         done += batch.size();
         report(opt.run.progress,
                progress_from + (1.0 - progress_from) * static_cast<double>(done) / static_cast<double>(suns.size() + 1),
                fn);
         batch.clear();
-        batch_suns.clear();
     };
     for (std::size_t m = 0; m < 12; ++m) {
         for (std::ptrdiff_t r = 0; r < rows; ++r)
@@ -335,8 +337,7 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
                 ++done;
                 continue;
             }
-            batch.push_back(d);
-            batch_suns.push_back(s);
+            batch.push_back(s);
             if (batch.size() == suns_per_batch) flush();
         }
         flush();
