@@ -201,7 +201,7 @@ _STD_HEADERS = {
     "limits": "numeric_limits", "numbers": "numbers", "chrono": "chrono", "bit": "bit_cast popcount bit_width "
     "countr_zero countl_zero bit_floor bit_ceil has_single_bit", "numeric": "iota accumulate reduce inner_product",
     "cmath": "cos sin tan acos asin atan atan2 sqrt hypot exp log log10 log2 pow abs fabs floor ceil round lround "
-    "llround nearbyint fmod fmin fmax isfinite isnan isinf copysign nextafter",
+    "llround nearbyint rint fmod fmin fmax isfinite isnan isinf copysign nextafter",
     "algorithm": "min max clamp sort stable_sort nth_element fill fill_n copy copy_n all_of any_of none_of unique "
     "max_element min_element minmax_element lower_bound upper_bound binary_search partition_point transform find find_if count "
     "count_if reverse ranges",

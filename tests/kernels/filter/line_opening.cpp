@@ -80,4 +80,20 @@ TEST_CASE("line_opening: length 1 keeps the mask, empty rasters stay empty, out-
     CHECK(line_opening(raster<std::uint8_t>(0, 0), 4).size() == 0);
     CHECK_THROWS_AS(line_opening(m, 0), invalid_input);
     CHECK_THROWS_AS(line_opening(m, 256), invalid_input);
+    CHECK_THROWS_AS(line_opening(m, 2, {.threads = -1}), invalid_input);
+}
+
+TEST_CASE("line_opening gives the same cells on blocks of rows and threads as the walk, long runs included")
+{
+    // Taller than one block of rows (64), with runs that cross the blocks' edges in every direction.
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+        const auto m = random_line_mask(150 + seed, 90 + 3 * seed, 0.55 + 0.05 * seed, seed);
+        for (int length : {2, 4, 6, 9}) {
+            CAPTURE(seed);
+            CAPTURE(length);
+            const auto walked = line_opening_by_walking(m, length);
+            CHECK(line_opening(m, length, {.threads = 1}) == walked);
+            CHECK(line_opening(m, length, {.threads = 3}) == walked);
+        }
+    }
 }

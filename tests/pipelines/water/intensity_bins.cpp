@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include <lidarfx/core/error.hpp>
 #include <lidarfx/pipelines/water/intensity_bins.hpp>
 
 #include <algorithm>
@@ -151,4 +152,31 @@ TEST_CASE("water/intensity_bins: bad arguments are refused")
                          invalid_input);
     CHECK_THROWS_WITH_AS(intensity_bins(v, d2, {.resolution = 0}),
                          "intensity_bins: resolution must be finite and > 0 (got 0)", invalid_input);
+}
+
+TEST_CASE("water/intensity_bins: several blocks of rows on several threads give the definition's ranks")
+{
+    // Rasters taller than one block (64 rows), each block holding values the others lack, in and out of the
+    // 16-bit presence window.
+    std::mt19937 rng(5);
+    for (const double hi : {65535.0, 200000.0}) {
+        raster<float> v(1100, 23);
+        raster<std::uint8_t> d(1100, 23);
+        for (std::ptrdiff_t r = 0; r < v.rows(); ++r)
+            for (std::ptrdiff_t c = 0; c < v.cols(); ++c) {
+                v(r, c) = static_cast<float>(std::fmod(static_cast<double>(r) * 37.0 + rng() % 50, hi));
+                d(r, c) = rng() % 9 == 0;
+            }
+        const auto expected = reference_bins(v, d, 1.0);
+        for (const int threads : {1, 2, 5}) {
+            CAPTURE(hi);
+            CAPTURE(threads);
+            const auto got = intensity_bins(v, d, {}, {.threads = threads});
+            CHECK(got.bins == expected.bins);
+            CHECK(got.bin == expected.bin);
+        }
+    }
+    const raster<float> v(2, 2, 1.0f);
+    const raster<std::uint8_t> d(2, 2, 0);
+    CHECK_THROWS_AS(intensity_bins(v, d, {}, {.threads = -1}), invalid_input);
 }

@@ -8,10 +8,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
@@ -43,15 +45,17 @@ inline void validate(const intensity_bins_options& o, const char* fn)
 /// replaces q by its rank among the distinct q of the raster, so that a KS histogram has one bin per
 /// distinct value: the one-sided KS statistic depends only on the order of the values, so ranks give the
 /// same test as the values. Cells with dropout != 0 or a non-finite intensity get -1.
-/// O(cells + range of q) when that range is below 2^24 (LAS intensities), else O(cells log cells).
-/// @throws invalid_input if the shapes differ or resolution is not finite and > 0.
+/// O(cells + range of q) when that range is below 2^24 (LAS intensities), else O(cells log cells). The passes over
+/// the cells run on blocks of rows on `run.threads` threads (the same ranks for every thread count).
+/// @throws invalid_input if the shapes differ, resolution is not finite and > 0, or run.threads < 0.
 inline intensity_bins_result intensity_bins(raster_view<const float> mean_intensity,
                                             raster_view<const std::uint8_t> dropout,
-                                            const intensity_bins_options& opt = {})
+                                            const intensity_bins_options& opt = {}, const execution& run = {})
 {
     constexpr const char* fn = "intensity_bins";
     detail::require_same_shape(mean_intensity, dropout, fn, "mean_intensity", "dropout");
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     const std::ptrdiff_t rows = mean_intensity.rows(), cols = mean_intensity.cols();
     constexpr std::int32_t none = std::numeric_limits<std::int32_t>::min();
     intensity_bins_result result{raster<std::int32_t>(rows, cols, uninitialized), 1};  // pass 1 writes every cell
@@ -69,37 +73,57 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
     // only, and only a row holding a value not yet seen is marked. When all samples fall in the
     // window (lo >= 0, hi < window), no presence pass over the raster follows.
     constexpr std::uint32_t window = std::uint32_t{1} << 16;
-    std::vector<std::uint32_t> seen(std::size_t{window} + 1, 0);
-    std::uint32_t* mark = seen.data();
     const auto slot = [](std::int32_t v) {
         const auto u = static_cast<std::uint32_t>(v);
         return u < window ? u : window;
     };
     const double inverse = 1.0 / opt.resolution;
     const std::ptrdiff_t width = cols;
-    std::int32_t lo = most, hi = none;
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        std::int32_t* o = out.row(r);
-        const std::uint8_t* d = dropout.row(r);
-        const float* mean = mean_intensity.row(r);
-        for (std::ptrdiff_t c = 0; c < width; ++c) {
-            const auto bits = std::bit_cast<std::int32_t>(mean[c]);
-            const bool finite = (bits & 0x7f800000) != 0x7f800000;
-            const std::int32_t sample = -static_cast<std::int32_t>(finite & (d[c] == 0));   // all ones or 0
-            double x = static_cast<double>(std::bit_cast<float>(bits & sample)) * inverse;  // 0 without sample
-            x = x < -limit ? -limit : x;  // clamping before rounding gives the same integer as after
-            x = x > limit ? limit : x;
-            const auto q = static_cast<std::int32_t>(std::nearbyint(x));
-            o[c] = (q & sample) | (none & ~sample);
-            lo = std::min(lo, (q & sample) | (most & ~sample));
-            hi = std::max(hi, (q & sample) | (none & ~sample));
+    // At most 16 blocks of rows, each with its own presence table, merged after.
+    const std::ptrdiff_t block_rows = std::max<std::ptrdiff_t>(64, (rows + 15) / 16);
+    const auto blocks = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, (rows + block_rows - 1) / block_rows));
+    std::vector<std::int32_t> block_lo(blocks, most), block_hi(blocks, none);
+    std::vector<std::vector<std::uint32_t>> block_seen(blocks);
+    parallel_for_rows(rows, block_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        const auto b = static_cast<std::size_t>(r0 / block_rows);
+        block_seen[b].assign(std::size_t{window} + 1, 0);
+        std::uint32_t* mark = block_seen[b].data();
+        // Captured values in locals: read through the closure, they would be reloaded after every store.
+        const double scale = inverse;
+        const std::ptrdiff_t n_cols = width;
+        std::int32_t lo = most, hi = none;
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            std::int32_t* o = out.row(r);
+            const std::uint8_t* d = dropout.row(r);
+            const float* mean = mean_intensity.row(r);
+            for (std::ptrdiff_t c = 0; c < n_cols; ++c) {
+                const auto bits = std::bit_cast<std::int32_t>(mean[c]);
+                const bool finite = (bits & 0x7f800000) != 0x7f800000;
+                const std::int32_t sample = -static_cast<std::int32_t>(finite & (d[c] == 0));  // all ones or 0
+                double x = static_cast<double>(std::bit_cast<float>(bits & sample)) * scale;   // 0 without sample
+                x = x < -limit ? -limit : x;  // clamping before rounding gives the same integer as after
+                x = x > limit ? limit : x;
+                const auto q =
+                    static_cast<std::int32_t>(std::rint(x));  // rint, not nearbyint: GCC inlines and vectorizes it
+                o[c] = (q & sample) | (none & ~sample);
+                lo = std::min(lo, (q & sample) | (most & ~sample));
+                hi = std::max(hi, (q & sample) | (none & ~sample));
+            }
+            std::uint32_t missing = 0;
+            for (std::ptrdiff_t c = 0; c < n_cols; ++c) missing |= mark[slot(o[c])] ^ 1u;
+            if (missing) {
+                for (std::ptrdiff_t c = 0; c < n_cols; ++c) mark[slot(o[c])] = 1;
+            }
         }
-        std::uint32_t missing = 0;
-        for (std::ptrdiff_t c = 0; c < width; ++c) missing |= mark[slot(o[c])] ^ 1u;
-        if (missing) {
-            for (std::ptrdiff_t c = 0; c < width; ++c) mark[slot(o[c])] = 1;
-        }
-    }
+        block_lo[b] = lo;
+        block_hi[b] = hi;
+    });
+    const std::int32_t lo = *std::min_element(block_lo.begin(), block_lo.end());
+    const std::int32_t hi = *std::max_element(block_hi.begin(), block_hi.end());
+    std::vector<std::uint32_t> seen = std::move(block_seen[0]);
+    seen.resize(std::size_t{window} + 1, 0);  // rows = 0: no block ran
+    for (std::size_t b = 1; b < blocks; ++b)
+        for (std::size_t v = 0; v <= window; ++v) seen[v] |= block_seen[b][v];
     if (hi == none) {
         out.fill(-1);
         return result;
@@ -129,8 +153,11 @@ inline intensity_bins_result intensity_bins(raster_view<const float> mean_intens
         for (auto& k : rank) k = k ? next++ : -1;
         result.bins = std::max(1, static_cast<int>(next));
         const std::int32_t* ranks = rank.data();
-        LIDARFX_IVDEP
-        for (std::ptrdiff_t i = 0; i < n; ++i) cell[i] = ranks[offset(cell[i])];
+        parallel_for_rows(rows, block_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            std::int32_t* row = out.row(r0);  // contiguous: rows r0 .. r1 - 1 follow one another
+            LIDARFX_IVDEP
+            for (std::ptrdiff_t i = 0, m = (r1 - r0) * cols; i < m; ++i) row[i] = ranks[offset(row[i])];
+        });
         return result;
     }
     // Wide ranges: ranks from the sorted distinct values, recomputed exactly.

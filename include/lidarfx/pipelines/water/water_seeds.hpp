@@ -77,7 +77,8 @@ components water_seeds(const Mask& dropout, const water_seeds_options& opt, rast
     const int threads = run.threads;
     auto opened =
         morph_open(dropout, morphology_options{.size_cells = opt.opening_size_cells, .run = {.threads = threads}});
-    if (opt.line_length_cells > 0) mask_or(line_opening(dropout, opt.line_length_cells), opened, opened);
+    if (opt.line_length_cells > 0)
+        mask_or(line_opening(dropout, opt.line_length_cells, {.threads = threads}), opened, opened);
     detail::ensure_shape(labels, opened.rows(), opened.cols());  // every cell is written
     components seeds{std::move(labels), {}};
     seeds.sizes = connected_components(

@@ -88,7 +88,7 @@ inline water_field water_field_of(const water_rasters& in, double cell_m, raster
                                   const extract_waterbodies_options& opt)
 {
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    auto bins = intensity_bins(in.mean_intensity, in.dropout, opt.intensity);
+    auto bins = intensity_bins(in.mean_intensity, in.dropout, opt.intensity, {.threads = opt.run.threads});
     water_field field{water_angles(in, cell_m, opt.angles, {.threads = opt.run.threads}),
                       raster<std::uint8_t>(rows, cols, uninitialized),
                       std::move(bins.bin),
