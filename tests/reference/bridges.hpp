@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Plain reference for joining waterbodies across bridges: for every land cell, walk both ways along each
-// of the 4 directions until water, as the rule is stated.
+// of the 4 directions until water, and test the run between the two bodies as the rule is stated: some split
+// of its deck and water cells into water, deck, water, with a deck cell or a cell without a return in the run;
+// the cell joins when it has no return or is deck or water.
 #pragma once
 
 #include <algorithm>
@@ -48,11 +50,35 @@ inline void join_across_bridges(lidarfx::raster<std::int32_t>& labels, lidarfx::
                 if (a == 0 || b == 0 || a == b || steps[0] + steps[1] - 1 > span) continue;
                 const double la = level[a], lb = level[b];
                 if (!(std::abs(la - lb) <= level_tolerance)) continue;
-                const float z = min_z(r, c);
-                if (std::isfinite(z)) {
-                    const double above = z - std::max(la, lb), below = std::min(la, lb) - z;
-                    if (!(above >= clearance) && !(above <= water_tolerance && below <= water_tolerance)) continue;
+                // The run from body b (the side walked with -d) to body a.
+                std::vector<float> run;
+                for (int k = steps[1] - 1; k >= 1; --k) run.push_back(min_z(r - k * d[0], c - k * d[1]));
+                run.push_back(min_z(r, c));
+                for (int k = 1; k < steps[0]; ++k) run.push_back(min_z(r + k * d[0], c + k * d[1]));
+                // Water seen lies between the lower level − water_tolerance and the higher + water_tolerance, the
+                // deck clearance above the higher; other cells with a return (banks) are left out of the order and
+                // stay land.
+                const auto deck = [&](float z) { return z - std::max(la, lb) >= clearance; };
+                const auto water = [&](float z) {
+                    return z >= std::min(la, lb) - water_tolerance && z <= std::max(la, lb) + water_tolerance;
+                };
+                std::vector<bool> kept_deck;
+                bool has_deck = false;
+                for (const float z : run) {
+                    has_deck = has_deck || !std::isfinite(z) || deck(z);
+                    if (std::isfinite(z) && (deck(z) || water(z))) kept_deck.push_back(deck(z));
                 }
+                const auto n = static_cast<int>(kept_deck.size());
+                bool fits = false;  // some split: water [0, i), deck [i, j), water [j, n)
+                for (int i = 0; i <= n && !fits; ++i)
+                    for (int j = i; j <= n && !fits; ++j) {
+                        bool ok = true;
+                        for (int k = 0; k < n && ok; ++k)
+                            ok = kept_deck[static_cast<std::size_t>(k)] == (k >= i && k < j);
+                        fits = ok;
+                    }
+                const float z = min_z(r, c);
+                if (!fits || !has_deck || (std::isfinite(z) && !deck(z) && !water(z))) continue;
                 labels(r, c) = std::min(a, b);
                 const auto ra = find(a), rb = find(b);
                 if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);

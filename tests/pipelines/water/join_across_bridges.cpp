@@ -130,13 +130,30 @@ TEST_CASE("water/join_across_bridges: the span is in metres and inclusive, the t
     // The deck stands 2 m above the higher level: clearance 2 m bridges it, 2.5 m does not.
     labels = make();
     CHECK(join_across_bridges(labels, deck, level, 2.0, {.max_span_m = 10.0, .min_clearance_m = 2.5}) == 0);
-    // Without clearance, cells between the levels widened by water_tolerance_m (water seen past the deck) bridge.
-    // 11.4 m lies 0.4 m above the higher level.
-    const auto flat = grid_of<float>({{10.0f, 10.0f, 11.4f, 11.4f, 11.4f, 11.4f, 11.4f, 11.0f, 11.0f}});
+    // Water seen past the deck's edges: cells between the levels widened by water_tolerance_m. 10.4 m and
+    // 11.4 m lie 0.4 m from a level, above the lower and the higher.
+    const auto past = grid_of<float>({{10.0f, 10.0f, 10.4f, 13.0f, 13.0f, 11.4f, 11.4f, 11.0f, 11.0f}});
     labels = make();
-    CHECK(join_across_bridges(labels, flat, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.5}) == 5);
+    CHECK(join_across_bridges(labels, past, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.5}) == 5);
+    labels = make();  // at 0.3 m the 11.4 m cells are a bank: they stay land, the deck still joins the bodies
+    CHECK(join_across_bridges(labels, past, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.3}) == 3);
+    CHECK(labels == grid_of<std::int32_t>({{1, 1, 1, 1, 1, 0, 0, 1, 1}}));
+    // Without a deck it is land at the water's level, not a bridge; a cell without a return there is a gap in it.
+    auto flat = grid_of<float>({{10.0f, 10.0f, 10.2f, 10.2f, 10.8f, 10.8f, 10.8f, 11.0f, 11.0f}});
     labels = make();
-    CHECK(join_across_bridges(labels, flat, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.25}) == 0);
+    CHECK(join_across_bridges(labels, flat, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.3}) == 0);
+    flat(0, 4) = NAN;
+    labels = make();
+    CHECK(join_across_bridges(labels, flat, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.3}) == 5);
+    // Two decks with ground at the water's level between them (roofs and a street between two canals): land.
+    const auto two_decks = grid_of<float>({{10.0f, 10.0f, 13.0f, 10.1f, 13.0f, 13.0f, 13.0f, 11.0f, 11.0f}});
+    labels = make();
+    CHECK(join_across_bridges(labels, two_decks, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.3}) == 0);
+    // A bank between deck and water is left out of the order: the run is still one deck.
+    const auto bank = grid_of<float>({{10.0f, 10.0f, 10.1f, 11.8f, 13.0f, 13.0f, 10.9f, 11.0f, 11.0f}});
+    labels = make();
+    CHECK(join_across_bridges(labels, bank, level, 2.0, {.max_span_m = 10.0, .water_tolerance_m = 0.3}) == 4);
+    CHECK(labels(0, 3) == 0);
 }
 
 TEST_CASE("water/join_across_bridges: without levels it takes water_levels' medians")

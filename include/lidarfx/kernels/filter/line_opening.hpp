@@ -21,8 +21,8 @@ namespace lidarfx {
 /// direction (scattered cells, small blobs). Runs end at the raster border. length_cells 1 keeps every
 /// nonzero cell. Anti-extensive and idempotent. Each opening is an erosion then a dilation by the segment,
 /// byte-wise over rows of length_cells shifted copies: O(cells * length_cells) simple vector operations, on
-/// blocks of rows (`run.threads` threads; the same result for every thread count; progress per block and
-/// cancellation), with scratch of a few rows per block.
+/// blocks of max(64, 4 * length_cells) rows (`run.threads` threads; the same result for every thread count;
+/// progress per block and cancellation), with scratch of about three blocks of rows per running block.
 /// @throws invalid_input if length_cells < 1 or > 255 or run.threads < 0; cancelled.
 template <raster_input Mask>
 raster<std::uint8_t> line_opening(const Mask& m, int length_cells, const execution& run = {});
@@ -99,11 +99,12 @@ raster<std::uint8_t> line_opening(const Mask& m, int length_cells, const executi
     const std::ptrdiff_t rows = m.rows(), cols = m.cols();
     raster<std::uint8_t> out(rows, cols, uninitialized);  // every cell is written
     if (cols == 0) return out;
-    constexpr std::ptrdiff_t block_rows = 64;
+    // Each block recomputes 2 (length - 1) rows around it: blocks of at least 4 lengths keep that within half.
+    const std::ptrdiff_t block_rows = std::max<std::ptrdiff_t>(64, 4 * std::ptrdiff_t{length_cells});
     parallel_for_rows(
         rows, block_rows, run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            std::vector<std::uint8_t> scratch;  // a few hundred kB per block of rows
+            std::vector<std::uint8_t> scratch;  // about three blocks of rows
             detail::line_opening_rows(m, length_cells, r0, r1, out.view(), scratch);
         },
         run.progress, fn);

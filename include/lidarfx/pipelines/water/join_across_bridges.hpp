@@ -40,16 +40,19 @@ struct join_across_bridges_options {
 /// @throws invalid_input if the shapes differ or a label is negative.
 inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z);
 
-/// Joins waterbodies across bridges: a land cell (label 0) lying on a straight run (row, column or
-/// diagonal) of n land cells, n·cell_m <= max_span_m, whose two ends touch bodies a != b with
-/// |level[a] − level[b]| <= level_tolerance_m, becomes water when its min z is NaN (no return), at least
-/// min_clearance_m above both levels (the deck), or in [min level − water_tolerance_m, max level +
-/// water_tolerance_m] (water seen past the deck's edge). It takes label min(a, b); a cell bridged in
-/// several directions takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged
-/// cell merge (every label of a merged group becomes its smallest), and with join_touching so do bodies with 8-adjacent
-/// cells and levels within level_tolerance_m. Every decision reads the labels as given. Elevations in metres. One
-/// row-major pass keeps, per line of the 4 directions, the last water cell seen; a run is examined when a water cell of
-/// another body closes it. O(cells + cells of examined runs). Returns the number of bridged cells.
+/// Joins waterbodies across bridges: a straight run (row, column or diagonal) of n land cells (label 0),
+/// n·cell_m <= max_span_m, whose two ends touch bodies a != b with |level[a] − level[b]| <= level_tolerance_m, is
+/// a bridge when its water and deck cells lie in the order: water seen past the deck's edge (min z between the
+/// lower level − water_tolerance_m and the higher level + water_tolerance_m), one stretch of deck (min z at least
+/// min_clearance_m above both levels), water seen (any part may be empty), and the run holds a deck cell or a cell
+/// without a return (NaN min z). Its cells without a return, deck and water cells become water; the others (banks,
+/// abutments) stay land. Land at a water level between two bodies without a deck, or ground between two decks (a
+/// street between roofs), is no bridge. A bridged cell takes label min(a, b); a cell bridged in several directions
+/// takes the label of the first of row, column, diagonal, anti-diagonal. Bodies joined by a bridged cell merge (every
+/// label of a merged group becomes its smallest), and with join_touching so do bodies with 8-adjacent cells and levels
+/// within level_tolerance_m. Every decision reads the labels as given. Elevations in metres. One row-major pass keeps,
+/// per line of the 4 directions, the last water cell seen; a run is examined when a water cell of another body closes
+/// it. O(cells + cells of examined runs). Returns the number of bridged cells.
 /// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or a
 /// label without an entry in `level`.
 inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -93,6 +94,60 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
 
 namespace detail {
 
+/// join_across_bridges' test of a run of land cells between bodies a and b: a bridge when the levels agree
+/// and its water and deck cells lie in the order water seen (between the lower level − water_tolerance_m and the
+/// higher level + water_tolerance_m), one stretch of deck, water seen; and it holds a deck cell or a cell without
+/// a return (those fit anywhere). The other cells (banks) are left out of the order and stay land. Ground
+/// between two decks (a street between roofs) or land at a water level without a deck is no bridge.
+struct bridge_rule {
+    raster_view<const float> min_z;
+    std::span<const double> level;
+    const join_across_bridges_options& opt;
+
+    /// The lowest and highest water seen, and the lowest deck, between bodies a and b.
+    std::array<double, 3> band(std::int32_t a, std::int32_t b) const
+    {
+        const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
+        return {std::min(la, lb) - opt.water_tolerance_m, std::max(la, lb) + opt.water_tolerance_m,
+                std::max(la, lb) + opt.min_clearance_m};
+    }
+    /// The run of `gap` cells walked back from (r, c) by (dr, dc), between bodies a and b, is a bridge.
+    bool bridges(std::ptrdiff_t r, std::ptrdiff_t c, int dr, int dc, std::ptrdiff_t gap, std::int32_t a,
+                 std::int32_t b) const
+    {
+        if (!(std::abs(level[static_cast<std::size_t>(a)] - level[static_cast<std::size_t>(b)]) <=
+              opt.level_tolerance_m))
+            return false;
+        const auto [water_from, water_to, deck_from] = band(a, b);
+        int part = 0;  // 0: water before the deck, 1: the deck, 2: water after it
+        bool gap_or_deck = false;
+        for (std::ptrdiff_t k = 1; k <= gap; ++k) {
+            const float z = min_z(r - k * dr, c - k * dc);
+            if (!std::isfinite(z)) {
+                gap_or_deck = true;
+                continue;
+            }
+            const double h = z;
+            if (h >= deck_from) {
+                if (part == 2) return false;  // a second deck
+                part = 1;
+                gap_or_deck = true;
+            } else if (h >= water_from && h <= water_to) {
+                part = part == 1 ? 2 : part;
+            }
+        }
+        return gap_or_deck;
+    }
+    /// A cell of a bridge becomes water: no return, deck, or water seen (banks stay land).
+    bool joins(float z, std::int32_t a, std::int32_t b) const
+    {
+        if (!std::isfinite(z)) return true;
+        const auto [water_from, water_to, deck_from] = band(a, b);
+        const double h = z;
+        return h >= deck_from || (h >= water_from && h <= water_to);
+    }
+};
+
 /// The bridge sweep of join_across_bridges on validated arguments (labels in [0, level.size())).
 inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<const float> min_z,
                                 std::span<const double> level, double cell_m, const join_across_bridges_options& opt)
@@ -108,15 +163,7 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)];
         return x;
     };
-    const auto bridge_ok = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t a, std::int32_t b) {
-        const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
-        if (!(std::abs(la - lb) <= opt.level_tolerance_m)) return false;
-        const float z = min_z(r, c);
-        if (!std::isfinite(z)) return true;
-        const double above = static_cast<double>(z) - std::max(la, lb);
-        const double below = std::min(la, lb) - static_cast<double>(z);
-        return above >= opt.min_clearance_m || (above <= opt.water_tolerance_m && below <= opt.water_tolerance_m);
-    };
+    const bridge_rule rule{min_z, level, opt};
     // Last water cell on each line: its row (for rows: its column) and label; -1 = none yet. The lines of
     // the columns, diagonals and anti-diagonals each in two arrays (rows and labels), so that a run of
     // cells moves its stretch of lines on in a loop that vectorizes (below).
@@ -139,16 +186,15 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
             const auto ra = find(lw_label), rb = find(l);
             if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
-        if (lw_at >= 0 && lw_label != l && gap >= 1 && gap <= span_cells) {
-            bool any = false;
+        if (lw_at >= 0 && lw_label != l && gap >= 1 && gap <= span_cells &&
+            rule.bridges(r, c, dr, dc, gap, lw_label, l)) {
             for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
                 const std::ptrdiff_t rr = r - k * dr, cc = c - k * dc;
-                if (!bridge_ok(rr, cc, lw_label, l)) continue;
-                bridged.push_back({rr * cols + cc, direction, std::min(lw_label, l)});
-                any = true;
+                if (rule.joins(min_z(rr, cc), lw_label, l))
+                    bridged.push_back({rr * cols + cc, direction, std::min(lw_label, l)});
             }
             const auto ra = find(lw_label), rb = find(l);
-            if (any && ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+            if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
         }
         lw_at = at;
         lw_label = l;
