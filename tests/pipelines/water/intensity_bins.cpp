@@ -164,7 +164,8 @@ TEST_CASE("water/intensity_bins: several blocks of rows on several threads give 
         raster<std::uint8_t> d(1100, 23);
         for (std::ptrdiff_t r = 0; r < v.rows(); ++r)
             for (std::ptrdiff_t c = 0; c < v.cols(); ++c) {
-                v(r, c) = static_cast<float>(std::fmod(static_cast<double>(r) * 137.0 + rng() % 50, hi));  // to 150 k
+                v(r, c) =
+                    static_cast<float>(std::fmod(static_cast<double>(r) * 137.0 + static_cast<double>(rng() % 50), hi));
                 d(r, c) = rng() % 9 == 0;
             }
         const auto expected = reference_bins(v, d, 1.0);
