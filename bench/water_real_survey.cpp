@@ -29,6 +29,7 @@
 #include <vector>
 
 #include <lidarfx/core/raster.hpp>
+#include <lidarfx/kernels/filter/morphology.hpp>
 #include <lidarfx/kernels/label/connected_components.hpp>
 #include <lidarfx/kernels/vector/burn_polygons.hpp>
 
@@ -103,6 +104,7 @@ int main(int argc, char** argv)
                 }
             }
         }
+        const auto near_deck = morph_dilate(deck, 3);  // a deck cell and its 8 neighbours are not scored
         // Scores the cells (with points only, or all) and prints one line.
         const auto score = [&](bool with_points_only, const char* what) {
             std::size_t tp = 0, fp = 0, fn = 0, tn = 0;
@@ -110,12 +112,7 @@ int main(int argc, char** argv)
                 for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
                     if (std::isnan(found(r, c))) continue;  // outside the footprint
                     if (with_points_only && points(r, c) == 0) continue;
-                    bool near_deck = false;
-                    for (std::ptrdiff_t dr = -1; dr <= 1; ++dr)
-                        for (std::ptrdiff_t dc = -1; dc <= 1; ++dc)
-                            near_deck = near_deck || (r + dr >= 0 && c + dc >= 0 && r + dr < g.rows &&
-                                                      c + dc < g.cols && deck(r + dr, c + dc));
-                    if (near_deck) continue;
+                    if (near_deck(r, c)) continue;
                     bool truth = false;
                     if (lakes.empty()) {
                         if (points(r, c) == 0) {

@@ -31,19 +31,18 @@ raster<std::uint8_t> line_opening(const Mask& m, int length_cells, const executi
 
 namespace detail {
 
-/// line_opening of the output rows [r0, r1): the mask rows they depend on are copied as 0/1 bytes into
-/// `scratch` with zero rows and columns around them (the raster's border ends runs), then each direction's
+/// line_opening of the output rows [r0, r1): the mask rows they depend on are copied as 0/1 bytes into a
+/// scratch buffer with zero rows and columns around them (the raster's border ends runs), then each direction's
 /// segment erosion and dilation run on whole rows.
 template <class Mask>
-void line_opening_rows(const Mask& m, int length, std::ptrdiff_t r0, std::ptrdiff_t r1, raster_view<std::uint8_t> out,
-                       std::vector<std::uint8_t>& scratch)
+void line_opening_rows(const Mask& m, int length, std::ptrdiff_t r0, std::ptrdiff_t r1, raster_view<std::uint8_t> out)
 {
     const std::ptrdiff_t rows = m.rows(), cols = m.cols(), reach = length - 1;
     // Columns: a diagonal erosion at column c reads c ± reach, its dilation c ± reach more.
     const std::ptrdiff_t pad = 2 * reach, width = cols + 2 * pad;
     // Mask rows [r0 - reach, r1 + reach), erosion rows [r0 - reach, r1) (one per dilation input row).
     const std::ptrdiff_t mask_rows = r1 - r0 + 2 * reach, eroded_rows = r1 - r0 + reach;
-    scratch.assign(static_cast<std::size_t>((mask_rows + eroded_rows + 1) * width), 0);
+    std::vector<std::uint8_t> scratch(static_cast<std::size_t>((mask_rows + eroded_rows + 1) * width), 0);
     std::uint8_t* const mask = scratch.data();  // mask row i: raster row r0 - reach + i, column c at pad + c
     std::uint8_t* const eroded = mask + mask_rows * width;
     std::uint8_t* const line = eroded + eroded_rows * width;
@@ -103,10 +102,7 @@ raster<std::uint8_t> line_opening(const Mask& m, int length_cells, const executi
     const std::ptrdiff_t block_rows = std::max<std::ptrdiff_t>(64, 4 * std::ptrdiff_t{length_cells});
     parallel_for_rows(
         rows, block_rows, run.threads,
-        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-            std::vector<std::uint8_t> scratch;  // about three blocks of rows
-            detail::line_opening_rows(m, length_cells, r0, r1, out.view(), scratch);
-        },
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) { detail::line_opening_rows(m, length_cells, r0, r1, out.view()); },
         run.progress, fn);
     return out;
 }

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -100,12 +99,25 @@ namespace detail {
 /// a return (those fit anywhere). The other cells (banks) are left out of the order and stay land. Ground
 /// between two decks (a street between roofs) or land at a water level without a deck is no bridge.
 struct bridge_rule {
+    /// What a land cell of a run is to the two bodies' levels.
+    enum class cell { gap, deck, water, bank };  // no return; clearance above both; water seen; anything else
+
+    /// The heights that sort the cells of a run between bodies a and b.
+    struct heights {
+        double water_from, water_to, deck_from;
+        cell of(float z) const noexcept
+        {
+            if (!std::isfinite(z)) return cell::gap;
+            const double h = z;
+            return h >= deck_from ? cell::deck : h >= water_from && h <= water_to ? cell::water : cell::bank;
+        }
+    };
+
     raster_view<const float> min_z;
     std::span<const double> level;
     const join_across_bridges_options& opt;
 
-    /// The lowest and highest water seen, and the lowest deck, between bodies a and b.
-    std::array<double, 3> band(std::int32_t a, std::int32_t b) const
+    heights between(std::int32_t a, std::int32_t b) const noexcept
     {
         const double la = level[static_cast<std::size_t>(a)], lb = level[static_cast<std::size_t>(b)];
         return {std::min(la, lb) - opt.water_tolerance_m, std::max(la, lb) + opt.water_tolerance_m,
@@ -118,33 +130,27 @@ struct bridge_rule {
         if (!(std::abs(level[static_cast<std::size_t>(a)] - level[static_cast<std::size_t>(b)]) <=
               opt.level_tolerance_m))
             return false;
-        const auto [water_from, water_to, deck_from] = band(a, b);
+        const heights h = between(a, b);
         int part = 0;  // 0: water before the deck, 1: the deck, 2: water after it
         bool gap_or_deck = false;
         for (std::ptrdiff_t k = 1; k <= gap; ++k) {
-            const float z = min_z(r - k * dr, c - k * dc);
-            if (!std::isfinite(z)) {
-                gap_or_deck = true;
-                continue;
-            }
-            const double h = z;
-            if (h >= deck_from) {
-                if (part == 2) return false;  // a second deck
-                part = 1;
-                gap_or_deck = true;
-            } else if (h >= water_from && h <= water_to) {
-                part = part == 1 ? 2 : part;
+            switch (h.of(min_z(r - k * dr, c - k * dc))) {
+                case cell::gap:
+                    gap_or_deck = true;
+                    break;
+                case cell::deck:
+                    if (part == 2) return false;  // a second deck
+                    part = 1;
+                    gap_or_deck = true;
+                    break;
+                case cell::water:
+                    part = part == 1 ? 2 : part;
+                    break;
+                case cell::bank:
+                    break;
             }
         }
         return gap_or_deck;
-    }
-    /// A cell of a bridge becomes water: no return, deck, or water seen (banks stay land).
-    bool joins(float z, std::int32_t a, std::int32_t b) const
-    {
-        if (!std::isfinite(z)) return true;
-        const auto [water_from, water_to, deck_from] = band(a, b);
-        const double h = z;
-        return h >= deck_from || (h >= water_from && h <= water_to);
     }
 };
 
@@ -188,9 +194,10 @@ inline std::size_t bridge_sweep(raster_view<std::int32_t> labels, raster_view<co
         }
         if (lw_at >= 0 && lw_label != l && gap >= 1 && gap <= span_cells &&
             rule.bridges(r, c, dr, dc, gap, lw_label, l)) {
-            for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run
+            const auto heights = rule.between(lw_label, l);
+            for (std::ptrdiff_t k = 1; k <= gap; ++k) {  // walk back from (r, c) over the land run: banks stay land
                 const std::ptrdiff_t rr = r - k * dr, cc = c - k * dc;
-                if (rule.joins(min_z(rr, cc), lw_label, l))
+                if (heights.of(min_z(rr, cc)) != bridge_rule::cell::bank)
                     bridged.push_back({rr * cols + cc, direction, std::min(lw_label, l)});
             }
             const auto ra = find(lw_label), rb = find(l);
