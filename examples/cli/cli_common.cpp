@@ -616,6 +616,43 @@ void to_metres(io::las_points& points, const survey_layout& layout)
     }
 }
 
+raster<float> chosen_class_ground(survey& s, const std::string& choice)
+{
+    if (choice != "auto" && choice != "class2" && choice != "model")
+        throw usage_error("--ground must be auto, class2 or model (got " + choice + ")");
+    const double share = s.points ? static_cast<double>(s.class_ground_points) / static_cast<double>(s.points) : 0.0;
+    if (choice == "class2" && s.class_ground_points == 0)
+        throw usage_error("--ground class2: the survey has no point of class 2 (ground)");
+    if (choice == "model" || (choice == "auto" && share < 0.01)) {
+        std::cout << "terrain under buildings: found from the DSM (ground_model)"
+                  << (choice == "auto" ? ", the survey has under 1 % of class-2 points" : "") << "\n";
+        return {};
+    }
+    std::ostringstream line;
+    line << "terrain under buildings: class 2 (ground), " << s.class_ground_points << " points (" << std::fixed
+         << std::setprecision(1) << 100.0 * share << " %), gaps filled by IDW\n";
+    std::cout << line.str();
+    return std::move(s.class_ground);
+}
+
+namespace {
+
+// Lowers survey::class_ground to the class-2 points of a chunk (metres) that fall on the grid.
+void add_class_ground(survey& s, const grid& g, const io::las_points& points)
+{
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (points.classification[i] != 2) continue;
+        const auto at = g.cell_of(points.x[i], points.y[i]);
+        if (!at || !std::isfinite(points.z[i])) continue;
+        float& cell = s.class_ground(at->row, at->col);
+        const auto z = static_cast<float>(points.z[i]);
+        if (!(cell <= z)) cell = z;  // NaN (no ground yet) or higher
+        ++s.class_ground_points;
+    }
+}
+
+}  // namespace
+
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
 {
     const int threads = opt.threads;
@@ -657,9 +694,11 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     // Scan lines in file order, when the files carry GPS times (a new file starts a new sweep).
     std::optional<scan_coverage> scans;
     std::size_t scan_file = paths.size();
+    if (opt.class_ground) s.class_ground = raster<float>(g.rows, g.cols, std::numeric_limits<float>::quiet_NaN());
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
+        if (opt.class_ground) add_class_ground(s, g, c.points);
         if (outliers) outliers->add(c.points.x, c.points.y);
         if (!c.points.gps_time.empty()) {
             if (!scans) scans.emplace(g);

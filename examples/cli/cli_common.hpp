@@ -76,6 +76,7 @@ struct survey_options {
     std::optional<bounds> crop;             ///< keep the points inside, build the grid over it (units of the CRS)
     bool force = false;                     ///< run even when the cell is far too small for the point density
     output_formats formats;                 ///< what the command writes (--formats)
+    bool class_ground = false;              ///< also keep survey::class_ground (4 bytes per cell)
 };
 
 /// --formats: raster formats asc,tif,png and vector formats csv,geojson,gpkg, any non-empty subset. Each
@@ -113,6 +114,10 @@ struct survey {
     int epsg = 0;                       ///< horizontal EPSG code of the first file (0 = none or user-defined)
     std::size_t points = 0;             ///< points read
     std::size_t files = 0;
+    /// The lowest point of class 2 (ground) in each cell, metres, NaN where none; empty unless
+    /// survey_options::class_ground
+    raster<float> class_ground;
+    std::size_t class_ground_points = 0;  ///< points of class 2 on the grid (with survey_options::class_ground)
 };
 
 /// Points counted in 256 x 256 bins over a survey's header box (metres): what refuse_outliers decides on.
@@ -200,6 +205,12 @@ void report_non_finite_heights(const std::string& path, std::size_t cells);
 /// is rasterized; the chunks are added in file order either way, so the rasters do not depend on `threads`.
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
+
+/// The terrain a --ground choice (auto, class2, model) takes from a survey read with class_ground: the class-2
+/// raster (moved out of `s`), or empty for model (the caller finds the terrain from the DSM), as for auto when
+/// under 1 % of the points are class 2. Says which on stdout. @throws usage_error for class2 on a survey
+/// without a point of class 2, or for another choice.
+raster<float> chosen_class_ground(survey& s, const std::string& choice);
 
 /// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
 /// inside the area flown. hull_radius_m <= 0 gives every cell as inside.

@@ -38,7 +38,7 @@ constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
     "                     [--diffuse isotropic|perez] [--svf cosine|share] [--surface horizontal|terrain]\n"
-    "                     [--facades] [--threads N]\n"
+    "                     [--facades [--ground auto|class2|model]] [--threads N]\n"
     "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
     "Irradiation of a surface model over a year, on horizontal surfaces or (--surface terrain) on each cell's own\n"
     "plane: beam = DNI * cos(incidence) where the cell sees the sun (cast shadows per daylight hour), diffuse =\n"
@@ -81,7 +81,13 @@ constexpr const char* usage =
     "                 above the wall's foot),area_m2,annual_kwh_m2,q1..q4_kwh_m2_day), surface_table.csv (north/\n"
     "                 south/east/west facades and rooftops: quarterly kWh/m2/day, annual kWh/m2/yr),\n"
     "                 bill_savings.csv (12 modules of 65x39 in, 16 %, inverter 95 %, -6 %, 0.11 per kWh) and\n"
-    "                 buildings_energy.png (roofs and walls coloured by annual kWh/m2)\n"
+    "                 buildings_energy.png (roofs and walls coloured by annual kWh/m2). From LAS files trees are\n"
+    "                 told from roofs by their split pulses (a part where 20 % of the points came from pulses\n"
+    "                 with several returns is vegetation)\n"
+    "  --ground G     the terrain under the buildings of --facades, LAS input [auto]: class2 = the lowest point\n"
+    "                 of class 2 (ground) in each cell, gaps filled by IDW; model = found from the DSM (steep\n"
+    "                 edges, their hulls, IDW inside; fails under contiguous blocks); auto = class2 when at\n"
+    "                 least 1 % of the points are class 2, else model\n"
     "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and the\n"
     "                 weather file are checked against before they are read (exit code 2) [half the memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
@@ -183,7 +189,7 @@ int run_solar(const std::vector<std::string>& args)
     namespace cli = lidarfx::cli;
     const cli::arguments a(args,
                            {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
-                            "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit"},
+                            "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit", "ground"},
                            {"help", "force", "year-from-tmy", "facades", "keep-outliers"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
@@ -204,6 +210,10 @@ int run_solar(const std::vector<std::string>& args)
         throw cli::usage_error("--surface must be horizontal or terrain (got " + surface + ")");
     }
     const bool terrain = surface == "terrain";
+    const std::string ground_choice = a.text("ground", "auto");
+    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "model")
+        throw cli::usage_error("--ground must be auto, class2 or model (got " + ground_choice + ")");
+    if (a.has("ground") && !a.has("facades")) throw cli::usage_error("--ground needs --facades");
 
     // Weather first: a bad file fails before the survey is read.
     const bool year_from_tmy = a.has("year-from-tmy");
@@ -250,7 +260,9 @@ int run_solar(const std::vector<std::string>& args)
 
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
-    lidarfx::raster<std::uint8_t> vegetation;  // cells with multiple returns (LAS input), for --facades
+    lidarfx::raster<std::uint8_t> vegetation;             // cells with multiple returns (LAS input), for --facades
+    lidarfx::raster<std::uint32_t> points, split_points;  // points per cell and of split pulses (LAS input)
+    lidarfx::raster<float> class_ground;                  // the class-2 terrain chosen by --ground (LAS input)
     lidarfx::grid g;
     double cell_m = 0.0;
     std::string crs_wkt, place_crs;
@@ -271,8 +283,14 @@ int run_solar(const std::vector<std::string>& args)
     } else {
         auto survey_options = cli::survey_options_from(a, solar_bytes_per_cell);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
-        const auto s = cli::read_survey(inputs, survey_options);
+        survey_options.class_ground = a.has("facades") && ground_choice != "model";
+        auto s = cli::read_survey(inputs, survey_options);
         cli::print_survey(s);
+        if (a.has("facades")) {
+            class_ground = cli::chosen_class_ground(s, ground_choice);
+            points = std::move(s.rasters.count);
+            split_points = std::move(s.rasters.multiple_return_count);
+        }
         g = s.rasters.g;
         cell_m = g.cell;  // read_survey works in metres
         dsm = lidarfx::idw_fill(s.rasters.max_z, cell_m, {.run = {.threads = threads}}).filled;
@@ -401,6 +419,8 @@ int run_solar(const std::vector<std::string>& args)
     if (a.has("facades")) {
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
                                         .vegetation = vegetation.view(),
+                                        .returns = {points.view(), split_points.view()},
+                                        .ground = class_ground.view(),
                                         .cell_m = cell_m,
                                         .grid_crs = g,
                                         .crs_wkt = crs_wkt,

@@ -10,6 +10,7 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/kernels/solar/daylight_suns.hpp>
 #include <lidarfx/kernels/solar/irradiance_record.hpp>
+#include <lidarfx/pipelines/buildings/vegetation_by_returns.hpp>
 
 #include "cli_common.hpp"
 #include "io/output_folder.hpp"
@@ -21,6 +22,8 @@ namespace lidarfx::cli {
 struct facade_run {
     raster_view<const float> dsm;
     raster_view<const std::uint8_t> vegetation;  ///< multiple-return cells (LAS input), empty otherwise
+    pulse_returns returns;                       ///< points and split-pulse points per cell (LAS input), or empty
+    raster_view<const float> ground;             ///< the terrain under the buildings (class 2), empty: found
     double cell_m = 1;
     grid grid_crs;
     std::string crs_wkt;

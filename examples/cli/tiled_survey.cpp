@@ -47,6 +47,7 @@ void each_cell_raster(F f)
     f(&rasterize_result::count);
     f(&rasterize_result::dropout);
     f(&rasterize_result::multiple_returns);
+    f(&rasterize_result::multiple_return_count);
 }
 
 /// Sets each per-cell raster of r to rows x cols uninitialized cells.

@@ -68,6 +68,7 @@
 #include "lidarfx/pipelines/buildings/surface_class_table.hpp"
 #include "lidarfx/pipelines/buildings/surface_energy.hpp"
 #include "lidarfx/pipelines/buildings/surface_patches.hpp"
+#include "lidarfx/pipelines/buildings/vegetation_by_returns.hpp"
 #include "lidarfx/pipelines/pv/azimuth_mode_select.hpp"
 #include "lidarfx/pipelines/pv/roof_planes.hpp"
 #include "lidarfx/pipelines/pv/roof_suitability.hpp"

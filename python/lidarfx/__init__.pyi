@@ -56,14 +56,17 @@ component l. The result does not depend on threads."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 50.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[float] = None, multiple_return_count: Optional[float] = None, min_height_m: float = 2.5, min_area_m2: float = 20.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
-ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are planar enough to
-be roofs, roof surfaces grown from local planes and merged, then numbered by area.
+ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
+enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
+numbered by area.
 
 dsm: heights in metres, row 0 north (float32 read in place). cell_m or grid (a Grid; outlines are in its world
 coordinates, else in metres from the top-left corner). ground: optional terrain (DTM) in metres; vegetation:
-optional bool mask of trees. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+optional bool mask of trees; or point_count and multiple_return_count (uint32, Rasters.count and
+Rasters.multiple_return_count of the DSM's points): trees told from roofs by their split pulses (a cell with
+half its points from pulses of several returns is vegetation, a part with 20 %). Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid)."""
     ...
@@ -189,7 +192,8 @@ number of each point), nreturns (its pulse's number of returns), classification 
 same length. cell_m: cell size in metres (default
 1). grid: a Grid to bin on; default the snapped grid around the points (corners on multiples of cell_m).
 return_selection: the points binned, 'all' (default), 'first' or 'last' returns. Points outside the grid or with NaN coordinates are counted, not
-binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, grid, point counts)."""
+binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, multiple_return_count,
+grid, point counts)."""
     ...
 
 

@@ -79,6 +79,7 @@ class Rasters:
     count: np.ndarray             #: points per cell (uint32)
     dropout: np.ndarray           #: True = no return in the cell
     multiple_returns: np.ndarray  #: True = a point of the cell has number_of_returns > 1
+    multiple_return_count: np.ndarray  #: points of the cell whose pulse had several returns (uint32)
     points_used: int
     points_outside: int
     points_nan: int

@@ -51,7 +51,8 @@ py::dict geojson(const std::vector<polygon>& parts)
 
 py::object extract_buildings_binding(const py::handle& dsm, const py::handle& cell_arg, const py::handle& grid_arg,
                                      const py::handle& ground_arg, const py::handle& vegetation_arg,
-                                     double min_height_m, double min_area_m2, int threads, py::object progress)
+                                     const py::handle& points_arg, const py::handle& split_arg, double min_height_m,
+                                     double min_area_m2, int threads, py::object progress)
 {
     constexpr const char* fn = "extract_buildings";
     const array_input<float> z(dsm, fn, "dsm");
@@ -60,13 +61,23 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     std::optional<array_input<std::uint8_t>> vegetation;
     if (!ground_arg.is_none()) ground.emplace(ground_arg, fn, "ground");
     if (!vegetation_arg.is_none()) vegetation.emplace(vegetation_arg, fn, "vegetation");
+    if (points_arg.is_none() != split_arg.is_none())
+        value_error(fn, "point_count and multiple_return_count go together");
+    if (!points_arg.is_none() && vegetation) value_error(fn, "give vegetation or the pulse counts, not both");
+    std::optional<array_input<std::uint32_t>> points, split;
+    if (!points_arg.is_none()) {
+        points.emplace(points_arg, fn, "point_count");
+        split.emplace(split_arg, fn, "multiple_return_count");
+    }
     extract_buildings_options opt;
     opt.candidates.min_height_m = min_height_m;
     opt.candidates.min_area_m2 = min_area_m2;
     run_settings rs(threads, std::move(progress));
     opt.run = rs.run();
     extract_buildings_result r = rs.call([&] {
-        return extract_buildings(z.view(), g, ground ? ground->view() : raster_view<const float>{},
+        const raster_view<const float> terrain = ground ? ground->view() : raster_view<const float>{};
+        if (points) return extract_buildings(z.view(), g, terrain, pulse_returns{points->view(), split->view()}, opt);
+        return extract_buildings(z.view(), g, terrain,
                                  vegetation ? vegetation->view() : raster_view<const std::uint8_t>{}, opt);
     });
     py::list buildings;
@@ -221,15 +232,19 @@ void bind_buildings(py::module_& m)
 {
     using namespace pybind11::literals;
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
-          "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "min_height_m"_a = 2.5,
-          "min_area_m2"_a = 50.0, "threads"_a = 1, "progress"_a = py::none(), R"doc(
+          "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
+          "multiple_return_count"_a = py::none(), "min_height_m"_a = 2.5, "min_area_m2"_a = 20.0, "threads"_a = 1,
+          "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
-ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are planar enough to
-be roofs, roof surfaces grown from local planes and merged, then numbered by area.
+ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
+enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
+numbered by area.
 
 dsm: heights in metres, row 0 north (float32 read in place). cell_m or grid (a Grid; outlines are in its world
 coordinates, else in metres from the top-left corner). ground: optional terrain (DTM) in metres; vegetation:
-optional bool mask of trees. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+optional bool mask of trees; or point_count and multiple_return_count (uint32, Rasters.count and
+Rasters.multiple_return_count of the DSM's points): trees told from roofs by their split pulses (a cell with
+half its points from pulses of several returns is vegetation, a part with 20 %). Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid).)doc");
 

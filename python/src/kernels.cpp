@@ -179,6 +179,7 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
     fields["count"] = to_numpy(std::move(r.count));
     fields["dropout"] = to_numpy(std::move(r.dropout), true);
     fields["multiple_returns"] = to_numpy(std::move(r.multiple_returns), true);
+    fields["multiple_return_count"] = to_numpy(std::move(r.multiple_return_count));
     fields["points_used"] = r.points_used;
     fields["points_outside"] = r.points_outside;
     fields["points_nan"] = r.points_nan;
@@ -279,7 +280,8 @@ number of each point), nreturns (its pulse's number of returns), classification 
 same length. cell_m: cell size in metres (default
 1). grid: a Grid to bin on; default the snapped grid around the points (corners on multiples of cell_m).
 return_selection: the points binned, 'all' (default), 'first' or 'last' returns. Points outside the grid or with NaN coordinates are counted, not
-binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, grid, point counts).)doc");
+binned. Returns Rasters (min_z, max_z, mean_intensity, count, dropout, multiple_returns, multiple_return_count,
+grid, point counts).)doc");
 }
 
 }  // namespace lidarfx::python

@@ -200,6 +200,9 @@ def test_rasterize_bins_points_as_numpy_does(rng):
     np.testing.assert_allclose(pr.mean_intensity[has], isum[has] / count[has], rtol=1e-5)
     np.testing.assert_array_equal(pr.dropout, ~has)
     np.testing.assert_array_equal(pr.multiple_returns, multi)
+    split = np.zeros((g.rows, g.cols), np.int64)
+    np.add.at(split, (row, col), (nret > 1).astype(np.int64))
+    np.testing.assert_array_equal(pr.multiple_return_count, split)
     assert pr.points_used == n
     first = lidarfx.rasterize(x, y, z, intensity, rn, nret, 2.0, return_selection="first", grid=g)
     assert first.points_used == int((rn == 1).sum()) and first.points_unselected == int((rn != 1).sum())

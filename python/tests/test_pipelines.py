@@ -150,3 +150,22 @@ def test_azimuth_mode_select_swaps_a_north_facing_two_plane_roof():
     assert not lidarfx.azimuth_mode_select(np.zeros(360)).suitable
     with pytest.raises(ValueError, match="360"):
         lidarfx.azimuth_mode_select(np.zeros(100))
+
+
+def test_extract_buildings_with_pulse_counts_keeps_a_rough_roof_and_drops_a_crown(rng):
+    # A rough old roof (heights jumping by up to 1.2 m) with whole pulses, and a crown with 30 % split pulses.
+    dsm = np.full((80, 80), 100.0, dtype=np.float32)
+    dsm[10:40, 10:40] = 108.0 + rng.uniform(0.0, 1.2, (30, 30))
+    dsm[50:70, 20:60] = 100.0 + rng.uniform(6.0, 10.0, (20, 40))
+    points = np.full((80, 80), 10, dtype=np.uint32)
+    split = np.zeros((80, 80), dtype=np.uint32)
+    split[10:40, 10:40] = 1
+    split[50:70, 20:60] = 3
+    b = lidarfx.extract_buildings(dsm, 0.5, point_count=points, multiple_return_count=split)
+    assert len(b.buildings) == 1
+    assert b.building_id[25, 25] == 1 and b.building_id[60, 40] == 0
+    with pytest.raises(ValueError):
+        lidarfx.extract_buildings(dsm, 0.5, point_count=points)
+    with pytest.raises(ValueError):
+        lidarfx.extract_buildings(dsm, 0.5, vegetation=split > 0, point_count=points, multiple_return_count=split)
+

@@ -40,7 +40,7 @@ lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
         const auto k = static_cast<std::size_t>(at->row * g.cols + at->col);
         z[k].push_back(zi);
         intensity[k].push_back(lidarfx::intensity_of(cloud, i));
-        if (lidarfx::number_of_returns_of(cloud, i) > 1) multiple[k] = 1;
+        if (lidarfx::number_of_returns_of(cloud, i) > 1) multiple[k] += 1;
         ++out.points_used;
     }
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -50,6 +50,7 @@ lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
     out.count = lidarfx::raster<std::uint32_t>(g.rows, g.cols, 0u);
     out.dropout = lidarfx::raster<std::uint8_t>(g.rows, g.cols, 1);
     out.multiple_returns = lidarfx::raster<std::uint8_t>(g.rows, g.cols, 0);
+    out.multiple_return_count = lidarfx::raster<std::uint32_t>(g.rows, g.cols, 0u);
     for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
         for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
             const auto k = static_cast<std::size_t>(r * g.cols + c);
@@ -62,7 +63,8 @@ lidarfx::rasterize_result rasterize(const C& cloud, const lidarfx::grid& g)
             out.mean_intensity(r, c) = static_cast<float>(sum / static_cast<double>(z[k].size()));
             out.count(r, c) = static_cast<std::uint32_t>(z[k].size());
             out.dropout(r, c) = 0;
-            out.multiple_returns(r, c) = static_cast<std::uint8_t>(multiple[k]);
+            out.multiple_returns(r, c) = static_cast<std::uint8_t>(multiple[k] > 0);
+            out.multiple_return_count(r, c) = static_cast<std::uint32_t>(multiple[k]);
         }
     }
     return out;
@@ -82,7 +84,8 @@ inline bool same_bits(const lidarfx::rasterize_result& a, const lidarfx::rasteri
     return a.g == b.g && same_bits(a.min_z, b.min_z) && same_bits(a.max_z, b.max_z) &&
            same_bits(a.mean_intensity, b.mean_intensity) && same_bits(a.count, b.count) &&
            same_bits(a.dropout, b.dropout) && same_bits(a.multiple_returns, b.multiple_returns) &&
-           a.points_used == b.points_used && a.points_outside == b.points_outside && a.points_nan == b.points_nan;
+           same_bits(a.multiple_return_count, b.multiple_return_count) && a.points_used == b.points_used &&
+           a.points_outside == b.points_outside && a.points_nan == b.points_nan;
 }
 
 }  // namespace reference

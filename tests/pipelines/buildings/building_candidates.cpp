@@ -60,10 +60,10 @@ TEST_CASE("buildings/building_candidates: vegetation is never a building and gro
 
 TEST_CASE("buildings/building_candidates: parts under min_area_m2 are dropped; shapes are checked")
 {
-    const auto z = box(20, 30, 20, 30, 7.0f);  // 5 m x 5 m = 25 m^2
+    const auto z = box(20, 30, 20, 30, 7.0f);  // 5 m x 5 m = 25 m^2: a garage, above the default 20 m^2
     const auto terrain = ground_model(z, 0.5);
-    CHECK(building_candidates(z, terrain, 0.5).count == 0);
-    CHECK(building_candidates(z, terrain, 0.5, {}, {.min_area_m2 = 20}).count == 1);
+    CHECK(building_candidates(z, terrain, 0.5).count == 1);
+    CHECK(building_candidates(z, terrain, 0.5, {}, {.min_area_m2 = 30}).count == 0);
     const raster<std::uint8_t> wrong(5, 5, 0);
     CHECK_THROWS_AS(building_candidates(z, terrain, 0.5, wrong), invalid_input);
     CHECK_THROWS_AS(building_candidates(z, terrain, 0.0), invalid_input);

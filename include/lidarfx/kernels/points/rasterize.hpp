@@ -50,10 +50,13 @@ struct rasterize_result {
     raster<std::uint32_t> count;            ///< points in the cell
     raster<std::uint8_t> dropout;           ///< 1 = no return in the cell
     raster<std::uint8_t> multiple_returns;  ///< 1 = some point of the cell has number_of_returns > 1
-    std::size_t points_used = 0;            ///< points written into a cell
-    std::size_t points_outside = 0;         ///< finite points outside the grid (ignored)
-    std::size_t points_nan = 0;             ///< points with a NaN or infinite x, y or z (ignored)
-    std::size_t points_unselected = 0;      ///< points left out by returns / classes (never binned or counted above)
+    /// Points of the cell whose pulse had more than one return (number_of_returns > 1): leaves and branches
+    /// split a pulse, roofs rarely do (vegetation_by_returns)
+    raster<std::uint32_t> multiple_return_count;
+    std::size_t points_used = 0;        ///< points written into a cell
+    std::size_t points_outside = 0;     ///< finite points outside the grid (ignored)
+    std::size_t points_nan = 0;         ///< points with a NaN or infinite x, y or z (ignored)
+    std::size_t points_unselected = 0;  ///< points left out by returns / classes (never binned or counted above)
 };
 
 namespace detail {

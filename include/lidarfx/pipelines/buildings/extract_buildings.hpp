@@ -25,16 +25,18 @@
 #include "lidarfx/pipelines/buildings/local_planes.hpp"
 #include "lidarfx/pipelines/buildings/merge_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
+#include "lidarfx/pipelines/buildings/vegetation_by_returns.hpp"
 
 namespace lidarfx {
 
 /// Settings of extract_buildings: one member per step. Defaults are for 0.25-1 m cells of a first-return DSM.
 struct extract_buildings_options {
     ground_model_options ground = {};             ///< edges (>= 45 deg), edge objects (>= 10 cells), hulls, IDW
-    building_candidates_options candidates = {};  ///< min_height_m (2.5 m), min_area_m2 (50 m^2)
+    building_candidates_options candidates = {};  ///< min_height_m (2.5 m), min_area_m2 (20 m^2)
     local_planes_options local_planes = {};       ///< plane window (1.5 m), planar tolerance, min_planar_share (0.25)
     grow_roof_surfaces_options surfaces = {};     ///< plane_angle_deg (6), step_m (0.3 m), min_surface_m2 (4 m^2)
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
+    vegetation_by_returns_options returns = {};   ///< split pulses: cell_share (0.5), part_share (0.2), seen (0.25)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -88,6 +90,20 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
                                            raster_view<const std::uint8_t> vegetation = {},
                                            const extract_buildings_options& opt = {});
 
+/// extract_buildings on a survey whose pulses are counted (`returns`, e.g. rasterize_result::count and
+/// multiple_return_count of the DSM's points): trees are told from roofs by their split pulses. The vegetation
+/// mask is vegetation_by_returns (cells where at least returns.cell_share of the points came from pulses with
+/// several returns), and step 3 drops the candidates drop_vegetation_parts finds unseen (few returns: a surface
+/// interpolated over water between crowns) or vegetation (at least returns.part_share of split pulses) instead
+/// of every rough part: dense old roofs at 1 m cells (dormers, chimneys, narrow gables) are rough, yet their
+/// pulses are whole.
+/// Otherwise as extract_buildings above; rejected_rough counts the parts dropped as vegetation.
+/// @throws invalid_input as extract_buildings, and if returns.points or returns.multiple differ from the DSM's
+/// shape or some cell counts more split pulses than points.
+template <raster_input In>
+extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
+                                           const pulse_returns& returns, const extract_buildings_options& opt = {});
+
 /// extract_buildings without a given terrain or vegetation mask.
 template <raster_input In>
 extract_buildings_result extract_buildings(const In& dsm, const grid& g, const extract_buildings_options& opt)
@@ -106,6 +122,12 @@ inline void check_extract_buildings(const grid& g, const extract_buildings_optio
     check_grow_roof_surfaces(opt.surfaces, function);
     require(opt.merge.merge_rms_m >= 0 && opt.merge.merge_rms_m < 1e300, function, "merge_rms_m", "finite and >= 0",
             opt.merge.merge_rms_m);
+    require(opt.returns.cell_share > 0 && opt.returns.cell_share <= 1, function, "returns.cell_share", "in (0, 1]",
+            opt.returns.cell_share);
+    require(opt.returns.part_share > 0 && opt.returns.part_share <= 1, function, "returns.part_share", "in (0, 1]",
+            opt.returns.part_share);
+    require(opt.returns.min_seen_density >= 0 && opt.returns.min_seen_density <= 1, function,
+            "returns.min_seen_density", "in [0, 1]", opt.returns.min_seen_density);
     check_execution(opt.run, function);
 }
 
@@ -134,16 +156,19 @@ inline std::vector<bool> clipped_buildings(raster_view<const std::int32_t> ids, 
 
 // ---- implementation ----
 
+namespace detail {
+
+/// The steps of both extract_buildings: `returns` null judges candidates by roughness alone.
 template <raster_input In>
-extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
-                                           raster_view<const std::uint8_t> vegetation,
-                                           const extract_buildings_options& opt)
+extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, raster_view<const float> ground,
+                                                 raster_view<const std::uint8_t> vegetation,
+                                                 const pulse_returns* returns, const extract_buildings_options& opt)
 {
     constexpr const char* function = "extract_buildings";
-    detail::check_extract_buildings(g, opt, function);
-    detail::require(dsm.rows() == g.rows && dsm.cols() == g.cols, function, "dsm must have the grid's shape");
-    if (!ground.empty()) detail::require_same_shape(dsm, ground, function, "dsm", "ground");
-    if (!vegetation.empty()) detail::require_same_shape(dsm, vegetation, function, "dsm", "vegetation");
+    check_extract_buildings(g, opt, function);
+    require(dsm.rows() == g.rows && dsm.cols() == g.cols, function, "dsm must have the grid's shape");
+    if (!ground.empty()) require_same_shape(dsm, ground, function, "dsm", "ground");
+    if (!vegetation.empty()) require_same_shape(dsm, vegetation, function, "dsm", "vegetation");
     const std::ptrdiff_t rows = dsm.rows(), cols = dsm.cols();
     const double cell_m = g.cell;
     extract_buildings_result out;
@@ -164,7 +189,9 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 
     const raster_view<const float> z = terrain.surface;
     const local_planes_result lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
-    const auto [kept, rough] = drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
+    const auto [kept, rough] =
+        returns ? drop_vegetation_parts(out.building_id, candidates.count, *returns, opt.returns)
+                : drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
     out.rejected_rough = rough;
     detail::report(opt.run.progress, 0.6, function);
 
@@ -200,6 +227,26 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     out.edges = std::move(terrain.edges);
     detail::report(opt.run.progress, 1.0, function);
     return out;
+}
+
+}  // namespace detail
+
+template <raster_input In>
+extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
+                                           raster_view<const std::uint8_t> vegetation,
+                                           const extract_buildings_options& opt)
+{
+    return detail::extract_buildings_steps(dsm, g, ground, vegetation, nullptr, opt);
+}
+
+template <raster_input In>
+extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
+                                           const pulse_returns& returns, const extract_buildings_options& opt)
+{
+    constexpr const char* function = "extract_buildings";
+    detail::require_same_shape(dsm, returns.points, function, "dsm", "returns.points");
+    const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
+    return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, opt);
 }
 
 }  // namespace lidarfx

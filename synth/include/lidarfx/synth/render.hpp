@@ -268,4 +268,28 @@ scene_truth render_truth(const world<Site>& w, double cell_m)
 }
 
 }  // namespace internal
+/// Cells of a tree's visible crown (crown_top > 0 at the cell centre, outside every truth building of `t`) that
+/// `found` marks as building (found != 0): a tree counts as reported as a building when they cover >= 2 m^2.
+inline std::size_t crown_cells_in_buildings(const tree& tr, const scene_truth& t, const raster<std::int32_t>& found)
+{
+    const grid& g = t.g;
+    const auto r0 =
+        std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((g.y0 - tr.y - tr.crown_radius_m) / g.cell));
+    const auto r1 =
+        std::min<std::ptrdiff_t>(g.rows - 1, static_cast<std::ptrdiff_t>((g.y0 - tr.y + tr.crown_radius_m) / g.cell));
+    const auto c0 =
+        std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>((tr.x - tr.crown_radius_m - g.x0) / g.cell));
+    const auto c1 =
+        std::min<std::ptrdiff_t>(g.cols - 1, static_cast<std::ptrdiff_t>((tr.x + tr.crown_radius_m - g.x0) / g.cell));
+    std::size_t in_building = 0;
+    for (std::ptrdiff_t r = r0; r <= r1; ++r) {
+        for (std::ptrdiff_t c = c0; c <= c1; ++c) {
+            const auto [x, y] = g.center(r, c);
+            if (tr.crown_top(x, y) <= 0 || t.building_id(r, c) != 0) continue;
+            in_building += found(r, c) != 0 ? 1 : 0;
+        }
+    }
+    return in_building;
+}
+
 }  // namespace lidarfx::synth

@@ -33,7 +33,7 @@ struct cell_stats {
     float min_z = std::numeric_limits<float>::infinity();
     float max_z = -std::numeric_limits<float>::infinity();
     std::uint32_t count = 0;
-    std::uint32_t multiple = 0;       // 1 once a point with number_of_returns > 1 was seen
+    std::uint32_t multiple = 0;       // points whose pulse had number_of_returns > 1
     std::uint64_t intensity_sum = 0;  // sum of intensities in units of 2^-16, two's complement, modulo 2^64
 };
 
@@ -159,7 +159,7 @@ inline void raster_accumulator::fold(detail::cell_stats& s, const detail::cell_s
     s.min_z = std::min(s.min_z, o.min_z);
     s.max_z = std::max(s.max_z, o.max_z);
     s.count += o.count;
-    s.multiple |= o.multiple;
+    s.multiple += o.multiple;
     s.intensity_sum += o.intensity_sum;
 }
 
@@ -300,7 +300,7 @@ void raster_accumulator::update(detail::cell_stats& s, float z, const C& cloud, 
     s.max_z = std::max(s.max_z, z);
     ++s.count;
     s.intensity_sum += detail::intensity_fixed(intensity_of(cloud, i));
-    s.multiple |= static_cast<std::uint32_t>(number_of_returns_of(cloud, i) > 1);
+    s.multiple += static_cast<std::uint32_t>(number_of_returns_of(cloud, i) > 1);
 }
 
 inline void raster_accumulator::require_same_grid(const raster_accumulator& other, const char* function) const
@@ -364,6 +364,7 @@ inline rasterize_result raster_accumulator::unfinished() const
             raster<std::uint32_t>(rows, cols, uninitialized),
             raster<std::uint8_t>(rows, cols, uninitialized),
             raster<std::uint8_t>(rows, cols, uninitialized),
+            raster<std::uint32_t>(rows, cols, uninitialized),
             points_used_,
             points_outside_,
             points_nan_};
@@ -385,7 +386,8 @@ inline void raster_accumulator::finish_cells(rasterize_result& out, std::size_t 
         out.mean_intensity.data()[i] = any ? static_cast<float>(sum / static_cast<double>(s.count)) : 0.0f;
         out.count.data()[i] = s.count;
         out.dropout.data()[i] = static_cast<std::uint8_t>(!any);
-        out.multiple_returns.data()[i] = static_cast<std::uint8_t>(s.multiple);
+        out.multiple_returns.data()[i] = static_cast<std::uint8_t>(s.multiple != 0);
+        out.multiple_return_count.data()[i] = s.multiple;
     }
 }
 
@@ -420,6 +422,7 @@ inline void raster_accumulator::finish_rows(rasterize_result& out, std::ptrdiff_
                 std::fill_n(out.count.data() + i0, k, 0u);
                 std::fill_n(out.dropout.data() + i0, k, std::uint8_t{1});
                 std::fill_n(out.multiple_returns.data() + i0, k, std::uint8_t{0});
+                std::fill_n(out.multiple_return_count.data() + i0, k, 0u);
             }
             tc = end;
         }

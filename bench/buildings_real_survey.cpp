@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: Apache-2.0
+// Scores extract_buildings on a real classified survey against the survey's own building class (ASPRS 6) and,
+// when given, independent footprint polygons. Run by bench/buildings_real_surveys.sh.
+//   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2] [--vegetation returns|any]
+//                         [--min-area M2] [--footprints FILE] [--map OUT.asc]
+// The surface is built as `lidarfx solar --facades` builds it: the highest return per cell (NaN cells filled
+// by IDW), isolated spikes and pits removed. Trees are told from roofs by the share of split pulses
+// (extract_buildings with pulse_returns, the default) or, with --vegetation any, every cell holding a point of
+// a split pulse is vegetation and rough parts are dropped. The terrain is ground_model's (hull and IDW) or,
+// with --ground class2, the lowest class-2 point per cell.
+// Truth, on the cells with points (noise, classes 7 and 18, left out):
+//   - class truth: a cell is building when at least half of its points are class 6;
+//   - polygon truth (--footprints, any file the program reads footprints from): the cell's centre lies inside
+//     a footprint (even-odd over its rings).
+// Prints, per truth, recall and precision by area (the share of true building area found, of found area that
+// is building), IoU, the true and found areas in m² and the buildings found.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <lidarfx/core/raster.hpp>
+#include <lidarfx/kernels/filter/surface_outliers.hpp>
+#include <lidarfx/kernels/interpolate/idw_fill.hpp>
+#include <lidarfx/kernels/points/rasterize.hpp>
+#include <lidarfx/kernels/vector/burn_polygons.hpp>
+#include <lidarfx/pipelines/buildings/extract_buildings.hpp>
+
+#include "io/ascii_grid.hpp"
+#include "io/footprints.hpp"
+#include "io/las.hpp"
+
+using namespace lidarfx;
+
+namespace {
+
+struct scores {
+    std::size_t tp = 0, fp = 0, fn = 0;
+};
+
+void print_scores(const char* what, const scores& s, double cell_area)
+{
+    const auto pct = [](std::size_t a, std::size_t b) {
+        return b ? 100.0 * static_cast<double>(a) / static_cast<double>(b) : NAN;
+    };
+    std::printf("%s: building true %.0f m2, found %.0f m2: recall %.2f %%, precision %.2f %%, IoU %.2f %%\n", what,
+                static_cast<double>(s.tp + s.fn) * cell_area, static_cast<double>(s.tp + s.fp) * cell_area,
+                pct(s.tp, s.tp + s.fn), pct(s.tp, s.tp + s.fp), pct(s.tp, s.tp + s.fp + s.fn));
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    double cell = 1.0;
+    std::string ground_mode = "model", vegetation_mode = "returns";
+    const char* footprint_file = nullptr;
+    const char* map_file = nullptr;
+    std::vector<std::string> files;
+    extract_buildings_options opt;
+    int a0 = 1;
+    for (; a0 < argc && std::strncmp(argv[a0], "--", 2) != 0; ++a0) files.emplace_back(argv[a0]);
+    bool usage = files.empty();
+    for (int a = a0; a < argc && !usage; a += 2) {
+        if (a + 1 >= argc)
+            usage = true;
+        else if (!std::strcmp(argv[a], "--cell"))
+            cell = std::strtod(argv[a + 1], nullptr);
+        else if (!std::strcmp(argv[a], "--ground"))
+            ground_mode = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--min-area"))
+            opt.candidates.min_area_m2 = std::strtod(argv[a + 1], nullptr);
+        else if (!std::strcmp(argv[a], "--vegetation"))
+            vegetation_mode = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--footprints"))
+            footprint_file = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--map"))
+            map_file = argv[a + 1];
+        else
+            usage = true;
+    }
+    if (usage || !(cell > 0) || (ground_mode != "model" && ground_mode != "class2") ||
+        (vegetation_mode != "returns" && vegetation_mode != "any")) {
+        std::fprintf(stderr,
+                     "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2] "
+                     "[--vegetation returns|any] [--min-area M2] [--footprints FILE] [--map OUT.asc]\n");
+        return 2;
+    }
+    try {
+        io::las_points pts;
+        for (const std::string& f : files) pts.append(io::read_las(f));
+        double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            xmin = std::min(xmin, pts.x[i]), xmax = std::max(xmax, pts.x[i]);
+            ymin = std::min(ymin, pts.y[i]), ymax = std::max(ymax, pts.y[i]);
+        }
+        const double x0 = std::floor(xmin / cell) * cell, y0 = (std::floor(ymax / cell) + 1) * cell;
+        const grid g{x0, y0, cell, static_cast<std::ptrdiff_t>(std::ceil((y0 - ymin) / cell)),
+                     static_cast<std::ptrdiff_t>(std::floor((xmax - x0) / cell)) + 1};
+        const rasterize_result all = rasterize(pts.cloud(), g, {.classes = {.exclude = {7, 18}}});
+        raster<float> dsm = idw_fill(all.max_z, cell).filled;
+        dsm = remove_surface_outliers(dsm).surface;
+        raster<float> class2;
+        if (ground_mode == "class2") class2 = rasterize(pts.cloud(), g, {.classes = {.include = {2}}}).min_z;
+        const extract_buildings_result b =
+            vegetation_mode == "returns"
+                ? extract_buildings(dsm, g, class2.view(), pulse_returns{all.count, all.multiple_return_count}, opt)
+                : extract_buildings(dsm, g, class2.view(), all.multiple_returns.view(), opt);
+        // Class truth per cell (the cells' points as rasterized above, noise left out), and polygon truth.
+        const raster<std::uint32_t>& points = all.count;
+        const raster<std::uint32_t> building_points = rasterize(pts.cloud(), g, {.classes = {.include = {6}}}).count;
+        raster<std::int32_t> footprints;
+        if (footprint_file) {
+            std::vector<labelled_polygon> polygons;
+            for (auto& fp : io::read_footprints(footprint_file).footprints)
+                polygons.push_back({1, std::move(fp.parts)});
+            footprints = burn_polygons(polygons, g).labels;
+        }
+        scores by_class, by_polygon;
+        for (std::ptrdiff_t r = 0; r < g.rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+                if (points(r, c) == 0) continue;
+                const bool found = b.building_id(r, c) > 0;
+                const bool truth = 2 * building_points(r, c) >= points(r, c);
+                if (truth && found) ++by_class.tp;
+                if (truth && !found) ++by_class.fn;
+                if (!truth && found) ++by_class.fp;
+                if (!footprints.empty()) {
+                    const bool inside = footprints(r, c) > 0;
+                    if (inside && found) ++by_polygon.tp;
+                    if (inside && !found) ++by_polygon.fn;
+                    if (!inside && found) ++by_polygon.fp;
+                }
+            }
+        }
+        std::printf(
+            "%s%s, %.2f m cells, ground %s, vegetation %s: %zu buildings found (%zu clipped), %zu "
+            "rejected as vegetation\n",
+            files[0].c_str(), files.size() > 1 ? " and more" : "", cell, ground_mode.c_str(), vegetation_mode.c_str(),
+            b.buildings.size(),
+            static_cast<std::size_t>(std::count_if(b.buildings.begin(), b.buildings.end(),
+                                                   [](const building_record& br) { return br.clipped; })),
+            b.rejected_rough);
+        print_scores("class 6, cells with points", by_class, cell * cell);
+        if (!footprints.empty()) print_scores("footprints, cells with points", by_polygon, cell * cell);
+        if (map_file) {
+            raster<float> map(g.rows, g.cols);
+            for (std::ptrdiff_t r = 0; r < g.rows; ++r)
+                for (std::ptrdiff_t c = 0; c < g.cols; ++c) {
+                    const bool truth = 2 * building_points(r, c) >= points(r, c) && points(r, c) > 0;
+                    map(r, c) = static_cast<float>((b.building_id(r, c) > 0 ? 1 : 0) + (truth ? 2 : 0));
+                }
+            io::write_ascii_grid(map_file, map, g);  // 0 neither, 1 found only, 2 truth only, 3 both
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "buildings_real_survey: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,48 @@
+# SPDX-License-Identifier: Apache-2.0
+# lidarfx solar --facades and lidarfx roofs on a classified survey (the IGN LiDAR HD tile over Montpellier,
+# tests/data/README.md): by default the terrain under the buildings is the vendor's class 2, --ground model
+# finds it from the DSM, and both apartment blocks of the tile are found; the --ground refusals.
+# Inputs: LIDARFX (the program), DATA (tests/data), WORK_DIR.
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(survey "${DATA}/lidarhd_montpellier_77055_627755.laz")
+
+# Runs solar --facades with the extra arguments ${ARGN} into ${WORK_DIR}/${name}; sets said_${name} and
+# buildings_${name} (the building ids of buildings.geojson).
+function(facades name)
+    execute_process(COMMAND "${LIDARFX}" solar "${survey}" --lat 43.59 --lon 3.87 --facades --formats asc,csv,geojson
+                            --out "${WORK_DIR}/${name}" ${ARGN}
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "lidarfx solar --facades ${ARGN} failed (${rc}):\n${said}\n${err}")
+    endif()
+    file(READ "${WORK_DIR}/${name}/buildings.geojson" geojson)
+    string(REGEX MATCHALL "\"building_id\":[0-9]+" ids "${geojson}")
+    list(REMOVE_DUPLICATES ids)
+    set(said_${name} "${said}" PARENT_SCOPE)
+    set(buildings_${name} "${ids}" PARENT_SCOPE)
+endfunction()
+
+facades(auto)
+string(FIND "${said_auto}" "terrain under buildings: class 2 (ground)" at)
+if(at EQUAL -1)
+    message(FATAL_ERROR "the default should take the survey's class 2 as the terrain:\n${said_auto}")
+endif()
+list(LENGTH buildings_auto found)
+if(found LESS 2)
+    message(FATAL_ERROR "both blocks of the tile should be found, buildings.geojson holds: ${buildings_auto}")
+endif()
+
+facades(model --ground model)
+string(FIND "${said_model}" "terrain under buildings: found from the DSM" at)
+if(at EQUAL -1)
+    message(FATAL_ERROR "--ground model should find the terrain from the DSM:\n${said_model}")
+endif()
+message(STATUS "solar --facades: ${found} buildings with class 2, ${buildings_model} with --ground model")
+
+set(out "${WORK_DIR}/refused")
+set(cases
+    "2|--ground must be auto, class2 or model|(got dtm)|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--ground^dtm^--out^${out}"
+    "2|--ground needs --facades|--ground|solar^${survey}^--lat^43.6^--lon^3.9^--ground^class2^--out^${out}"
+    "2|--ground must be auto, class2 or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}")
+include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")
