@@ -94,6 +94,29 @@ TEST_CASE("solar/sky_view_factor: the cosine-weighted factor is the mean cos^2 o
           "");
 }
 
+TEST_CASE("solar/sky_view_factor: the cosine-weighted factor before a long wall equals its integral within 1e-3")
+{
+    // A wall of height H along the north edge, 1.8 km long, and cells at distance d from it (wall cell centres
+    // to cell centre). The view factor of a horizontal surface is (1 / 2 pi) x the integral over the azimuths of
+    // cos^2 h; facing the wall tan h = (H / d) cos(azimuth from the wall's normal), elsewhere h = 0, so
+    // SVF = 1/2 + 1 / (2 sqrt(1 + (H / d)^2)) (the wall ends 900 m away on each side: beyond it the missing
+    // horizon is under 2.6 degrees and changes the integral by less than 1e-4).
+    raster<float> z(100, 1801, 0.0f);
+    for (std::ptrdiff_t r = 0; r < 10; ++r)
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) z(r, c) = 40.0f;
+    for (const int directions : {72, 360}) {
+        CAPTURE(directions);
+        const auto svf =
+            sky_view_factor(z, 1.0, {.method = sky_view_factor_method::cosine_weighted, .directions = directions});
+        for (const double k : {0.5, 1.0, 2.0}) {  // H / d
+            CAPTURE(k);
+            const auto row = static_cast<std::ptrdiff_t>(9 + 40.0 / k);
+            const double integral = 0.5 + 0.5 / std::sqrt(1.0 + k * k);
+            CHECK(std::abs(static_cast<double>(svf(row, 900)) - integral) < 1e-3);
+        }
+    }
+}
+
 TEST_CASE("solar/sky_view_factor: 1 on a flat plane, in [0, 1] everywhere, small at the bottom of a shaft")
 {
     const raster<float> flat(20, 25, 3.0f);
