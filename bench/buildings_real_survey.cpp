@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // Scores extract_buildings on a real classified survey against the survey's own building class (ASPRS 6) and,
 // when given, independent footprint polygons. Run by bench/buildings_real_surveys.sh.
-//   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2] [--vegetation returns|any]
+//   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] [--vegetation returns|any]
 //                         [--min-area M2] [--footprints FILE] [--map OUT.asc]
 // The surface is built as `lidarfx solar --facades` builds it: the highest return per cell (NaN cells filled
 // by IDW), isolated spikes and pits removed. Trees are told from roofs by the share of split pulses
 // (extract_buildings with pulse_returns, the default) or, with --vegetation any, every cell holding a point of
-// a split pulse is vegetation and rough parts are dropped. The terrain is ground_model's (hull and IDW) or,
-// with --ground class2, the lowest class-2 point per cell.
+// a split pulse is vegetation and rough parts are dropped. The terrain is ground_model's (hull and IDW), or
+// with --ground class2 the lowest class-2 point per cell, or with --ground filter morphological_ground's cells
+// of the lowest point per cell (the classes unused).
 // Truth, on the cells with points (noise, classes 7 and 18, left out):
 //   - class truth: a cell is building when at least half of its points are class 6;
 //   - polygon truth (--footprints, any file the program reads footprints from): the cell's centre lies inside
@@ -30,6 +31,7 @@
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/vector/burn_polygons.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
+#include <lidarfx/pipelines/buildings/morphological_ground.hpp>
 
 #include "io/ascii_grid.hpp"
 #include "io/footprints.hpp"
@@ -84,10 +86,10 @@ int main(int argc, char** argv)
         else
             usage = true;
     }
-    if (usage || !(cell > 0) || (ground_mode != "model" && ground_mode != "class2") ||
+    if (usage || !(cell > 0) || (ground_mode != "model" && ground_mode != "class2" && ground_mode != "filter") ||
         (vegetation_mode != "returns" && vegetation_mode != "any")) {
         std::fprintf(stderr,
-                     "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2] "
+                     "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] "
                      "[--vegetation returns|any] [--min-area M2] [--footprints FILE] [--map OUT.asc]\n");
         return 2;
     }
@@ -107,6 +109,7 @@ int main(int argc, char** argv)
         dsm = remove_surface_outliers(dsm).surface;
         raster<float> class2;
         if (ground_mode == "class2") class2 = rasterize(pts.cloud(), g, {.classes = {.include = {2}}}).min_z;
+        if (ground_mode == "filter") class2 = morphological_ground(all.min_z, cell).ground;
         const extract_buildings_result b =
             vegetation_mode == "returns"
                 ? extract_buildings(dsm, g, class2.view(), pulse_returns{all.count, all.multiple_return_count}, opt)

@@ -30,6 +30,7 @@
 
 #include <lidarfx/kernels/filter/survey_footprint.hpp>
 #include <lidarfx/kernels/points/scan_coverage.hpp>
+#include <lidarfx/pipelines/buildings/morphological_ground.hpp>
 
 #include "io/ascii_grid.hpp"
 #include "io/file_output.hpp"
@@ -616,17 +617,25 @@ void to_metres(io::las_points& points, const survey_layout& layout)
     }
 }
 
-raster<float> chosen_class_ground(survey& s, const std::string& choice)
+raster<float> chosen_ground(survey& s, const std::string& choice, int threads)
 {
-    if (choice != "auto" && choice != "class2" && choice != "model")
-        throw usage_error("--ground must be auto, class2 or model (got " + choice + ")");
-    const double share = s.points ? static_cast<double>(s.class_ground_points) / static_cast<double>(s.points) : 0.0;
+    if (choice != "auto" && choice != "class2" && choice != "filter" && choice != "model")
+        throw usage_error("--ground must be auto, class2, filter or model (got " + choice + ")");
+    const std::size_t on_grid = s.rasters.points_used;  // --crop leaves points off the grid
+    const double share = on_grid ? static_cast<double>(s.class_ground_points) / static_cast<double>(on_grid) : 0.0;
     if (choice == "class2" && s.class_ground_points == 0)
         throw usage_error("--ground class2: the survey has no point of class 2 (ground)");
-    if (choice == "model" || (choice == "auto" && share < 0.01)) {
-        std::cout << "terrain under buildings: found from the DSM (ground_model)"
-                  << (choice == "auto" ? ", the survey has under 1 % of class-2 points" : "") << "\n";
+    if (choice == "model") {
+        std::cout << "terrain under buildings: found from the DSM (ground_model)\n";
         return {};
+    }
+    if (choice == "filter" || (choice == "auto" && share < 0.01)) {
+        morphological_ground_result filtered =
+            morphological_ground(s.rasters.min_z, s.rasters.g.cell, {}, {.threads = threads});
+        std::cout << "terrain under buildings: ground filter (progressive morphological, windows up to 40 m), "
+                  << filtered.ground_cells << " ground cells"
+                  << (choice == "auto" ? ", the survey has under 1 % of class-2 points" : "") << "\n";
+        return std::move(filtered.ground);
     }
     std::ostringstream line;
     line << "terrain under buildings: class 2 (ground), " << s.class_ground_points << " points (" << std::fixed

@@ -206,11 +206,12 @@ void report_non_finite_heights(const std::string& path, std::size_t cells);
 /// @throws std::runtime_error naming the file on bad input files.
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt);
 
-/// The terrain a --ground choice (auto, class2, model) takes from a survey read with class_ground: the class-2
-/// raster (moved out of `s`), or empty for model (the caller finds the terrain from the DSM), as for auto when
-/// under 1 % of the points are class 2. Says which on stdout. @throws usage_error for class2 on a survey
-/// without a point of class 2, or for another choice.
-raster<float> chosen_class_ground(survey& s, const std::string& choice);
+/// The ground cells a --ground choice takes from a survey read with class_ground (metres, NaN where not ground;
+/// the caller fills them, e.g. replace_ground): class2 = the class-2 raster (moved out of `s`); filter =
+/// morphological_ground on the lowest point of each cell; model = empty (the caller finds the terrain from the
+/// DSM); auto = class2 when at least 1 % of the points are class 2, else filter. Says which on stdout.
+/// @throws usage_error for class2 on a survey without a point of class 2, or for another choice.
+raster<float> chosen_ground(survey& s, const std::string& choice, int threads);
 
 /// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
 /// inside the area flown. hull_radius_m <= 0 gives every cell as inside.

@@ -36,7 +36,7 @@ constexpr const char* usage =
     "Shapefile, FlatGeobuf, ...; a file without building_id then takes its feature ids). Footprints in another\n"
     "CRS than the survey's are reprojected to it; a file that states no CRS (GeoJSON without a crs member) is\n"
     "taken to be in the survey's. From LAS files the DSM is the highest return per\n"
-    "cell (IDW-filled) and the DTM the vendor's ground (class 2) or ground_model's terrain, as --ground says.\n"
+    "cell (IDW-filled) and the DTM the vendor's ground (class 2) or a ground filter's, as --ground says.\n"
     "Mode planes (default): every roof plane with its own fitted tilt, azimuth and area; mode paper: one PV\n"
     "plane per building by the published method (aspect mode, half-std band). Writes roof_patches.csv\n"
     "(building_id,patch_id,tilt_deg,azimuth_deg,area_m2,sloped_area_m2,kwp,suitable,centroid_x_crs,...;\n"
@@ -52,10 +52,10 @@ constexpr const char* usage =
     "                 DSM is refused without them; with a CRS they must agree with it\n"
     "  --z-unit U     unit of their heights (m, ft, us-ft), as --xy-unit\n"
     "  --mode M       planes | paper [planes]\n"
-    "  --ground G     the DTM from LAS files [auto]: class2 = the lowest point of class 2 (ground) in each cell,\n"
-    "                 gaps filled by IDW; model = found from the DSM (steep edges, their convex hulls, IDW\n"
-    "                 inside; fails under contiguous blocks); auto = class2 when at least 1 % of the points are\n"
-    "                 class 2, else model\n"
+    "  --ground G     the DTM from LAS files, gaps filled by IDW [auto]: class2 = the lowest class-2 (ground)\n"
+    "                 point per cell; filter = a morphological ground filter on the lowest points (windows up\n"
+    "                 to 40 m); model = ground_model's edge hulls (fails under blocks of buildings); auto =\n"
+    "                 class2 when >= 1 % of the points are class 2, else filter\n"
     "  --tmy FILE     a TMY3 year: adds annual_kwh_m2 (irradiation on each patch's plane, with shadows and sky\n"
     "                 view) and annual_kwh (times kWp and a performance ratio of 0.8) to the patches\n"
     "  --lat/--lon    the place in degrees; without --tmy, the yields of a clear-sky year there\n"
@@ -74,7 +74,7 @@ namespace {
 
 /// What lidarfx roofs keeps per grid cell, bytes: the survey rasters (or the DSM and DTM), the buildings' labels,
 /// planes and patches (its memory estimate for --memory).
-constexpr double roofs_bytes_per_cell = 64;
+constexpr double roofs_bytes_per_cell = 68;  // with the class-2 ground
 
 // The surface models of the run, in metres, on one grid.
 struct roof_inputs {
@@ -132,11 +132,11 @@ roof_inputs read_roof_inputs(const std::vector<std::string>& inputs, const io::s
     auto survey_opts = survey_options_from(a, roofs_bytes_per_cell);
     if (!a.has("cell")) survey_opts.cell_m = 1.0;  // roofs' default: 1 m cells
     const std::string ground_choice = a.text("ground", "auto");
-    survey_opts.class_ground = ground_choice != "model";
+    survey_opts.class_ground = ground_choice == "auto" || ground_choice == "class2";
     survey s = read_survey(inputs, survey_opts);
     print_survey(s);
     in.g = s.rasters.g;
-    const raster<float> class_ground = chosen_class_ground(s, ground_choice);
+    const raster<float> class_ground = chosen_ground(s, ground_choice, threads);
     ground_model_result ground = ground_model(s.rasters.max_z, in.g.cell, {}, {.threads = threads});
     if (!class_ground.empty()) replace_ground(ground, class_ground, in.g.cell, {}, {.threads = threads});
     in.dsm = ground.surface;
@@ -214,8 +214,8 @@ int run_roofs(const std::vector<std::string>& args)
     const std::string mode = a.text("mode", "planes");
     if (mode != "planes" && mode != "paper") throw usage_error("--mode must be planes or paper (got " + mode + ")");
     const std::string ground_choice = a.text("ground", "auto");
-    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "model")
-        throw usage_error("--ground must be auto, class2 or model (got " + ground_choice + ")");
+    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "filter" && ground_choice != "model")
+        throw usage_error("--ground must be auto, class2, filter or model (got " + ground_choice + ")");
     const output_formats formats = output_formats_from(a);
     std::vector<std::string> inputs = a.positional();
     if (inputs.size() < 2 || has_extension(inputs.back(), ".las") || has_extension(inputs.back(), ".laz") ||

@@ -38,7 +38,7 @@ constexpr const char* usage =
     "usage: lidarfx solar IN.las|IN.laz [MORE ...] | DSM --out DIR [--tmy FILE.csv]\n"
     "                     [--lat DEG --lon DEG] [--cell M] [--year Y | --year-from-tmy]\n"
     "                     [--diffuse isotropic|perez] [--svf cosine|share] [--surface horizontal|terrain]\n"
-    "                     [--facades [--ground auto|class2|model]] [--threads N]\n"
+    "                     [--facades [--ground auto|class2|filter|model]] [--threads N]\n"
     "                     [--formats asc,tif,png,csv,geojson,gpkg]\n"
     "Irradiation of a surface model over a year, on horizontal surfaces or (--surface terrain) on each cell's own\n"
     "plane: beam = DNI * cos(incidence) where the cell sees the sun (cast shadows per daylight hour), diffuse =\n"
@@ -84,10 +84,10 @@ constexpr const char* usage =
     "                 buildings_energy.png (roofs and walls coloured by annual kWh/m2). From LAS files trees are\n"
     "                 told from roofs by their split pulses (a part where 20 % of the points came from pulses\n"
     "                 with several returns is vegetation)\n"
-    "  --ground G     the terrain under the buildings of --facades, LAS input [auto]: class2 = the lowest point\n"
-    "                 of class 2 (ground) in each cell, gaps filled by IDW; model = found from the DSM (steep\n"
-    "                 edges, their hulls, IDW inside; fails under contiguous blocks); auto = class2 when at\n"
-    "                 least 1 % of the points are class 2, else model\n"
+    "  --ground G     the terrain under the buildings of --facades, LAS input [auto]: class2 = the lowest\n"
+    "                 class-2 (ground) point per cell; filter = a morphological ground filter on the lowest\n"
+    "                 points (windows up to 40 m); model = from the DSM's edge hulls (fails under blocks of\n"
+    "                 buildings); auto = class2 when >= 1 % of the points are class 2, else filter\n"
     "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and the\n"
     "                 weather file are checked against before they are read (exit code 2) [half the memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
@@ -146,7 +146,7 @@ std::string fixed(double v, int digits)
 
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
-constexpr double solar_bytes_per_cell = 96;
+constexpr double solar_bytes_per_cell = 112;  // with --facades: point counts and class ground
 
 /// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
 /// height before and after, metres.
@@ -211,8 +211,8 @@ int run_solar(const std::vector<std::string>& args)
     }
     const bool terrain = surface == "terrain";
     const std::string ground_choice = a.text("ground", "auto");
-    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "model")
-        throw cli::usage_error("--ground must be auto, class2 or model (got " + ground_choice + ")");
+    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "filter" && ground_choice != "model")
+        throw cli::usage_error("--ground must be auto, class2, filter or model (got " + ground_choice + ")");
     if (a.has("ground") && !a.has("facades")) throw cli::usage_error("--ground needs --facades");
 
     // Weather first: a bad file fails before the survey is read.
@@ -248,6 +248,8 @@ int run_solar(const std::vector<std::string>& args)
     }
     const auto& inputs = a.positional();
     const bool single_grid = inputs.size() == 1 && !cli::is_point_cloud_path(inputs[0]);
+    if (a.has("ground") && single_grid)
+        throw cli::usage_error("--ground chooses the terrain of LAS input; " + inputs[0] + " is a DSM raster");
     // A raster's CRS and units first (from its header or .prj); refused when nothing can give the place.
     lidarfx::io::survey_crs grid_crs;
     if (single_grid) {
@@ -283,11 +285,11 @@ int run_solar(const std::vector<std::string>& args)
     } else {
         auto survey_options = cli::survey_options_from(a, solar_bytes_per_cell);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
-        survey_options.class_ground = a.has("facades") && ground_choice != "model";
+        survey_options.class_ground = a.has("facades") && (ground_choice == "auto" || ground_choice == "class2");
         auto s = cli::read_survey(inputs, survey_options);
         cli::print_survey(s);
         if (a.has("facades")) {
-            class_ground = cli::chosen_class_ground(s, ground_choice);
+            class_ground = cli::chosen_ground(s, ground_choice, threads);
             points = std::move(s.rasters.count);
             split_points = std::move(s.rasters.multiple_return_count);
         }

@@ -307,7 +307,8 @@ tile_rasters read_tile(const survey_layout& layout, const std::vector<std::strin
 
 namespace {
 
-constexpr char tile_magic[8] = {'L', 'F', 'X', 'T', 'I', 'L', 'E', '1'};
+// '2': tiles hold rasterize_result::multiple_return_count since; a tile of '1' is recomputed, not misread.
+constexpr char tile_magic[8] = {'L', 'F', 'X', 'T', 'I', 'L', 'E', '2'};
 
 struct byte_writer {
     std::vector<std::uint8_t> bytes;

@@ -64,6 +64,7 @@
 #include "lidarfx/pipelines/buildings/grow_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/local_planes.hpp"
 #include "lidarfx/pipelines/buildings/merge_roof_surfaces.hpp"
+#include "lidarfx/pipelines/buildings/morphological_ground.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/surface_class_table.hpp"
 #include "lidarfx/pipelines/buildings/surface_energy.hpp"

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 # lidarfx solar --facades and lidarfx roofs on a classified survey (the IGN LiDAR HD tile over Montpellier,
 # tests/data/README.md): by default the terrain under the buildings is the vendor's class 2, --ground model
-# finds it from the DSM, and both apartment blocks of the tile are found; the --ground refusals.
+# finds it from the DSM, --ground filter by a morphological filter of the lowest points, and both apartment blocks
+# of the tile are found with class 2 and with the filter; the --ground refusals.
 # Inputs: LIDARFX (the program), DATA (tests/data), WORK_DIR.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -33,6 +34,13 @@ if(found LESS 2)
     message(FATAL_ERROR "both blocks of the tile should be found, buildings.geojson holds: ${buildings_auto}")
 endif()
 
+facades(filter --ground filter)
+string(FIND "${said_filter}" "terrain under buildings: ground filter" at)
+list(LENGTH buildings_filter found_filter)
+if(at EQUAL -1 OR found_filter LESS 2)
+    message(FATAL_ERROR "--ground filter should say so and find both blocks (${buildings_filter}):\n${said_filter}")
+endif()
+
 facades(model --ground model)
 string(FIND "${said_model}" "terrain under buildings: found from the DSM" at)
 if(at EQUAL -1)
@@ -42,7 +50,7 @@ message(STATUS "solar --facades: ${found} buildings with class 2, ${buildings_mo
 
 set(out "${WORK_DIR}/refused")
 set(cases
-    "2|--ground must be auto, class2 or model|(got dtm)|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--ground^dtm^--out^${out}"
+    "2|--ground must be auto, class2, filter or model|(got dtm)|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--ground^dtm^--out^${out}"
     "2|--ground needs --facades|--ground|solar^${survey}^--lat^43.6^--lon^3.9^--ground^class2^--out^${out}"
-    "2|--ground must be auto, class2 or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}")
+    "2|--ground must be auto, class2, filter or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -10,6 +10,7 @@
 #include <lidarfx/kernels/interpolate/idw_fill.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
+#include <lidarfx/pipelines/buildings/morphological_ground.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -66,13 +67,24 @@ TEST_CASE("io/real city: extract_buildings with the survey's pulse counts and gr
     CHECK(s.recall >= 0.90);
     CHECK(s.precision >= 0.90);
 
-    // Every cell holding a split pulse taken as a tree (the earlier rule): the blocks' edges and ridges split
-    // pulses, and most of the blocks are lost.
+    // For the record (bench/buildings_real_surveys.sh): every cell holding a split pulse taken as a tree loses
+    // most of the blocks, whose edges and ridges split pulses.
     const extract_buildings_result any_split = extract_buildings(dsm, g, class_2.min_z, all.multiple_returns);
-    CHECK(score_against_class_6(any_split.building_id, all, class_6).recall < 0.5);
+    MESSAGE("any split pulse a tree: recall " << score_against_class_6(any_split.building_id, all, class_6).recall);
 
-    // The terrain found from the surface alone (edges and their hulls) misses most of a block that fills the tile.
+    // Without the classes: the ground of a morphological filter on the lowest points does as well.
+    const extract_buildings_result filtered = extract_buildings(dsm, g, morphological_ground(all.min_z, g.cell).ground,
+                                                                pulse_returns{all.count, all.multiple_return_count});
+    const area_scores f = score_against_class_6(filtered.building_id, all, class_6);
+    CAPTURE(f.recall);
+    CAPTURE(f.precision);
+    CHECK(f.recall >= 0.90);
+    CHECK(f.precision >= 0.90);
+
+    // And the terrain found from the surface alone (edges and their hulls) misses most of a block that fills the
+    // tile.
     const extract_buildings_result model =
         extract_buildings(dsm, g, {}, pulse_returns{all.count, all.multiple_return_count});
-    CHECK(score_against_class_6(model.building_id, all, class_6).recall < 0.5);
+    MESSAGE("terrain from the DSM's edge hulls: recall "
+            << score_against_class_6(model.building_id, all, class_6).recall);
 }

@@ -31,8 +31,9 @@ struct town_score {
     std::size_t tilt_checked = 0, tilt_ok = 0;
 };
 
-/// How extract_buildings tells trees: every cell holding a split pulse is vegetation and rough parts are
-/// dropped (mask), or by the share of split pulses (pulse_returns, as the program does on LAS input).
+/// How extract_buildings tells trees: every cell holding a split first return is vegetation and rough parts are
+/// dropped (mask), or by the share of split pulses among all returns (pulse_returns, as the program does on LAS
+/// input).
 enum class tree_rule { mask, returns };
 
 /// Runs extraction on a scene rasterized on its truth grid and scores it against the truth.
@@ -43,9 +44,10 @@ town_score score_town(const synth::scene& s, const std::vector<synth::tree>& tre
     rasterize_options first;
     first.returns = return_selection::first;
     const auto dsm = rasterize(s.points.cloud(), g, first);
+    const auto every = rule == tree_rule::returns ? rasterize(s.points.cloud(), g) : rasterize_result{};
     const auto b = rule == tree_rule::mask
                        ? extract_buildings(dsm.max_z, g, {}, dsm.multiple_returns)
-                       : extract_buildings(dsm.max_z, g, {}, pulse_returns{dsm.count, dsm.multiple_return_count});
+                       : extract_buildings(dsm.max_z, g, {}, pulse_returns{every.count, every.multiple_return_count});
     const double cell2 = g.cell * g.cell;
 
     town_score sc;

@@ -117,6 +117,12 @@ TEST_CASE("extract_buildings with pulse counts keeps a rough old roof and drops 
     CHECK(by_returns.buildings[0].roof_area_horizontal_m2 > 0.9 * 15.0 * 15.0);
     CHECK(by_returns.rejected_rough == 1);
 
+    // Without the counts, the roughness rule drops the rough roof with the crown.
+    CHECK(extract_buildings(s.z, s.g).building_id(25, 25) == 0);
+    // A survey without any split pulse says nothing of trees: the roughness rule decides, as without counts.
+    const raster<std::uint32_t> no_split(80, 80, 0u);
+    CHECK(extract_buildings(s.z, s.g, {}, pulse_returns{s.points.view(), no_split.view()}).building_id ==
+          extract_buildings(s.z, s.g).building_id);
     // The cell rule alone (any split pulse marks vegetation) loses the roof: every roof cell holds one.
     raster<std::uint8_t> any_split(80, 80, 0);
     for (std::ptrdiff_t r = 0; r < 80; ++r)

@@ -36,7 +36,7 @@ struct extract_buildings_options {
     local_planes_options local_planes = {};       ///< plane window (1.5 m), planar tolerance, min_planar_share (0.25)
     grow_roof_surfaces_options surfaces = {};     ///< plane_angle_deg (6), step_m (0.3 m), min_surface_m2 (4 m^2)
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
-    vegetation_by_returns_options returns = {};   ///< split pulses: cell_share (0.5), part_share (0.2), seen (0.25)
+    vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -65,7 +65,7 @@ struct extract_buildings_result {
     raster<std::uint8_t> vegetation;         ///< vegetation cells as used (input mask, grown into empty cells)
     std::vector<building_record> buildings;  ///< buildings[i].id == i + 1
     std::vector<roof_surface> surfaces;      ///< surfaces[i].id == i + 1
-    std::size_t rejected_rough = 0;          ///< candidates dropped as too rough to be roofs (trees without returns)
+    std::size_t rejected_rough = 0;          ///< candidates dropped as trees: too rough, or by their returns
 };
 
 /// Buildings of a surface model (dissertation 3.2.1): `dsm` in metres (first-return max_z; NaN = no return) on
@@ -97,7 +97,9 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 /// interpolated over water between crowns) or vegetation (at least returns.part_share of split pulses) instead
 /// of every rough part: dense old roofs at 1 m cells (dormers, chimneys, narrow gables) are rough, yet their
 /// pulses are whole.
-/// Otherwise as extract_buildings above; rejected_rough counts the parts dropped as vegetation.
+/// A survey without any split pulse (single-return sensors, or number_of_returns left at 1) says nothing of
+/// trees: it takes the mask route with an empty mask, rough parts dropped. Otherwise as extract_buildings
+/// above; rejected_rough counts the parts dropped as vegetation or unseen.
 /// @throws invalid_input as extract_buildings, and if returns.points or returns.multiple differ from the DSM's
 /// shape or some cell counts more split pulses than points.
 template <raster_input In>
@@ -246,6 +248,11 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     constexpr const char* function = "extract_buildings";
     detail::require_same_shape(dsm, returns.points, function, "dsm", "returns.points");
     const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
+    bool any_split = false;
+    for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
+        for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)
+            any_split = returns.multiple(r, c) > 0;
+    if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, opt);
     return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, opt);
 }
 

@@ -16,10 +16,18 @@
 
 namespace lidarfx {
 
-/// What the pulses of a survey say of each cell (rasterize_result::count and multiple_return_count).
+/// What the pulses of a survey say of each cell: rasterize_result::count and multiple_return_count of all the
+/// returns (first returns alone count a tree's split pulse once instead of twice or more).
 struct pulse_returns {
     raster_view<const std::uint32_t> points;    ///< points in the cell
     raster_view<const std::uint32_t> multiple;  ///< of them, points whose pulse had more than one return
+
+    /// Empty counts. Explicit, so that a `{}` argument never reads as pulse counts.
+    explicit pulse_returns() = default;
+    pulse_returns(raster_view<const std::uint32_t> points_in, raster_view<const std::uint32_t> multiple_in)
+        : points(points_in), multiple(multiple_in)
+    {
+    }
 };
 
 /// Settings of vegetation_by_returns and drop_vegetation_parts.
@@ -45,10 +53,10 @@ inline raster<std::uint8_t> vegetation_by_returns(const pulse_returns& returns,
 
 /// Drops, in place, the candidate parts 1..count of `building_id` that are no roofs by their returns, and
 /// renumbers the others 1..kept in their order. A part is dropped when the laser did not see it: its cells hold
-/// fewer than min_seen_density x the survey's mean points per cell with points (a surface interpolated over
-/// water or dark gaps between crowns), or when it is vegetation: at least part_share of its points came from
-/// split pulses. Returns {kept, dropped}. O(cells). @throws invalid_input if the shapes differ, an option is out
-/// of range, or some cell counts more split pulses than points.
+/// no point, or fewer than min_seen_density x the survey's mean points per cell with points (a surface
+/// interpolated over water or dark gaps between crowns), or when it is vegetation: at least part_share of its
+/// points came from split pulses. Returns {kept, dropped}. O(cells). @throws invalid_input if the shapes differ, an
+/// option is out of range, or some cell counts more split pulses than points.
 inline std::array<std::size_t, 2> drop_vegetation_parts(raster_view<std::int32_t> building_id, std::size_t count,
                                                         const pulse_returns& returns,
                                                         const vegetation_by_returns_options& opt = {});
