@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # The real-city table of docs/buildings.md: extract_buildings as `lidarfx solar --facades` runs it on LAS input
 # (trees by their split pulses, the terrain from the vendor's class 2, or without classes from the morphological
-# ground filter) and the earlier route (every cell with a split pulse as a tree and rough parts dropped, the
+# ground filter) and the mask route (every cell with a split pulse as a tree and rough parts dropped, the
 # terrain found from the DSM), scored by
 # bench/buildings_real_survey.cpp against the vendor's building class (6) and, where given, footprint polygons.
 # The surveys are not in the repository (sizes and licenses keep them out; one Montpellier tile is a test
@@ -39,7 +39,7 @@ for entry in "${surveys[@]}"; do
     "$build/bench/buildings_real_survey" "${paths[@]}" --cell "$cell" --ground class2 "${truth[@]}" | tail -n +2
     echo "-- without the classes (split pulses, morphological ground filter):"
     "$build/bench/buildings_real_survey" "${paths[@]}" --cell "$cell" --ground filter "${truth[@]}" | tail -n +2
-    echo "-- the earlier route (any split pulse a tree, terrain from the DSM):"
+    echo "-- the mask route (any split pulse a tree, rough parts dropped, terrain from the DSM):"
     "$build/bench/buildings_real_survey" "${paths[@]}" --cell "$cell" --ground model --vegetation any "${truth[@]}" |
         tail -n +2
 done
