@@ -617,10 +617,15 @@ void to_metres(io::las_points& points, const survey_layout& layout)
     }
 }
 
-raster<float> chosen_ground(survey& s, const std::string& choice, int threads)
+void check_ground_choice(const std::string& choice)
 {
     if (choice != "auto" && choice != "class2" && choice != "filter" && choice != "model")
         throw usage_error("--ground must be auto, class2, filter or model (got " + choice + ")");
+}
+
+raster<float> chosen_ground(survey& s, const std::string& choice, int threads)
+{
+    check_ground_choice(choice);
     const std::size_t on_grid = s.rasters.points_used;  // --crop leaves points off the grid
     const double share = on_grid ? static_cast<double>(s.class_ground_points) / static_cast<double>(on_grid) : 0.0;
     if (choice == "class2" && s.class_ground_points == 0)

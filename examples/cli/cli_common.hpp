@@ -210,8 +210,12 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
 /// the caller fills them, e.g. replace_ground): class2 = the class-2 raster (moved out of `s`); filter =
 /// morphological_ground on the lowest point of each cell; model = empty (the caller finds the terrain from the
 /// DSM); auto = class2 when at least 1 % of the points are class 2, else filter. Says which on stdout.
-/// @throws usage_error for class2 on a survey without a point of class 2, or for another choice.
+/// @throws usage_error for class2 on a survey without a point of class 2, or for another choice
+/// (check_ground_choice).
 raster<float> chosen_ground(survey& s, const std::string& choice, int threads);
+
+/// Refuses (usage_error) a --ground value other than auto, class2, filter or model.
+void check_ground_choice(const std::string& choice);
 
 /// The survey's footprint (survey_footprint over the cells with returns or crossed by a scan line): 1 =
 /// inside the area flown. hull_radius_m <= 0 gives every cell as inside.

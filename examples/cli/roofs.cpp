@@ -214,8 +214,7 @@ int run_roofs(const std::vector<std::string>& args)
     const std::string mode = a.text("mode", "planes");
     if (mode != "planes" && mode != "paper") throw usage_error("--mode must be planes or paper (got " + mode + ")");
     const std::string ground_choice = a.text("ground", "auto");
-    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "filter" && ground_choice != "model")
-        throw usage_error("--ground must be auto, class2, filter or model (got " + ground_choice + ")");
+    check_ground_choice(ground_choice);
     const output_formats formats = output_formats_from(a);
     std::vector<std::string> inputs = a.positional();
     if (inputs.size() < 2 || has_extension(inputs.back(), ".las") || has_extension(inputs.back(), ".laz") ||

@@ -211,8 +211,7 @@ int run_solar(const std::vector<std::string>& args)
     }
     const bool terrain = surface == "terrain";
     const std::string ground_choice = a.text("ground", "auto");
-    if (ground_choice != "auto" && ground_choice != "class2" && ground_choice != "filter" && ground_choice != "model")
-        throw cli::usage_error("--ground must be auto, class2, filter or model (got " + ground_choice + ")");
+    cli::check_ground_choice(ground_choice);
     if (a.has("ground") && !a.has("facades")) throw cli::usage_error("--ground needs --facades");
 
     // Weather first: a bad file fails before the survey is read.
@@ -262,7 +261,6 @@ int run_solar(const std::vector<std::string>& args)
 
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
-    lidarfx::raster<std::uint8_t> vegetation;             // cells with multiple returns (LAS input), for --facades
     lidarfx::raster<std::uint32_t> points, split_points;  // points per cell and of split pulses (LAS input)
     lidarfx::raster<float> class_ground;                  // the class-2 terrain chosen by --ground (LAS input)
     lidarfx::grid g;
@@ -296,7 +294,6 @@ int run_solar(const std::vector<std::string>& args)
         g = s.rasters.g;
         cell_m = g.cell;  // read_survey works in metres
         dsm = lidarfx::idw_fill(s.rasters.max_z, cell_m, {.run = {.threads = threads}}).filled;
-        vegetation = s.rasters.multiple_returns;
         g = cli::to_crs_units(g, s);
         crs_wkt = s.crs_wkt;
         epsg = s.epsg;
@@ -420,7 +417,6 @@ int run_solar(const std::vector<std::string>& args)
                        "), on the input's grid; sun for " + place.description);
     if (a.has("facades")) {
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
-                                        .vegetation = vegetation.view(),
                                         .returns = {points.view(), split_points.view()},
                                         .ground = class_ground.view(),
                                         .cell_m = cell_m,

@@ -21,9 +21,10 @@ namespace lidarfx::cli {
 /// the sun's place and the weather.
 struct facade_run {
     raster_view<const float> dsm;
-    raster_view<const std::uint8_t> vegetation;  ///< multiple-return cells (LAS input), empty otherwise
-    pulse_returns returns;                       ///< points and split-pulse points per cell (LAS input), or empty
-    raster_view<const float> ground;             ///< the terrain under the buildings (class 2), empty: found
+    /// Points and split-pulse points per cell (LAS input), trees told by them; empty for a DSM raster, which says
+    /// nothing of trees (rough parts are dropped)
+    pulse_returns returns = pulse_returns();
+    raster_view<const float> ground;  ///< the terrain under the buildings (--ground), empty: found from the DSM
     double cell_m = 1;
     grid grid_crs;
     std::string crs_wkt;

@@ -247,12 +247,13 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 {
     constexpr const char* function = "extract_buildings";
     detail::require_same_shape(dsm, returns.points, function, "dsm", "returns.points");
-    const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
+    detail::require_same_shape(returns.points, returns.multiple, function, "returns.points", "returns.multiple");
     bool any_split = false;
     for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
         for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)
             any_split = returns.multiple(r, c) > 0;
     if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, opt);
+    const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
     return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, opt);
 }
 
