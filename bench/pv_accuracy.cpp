@@ -88,22 +88,8 @@ int main(int argc, char** argv)
                 "pts/m2)\n",
                 seed, s.found_share(), s.tilt5(), s.tilt10(), s.azimuth15(), s.recall(), s.precision(), s.area_rmse(),
                 town.density_per_m2);
-            total.true_planes += s.true_planes;
-            total.found += s.found;
-            total.tilt_within_5 += s.tilt_within_5;
-            total.tilt_within_10 += s.tilt_within_10;
-            total.azimuth_scored += s.azimuth_scored;
-            total.azimuth_within_15 += s.azimuth_within_15;
-            total.azimuth_within_45 += s.azimuth_within_45;
-            total.area_sq += s.area_sq;
-            total.tp += s.tp;
-            total.fp += s.fp;
-            total.fn += s.fn;
-            total.tn += s.tn;
-            for (auto m : s.matches) {
-                m.building_id += static_cast<std::int32_t>(seed) * 1000;
-                total.matches.push_back(m);
-            }
+            for (auto& m : s.matches) m.building_id += static_cast<std::int32_t>(seed) * 1000;
+            total.add(s);
         }
         std::printf("%-7s %7zu %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
                     mode == roof_mode::planes ? "planes" : "paper", total.true_planes, total.found_share(),

@@ -56,7 +56,7 @@ component l. The result does not depend on threads."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 20.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then

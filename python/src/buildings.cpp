@@ -233,7 +233,7 @@ void bind_buildings(py::module_& m)
     using namespace pybind11::literals;
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
           "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
-          "multiple_return_count"_a = py::none(), "min_height_m"_a = 2.5, "min_area_m2"_a = 20.0, "threads"_a = 1,
+          "multiple_return_count"_a = py::none(), "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "threads"_a = 1,
           "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar

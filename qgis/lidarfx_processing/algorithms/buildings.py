@@ -14,7 +14,7 @@ from .water import add_survey_parameters, survey_files
 class BuildingsAlgorithm(LidarfxAlgorithm):
     _name = "buildings"
     _display = "Buildings and facade energy"
-    _help = ("Finds the buildings of a LAS/LAZ survey or a DSM (raised roofs of at least 20 m²; from a survey, trees "
+    _help = ("Finds the buildings of a LAS/LAZ survey or a DSM (raised roofs of at least 15 m²; from a survey, trees "
              "told from roofs by their split pulses and the terrain from its ground class 2 when it has one) and the "
              "solar energy of every roof patch and facade sub-patch over a year (cast shadows each daylight hour, "
              "sky view of walls and roofs). Outputs: building outlines with their ground, eave and ridge heights "

@@ -176,7 +176,7 @@ TEST_CASE("extract_buildings: vegetation cells and small objects are no building
     CHECK(extract_buildings(z, local_grid(z, 0.5), {}, veg).buildings.empty());
     const auto shed = box_scene(20, 30, 20, 30, 3.0f);  // 5 m x 5 m = 25 m^2, 3 m high: a garage or shed
     CHECK(extract_buildings(shed, local_grid(shed, 0.5)).buildings.size() == 1);
-    const auto small = box_scene(20, 28, 20, 28, 7.0f);  // 4 m x 4 m = 16 m^2 < 20 m^2
+    const auto small = box_scene(20, 27, 20, 27, 7.0f);  // 3.5 m x 3.5 m = 12.25 m^2 < 15 m^2
     CHECK(extract_buildings(small, local_grid(small, 0.5)).buildings.empty());
     extract_buildings_options opt;
     opt.candidates.min_area_m2 = 10;

@@ -20,9 +20,10 @@ namespace lidarfx {
 /// Settings of building_candidates.
 struct building_candidates_options {
     double min_height_m = 2.5;  ///< building surface where z - ground > this, metres; finite and > 0
-    /// Parts of a smaller footprint are dropped (and holes below it filled), m^2; >= 0. 20: a garage or shed
-    /// (from about 20 m^2) can hold the smallest PV system, 8 m^2 of modules.
-    double min_area_m2 = 20.0;
+    /// Parts of a smaller footprint are dropped (and holes below it filled), m^2; >= 0. 15: a garage or shed of
+    /// 20 m^2 can hold the smallest PV system (8 m^2 of modules), and at 1 m cells its outline loses a few mixed
+    /// edge cells, so the parts found are smaller than the footprint.
+    double min_area_m2 = 15.0;
 };
 
 /// Candidate building parts of a surface model.

@@ -32,7 +32,7 @@ namespace lidarfx {
 /// Settings of extract_buildings: one member per step. Defaults are for 0.25-1 m cells of a first-return DSM.
 struct extract_buildings_options {
     ground_model_options ground = {};             ///< edges (>= 45 deg), edge objects (>= 10 cells), hulls, IDW
-    building_candidates_options candidates = {};  ///< min_height_m (2.5 m), min_area_m2 (20 m^2)
+    building_candidates_options candidates = {};  ///< min_height_m (2.5 m), min_area_m2 (15 m^2)
     local_planes_options local_planes = {};       ///< plane window (1.5 m), planar tolerance, min_planar_share (0.25)
     grow_roof_surfaces_options surfaces = {};     ///< plane_angle_deg (6), step_m (0.3 m), min_surface_m2 (4 m^2)
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // roof_planes: every roof plane of one building from its surface cells, by normal-guided region growing,
-// robust least-squares plane fits, merging of adjacent coplanar segments and a competitive reassignment of
-// each cell to the plane that fits it best (the `planes` mode of roof_suitability).
+// robust least-squares plane fits, merging of adjacent coplanar segments, a competitive reassignment of each
+// cell to the plane that fits it best and the cut of planes that are two faces (the `planes` mode of
+// roof_suitability).
 #pragma once
 
 #include <cmath>
@@ -65,10 +66,15 @@ struct roof_planes_result {
 /// 3. adjacent planes merge when their joint least-squares fit is hardly worse than theirs;
 /// 4. reassign_rounds times: every cell goes to the plane that reaches it with the smallest residual, planes
 ///    are refitted, and merged again between rounds;
+/// 4b. planes that are two faces (a small gable whose every 3x3 window straddles the ridge) are cut along the
+///    best straight line when the parts' normals differ by > 2 x the angle tolerance and an F test (>= 10)
+///    says the cut explains far more than noise; groups of >= min_seed_cells cells left without a plane become
+///    planes first; then reassign_rounds more rounds of reassignment;
 /// 5. final fits on each plane's interior cells; planes under min_plane_m2 or rougher than max_plane_rms_m
 ///    (tree crowns, chimneys) are dropped, their cells left without a plane. Planes numbered by first cell.
-/// Tilt, facing and areas follow from the fits (plane_fit). O(cells log cells). Options are not checked here
-/// (roof_suitability checks them); an empty surface gives no plane. Never throws except std::bad_alloc.
+/// Tilt, facing and areas follow from the fits (plane_fit). O(cells log cells), plus O(60 n log n) for each
+/// cut tried on a plane of n cells. Options are not checked here (roof_suitability checks them); an empty
+/// surface gives no plane. Never throws except std::bad_alloc.
 inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_planes_options& o = {});
 
 }  // namespace lidarfx

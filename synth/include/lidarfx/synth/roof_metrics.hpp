@@ -47,6 +47,23 @@ struct roof_scores {
     double recall() const { return tp + fn ? double(tp) / double(tp + fn) : 1; }
     double precision() const { return tp + fp ? double(tp) / double(tp + fp) : 1; }
     double area_rmse() const { return found ? std::sqrt(area_sq / double(found)) : 0; }
+    /// Pools the scores of another town (its matches appended).
+    void add(const roof_scores& o)
+    {
+        true_planes += o.true_planes;
+        found += o.found;
+        tilt_within_5 += o.tilt_within_5;
+        tilt_within_10 += o.tilt_within_10;
+        azimuth_scored += o.azimuth_scored;
+        azimuth_within_15 += o.azimuth_within_15;
+        azimuth_within_45 += o.azimuth_within_45;
+        area_sq += o.area_sq;
+        tp += o.tp;
+        fp += o.fp;
+        fn += o.fn;
+        tn += o.tn;
+        matches.insert(matches.end(), o.matches.begin(), o.matches.end());
+    }
 };
 
 /// True when a true plane meets the suitability rule of `o` (the one judge_patch applies to measured patches).

@@ -21,8 +21,8 @@ struct town_family_options {
     double truth_cell_m = 0.5;  ///< cell of the truth rasters, metres, > 0
     double min_density = 1.0;   ///< pulses per m^2 are drawn uniformly in [min_density, max_density]
     double max_density = 8.0;
-    /// Garages and sheds (20-42 m^2 footprints, 2.6-3.0 m eaves) per house: the town gets
-    /// round(houses x this) of them, >= 0; 0 = none (the towns as before issue 39).
+    /// Garages and sheds (20-42 m^2 footprints, 2.6-3.0 m eaves, flat, shed, gable or hip roofs) per house: the town
+    /// gets round(houses x this) of them, >= 0; 0 = none (the towns as before issue 39).
     double small_buildings_per_house = 0.15;
 };
 
@@ -63,11 +63,11 @@ inline bool small_building_fits(const building_truth& b, const std::vector<build
 }
 
 /// Adds `count` garages and sheds to w (after its houses and trees, which they avoid): footprints 4-6 m x
-/// 5-7 m (20-42 m^2), eaves 2.6-3.0 m above the ground at their centre, flat or shed roofs (half each; sheds
-/// tilted 5-20 deg). 70 % stand beside a random house, parallel to it, their bounding circle 2-5 m from the
-/// house's; the rest anywhere in the open, any orientation. Every one keeps its bounding circle 2 m from the
-/// other buildings' and 0.4 m from every crown; up to 200 tries each (a crowded town gets fewer). Draws
-/// only from `random`.
+/// 5-7 m (20-42 m^2), eaves 2.6-3.0 m above the ground at their centre; flat roofs (30 %), sheds tilted
+/// 5-20 deg (20 %), gables (35 %) and hips (15 %) tilted 20-45 deg: small steep planes of 5-20 m^2. 70 % stand beside a
+/// random house, parallel to it, their bounding circle 2-5 m from the house's; the rest anywhere in the open, any
+/// orientation. Every one keeps its bounding circle 2 m from the other buildings' and 0.4 m from every crown; up to 200
+/// tries each (a crowded town gets fewer). Draws only from `random`.
 template <class Site>
 void add_small_buildings(world<Site>& w, rng& random, int count)
 {
@@ -77,8 +77,14 @@ void add_small_buildings(world<Site>& w, rng& random, int count)
             building_truth b;
             b.width_m = random.uniform(4.0, 6.0);
             b.length_m = std::max(b.width_m, random.uniform(5.0, 7.0));
-            b.kind = random.chance(0.5) ? roof_kind_truth::flat : roof_kind_truth::shed;
-            b.tilt_deg = b.kind == roof_kind_truth::flat ? 0.0 : random.uniform(5.0, 20.0);
+            const double kind = random.uniform(0.0, 1.0);
+            b.kind = kind < 0.3    ? roof_kind_truth::flat
+                     : kind < 0.5  ? roof_kind_truth::shed
+                     : kind < 0.85 ? roof_kind_truth::gable
+                                   : roof_kind_truth::hip;
+            b.tilt_deg = b.kind == roof_kind_truth::flat   ? 0.0
+                         : b.kind == roof_kind_truth::shed ? random.uniform(5.0, 20.0)
+                                                           : random.uniform(20.0, 45.0);
             b.shed_facing = random.between(0, 3);
             b.intensity = random.uniform(40.0, 110.0);
             const double eave_m = random.uniform(2.6, 3.0);

@@ -257,6 +257,124 @@ inline std::vector<std::vector<std::ptrdiff_t>> grow_roof_plane_regions(const ro
     return regions;
 }
 
+/// The best cut of `members` by a straight line into two least-squares planes: lines at every `step_deg`
+/// degrees, each at every place between two cells' projections on its normal that leaves >= min_part cells on
+/// either side. Returns false when no cut gives two fits.
+struct plane_cut {
+    std::vector<std::ptrdiff_t> first, second;
+    plane_fit fit_first, fit_second;
+    double sse = std::numeric_limits<double>::infinity();  ///< summed squared residual of the two fits
+};
+
+inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptrdiff_t>& members, int min_part,
+                           double step_deg, plane_cut& out)
+{
+    const std::size_t n = members.size();
+    if (n < static_cast<std::size_t>(2 * min_part)) return false;
+    std::vector<std::pair<double, std::ptrdiff_t>> order(n);
+    std::vector<plane_sums> prefix(n + 1);
+    double best = std::numeric_limits<double>::infinity();
+    double best_angle = 0;
+    std::size_t best_k = 0;
+    for (double angle = 0; angle < 180; angle += step_deg) {
+        const double cx = std::cos(angle * std::numbers::pi / 180.0), cy = std::sin(angle * std::numbers::pi / 180.0);
+        for (std::size_t k = 0; k < n; ++k) order[k] = {cx * s.x(members[k]) + cy * s.y(members[k]), members[k]};
+        std::sort(order.begin(), order.end());
+        prefix[0] = plane_sums{};
+        for (std::size_t k = 0; k < n; ++k) {
+            prefix[k + 1] = prefix[k];
+            const auto i = order[k].second;
+            prefix[k + 1].add(s.x(i), s.y(i), s.z[static_cast<std::size_t>(i)]);
+        }
+        for (auto k = static_cast<std::size_t>(min_part); k + static_cast<std::size_t>(min_part) <= n; ++k) {
+            if (order[k].first - order[k - 1].first < 1e-9) continue;
+            plane_sums rest = prefix[n];
+            rest.n -= prefix[k].n, rest.sx -= prefix[k].sx, rest.sy -= prefix[k].sy, rest.sz -= prefix[k].sz;
+            rest.sxx -= prefix[k].sxx, rest.sxy -= prefix[k].sxy, rest.syy -= prefix[k].syy;
+            rest.sxz -= prefix[k].sxz, rest.syz -= prefix[k].syz, rest.szz -= prefix[k].szz;
+            const plane_fit a = fit_plane(prefix[k]), b = fit_plane(rest);
+            if (!a.ok || !b.ok) continue;
+            const double sse = a.rms * a.rms * prefix[k].n + b.rms * b.rms * rest.n;
+            if (sse < best) {
+                best = sse;
+                best_angle = angle;
+                best_k = k;
+            }
+        }
+    }
+    if (!std::isfinite(best)) return false;
+    const double cx = std::cos(best_angle * std::numbers::pi / 180.0),
+                 cy = std::sin(best_angle * std::numbers::pi / 180.0);
+    for (std::size_t k = 0; k < n; ++k) order[k] = {cx * s.x(members[k]) + cy * s.y(members[k]), members[k]};
+    std::sort(order.begin(), order.end());
+    out.first.clear();
+    out.second.clear();
+    plane_sums a, b;
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto i = order[k].second;
+        (k < best_k ? out.first : out.second).push_back(i);
+        (k < best_k ? a : b).add(s.x(i), s.y(i), s.z[static_cast<std::size_t>(i)]);
+    }
+    out.fit_first = fit_plane(a);
+    out.fit_second = fit_plane(b);
+    out.sse = best;
+    return true;
+}
+
+/// Step 4b: planes that are two faces. Small roofs (a garage's gable, a hip end) give few cells whose 3x3
+/// windows all straddle a ridge, so region growing can take two faces as one plane. A plane whose
+/// least-squares rms exceeds min_distance / 2 (and, above 400 cells, 2 sigma) is cut by the best straight line
+/// (best_plane_cut, lines every 3 degrees, >= 4 cells a side) when the two parts' normals differ by more than
+/// 2 x angle_tol and the cut explains far more than noise: F = (reduction of the squared residual / 3) /
+/// (residual / (cells - 6)) >= 10, many cuts having been tried. Parts are cut again in turn. Cells of no plane that
+/// form 4-connected groups of >= min_seed_cells become planes first (and are cut the same way).
+inline void split_two_faced_planes(const roof_box_surface& s, std::vector<std::vector<std::ptrdiff_t>>& planes,
+                                   std::vector<plane_fit>& fits, const std::vector<std::int32_t>& assign, double sigma,
+                                   double angle_tol, const roof_planes_options& o)
+{
+    // Groups of free roof cells as candidate planes.
+    std::vector<std::uint8_t> seen(s.z.size(), 0);
+    std::vector<std::ptrdiff_t> group;
+    const auto n = static_cast<std::ptrdiff_t>(s.z.size());
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        if (!s.in(i) || assign[static_cast<std::size_t>(i)] != 0 || seen[static_cast<std::size_t>(i)]) continue;
+        group.assign(1, i);
+        seen[static_cast<std::size_t>(i)] = 1;
+        for (std::size_t head = 0; head < group.size(); ++head)
+            s.for_neighbours(group[head], [&](std::ptrdiff_t j) {
+                if (assign[static_cast<std::size_t>(j)] != 0 || seen[static_cast<std::size_t>(j)]) return;
+                seen[static_cast<std::size_t>(j)] = 1;
+                group.push_back(j);
+            });
+        if (static_cast<int>(group.size()) < o.min_seed_cells) continue;
+        const plane_fit f = robust_plane(s, group).first;
+        if (!f.ok) continue;
+        planes.push_back(group);
+        fits.push_back(f);
+    }
+    const double floor = 0.5 * o.min_distance_m, rough = std::max(2.0 * sigma, floor);
+    constexpr std::size_t max_cut_cells = 400;  // larger planes are tried only when rough
+    constexpr double min_f = 10;                // a cut must explain this much (F test, many cuts tried)
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+        plane_sums sums;
+        for (const auto i : planes[p]) sums.add(s.x(i), s.y(i), s.z[static_cast<std::size_t>(i)]);
+        const plane_fit one = fit_plane(sums);
+        if (!one.ok || one.rms <= floor || (planes[p].size() > max_cut_cells && one.rms <= rough)) continue;
+        plane_cut cut;
+        if (!best_plane_cut(s, planes[p], 4, 3.0, cut)) continue;
+        if (normal_angle_deg(cut.fit_first.a, cut.fit_first.b, cut.fit_second.a, cut.fit_second.b) <= 2 * angle_tol)
+            continue;
+        // F statistic of the three parameters the second plane adds.
+        const double sse_one = one.rms * one.rms * sums.n, dof = sums.n - 6;
+        if (dof < 1 || (sse_one - cut.sse) / 3 < min_f * cut.sse / dof) continue;
+        planes[p] = std::move(cut.first);
+        fits[p] = cut.fit_first;
+        planes.push_back(std::move(cut.second));
+        fits.push_back(cut.fit_second);
+        --p;  // cut the first part again if it is still two faces
+    }
+}
+
 /// Step 5a: final fits on the planes' interior cells (all four neighbours on the same plane) when there are at
 /// least 8: cells on ridges, hips and eaves mix two surfaces in the DSM and bias a small plane's tilt.
 inline void refit_plane_interiors(const roof_box_surface& s, const std::vector<std::vector<std::ptrdiff_t>>& planes,
@@ -342,6 +460,9 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
                 for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
         }
     }
+    detail::split_two_faced_planes(s, planes, plane_fits, assign, sigma, angle_tol, o);
+    for (int round = 0; round < o.reassign_rounds; ++round)
+        detail::reassign_cells(s, planes, plane_fits, assign, dist_tol);
     detail::refit_plane_interiors(s, planes, plane_fits, assign);
     detail::keep_final_planes(s, planes, plane_fits, assign, o, out);
     return out;
