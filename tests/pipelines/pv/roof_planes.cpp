@@ -117,8 +117,8 @@ TEST_CASE("pv/roof_planes: a garage's gable at 1 m cells, faces two to three cel
             CAPTURE(width);
             const auto p = roof_planes(small_gable(35.0, axis, width, 7.0));
             REQUIRE(p.fits.size() >= 2);
-            // The two largest planes are the faces; a strip of ridge cells (which read the ridge's height) may
-            // come out as a small third plane.
+            // The two largest planes are the faces. The cells the ridge crosses read its height (the highest
+            // return), so on a ridge oblique to the grid they may form a small flat third plane; nothing more.
             std::vector<std::size_t> by_size(p.fits.size());
             for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
             std::sort(by_size.begin(), by_size.end(),
@@ -133,7 +133,10 @@ TEST_CASE("pv/roof_planes: a garage's gable at 1 m cells, faces two to three cel
             CHECK(matched);
             CHECK(f0.tilt_deg() == doctest::Approx(35.0).epsilon(0.15));  // within about 5 degrees
             CHECK(f1.tilt_deg() == doctest::Approx(35.0).epsilon(0.15));
-            for (std::size_t k = 2; k < by_size.size(); ++k) CHECK(p.cells[by_size[k]] <= 8);
+            for (std::size_t k = 2; k < by_size.size(); ++k) {
+                CHECK(p.cells[by_size[k]] <= 7);
+                CHECK(p.fits[by_size[k]].tilt_deg() < 10.0);
+            }
         }
     }
 }
@@ -159,7 +162,7 @@ TEST_CASE("pv/roof_planes: the best straight cut equals an exhaustive search ove
         }
         detail::plane_cut cut;
         const double step = 15.0;
-        const bool found = detail::best_plane_cut(s, members, 4, step, cut);
+        const bool found = detail::best_plane_cut(s, members, 4, 0.0, 12, step, cut);
         double best = std::numeric_limits<double>::infinity();
         for (double angle = 0; angle < 180; angle += step) {
             const double cx = std::cos(angle * 3.14159265358979323846 / 180.0);
@@ -189,7 +192,9 @@ TEST_CASE("pv/roof_planes: the best straight cut equals an exhaustive search ove
 
 TEST_CASE("pv/roof_planes: a noisy flat garage roof stays one plane")
 {
-    // The cut must explain far more than noise (F test): +-4 cm of noise on a 5 x 6 m flat roof is not two faces.
+    // A cut must give two planes of different normals and explain far more than noise (F test; either guard
+    // alone keeps this roof whole): +-15 cm of noise (rms 8.7 cm, above the 7.5 cm from which a cut is tried)
+    // on a 5 x 6 m flat roof is not two faces.
     std::uint64_t state = 99;
     for (int trial = 0; trial < 20; ++trial) {
         roof_box_surface s;
@@ -199,7 +204,7 @@ TEST_CASE("pv/roof_planes: a noisy flat garage roof stays one plane")
         s.z.resize(30);
         for (auto& z : s.z) {
             state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            z = 3.0 + 0.08 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
+            z = 3.0 + 0.3 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
         }
         const auto p = roof_planes(s);
         CAPTURE(trial);

@@ -66,15 +66,17 @@ struct roof_planes_result {
 /// 3. adjacent planes merge when their joint least-squares fit is hardly worse than theirs;
 /// 4. reassign_rounds times: every cell goes to the plane that reaches it with the smallest residual, planes
 ///    are refitted, and merged again between rounds;
-/// 4b. planes that are two faces (a small gable whose every 3x3 window straddles the ridge) are cut along the
-///    best straight line when the parts' normals differ by > 2 x the angle tolerance and an F test (>= 10)
-///    says the cut explains far more than noise; groups of >= min_seed_cells cells left without a plane become
-///    planes first; then reassign_rounds more rounds of reassignment;
+/// 4b. planes that are two faces (a small gable whose every 3x3 window straddles the ridge): planar groups of
+///    >= min_seed_cells cells left without a plane become planes; then planes of <= 400 cells whose rms lies
+///    between min_distance_m / 2 and max_plane_rms_m are cut along the best straight line when the parts'
+///    normals differ by > 2 x the angle tolerance and an F test (>= 10) says the cut explains far more than
+///    noise, parts again in turn; when planes were added, a merge and reassign_rounds more rounds follow;
 /// 5. final fits on each plane's interior cells; planes under min_plane_m2 or rougher than max_plane_rms_m
 ///    (tree crowns, chimneys) are dropped, their cells left without a plane. Planes numbered by first cell.
-/// Tilt, facing and areas follow from the fits (plane_fit). O(cells log cells), plus O(60 n log n) for each
-/// cut tried on a plane of n cells. Options are not checked here (roof_suitability checks them); an empty
-/// surface gives no plane. Never throws except std::bad_alloc.
+/// Tilt, facing and areas follow from the fits (plane_fit). O(cells log cells), plus O(n^2 log n) at worst
+/// for the cuts of a plane of n <= 400 cells (27 directions per cut, at most n / 4 cuts). Options are not
+/// checked here (roof_suitability checks them); an empty surface gives no plane. Never throws except
+/// std::bad_alloc.
 inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_planes_options& o = {});
 
 }  // namespace lidarfx

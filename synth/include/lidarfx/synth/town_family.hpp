@@ -21,8 +21,8 @@ struct town_family_options {
     double truth_cell_m = 0.5;  ///< cell of the truth rasters, metres, > 0
     double min_density = 1.0;   ///< pulses per m^2 are drawn uniformly in [min_density, max_density]
     double max_density = 8.0;
-    /// Garages and sheds (20-42 m^2 footprints, 2.6-3.0 m eaves, flat, shed, gable or hip roofs) per house: the town
-    /// gets round(houses x this) of them, >= 0; 0 = none (the towns as before issue 39).
+    /// Garages and sheds (20-42 m^2 footprints, 2.6-3.0 m eaves, flat, shed, gable or hip roofs) per house: the
+    /// town gets round(houses x this) of them, >= 0; 0 = none.
     double small_buildings_per_house = 0.15;
 };
 
@@ -64,10 +64,11 @@ inline bool small_building_fits(const building_truth& b, const std::vector<build
 
 /// Adds `count` garages and sheds to w (after its houses and trees, which they avoid): footprints 4-6 m x
 /// 5-7 m (20-42 m^2), eaves 2.6-3.0 m above the ground at their centre; flat roofs (30 %), sheds tilted
-/// 5-20 deg (20 %), gables (35 %) and hips (15 %) tilted 20-45 deg: small steep planes of 5-20 m^2. 70 % stand beside a
-/// random house, parallel to it, their bounding circle 2-5 m from the house's; the rest anywhere in the open, any
-/// orientation. Every one keeps its bounding circle 2 m from the other buildings' and 0.4 m from every crown; up to 200
-/// tries each (a crowded town gets fewer). Draws only from `random`.
+/// 5-20 deg (20 %), gables (35 %) and hips (15 %) tilted 20-45 deg: faces 2-3 m deep, hip ends down to about
+/// 4 m^2. 70 % stand beside a random house, parallel to it, their bounding circle 2-5 m from the house's; the
+/// rest anywhere in the open, any orientation. Every one keeps its bounding circle 2 m from the other
+/// buildings' and 0.4 m from every crown; up to 200 tries each (a crowded town gets fewer). Draws only from
+/// `random`.
 template <class Site>
 void add_small_buildings(world<Site>& w, rng& random, int count)
 {

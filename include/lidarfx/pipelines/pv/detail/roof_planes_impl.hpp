@@ -257,17 +257,20 @@ inline std::vector<std::vector<std::ptrdiff_t>> grow_roof_plane_regions(const ro
     return regions;
 }
 
-/// The best cut of `members` by a straight line into two least-squares planes: lines at every `step_deg`
-/// degrees, each at every place between two cells' projections on its normal that leaves >= min_part cells on
-/// either side. Returns false when no cut gives two fits.
+/// A straight cut of a plane's cells into two parts with their least-squares planes.
 struct plane_cut {
     std::vector<std::ptrdiff_t> first, second;
     plane_fit fit_first, fit_second;
     double sse = std::numeric_limits<double>::infinity();  ///< summed squared residual of the two fits
+    double angle_deg = 0;                                  ///< direction of the cut line's normal
 };
 
+/// The best cut of `members` by a straight line into two least-squares planes: lines whose normals point at
+/// first_deg + k step_deg (k < angles; degrees counterclockwise from east), each at every place between two
+/// cells' projections on its normal that leaves >= min_part cells on either side. Returns false when no cut
+/// gives two fits. O(angles n log n).
 inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptrdiff_t>& members, int min_part,
-                           double step_deg, plane_cut& out)
+                           double first_deg, int angles, double step_deg, plane_cut& out)
 {
     const std::size_t n = members.size();
     if (n < static_cast<std::size_t>(2 * min_part)) return false;
@@ -276,7 +279,8 @@ inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptr
     double best = std::numeric_limits<double>::infinity();
     double best_angle = 0;
     std::size_t best_k = 0;
-    for (double angle = 0; angle < 180; angle += step_deg) {
+    for (int k_angle = 0; k_angle < angles; ++k_angle) {
+        const double angle = first_deg + k_angle * step_deg;
         const double cx = std::cos(angle * std::numbers::pi / 180.0), cy = std::sin(angle * std::numbers::pi / 180.0);
         for (std::size_t k = 0; k < n; ++k) order[k] = {cx * s.x(members[k]) + cy * s.y(members[k]), members[k]};
         std::sort(order.begin(), order.end());
@@ -292,9 +296,9 @@ inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptr
             rest.n -= prefix[k].n, rest.sx -= prefix[k].sx, rest.sy -= prefix[k].sy, rest.sz -= prefix[k].sz;
             rest.sxx -= prefix[k].sxx, rest.sxy -= prefix[k].sxy, rest.syy -= prefix[k].syy;
             rest.sxz -= prefix[k].sxz, rest.syz -= prefix[k].syz, rest.szz -= prefix[k].szz;
-            const plane_fit a = fit_plane(prefix[k]), b = fit_plane(rest);
-            if (!a.ok || !b.ok) continue;
-            const double sse = a.rms * a.rms * prefix[k].n + b.rms * b.rms * rest.n;
+            const plane_fit below = fit_plane(prefix[k]), above = fit_plane(rest);
+            if (!below.ok || !above.ok) continue;
+            const double sse = below.rms * below.rms * prefix[k].n + above.rms * above.rms * rest.n;
             if (sse < best) {
                 best = sse;
                 best_angle = angle;
@@ -318,23 +322,31 @@ inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptr
     out.fit_first = fit_plane(a);
     out.fit_second = fit_plane(b);
     out.sse = best;
+    out.angle_deg = best_angle;
     return true;
 }
 
-/// Step 4b: planes that are two faces. Small roofs (a garage's gable, a hip end) give few cells whose 3x3
-/// windows all straddle a ridge, so region growing can take two faces as one plane. A plane whose
-/// least-squares rms exceeds min_distance / 2 (and, above 400 cells, 2 sigma) is cut by the best straight line
-/// (best_plane_cut, lines every 3 degrees, >= 4 cells a side) when the two parts' normals differ by more than
-/// 2 x angle_tol and the cut explains far more than noise: F = (reduction of the squared residual / 3) /
-/// (residual / (cells - 6)) >= 10, many cuts having been tried. Parts are cut again in turn. Cells of no plane that
-/// form 4-connected groups of >= min_seed_cells become planes first (and are cut the same way).
-inline void split_two_faced_planes(const roof_box_surface& s, std::vector<std::vector<std::ptrdiff_t>>& planes,
-                                   std::vector<plane_fit>& fits, const std::vector<std::int32_t>& assign, double sigma,
-                                   double angle_tol, const roof_planes_options& o)
+/// best_plane_cut coarse to fine: normals every 10 degrees, then every 2 degrees within 8 of the best, at least
+/// 4 cells a side.
+inline bool best_two_plane_cut(const roof_box_surface& s, const std::vector<std::ptrdiff_t>& members, plane_cut& out)
 {
-    // Groups of free roof cells as candidate planes.
+    if (!best_plane_cut(s, members, 4, 0.0, 18, 10.0, out)) return false;
+    plane_cut fine;
+    if (best_plane_cut(s, members, 4, out.angle_deg - 8.0, 9, 2.0, fine) && fine.sse < out.sse) out = std::move(fine);
+    return true;
+}
+
+/// Step 4b, first part: 4-connected groups of >= min_seed_cells roof cells that no plane took and that are
+/// planar (median rms of their cells' 3x3 fits <= 2 sigma: not a crown, not a strip of ridge cells) become
+/// planes with their robust fit. Returns how many were added.
+inline std::size_t add_free_cell_groups(const roof_box_surface& s, const roof_local_fits& lf,
+                                        std::vector<std::vector<std::ptrdiff_t>>& planes, std::vector<plane_fit>& fits,
+                                        const std::vector<std::int32_t>& assign, int min_seed_cells)
+{
     std::vector<std::uint8_t> seen(s.z.size(), 0);
     std::vector<std::ptrdiff_t> group;
+    std::vector<double> local_rms;
+    std::size_t added = 0;
     const auto n = static_cast<std::ptrdiff_t>(s.z.size());
     for (std::ptrdiff_t i = 0; i < n; ++i) {
         if (!s.in(i) || assign[static_cast<std::size_t>(i)] != 0 || seen[static_cast<std::size_t>(i)]) continue;
@@ -346,33 +358,67 @@ inline void split_two_faced_planes(const roof_box_surface& s, std::vector<std::v
                 seen[static_cast<std::size_t>(j)] = 1;
                 group.push_back(j);
             });
-        if (static_cast<int>(group.size()) < o.min_seed_cells) continue;
+        if (static_cast<int>(group.size()) < min_seed_cells) continue;
+        local_rms.clear();
+        for (const auto g : group) local_rms.push_back(lf.rms[static_cast<std::size_t>(g)]);  // +inf: no fit
+        std::nth_element(local_rms.begin(), local_rms.begin() + static_cast<std::ptrdiff_t>(local_rms.size() / 2),
+                         local_rms.end());
+        if (!(local_rms[local_rms.size() / 2] <= 2 * lf.sigma_m)) continue;
         const plane_fit f = robust_plane(s, group).first;
         if (!f.ok) continue;
         planes.push_back(group);
         fits.push_back(f);
+        ++added;
     }
-    const double floor = 0.5 * o.min_distance_m, rough = std::max(2.0 * sigma, floor);
-    constexpr std::size_t max_cut_cells = 400;  // larger planes are tried only when rough
-    constexpr double min_f = 10;                // a cut must explain this much (F test, many cuts tried)
-    for (std::size_t p = 0; p < planes.size(); ++p) {
+    return added;
+}
+
+/// Whether a cut into two planes explains far more than noise: F = (the squared residual it removes / 3) /
+/// (the squared residual left / (cells - 6)) >= min_f, with one plane's squared residual `one_sse` over `cells`.
+inline bool cut_explains_more_than_noise(double one_sse, const plane_cut& cut, double cells, double min_f)
+{
+    const double dof = cells - 6;
+    return dof >= 1 && (one_sse - cut.sse) / 3 >= min_f * cut.sse / dof;
+}
+
+/// Step 4b: planes that are two faces. Small roofs (a garage's gable, a hip end) give few cells whose 3x3
+/// windows all straddle a ridge, so region growing can take two faces as one plane, or lose one face
+/// (add_free_cell_groups first gives its cells a plane). A plane of at most 400 cells whose least-squares rms
+/// lies between min_distance / 2 and max_plane_rms_m (rougher is a crown, dropped later) is cut along the best
+/// straight line (best_two_plane_cut) when the two parts' normals differ by more than 2 x angle_tol and
+/// cut_explains_more_than_noise (F >= 10: many cuts were tried). Parts are cut again in turn; at most one cut
+/// per 4 cells, so O(n^2 log n) for a plane of n <= 400 cells. Returns whether planes were added (then
+/// reassignment runs again).
+inline bool split_two_faced_planes(const roof_box_surface& s, const roof_local_fits& lf,
+                                   std::vector<std::vector<std::ptrdiff_t>>& planes, std::vector<plane_fit>& fits,
+                                   const std::vector<std::int32_t>& assign, double angle_tol,
+                                   const roof_planes_options& o)
+{
+    const std::size_t count_before = planes.size();
+    add_free_cell_groups(s, lf, planes, fits, assign, o.min_seed_cells);
+    const double min_cut_rms = 0.5 * o.min_distance_m;
+    constexpr std::size_t max_cut_cells = 400;
+    constexpr double min_f = 10;
+    std::size_t p = 0;
+    while (p < planes.size()) {
         plane_sums sums;
         for (const auto i : planes[p]) sums.add(s.x(i), s.y(i), s.z[static_cast<std::size_t>(i)]);
-        const plane_fit one = fit_plane(sums);
-        if (!one.ok || one.rms <= floor || (planes[p].size() > max_cut_cells && one.rms <= rough)) continue;
+        const plane_fit single = fit_plane(sums);
         plane_cut cut;
-        if (!best_plane_cut(s, planes[p], 4, 3.0, cut)) continue;
-        if (normal_angle_deg(cut.fit_first.a, cut.fit_first.b, cut.fit_second.a, cut.fit_second.b) <= 2 * angle_tol)
+        const bool cut_found = single.ok && single.rms > min_cut_rms && single.rms <= o.max_plane_rms_m &&
+                               planes[p].size() <= max_cut_cells && best_two_plane_cut(s, planes[p], cut);
+        if (!cut_found ||
+            normal_angle_deg(cut.fit_first.a, cut.fit_first.b, cut.fit_second.a, cut.fit_second.b) <= 2 * angle_tol ||
+            !cut_explains_more_than_noise(single.rms * single.rms * sums.n, cut, sums.n, min_f)) {
+            ++p;
             continue;
-        // F statistic of the three parameters the second plane adds.
-        const double sse_one = one.rms * one.rms * sums.n, dof = sums.n - 6;
-        if (dof < 1 || (sse_one - cut.sse) / 3 < min_f * cut.sse / dof) continue;
-        planes[p] = std::move(cut.first);
+        }
+        planes[p] = std::move(cut.first);  // and p stays: the first part is cut again if it is still two faces
         fits[p] = cut.fit_first;
         planes.push_back(std::move(cut.second));
         fits.push_back(cut.fit_second);
-        --p;  // cut the first part again if it is still two faces
     }
+    return planes.size() != count_before;
 }
 
 /// Step 5a: final fits on the planes' interior cells (all four neighbours on the same plane) when there are at
@@ -460,9 +506,13 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
                 for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
         }
     }
-    detail::split_two_faced_planes(s, planes, plane_fits, assign, sigma, angle_tol, o);
-    for (int round = 0; round < o.reassign_rounds; ++round)
-        detail::reassign_cells(s, planes, plane_fits, assign, dist_tol);
+    if (detail::split_two_faced_planes(s, lf, planes, plane_fits, assign, angle_tol, o)) {
+        for (std::size_t p = 0; p < planes.size(); ++p)
+            for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
+        detail::merge_coplanar(s, planes, plane_fits, assign, angle_tol);
+        for (int round = 0; round < o.reassign_rounds; ++round)
+            detail::reassign_cells(s, planes, plane_fits, assign, dist_tol);
+    }
     detail::refit_plane_interiors(s, planes, plane_fits, assign);
     detail::keep_final_planes(s, planes, plane_fits, assign, o, out);
     return out;
