@@ -25,26 +25,9 @@ lidarfx::synth::roof_town project_town(unsigned seed)
     so.seed = seed;
     so.truth_cell_m = 1.0;
     const auto sc = synth::town_scene(so);
-    synth::roof_town t;
-    t.g = sc.truth.g;
+    synth::roof_town t = synth::roof_town_from_truth(sc.truth, so.density_per_m2);
     t.dsm = rasterize(sc.points.cloud(), t.g).max_z;
     t.dtm = sc.truth.ground_z;
-    t.building_id = sc.truth.building_id;
-    t.plane_id = sc.truth.roof_plane_id;
-    t.density_per_m2 = so.density_per_m2;
-    std::int32_t last = 0;
-    for (std::size_t k = 0; k < sc.truth.roof_planes.size(); ++k) {
-        const auto& p = sc.truth.roof_planes[k];
-        const double cos_tilt = std::cos(p.tilt_deg * 3.14159265358979323846 / 180.0);
-        t.planes.push_back({p.building_id, static_cast<std::int32_t>(k + 1), p.tilt_deg, p.azimuth_deg,
-                            p.area_m2 * cos_tilt, p.area_m2});
-        if (p.building_id != last) {
-            synth::roof_town_building b;
-            b.id = p.building_id;
-            t.buildings.push_back(b);
-        }
-        last = p.building_id;
-    }
     return t;
 }
 

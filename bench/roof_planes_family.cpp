@@ -62,39 +62,11 @@ synth::roof_town program_town(const synth::town_family_scene& town)
     const auto rasters = rasterize(cloud, t.g);
     ground_model_result ground = ground_model(rasters.max_z, t.g.cell);
     // The lowest class-2 point of each cell, as read_survey's class_ground.
-    raster<float> class_ground(t.g.rows, t.g.cols, std::numeric_limits<float>::quiet_NaN());
-    const auto& p = town.town.points;
-    for (std::size_t i = 0; i < p.x.size(); ++i) {
-        if (p.classification[i] != las_class::ground) continue;
-        const auto c = static_cast<std::ptrdiff_t>(std::floor((p.x[i] - t.g.x0) / t.g.cell));
-        const auto r = static_cast<std::ptrdiff_t>(std::floor((t.g.y0 - p.y[i]) / t.g.cell));
-        if (r < 0 || c < 0 || r >= t.g.rows || c >= t.g.cols) continue;
-        float& v = class_ground(r, c);
-        const auto z = static_cast<float>(p.z[i]);
-        if (std::isnan(v) || z < v) v = z;
-    }
+    const raster<float> class_ground = rasterize(cloud, t.g, {.classes = {.include = {las_class::ground}}}).min_z;
     replace_ground(ground, class_ground.view(), t.g.cell);
-    synth::roof_town out;
-    out.g = t.g;
+    synth::roof_town out = synth::roof_town_from_truth(t, town.density_per_m2);
     out.dsm = std::move(ground.surface);
     out.dtm = std::move(ground.ground);
-    out.building_id = t.building_id;
-    out.plane_id = t.roof_plane_id;
-    out.density_per_m2 = town.density_per_m2;
-    std::int32_t last = 0;
-    for (std::size_t k = 0; k < t.roof_planes.size(); ++k) {
-        const auto& rp = t.roof_planes[k];
-        const double cos_tilt = std::cos(rp.tilt_deg * std::numbers::pi / 180.0);
-        out.planes.push_back({rp.building_id, static_cast<std::int32_t>(k + 1), rp.tilt_deg, rp.azimuth_deg,
-                              rp.area_m2 * cos_tilt, rp.area_m2});
-        if (rp.building_id != last) {
-            synth::roof_town_building b;
-            b.id = rp.building_id;
-            b.kind = rp.tilt_deg == 0 ? synth::roof_town_kind::flat : synth::roof_town_kind::gable;
-            out.buildings.push_back(b);
-        }
-        last = rp.building_id;
-    }
     return out;
 }
 

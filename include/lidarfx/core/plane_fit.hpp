@@ -41,6 +41,20 @@ struct plane_sums {
         syz += o.syz;
         szz += o.szz;
     }
+    /// Takes out the sums of a subset added before (the sums of the rest remain).
+    void remove(const plane_sums& o) noexcept
+    {
+        n -= o.n;
+        sx -= o.sx;
+        sy -= o.sy;
+        sz -= o.sz;
+        sxx -= o.sxx;
+        sxy -= o.sxy;
+        syy -= o.syy;
+        sxz -= o.sxz;
+        syz -= o.syz;
+        szz -= o.szz;
+    }
 };
 
 /// A fitted plane z = a x + b y + c (x east, y north) with its rms residual (metres when z is).

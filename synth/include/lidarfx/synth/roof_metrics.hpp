@@ -9,11 +9,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lidarfx/pipelines/pv/roof_suitability.hpp"
+#include "lidarfx/synth/render.hpp"
 #include "lidarfx/synth/roof_towns.hpp"
 
 namespace lidarfx::synth {
@@ -65,6 +67,34 @@ struct roof_scores {
         matches.insert(matches.end(), o.matches.begin(), o.matches.end());
     }
 };
+
+/// A scene's truth as a roof town without its rasters (the caller sets dsm and dtm): the grid, building and
+/// plane ids, every roof face as a plane (id k + 1 for roof_planes[k]; horizontal area = sloped area x
+/// cos(tilt)) and one building per id, of kind flat when its faces are flat and gable otherwise (kinds only
+/// label listings).
+inline roof_town roof_town_from_truth(const scene_truth& truth, double density_per_m2)
+{
+    roof_town t;
+    t.g = truth.g;
+    t.building_id = truth.building_id;
+    t.plane_id = truth.roof_plane_id;
+    t.density_per_m2 = density_per_m2;
+    std::int32_t last = 0;
+    for (std::size_t k = 0; k < truth.roof_planes.size(); ++k) {
+        const auto& p = truth.roof_planes[k];
+        const double cos_tilt = std::cos(p.tilt_deg * std::numbers::pi / 180.0);
+        t.planes.push_back({p.building_id, static_cast<std::int32_t>(k + 1), p.tilt_deg, p.azimuth_deg,
+                            p.area_m2 * cos_tilt, p.area_m2});
+        if (p.building_id != last) {
+            roof_town_building b;
+            b.id = p.building_id;
+            b.kind = p.tilt_deg == 0 ? roof_town_kind::flat : roof_town_kind::gable;
+            t.buildings.push_back(b);
+        }
+        last = p.building_id;
+    }
+    return t;
+}
 
 /// True when a true plane meets the suitability rule of `o` (the one judge_patch applies to measured patches).
 inline bool truth_suitable(const roof_town_plane& p, const roof_suitability_options& o)

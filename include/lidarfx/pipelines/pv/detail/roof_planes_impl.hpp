@@ -257,6 +257,13 @@ inline std::vector<std::vector<std::ptrdiff_t>> grow_roof_plane_regions(const ro
     return regions;
 }
 
+/// Writes plane p + 1 into `assign` at every cell of planes[p] (other cells keep their value).
+inline void label_plane_cells(const std::vector<std::vector<std::ptrdiff_t>>& planes, std::vector<std::int32_t>& assign)
+{
+    for (std::size_t p = 0; p < planes.size(); ++p)
+        for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
+}
+
 /// A straight cut of a plane's cells into two parts with their least-squares planes.
 struct plane_cut {
     std::vector<std::ptrdiff_t> first, second;
@@ -293,9 +300,7 @@ inline bool best_plane_cut(const roof_box_surface& s, const std::vector<std::ptr
         for (auto k = static_cast<std::size_t>(min_part); k + static_cast<std::size_t>(min_part) <= n; ++k) {
             if (order[k].first - order[k - 1].first < 1e-9) continue;
             plane_sums rest = prefix[n];
-            rest.n -= prefix[k].n, rest.sx -= prefix[k].sx, rest.sy -= prefix[k].sy, rest.sz -= prefix[k].sz;
-            rest.sxx -= prefix[k].sxx, rest.sxy -= prefix[k].sxy, rest.syy -= prefix[k].syy;
-            rest.sxz -= prefix[k].sxz, rest.syz -= prefix[k].syz, rest.szz -= prefix[k].szz;
+            rest.remove(prefix[k]);
             const plane_fit below = fit_plane(prefix[k]), above = fit_plane(rest);
             if (!below.ok || !above.ok) continue;
             const double sse = below.rms * below.rms * prefix[k].n + above.rms * above.rms * rest.n;
@@ -338,15 +343,14 @@ inline bool best_two_plane_cut(const roof_box_surface& s, const std::vector<std:
 
 /// Step 4b, first part: 4-connected groups of >= min_seed_cells roof cells that no plane took and that are
 /// planar (median rms of their cells' 3x3 fits <= 2 sigma: not a crown, not a strip of ridge cells) become
-/// planes with their robust fit. Returns how many were added.
-inline std::size_t add_free_cell_groups(const roof_box_surface& s, const roof_local_fits& lf,
-                                        std::vector<std::vector<std::ptrdiff_t>>& planes, std::vector<plane_fit>& fits,
-                                        const std::vector<std::int32_t>& assign, int min_seed_cells)
+/// planes with their robust fit.
+inline void add_free_cell_groups(const roof_box_surface& s, const roof_local_fits& lf,
+                                 std::vector<std::vector<std::ptrdiff_t>>& planes, std::vector<plane_fit>& fits,
+                                 const std::vector<std::int32_t>& assign, int min_seed_cells)
 {
     std::vector<std::uint8_t> seen(s.z.size(), 0);
     std::vector<std::ptrdiff_t> group;
     std::vector<double> local_rms;
-    std::size_t added = 0;
     const auto n = static_cast<std::ptrdiff_t>(s.z.size());
     for (std::ptrdiff_t i = 0; i < n; ++i) {
         if (!s.in(i) || assign[static_cast<std::size_t>(i)] != 0 || seen[static_cast<std::size_t>(i)]) continue;
@@ -368,9 +372,7 @@ inline std::size_t add_free_cell_groups(const roof_box_surface& s, const roof_lo
         if (!f.ok) continue;
         planes.push_back(group);
         fits.push_back(f);
-        ++added;
     }
-    return added;
 }
 
 /// Whether a cut into two planes explains far more than noise: F = (the squared residual it removes / 3) /
@@ -495,20 +497,17 @@ inline roof_planes_result roof_planes(const roof_box_surface& s, const roof_plan
     // Merging of adjacent coplanar planes, then competitive reassignment of the cells, in rounds.
     std::vector<plane_fit> plane_fits;
     std::vector<std::int32_t> assign(static_cast<std::size_t>(n), 0);
-    for (std::size_t p = 0; p < planes.size(); ++p)
-        for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
+    detail::label_plane_cells(planes, assign);
     detail::merge_coplanar(s, planes, plane_fits, assign, angle_tol);
     for (int round = 0; round < o.reassign_rounds; ++round) {
         detail::reassign_cells(s, planes, plane_fits, assign, dist_tol);
         if (round + 1 < o.reassign_rounds) {
             detail::merge_coplanar(s, planes, plane_fits, assign, angle_tol);
-            for (std::size_t p = 0; p < planes.size(); ++p)
-                for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
+            detail::label_plane_cells(planes, assign);
         }
     }
     if (detail::split_two_faced_planes(s, lf, planes, plane_fits, assign, angle_tol, o)) {
-        for (std::size_t p = 0; p < planes.size(); ++p)
-            for (const auto i : planes[p]) assign[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p + 1);
+        detail::label_plane_cells(planes, assign);
         detail::merge_coplanar(s, planes, plane_fits, assign, angle_tol);
         for (int round = 0; round < o.reassign_rounds; ++round)
             detail::reassign_cells(s, planes, plane_fits, assign, dist_tol);
