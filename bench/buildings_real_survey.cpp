@@ -2,14 +2,16 @@
 // Scores extract_buildings on a real classified survey against the survey's own building class (ASPRS 6) and,
 // when given, independent footprint polygons. Run by bench/buildings_real_surveys.sh.
 //   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] [--vegetation returns|any]
-//                         [--min-area M2] [--footprints FILE] [--map OUT.asc]
+//                         [--rim points|dsm] [--min-area M2] [--footprints FILE] [--truth-ignore CLASS]...
+//                         [--map OUT.asc]
 // The surface is built as `lidarfx solar --facades` builds it: the highest return per cell (NaN cells filled
 // by IDW), isolated spikes and pits removed. Trees are told from roofs by the share of split pulses
 // (extract_buildings with pulse_returns, the default) or, with --vegetation any, every cell holding a point of
 // a split pulse is vegetation and rough parts are dropped. The terrain is ground_model's (hull and IDW), or
 // with --ground class2 the lowest class-2 point per cell, or with --ground filter morphological_ground's cells
-// of the lowest point per cell (the classes unused).
-// Truth, on the cells with points (noise, classes 7 and 18, left out):
+// of the lowest point per cell (the classes unused). With a given terrain (class2, filter) each building's rim
+// is decided by the share of its points raised above it (refine_building_rim); --rim dsm leaves it to the DSM.
+// Truth, on the cells with points (noise, classes 7 and 18, and the --truth-ignore classes left out):
 //   - class truth: a cell is building when at least half of its points are class 6;
 //   - polygon truth (--footprints, any file the program reads footprints from): the cell's centre lies inside
 //     a footprint (even-odd over its rings).
@@ -28,6 +30,7 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/kernels/filter/surface_outliers.hpp>
 #include <lidarfx/kernels/interpolate/idw_fill.hpp>
+#include <lidarfx/kernels/points/count_points_above.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/vector/burn_polygons.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
@@ -40,6 +43,16 @@
 using namespace lidarfx;
 
 namespace {
+
+// The points the rasters were made of (noise, classes 7 and 18, left out), as a point cloud.
+struct kept_points {
+    const io::las_points& all;
+    std::vector<std::size_t> index;
+    std::size_t size() const { return index.size(); }
+    double x(std::size_t i) const { return all.x[index[i]]; }
+    double y(std::size_t i) const { return all.y[index[i]]; }
+    double z(std::size_t i) const { return all.z[index[i]]; }
+};
 
 struct scores {
     std::size_t tp = 0, fp = 0, fn = 0;
@@ -60,10 +73,11 @@ void print_scores(const char* what, const scores& s, double cell_area)
 int main(int argc, char** argv)
 {
     double cell = 1.0;
-    std::string ground_mode = "model", vegetation_mode = "returns";
+    std::string ground_mode = "model", vegetation_mode = "returns", rim_mode = "points";
     const char* footprint_file = nullptr;
     const char* map_file = nullptr;
     std::vector<std::string> files;
+    std::vector<int> truth_ignore;  // classes the truth rule leaves out (e.g. 12, overlap points on roofs and ground)
     extract_buildings_options opt;
     int a0 = 1;
     for (; a0 < argc && std::strncmp(argv[a0], "--", 2) != 0; ++a0) files.emplace_back(argv[a0]);
@@ -79,6 +93,10 @@ int main(int argc, char** argv)
             opt.candidates.min_area_m2 = std::strtod(argv[a + 1], nullptr);
         else if (!std::strcmp(argv[a], "--vegetation"))
             vegetation_mode = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--truth-ignore"))
+            truth_ignore.push_back(std::atoi(argv[a + 1]));
+        else if (!std::strcmp(argv[a], "--rim"))
+            rim_mode = argv[a + 1];
         else if (!std::strcmp(argv[a], "--footprints"))
             footprint_file = argv[a + 1];
         else if (!std::strcmp(argv[a], "--map"))
@@ -87,10 +105,11 @@ int main(int argc, char** argv)
             usage = true;
     }
     if (usage || !(cell > 0) || (ground_mode != "model" && ground_mode != "class2" && ground_mode != "filter") ||
-        (vegetation_mode != "returns" && vegetation_mode != "any")) {
+        (vegetation_mode != "returns" && vegetation_mode != "any") || (rim_mode != "points" && rim_mode != "dsm")) {
         std::fprintf(stderr,
                      "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] "
-                     "[--vegetation returns|any] [--min-area M2] [--footprints FILE] [--map OUT.asc]\n");
+                     "[--vegetation returns|any] [--rim points|dsm] [--min-area M2] [--footprints FILE] "
+                     "[--truth-ignore CLASS]... [--map OUT.asc]\n");
         return 2;
     }
     try {
@@ -110,12 +129,27 @@ int main(int argc, char** argv)
         raster<float> class2;
         if (ground_mode == "class2") class2 = rasterize(pts.cloud(), g, {.classes = {.include = {2}}}).min_z;
         if (ground_mode == "filter") class2 = morphological_ground(all.min_z, cell).ground;
+        // With a given terrain, the rim is decided by the points raised above it (as the program does).
+        raster<std::uint32_t> raised;
+        if (!class2.empty() && rim_mode == "points") {
+            class2 = fill_ground(class2, cell);
+            kept_points kept{pts, {}};
+            for (std::size_t i = 0; i < pts.size(); ++i)
+                if (pts.classification[i] != 7 && pts.classification[i] != 18) kept.index.push_back(i);
+            raised = count_points_above(kept, g, class2.view(), opt.candidates.min_height_m);
+        }
         const extract_buildings_result b =
             vegetation_mode == "returns"
-                ? extract_buildings(dsm, g, class2.view(), pulse_returns{all.count, all.multiple_return_count}, opt)
+                ? extract_buildings(dsm, g, class2.view(),
+                                    pulse_returns{all.count, all.multiple_return_count, raised.view()}, opt)
                 : extract_buildings(dsm, g, class2.view(), all.multiple_returns.view(), opt);
         // Class truth per cell (the cells' points as rasterized above, noise left out), and polygon truth.
-        const raster<std::uint32_t>& points = all.count;
+        raster<std::uint32_t> points = all.count;
+        if (!truth_ignore.empty()) {
+            const raster<std::uint32_t> ignored =
+                rasterize(pts.cloud(), g, {.classes = {.include = truth_ignore}}).count;
+            for (std::ptrdiff_t i = 0; i < points.size(); ++i) points.data()[i] -= ignored.data()[i];
+        }
         const raster<std::uint32_t> building_points = rasterize(pts.cloud(), g, {.classes = {.include = {6}}}).count;
         raster<std::int32_t> footprints;
         if (footprint_file) {
@@ -142,10 +176,10 @@ int main(int argc, char** argv)
             }
         }
         std::printf(
-            "%s%s, %.2f m cells, ground %s, vegetation %s: %zu buildings found (%zu clipped), %zu "
+            "%s%s, %.2f m cells, ground %s, vegetation %s, rim %s: %zu buildings found (%zu clipped), %zu "
             "rejected as vegetation\n",
             files[0].c_str(), files.size() > 1 ? " and more" : "", cell, ground_mode.c_str(), vegetation_mode.c_str(),
-            b.buildings.size(),
+            rim_mode.c_str(), b.buildings.size(),
             static_cast<std::size_t>(std::count_if(b.buildings.begin(), b.buildings.end(),
                                                    [](const building_record& br) { return br.clipped; })),
             b.rejected_rough);

@@ -4,10 +4,12 @@
 // min_area_m2, with what lowering the minimum costs (precision, false buildings, trees taken for buildings).
 // A plain program, not a benchmark:
 //   small_buildings [--first 1] [--count 20] [--density 1.5,2,4,8,20] [--cell 0.5,1] [--min-area 50,20,15]
-//                   [--returns | --no-mask]
+//                   [--returns | --program | --no-mask]
 // By default extract_buildings gets the first returns' multiple_returns mask as its vegetation mask (as
 // tests/pipelines/buildings/extract_buildings_towns.cpp does); --returns runs the overload that counts split
-// pulses (pulse_returns); --no-mask gives it no return information (trees are rejected by roughness alone).
+// pulses (pulse_returns); --program runs it as lidarfx solar --facades does on LAS input (every return binned,
+// the terrain from the class-2 points filled by fill_ground, each building's rim decided by the points raised
+// above it); --no-mask gives it no return information (trees are rejected by roughness alone).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +21,8 @@
 #include <vector>
 
 #include <lidarfx/core/las_class.hpp>
+#include <lidarfx/kernels/interpolate/idw_fill.hpp>
+#include <lidarfx/kernels/points/count_points_above.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
 #include <lidarfx/synth/town_family.hpp>
@@ -31,6 +35,7 @@ using namespace lidarfx;
 enum class vegetation_input {
     mask,          ///< the first returns' multiple_returns raster as the vegetation mask
     pulse_counts,  ///< the pulse_returns overload (points and split-pulse points per cell)
+    program,       ///< as lidarfx solar --facades on LAS: every return, class-2 terrain, the rim by raised points
     none           ///< nothing: trees are told from roofs by roughness alone
 };
 
@@ -38,7 +43,9 @@ const char* describe(vegetation_input v)
 {
     return v == vegetation_input::mask           ? "the first returns' multiple_returns mask"
            : v == vegetation_input::pulse_counts ? "pulse counts (pulse_returns)"
-                                                 : "no return information (roughness alone)";
+           : v == vegetation_input::program
+               ? "the program's route (every return, class-2 terrain, pulse counts, the rim by raised points)"
+               : "no return information (roughness alone)";
 }
 
 /// Command-line settings.
@@ -221,12 +228,14 @@ settings parse(int argc, char** argv)
             s.min_areas = parse_list(argv[++i]);
         } else if (std::strcmp(argv[i], "--returns") == 0) {
             s.vegetation = vegetation_input::pulse_counts;
+        } else if (std::strcmp(argv[i], "--program") == 0) {
+            s.vegetation = vegetation_input::program;
         } else if (std::strcmp(argv[i], "--no-mask") == 0) {
             s.vegetation = vegetation_input::none;
         } else {
             std::fprintf(stderr,
                          "usage: small_buildings [--first N] [--count K] [--density 1.5,2,4,8,20] [--cell 0.5,1] "
-                         "[--min-area 50,20,15] [--returns | --no-mask]\n");
+                         "[--min-area 50,20,15] [--returns | --program | --no-mask]\n");
             std::exit(2);
         }
     }
@@ -259,7 +268,25 @@ int main(int argc, char** argv)
                 const auto town = synth::town_family(o);
                 rasterize_options first;
                 first.returns = return_selection::first;
-                const auto dsm = rasterize(town.town.points.cloud(), town.town.truth.g, first);
+                const grid& g = town.town.truth.g;
+                if (set.vegetation == vegetation_input::program) {
+                    const auto all = rasterize(town.town.points.cloud(), g);
+                    const raster<float> ground = fill_ground(
+                        rasterize(town.town.points.cloud(), g, {.classes = {.include = {las_class::ground}}}).min_z,
+                        g.cell);
+                    const raster<std::uint32_t> raised = count_points_above(town.town.points.cloud(), g, ground.view(),
+                                                                            building_candidates_options{}.min_height_m);
+                    for (std::size_t m = 0; m < set.min_areas.size(); ++m) {
+                        extract_buildings_options eo;
+                        eo.candidates.min_area_m2 = set.min_areas[m];
+                        const auto b = extract_buildings(
+                            idw_fill(all.max_z, g.cell).filled, g, ground.view(),
+                            pulse_returns{all.count.view(), all.multiple_return_count.view(), raised.view()}, eo);
+                        score(town, b.building_id, b.buildings.size(), totals[m]);
+                    }
+                    continue;
+                }
+                const auto dsm = rasterize(town.town.points.cloud(), g, first);
                 for (std::size_t m = 0; m < set.min_areas.size(); ++m) {
                     const auto b = buildings_of(town, dsm, set.min_areas[m], set.vegetation);
                     score(town, b.building_id, b.buildings.size(), totals[m]);

@@ -29,6 +29,7 @@
 #include <stdexcept>
 
 #include <lidarfx/kernels/filter/survey_footprint.hpp>
+#include <lidarfx/kernels/points/count_points_above.hpp>
 #include <lidarfx/kernels/points/scan_coverage.hpp>
 #include <lidarfx/pipelines/buildings/morphological_ground.hpp>
 
@@ -745,12 +746,39 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     s.rasters = acc.finish();
     if (scans) s.scan_covered = scans->take();
     s.points = done;
+    s.unit_xy = layout.unit_xy;
+    s.unit_z = layout.unit_z;
     if (s.rasters.points_used == 0) {
         throw std::runtime_error("no point of the input has finite coordinates (" +
                                  std::to_string(s.rasters.points_nan) +
                                  " points with NaN or infinite x, y or z): nothing to rasterize");
     }
     return s;
+}
+
+raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths, const survey& s,
+                                          const survey_options& opt, raster_view<const float> terrain, double height_m)
+{
+    const grid& g = s.rasters.g;
+    raster<std::uint32_t> counts(g.rows, g.cols);
+    survey_layout units;
+    units.unit_xy = s.unit_xy;
+    units.unit_z = s.unit_z;
+    auto bar = opt.show_progress ? progress_bar("rim points") : progress_callback{};
+    io::las_points chunk;
+    std::uint64_t done = 0;
+    for (const std::string& path : paths) {
+        io::las_reader reader(path);
+        reader.set_threads(opt.threads);
+        reader.set_memory_budget(opt.memory_budget_bytes);
+        while (reader.position() < reader.point_count()) {
+            done += reader.read(chunk, std::size_t{1} << 20);
+            to_metres(chunk, units);
+            count_points_above(chunk.cloud(), g, terrain, height_m, counts.view());
+            if (bar && s.points > 0) bar(std::min(1.0, static_cast<double>(done) / static_cast<double>(s.points)));
+        }
+    }
+    return counts;
 }
 
 raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads)

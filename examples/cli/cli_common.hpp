@@ -118,6 +118,7 @@ struct survey {
     /// survey_options::class_ground
     raster<float> class_ground;
     std::size_t class_ground_points = 0;  ///< points of class 2 on the grid (with survey_options::class_ground)
+    double unit_xy = 1, unit_z = 1;       ///< metres per unit of the files' x and y, and of z
 };
 
 /// Points counted in 256 x 256 bins over a survey's header box (metres): what refuse_outliers decides on.
@@ -213,6 +214,14 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
 /// @throws usage_error for class2 on a survey without a point of class 2, or for another choice
 /// (check_ground_choice).
 raster<float> chosen_ground(survey& s, const std::string& choice, int threads);
+
+/// Reads the files of `s` again (as read_survey did: in chunks, in metres, within opt.memory_budget_bytes) and
+/// counts, per cell of s.rasters.g, the points at least height_m above `terrain` (count_points_above; terrain in
+/// metres, of the grid's shape): the raised points by which extract_buildings decides each building's rim.
+/// Memory: one chunk of points and the counts (4 bytes per cell). @throws std::runtime_error naming the file on
+/// bad input files.
+raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths, const survey& s,
+                                          const survey_options& opt, raster_view<const float> terrain, double height_m);
 
 /// Refuses (usage_error) a --ground value other than auto, class2, filter or model.
 void check_ground_choice(const std::string& choice);

@@ -87,7 +87,9 @@ constexpr const char* usage =
     "  --ground G     the terrain under the buildings of --facades, LAS input [auto]: class2 = the lowest\n"
     "                 class-2 (ground) point per cell; filter = a morphological ground filter on the lowest\n"
     "                 points (windows up to 40 m); model = from the DSM's edge hulls (fails under blocks of\n"
-    "                 buildings); auto = class2 when >= 1 % of the points are class 2, else filter\n"
+    "                 buildings); auto = class2 when >= 1 % of the points are class 2, else filter. With\n"
+    "                 class2 or filter the files are read twice: a building's edge cells are decided by the\n"
+    "                 share of their points standing 2.5 m above that terrain (half or more: building)\n"
     "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and the\n"
     "                 weather file are checked against before they are read (exit code 2) [half the memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
@@ -146,7 +148,7 @@ std::string fixed(double v, int digits)
 
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
-constexpr double solar_bytes_per_cell = 112;  // with --facades: point counts and class ground
+constexpr double solar_bytes_per_cell = 120;  // with --facades: point counts, class ground (and filled), raised
 
 /// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
 /// height before and after, metres.
@@ -262,6 +264,7 @@ int run_solar(const std::vector<std::string>& args)
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
     lidarfx::raster<std::uint32_t> points, split_points;  // points per cell and of split pulses (LAS input)
+    lidarfx::raster<std::uint32_t> raised_points;         // of them, raised above the terrain (LAS input)
     lidarfx::raster<float> class_ground;                  // the class-2 terrain chosen by --ground (LAS input)
     lidarfx::grid g;
     double cell_m = 0.0;
@@ -288,6 +291,13 @@ int run_solar(const std::vector<std::string>& args)
         cli::print_survey(s);
         if (a.has("facades")) {
             class_ground = cli::chosen_ground(s, ground_choice, threads);
+            if (!class_ground.empty()) {
+                // The terrain filled as extract_buildings fills it; each building's rim is then decided by the
+                // share of its points raised above it, counted in a second pass over the files.
+                class_ground = lidarfx::fill_ground(class_ground, s.rasters.g.cell, {}, {.threads = threads});
+                raised_points = cli::count_raised_points(inputs, s, survey_options, class_ground,
+                                                         lidarfx::building_candidates_options{}.min_height_m);
+            }
             points = std::move(s.rasters.count);
             split_points = std::move(s.rasters.multiple_return_count);
         }
@@ -417,7 +427,7 @@ int run_solar(const std::vector<std::string>& args)
                        "), on the input's grid; sun for " + place.description);
     if (a.has("facades")) {
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
-                                        .returns = {points.view(), split_points.view()},
+                                        .returns = {points.view(), split_points.view(), raised_points.view()},
                                         .ground = class_ground.view(),
                                         .cell_m = cell_m,
                                         .grid_crs = g,

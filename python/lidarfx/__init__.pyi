@@ -56,7 +56,18 @@ component l. The result does not depend on threads."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def count_points_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, reference: Any, height_m: float, *, grid: Optional[Grid]) -> np.ndarray:
+    """Per cell of grid, the points standing at least height_m above the reference surface there (z >= reference +
+height_m, metres; a cell whose reference is NaN counts none): with the terrain as reference and
+height_m = 2.5, the raised points extract_buildings decides each building's rim by (raised_count).
+
+x, y, z: 1-D coordinates in metres (float64; others converted). reference: float32 raster of the grid's shape
+(e.g. fill_ground of the class-2 terrain). grid: the Grid the points are binned on, as in rasterize. Returns a
+uint32 raster."""
+    ...
+
+
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[float] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -66,7 +77,10 @@ dsm: heights in metres, row 0 north (float32 read in place). cell_m or grid (a G
 coordinates, else in metres from the top-left corner). ground: optional terrain (DTM) in metres; vegetation:
 optional bool mask of trees; or point_count and multiple_return_count (uint32, Rasters.count and
 Rasters.multiple_return_count of the DSM's points): trees told from roofs by their split pulses (a cell with
-half its points from pulses of several returns is vegetation, a part with 20 %). Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+half its points from pulses of several returns is vegetation, a part with 20 %); with them raised_count (uint32,
+count_points_above against the ground, which must then be filled: fill_ground) decides each building's one-cell
+rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
+the roof at its height (within 0.5 m) with half its points raised joins. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid)."""
     ...
@@ -87,6 +101,13 @@ why) data that cannot support the method, such as too few points per cell. islan
 inside a body become water (default 200 m^2). theta_max_deg: last angular threshold (default 30).
 Returns Waterbodies(water: bool map, labels: int32 (0 land, 1..n by decreasing area), bodies: list of
 Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...)."""
+    ...
+
+
+def fill_ground(ground: Optional[ArrayLike], cell_m: float, *, threads: int = 1) -> np.ndarray:
+    """A terrain model (metres, e.g. Rasters.min_z of the class-2 points) with its NaN cells filled by IDW from the
+finite ones (8 nearest, weights 1 / distance), exactly as extract_buildings fills a given ground. cell_m: cell size in metres.
+Returns a float32 raster."""
     ...
 
 

@@ -51,8 +51,9 @@ py::dict geojson(const std::vector<polygon>& parts)
 
 py::object extract_buildings_binding(const py::handle& dsm, const py::handle& cell_arg, const py::handle& grid_arg,
                                      const py::handle& ground_arg, const py::handle& vegetation_arg,
-                                     const py::handle& points_arg, const py::handle& split_arg, double min_height_m,
-                                     double min_area_m2, int threads, py::object progress)
+                                     const py::handle& points_arg, const py::handle& split_arg,
+                                     const py::handle& raised_arg, double min_height_m, double min_area_m2, int threads,
+                                     py::object progress)
 {
     constexpr const char* fn = "extract_buildings";
     const array_input<float> z(dsm, fn, "dsm");
@@ -64,11 +65,13 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     if (points_arg.is_none() != split_arg.is_none())
         value_error(fn, "point_count and multiple_return_count go together");
     if (!points_arg.is_none() && vegetation) value_error(fn, "give vegetation or the pulse counts, not both");
-    std::optional<array_input<std::uint32_t>> points, split;
+    if (!raised_arg.is_none() && points_arg.is_none()) value_error(fn, "raised_count needs point_count");
+    std::optional<array_input<std::uint32_t>> points, split, raised;
     if (!points_arg.is_none()) {
         points.emplace(points_arg, fn, "point_count");
         split.emplace(split_arg, fn, "multiple_return_count");
     }
+    if (!raised_arg.is_none()) raised.emplace(raised_arg, fn, "raised_count");
     extract_buildings_options opt;
     opt.candidates.min_height_m = min_height_m;
     opt.candidates.min_area_m2 = min_area_m2;
@@ -76,7 +79,11 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     opt.run = rs.run();
     extract_buildings_result r = rs.call([&] {
         const raster_view<const float> terrain = ground ? ground->view() : raster_view<const float>{};
-        if (points) return extract_buildings(z.view(), g, terrain, pulse_returns{points->view(), split->view()}, opt);
+        if (points)
+            return extract_buildings(z.view(), g, terrain,
+                                     pulse_returns{points->view(), split->view(),
+                                                   raised ? raised->view() : raster_view<const std::uint32_t>{}},
+                                     opt);
         return extract_buildings(z.view(), g, terrain,
                                  vegetation ? vegetation->view() : raster_view<const std::uint8_t>{}, opt);
     });
@@ -228,13 +235,19 @@ py::object azimuth_mode_select_binding(const py::handle& histogram, double windo
 
 }  // namespace
 
+py::object fill_ground_binding(const py::handle& ground_arg, double cell_m, int threads)
+{
+    const array_input<float> ground(ground_arg, "fill_ground", "ground");
+    return to_numpy(fill_ground(ground.view(), cell_m, {}, {.threads = threads}));
+}
+
 void bind_buildings(py::module_& m)
 {
     using namespace pybind11::literals;
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
           "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
-          "multiple_return_count"_a = py::none(), "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "threads"_a = 1,
-          "progress"_a = py::none(), R"doc(
+          "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "min_height_m"_a = 2.5,
+          "min_area_m2"_a = 15.0, "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -244,9 +257,17 @@ dsm: heights in metres, row 0 north (float32 read in place). cell_m or grid (a G
 coordinates, else in metres from the top-left corner). ground: optional terrain (DTM) in metres; vegetation:
 optional bool mask of trees; or point_count and multiple_return_count (uint32, Rasters.count and
 Rasters.multiple_return_count of the DSM's points): trees told from roofs by their split pulses (a cell with
-half its points from pulses of several returns is vegetation, a part with 20 %). Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+half its points from pulses of several returns is vegetation, a part with 20 %); with them raised_count (uint32,
+count_points_above against the ground, which must then be filled: fill_ground) decides each building's one-cell
+rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
+the roof at its height (within 0.5 m) with half its points raised joins. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid).)doc");
+
+    m.def("fill_ground", &fill_ground_binding, "ground"_a, "cell_m"_a, py::kw_only(), "threads"_a = 1, R"doc(
+A terrain model (metres, e.g. Rasters.min_z of the class-2 points) with its NaN cells filled by IDW from the
+finite ones (8 nearest, weights 1 / distance), exactly as extract_buildings fills a given ground. cell_m: cell size in metres.
+Returns a float32 raster.)doc");
 
     m.def("roof_suitability", &roof_suitability_binding, "dsm"_a, "dtm"_a, "building_id"_a, "cell_m"_a = py::none(),
           py::kw_only(), "grid"_a = py::none(), "mode"_a = "planes", "min_height_m"_a = 2.0, "min_patch_m2"_a = 8.0,

@@ -6,6 +6,7 @@
 #include <lidarfx/kernels/filter/slope_aspect.hpp>
 #include <lidarfx/kernels/filter/surface_outliers.hpp>
 #include <lidarfx/kernels/label/connected_components.hpp>
+#include <lidarfx/kernels/points/count_points_above.hpp>
 #include <lidarfx/kernels/points/rasterize.hpp>
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
 
@@ -187,6 +188,21 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
     return make_result("Rasters", fields);
 }
 
+py::object count_points_above_binding(const py::handle& x, const py::handle& y, const py::handle& z,
+                                      const py::handle& reference, double height_m, const py::handle& grid_arg)
+{
+    constexpr const char* fn = "count_points_above";
+    const auto xs = vector_input<double>(x, fn, "x"), ys = vector_input<double>(y, fn, "y"),
+               zs = vector_input<double>(z, fn, "z");
+    const array_input<float> ref(reference, fn, "reference");
+    const std::optional<grid> g = grid_from_python(grid_arg, fn);
+    if (!g) value_error(fn, "grid is required: the Grid the reference raster lies on");
+    const soa_cloud<> cloud({xs.data(), static_cast<std::size_t>(xs.size())},
+                            {ys.data(), static_cast<std::size_t>(ys.size())},
+                            {zs.data(), static_cast<std::size_t>(zs.size())});
+    return to_numpy(count_points_above(cloud, *g, ref.view(), height_m));
+}
+
 /// The benchmark's C++ side: seconds of each of `repeats` angular_filter calls made in C++ on the same view
 /// the binding reads (no Python between them), for bench/python_overhead.py.
 std::vector<double> angular_filter_cpp_seconds(const py::handle& z, double cell_m, int radius_cells, int threads,
@@ -267,6 +283,16 @@ Returns KsResult(d, critical, reject, p_value).)doc");
 
     m.def("_angular_filter_cpp_seconds", &angular_filter_cpp_seconds, "z"_a, "cell_m"_a, "radius_cells"_a = 2,
           "threads"_a = 1, "repeats"_a = 5, "Benchmark hook: seconds of each angular_filter call timed in C++.");
+
+    m.def("count_points_above", &count_points_above_binding, "x"_a, "y"_a, "z"_a, "reference"_a, "height_m"_a,
+          py::kw_only(), "grid"_a, R"doc(
+Per cell of grid, the points standing at least height_m above the reference surface there (z >= reference +
+height_m, metres; a cell whose reference is NaN counts none): with the terrain as reference and
+height_m = 2.5, the raised points extract_buildings decides each building's rim by (raised_count).
+
+x, y, z: 1-D coordinates in metres (float64; others converted). reference: float32 raster of the grid's shape
+(e.g. fill_ground of the class-2 terrain). grid: the Grid the points are binned on, as in rasterize. Returns a
+uint32 raster.)doc");
 
     m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(), "returns"_a = py::none(),
           "nreturns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(), "classification"_a = py::none(),

@@ -169,3 +169,34 @@ def test_extract_buildings_with_pulse_counts_keeps_a_rough_roof_and_drops_a_crow
     with pytest.raises(ValueError):
         lidarfx.extract_buildings(dsm, 0.5, vegetation=split > 0, point_count=points, multiple_return_count=split)
 
+
+
+def test_extract_buildings_decides_the_rim_by_the_raised_points(rng):
+    # A 20 m x 12 m flat roof 8 m high on level ground at 100 m, 1 m cells, 16 points per m^2. The DSM keeps each
+    # cell's highest point, so the cells the walls cross read as roof although most of their points are ground.
+    grid = lidarfx.Grid(x0=0.0, y0=40.0, cell_m=1.0, rows=40, cols=40)
+    n = 40 * 40 * 16
+    x, y = rng.uniform(0, 40, n), rng.uniform(0, 40, n)
+    on_roof = (x >= 10.7) & (x < 30.3) & (y >= 14.7) & (y < 26.3)   # the walls cross the edge cells, 30 % roof
+    z = np.where(on_roof, 108.0, 100.0) + rng.normal(0, 0.02, n)
+    r = lidarfx.rasterize(x, y, z, grid=grid)
+    dsm = r.max_z
+    ground = lidarfx.fill_ground(np.where(r.max_z < 104, r.min_z, np.nan).astype(np.float32), 1.0)
+    assert np.isfinite(ground).all() and abs(float(ground[20, 20]) - 100.0) < 0.1
+    raised = lidarfx.count_points_above(x, y, z, ground, 2.5, grid=grid)
+    assert raised.dtype == np.uint32 and (raised <= r.count).all()
+    assert raised[20, 20] == r.count[20, 20] and raised[2, 2] == 0
+    no_split = np.zeros_like(r.count)
+    by_dsm = lidarfx.extract_buildings(dsm, grid=grid, ground=ground, point_count=r.count,
+                                       multiple_return_count=no_split)
+    by_points = lidarfx.extract_buildings(dsm, grid=grid, ground=ground, point_count=r.count,
+                                          multiple_return_count=no_split, raised_count=raised)
+    assert len(by_dsm.buildings) == len(by_points.buildings) == 1
+    # The true footprint is 19.6 m x 11.6 m = 227 m^2: the DSM's rule takes every cell a wall crosses (21 x 13 =
+    # 273), the points' rule only the cells mostly under the roof (19 x 11 = 209).
+    assert by_dsm.buildings[0].roof_area_horizontal_m2 == pytest.approx(273, abs=3)
+    assert by_points.buildings[0].roof_area_horizontal_m2 == pytest.approx(209, abs=3)
+    with pytest.raises(ValueError, match="raised_count needs point_count"):
+        lidarfx.extract_buildings(dsm, grid=grid, ground=ground, raised_count=raised)
+    with pytest.raises(ValueError, match="grid is required"):
+        lidarfx.count_points_above(x, y, z, ground, 2.5, grid=None)

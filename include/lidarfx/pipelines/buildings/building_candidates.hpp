@@ -54,6 +54,13 @@ inline void check_building_candidates(const building_candidates_options& opt, co
             opt.min_area_m2);
 }
 
+/// The fewest cells of a part building_candidates keeps (min_area_m2 in cells of cell_m, at least 1).
+inline std::size_t min_part_cells(const building_candidates_options& opt, double cell_m)
+{
+    const auto cells = static_cast<std::size_t>(std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9));
+    return std::max<std::size_t>(1, cells);
+}
+
 /// The vegetation mask as used: 1 where `vegetation` is 1, or where the DSM has no return and an 8-neighbour is
 /// vegetation (leaves scatter the pulse: the hole under a crown belongs to the crown).
 template <raster_input In>
@@ -104,13 +111,13 @@ building_candidates_result building_candidates(const In& dsm, const ground_model
             candidate(r, c) = terrain.in_hull(r, c) && high && !out.vegetation(r, c) ? 1 : 0;
         }
     }
-    const auto min_cells = static_cast<std::size_t>(std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9));
-    candidate = fill_holes(candidate, min_cells > 0 ? min_cells - 1 : 0, connectivity::four);
+    const std::size_t min_cells = detail::min_part_cells(opt, cell_m);
+    candidate = fill_holes(candidate, min_cells - 1, connectivity::four);
     components parts = connected_components(
         candidate, connected_components_options{.conn = connectivity::four, .run = {run.threads, {}}});
     rank_by_size(parts);
     std::size_t kept = 0;
-    while (kept < parts.count() && parts.sizes[kept + 1] >= std::max<std::size_t>(1, min_cells)) ++kept;
+    while (kept < parts.count() && parts.sizes[kept + 1] >= min_cells) ++kept;
     for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i) {
         const auto l = static_cast<std::size_t>(parts.labels.data()[i]);
         out.building_id.data()[i] = l <= kept ? static_cast<std::int32_t>(l) : 0;

@@ -20,6 +20,7 @@
 #include "lidarfx/pipelines/buildings/building_candidates.hpp"
 #include "lidarfx/pipelines/buildings/building_heights.hpp"
 #include "lidarfx/pipelines/buildings/building_outlines.hpp"
+#include "lidarfx/pipelines/buildings/building_rim.hpp"
 #include "lidarfx/pipelines/buildings/ground_model.hpp"
 #include "lidarfx/pipelines/buildings/grow_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/local_planes.hpp"
@@ -37,6 +38,7 @@ struct extract_buildings_options {
     grow_roof_surfaces_options surfaces = {};     ///< plane_angle_deg (6), step_m (0.3 m), min_surface_m2 (4 m^2)
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
     vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
+    building_rim_options rim = {};                ///< min_raised_share (0.5), join_height_m (0.5 m)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -76,7 +78,8 @@ struct extract_buildings_result {
 ///  1. ground_model: DSM holes filled by IDW, edges, edge objects, one convex hull each, ground outside the
 ///     hulls and IDW inside (replace_ground when `ground` is given);
 ///  2. building_candidates: inside a hull, high above the ground, not vegetation; parts of min_area_m2;
-///  3. local_planes (edge-preserving local plane fits) and drop_rough_buildings (canopy dropped);
+///  3. local_planes (edge-preserving local plane fits) and drop_rough_buildings (canopy dropped); with counted
+///     pulses, drop_vegetation_parts instead and refine_building_rim when raised points are counted;
 ///  4. grow_roof_surfaces: regions of planar cells grown by normal and height step;
 ///  5. dissolve_small_surfaces, assign_remaining_cells (eaves, ridges, wall tops to the nearest plane in
 ///     height), merge_roof_surfaces (adjacent surfaces that one plane fits);
@@ -96,12 +99,17 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 /// several returns), and step 3 drops the candidates drop_vegetation_parts finds unseen (few returns: a surface
 /// interpolated over water between crowns) or vegetation (at least returns.part_share of split pulses) instead
 /// of every rough part: dense old roofs at 1 m cells (dormers, chimneys, narrow gables) are rough, yet their
-/// pulses are whole.
+/// pulses are whole. When returns.raised is given (the points standing candidates.min_height_m above `ground`,
+/// which must then have no NaN where a cell holds points: e.g. fill_ground's), each building's one-cell rim is
+/// then decided by its points (refine_building_rim): a wall's cell whose points lie mostly on the ground leaves
+/// the building, an eave cell whose pulses split on the roof's edge joins it; buildings are numbered by area
+/// again.
 /// A survey without any split pulse (single-return sensors, or number_of_returns left at 1) says nothing of
-/// trees: it takes the mask route with an empty mask, rough parts dropped. Otherwise as extract_buildings
+/// trees: it takes the mask route with an empty mask, rough parts dropped (its rim is still decided by
+/// returns.raised when given). Otherwise as extract_buildings
 /// above; rejected_rough counts the parts dropped as vegetation or unseen.
-/// @throws invalid_input as extract_buildings, and if returns.points or returns.multiple differ from the DSM's
-/// shape or some cell counts more split pulses than points.
+/// @throws invalid_input as extract_buildings, and if returns.points, returns.multiple or returns.raised (when
+/// given) differ from the DSM's shape or some cell counts more split pulses (or raised points) than points.
 template <raster_input In>
 extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
                                            const pulse_returns& returns, const extract_buildings_options& opt = {});
@@ -130,6 +138,7 @@ inline void check_extract_buildings(const grid& g, const extract_buildings_optio
             opt.returns.part_share);
     require(opt.returns.min_seen_density >= 0 && opt.returns.min_seen_density <= 1, function,
             "returns.min_seen_density", "in [0, 1]", opt.returns.min_seen_density);
+    check_building_rim(opt.rim, function);
     check_execution(opt.run, function);
 }
 
@@ -160,11 +169,13 @@ inline std::vector<bool> clipped_buildings(raster_view<const std::int32_t> ids, 
 
 namespace detail {
 
-/// The steps of both extract_buildings: `returns` null judges candidates by roughness alone.
+/// The steps of both extract_buildings: candidates are judged by their returns when `split_seen` (the survey
+/// split some pulse), else by roughness alone; the rim is decided by returns->raised when given.
 template <raster_input In>
 extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, raster_view<const float> ground,
                                                  raster_view<const std::uint8_t> vegetation,
-                                                 const pulse_returns* returns, const extract_buildings_options& opt)
+                                                 const pulse_returns* returns, bool split_seen,
+                                                 const extract_buildings_options& opt)
 {
     constexpr const char* function = "extract_buildings";
     check_extract_buildings(g, opt, function);
@@ -191,10 +202,14 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
 
     const raster_view<const float> z = terrain.surface;
     const local_planes_result lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
-    const auto [kept, rough] =
-        returns ? drop_vegetation_parts(out.building_id, candidates.count, *returns, opt.returns)
-                : drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
+    auto [kept, rough] = split_seen
+                             ? drop_vegetation_parts(out.building_id, candidates.count, *returns, opt.returns)
+                             : drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
     out.rejected_rough = rough;
+    if (returns && !returns->raised.empty() && kept > 0) {
+        refine_building_rim(out.building_id, kept, z, returns->points, returns->raised, opt.rim);
+        kept = detail::drop_small_pieces(out.building_id, kept, detail::min_part_cells(opt.candidates, cell_m));
+    }
     detail::report(opt.run.progress, 0.6, function);
 
     roof_regions regions = grow_roof_surfaces(z, out.building_id, lp, cell_m, opt.local_planes, opt.surfaces);
@@ -238,7 +253,7 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
                                            raster_view<const std::uint8_t> vegetation,
                                            const extract_buildings_options& opt)
 {
-    return detail::extract_buildings_steps(dsm, g, ground, vegetation, nullptr, opt);
+    return detail::extract_buildings_steps(dsm, g, ground, vegetation, nullptr, false, opt);
 }
 
 template <raster_input In>
@@ -248,13 +263,15 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     constexpr const char* function = "extract_buildings";
     detail::require_same_shape(dsm, returns.points, function, "dsm", "returns.points");
     detail::require_same_shape(returns.points, returns.multiple, function, "returns.points", "returns.multiple");
+    if (!returns.raised.empty())
+        detail::require_same_shape(returns.points, returns.raised, function, "returns.points", "returns.raised");
     bool any_split = false;
     for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
         for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)
             any_split = returns.multiple(r, c) > 0;
-    if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, opt);
+    if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, &returns, false, opt);
     const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
-    return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, opt);
+    return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, true, opt);
 }
 
 }  // namespace lidarfx

@@ -66,6 +66,12 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
 inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
                            const ground_model_options& opt = {}, const execution& run = {});
 
+/// A given terrain model `ground` with its NaN and infinite cells filled by IDW from the finite ones, exactly as
+/// replace_ground fills it: the terrain extract_buildings cuts its candidates from when given `ground` (count
+/// raised points against it). @throws as replace_ground.
+inline raster<float> fill_ground(raster_view<const float> ground, double cell_m, const ground_model_options& opt = {},
+                                 const execution& run = {});
+
 /// nDSM = surface - ground per cell (heights above the terrain, metres); NaN where either is NaN.
 /// @throws invalid_input if the shapes differ.
 template <raster_input Surface, raster_input Ground>
@@ -161,13 +167,34 @@ ground_model_result ground_model(const In& dsm, double cell_m, const ground_mode
     return out;
 }
 
+namespace detail {
+
+/// fill_ground, its errors naming `function`.
+inline raster<float> filled_ground(raster_view<const float> ground, double cell_m, const ground_model_options& opt,
+                                   const execution& run, const char* function);
+
+}  // namespace detail
+
 inline void replace_ground(ground_model_result& terrain, raster_view<const float> ground, double cell_m,
                            const ground_model_options& opt, const execution& run)
 {
-    constexpr const char* function = "replace_ground";
+    detail::require_same_shape(terrain.ground, ground, "replace_ground", "terrain", "ground");
+    terrain.ground = detail::filled_ground(ground, cell_m, opt, run, "replace_ground");
+}
+
+inline raster<float> fill_ground(raster_view<const float> ground, double cell_m, const ground_model_options& opt,
+                                 const execution& run)
+{
+    return detail::filled_ground(ground, cell_m, opt, run, "fill_ground");
+}
+
+namespace detail {
+
+inline raster<float> filled_ground(raster_view<const float> ground, double cell_m, const ground_model_options& opt,
+                                   const execution& run, const char* function)
+{
     detail::check_ground_model(cell_m, opt, function);
     detail::check_execution(run, function);
-    detail::require_same_shape(terrain.ground, ground, function, "terrain", "ground");
     const std::ptrdiff_t rows = ground.rows(), cols = ground.cols();
     raster<float> given(rows, cols);
     bool any = false;
@@ -179,9 +206,12 @@ inline void replace_ground(ground_model_result& terrain, raster_view<const float
         }
     }
     detail::require(any, function, "ground has no finite cell: pass an empty view to estimate the terrain");
-    idw_fill(given, terrain.ground, cell_m,
-             idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {run.threads, {}}});
+    raster<float> filled(rows, cols);
+    idw_fill(given, filled, cell_m, idw_fill_options{.k = opt.idw_k, .power = opt.idw_power, .run = {run.threads, {}}});
+    return filled;
 }
+
+}  // namespace detail
 
 template <raster_input Surface, raster_input Ground>
 raster<float> ndsm(const Surface& surface, const Ground& ground)

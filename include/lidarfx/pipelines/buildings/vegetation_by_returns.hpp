@@ -21,11 +21,16 @@ namespace lidarfx {
 struct pulse_returns {
     raster_view<const std::uint32_t> points;    ///< points in the cell
     raster_view<const std::uint32_t> multiple;  ///< of them, points whose pulse had more than one return
+    /// Of them, points raised above the terrain (count_points_above against the terrain given to
+    /// extract_buildings, by its candidates' min_height_m); empty = not counted. extract_buildings then decides
+    /// each building's rim by them (refine_building_rim).
+    raster_view<const std::uint32_t> raised;
 
     /// Empty counts. Explicit, so that a `{}` argument never reads as pulse counts.
     explicit pulse_returns() = default;
-    pulse_returns(raster_view<const std::uint32_t> points_in, raster_view<const std::uint32_t> multiple_in)
-        : points(points_in), multiple(multiple_in)
+    pulse_returns(raster_view<const std::uint32_t> points_in, raster_view<const std::uint32_t> multiple_in,
+                  raster_view<const std::uint32_t> raised_in = {})
+        : points(points_in), multiple(multiple_in), raised(raised_in)
     {
     }
 };

@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: Apache-2.0
+// refine_building_rim: the one-cell rim of each building decided by its points, not by its highest return
+// (extract_buildings step 3b, when the survey's raised points are counted).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+
+namespace lidarfx {
+
+/// Settings of refine_building_rim.
+struct building_rim_options {
+    /// A rim cell is building when at least this share of its points are raised (stand the candidates'
+    /// min_height_m above the terrain); in (0, 1]. Half: the cell is building when most of its area is roof, as
+    /// far as evenly spread points tell, the rule by which a classified survey's cells are building or not.
+    double min_raised_share = 0.5;
+    /// A cell outside a building joins it only when its surface lies within this of the surface of a building
+    /// cell beside it, metres; >= 0. A roof's eave cell lies at the roof's height; a crown beside a roof seldom
+    /// does.
+    double join_height_m = 0.5;
+};
+
+/// What refine_building_rim changed.
+struct building_rim_result {
+    std::size_t joined = 0;  ///< cells that joined a building
+    std::size_t left = 0;    ///< cells that left their building
+};
+
+/// Decides the rim of the buildings 1..count of `building_id` by the survey's points (in place):
+///  - a building cell with an 8-neighbour outside its building leaves it when fewer than min_raised_share of
+///    its points are raised (a wall's cell: the DSM keeps the eave's highest return, yet most points lie on the
+///    ground in front of it);
+///  - a cell outside every building with a building 8-neighbour whose surface `z` lies within join_height_m of
+///    its own joins that neighbour's building when at least min_raised_share of its points are raised (an eave
+///    whose pulses split on the roof's edge: vegetation by its returns, yet roof). Of several such neighbours
+///    it takes the one closest in height (ties: across an edge, then the lowest id). A cell whose neighbour is
+///    across a corner joins only when a cell beside it (across an edge) is of that building afterwards, so no
+///    building gains a part that touches it at a corner only;
+///  - a building cell that the leaving cells leave without a neighbour of its building across an edge leaves
+///    too (no one-cell parts).
+/// `points` and `raised` count each cell's points and, of them, the raised ones (count_points_above against
+/// the terrain the candidates were cut from). Cells without points, and cells of ids outside 1..count, are left
+/// as they are. Each kind of decision is taken on the ids as they were before it (leaves and joins across an
+/// edge on the ids before the step, joins across a corner after those, cut-off cells after every join), so
+/// the result does not depend on the order of the cells; a building never loses its last cell (when the
+/// cells cut off are all it has left, it keeps them). Buildings keep their ids. O(cells).
+/// @throws invalid_input on an option out of range, shapes that differ, or a cell with more raised points
+/// than points.
+inline building_rim_result refine_building_rim(raster_view<std::int32_t> building_id, std::size_t count,
+                                               raster_view<const float> z, raster_view<const std::uint32_t> points,
+                                               raster_view<const std::uint32_t> raised,
+                                               const building_rim_options& opt = {});
+
+// ---- implementation ----
+
+namespace detail {
+
+inline void check_building_rim(const building_rim_options& opt, const char* function)
+{
+    require(opt.min_raised_share > 0 && opt.min_raised_share <= 1, function, "min_raised_share", "in (0, 1]",
+            opt.min_raised_share);
+    require(opt.join_height_m >= 0 && opt.join_height_m < 1e300, function, "join_height_m", "finite and >= 0",
+            opt.join_height_m);
+}
+
+/// After refine_building_rim: drops, in place, the 4-connected pieces of buildings 1..count smaller than
+/// min_cells (a wall's cells that left may cut a corner or a narrow wing off), then renumbers the buildings left
+/// by decreasing footprint (cells), ties by their old id. Cells of other ids are left as they are. Returns the
+/// number of buildings left. O(cells).
+inline std::size_t drop_small_pieces(raster_view<std::int32_t> building_id, std::size_t count, std::size_t min_cells);
+
+}  // namespace detail
+
+inline building_rim_result refine_building_rim(raster_view<std::int32_t> building_id, std::size_t count,
+                                               raster_view<const float> z, raster_view<const std::uint32_t> points,
+                                               raster_view<const std::uint32_t> raised, const building_rim_options& opt)
+{
+    constexpr const char* function = "refine_building_rim";
+    detail::check_building_rim(opt, function);
+    detail::require_same_shape(building_id, z, function, "building_id", "z");
+    detail::require_same_shape(building_id, points, function, "building_id", "points");
+    detail::require_same_shape(building_id, raised, function, "building_id", "raised");
+    const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
+    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
+        const std::int32_t b = building_id(r, c);
+        return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
+    };
+    std::vector<std::size_t> cells(count + 1, 0);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            detail::require(raised(r, c) <= points(r, c), function, "raised must not exceed points in any cell");
+            ++cells[static_cast<std::size_t>(id_of(r, c))];
+        }
+    }
+    // Decisions on the ids as they are, applied afterwards: cells that leave, and cells that join (across an
+    // edge, or across a corner when a cell beside it joins or is of that building afterwards).
+    struct change {
+        std::ptrdiff_t r, c;
+        std::int32_t id;
+        bool corner;
+    };
+    std::vector<change> leaves, joins;
+    std::vector<std::size_t> leaving(count + 1, 0);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const std::uint32_t n = points(r, c);
+            if (n == 0) continue;
+            const bool is_raised = static_cast<double>(raised(r, c)) >= opt.min_raised_share * n;
+            const std::int32_t own = id_of(r, c);
+            const double zc = static_cast<double>(z(r, c));
+            std::int32_t best = 0;
+            double best_dz = 0;
+            bool on_rim = false, best_corner = false;
+            for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+                for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                    const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                    if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                    const std::int32_t nb = id_of(rr, cc);
+                    if (own != 0) {
+                        on_rim = on_rim || nb != own;
+                        continue;
+                    }
+                    if (nb == 0) continue;
+                    const double dz = std::fabs(zc - static_cast<double>(z(rr, cc)));
+                    if (!(dz <= opt.join_height_m)) continue;
+                    const bool corner = dr != 0 && dc != 0;
+                    // Best: closest in height, then across an edge before a corner, then the lowest id.
+                    if (best == 0 || dz < best_dz || (dz == best_dz && (best_corner && !corner)) ||
+                        (dz == best_dz && corner == best_corner && nb < best))
+                        best = nb, best_dz = dz, best_corner = corner;
+                }
+            }
+            if (own != 0 && on_rim && !is_raised) {
+                leaves.push_back({r, c, 0, false});
+                ++leaving[static_cast<std::size_t>(own)];
+            } else if (own == 0 && best != 0 && is_raised) {
+                joins.push_back({r, c, best, best_corner});
+            }
+        }
+    }
+    building_rim_result out;
+    std::vector<bool> stays_whole(count + 1, false);  // every cell would leave: the building stays as it was
+    for (std::size_t b = 1; b <= count; ++b) stays_whole[b] = leaving[b] >= cells[b];
+    for (const change& ch : leaves) {
+        const auto b = static_cast<std::size_t>(building_id(ch.r, ch.c));
+        if (stays_whole[b]) continue;
+        building_id(ch.r, ch.c) = 0;
+        --cells[b];
+        ++out.left;
+    }
+    const auto has_edge_neighbour = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t b) {
+        return (r > 0 && building_id(r - 1, c) == b) || (r + 1 < rows && building_id(r + 1, c) == b) ||
+               (c > 0 && building_id(r, c - 1) == b) || (c + 1 < cols && building_id(r, c + 1) == b);
+    };
+    const auto join = [&](const change& ch) {
+        building_id(ch.r, ch.c) = ch.id;
+        ++cells[static_cast<std::size_t>(ch.id)];
+        ++out.joined;
+    };
+    for (const change& ch : joins)
+        if (!ch.corner) join(ch);
+    std::vector<change> corner_joins;  // decided on the ids after the joins across an edge
+    for (const change& ch : joins)
+        if (ch.corner && has_edge_neighbour(ch.r, ch.c, ch.id)) corner_joins.push_back(ch);
+    for (const change& ch : corner_joins) join(ch);
+    // A cell that the leaving cells cut off from its building (no edge neighbour of it left) leaves too; decided
+    // on the ids after the joins.
+    std::vector<change> cut_off;
+    for (const change& ch : leaves) {
+        for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
+            for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
+                const std::ptrdiff_t rr = ch.r + dr, cc = ch.c + dc;
+                if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
+                const std::int32_t b = id_of(rr, cc);
+                if (b == 0 || cells[static_cast<std::size_t>(b)] <= 1 || has_edge_neighbour(rr, cc, b)) continue;
+                cut_off.push_back({rr, cc, b, false});
+            }
+        }
+    }
+    std::sort(cut_off.begin(), cut_off.end(),
+              [](const change& a, const change& b) { return a.r != b.r ? a.r < b.r : a.c < b.c; });
+    cut_off.erase(std::unique(cut_off.begin(), cut_off.end(),
+                              [](const change& a, const change& b) { return a.r == b.r && a.c == b.c; }),
+                  cut_off.end());  // a cell beside two leaving cells is listed twice
+    std::vector<std::size_t> cut(count + 1, 0);
+    for (const change& ch : cut_off) ++cut[static_cast<std::size_t>(ch.id)];
+    for (const change& ch : cut_off) {
+        const auto b = static_cast<std::size_t>(ch.id);
+        if (cut[b] >= cells[b]) continue;  // all the building has left: it keeps these cells
+        building_id(ch.r, ch.c) = 0;
+        ++out.left;
+    }
+    return out;
+}
+
+inline std::size_t detail::drop_small_pieces(raster_view<std::int32_t> building_id, std::size_t count,
+                                             std::size_t min_cells)
+{
+    const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
+    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
+        const std::int32_t b = building_id(r, c);
+        return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
+    };
+    // Pieces by flood fill over edge neighbours of the same id; small ones are cleared.
+    raster<std::uint8_t> seen(rows, cols);
+    std::vector<std::ptrdiff_t> piece, stack;
+    std::vector<std::size_t> cells(count + 1, 0);
+    for (std::ptrdiff_t r0 = 0; r0 < rows; ++r0) {
+        for (std::ptrdiff_t c0 = 0; c0 < cols; ++c0) {
+            const std::int32_t b = id_of(r0, c0);
+            if (b == 0 || seen(r0, c0)) continue;
+            piece.clear();
+            stack.assign(1, r0 * cols + c0);
+            seen(r0, c0) = 1;
+            while (!stack.empty()) {
+                const std::ptrdiff_t p = stack.back();
+                stack.pop_back();
+                piece.push_back(p);
+                const std::ptrdiff_t r = p / cols, c = p % cols;
+                const std::ptrdiff_t nr[4] = {r - 1, r + 1, r, r}, nc[4] = {c, c, c - 1, c + 1};
+                for (int k = 0; k < 4; ++k) {
+                    if (nr[k] < 0 || nc[k] < 0 || nr[k] >= rows || nc[k] >= cols) continue;
+                    if (seen(nr[k], nc[k]) || building_id(nr[k], nc[k]) != b) continue;
+                    seen(nr[k], nc[k]) = 1;
+                    stack.push_back(nr[k] * cols + nc[k]);
+                }
+            }
+            if (piece.size() >= min_cells) {
+                cells[static_cast<std::size_t>(b)] += piece.size();
+                continue;
+            }
+            for (const std::ptrdiff_t p : piece) building_id(p / cols, p % cols) = 0;
+        }
+    }
+    // New ids: by decreasing footprint, ties by the old id; buildings without a cell left get none.
+    std::vector<std::int32_t> order;
+    for (std::size_t b = 1; b <= count; ++b)
+        if (cells[b] > 0) order.push_back(static_cast<std::int32_t>(b));
+    std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+        return cells[static_cast<std::size_t>(a)] > cells[static_cast<std::size_t>(b)];
+    });
+    std::vector<std::int32_t> new_of(count + 1, 0);
+    for (std::size_t k = 0; k < order.size(); ++k)
+        new_of[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (const std::int32_t b = id_of(r, c); b != 0) building_id(r, c) = new_of[static_cast<std::size_t>(b)];
+    return order.size();
+}
+
+}  // namespace lidarfx
