@@ -666,6 +666,18 @@ void add_class_ground(survey& s, const grid& g, const io::las_points& points)
     }
 }
 
+// Counts the class-6 (building) points of a chunk (metres) in survey::class_buildings.
+void add_class_buildings(survey& s, const grid& g, const io::las_points& points)
+{
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (points.classification[i] != 6) continue;
+        const auto at = g.cell_of(points.x[i], points.y[i]);
+        if (!at || !std::isfinite(points.z[i])) continue;
+        ++s.class_buildings(at->row, at->col);
+        ++s.class_building_points;
+    }
+}
+
 }  // namespace
 
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
@@ -710,10 +722,12 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     std::optional<scan_coverage> scans;
     std::size_t scan_file = paths.size();
     if (opt.class_ground) s.class_ground = raster<float>(g.rows, g.cols, std::numeric_limits<float>::quiet_NaN());
+    if (opt.class_buildings) s.class_buildings = raster<std::uint32_t>(g.rows, g.cols);
     const auto add = [&](const chunk& c, std::size_t n) {
         const std::size_t outside_before = acc.points_outside();
         acc.add(c.points.cloud());
         if (opt.class_ground) add_class_ground(s, g, c.points);
+        if (opt.class_buildings) add_class_buildings(s, g, c.points);
         if (outliers) outliers->add(c.points.x, c.points.y);
         if (!c.points.gps_time.empty()) {
             if (!scans) scans.emplace(g);
@@ -779,6 +793,27 @@ raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths,
         }
     }
     return counts;
+}
+
+raster<std::uint8_t> class_building_cells(const survey& s)
+{
+    if (s.class_building_points == 0)
+        throw usage_error(
+            "--buildings class6: no point of the survey is of class 6 (building); use --buildings "
+            "points to find the buildings from the surface");
+    const raster<std::uint32_t>& all = s.rasters.count;
+    raster<std::uint8_t> cells(all.rows(), all.cols());
+    std::size_t n = 0;
+    for (std::ptrdiff_t r = 0; r < all.rows(); ++r) {
+        for (std::ptrdiff_t c = 0; c < all.cols(); ++c) {
+            const bool building = all(r, c) > 0 && 2 * static_cast<std::uint64_t>(s.class_buildings(r, c)) >= all(r, c);
+            cells(r, c) = building ? 1 : 0;
+            n += building;
+        }
+    }
+    std::cout << "buildings: class 6 (building), " << s.class_building_points << " points, " << n
+              << " cells where they are at least half of the points\n";
+    return cells;
 }
 
 raster<std::uint8_t> footprint_of(const survey& s, double hull_radius_m, int threads)

@@ -77,6 +77,7 @@ struct survey_options {
     bool force = false;                     ///< run even when the cell is far too small for the point density
     output_formats formats;                 ///< what the command writes (--formats)
     bool class_ground = false;              ///< also keep survey::class_ground (4 bytes per cell)
+    bool class_buildings = false;           ///< also count survey::class_buildings (4 bytes per cell)
 };
 
 /// --formats: raster formats asc,tif,png and vector formats csv,geojson,gpkg, any non-empty subset. Each
@@ -118,7 +119,10 @@ struct survey {
     /// survey_options::class_ground
     raster<float> class_ground;
     std::size_t class_ground_points = 0;  ///< points of class 2 on the grid (with survey_options::class_ground)
-    double unit_xy = 1, unit_z = 1;       ///< metres per unit of the files' x and y, and of z
+    /// Points of class 6 (building) in each cell; empty unless survey_options::class_buildings
+    raster<std::uint32_t> class_buildings;
+    std::size_t class_building_points = 0;  ///< points of class 6 on the grid (with survey_options::class_buildings)
+    double unit_xy = 1, unit_z = 1;         ///< metres per unit of the files' x and y, and of z
 };
 
 /// Points counted in 256 x 256 bins over a survey's header box (metres): what refuse_outliers decides on.
@@ -222,6 +226,11 @@ raster<float> chosen_ground(survey& s, const std::string& choice, int threads);
 /// bad input files.
 raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths, const survey& s,
                                           const survey_options& opt, raster_view<const float> terrain, double height_m);
+
+/// The cells of a survey read with class_buildings where at least half of the points are of class 6 (the
+/// vendor's buildings): --buildings class6. Says how many class-6 points there are on stdout.
+/// @throws usage_error for a survey without a point of class 6.
+raster<std::uint8_t> class_building_cells(const survey& s);
 
 /// Refuses (usage_error) a --ground value other than auto, class2, filter or model.
 void check_ground_choice(const std::string& choice);

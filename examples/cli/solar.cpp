@@ -90,6 +90,9 @@ constexpr const char* usage =
     "                 buildings); auto = class2 when >= 1 % of the points are class 2, else filter. With\n"
     "                 class2 or filter the files are read twice: a building's edge cells are decided by the\n"
     "                 share of their points standing 2.5 m above that terrain (half or more: building)\n"
+    "  --buildings B  where the buildings of --facades come from, LAS input [points]: points = found from the\n"
+    "                 surface, the terrain and the returns (above); class6 = the cells where at least half of\n"
+    "                 the points are of the vendor's building class (ASPRS 6), parts under 15 m2 dropped\n"
     "  --memory SIZE  the memory budget (4GiB, 512MiB) that the survey grid, the DSM and the\n"
     "                 weather file are checked against before they are read (exit code 2) [half the memory]\n"
     "  --threads N    threads, 0 = all cores [0]; same result for every N\n";
@@ -191,7 +194,7 @@ int run_solar(const std::vector<std::string>& args)
     namespace cli = lidarfx::cli;
     const cli::arguments a(args,
                            {"out", "tmy", "lat", "lon", "cell", "year", "threads", "memory", "crop", "formats",
-                            "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit", "ground"},
+                            "diffuse", "svf", "svf-directions", "surface", "xy-unit", "z-unit", "ground", "buildings"},
                            {"help", "force", "year-from-tmy", "facades", "keep-outliers"});
     if (const auto code = cli::stop_for_usage(a, usage, true)) return *code;
     const int threads = a.integer("threads", 0);
@@ -215,6 +218,10 @@ int run_solar(const std::vector<std::string>& args)
     const std::string ground_choice = a.text("ground", "auto");
     cli::check_ground_choice(ground_choice);
     if (a.has("ground") && !a.has("facades")) throw cli::usage_error("--ground needs --facades");
+    const std::string buildings_choice = a.text("buildings", "points");
+    if (buildings_choice != "points" && buildings_choice != "class6")
+        throw cli::usage_error("--buildings must be points or class6 (got '" + buildings_choice + "')");
+    if (a.has("buildings") && !a.has("facades")) throw cli::usage_error("--buildings needs --facades");
 
     // Weather first: a bad file fails before the survey is read.
     const bool year_from_tmy = a.has("year-from-tmy");
@@ -251,6 +258,9 @@ int run_solar(const std::vector<std::string>& args)
     const bool single_grid = inputs.size() == 1 && !cli::is_point_cloud_path(inputs[0]);
     if (a.has("ground") && single_grid)
         throw cli::usage_error("--ground chooses the terrain of LAS input; " + inputs[0] + " is a DSM raster");
+    if (a.has("buildings") && single_grid)
+        throw cli::usage_error("--buildings chooses how the buildings of LAS input are found; " + inputs[0] +
+                               " is a DSM raster");
     // A raster's CRS and units first (from its header or .prj); refused when nothing can give the place.
     lidarfx::io::survey_crs grid_crs;
     if (single_grid) {
@@ -265,6 +275,7 @@ int run_solar(const std::vector<std::string>& args)
     lidarfx::raster<float> dsm;
     lidarfx::raster<std::uint32_t> points, split_points;  // points per cell and of split pulses (LAS input)
     lidarfx::raster<std::uint32_t> raised_points;         // of them, raised above the terrain (LAS input)
+    lidarfx::raster<std::uint8_t> classified_buildings;   // --buildings class6: the cells of the vendor's buildings
     lidarfx::raster<float> class_ground;                  // the class-2 terrain chosen by --ground (LAS input)
     lidarfx::grid g;
     double cell_m = 0.0;
@@ -287,16 +298,22 @@ int run_solar(const std::vector<std::string>& args)
         auto survey_options = cli::survey_options_from(a, solar_bytes_per_cell);
         if (!a.has("cell")) survey_options.cell_m = 1.0;  // solar's default: 1 m cells
         survey_options.class_ground = a.has("facades") && (ground_choice == "auto" || ground_choice == "class2");
+        survey_options.class_buildings = buildings_choice == "class6";
         auto s = cli::read_survey(inputs, survey_options);
         cli::print_survey(s);
         if (a.has("facades")) {
             class_ground = cli::chosen_ground(s, ground_choice, threads);
-            if (!class_ground.empty()) {
+            if (buildings_choice == "class6") {
+                classified_buildings = cli::class_building_cells(s);
+            } else if (!class_ground.empty()) {
                 // The terrain filled as extract_buildings fills it; each building's rim is then decided by the
                 // share of its points raised above it, counted in a second pass over the files.
                 class_ground = lidarfx::fill_ground(class_ground, s.rasters.g.cell, {}, {.threads = threads});
                 raised_points = cli::count_raised_points(inputs, s, survey_options, class_ground,
                                                          lidarfx::building_candidates_options{}.min_height_m);
+                std::cout << "building edges: by the share of each cell's points standing "
+                          << lidarfx::building_candidates_options{}.min_height_m
+                          << " m above that terrain (a second pass over the files)\n";
             }
             points = std::move(s.rasters.count);
             split_points = std::move(s.rasters.multiple_return_count);
@@ -429,6 +446,7 @@ int run_solar(const std::vector<std::string>& args)
         cli::write_facade_outputs(out, {.dsm = dsm.view(),
                                         .returns = {points.view(), split_points.view(), raised_points.view()},
                                         .ground = class_ground.view(),
+                                        .classified_buildings = classified_buildings.view(),
                                         .cell_m = cell_m,
                                         .grid_crs = g,
                                         .crs_wkt = crs_wkt,

@@ -81,7 +81,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
     const grid local{0.0, static_cast<double>(run.dsm.rows()) * run.cell_m, run.cell_m, run.dsm.rows(),
                      run.dsm.cols()};  // metres; the outlines below are polygonized on grid_crs
     const extract_buildings_result b =
-        run.returns.points.empty()
+        !run.classified_buildings.empty()
+            ? extract_classified_buildings(run.dsm, local, run.ground, run.classified_buildings, bopt)
+        : run.returns.points.empty()
             ? extract_buildings(run.dsm, local, run.ground, raster_view<const std::uint8_t>{}, bopt)
             : extract_buildings(run.dsm, local, run.ground, run.returns, bopt);
     const surface_energy_result e =

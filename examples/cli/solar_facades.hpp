@@ -25,6 +25,8 @@ struct facade_run {
     /// nothing of trees (rough parts are dropped)
     pulse_returns returns = pulse_returns();
     raster_view<const float> ground;  ///< the terrain under the buildings (--ground), empty: found from the DSM
+    /// --buildings class6: the cells of the vendor's buildings (extract_classified_buildings); empty: found
+    raster_view<const std::uint8_t> classified_buildings;
     double cell_m = 1;
     grid grid_crs;
     std::string crs_wkt;

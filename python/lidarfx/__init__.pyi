@@ -56,7 +56,7 @@ component l. The result does not depend on threads."""
     ...
 
 
-def count_points_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, reference: Any, height_m: float, *, grid: Optional[Grid]) -> np.ndarray:
+def count_points_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, reference: ArrayLike, height_m: float, *, grid: Grid) -> np.ndarray:
     """Per cell of grid, the points standing at least height_m above the reference surface there (z >= reference +
 height_m, metres; a cell whose reference is NaN counts none): with the terrain as reference and
 height_m = 2.5, the raised points extract_buildings decides each building's rim by (raised_count).
@@ -67,7 +67,7 @@ uint32 raster."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[float] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -104,7 +104,7 @@ Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...
     ...
 
 
-def fill_ground(ground: Optional[ArrayLike], cell_m: float, *, threads: int = 1) -> np.ndarray:
+def fill_ground(ground: ArrayLike, cell_m: float, *, threads: int = 1) -> np.ndarray:
     """A terrain model (metres, e.g. Rasters.min_z of the class-2 points) with its NaN cells filled by IDW from the
 finite ones (8 nearest, weights 1 / distance), exactly as extract_buildings fills a given ground. cell_m: cell size in metres.
 Returns a float32 raster."""

@@ -66,6 +66,8 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
         value_error(fn, "point_count and multiple_return_count go together");
     if (!points_arg.is_none() && vegetation) value_error(fn, "give vegetation or the pulse counts, not both");
     if (!raised_arg.is_none() && points_arg.is_none()) value_error(fn, "raised_count needs point_count");
+    if (!raised_arg.is_none() && ground_arg.is_none())
+        value_error(fn, "raised_count needs the ground it was counted against");
     std::optional<array_input<std::uint32_t>> points, split, raised;
     if (!points_arg.is_none()) {
         points.emplace(points_arg, fn, "point_count");

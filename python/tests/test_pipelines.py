@@ -198,5 +198,8 @@ def test_extract_buildings_decides_the_rim_by_the_raised_points(rng):
     assert by_points.buildings[0].roof_area_horizontal_m2 == pytest.approx(209, abs=3)
     with pytest.raises(ValueError, match="raised_count needs point_count"):
         lidarfx.extract_buildings(dsm, grid=grid, ground=ground, raised_count=raised)
+    with pytest.raises(ValueError, match="raised_count needs the ground"):
+        lidarfx.extract_buildings(dsm, grid=grid, point_count=r.count, multiple_return_count=no_split,
+                                  raised_count=raised)
     with pytest.raises(ValueError, match="grid is required"):
         lidarfx.count_points_above(x, y, z, ground, 2.5, grid=None)

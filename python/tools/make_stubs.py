@@ -15,9 +15,10 @@ RESULTS = {"azimuth_mode_select": "AzimuthSelection", "clear_sky_year": "Weather
 ARGUMENTS = {"rasters": "Union[Rasters, Mapping[str, ArrayLike], Any]", "weather": "Weather",
              "grid": "Optional[Grid]", "time": "Union[datetime, str, float]",
              "progress": "Optional[Callable[[float], Optional[bool]]]", "utc_offset_h": "Optional[float]"}
-ARRAYS = {"z", "dsm", "mask", "dtm", "building_id", "hist360", "previous", "current", "x", "y"}
+ARRAYS = {"z", "dsm", "mask", "dtm", "building_id", "hist360", "previous", "current", "x", "y", "reference"}
 OPTIONAL_ARRAYS = {"intensity", "return_number", "number_of_returns", "classification", "ground", "vegetation",
-                   "surface_tilt_deg", "surface_azimuth_deg", "point_count", "multiple_return_count"}
+                   "surface_tilt_deg", "surface_azimuth_deg", "point_count", "multiple_return_count",
+                   "raised_count"}
 HEAD = '''# SPDX-License-Identifier: Apache-2.0
 # Type stubs of the lidarfx module (the extension _lidarfx re-exported), written by python/tools/make_stubs.py;
 # tests/test_stubs.py keeps them in step with the module's signatures and docstrings.
@@ -44,6 +45,10 @@ class Cancelled(RuntimeError):
 
 
 def annotation(name, runtime_type, default):
+    if name in OPTIONAL_ARRAYS and default is None:  # required here (fill_ground's ground)
+        return "ArrayLike"
+    if name == "grid" and default is None:  # required here (count_points_above's grid)
+        return "Grid"
     if name in ARGUMENTS:
         return ARGUMENTS[name]
     if name in ARRAYS:

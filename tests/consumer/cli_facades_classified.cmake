@@ -2,7 +2,8 @@
 # lidarfx solar --facades and lidarfx roofs on a classified survey (the IGN LiDAR HD tile over Montpellier,
 # tests/data/README.md): by default the terrain under the buildings is the vendor's class 2, --ground model
 # finds it from the DSM, --ground filter by a morphological filter of the lowest points, and both apartment blocks
-# of the tile are found with class 2 and with the filter; the --ground refusals.
+# of the tile are found with class 2, with the filter and with --buildings class6 (the vendor's buildings); the
+# rims are decided by the raised points; the --ground and --buildings refusals.
 # Inputs: LIDARFX (the program), DATA (tests/data), WORK_DIR.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
@@ -48,9 +49,25 @@ if(at EQUAL -1)
 endif()
 message(STATUS "solar --facades: ${found} buildings with class 2, ${buildings_model} with --ground model")
 
+# Each building's rim by its raised points: the second pass over the file is said in the log.
+string(FIND "${said_auto}" "building edges: by the share of each cell's points" at)
+if(at EQUAL -1)
+    message(FATAL_ERROR "with the class-2 terrain the raised points should decide the edges:\n${said_auto}")
+endif()
+
+# --buildings class6: the vendor's buildings, both blocks, said in the log.
+facades(class6 --buildings class6)
+string(FIND "${said_class6}" "buildings: class 6 (building)" at)
+list(LENGTH buildings_class6 found_class6)
+if(at EQUAL -1 OR found_class6 LESS 2)
+    message(FATAL_ERROR "--buildings class6 should say so and give both blocks (${buildings_class6}):\n${said_class6}")
+endif()
+
 set(out "${WORK_DIR}/refused")
 set(cases
     "2|--ground must be auto, class2, filter or model|(got dtm)|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--ground^dtm^--out^${out}"
     "2|--ground needs --facades|--ground|solar^${survey}^--lat^43.6^--lon^3.9^--ground^class2^--out^${out}"
-    "2|--ground must be auto, class2, filter or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}")
+    "2|--ground must be auto, class2, filter or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}"
+    "2|--buildings must be points or class6|(got 'class5')|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--buildings^class5^--out^${out}"
+    "2|--buildings needs --facades|--buildings|solar^${survey}^--lat^43.6^--lon^3.9^--buildings^class6^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -82,6 +82,22 @@ TEST_CASE("io/real city: extract_buildings with the survey's pulse counts and gr
     CHECK(with_rim.precision >= 0.90);
     CHECK(with_rim.iou > s.iou + 0.01);
 
+    // The vendor's buildings taken as they are (--buildings class6): the cells of a class-6 majority, parts
+    // under 15 m^2 dropped and holes under it filled, roof surfaces found on them.
+    raster<std::uint8_t> class_6_cells(g.rows, g.cols);
+    for (std::ptrdiff_t r = 0; r < g.rows; ++r)
+        for (std::ptrdiff_t c = 0; c < g.cols; ++c)
+            class_6_cells(r, c) = all.count(r, c) > 0 && 2 * class_6.count(r, c) >= all.count(r, c) ? 1 : 0;
+    const extract_buildings_result vendor = extract_classified_buildings(dsm, g, terrain, class_6_cells);
+    const area_scores v = score_against_class_6(vendor.building_id, all, class_6);
+    CAPTURE(v.recall);
+    CAPTURE(v.precision);
+    CHECK(v.recall >= 0.98);
+    CHECK(v.precision >= 0.98);
+    CHECK(vendor.buildings.size() >= 2);
+    CHECK(!vendor.surfaces.empty());
+    CHECK(vendor.rejected_rough == 0);
+
     // For the record (bench/buildings_real_surveys.sh): every cell holding a split pulse taken as a tree loses
     // most of the blocks, whose edges and ridges split pulses.
     const extract_buildings_result any_split = extract_buildings(dsm, g, class_2.min_z, all.multiple_returns);

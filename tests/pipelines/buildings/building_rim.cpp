@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// refine_building_rim: the one-cell rim of a building decided by the share of its points raised above the terrain.
+// refine_building_rim: the one-cell rim of a building decided by the share of its points raised above the terrain;
+// classified_building_parts: the parts of a vendor's building cells.
 #include <doctest/doctest.h>
 
+#include <lidarfx/pipelines/buildings/building_candidates.hpp>
 #include <lidarfx/pipelines/buildings/building_rim.hpp>
 
 #include <cstdint>
@@ -81,6 +83,24 @@ TEST_CASE(
     CHECK(t.id(2, 6) == 1);
 }
 
+TEST_CASE("refine_building_rim: no cell joins through a wall's cell that leaves, and other ids are left alone")
+{
+    rim_scene s(10, 10);
+    s.roof(1, 6.0f, 3, 7, 2, 7);
+    for (std::ptrdiff_t c = 2; c <= 7; ++c) s.raised(3, c) = 2;  // the north row: a wall's cells, they leave
+    for (std::ptrdiff_t c = 2; c <= 7; ++c)
+        s.z(2, c) = 6.0f, s.raised(2, c) = 10;  // beyond it, at the roof's height: touches only leaving cells
+    s.id(8, 4) = 5, s.z(8, 4) = 6.0f;           // an id beyond count, under the roof's south edge
+    const building_rim_result got = s.refine(1);
+    for (std::ptrdiff_t c = 2; c <= 7; ++c) {
+        CHECK(s.id(3, c) == 0);
+        CHECK(s.id(2, c) == 0);
+    }
+    CHECK(s.id(8, 4) == 5);
+    CHECK(got.left == 6);
+    CHECK(got.joined == 0);
+}
+
 TEST_CASE("refine_building_rim: a cell across a corner joins only beside a cell of the building across an edge")
 {
     rim_scene s(8, 8);
@@ -129,7 +149,7 @@ TEST_CASE("refine_building_rim: the result does not depend on the order of the c
     std::mt19937 rng(20261206);
     for (int trial = 0; trial < 30; ++trial) {
         rim_scene s(24, 24), t(24, 24);
-        std::uniform_int_distribution<int> pos(1, 18), len(2, 6), share(0, 10);
+        std::uniform_int_distribution<int> pos(1, 16), len(2, 6), share(0, 10);
         for (std::int32_t b = 1; b <= 3; ++b) {
             const int r0 = pos(rng), c0 = pos(rng), h = len(rng), w = len(rng);
             s.roof(b, 5.0f + static_cast<float>(b) * 0.2f, r0, r0 + h, c0, c0 + w);
@@ -179,4 +199,26 @@ TEST_CASE("drop_small_pieces: pieces under the minimum go; the buildings left ar
     CHECK(id(2, 0) == 0);
     CHECK(id(2, 8) == 0);
     CHECK(id(5, 0) == 7);
+}
+
+TEST_CASE("classified_building_parts: the mask's parts, holes and parts under the minimum as for candidates")
+{
+    raster<std::uint8_t> cells(12, 20);
+    for (std::ptrdiff_t r = 1; r <= 8; ++r)
+        for (std::ptrdiff_t c = 1; c <= 8; ++c) cells(r, c) = 1;  // 64 cells with a hole of 4
+    for (std::ptrdiff_t r = 4; r <= 5; ++r)
+        for (std::ptrdiff_t c = 4; c <= 5; ++c) cells(r, c) = 0;
+    for (std::ptrdiff_t r = 1; r <= 10; ++r)
+        for (std::ptrdiff_t c = 11; c <= 17; ++c) cells(r, c) = 1;  // 70 cells: the largest
+    cells(11, 1) = cells(11, 2) = 1;                                // 2 cells: under the minimum
+    const building_candidates_result parts = classified_building_parts(cells, 1.0, {.min_area_m2 = 15.0});
+    CHECK(parts.count == 2);
+    CHECK(parts.building_id(5, 14) == 1);
+    CHECK(parts.building_id(1, 1) == 2);
+    CHECK(parts.building_id(4, 4) == 2);  // the hole of 4 m^2 filled
+    CHECK(parts.building_id(11, 1) == 0);
+    const building_candidates_result big_holes = classified_building_parts(cells, 1.0, {.min_area_m2 = 4.0});
+    CHECK(big_holes.building_id(4, 4) == 0);  // a hole of the minimum stays a courtyard
+    CHECK(big_holes.count == 2);
+    CHECK_THROWS_AS(classified_building_parts(cells, 0.0), invalid_input);
 }

@@ -45,6 +45,16 @@ building_candidates_result building_candidates(const In& dsm, const ground_model
                                                raster_view<const std::uint8_t> vegetation = {},
                                                const building_candidates_options& opt = {}, const execution& run = {});
 
+/// Building parts of a given mask of building cells (1 = building, e.g. the cells where at least half of the
+/// points carry the vendor's building class, ASPRS 6): 4-connected holes under min_area_m2 filled, 4-connected
+/// parts under min_area_m2 dropped, the rest numbered by size, largest first (as building_candidates numbers
+/// its parts; min_height_m is not used: the mask says what is building). The vegetation of the result is
+/// empty (all 0). cell_m in metres. O(cells). Same result for any run.threads.
+/// @throws invalid_input on bad options or cell_m.
+inline building_candidates_result classified_building_parts(raster_view<const std::uint8_t> building_cells,
+                                                            double cell_m, const building_candidates_options& opt = {},
+                                                            const execution& run = {});
+
 namespace detail {
 
 inline void check_building_candidates(const building_candidates_options& opt, const char* function)
@@ -59,6 +69,25 @@ inline std::size_t min_part_cells(const building_candidates_options& opt, double
 {
     const auto cells = static_cast<std::size_t>(std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9));
     return std::max<std::size_t>(1, cells);
+}
+
+/// The parts of a 0/1 mask as building_candidates keeps them, written to `ids` (the mask's shape): 4-connected
+/// holes under min_cells filled, parts under min_cells dropped, the rest numbered by size, largest first.
+/// Returns their number.
+inline std::size_t number_parts(raster<std::uint8_t>& mask, std::size_t min_cells, const execution& run,
+                                raster<std::int32_t>& ids)
+{
+    mask = fill_holes(mask, min_cells - 1, connectivity::four);
+    components parts =
+        connected_components(mask, connected_components_options{.conn = connectivity::four, .run = {run.threads, {}}});
+    rank_by_size(parts);
+    std::size_t kept = 0;
+    while (kept < parts.count() && parts.sizes[kept + 1] >= min_cells) ++kept;
+    for (std::ptrdiff_t i = 0; i < ids.size(); ++i) {
+        const auto l = static_cast<std::size_t>(parts.labels.data()[i]);
+        ids.data()[i] = l <= kept ? static_cast<std::int32_t>(l) : 0;
+    }
+    return kept;
 }
 
 /// The vegetation mask as used: 1 where `vegetation` is 1, or where the DSM has no return and an 8-neighbour is
@@ -111,18 +140,24 @@ building_candidates_result building_candidates(const In& dsm, const ground_model
             candidate(r, c) = terrain.in_hull(r, c) && high && !out.vegetation(r, c) ? 1 : 0;
         }
     }
-    const std::size_t min_cells = detail::min_part_cells(opt, cell_m);
-    candidate = fill_holes(candidate, min_cells - 1, connectivity::four);
-    components parts = connected_components(
-        candidate, connected_components_options{.conn = connectivity::four, .run = {run.threads, {}}});
-    rank_by_size(parts);
-    std::size_t kept = 0;
-    while (kept < parts.count() && parts.sizes[kept + 1] >= min_cells) ++kept;
-    for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i) {
-        const auto l = static_cast<std::size_t>(parts.labels.data()[i]);
-        out.building_id.data()[i] = l <= kept ? static_cast<std::int32_t>(l) : 0;
-    }
-    out.count = kept;
+    out.count = detail::number_parts(candidate, detail::min_part_cells(opt, cell_m), run, out.building_id);
+    return out;
+}
+
+inline building_candidates_result classified_building_parts(raster_view<const std::uint8_t> building_cells,
+                                                            double cell_m, const building_candidates_options& opt,
+                                                            const execution& run)
+{
+    constexpr const char* function = "classified_building_parts";
+    detail::require_positive(cell_m, function, "cell_m");
+    detail::check_building_candidates(opt, function);
+    detail::check_execution(run, function);
+    const std::ptrdiff_t rows = building_cells.rows(), cols = building_cells.cols();
+    building_candidates_result out{raster<std::int32_t>(rows, cols), raster<std::uint8_t>(rows, cols), 0};
+    raster<std::uint8_t> candidate(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) candidate(r, c) = building_cells(r, c) != 0 ? 1 : 0;
+    out.count = detail::number_parts(candidate, detail::min_part_cells(opt, cell_m), run, out.building_id);
     return out;
 }
 

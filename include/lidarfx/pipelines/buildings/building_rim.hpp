@@ -33,24 +33,23 @@ struct building_rim_result {
     std::size_t left = 0;    ///< cells that left their building
 };
 
-/// Decides the rim of the buildings 1..count of `building_id` by the survey's points (in place):
-///  - a building cell with an 8-neighbour outside its building leaves it when fewer than min_raised_share of
-///    its points are raised (a wall's cell: the DSM keeps the eave's highest return, yet most points lie on the
-///    ground in front of it);
-///  - a cell outside every building with a building 8-neighbour whose surface `z` lies within join_height_m of
-///    its own joins that neighbour's building when at least min_raised_share of its points are raised (an eave
-///    whose pulses split on the roof's edge: vegetation by its returns, yet roof). Of several such neighbours
-///    it takes the one closest in height (ties: across an edge, then the lowest id). A cell whose neighbour is
-///    across a corner joins only when a cell beside it (across an edge) is of that building afterwards, so no
-///    building gains a part that touches it at a corner only;
-///  - a building cell that the leaving cells leave without a neighbour of its building across an edge leaves
-///    too (no one-cell parts).
+/// Decides the rim of the buildings 1..count of `building_id` by the survey's points (in place), in three
+/// rounds, each decided on the ids as the round before left them (so the result does not depend on the order
+/// of the cells):
+///  1. a building cell with points and an 8-neighbour outside its building leaves it when fewer than
+///     min_raised_share of its points are raised (a wall's cell: the DSM keeps the eave's highest return, yet
+///     most points lie on the ground in front of it); a building all of whose cells would leave stays whole;
+///  2. a cell of id 0 with points (not one that just left) joins a building beside it whose cell's surface `z`
+///     lies within join_height_m of its own, when at least min_raised_share of its points are raised (an eave
+///     whose pulses split on the roof's edge: vegetation by its returns, yet roof). Of several such neighbours
+///     it takes the one closest in height (ties: across an edge, then the lowest id). A cell whose neighbour
+///     is across a corner joins only when a cell beside it across an edge is of that building after the joins
+///     across an edge, so no building gains a part that touches it at a corner only;
+///  3. a building cell with points that the leaving cells left without a neighbour of its building across an
+///     edge leaves too (no one-cell parts), unless such cells are all its building has left.
 /// `points` and `raised` count each cell's points and, of them, the raised ones (count_points_above against
-/// the terrain the candidates were cut from). Cells without points, and cells of ids outside 1..count, are left
-/// as they are. Each kind of decision is taken on the ids as they were before it (leaves and joins across an
-/// edge on the ids before the step, joins across a corner after those, cut-off cells after every join), so
-/// the result does not depend on the order of the cells; a building never loses its last cell (when the
-/// cells cut off are all it has left, it keeps them). Buildings keep their ids. O(cells).
+/// the terrain the candidates were cut from). Cells of ids outside 0..count are left as they are and never
+/// joined. A building never loses its last cell; buildings keep their ids. O(cells).
 /// @throws invalid_input on an option out of range, shapes that differ, or a cell with more raised points
 /// than points.
 inline building_rim_result refine_building_rim(raster_view<std::int32_t> building_id, std::size_t count,
@@ -99,34 +98,60 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
             ++cells[static_cast<std::size_t>(id_of(r, c))];
         }
     }
-    // Decisions on the ids as they are, applied afterwards: cells that leave, and cells that join (across an
-    // edge, or across a corner when a cell beside it joins or is of that building afterwards).
     struct change {
         std::ptrdiff_t r, c;
         std::int32_t id;
         bool corner;
     };
-    std::vector<change> leaves, joins;
+    const auto is_raised = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return static_cast<double>(raised(r, c)) >= opt.min_raised_share * points(r, c);
+    };
+    // 1. Cells that leave, decided on the ids as they are (a building all of whose cells would leave stays whole).
+    std::vector<change> leaves;
     std::vector<std::size_t> leaving(count + 1, 0);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const std::uint32_t n = points(r, c);
-            if (n == 0) continue;
-            const bool is_raised = static_cast<double>(raised(r, c)) >= opt.min_raised_share * n;
             const std::int32_t own = id_of(r, c);
+            if (own == 0 || points(r, c) == 0 || is_raised(r, c)) continue;
+            bool on_rim = false;
+            for (std::ptrdiff_t dr = -1; dr <= 1 && !on_rim; ++dr)
+                for (std::ptrdiff_t dc = -1; dc <= 1 && !on_rim; ++dc) {
+                    const std::ptrdiff_t rr = r + dr, cc = c + dc;
+                    on_rim = rr >= 0 && cc >= 0 && rr < rows && cc < cols && id_of(rr, cc) != own;
+                }
+            if (!on_rim) continue;
+            leaves.push_back({r, c, 0, false});
+            ++leaving[static_cast<std::size_t>(own)];
+        }
+    }
+    building_rim_result out;
+    std::vector<bool> stays_whole(count + 1, false);
+    for (std::size_t b = 1; b <= count; ++b) stays_whole[b] = leaving[b] >= cells[b];
+    raster<std::uint8_t> left(rows, cols);  // cells that left: a wall's cell does not come back as an eave
+    for (const change& ch : leaves) {
+        const auto b = static_cast<std::size_t>(building_id(ch.r, ch.c));
+        if (stays_whole[b]) continue;
+        building_id(ch.r, ch.c) = 0;
+        left(ch.r, ch.c) = 1;
+        --cells[b];
+        ++out.left;
+    }
+    // 2. Cells that join (cells of id 0), decided on the ids after the leaves, so that no cell joins through a
+    // wall's cell that left: across an edge, or across a corner when a cell beside it across an edge is of that
+    // building after the joins across an edge.
+    std::vector<change> joins;
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (building_id(r, c) != 0 || left(r, c) || points(r, c) == 0 || !is_raised(r, c)) continue;
             const double zc = static_cast<double>(z(r, c));
             std::int32_t best = 0;
             double best_dz = 0;
-            bool on_rim = false, best_corner = false;
+            bool best_corner = false;
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t rr = r + dr, cc = c + dc;
                     if ((dr == 0 && dc == 0) || rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
                     const std::int32_t nb = id_of(rr, cc);
-                    if (own != 0) {
-                        on_rim = on_rim || nb != own;
-                        continue;
-                    }
                     if (nb == 0) continue;
                     const double dz = std::fabs(zc - static_cast<double>(z(rr, cc)));
                     if (!(dz <= opt.join_height_m)) continue;
@@ -137,23 +162,8 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
                         best = nb, best_dz = dz, best_corner = corner;
                 }
             }
-            if (own != 0 && on_rim && !is_raised) {
-                leaves.push_back({r, c, 0, false});
-                ++leaving[static_cast<std::size_t>(own)];
-            } else if (own == 0 && best != 0 && is_raised) {
-                joins.push_back({r, c, best, best_corner});
-            }
+            if (best != 0) joins.push_back({r, c, best, best_corner});
         }
-    }
-    building_rim_result out;
-    std::vector<bool> stays_whole(count + 1, false);  // every cell would leave: the building stays as it was
-    for (std::size_t b = 1; b <= count; ++b) stays_whole[b] = leaving[b] >= cells[b];
-    for (const change& ch : leaves) {
-        const auto b = static_cast<std::size_t>(building_id(ch.r, ch.c));
-        if (stays_whole[b]) continue;
-        building_id(ch.r, ch.c) = 0;
-        --cells[b];
-        ++out.left;
     }
     const auto has_edge_neighbour = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t b) {
         return (r > 0 && building_id(r - 1, c) == b) || (r + 1 < rows && building_id(r + 1, c) == b) ||
@@ -170,8 +180,8 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
     for (const change& ch : joins)
         if (ch.corner && has_edge_neighbour(ch.r, ch.c, ch.id)) corner_joins.push_back(ch);
     for (const change& ch : corner_joins) join(ch);
-    // A cell that the leaving cells cut off from its building (no edge neighbour of it left) leaves too; decided
-    // on the ids after the joins.
+    // 3. A cell that the leaving cells cut off from its building (no edge neighbour of it left) leaves too;
+    // decided on the ids after the joins.
     std::vector<change> cut_off;
     for (const change& ch : leaves) {
         for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
@@ -179,7 +189,9 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
                 const std::ptrdiff_t rr = ch.r + dr, cc = ch.c + dc;
                 if (rr < 0 || cc < 0 || rr >= rows || cc >= cols) continue;
                 const std::int32_t b = id_of(rr, cc);
-                if (b == 0 || cells[static_cast<std::size_t>(b)] <= 1 || has_edge_neighbour(rr, cc, b)) continue;
+                if (b == 0 || points(rr, cc) == 0 || cells[static_cast<std::size_t>(b)] <= 1 ||
+                    has_edge_neighbour(rr, cc, b))
+                    continue;
                 cut_off.push_back({rr, cc, b, false});
             }
         }

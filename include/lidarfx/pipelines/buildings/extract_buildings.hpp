@@ -6,6 +6,7 @@
 // merge_roof_surfaces, number_roof_surfaces, building_heights, building_outlines.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -114,6 +115,18 @@ template <raster_input In>
 extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
                                            const pulse_returns& returns, const extract_buildings_options& opt = {});
 
+/// extract_buildings on a survey whose buildings are classified: `building_cells` (1 = building, the DSM's
+/// shape; e.g. the cells where at least half of the points are of the vendor's building class, ASPRS 6) are
+/// the candidates (classified_building_parts: parts and holes under candidates.min_area_m2 dropped or filled),
+/// with no test of height, trees or rim; the terrain is given (`ground`, NaN cells filled by IDW) or found, and
+/// the roof surfaces, numbers, heights and outlines are steps 4-6 of extract_buildings. rejected_rough is 0 and
+/// vegetation all 0. @throws invalid_input as extract_buildings, and if building_cells differs from the DSM's
+/// shape.
+template <raster_input In>
+extract_buildings_result extract_classified_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
+                                                      raster_view<const std::uint8_t> building_cells,
+                                                      const extract_buildings_options& opt = {});
+
 /// extract_buildings without a given terrain or vegetation mask.
 template <raster_input In>
 extract_buildings_result extract_buildings(const In& dsm, const grid& g, const extract_buildings_options& opt)
@@ -169,13 +182,15 @@ inline std::vector<bool> clipped_buildings(raster_view<const std::int32_t> ids, 
 
 namespace detail {
 
-/// The steps of both extract_buildings: candidates are judged by their returns when `split_seen` (the survey
-/// split some pulse), else by roughness alone; the rim is decided by returns->raised when given.
+/// The steps of every extract_buildings: candidates are judged by their returns when `split_seen` (the survey
+/// split some pulse), else by roughness alone; the rim is decided by returns->raised when given. With
+/// `classified` non-empty its cells are the candidates as they are (extract_classified_buildings).
 template <raster_input In>
 extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, raster_view<const float> ground,
                                                  raster_view<const std::uint8_t> vegetation,
                                                  const pulse_returns* returns, bool split_seen,
-                                                 const extract_buildings_options& opt)
+                                                 const extract_buildings_options& opt,
+                                                 raster_view<const std::uint8_t> classified = {})
 {
     constexpr const char* function = "extract_buildings";
     check_extract_buildings(g, opt, function);
@@ -194,21 +209,31 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
     ground_model_result terrain = ground_model(dsm, cell_m, opt.ground, inner);
     detail::report(opt.run.progress, 0.3, function);
     if (!ground.empty()) replace_ground(terrain, ground, cell_m, opt.ground, inner);
+    if (!classified.empty()) require_same_shape(dsm, classified, function, "dsm", "building_cells");
     building_candidates_result candidates =
-        building_candidates(dsm, terrain, cell_m, vegetation, opt.candidates, inner);
+        classified.empty() ? building_candidates(dsm, terrain, cell_m, vegetation, opt.candidates, inner)
+                           : classified_building_parts(classified, cell_m, opt.candidates, inner);
     out.building_id = std::move(candidates.building_id);
     out.vegetation = std::move(candidates.vegetation);
     detail::report(opt.run.progress, 0.45, function);
 
     const raster_view<const float> z = terrain.surface;
-    const local_planes_result lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
-    auto [kept, rough] = split_seen
+    local_planes_result lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
+    auto [kept, rough] = !classified.empty() ? std::array<std::size_t, 2>{candidates.count, 0}
+                         : split_seen
                              ? drop_vegetation_parts(out.building_id, candidates.count, *returns, opt.returns)
                              : drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
     out.rejected_rough = rough;
-    if (returns && !returns->raised.empty() && kept > 0) {
-        refine_building_rim(out.building_id, kept, z, returns->points, returns->raised, opt.rim);
-        kept = detail::drop_small_pieces(out.building_id, kept, detail::min_part_cells(opt.candidates, cell_m));
+    if (classified.empty() && returns && !returns->raised.empty() && kept > 0) {
+        const building_rim_result rim =
+            refine_building_rim(out.building_id, kept, z, returns->points, returns->raised, opt.rim);
+        if (rim.joined + rim.left > 0) {
+            kept = detail::drop_small_pieces(out.building_id, kept, detail::min_part_cells(opt.candidates, cell_m));
+            // Eaves that joined are roof, not vegetation; the local planes are fitted again on the new cells.
+            for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i)
+                if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
+            lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
+        }
     }
     detail::report(opt.run.progress, 0.6, function);
 
@@ -269,9 +294,23 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
         for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)
             any_split = returns.multiple(r, c) > 0;
+    if (!returns.raised.empty()) {
+        for (std::ptrdiff_t r = 0; r < returns.raised.rows(); ++r)
+            for (std::ptrdiff_t c = 0; c < returns.raised.cols(); ++c)
+                detail::require(returns.raised(r, c) <= returns.points(r, c), function,
+                                "returns.raised must not exceed returns.points in any cell");
+    }
     if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, &returns, false, opt);
     const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
     return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, true, opt);
+}
+
+template <raster_input In>
+extract_buildings_result extract_classified_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
+                                                      raster_view<const std::uint8_t> building_cells,
+                                                      const extract_buildings_options& opt)
+{
+    return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, false, opt, building_cells);
 }
 
 }  // namespace lidarfx
