@@ -309,6 +309,16 @@ def test_buildings_from_las_files(qgis, las_house, tmp_path):
     assert epsg == EPSG and 1500 < annual[5, 5] < 2600
 
 
+def test_buildings_from_the_survey_s_class_6(qgis, las_house, tmp_path):
+    # 'Buildings from' = the survey's building class: the program is asked for --buildings class6; this survey
+    # carries no class 6, which the program says, and nothing is delivered.
+    done = qgis("run", "lidarfx:buildings", "--", f"FILES={las_house['file']}", "CELL=1", "SOURCE=1", "LAT=36.1",
+                "LON=15.0", f"BUILDINGS={tmp_path / 'buildings.gpkg'}", f"FACADES={tmp_path / 'facades.csv'}",
+                check=False)
+    assert done.returncode != 0 and "class 6" in done.stdout + done.stderr
+    assert not (tmp_path / "buildings.gpkg").exists()
+
+
 def test_shadows_take_a_time_with_its_offset(qgis, town, tmp_path):
     # 12:00 at +01:00 is the 11:00 UTC of the noon test: the same sun, the same shadows.
     done = qgis("run", "lidarfx:shadows", "--", f"DSM={town['dsm']}", "DATETIME=2024-12-21T12:00:00+01:00",

@@ -2,8 +2,9 @@
 """Buildings with the energy of their roofs and facades: `lidarfx solar --facades`."""
 import os
 
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFileDestination, QgsProcessingParameterNumber,
+                       QgsProcessingParameterRasterDestination,
                        QgsProcessingParameterRasterLayer, QgsProcessingParameterVectorDestination)
 
 from ..engine import LidarfxAlgorithm, deliver, layer_file, run_program, work_folder
@@ -20,7 +21,12 @@ class BuildingsAlgorithm(LidarfxAlgorithm):
              "sky view of walls and roofs). Outputs: building outlines with their ground, eave and ridge heights "
              "(m) and roof areas (m²); the facade patches table (building, facing azimuth, height, area, annual "
              "kWh/m² and quarterly kWh/m²/day); the annual irradiation map (kWh/m²). Weather and place as in "
-             "'Annual solar irradiation'. Runs the lidarfx program (lidarfx solar --facades).")
+             "'Annual solar irradiation'. From a survey the edge cells of each building are decided by the share of "
+             "their points standing 2.5 m above the terrain; 'Buildings from' can take the survey's own building "
+             "class (6) instead. Runs the lidarfx program (lidarfx solar --facades).")
+
+    SOURCES = [("points", "found from the points (surface, terrain, returns)"),
+               ("class6", "the survey's building class (ASPRS 6)")]
 
     def initAlgorithm(self, config=None):  # noqa: N802
         add_survey_parameters(self)
@@ -28,6 +34,8 @@ class BuildingsAlgorithm(LidarfxAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             "CELL", "Cell size for a LAS/LAZ survey (metres) [1]", QgsProcessingParameterNumber.Double, 1.0,
             minValue=0.1))
+        self.addParameter(QgsProcessingParameterEnum(
+            "SOURCE", "Buildings from (LAS/LAZ survey)", [label for _, label in self.SOURCES], defaultValue=0))
         add_place_parameters(self)
         self.addParameter(QgsProcessingParameterVectorDestination(
             "BUILDINGS", "Buildings", QgsProcessing.TypeVectorPolygon))
@@ -43,6 +51,9 @@ class BuildingsAlgorithm(LidarfxAlgorithm):
         else:
             inputs = survey_files(self, parameters, context, "FILES", "FOLDER")
             inputs += ["--cell", self.parameterAsDouble(parameters, "CELL", context)]
+            source = self.SOURCES[self.parameterAsEnum(parameters, "SOURCE", context)][0]
+            if source != "points":
+                inputs += ["--buildings", source]
         out = work_folder()
         run_program(["solar", *inputs, "--out", out, "--facades", "--formats", "tif,csv,gpkg",
                      *place_arguments(self, parameters, context)], feedback)
