@@ -52,8 +52,8 @@ py::dict geojson(const std::vector<polygon>& parts)
 py::object extract_buildings_binding(const py::handle& dsm, const py::handle& cell_arg, const py::handle& grid_arg,
                                      const py::handle& ground_arg, const py::handle& vegetation_arg,
                                      const py::handle& points_arg, const py::handle& split_arg,
-                                     const py::handle& raised_arg, double min_height_m, double min_area_m2, int threads,
-                                     py::object progress)
+                                     const py::handle& raised_arg, const py::handle& building_cells_arg,
+                                     double min_height_m, double min_area_m2, int threads, py::object progress)
 {
     constexpr const char* fn = "extract_buildings";
     const array_input<float> z(dsm, fn, "dsm");
@@ -68,6 +68,12 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     if (!raised_arg.is_none() && points_arg.is_none()) value_error(fn, "raised_count needs point_count");
     if (!raised_arg.is_none() && ground_arg.is_none())
         value_error(fn, "raised_count needs the ground it was counted against");
+    std::optional<array_input<std::uint8_t>> building_cells;
+    if (!building_cells_arg.is_none()) {
+        if (vegetation || !points_arg.is_none())
+            value_error(fn, "building_cells are the buildings: give no vegetation or pulse counts with them");
+        building_cells.emplace(building_cells_arg, fn, "building_cells");
+    }
     std::optional<array_input<std::uint32_t>> points, split, raised;
     if (!points_arg.is_none()) {
         points.emplace(points_arg, fn, "point_count");
@@ -81,6 +87,7 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     opt.run = rs.run();
     extract_buildings_result r = rs.call([&] {
         const raster_view<const float> terrain = ground ? ground->view() : raster_view<const float>{};
+        if (building_cells) return extract_classified_buildings(z.view(), g, terrain, building_cells->view(), opt);
         if (points)
             return extract_buildings(z.view(), g, terrain,
                                      pulse_returns{points->view(), split->view(),
@@ -248,8 +255,8 @@ void bind_buildings(py::module_& m)
     using namespace pybind11::literals;
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
           "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
-          "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "min_height_m"_a = 2.5,
-          "min_area_m2"_a = 15.0, "threads"_a = 1, "progress"_a = py::none(), R"doc(
+          "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "building_cells"_a = py::none(),
+          "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -262,7 +269,9 @@ Rasters.multiple_return_count of the DSM's points): trees told from roofs by the
 half its points from pulses of several returns is vegetation, a part with 20 %); with them raised_count (uint32,
 count_points_above against the ground, which must then be filled: fill_ground) decides each building's one-cell
 rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
-the roof at its height (within 0.5 m) with half its points raised joins. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+the roof at its height (within 0.5 m) with half its points raised joins. Or building_cells (bool or uint8, e.g.
+where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
+under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid).)doc");
 

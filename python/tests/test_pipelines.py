@@ -196,6 +196,14 @@ def test_extract_buildings_decides_the_rim_by_the_raised_points(rng):
     # 273), the points' rule only the cells mostly under the roof (19 x 11 = 209).
     assert by_dsm.buildings[0].roof_area_horizontal_m2 == pytest.approx(273, abs=3)
     assert by_points.buildings[0].roof_area_horizontal_m2 == pytest.approx(209, abs=3)
+    # The vendor's building cells taken as they are: exactly the 19 x 11 cells mostly under the roof.
+    classified = np.zeros((40, 40), bool)
+    classified[14:25, 11:30] = True
+    vendor = lidarfx.extract_buildings(dsm, grid=grid, ground=ground, building_cells=classified)
+    assert len(vendor.buildings) == 1 and (vendor.building_id > 0).sum() == classified.sum() == 209
+    with pytest.raises(ValueError, match="building_cells are the buildings"):
+        lidarfx.extract_buildings(dsm, grid=grid, building_cells=classified, point_count=r.count,
+                                  multiple_return_count=no_split)
     with pytest.raises(ValueError, match="raised_count needs point_count"):
         lidarfx.extract_buildings(dsm, grid=grid, ground=ground, raised_count=raised)
     with pytest.raises(ValueError, match="raised_count needs the ground"):

@@ -17,7 +17,7 @@ ARGUMENTS = {"rasters": "Union[Rasters, Mapping[str, ArrayLike], Any]", "weather
              "progress": "Optional[Callable[[float], Optional[bool]]]", "utc_offset_h": "Optional[float]"}
 ARRAYS = {"z", "dsm", "mask", "dtm", "building_id", "hist360", "previous", "current", "x", "y", "reference"}
 OPTIONAL_ARRAYS = {"intensity", "return_number", "number_of_returns", "classification", "ground", "vegetation",
-                   "surface_tilt_deg", "surface_azimuth_deg", "point_count", "multiple_return_count",
+                   "surface_tilt_deg", "surface_azimuth_deg", "point_count", "multiple_return_count", "building_cells",
                    "raised_count"}
 HEAD = '''# SPDX-License-Identifier: Apache-2.0
 # Type stubs of the lidarfx module (the extension _lidarfx re-exported), written by python/tools/make_stubs.py;
