@@ -799,8 +799,8 @@ raster<std::uint8_t> class_building_cells(const survey& s)
 {
     if (s.class_building_points == 0)
         throw usage_error(
-            "--buildings class6: no point of the survey is of class 6 (building); use --buildings "
-            "points to find the buildings from the surface");
+            "--buildings class6: no point on the grid (inside --crop, when given) is of class 6 (building); use "
+            "--buildings points to find the buildings from the surface");
     const raster<std::uint32_t>& all = s.rasters.count;
     raster<std::uint8_t> cells(all.rows(), all.cols());
     std::size_t n = 0;

@@ -222,6 +222,11 @@ int run_solar(const std::vector<std::string>& args)
     if (buildings_choice != "points" && buildings_choice != "class6")
         throw cli::usage_error("--buildings must be points or class6 (got '" + buildings_choice + "')");
     if (a.has("buildings") && !a.has("facades")) throw cli::usage_error("--buildings needs --facades");
+    if (buildings_choice == "class6" && ground_choice == "model")
+        throw cli::usage_error(
+            "--buildings class6 with --ground model: a survey classified into buildings has its "
+            "ground class; take it (--ground class2) or the filter (--ground filter), since the "
+            "terrain found from the DSM fails under blocks of buildings and gives wrong heights");
 
     // Weather first: a bad file fails before the survey is read.
     const bool year_from_tmy = a.has("year-from-tmy");
@@ -302,10 +307,9 @@ int run_solar(const std::vector<std::string>& args)
         auto s = cli::read_survey(inputs, survey_options);
         cli::print_survey(s);
         if (a.has("facades")) {
+            if (buildings_choice == "class6") classified_buildings = cli::class_building_cells(s);
             class_ground = cli::chosen_ground(s, ground_choice, threads);
-            if (buildings_choice == "class6") {
-                classified_buildings = cli::class_building_cells(s);
-            } else if (!class_ground.empty()) {
+            if (buildings_choice != "class6" && !class_ground.empty()) {
                 // The terrain filled as extract_buildings fills it; each building's rim is then decided by the
                 // share of its points raised above it, counted in a second pass over the files.
                 class_ground = lidarfx::fill_ground(class_ground, s.rasters.g.cell, {}, {.threads = threads});

@@ -69,5 +69,7 @@ set(cases
     "2|--ground needs --facades|--ground|solar^${survey}^--lat^43.6^--lon^3.9^--ground^class2^--out^${out}"
     "2|--ground must be auto, class2, filter or model|(got dtm)|roofs^${survey}^${WORK_DIR}/none.geojson^--ground^dtm^--out^${out}"
     "2|--buildings must be points or class6|(got 'class5')|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--buildings^class5^--out^${out}"
-    "2|--buildings needs --facades|--buildings|solar^${survey}^--lat^43.6^--lon^3.9^--buildings^class6^--out^${out}")
+    "2|--buildings needs --facades|--buildings|solar^${survey}^--lat^43.6^--lon^3.9^--buildings^class6^--out^${out}"
+    "2|--buildings class6 with --ground model|wrong heights|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--buildings^class6^--ground^model^--out^${out}"
+    "2|is of class 6 (building)|inside --crop|solar^${survey}^--lat^43.6^--lon^3.9^--facades^--buildings^class6^--crop^770550,6277548,770552,6277550^--out^${out}")
 include("${CMAKE_CURRENT_LIST_DIR}/expect_refusals.cmake")

@@ -97,6 +97,8 @@ TEST_CASE("io/real city: extract_buildings with the survey's pulse counts and gr
     CHECK(vendor.buildings.size() >= 2);
     CHECK(!vendor.surfaces.empty());
     CHECK(vendor.rejected_rough == 0);
+    // An empty mask is a mask of the wrong shape, not a request for the points' route.
+    CHECK_THROWS_AS(extract_classified_buildings(dsm, g, terrain, raster_view<const std::uint8_t>{}), invalid_input);
 
     // For the record (bench/buildings_real_surveys.sh): every cell holding a split pulse taken as a tree loses
     // most of the blocks, whose edges and ridges split pulses.

@@ -46,12 +46,14 @@ class BuildingsAlgorithm(LidarfxAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         dsm_layer = self.parameterAsRasterLayer(parameters, "DSM", context)
+        source = self.SOURCES[self.parameterAsEnum(parameters, "SOURCE", context)][0]
         if dsm_layer is not None:
+            if source != "points":
+                raise QgsProcessingException("'Buildings from' the survey's class 6 needs a LAS/LAZ survey, not a DSM")
             inputs = [layer_file(dsm_layer, "DSM")]
         else:
             inputs = survey_files(self, parameters, context, "FILES", "FOLDER")
             inputs += ["--cell", self.parameterAsDouble(parameters, "CELL", context)]
-            source = self.SOURCES[self.parameterAsEnum(parameters, "SOURCE", context)][0]
             if source != "points":
                 inputs += ["--buildings", source]
         out = work_folder()

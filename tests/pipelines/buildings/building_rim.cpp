@@ -90,7 +90,7 @@ TEST_CASE("refine_building_rim: no cell joins through a wall's cell that leaves,
     for (std::ptrdiff_t c = 2; c <= 7; ++c) s.raised(3, c) = 2;  // the north row: a wall's cells, they leave
     for (std::ptrdiff_t c = 2; c <= 7; ++c)
         s.z(2, c) = 6.0f, s.raised(2, c) = 10;  // beyond it, at the roof's height: touches only leaving cells
-    s.id(8, 4) = 5, s.z(8, 4) = 6.0f;           // an id beyond count, under the roof's south edge
+    s.id(8, 4) = 5, s.z(8, 4) = 6.0f, s.raised(8, 4) = 10;  // an id beyond count under the south edge, raised
     const building_rim_result got = s.refine(1);
     for (std::ptrdiff_t c = 2; c <= 7; ++c) {
         CHECK(s.id(3, c) == 0);
@@ -116,6 +116,14 @@ TEST_CASE("refine_building_rim: a cell across a corner joins only beside a cell 
 
 TEST_CASE("refine_building_rim: between two buildings a cell takes the one closest in height")
 {
+    // A closer building across a corner does not keep a cell from the building across an edge.
+    rim_scene e(8, 9);
+    e.roof(1, 6.0f, 1, 3, 1, 3);  // across a corner of (4, 4), 0.1 m away
+    e.roof(2, 6.4f, 4, 6, 5, 7);  // across an edge of (4, 4), 0.3 m away
+    e.z(4, 4) = 6.1f, e.raised(4, 4) = 10;
+    e.refine(2);
+    CHECK(e.id(4, 4) == 2);
+
     rim_scene s(6, 9);
     s.roof(1, 6.0f, 1, 4, 1, 3);
     s.roof(2, 6.4f, 1, 4, 5, 7);

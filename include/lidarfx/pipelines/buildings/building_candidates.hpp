@@ -67,8 +67,9 @@ inline void check_building_candidates(const building_candidates_options& opt, co
 /// The fewest cells of a part building_candidates keeps (min_area_m2 in cells of cell_m, at least 1).
 inline std::size_t min_part_cells(const building_candidates_options& opt, double cell_m)
 {
-    const auto cells = static_cast<std::size_t>(std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9));
-    return std::max<std::size_t>(1, cells);
+    const double cells = std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9);
+    if (!(cells < 1e18)) return std::size_t{1} << 60;  // more cells than any raster holds (and no UB in the cast)
+    return std::max<std::size_t>(1, static_cast<std::size_t>(std::max(cells, 0.0)));
 }
 
 /// The parts of a 0/1 mask as building_candidates keeps them, written to `ids` (the mask's shape): 4-connected

@@ -41,10 +41,10 @@ struct building_rim_result {
 ///     most points lie on the ground in front of it); a building all of whose cells would leave stays whole;
 ///  2. a cell of id 0 with points (not one that just left) joins a building beside it whose cell's surface `z`
 ///     lies within join_height_m of its own, when at least min_raised_share of its points are raised (an eave
-///     whose pulses split on the roof's edge: vegetation by its returns, yet roof). Of several such neighbours
-///     it takes the one closest in height (ties: across an edge, then the lowest id). A cell whose neighbour
-///     is across a corner joins only when a cell beside it across an edge is of that building after the joins
-///     across an edge, so no building gains a part that touches it at a corner only;
+///     whose pulses split on the roof's edge: vegetation by its returns, yet roof). It takes, of such
+///     neighbours across an edge, the one closest in height (ties: the lowest id); with none across an edge,
+///     the closest across a corner, and only when a cell beside it across an edge is of that building after
+///     the joins across an edge, so no building gains a part that touches it at a corner only;
 ///  3. a building cell with points that the leaving cells left without a neighbour of its building across an
 ///     edge leaves too (no one-cell parts), unless such cells are all its building has left.
 /// `points` and `raised` count each cell's points and, of them, the raised ones (count_points_above against
@@ -144,9 +144,9 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             if (building_id(r, c) != 0 || left(r, c) || points(r, c) == 0 || !is_raised(r, c)) continue;
             const double zc = static_cast<double>(z(r, c));
-            std::int32_t best = 0;
-            double best_dz = 0;
-            bool best_corner = false;
+            // The closest in height across an edge (ties: the lowest id); without one, across a corner.
+            std::int32_t best[2] = {0, 0};  // across an edge, across a corner
+            double best_dz[2] = {0, 0};
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr) {
                 for (std::ptrdiff_t dc = -1; dc <= 1; ++dc) {
                     const std::ptrdiff_t rr = r + dr, cc = c + dc;
@@ -155,14 +155,15 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
                     if (nb == 0) continue;
                     const double dz = std::fabs(zc - static_cast<double>(z(rr, cc)));
                     if (!(dz <= opt.join_height_m)) continue;
-                    const bool corner = dr != 0 && dc != 0;
-                    // Best: closest in height, then across an edge before a corner, then the lowest id.
-                    if (best == 0 || dz < best_dz || (dz == best_dz && (best_corner && !corner)) ||
-                        (dz == best_dz && corner == best_corner && nb < best))
-                        best = nb, best_dz = dz, best_corner = corner;
+                    const int k = dr != 0 && dc != 0 ? 1 : 0;
+                    if (best[k] == 0 || dz < best_dz[k] || (dz == best_dz[k] && nb < best[k]))
+                        best[k] = nb, best_dz[k] = dz;
                 }
             }
-            if (best != 0) joins.push_back({r, c, best, best_corner});
+            if (best[0] != 0)
+                joins.push_back({r, c, best[0], false});
+            else if (best[1] != 0)
+                joins.push_back({r, c, best[1], true});
         }
     }
     const auto has_edge_neighbour = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t b) {

@@ -184,13 +184,13 @@ namespace detail {
 
 /// The steps of every extract_buildings: candidates are judged by their returns when `split_seen` (the survey
 /// split some pulse), else by roughness alone; the rim is decided by returns->raised when given. With
-/// `classified` non-empty its cells are the candidates as they are (extract_classified_buildings).
+/// `classified` given its cells are the candidates as they are (extract_classified_buildings).
 template <raster_input In>
 extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, raster_view<const float> ground,
                                                  raster_view<const std::uint8_t> vegetation,
                                                  const pulse_returns* returns, bool split_seen,
                                                  const extract_buildings_options& opt,
-                                                 raster_view<const std::uint8_t> classified = {})
+                                                 const raster_view<const std::uint8_t>* classified = nullptr)
 {
     constexpr const char* function = "extract_buildings";
     check_extract_buildings(g, opt, function);
@@ -209,22 +209,21 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
     ground_model_result terrain = ground_model(dsm, cell_m, opt.ground, inner);
     detail::report(opt.run.progress, 0.3, function);
     if (!ground.empty()) replace_ground(terrain, ground, cell_m, opt.ground, inner);
-    if (!classified.empty()) require_same_shape(dsm, classified, function, "dsm", "building_cells");
     building_candidates_result candidates =
-        classified.empty() ? building_candidates(dsm, terrain, cell_m, vegetation, opt.candidates, inner)
-                           : classified_building_parts(classified, cell_m, opt.candidates, inner);
+        classified ? classified_building_parts(*classified, cell_m, opt.candidates, inner)
+                   : building_candidates(dsm, terrain, cell_m, vegetation, opt.candidates, inner);
     out.building_id = std::move(candidates.building_id);
     out.vegetation = std::move(candidates.vegetation);
     detail::report(opt.run.progress, 0.45, function);
 
     const raster_view<const float> z = terrain.surface;
     local_planes_result lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
-    auto [kept, rough] = !classified.empty() ? std::array<std::size_t, 2>{candidates.count, 0}
+    auto [kept, rough] = classified ? std::array<std::size_t, 2>{candidates.count, 0}
                          : split_seen
                              ? drop_vegetation_parts(out.building_id, candidates.count, *returns, opt.returns)
                              : drop_rough_buildings(out.building_id, candidates.count, lp, cell_m, opt.local_planes);
     out.rejected_rough = rough;
-    if (classified.empty() && returns && !returns->raised.empty() && kept > 0) {
+    if (!classified && returns && !returns->raised.empty() && kept > 0) {
         const building_rim_result rim =
             refine_building_rim(out.building_id, kept, z, returns->points, returns->raised, opt.rim);
         if (rim.joined + rim.left > 0) {
@@ -310,7 +309,8 @@ extract_buildings_result extract_classified_buildings(const In& dsm, const grid&
                                                       raster_view<const std::uint8_t> building_cells,
                                                       const extract_buildings_options& opt)
 {
-    return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, false, opt, building_cells);
+    detail::require_same_shape(dsm, building_cells, "extract_classified_buildings", "dsm", "building_cells");
+    return detail::extract_buildings_steps(dsm, g, ground, {}, nullptr, false, opt, &building_cells);
 }
 
 }  // namespace lidarfx
