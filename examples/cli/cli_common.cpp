@@ -678,6 +678,46 @@ void add_class_buildings(survey& s, const grid& g, const io::las_points& points)
     }
 }
 
+/// The points of a survey's files in file order, a chunk at a time, in metres: what read_survey reads, and
+/// count_raised_points again. Each file's reader decodes LAZ chunks on `threads` within the memory budget.
+class survey_chunks {
+public:
+    survey_chunks(const std::vector<std::string>& paths, const survey_layout& units, int threads,
+                  std::uint64_t memory_budget_bytes)
+        : paths_(paths), units_(units), threads_(threads), memory_budget_bytes_(memory_budget_bytes)
+    {
+    }
+
+    /// Fills `dst` with the next chunk and `file` with the index of its file; returns its size, 0 after the last.
+    std::size_t next(io::las_points& dst, std::size_t& file)
+    {
+        for (;;) {
+            if (!reader_) {
+                if (file_ == paths_.size()) return 0;
+                reader_ = std::make_unique<io::las_reader>(paths_[file_++]);
+                reader_->set_threads(threads_);                    // LAZ chunks decode in parallel (no effect on LAS)
+                reader_->set_memory_budget(memory_budget_bytes_);  // ... within --memory
+            }
+            file = file_ - 1;
+            // Stopping at the last point, not at an empty read, keeps the chunk's buffers for the next file.
+            if (reader_->position() < reader_->point_count()) {
+                const std::size_t n = reader_->read(dst, std::size_t{1} << 20);
+                to_metres(dst, units_);
+                return n;
+            }
+            reader_.reset();
+        }
+    }
+
+private:
+    const std::vector<std::string>& paths_;
+    const survey_layout& units_;
+    int threads_;
+    std::uint64_t memory_budget_bytes_;
+    std::size_t file_ = 0;
+    std::unique_ptr<io::las_reader> reader_;
+};
+
 }  // namespace
 
 survey read_survey(const std::vector<std::string>& paths, const survey_options& opt)
@@ -697,26 +737,8 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
         io::las_points points;
         std::size_t file = 0;
     };
-    std::size_t file = 0;
-    std::unique_ptr<io::las_reader> reader;
-    const auto next_chunk = [&](chunk& dst) -> std::size_t {
-        for (;;) {
-            if (!reader) {
-                if (file == paths.size()) return 0;
-                reader = std::make_unique<io::las_reader>(paths[file++]);
-                reader->set_threads(threads);                        // LAZ chunks decode in parallel (no effect on LAS)
-                reader->set_memory_budget(opt.memory_budget_bytes);  // ... within --memory
-            }
-            dst.file = file - 1;
-            // Stopping at the last point, not at an empty read, keeps the chunk's buffers for the next file.
-            if (reader->position() < reader->point_count()) {
-                const std::size_t n = reader->read(dst.points, std::size_t{1} << 20);
-                to_metres(dst.points, layout);
-                return n;
-            }
-            reader.reset();
-        }
-    };
+    survey_chunks source(paths, layout, threads, opt.memory_budget_bytes);
+    const auto next_chunk = [&](chunk& dst) { return source.next(dst.points, dst.file); };
     std::uint64_t done = 0;
     // Scan lines in file order, when the files carry GPS times (a new file starts a new sweep).
     std::optional<scan_coverage> scans;
@@ -779,18 +801,14 @@ raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths,
     units.unit_xy = s.unit_xy;
     units.unit_z = s.unit_z;
     auto bar = opt.show_progress ? progress_bar("rim points") : progress_callback{};
+    survey_chunks source(paths, units, opt.threads, opt.memory_budget_bytes);
     io::las_points chunk;
+    std::size_t file = 0;
     std::uint64_t done = 0;
-    for (const std::string& path : paths) {
-        io::las_reader reader(path);
-        reader.set_threads(opt.threads);
-        reader.set_memory_budget(opt.memory_budget_bytes);
-        while (reader.position() < reader.point_count()) {
-            done += reader.read(chunk, std::size_t{1} << 20);
-            to_metres(chunk, units);
-            count_points_above(chunk.cloud(), g, terrain, height_m, counts.view());
-            if (bar && s.points > 0) bar(std::min(1.0, static_cast<double>(done) / static_cast<double>(s.points)));
-        }
+    while (const std::size_t n = source.next(chunk, file)) {
+        count_points_above(chunk.cloud(), g, terrain, height_m, counts.view());
+        done += n;
+        if (bar && s.points > 0) bar(std::min(1.0, static_cast<double>(done) / static_cast<double>(s.points)));
     }
     return counts;
 }

@@ -312,11 +312,10 @@ int run_solar(const std::vector<std::string>& args)
             if (buildings_choice != "class6" && !class_ground.empty()) {
                 // The terrain filled as extract_buildings fills it; each building's rim is then decided by the
                 // share of its points raised above it, counted in a second pass over the files.
+                const double raised_m = lidarfx::building_candidates_options{}.min_height_m;
                 class_ground = lidarfx::fill_ground(class_ground, s.rasters.g.cell, {}, {.threads = threads});
-                raised_points = cli::count_raised_points(inputs, s, survey_options, class_ground,
-                                                         lidarfx::building_candidates_options{}.min_height_m);
-                std::cout << "building edges: by the share of each cell's points standing "
-                          << lidarfx::building_candidates_options{}.min_height_m
+                raised_points = cli::count_raised_points(inputs, s, survey_options, class_ground, raised_m);
+                std::cout << "building edges: by the share of each cell's points standing " << raised_m
                           << " m above that terrain (a second pass over the files)\n";
             }
             points = std::move(s.rasters.count);

@@ -2,6 +2,7 @@
 // Errors: one exception type for bad input, one for cancellation, and the helpers that build their messages.
 #pragma once
 
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -73,6 +74,16 @@ void require_same_shape(const A& a, const B& b, std::string_view function, std::
         throw invalid_input(concat(function, ": ", a_name, " and ", b_name, " must have the same shape (got ", a.rows(),
                                    "x", a.cols(), " and ", b.rows(), "x", b.cols(), ")"));
     }
+}
+
+/// Requires a count raster `part` (points of some kind per cell) not to exceed `whole` (all the points) in any
+/// cell; both of the same shape (checked by the caller). Throws "<function>: <message>".
+template <class Part, class Whole>
+void require_counts_within(const Part& part, const Whole& whole, std::string_view function, std::string_view message)
+{
+    for (std::ptrdiff_t r = 0; r < part.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < part.cols(); ++c)
+            if (part(r, c) > whole(r, c)) throw invalid_input(concat(function, ": ", message));
 }
 
 }  // namespace detail

@@ -72,15 +72,15 @@ inline std::size_t min_part_cells(const building_candidates_options& opt, double
     return std::max<std::size_t>(1, static_cast<std::size_t>(std::max(cells, 0.0)));
 }
 
-/// The parts of a 0/1 mask as building_candidates keeps them, written to `ids` (the mask's shape): 4-connected
-/// holes under min_cells filled, parts under min_cells dropped, the rest numbered by size, largest first.
-/// Returns their number.
-inline std::size_t number_parts(raster<std::uint8_t>& mask, std::size_t min_cells, const execution& run,
+/// The parts of a mask (nonzero = building) as building_candidates keeps them, written to `ids` (the mask's
+/// shape): 4-connected holes under min_cells filled, parts under min_cells dropped, the rest numbered by size,
+/// largest first. Returns their number.
+inline std::size_t number_parts(raster_view<const std::uint8_t> mask, std::size_t min_cells, const execution& run,
                                 raster<std::int32_t>& ids)
 {
-    mask = fill_holes(mask, min_cells - 1, connectivity::four);
-    components parts =
-        connected_components(mask, connected_components_options{.conn = connectivity::four, .run = {run.threads, {}}});
+    const raster<std::uint8_t> filled = fill_holes(mask, min_cells - 1, connectivity::four);
+    components parts = connected_components(
+        filled, connected_components_options{.conn = connectivity::four, .run = {run.threads, {}}});
     rank_by_size(parts);
     std::size_t kept = 0;
     while (kept < parts.count() && parts.sizes[kept + 1] >= min_cells) ++kept;
@@ -155,10 +155,7 @@ inline building_candidates_result classified_building_parts(raster_view<const st
     detail::check_execution(run, function);
     const std::ptrdiff_t rows = building_cells.rows(), cols = building_cells.cols();
     building_candidates_result out{raster<std::int32_t>(rows, cols), raster<std::uint8_t>(rows, cols), 0};
-    raster<std::uint8_t> candidate(rows, cols);
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c) candidate(r, c) = building_cells(r, c) != 0 ? 1 : 0;
-    out.count = detail::number_parts(candidate, detail::min_part_cells(opt, cell_m), run, out.building_id);
+    out.count = detail::number_parts(building_cells, detail::min_part_cells(opt, cell_m), run, out.building_id);
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
 
 namespace lidarfx {
 
@@ -69,6 +70,14 @@ inline void check_building_rim(const building_rim_options& opt, const char* func
             opt.join_height_m);
 }
 
+/// The building of cell (r, c) of `ids` when it is one of 1..count, else 0.
+inline std::int32_t building_of(raster_view<const std::int32_t> ids, std::size_t count, std::ptrdiff_t r,
+                                std::ptrdiff_t c)
+{
+    const std::int32_t b = ids(r, c);
+    return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
+}
+
 /// After refine_building_rim: drops, in place, the 4-connected pieces of buildings 1..count smaller than
 /// min_cells (a wall's cells that left may cut a corner or a narrow wing off), then renumbers the buildings left
 /// by decreasing footprint (cells), ties by their old id. Cells of other ids are left as they are. Returns the
@@ -86,18 +95,14 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
     detail::require_same_shape(building_id, z, function, "building_id", "z");
     detail::require_same_shape(building_id, points, function, "building_id", "points");
     detail::require_same_shape(building_id, raised, function, "building_id", "raised");
+    detail::require_counts_within(raised, points, function, "raised must not exceed points in any cell");
     const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
-    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
-        const std::int32_t b = building_id(r, c);
-        return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
+    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return detail::building_of(building_id, count, r, c);
     };
     std::vector<std::size_t> cells(count + 1, 0);
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            detail::require(raised(r, c) <= points(r, c), function, "raised must not exceed points in any cell");
-            ++cells[static_cast<std::size_t>(id_of(r, c))];
-        }
-    }
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) ++cells[static_cast<std::size_t>(id_of(r, c))];
     struct change {
         std::ptrdiff_t r, c;
         std::int32_t id;
@@ -127,22 +132,20 @@ inline building_rim_result refine_building_rim(raster_view<std::int32_t> buildin
     building_rim_result out;
     std::vector<bool> stays_whole(count + 1, false);
     for (std::size_t b = 1; b <= count; ++b) stays_whole[b] = leaving[b] >= cells[b];
-    raster<std::uint8_t> left(rows, cols);  // cells that left: a wall's cell does not come back as an eave
     for (const change& ch : leaves) {
         const auto b = static_cast<std::size_t>(building_id(ch.r, ch.c));
         if (stays_whole[b]) continue;
         building_id(ch.r, ch.c) = 0;
-        left(ch.r, ch.c) = 1;
         --cells[b];
         ++out.left;
     }
     // 2. Cells that join (cells of id 0), decided on the ids after the leaves, so that no cell joins through a
     // wall's cell that left: across an edge, or across a corner when a cell beside it across an edge is of that
-    // building after the joins across an edge.
+    // building after the joins across an edge. A cell that left is not raised, so it does not come back.
     std::vector<change> joins;
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            if (building_id(r, c) != 0 || left(r, c) || points(r, c) == 0 || !is_raised(r, c)) continue;
+            if (building_id(r, c) != 0 || points(r, c) == 0 || !is_raised(r, c)) continue;
             const double zc = static_cast<double>(z(r, c));
             // The closest in height across an edge (ties: the lowest id); without one, across a corner.
             std::int32_t best[2] = {0, 0};  // across an edge, across a corner
@@ -217,10 +220,7 @@ inline std::size_t detail::drop_small_pieces(raster_view<std::int32_t> building_
                                              std::size_t min_cells)
 {
     const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
-    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
-        const std::int32_t b = building_id(r, c);
-        return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
-    };
+    const auto id_of = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return building_of(building_id, count, r, c); };
     // Pieces by flood fill over edge neighbours of the same id; small ones are cleared.
     raster<std::uint8_t> seen(rows, cols);
     std::vector<std::ptrdiff_t> piece, stack;
@@ -252,20 +252,12 @@ inline std::size_t detail::drop_small_pieces(raster_view<std::int32_t> building_
             for (const std::ptrdiff_t p : piece) building_id(p / cols, p % cols) = 0;
         }
     }
-    // New ids: by decreasing footprint, ties by the old id; buildings without a cell left get none.
-    std::vector<std::int32_t> order;
-    for (std::size_t b = 1; b <= count; ++b)
-        if (cells[b] > 0) order.push_back(static_cast<std::int32_t>(b));
-    std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-        return cells[static_cast<std::size_t>(a)] > cells[static_cast<std::size_t>(b)];
-    });
-    std::vector<std::int32_t> new_of(count + 1, 0);
-    for (std::size_t k = 0; k < order.size(); ++k)
-        new_of[static_cast<std::size_t>(order[k])] = static_cast<std::int32_t>(k + 1);
+    // New ids by decreasing footprint, ties by the old id: buildings without a cell left rank last and keep none.
+    const std::vector<std::int32_t> new_of = rank_components_by_size(cells);
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             if (const std::int32_t b = id_of(r, c); b != 0) building_id(r, c) = new_of[static_cast<std::size_t>(b)];
-    return order.size();
+    return static_cast<std::size_t>(std::count_if(cells.begin() + 1, cells.end(), [](std::size_t n) { return n > 0; }));
 }
 
 }  // namespace lidarfx

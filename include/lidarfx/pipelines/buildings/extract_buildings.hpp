@@ -293,12 +293,8 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
         for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)
             any_split = returns.multiple(r, c) > 0;
-    if (!returns.raised.empty()) {
-        for (std::ptrdiff_t r = 0; r < returns.raised.rows(); ++r)
-            for (std::ptrdiff_t c = 0; c < returns.raised.cols(); ++c)
-                detail::require(returns.raised(r, c) <= returns.points(r, c), function,
-                                "returns.raised must not exceed returns.points in any cell");
-    }
+    detail::require_counts_within(returns.raised, returns.points, function,
+                                  "returns.raised must not exceed returns.points in any cell");
     if (!any_split) return detail::extract_buildings_steps(dsm, g, ground, {}, &returns, false, opt);
     const raster<std::uint8_t> vegetation = vegetation_by_returns(returns, opt.returns);
     return detail::extract_buildings_steps(dsm, g, ground, vegetation.view(), &returns, true, opt);

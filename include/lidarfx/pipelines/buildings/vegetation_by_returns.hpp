@@ -78,10 +78,8 @@ inline void check_vegetation_by_returns(const pulse_returns& returns, const vege
     require(opt.min_seen_density >= 0 && opt.min_seen_density <= 1, function, "min_seen_density", "in [0, 1]",
             opt.min_seen_density);
     require_same_shape(returns.points, returns.multiple, function, "returns.points", "returns.multiple");
-    for (std::ptrdiff_t r = 0; r < returns.points.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < returns.points.cols(); ++c)
-            require(returns.multiple(r, c) <= returns.points(r, c), function,
-                    "returns.multiple must not exceed returns.points in any cell");
+    require_counts_within(returns.multiple, returns.points, function,
+                          "returns.multiple must not exceed returns.points in any cell");
 }
 
 }  // namespace detail
