@@ -2,7 +2,8 @@
 // Scores extract_buildings on a real classified survey against the survey's own building class (ASPRS 6) and,
 // when given, independent footprint polygons. Run by bench/buildings_real_surveys.sh.
 //   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] [--vegetation returns|any]
-//                         [--rim points|dsm] [--min-area M2] [--footprints FILE] [--truth-ignore CLASS]...
+//                         [--rim points|dsm] [--min-area M2] [--party-step M] [--party-share S] [--footprints FILE]
+//                         [--truth-ignore CLASS]...
 //                         [--map OUT.asc]
 // The surface is built as `lidarfx solar --facades` builds it: the highest return per cell (NaN cells filled
 // by IDW), isolated spikes and pits removed. Trees are told from roofs by the share of split pulses
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -70,11 +72,53 @@ void print_scores(const char* what, const scores& s, double cell_area)
 
 }  // namespace
 
+/// Buildings one by one against the footprint polygons (`footprints` labels each polygon's cells): of the
+/// footprints of >= 15 m^2 that one found building covers at least half of (their dominant building), how many
+/// have a building of their own (dominant for no other footprint), and how many are cut in two (two found
+/// buildings cover >= 15 m^2 of it each).
+void print_separation(const raster<std::int32_t>& footprints, const raster<std::int32_t>& found, double cell_area)
+{
+    std::map<std::int32_t, std::map<std::int32_t, std::size_t>> cover;  // footprint -> found building -> cells
+    std::map<std::int32_t, std::size_t> cells;
+    for (std::ptrdiff_t i = 0; i < footprints.size(); ++i) {
+        const std::int32_t f = footprints.data()[i];
+        if (f <= 0) continue;
+        ++cells[f];
+        if (found.data()[i] > 0) ++cover[f][found.data()[i]];
+    }
+    const auto min_cells = static_cast<std::size_t>(std::ceil(15.0 / cell_area));
+    std::map<std::int32_t, std::int32_t> dominant;
+    std::map<std::int32_t, int> dominated;
+    std::size_t large = 0, cut = 0;
+    for (const auto& [f, n] : cells) {
+        if (n < min_cells) continue;
+        ++large;
+        std::size_t best = 0, parts = 0;
+        std::int32_t best_id = 0;
+        for (const auto& [id, k] : cover[f]) {
+            parts += k >= min_cells ? 1 : 0;
+            if (k > best) best = k, best_id = id;
+        }
+        cut += parts >= 2 ? 1 : 0;
+        if (2 * best >= n) {
+            dominant[f] = best_id;
+            ++dominated[best_id];
+        }
+    }
+    std::size_t own = 0;
+    for (const auto& [f, id] : dominant) own += dominated[id] == 1 ? 1 : 0;
+    std::printf(
+        "  footprints of >= 15 m^2: %zu; found (half covered by one building): %zu; with a building of their "
+        "own: %zu; sharing one: %zu; cut in two: %zu\n",
+        large, dominant.size(), own, dominant.size() - own, cut);
+}
+
 int main(int argc, char** argv)
 {
     double cell = 1.0;
     std::string ground_mode = "model", vegetation_mode = "returns", rim_mode = "points";
     const char* footprint_file = nullptr;
+    const char* ids_file = nullptr;
     const char* map_file = nullptr;
     std::vector<std::string> files;
     std::vector<int> truth_ignore;  // classes the truth rule leaves out (e.g. 12, overlap points on roofs and ground)
@@ -97,10 +141,16 @@ int main(int argc, char** argv)
             truth_ignore.push_back(std::atoi(argv[a + 1]));
         else if (!std::strcmp(argv[a], "--rim"))
             rim_mode = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--party-step"))
+            opt.party_walls.min_step_m = std::strtod(argv[a + 1], nullptr);  // inf: blocks are never split
+        else if (!std::strcmp(argv[a], "--party-share"))
+            opt.party_walls.min_wall_share = std::strtod(argv[a + 1], nullptr);
         else if (!std::strcmp(argv[a], "--footprints"))
             footprint_file = argv[a + 1];
         else if (!std::strcmp(argv[a], "--map"))
             map_file = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--ids"))
+            ids_file = argv[a + 1];
         else
             usage = true;
     }
@@ -108,8 +158,8 @@ int main(int argc, char** argv)
         (vegetation_mode != "returns" && vegetation_mode != "any") || (rim_mode != "points" && rim_mode != "dsm")) {
         std::fprintf(stderr,
                      "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] "
-                     "[--vegetation returns|any] [--rim points|dsm] [--min-area M2] [--footprints FILE] "
-                     "[--truth-ignore CLASS]... [--map OUT.asc]\n");
+                     "[--vegetation returns|any] [--rim points|dsm] [--min-area M2] [--party-step M] [--party-share S] "
+                     "[--footprints FILE] [--truth-ignore CLASS]... [--map OUT.asc] [--ids OUT.asc]\n");
         return 2;
     }
     try {
@@ -155,7 +205,7 @@ int main(int argc, char** argv)
         if (footprint_file) {
             std::vector<labelled_polygon> polygons;
             for (auto& fp : io::read_footprints(footprint_file).footprints)
-                polygons.push_back({1, std::move(fp.parts)});
+                polygons.push_back({static_cast<std::int32_t>(polygons.size()) + 1, std::move(fp.parts)});
             footprints = burn_polygons(polygons, g).labels;
         }
         scores by_class, by_polygon;
@@ -184,7 +234,20 @@ int main(int argc, char** argv)
                                                    [](const building_record& br) { return br.clipped; })),
             b.rejected_rough);
         print_scores("class 6, cells with points", by_class, cell * cell);
-        if (!footprints.empty()) print_scores("footprints, cells with points", by_polygon, cell * cell);
+        if (!footprints.empty()) {
+            print_scores("footprints, cells with points", by_polygon, cell * cell);
+            print_separation(footprints, b.building_id, cell * cell);
+        }
+        if (ids_file) {  // building ids and roof surfaces, for a look at the blocks
+            raster<float> ids(g.rows, g.cols), surfaces(g.rows, g.cols);
+            for (std::ptrdiff_t i = 0; i < ids.size(); ++i) {
+                ids.data()[i] = static_cast<float>(b.building_id.data()[i]);
+                surfaces.data()[i] = static_cast<float>(b.surface_id.data()[i]);
+            }
+            io::write_ascii_grid(ids_file, ids, g);
+            io::write_ascii_grid(std::string(ids_file) + ".surfaces.asc", surfaces, g);
+            io::write_ascii_grid(std::string(ids_file) + ".dsm.asc", dsm, g);
+        }
         if (map_file) {
             raster<float> map(g.rows, g.cols);
             for (std::ptrdiff_t r = 0; r < g.rows; ++r)

@@ -18,8 +18,8 @@ folder="${LIDARFX_REAL_SURVEYS:-}"
 # name | files (space-separated) | cell, metres | where they come from | footprint polygons beside them (optional)
 # | more options of the scorer (optional)
 surveys=(
-    "Delft 1|ahn3_cropped_1.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_1.laz (AHN3, Dutch open data; repository GPL-3)|"
-    "Delft 2|ahn3_cropped_2.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_2.laz (AHN3, Dutch open data; repository GPL-3)|"
+    "Delft 1|ahn3_cropped_1.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_1.laz (AHN3, Dutch open data; repository GPL-3) and example_data/bgt/bgt_pand.sqlite (BGT building polygons)|bgt_pand.sqlite"
+    "Delft 2|ahn3_cropped_2.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_2.laz (AHN3, Dutch open data; repository GPL-3) and example_data/bgt/bgt_pand.sqlite (BGT building polygons)|bgt_pand.sqlite"
     "Montpellier|lidarhd_montpellier_77050_627755.laz lidarhd_montpellier_77050_627760.laz lidarhd_montpellier_77055_627755.laz lidarhd_montpellier_77055_627760.laz lidarhd_montpellier_77060_627755.laz lidarhd_montpellier_77060_627760.laz|1|IGNF/ign-pdal-tools, test/data/classified_laz/test_data_77050_627755_LA93_IGN69.laz and test/data/test_data_770{50,55,60}_62775{5,60}_LA93_IGN69.laz (IGN LiDAR HD, Etalab 2.0; repository MIT)|"
     "Louhans|lidarhd_louhans_870000_6618000.laz|1|IGNF/lidar-prod, tests/files/870000_6618000.subset.postValidation.laz and .postIA.shp (IGN LiDAR HD and BD UNI; repository BSD-3)|lidarhd_louhans_bd_uni.shp"
     "Le Grau-du-Roi|lidar_legrauduroi_left.laz lidar_legrauduroi_right.laz|1|IGNF/pacasam, tests/data/laz/792000_6272000-50mx100m-{left,right}.laz (IGN; repository BSD-3)|"

@@ -27,6 +27,8 @@
 #include <lidarfx/pipelines/buildings/extract_buildings.hpp>
 #include <lidarfx/synth/town_family.hpp>
 
+#include "program_buildings.hpp"
+
 namespace {
 
 using namespace lidarfx;
@@ -194,23 +196,6 @@ void print_row(double cell, double density, double min_area, const tally& s)
     std::fflush(stdout);
 }
 
-/// "1.5,2,4" into numbers.
-std::vector<double> parse_list(const char* text)
-{
-    std::vector<double> out;
-    std::string item;
-    for (const char* p = text;; ++p) {
-        if (*p == ',' || *p == '\0') {
-            if (!item.empty()) out.push_back(std::strtod(item.c_str(), nullptr));
-            item.clear();
-            if (*p == '\0') break;
-        } else {
-            item += *p;
-        }
-    }
-    return out;
-}
-
 settings parse(int argc, char** argv)
 {
     settings s;
@@ -221,11 +206,11 @@ settings parse(int argc, char** argv)
         } else if (std::strcmp(argv[i], "--count") == 0 && has_value) {
             s.seed_count = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
         } else if (std::strcmp(argv[i], "--density") == 0 && has_value) {
-            s.densities = parse_list(argv[++i]);
+            s.densities = bench::parse_list(argv[++i]);
         } else if (std::strcmp(argv[i], "--cell") == 0 && has_value) {
-            s.cells = parse_list(argv[++i]);
+            s.cells = bench::parse_list(argv[++i]);
         } else if (std::strcmp(argv[i], "--min-area") == 0 && has_value) {
-            s.min_areas = parse_list(argv[++i]);
+            s.min_areas = bench::parse_list(argv[++i]);
         } else if (std::strcmp(argv[i], "--returns") == 0) {
             s.vegetation = vegetation_input::pulse_counts;
         } else if (std::strcmp(argv[i], "--program") == 0) {
@@ -270,18 +255,11 @@ int main(int argc, char** argv)
                 first.returns = return_selection::first;
                 const grid& g = town.town.truth.g;
                 if (set.vegetation == vegetation_input::program) {
-                    const auto all = rasterize(town.town.points.cloud(), g);
-                    const raster<float> ground = fill_ground(
-                        rasterize(town.town.points.cloud(), g, {.classes = {.include = {las_class::ground}}}).min_z,
-                        g.cell);
-                    const raster<std::uint32_t> raised = count_points_above(town.town.points.cloud(), g, ground.view(),
-                                                                            building_candidates_options{}.min_height_m);
+                    const auto inputs = bench::program_inputs_of(town.town.points.cloud(), g);
                     for (std::size_t m = 0; m < set.min_areas.size(); ++m) {
                         extract_buildings_options eo;
                         eo.candidates.min_area_m2 = set.min_areas[m];
-                        const auto b = extract_buildings(
-                            idw_fill(all.max_z, g.cell).filled, g, ground.view(),
-                            pulse_returns{all.count.view(), all.multiple_return_count.view(), raised.view()}, eo);
+                        const auto b = bench::program_buildings(inputs, g, eo);
                         score(town, b.building_id, b.buildings.size(), totals[m]);
                     }
                     continue;

@@ -68,6 +68,7 @@
 #include "lidarfx/pipelines/buildings/merge_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/morphological_ground.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
+#include "lidarfx/pipelines/buildings/party_walls.hpp"
 #include "lidarfx/pipelines/buildings/surface_class_table.hpp"
 #include "lidarfx/pipelines/buildings/surface_energy.hpp"
 #include "lidarfx/pipelines/buildings/surface_patches.hpp"

@@ -67,7 +67,7 @@ uint32 raster."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[ArrayLike] = None, building_cells: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[ArrayLike] = None, building_cells: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, party_wall_step_m: float = 1.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -82,7 +82,9 @@ count_points_above against the ground, which must then be filled: fill_ground) d
 rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
 the roof at its height (within 0.5 m) with half its points raised joins. Or building_cells (bool or uint8, e.g.
 where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
-under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
+buildings where two of its roof surfaces do not meet along most of their boundary but stand more than
+party_wall_step_m (metres, > 0; inf never splits) apart: terraced houses of different heights. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid)."""
     ...

@@ -53,7 +53,8 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
                                      const py::handle& ground_arg, const py::handle& vegetation_arg,
                                      const py::handle& points_arg, const py::handle& split_arg,
                                      const py::handle& raised_arg, const py::handle& building_cells_arg,
-                                     double min_height_m, double min_area_m2, int threads, py::object progress)
+                                     double min_height_m, double min_area_m2, double party_wall_step_m, int threads,
+                                     py::object progress)
 {
     constexpr const char* fn = "extract_buildings";
     const array_input<float> z(dsm, fn, "dsm");
@@ -83,6 +84,7 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     extract_buildings_options opt;
     opt.candidates.min_height_m = min_height_m;
     opt.candidates.min_area_m2 = min_area_m2;
+    opt.party_walls.min_step_m = party_wall_step_m;
     run_settings rs(threads, std::move(progress));
     opt.run = rs.run();
     extract_buildings_result r = rs.call([&] {
@@ -256,7 +258,8 @@ void bind_buildings(py::module_& m)
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
           "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
           "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "building_cells"_a = py::none(),
-          "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "threads"_a = 1, "progress"_a = py::none(), R"doc(
+          "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "party_wall_step_m"_a = 1.0, "threads"_a = 1,
+          "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -271,7 +274,9 @@ count_points_above against the ground, which must then be filled: fill_ground) d
 rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
 the roof at its height (within 0.5 m) with half its points raised joins. Or building_cells (bool or uint8, e.g.
 where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
-under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
+under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
+buildings where two of its roof surfaces do not meet along most of their boundary but stand more than
+party_wall_step_m (metres, > 0; inf never splits) apart: terraced houses of different heights. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
 vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid).)doc");
 

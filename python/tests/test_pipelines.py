@@ -171,6 +171,21 @@ def test_extract_buildings_with_pulse_counts_keeps_a_rough_roof_and_drops_a_crow
 
 
 
+def test_extract_buildings_splits_a_terrace_at_its_party_walls():
+    # Three flat-roofed houses of 8 m x 10 m side by side, eaves 6, 8 and 6 m above level ground: one block.
+    dsm = np.zeros((30, 44), np.float32)
+    for house, height in enumerate((6.0, 8.0, 6.0)):
+        dsm[10:20, 10 + 8 * house:18 + 8 * house] = height
+    ground = np.zeros_like(dsm)
+    split = lidarfx.extract_buildings(dsm, 1.0, ground=ground)
+    assert len(split.buildings) == 3
+    assert len({int(split.building_id[15, c]) for c in (12, 20, 30)}) == 3
+    whole = lidarfx.extract_buildings(dsm, 1.0, ground=ground, party_wall_step_m=float("inf"))
+    assert len(whole.buildings) == 1
+    with pytest.raises(ValueError, match="min_step_m"):
+        lidarfx.extract_buildings(dsm, 1.0, ground=ground, party_wall_step_m=0.0)
+
+
 def test_extract_buildings_decides_the_rim_by_the_raised_points(rng):
     # A 20 m x 12 m flat roof 8 m high on level ground at 100 m, 1 m cells, 16 points per m^2. The DSM keeps each
     # cell's highest point, so the cells the walls cross read as roof although most of their points are ground.

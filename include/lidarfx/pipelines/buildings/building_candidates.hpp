@@ -64,12 +64,19 @@ inline void check_building_candidates(const building_candidates_options& opt, co
             opt.min_area_m2);
 }
 
+/// The fewest cells of cell_m metres that cover area_m2 (at least 1; huge areas clamp to more cells than any
+/// raster holds).
+inline std::size_t cells_covering(double area_m2, double cell_m)
+{
+    const double cells = std::ceil(area_m2 / (cell_m * cell_m) - 1e-9);
+    if (!(cells < 1e18)) return std::size_t{1} << 60;  // more cells than any raster holds (and no UB in the cast)
+    return std::max<std::size_t>(1, static_cast<std::size_t>(std::max(cells, 0.0)));
+}
+
 /// The fewest cells of a part building_candidates keeps (min_area_m2 in cells of cell_m, at least 1).
 inline std::size_t min_part_cells(const building_candidates_options& opt, double cell_m)
 {
-    const double cells = std::ceil(opt.min_area_m2 / (cell_m * cell_m) - 1e-9);
-    if (!(cells < 1e18)) return std::size_t{1} << 60;  // more cells than any raster holds (and no UB in the cast)
-    return std::max<std::size_t>(1, static_cast<std::size_t>(std::max(cells, 0.0)));
+    return cells_covering(opt.min_area_m2, cell_m);
 }
 
 /// The parts of a mask (nonzero = building) as building_candidates keeps them, written to `ids` (the mask's

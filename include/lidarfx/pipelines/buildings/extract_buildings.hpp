@@ -3,7 +3,7 @@
 // with roof faces split by normal direction and trees rejected by returns and roughness. A composition of the
 // steps in this folder, in order: ground_model (and replace_ground), building_candidates, local_planes and
 // drop_rough_buildings, grow_roof_surfaces, dissolve_small_surfaces, assign_remaining_cells,
-// merge_roof_surfaces, number_roof_surfaces, building_heights, building_outlines.
+// merge_roof_surfaces, split_party_walls, number_roof_surfaces, building_heights, building_outlines.
 #pragma once
 
 #include <array>
@@ -27,6 +27,7 @@
 #include "lidarfx/pipelines/buildings/local_planes.hpp"
 #include "lidarfx/pipelines/buildings/merge_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
+#include "lidarfx/pipelines/buildings/party_walls.hpp"
 #include "lidarfx/pipelines/buildings/vegetation_by_returns.hpp"
 
 namespace lidarfx {
@@ -40,6 +41,7 @@ struct extract_buildings_options {
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
     vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
     building_rim_options rim = {};                ///< min_raised_share (0.5), join_height_m (0.5 m)
+    party_walls_options party_walls = {};         ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -83,7 +85,8 @@ struct extract_buildings_result {
 ///     pulses, drop_vegetation_parts instead and refine_building_rim when raised points are counted;
 ///  4. grow_roof_surfaces: regions of planar cells grown by normal and height step;
 ///  5. dissolve_small_surfaces, assign_remaining_cells (eaves, ridges, wall tops to the nearest plane in
-///     height), merge_roof_surfaces (adjacent surfaces that one plane fits);
+///     height), merge_roof_surfaces (adjacent surfaces that one plane fits), split_party_walls (a block split
+///     where two roofs do not meet along most of their boundary: terraced houses of different heights);
 ///  6. number_roof_surfaces (by area, with tilt and azimuth), building_heights, building_outlines.
 /// Buildings and surfaces are numbered by area, largest first. O(cells * ((2 w + 1)^2 + radius^2 + idw_k)), w
 /// the local plane window in cells. Same result for any thread count.
@@ -152,6 +155,7 @@ inline void check_extract_buildings(const grid& g, const extract_buildings_optio
     require(opt.returns.min_seen_density >= 0 && opt.returns.min_seen_density <= 1, function,
             "returns.min_seen_density", "in [0, 1]", opt.returns.min_seen_density);
     check_building_rim(opt.rim, function);
+    check_party_walls(opt.party_walls, function);
     check_execution(opt.run, function);
 }
 
@@ -240,6 +244,7 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
     dissolve_small_surfaces(regions, z, out.building_id, kept, cell_m, opt.surfaces);
     assign_remaining_cells(regions, z, out.building_id, cell_m);
     merge_roof_surfaces(regions, z, cell_m, opt.local_planes, opt.merge);
+    kept = split_party_walls(out.building_id, kept, regions, z, cell_m, opt.party_walls).count;
     detail::report(opt.run.progress, 0.85, function);
 
     number_roof_surfaces_result numbered = number_roof_surfaces(regions, z, out.building_id, cell_m);

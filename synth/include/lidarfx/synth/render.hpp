@@ -37,12 +37,14 @@ struct scene_truth {
     raster<std::uint8_t> water_filled;          ///< water plus islands smaller than island_fill_area_m2
     raster<std::int32_t> building_id;           ///< footprint holding the cell centre, 1-based; 0 = none
     raster<std::int32_t> roof_plane_id;         ///< 1 + index into roof_planes of the face above the centre; 0 = none
+                                                ///< (and 0 on a dormer, building_truth::dormers)
     raster<float> ground_z;                     ///< bare-earth elevation (water level on water), metres
     raster<float> water_z;                      ///< water surface elevation on water cells, NaN elsewhere
     raster<std::uint8_t> surface;               ///< las_class of the topmost surface above the cell centre
     std::vector<roof_plane_truth> roof_planes;  ///< every roof face, grouped by building in id order
     std::vector<std::vector<std::array<double, 2>>> footprints;  ///< per building id-1: closed counter-clockwise
-                                                                 ///< ring (GeoJSON exterior)
+                                                                 ///< ring (GeoJSON exterior), whole even where
+                                                                 ///< it reaches past the scene's border
     std::vector<std::array<double, 4>> islands;                  ///< (x, y, radius_m, area_m2) of each island
 };
 
@@ -260,7 +262,8 @@ scene_truth render_truth(const world<Site>& w, double cell_m)
                 const auto i = static_cast<std::size_t>(hit.index);
                 t.surface(r, c) = las_class::building;
                 t.building_id(r, c) = w.buildings[i].id;
-                t.roof_plane_id(r, c) = first_plane[i] + w.buildings[i].roof_at(x, y).face + 1;
+                const int face = w.buildings[i].roof_at(x, y).face;  // -1 on a dormer: no plane
+                t.roof_plane_id(r, c) = face < 0 ? 0 : first_plane[i] + face + 1;
             }
         }
     }

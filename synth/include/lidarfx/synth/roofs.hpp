@@ -24,12 +24,39 @@ struct roof_plane_truth {
 /// on a square).
 enum class roof_kind_truth { flat, shed, gable, hip };
 
+/// A dormer: a box standing on face 0 (v0 > 0) or face 1 (v0 < 0) of a gable or hip roof, in the building's local
+/// frame (building_truth::local). Its back (the side towards the ridge, |v| = |v0| - hv) meets the roof where
+/// top_z is the roof's height there; its front (towards the eave, |v| = |v0| + hv) stands above the roof as a step.
+/// The top is flat, or a shed falling front_drop_m from back to front. building_truth::roof_at gives the higher of
+/// roof and top where the dormer stands.
+struct dormer_truth {
+    double u0 = 0;            ///< centre along u (the long axis) from the footprint centre, metres
+    double v0 = 0;            ///< centre along v (across) from the footprint centre, metres; its sign picks the face
+    double hu = 1;            ///< half the dormer's width along u, metres, > 0
+    double hv = 1;            ///< half the dormer's depth along v, metres, > 0
+    double top_z = 0;         ///< elevation of the top at the dormer's back, metres
+    double front_drop_m = 0;  ///< how far a shed top falls from the back to the front, metres; 0 = flat top
+
+    /// True when local point (pu, pv) lies on the dormer (edges included).
+    bool covers(double pu, double pv) const noexcept { return std::abs(pu - u0) <= hu && std::abs(pv - v0) <= hv; }
+
+    /// Elevation of the top at local across-coordinate pv (on the dormer), metres.
+    double top_at(double pv) const noexcept
+    {
+        if (front_drop_m == 0) return top_z;
+        const double to_front = v0 >= 0 ? pv - (v0 - hv) : (v0 + hv) - pv;  // 0 at the back, 2 hv at the front
+        return top_z - front_drop_m * to_front / (2 * hv);
+    }
+};
+
 /// A synthetic building, as built and as stated in the truth: a length x width rectangle (length >=
 /// width) centred at (x, y) whose long axis points to `axis_azimuth_deg` (clockwise from north), walls up
 /// to `eave_z` (absolute elevation), and a roof.
 /// Local axes: u along the long axis, v = u turned 90 degrees clockwise; faces are numbered in the order
 /// of planes(): gable 0 faces +v and 1 faces -v; hip adds 2 facing +u and 3 facing -u; a shed faces
 /// `shed_facing` (0 +v, 1 -v, 2 +u, 3 -u).
+/// Dormers (gable and hip roofs, on faces 0 and 1) raise the roof where they stand; roof_at marks them with face
+/// -1, and planes() takes their horizontal area off the face they stand on (their tops and walls are no plane).
 struct building_truth {
     std::int32_t id = 1;  ///< 1-based id
     double x = 0, y = 0;  ///< footprint centre, metres
@@ -40,6 +67,8 @@ struct building_truth {
     int shed_facing = 0;    ///< facing of a shed roof, 0..3 (see above)
     double eave_z = 10;     ///< elevation of the eaves (top of the walls), metres
     double intensity = 70;  ///< mean intensity of the roof material
+    /// Dormers on the roof (dormer_truth); empty = none. Each lies inside the footprint, on one face (gable, hip).
+    std::vector<dormer_truth> dormers;
 
     /// Local coordinates (along u, along v) of world point (px, py).
     std::array<double, 2> local(double px, double py) const noexcept
@@ -59,14 +88,29 @@ struct building_truth {
         return std::abs(pu) <= 0.5 * length_m && std::abs(pv) <= 0.5 * width_m;
     }
 
-    /// Roof elevation and face index at (px, py) inside the footprint (see the face numbering above).
+    /// Roof elevation and face index at (px, py) inside the footprint (see the face numbering above); face -1 on
+    /// a dormer whose top stands above the roof there.
     struct roof_hit {
-        double z;
-        int face;
+        double z;  ///< elevation, metres
+        int face;  ///< index into planes(), or -1 on a dormer
     };
     roof_hit roof_at(double px, double py) const noexcept
     {
         const auto [pu, pv] = local(px, py);
+        const roof_hit roof = roof_without_dormers(pu, pv);
+        if (dormers.empty()) return roof;
+        roof_hit top = roof;
+        for (const auto& d : dormers) {
+            if (!d.covers(pu, pv)) continue;
+            const double z = d.top_at(pv);
+            if (z > top.z) top = {z, -1};
+        }
+        return top;
+    }
+
+    /// The roof (without dormers) at local point (pu, pv): elevation and face.
+    roof_hit roof_without_dormers(double pu, double pv) const noexcept
+    {
         const double slope = std::tan(deg_to_rad(tilt_deg));
         const double to_long_edge = 0.5 * width_m - std::abs(pv), to_short_edge = 0.5 * length_m - std::abs(pu);
         switch (kind) {
@@ -86,8 +130,19 @@ struct building_truth {
         return {eave_z, 0};
     }
 
-    /// The roof faces with tilt, facing azimuth and sloped area, in face order.
+    /// The roof faces with tilt, facing azimuth and sloped area, in face order; a gable's or hip's face 0 (1) without
+    /// the sloped area under its dormers with v0 >= 0 (< 0).
     std::vector<roof_plane_truth> planes() const
+    {
+        auto faces = planes_without_dormers();
+        if (dormers.empty() || (kind != roof_kind_truth::gable && kind != roof_kind_truth::hip)) return faces;
+        const double cos_tilt = std::cos(deg_to_rad(tilt_deg));
+        for (const auto& d : dormers) faces[d.v0 >= 0 ? 0 : 1].area_m2 -= 4 * d.hu * d.hv / cos_tilt;
+        return faces;
+    }
+
+    /// The roof faces as if there were no dormers.
+    std::vector<roof_plane_truth> planes_without_dormers() const
     {
         const double cos_tilt = std::cos(deg_to_rad(tilt_deg));
         const auto facing = [&](double offset) { return std::fmod(axis_azimuth_deg + offset + 720.0, 360.0); };
