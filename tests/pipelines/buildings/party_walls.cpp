@@ -258,11 +258,25 @@ TEST_CASE("split_party_walls: a part apart from a split block stays with the blo
     CHECK(s.id(5, 2) != s.id(5, 12));
 }
 
+TEST_CASE("split_party_walls: a surface spread over two buildings never joins them")
+{
+    // Buildings 1 and 2, two columns apart, each a terrace of a low and a high roof; the low halves share region
+    // 1 and the high halves region 2 (ids a caller may hand over): four buildings, none spanning the gap.
+    block_scene s(12, 30);
+    s.face(1, 1, 1, 10, 1, 5, 8.0);
+    s.face(1, 2, 1, 10, 6, 10, 11.0);
+    s.face(2, 1, 1, 10, 13, 17, 8.0);
+    s.face(2, 2, 1, 10, 18, 22, 11.0);
+    const party_walls_result got = s.split(2, {.min_part_m2 = 20});
+    CHECK(got.count == 4);
+    CHECK(s.ids_in(1, 10, 1, 22).size() == 5);  // four buildings and the gap's 0
+}
+
 TEST_CASE("split_party_walls: every building keeps a roof surface, and cells outside the split keep theirs")
 {
     // House A: a gable over columns 1-8 (ridge between columns 4 and 5), rows 1-12; its west face is surface 1,
     // its east face (48 cells, not core) was given to surface 2, the flat roof of B at 4.5 m (columns 9-11 and
-    // row 13: 44 core cells). The east face is most of surface 2's cells, yet surface 2 is B's roof: B keeps it.
+    // row 13: 47 core cells). The east face is most of surface 2's cells, yet surface 2 is B's roof: B keeps it.
     block_scene s(15, 20);
     s.face(1, 2, 1, 12, 9, 11, 4.5);
     s.face(1, 2, 13, 13, 1, 11, 4.5);

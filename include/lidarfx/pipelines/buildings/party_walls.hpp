@@ -44,7 +44,7 @@ struct party_walls_options {
 
 /// What split_party_walls did.
 struct party_walls_result {
-    std::size_t count = 0;  ///< buildings after the split, numbered 1..count by decreasing footprint
+    std::size_t count = 0;  ///< buildings after the step: 1..count (by decreasing footprint when split > 0)
     std::size_t split = 0;  ///< buildings that were split (each into two or more)
 };
 
@@ -167,7 +167,8 @@ struct piece_boundary {
     double mean_rise_m() const noexcept { return rise_m / static_cast<double>(pairs); }
 };
 
-/// The pieces of split_party_walls (8-connected cells of one building and one part) and what joined what.
+/// The pieces of split_party_walls (the cells of one building and one part, or an 8-connected group of its loose
+/// cells and cells without a surface) and what joined what.
 struct wall_pieces {
     struct piece {
         std::int32_t building = 0;
@@ -281,10 +282,10 @@ inline wall_pieces number_wall_pieces(raster_view<const std::int32_t> ids, raste
     }
     out.owner.resize(out.pieces.size());
     std::iota(out.owner.begin(), out.owner.end(), std::size_t{0});
-    std::map<std::int32_t, std::size_t> first_of_part;
+    std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> first_of_part;  // (building, part) -> piece
     for (std::size_t i = 0; i < out.pieces.size(); ++i) {
         if (piece_part[i] <= 0) continue;
-        const auto [at, fresh] = first_of_part.try_emplace(piece_part[i], i);
+        const auto [at, fresh] = first_of_part.try_emplace({out.pieces[i].building, piece_part[i]}, i);
         if (!fresh) out.join(i, at->second);
     }
     return out;
@@ -523,37 +524,6 @@ inline void resurface_moved_cells(roof_regions& regions, raster_view<const std::
         }
 }
 
-/// After a split: the cells of a surface that ended in another building than most of its cells leave it and
-/// are given to a surface of their own building (assign_remaining_cells).
-inline void resurface_moved_cells(roof_regions& regions, raster_view<const std::int32_t> building_id,
-                                  raster_view<const float> z, double cell_m, const raster<std::int32_t>& in_step)
-{
-    const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
-    const auto surface_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        const std::int32_t g = regions.region(r, c);
-        return g > 0 && g <= regions.count && in_step(r, c) != 0 ? static_cast<std::size_t>(g) : 0;
-    };
-    std::vector<std::map<std::int32_t, std::size_t>> held(static_cast<std::size_t>(regions.count) + 1);
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (const std::size_t g = surface_at(r, c)) ++held[g][building_id(r, c)];
-    std::vector<std::int32_t> home(held.size(), 0);
-    for (std::size_t g = 1; g < held.size(); ++g) {
-        std::size_t most = 0;
-        for (const auto& [b, k] : held[g])
-            if (k > most) most = k, home[g] = b;
-    }
-    bool moved = false;
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (const std::size_t g = surface_at(r, c); g != 0 && building_id(r, c) != home[g]) {
-                regions.region(r, c) = 0;
-                regions.core(r, c) = 0;
-                moved = true;
-            }
-    if (moved) assign_remaining_cells(regions, z, building_id, cell_m);
-}
-
 }  // namespace detail
 
 // ---- implementation ----
@@ -568,6 +538,7 @@ inline party_walls_result split_party_walls(raster_view<std::int32_t> building_i
     detail::require_same_shape(building_id, z, function, "building_id", "z");
     detail::require_same_shape(building_id, regions.region, function, "building_id", "regions");
     detail::require_same_shape(building_id, regions.core, function, "building_id", "regions.core");
+    detail::require(regions.count >= 0, function, "regions.count must be >= 0");
     for (std::ptrdiff_t r = 0; r < building_id.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < building_id.cols(); ++c) {
             detail::require(building_id(r, c) >= 0 && static_cast<std::size_t>(building_id(r, c)) <= count, function,
