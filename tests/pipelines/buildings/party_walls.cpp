@@ -41,6 +41,17 @@ struct block_scene {
             }
         regions.count = std::max(regions.count, surface);
     }
+    /// Heights of a gable over rows r0..r1, columns c0..c1: 10 m at its ridge (column ridge_col) falling 0.6 m per
+    /// metre to either side. Its cells from column missed_from on are not core: a face the growth missed.
+    void gable(std::ptrdiff_t r0, std::ptrdiff_t r1, std::ptrdiff_t c0, std::ptrdiff_t c1, double ridge_col,
+               std::ptrdiff_t missed_from)
+    {
+        for (std::ptrdiff_t r = r0; r <= r1; ++r)
+            for (std::ptrdiff_t c = c0; c <= c1; ++c) {
+                z(r, c) = static_cast<float>(10.0 - 0.6 * std::abs(static_cast<double>(c) - ridge_col));
+                if (c >= missed_from) regions.core(r, c) = 0;
+            }
+    }
     party_walls_result split(std::size_t count, const party_walls_options& opt = {})
     {
         return split_party_walls(id.view(), count, regions, z.view(), 1.0, opt);
@@ -157,11 +168,7 @@ TEST_CASE("split_party_walls: a roof face the growth missed, given to the neighb
     s.face(1, 2, 13, 13, 1, 6, 4.5);
     s.face(1, 1, 1, 12, 1, 3, 0.0);
     s.face(1, 2, 1, 12, 4, 6, 0.0);
-    for (std::ptrdiff_t r = 1; r <= 12; ++r)
-        for (std::ptrdiff_t c = 1; c <= 6; ++c) {
-            s.z(r, c) = static_cast<float>(10.0 - 0.6 * std::abs(static_cast<double>(c) - 3.5));
-            if (c >= 4) s.regions.core(r, c) = 0;
-        }
+    s.gable(1, 12, 1, 6, 3.5, 4);
     const party_walls_result got = s.split(1);
     CHECK(got.count == 2);
     CHECK(s.ids_in(1, 12, 7, 20) == std::set<std::int32_t>{1});
@@ -282,11 +289,7 @@ TEST_CASE("split_party_walls: every building keeps a roof surface, and cells out
     s.face(1, 2, 13, 13, 1, 11, 4.5);
     s.face(1, 1, 1, 12, 1, 4, 0.0);
     s.face(1, 2, 1, 12, 5, 8, 0.0);
-    for (std::ptrdiff_t r = 1; r <= 12; ++r)
-        for (std::ptrdiff_t c = 1; c <= 8; ++c) {
-            s.z(r, c) = static_cast<float>(10.0 - 0.6 * std::abs(static_cast<double>(c) - 4.5));
-            if (c >= 5) s.regions.core(r, c) = 0;
-        }
+    s.gable(1, 12, 1, 8, 4.5, 5);
     s.face(2, 3, 1, 6, 15, 18, 7.0);  // building 2: no wall; its cell (6, 18) has no surface and keeps none
     s.regions.region(6, 18) = 0;
     const party_walls_result got = s.split(2);

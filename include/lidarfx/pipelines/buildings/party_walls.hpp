@@ -96,6 +96,13 @@ inline void check_party_walls(const party_walls_options& opt, const char* functi
 struct surface_boundary {
     std::size_t pairs = 0, steps = 0;
     std::int32_t building = 0;  ///< the building both surfaces lie in
+    /// Adds another stretch of boundary (pairs and steps; the building stays).
+    surface_boundary& operator+=(const surface_boundary& o) noexcept
+    {
+        pairs += o.pairs;
+        steps += o.steps;
+        return *this;
+    }
 };
 
 /// At least `share` of `pairs`, with a little slack so that an exact share (7 of 100 at 0.07) counts.
@@ -165,7 +172,37 @@ struct piece_boundary {
     std::size_t pairs = 0;
     double rise_m = 0;
     double mean_rise_m() const noexcept { return rise_m / static_cast<double>(pairs); }
+    piece_boundary& operator+=(const piece_boundary& o) noexcept
+    {
+        pairs += o.pairs;
+        rise_m += o.rise_m;
+        return *this;
+    }
 };
+
+/// The boundaries between pieces, kept both ways: graph[p][q] and graph[q][p] hold the same sums B (B += B).
+template <class B>
+using piece_graph = std::vector<std::map<std::size_t, B>>;
+
+/// Adds `stretch` to the boundary between pieces p and q.
+template <class B>
+void add_boundary(piece_graph<B>& graph, std::size_t p, std::size_t q, const B& stretch)
+{
+    graph[p][q] += stretch;
+    graph[q][p] += stretch;
+}
+
+/// Piece `gone` joins `keep`: gone's boundaries with the other pieces are added to keep's, and the boundary
+/// between the two goes.
+template <class B>
+void contract_boundaries(piece_graph<B>& graph, std::size_t gone, std::size_t keep)
+{
+    for (const auto& [j, e] : graph[gone]) {
+        graph[j].erase(gone);
+        if (j != keep) add_boundary(graph, j, keep, e);
+    }
+    graph[gone].clear();
+}
 
 /// The pieces of split_party_walls (the cells of one building and one part, or an 8-connected group of its loose
 /// cells and cells without a surface) and what joined what.
@@ -297,7 +334,7 @@ inline void join_small_pieces(wall_pieces& w, raster_view<const float> z, std::s
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const std::size_t n = w.pieces.size();
-    std::vector<std::map<std::size_t, piece_boundary>> touching(n);  // piece -> neighbour -> boundary
+    piece_graph<piece_boundary> touching(n);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             if (w.index(r, c) == 0) continue;
@@ -308,12 +345,9 @@ inline void join_small_pieces(wall_pieces& w, raster_view<const float> z, std::s
                 if (cc < 0 || rr >= rows || cc >= cols || w.index(rr, cc) == 0) continue;
                 const std::size_t q = w.standing_at(rr, cc);
                 if (q == p || w.pieces[q].building != w.pieces[p].building) continue;
-                const double rise = std::abs(static_cast<double>(z(r, c)) - static_cast<double>(z(rr, cc)));
-                for (auto [from, to] : {std::pair{p, q}, std::pair{q, p}}) {
-                    piece_boundary& e = touching[from][to];
-                    ++e.pairs;
-                    e.rise_m += rise;
-                }
+                add_boundary(
+                    touching, p, q,
+                    piece_boundary{1, std::abs(static_cast<double>(z(r, c)) - static_cast<double>(z(rr, cc)))});
             }
         }
     }
@@ -340,15 +374,7 @@ inline void join_small_pieces(wall_pieces& w, raster_view<const float> z, std::s
         waiting.erase(key(into));
         w.join(chosen, into);
         if (small(into)) waiting.insert(key(into));
-        for (const auto& [j, e] : touching[chosen]) {
-            touching[j].erase(chosen);
-            if (j == into) continue;
-            for (auto [from, to] : {std::pair{j, into}, std::pair{into, j}}) {
-                touching[from][to].pairs += e.pairs;
-                touching[from][to].rise_m += e.rise_m;
-            }
-        }
-        touching[chosen].clear();
+        contract_boundaries(touching, chosen, into);
     }
 }
 
@@ -359,7 +385,7 @@ inline void join_unstepped_pieces(wall_pieces& w, raster_view<const float> z, co
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
     const std::size_t n = w.pieces.size();
-    std::vector<std::map<std::size_t, surface_boundary>> between(n);  // standing piece -> neighbour -> boundary
+    piece_graph<surface_boundary> between(n);
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
         for (std::ptrdiff_t c = 0; c < cols; ++c) {
             if (w.index(r, c) == 0) continue;
@@ -371,10 +397,7 @@ inline void join_unstepped_pieces(wall_pieces& w, raster_view<const float> z, co
                 if (p == q || w.pieces[p].building != w.pieces[q].building) continue;
                 const bool step =
                     std::abs(static_cast<double>(z(r, c)) - static_cast<double>(z(rr, cc))) > opt.min_step_m;
-                for (auto [from, to] : {std::pair{p, q}, std::pair{q, p}}) {
-                    ++between[from][to].pairs;
-                    between[from][to].steps += step ? 1 : 0;
-                }
+                add_boundary(between, p, q, surface_boundary{1, step ? 1u : 0u, 0});
             }
         }
     }
@@ -388,16 +411,7 @@ inline void join_unstepped_pieces(wall_pieces& w, raster_view<const float> z, co
             if (found == between[keep].end()) break;
             const std::size_t gone = found->first;
             w.join(gone, keep);
-            for (const auto& [j, e] : between[gone]) {
-                between[j].erase(gone);
-                if (j == keep) continue;
-                for (auto [from, to] : {std::pair{j, keep}, std::pair{keep, j}}) {
-                    between[from][to].pairs += e.pairs;
-                    between[from][to].steps += e.steps;
-                }
-            }
-            between[gone].clear();
-            between[keep].erase(gone);
+            contract_boundaries(between, gone, keep);
         }
     }
     // A standing piece that touches no other piece of its building (a part apart from the block) stays with the
@@ -463,10 +477,10 @@ inline party_walls_result number_split_buildings(const wall_pieces& w, raster_vi
 /// After a split: the cells of a surface that ended in another building than most of its anchored cells (all its
 /// cells when none is anchored) leave it and are given to a surface of their own building
 /// (assign_remaining_cells over those cells only); a building left without any surface gets one of its own
-/// (all its cells, none core). Cells outside the step keep their surfaces.
+/// (all its cells, none core). Cells outside the step keep their surfaces. `buildings`: the ids are 0..buildings.
 inline void resurface_moved_cells(roof_regions& regions, raster_view<const std::int32_t> building_id,
-                                  raster_view<const float> z, double cell_m, const raster<std::int32_t>& in_step,
-                                  raster_view<const std::int32_t> anchored)
+                                  std::size_t buildings, raster_view<const float> z, double cell_m,
+                                  const raster<std::int32_t>& in_step, raster_view<const std::int32_t> anchored)
 {
     const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
     const auto surface_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
@@ -504,10 +518,7 @@ inline void resurface_moved_cells(roof_regions& regions, raster_view<const std::
         }
     if (moved) assign_remaining_cells(regions, z, moving_ids.view(), cell_m);
     // A building without any surface left gets one of its own.
-    std::int32_t buildings = 0;
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c) buildings = std::max(buildings, building_id(r, c));
-    std::vector<bool> surfaced(static_cast<std::size_t>(buildings) + 1, false);
+    std::vector<bool> surfaced(buildings + 1, false);
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             if (building_id(r, c) > 0 && regions.region(r, c) > 0)
@@ -558,7 +569,8 @@ inline party_walls_result split_party_walls(raster_view<std::int32_t> building_i
     detail::join_small_pieces(pieces, z, detail::cells_covering(opt.min_part_m2, cell_m));
     detail::join_unstepped_pieces(pieces, z, opt);
     const party_walls_result result = detail::number_split_buildings(pieces, building_id, count);
-    if (result.split > 0) detail::resurface_moved_cells(regions, building_id, z, cell_m, pieces.index, anchored.view());
+    if (result.split > 0)
+        detail::resurface_moved_cells(regions, building_id, result.count, z, cell_m, pieces.index, anchored.view());
     return result;
 }
 
