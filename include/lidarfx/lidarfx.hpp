@@ -41,6 +41,7 @@
 #include "lidarfx/kernels/solar/perez_diffuse.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/shadow_probes.hpp"
 #include "lidarfx/kernels/solar/sky_options.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/kernels/solar/spa_tables.hpp"

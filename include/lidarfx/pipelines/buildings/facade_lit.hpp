@@ -17,6 +17,7 @@
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/shadow_probes.hpp"
 #include "lidarfx/pipelines/buildings/facade_observers.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
 
@@ -48,36 +49,6 @@ inline void require_facade_cells(std::span<const facade_patch> patches, std::ptr
                                        " DSM; pass the sub-patches facade_patches made from this DSM"));
         }
     }
-}
-
-/// One sun position's sweep (0 < elevation < 90) over the ray lines of its azimuth: limit[o] = the largest shadow
-/// key z_q + t_q tan e (raylines_shadow's key, same expression) of the non-NaN cells q before observer o on its
-/// line, -infinity if none; when `lit` is not empty it also gets raylines_shadow's lit state of every cell
-/// (1 lit, 0 shadow; NaN cells 0). Blocks of lines fixed by the input, so any thread count gives the same bits.
-inline void facade_shadow_sweep(raster_view<const float> z, const facade_observers& obs, const ray_lines& l,
-                                const shadow_lifts& lift, std::vector<double>& limit, raster_view<std::uint8_t> lit,
-                                int threads, const char* fn)
-{
-    const std::vector<std::ptrdiff_t> sh = l.shifts();
-    const std::ptrdiff_t first = l.first_line(), block = 512;
-    const bool with_lit = !lit.empty();
-    limit.assign(obs.row.size(), -std::numeric_limits<double>::infinity());
-    parallel_for_rows(
-        l.count(), block, threads,
-        [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
-            std::vector<double> m(static_cast<std::size_t>(b1 - b0), -std::numeric_limits<double>::infinity());
-            walk_ray_lines(l, sh, first + b0, first + b1, [&](std::ptrdiff_t line, std::ptrdiff_t r, std::ptrdiff_t c) {
-                double& lim = m[static_cast<std::size_t>(line)];
-                const float zc = z(r, c);
-                const double key = static_cast<double>(zc) + (lift.col_lift[static_cast<std::size_t>(c)] +
-                                                              lift.row_lift[static_cast<std::size_t>(r)]);
-                const std::int32_t o = obs.index(r, c);
-                if (o >= 0) limit[static_cast<std::size_t>(o)] = lim;
-                if (with_lit) lit(r, c) = zc != zc || lim > key ? 0 : 1;
-                lim = key > lim ? key : lim;  // false for a NaN key: NaN cells cast no shadow
-            });
-        },
-        {}, fn);
 }
 
 /// Lit state of sub-patch p from its observer's limit, given cos_theta = facade_cos_incidence for p's wall: the
@@ -147,7 +118,8 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
         const shadow_lifts lift =
             make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
         std::vector<double> limit;
-        detail::facade_shadow_sweep(z, obs, l, lift, limit, {}, opt.run.threads, fn);
+        raster<std::uint8_t> lit(z.rows(), z.cols());
+        raylines_shadow_probed(z, {}, l, lift, obs.probes, limit, lit.view(), opt.run.threads);
         const detail::facade_cos_table cos_theta(sun_azimuth_deg, sun_elevation_deg);
         for (std::size_t i = 0; i < subs.size(); ++i) {
             const auto o = static_cast<std::size_t>(obs.index(subs[i].front_row, subs[i].front_col));

@@ -12,6 +12,7 @@
 
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
+#include "lidarfx/kernels/solar/shadow_probes.hpp"
 #include "lidarfx/pipelines/buildings/facade_patches.hpp"
 
 namespace lidarfx::detail {
@@ -23,12 +24,14 @@ struct facade_observers {
     std::vector<std::ptrdiff_t> row, col;
     std::vector<std::size_t> first;    ///< size observers + 1
     std::vector<std::size_t> patches;  ///< indices into the sub-patch list, grouped by observer
+    shadow_probes probes;  ///< the observer cells as probes of raylines_shadow_probed (probe k = observer k)
 };
 
 inline facade_observers make_facade_observers(std::ptrdiff_t rows, std::ptrdiff_t cols,
                                               std::span<const facade_patch> subs)
 {
-    facade_observers o{raster<std::int32_t>(rows, cols, -1), {}, {}, {}, {}};
+    facade_observers o;
+    o.index = raster<std::int32_t>(rows, cols, -1);
     std::vector<std::size_t> count;
     for (const facade_patch& p : subs) {
         std::int32_t& k = o.index(p.front_row, p.front_col);
@@ -47,6 +50,7 @@ inline facade_observers make_facade_observers(std::ptrdiff_t rows, std::ptrdiff_
     for (std::size_t i = 0; i < subs.size(); ++i) {
         o.patches[next[static_cast<std::size_t>(o.index(subs[i].front_row, subs[i].front_col))]++] = i;
     }
+    o.probes = make_shadow_probes(rows, cols, o.row, o.col);
     return o;
 }
 

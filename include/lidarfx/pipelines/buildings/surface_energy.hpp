@@ -73,11 +73,14 @@ struct surface_energy_result {
 ///                lit from facade_lit and SVF_facade from facade_sky_view (it already holds the wall's tilt).
 /// A flat open roof thus receives DNI sin e + DHI = GHI per record. Each record goes to the quarter of its middle
 /// in UTC + site.utc_offset_h; quarter_kwh_m2_day = the quarter's sum / its days of records. Cost: one sky view
-/// factor of the raster and facade_sky_view (2 svf_directions sweeps), then per daylight record one ray-line
-/// sweep of the raster (shadows of the cells and of every sub-patch at once) and O(patches):
-/// O(records * rows * cols + records * patches). The sweeps of 8 records at a time run side by side (one thread
-/// each, a byte per cell and 8 bytes per observer cell each), then the 8 are added to every patch in record order,
-/// so results are the same for any thread count. dsm and cell_m in
+/// factor of the raster and facade_sky_view (2 svf_directions sweeps), then per daylight record with DNI > 0 one
+/// ray-line sweep of the raster (shadows of the cells and of every sub-patch at once; shallow lines along the rows
+/// of a transposed copy) and O(roof patches + walls): O(records * rows * cols + records * patches). A wall's lit
+/// sub-patches are those above a height, so a record's beam is added once per wall and summed upwards at the
+/// end; the diffuse part, DHI * sky view, is added once per quarter. Records are taken 16 at a time: their
+/// sweeps run side by side, then they are added to every patch in record order, so results are the same for any
+/// thread count. Memory: the DSM twice, a byte per cell per thread and, per record of a batch, a byte per roof
+/// patch and 8 bytes per observer cell. dsm and cell_m in
 /// metres. @throws invalid_input if shapes differ, cell_m is not finite and > 0, an option is out of range (or asks
 /// for the Perez sky or an albedo), or daylight_suns refuses a record, the site or a time; cancelled if
 /// run.progress returns false.

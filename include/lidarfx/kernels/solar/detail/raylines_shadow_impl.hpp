@@ -25,12 +25,21 @@ namespace lidarfx {
 
 namespace detail {
 
+/// The default observer of shadow_steep_block's running limits: none.
+struct no_seen_limits {
+    void operator()(std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, const double*) const noexcept {}
+};
+
 /// Steep lines [k0, k1) of every family: a sweep over rows in walk order. Each row's keys are computed once;
 /// every family then raises the running maximum key of its lines (`limit`, one array per family), and the
 /// family that owns the row first compares the row's keys with it. A family's lines hold contiguous cells in
-/// one row and are independent, so the inner loops carry no dependency.
-inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
-                               const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1)
+/// one row and are independent, so the inner loops carry no dependency. Before the owner family compares row r's
+/// cells [c0, c1), seen(r, c0, c1, lim) may read lim[c], the running maximum key before cell (r, c) (a
+/// facade's shadow limit, pipelines/buildings/facade_lit.hpp).
+template <class SeenLimits = no_seen_limits>
+void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
+                        const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1,
+                        SeenLimits&& seen = {})
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
     const std::size_t families = fam.lines.size();
@@ -57,6 +66,7 @@ inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint
             const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, k0 + s), c1 = std::min(cols, k1 + s);
             double* lim = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);  // lim[c]: line through (r, c)
             if (fam.owner[ri] == f) {
+                seen(r, c0, c1, static_cast<const double*>(lim));
                 std::uint8_t* o = out.row(r);
                 for (std::ptrdiff_t c = c0; c < c1; ++c) {
                     const double m = lim[c];
@@ -75,10 +85,12 @@ inline void shadow_steep_block(raster_view<const float> z, raster_view<std::uint
 /// shadow_steep_block's sweep, with row r' and column c' of the sweep at column r' and row c' of z and out. The
 /// sweep takes 16 rows' at a time: their cells are copied from z into a small tile (the 16 contiguous floats of
 /// each row of z side by side), swept there, and written back 16 bytes per row of out, so z and out are read and
-/// written a cache line at a time and the tile stays in the first-level cache.
-inline void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
-                                    const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0,
-                                    std::ptrdiff_t k1)
+/// written a cache line at a time and the tile stays in the first-level cache. seen as in shadow_steep_block,
+/// called with the row' (a column of z) and columns' (rows of z).
+template <class SeenLimits = no_seen_limits>
+void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
+                             const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1,
+                             SeenLimits&& seen = {})
 {
     constexpr std::ptrdiff_t chunk = 16;
     const std::ptrdiff_t rows = z.cols(), cols = z.rows(), n = k1 - k0;  // of the transposed raster
@@ -137,6 +149,7 @@ inline void shadow_transposed_block(raster_view<const float> z, raster_view<std:
                 const std::ptrdiff_t f0 = std::max<std::ptrdiff_t>(0, k0 + s), f1 = std::min(cols, k1 + s);
                 double* lim = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);
                 if (fam.owner[ri] == f) {
+                    seen(r, f0, f1, static_cast<const double*>(lim));
                     for (std::ptrdiff_t c = f0; c < f1; ++c) {
                         const double mx = lim[c];
                         const std::uint8_t v = mx > key[c] ? 0 : 1;

@@ -9,8 +9,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -22,6 +24,7 @@
 #include "lidarfx/kernels/solar/irradiance_record.hpp"
 #include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/shadow_probes.hpp"
 #include "lidarfx/kernels/solar/sky_options.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 #include "lidarfx/pipelines/buildings/facade_lit.hpp"
@@ -84,70 +87,224 @@ inline void surface_sky_views(raster_view<const float> z, double cell_m, const s
     }
 }
 
+/// Where the roof patches read the lit rasters (their top-left cell in z's and in the transposed layout) and their
+/// normals, side by side.
+struct roof_cells {
+    std::vector<std::ptrdiff_t> at, at_transposed;
+    std::vector<enu_vector> normal;
+};
+
+inline roof_cells make_roof_cells(std::span<const surface_patch> roofs, std::ptrdiff_t rows, std::ptrdiff_t cols)
+{
+    roof_cells out;
+    for (const surface_patch& p : roofs) {
+        out.at.push_back(p.row * cols + p.col);
+        out.at_transposed.push_back(p.col * rows + p.row);
+        out.normal.push_back(p.normal);
+    }
+    return out;
+}
+
 /// One daylight sun's sweep for surface_energy: its ray lines' shadow lifts, the cells' lit state and the observers'
 /// shadow limits.
 struct surface_sun_sweep {
     shadow_lifts lift;
-    raster<std::uint8_t> lit;
     std::vector<double> limit;
-    bool zenith = false;  ///< the sun at the zenith: nothing casts a shadow, walls get no beam
+    bool zenith = false;                 ///< the sun at the zenith: nothing casts a shadow, walls get no beam
+    bool beam = false;                   ///< the record has direct light (DNI > 0); without it nothing is swept
+    bool transposed = false;             ///< lit is transposed (cols x rows): the sun's lines are shallow
+    std::vector<std::uint8_t> roof_lit;  ///< per roof patch: how many of its 4 cells are lit (4 at the zenith)
 };
 
-/// Sweeps one daylight sun over the DSM on one thread (the suns of a batch are swept side by side).
-inline void sweep_surface_sun(raster_view<const float> z, double cell_m, const daylight_sun& day,
-                              const facade_observers& obs, surface_sun_sweep& s, const char* fn)
+/// Sweeps one daylight sun over the DSM on one thread (the suns of a batch are swept side by side) and counts the
+/// lit cells of every roof patch while the lit raster is still in cache. Shallow lines are swept along the rows of
+/// z_transposed, as fast as steep ones along the rows of z.
+inline void sweep_surface_sun(raster_view<const float> z, raster_view<const float> z_transposed, double cell_m,
+                              const daylight_sun& day, const facade_observers& obs, const roof_cells& roofs,
+                              surface_sun_sweep& s, raster<std::uint8_t>& lit)
 {
     s.zenith = day.elevation_deg >= 90.0;
+    s.beam = day.dni_w_m2 * day.kwh_per_w_m2 > 0.0;
+    if (!s.beam) return;
+    s.roof_lit.resize(roofs.at.size());
+    if (s.zenith) {
+        std::fill(s.roof_lit.begin(), s.roof_lit.end(), std::uint8_t{4});
+        return;
+    }
     const ray_lines l = make_ray_lines(day.azimuth_deg, z.rows(), z.cols());
-    s.lift = make_shadow_lifts(l, cell_m, s.zenith ? 0.0 : std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
-    if (s.lit.rows() != z.rows() || s.lit.cols() != z.cols()) s.lit = raster<std::uint8_t>(z.rows(), z.cols());
-    if (!s.zenith) facade_shadow_sweep(z, obs, l, s.lift, s.limit, s.lit.view(), 1, fn);
+    s.lift = make_shadow_lifts(l, cell_m, std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
+    const bool transposed = !l.steep;  // then lit is too (cols x rows)
+    const std::ptrdiff_t rows = transposed ? z.cols() : z.rows(), cols = transposed ? z.rows() : z.cols();
+    if (lit.rows() != rows || lit.cols() != cols) lit = raster<std::uint8_t>(rows, cols);
+    raylines_shadow_probed(z, z_transposed, l, s.lift, obs.probes, s.limit, lit.view());
+    // Each cell becomes the count of lit cells in its 2 x 2 quad (itself, east or south of it in the sweep's layout),
+    // row by row from the top: a row reads only itself and the row below, not yet changed.
+    std::vector<std::uint8_t> quad(static_cast<std::size_t>(cols));
+    for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
+        std::uint8_t* a = lit.row(r);
+        const std::uint8_t* b = lit.row(r + 1);
+        std::uint8_t* t = quad.data();
+        for (std::ptrdiff_t c = 0; c + 1 < cols; ++c)
+            t[c] = static_cast<std::uint8_t>(a[c] + a[c + 1] + b[c] + b[c + 1]);
+        std::copy(t, t + cols - 1, a);
+    }
+    const std::uint8_t* count = lit.data();
+    const std::ptrdiff_t* at = transposed ? roofs.at_transposed.data() : roofs.at.data();
+    for (std::size_t u = 0; u < roofs.at.size(); ++u) s.roof_lit[u] = count[at[u]];
 }
 
-/// Adds a batch of swept daylight suns, in order, to the quarter sums of every roof patch and facade sub-patch.
-inline void add_surface_suns(std::span<const daylight_sun* const> days, std::span<const surface_sun_sweep> sweeps,
-                             const facade_observers& obs, const surface_energy_result& res,
-                             std::vector<std::array<double, 4>>& roof_sum,
-                             std::vector<std::array<double, 4>>& facade_sum, int threads)
+/// z with rows and columns swapped.
+inline raster<float> transpose(raster_view<const float> z)
+{
+    raster<float> t(z.cols(), z.rows());
+    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) t(c, r) = z(r, c);
+    return t;
+}
+
+/// The facade sub-patches wall by wall (one observer cell and one facing; walls by facing, then observer), each
+/// wall's by height. For one sun a wall's lit sub-patches are those from some height up (the same shadow limit and
+/// lift, a higher key), so a sun's beam is added once per wall, at its lowest lit sub-patch, and summed upwards at
+/// the end.
+struct facade_walls {
+    std::vector<std::size_t> order;                 ///< sub-patch indices, wall by wall, heights ascending
+    std::vector<double> height_m;                   ///< height_m of order[j]
+    std::vector<std::size_t> first;                 ///< wall w holds order[first[w] .. first[w + 1])
+    std::vector<std::int32_t> observer;             ///< per wall
+    std::vector<std::size_t> front_row, front_col;  ///< per wall: its observer's cell
+    std::vector<double> facing_deg;                 ///< per wall
+};
+
+inline facade_walls make_facade_walls(std::span<const facade_patch> subs, const facade_observers& obs)
+{
+    facade_walls w;
+    std::vector<std::int32_t> of(subs.size());
+    for (std::size_t i = 0; i < subs.size(); ++i) of[i] = obs.index(subs[i].front_row, subs[i].front_col);
+    w.order.resize(subs.size());
+    for (std::size_t i = 0; i < subs.size(); ++i) w.order[i] = i;
+    std::sort(w.order.begin(), w.order.end(), [&](std::size_t a, std::size_t b) {
+        if (subs[a].facing_azimuth_deg != subs[b].facing_azimuth_deg)
+            return subs[a].facing_azimuth_deg < subs[b].facing_azimuth_deg;
+        if (of[a] != of[b]) return of[a] < of[b];
+        if (subs[a].height_m != subs[b].height_m) return subs[a].height_m < subs[b].height_m;
+        return a < b;
+    });
+    w.height_m.resize(subs.size());
+    for (std::size_t j = 0; j < subs.size(); ++j) {
+        const std::size_t i = w.order[j];
+        w.height_m[j] = subs[i].height_m;
+        if (j == 0 || of[i] != of[w.order[j - 1]] ||
+            subs[i].facing_azimuth_deg != subs[w.order[j - 1]].facing_azimuth_deg) {
+            w.first.push_back(j);
+            w.observer.push_back(of[i]);
+            w.front_row.push_back(static_cast<std::size_t>(subs[i].front_row));
+            w.front_col.push_back(static_cast<std::size_t>(subs[i].front_col));
+            w.facing_deg.push_back(subs[i].facing_azimuth_deg);
+        }
+    }
+    w.first.push_back(subs.size());
+    return w;
+}
+
+/// Adds a batch of swept daylight suns, in order, to the quarter beam sums of every roof patch (roof_beam) and to
+/// the beam steps of every wall (step[j]: beam of the suns whose lowest lit sub-patch is order[j]).
+inline void add_surface_beams(std::span<const daylight_sun* const> days, std::span<const surface_sun_sweep> sweeps,
+                              const facade_walls& walls, const roof_cells& roofs,
+                              std::vector<std::array<double, 4>>& roof_beam, std::vector<std::array<double, 4>>& step,
+                              int threads)
 {
     std::vector<facade_cos_table> cos_theta;
     for (const daylight_sun* d : days) cos_theta.emplace_back(d->azimuth_deg, d->elevation_deg);
-    parallel_for_rows(
-        static_cast<std::ptrdiff_t>(res.roofs.size()), 4096, threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+    // Sun by sun over blocks of roof patches and of walls (one pool for both): a block's sums stay in cache.
+    constexpr std::ptrdiff_t block = 1024;
+    const auto roof_count = static_cast<std::ptrdiff_t>(roofs.at.size()),
+               wall_count = static_cast<std::ptrdiff_t>(walls.observer.size());
+    const std::ptrdiff_t roof_blocks = (roof_count + block - 1) / block, wall_blocks = (wall_count + block - 1) / block;
+    const auto add_roofs = [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+        for (std::size_t k = 0; k < days.size(); ++k) {
+            const surface_sun_sweep& sw = sweeps[k];
+            if (!sw.beam) continue;
+            const daylight_sun& day = *days[k];
+            const enu_vector sun = day.sun;
+            const double dni = day.dni_w_m2 * day.kwh_per_w_m2;
+            const auto q = static_cast<std::size_t>(day.month / 3);
+            const std::uint8_t* lit = sw.roof_lit.data();
             for (std::ptrdiff_t i = i0; i < i1; ++i) {
-                const surface_patch& p = res.roofs[static_cast<std::size_t>(i)];
-                for (std::size_t k = 0; k < days.size(); ++k) {
-                    const daylight_sun& day = *days[k];
-                    const raster<std::uint8_t>& lit = sweeps[k].lit;
-                    const double share = sweeps[k].zenith ? 1.0
-                                                          : 0.25 * (lit(p.row, p.col) + lit(p.row, p.col + 1) +
-                                                                    lit(p.row + 1, p.col) + lit(p.row + 1, p.col + 1));
-                    const double dni = day.dni_w_m2 * day.kwh_per_w_m2, dhi = day.dhi_w_m2 * day.kwh_per_w_m2;
-                    const double cos_t = enu_dot(day.sun, p.normal);
-                    roof_sum[static_cast<std::size_t>(i)][static_cast<std::size_t>(day.month / 3)] +=
-                        (cos_t > 0.0 ? dni * cos_t * share : 0.0) +
-                        dhi * res.roof_sky_view[static_cast<std::size_t>(i)];
-                }
+                const auto u = static_cast<std::size_t>(i);
+                const double cos_t = enu_dot(sun, roofs.normal[u]);
+                if (cos_t <= 0.0) continue;
+                roof_beam[u][q] += dni * cos_t * (0.25 * lit[u]);
             }
-        });
-    parallel_for_rows(
-        static_cast<std::ptrdiff_t>(res.facades.size()), 4096, threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
-            for (std::ptrdiff_t i = i0; i < i1; ++i) {
-                const facade_patch& p = res.facades[static_cast<std::size_t>(i)];
-                const auto o = static_cast<std::size_t>(obs.index(p.front_row, p.front_col));
-                for (std::size_t k = 0; k < days.size(); ++k) {
-                    const daylight_sun& day = *days[k];
-                    const double dni = day.dni_w_m2 * day.kwh_per_w_m2, dhi = day.dhi_w_m2 * day.kwh_per_w_m2;
-                    double beam = 0.0;
-                    if (!sweeps[k].zenith) {
-                        const double cos_t = cos_theta[k](p.facing_azimuth_deg);
-                        if (facade_patch_lit(p, cos_t, sweeps[k].limit[o], sweeps[k].lift) == 1) beam = dni * cos_t;
-                    }
-                    facade_sum[static_cast<std::size_t>(i)][static_cast<std::size_t>(day.month / 3)] +=
-                        beam + dhi * res.facade_sky_view[static_cast<std::size_t>(i)];
+        }
+    };
+    const auto add_walls = [&](std::ptrdiff_t w0, std::ptrdiff_t w1) {
+        for (std::size_t k = 0; k < days.size(); ++k) {
+            const surface_sun_sweep& sw = sweeps[k];
+            if (!sw.beam || sw.zenith) continue;
+            const daylight_sun& day = *days[k];
+            const double dni = day.dni_w_m2 * day.kwh_per_w_m2;
+            const auto q = static_cast<std::size_t>(day.month / 3);
+            double facing = std::numeric_limits<double>::quiet_NaN(), cos_t = 0.0;
+            for (std::ptrdiff_t w = w0; w < w1; ++w) {
+                const auto uw = static_cast<std::size_t>(w);
+                if (!(walls.facing_deg[uw] == facing)) {  // walls come by facing
+                    facing = walls.facing_deg[uw];
+                    cos_t = cos_theta[k](facing);
                 }
+                if (cos_t <= 0.0) continue;
+                // facade_patch_lit's test: lit iff !(limit > height_m + lift), true from some height up.
+                const double limit = sw.limit[static_cast<std::size_t>(walls.observer[uw])];
+                const double lift = sw.lift.col_lift[walls.front_col[uw]] + sw.lift.row_lift[walls.front_row[uw]];
+                const std::size_t b = walls.first[uw], e = walls.first[uw + 1];
+                std::size_t j = b;  // the unlit sub-patches are the lowest ones
+                for (std::size_t i = b; i < e; ++i) j += limit > walls.height_m[i] + lift ? 1 : 0;
+                if (j < e) step[j][q] += dni * cos_t;
             }
-        });
+        }
+    };
+    parallel_for_rows(roof_blocks + wall_blocks, 1, threads, [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
+        for (std::ptrdiff_t b = b0; b < b1; ++b) {
+            if (b < roof_blocks) {
+                add_roofs(b * block, std::min(roof_count, (b + 1) * block));
+            } else {
+                add_walls((b - roof_blocks) * block, std::min(wall_count, (b - roof_blocks + 1) * block));
+            }
+        }
+    });
+}
+
+/// The diffuse irradiation of an unobstructed horizontal surface per quarter: sum of DHI * interval over the
+/// daylight suns, kWh/m^2.
+inline std::array<double, 4> quarter_diffuse(std::span<const daylight_sun> suns)
+{
+    std::array<double, 4> dhi{};
+    for (const daylight_sun& d : suns) dhi[static_cast<std::size_t>(d.month / 3)] += d.dhi_w_m2 * d.kwh_per_w_m2;
+    return dhi;
+}
+
+/// Per-patch quarter sums: the beam sums plus sky view * the quarters' diffuse.
+inline std::vector<std::array<double, 4>> add_diffuse(std::vector<std::array<double, 4>> beam,
+                                                      const std::vector<double>& sky_view,
+                                                      const std::array<double, 4>& dhi)
+{
+    for (std::size_t i = 0; i < beam.size(); ++i)
+        for (std::size_t q = 0; q < 4; ++q) beam[i][q] += dhi[q] * sky_view[i];
+    return beam;
+}
+
+/// The sub-patches' beam sums from the walls' steps: each sub-patch receives the steps at and below it.
+inline std::vector<std::array<double, 4>> facade_beams(const facade_walls& walls,
+                                                       const std::vector<std::array<double, 4>>& step)
+{
+    std::vector<std::array<double, 4>> beam(walls.order.size());
+    for (std::size_t w = 0; w + 1 < walls.first.size(); ++w) {
+        std::array<double, 4> run{};
+        for (std::size_t j = walls.first[w]; j < walls.first[w + 1]; ++j) {
+            for (std::size_t q = 0; q < 4; ++q) run[q] += step[j][q];
+            beam[walls.order[j]] = run;
+        }
+    }
+    return beam;
 }
 
 }  // namespace lidarfx::detail
@@ -175,31 +332,43 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         const double sky_share = 0.1;  // share of the progress taken by the two sky views
         detail::surface_sky_views(z, cell_m, opt, sky_share, res);
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), res.facades);
-        std::vector<std::array<double, 4>> roof_sum(res.roofs.size()), facade_sum(res.facades.size());
-        // Batches of suns: each sun of a batch swept on its own thread, then the batch added to every patch in
-        // sun order (so the sums are the same for any thread count).
-        const std::size_t batch = 8;
+        const detail::facade_walls walls = detail::make_facade_walls(res.facades, obs);
+        const raster<float> z_transposed = detail::transpose(z);
+        const detail::roof_cells roofs = detail::make_roof_cells(res.roofs, z.rows(), z.cols());
+        std::vector<std::array<double, 4>> roof_beam(res.roofs.size()), step(res.facades.size());
+        // Batches of suns: the suns of a batch swept side by side (each thread a contiguous share of them, with a
+        // lit raster of its own that stays in its cache), then the batch added to every patch in sun order (so the
+        // sums are the same for any thread count).
+        const std::size_t batch = 16;
+        const auto workers = static_cast<std::size_t>(detail::resolve_threads(opt.run.threads, fn));
         std::vector<detail::surface_sun_sweep> sweeps(std::min(batch, suns.size()));
+        std::vector<raster<std::uint8_t>> lit(std::min(batch, workers));
         std::vector<const daylight_sun*> days;
         for (std::size_t d0 = 0; d0 < suns.size(); d0 += batch) {
             const std::size_t n = std::min(batch, suns.size() - d0);
             days.clear();
             for (std::size_t k = 0; k < n; ++k) days.push_back(&suns[d0 + k]);
-            parallel_for_rows(static_cast<std::ptrdiff_t>(n), 1, opt.run.threads,
-                              [&](std::ptrdiff_t k0, std::ptrdiff_t k1) {
-                                  for (std::ptrdiff_t k = k0; k < k1; ++k) {
-                                      const auto u = static_cast<std::size_t>(k);
-                                      detail::sweep_surface_sun(z, cell_m, *days[u], obs, sweeps[u], fn);
+            const std::size_t shares = std::min(n, lit.size());
+            parallel_for_rows(static_cast<std::ptrdiff_t>(shares), 1, opt.run.threads,
+                              [&](std::ptrdiff_t t0, std::ptrdiff_t t1) {
+                                  for (auto t = static_cast<std::size_t>(t0); t < static_cast<std::size_t>(t1); ++t) {
+                                      for (std::size_t u = t * n / shares; u < (t + 1) * n / shares; ++u) {
+                                          detail::sweep_surface_sun(z, z_transposed.view(), cell_m, *days[u], obs,
+                                                                    roofs, sweeps[u], lit[t]);
+                                      }
                                   }
                               });
-            detail::add_surface_suns(days, std::span<const detail::surface_sun_sweep>(sweeps.data(), n), obs, res,
-                                     roof_sum, facade_sum, opt.run.threads);
+            detail::add_surface_beams(days, std::span<const detail::surface_sun_sweep>(sweeps.data(), n), walls, roofs,
+                                      roof_beam, step, opt.run.threads);
             detail::report(
                 opt.run.progress,
                 sky_share + (1.0 - sky_share) * static_cast<double>(d0 + n) / static_cast<double>(suns.size() + 1), fn);
         }
-        res.roof_energy = detail::to_patch_energy(roof_sum, res.quarter_days);
-        res.facade_energy = detail::to_patch_energy(facade_sum, res.quarter_days);
+        const std::array<double, 4> dhi = detail::quarter_diffuse(suns);
+        res.roof_energy = detail::to_patch_energy(detail::add_diffuse(std::move(roof_beam), res.roof_sky_view, dhi),
+                                                  res.quarter_days);
+        res.facade_energy = detail::to_patch_energy(
+            detail::add_diffuse(detail::facade_beams(walls, step), res.facade_sky_view, dhi), res.quarter_days);
     });
     detail::report(opt.run.progress, 1.0, fn);
     return res;
