@@ -151,7 +151,7 @@ std::string fixed(double v, int digits)
 
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
-constexpr double solar_bytes_per_cell = 120;  // with --facades: point counts, class ground (and filled), raised
+constexpr double solar_bytes_per_cell = 140;  // with --facades: point counts, class ground (and filled), raised
 
 /// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
 /// height before and after, metres.

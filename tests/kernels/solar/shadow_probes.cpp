@@ -80,7 +80,8 @@ TEST_CASE("solar/raylines_shadow_probed: lit cells are raylines_shadow's single 
                 raster<std::uint8_t> lit(flip ? cols : rows, flip ? rows : cols);
                 std::vector<double> limit;
                 raylines_shadow_probed(z.view(), with_transposed ? zt.view() : raster_view<const float>{}, l, lift,
-                                       probes, limit, lit.view(), 2);
+                                       probes, limit, lit.view(),
+                                       {.nan_cell = 0, .line_phases = 1, .run = {.threads = 2}});
                 bool same = true;
                 for (std::ptrdiff_t r = 0; r < rows; ++r)
                     for (std::ptrdiff_t c = 0; c < cols; ++c)
@@ -102,6 +103,47 @@ TEST_CASE("solar/raylines_shadow_probed: lit cells are raylines_shadow's single 
     CHECK(shaded_points < points * 9 / 10);
 }
 
+TEST_CASE("solar/raylines_shadow_probed: with several line families and a NaN code, lit is raylines_shadow's")
+{
+    std::mt19937 rng(43);
+    std::uniform_real_distribution<double> azimuth(0.0, 360.0), height(0.0, 12.0);
+    std::uniform_int_distribution<int> percent(0, 99);
+    const std::ptrdiff_t rows = 41, cols = 29;
+    raster<float> z(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            z(r, c) = percent(rng) < 5 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(height(rng));
+    const raster<float> zt = transpose(z);
+    const shadow_probes none = make_shadow_probes(rows, cols, {}, {});
+    std::size_t lit_cells = 0;
+    for (int sun = 0; sun < 24; ++sun) {
+        const double az = azimuth(rng), el = 20.0;
+        const ray_lines l = make_ray_lines(az, rows, cols);
+        const shadow_lifts lift = make_shadow_lifts(l, 1.0, std::tan(el * std::numbers::pi / 180.0));
+        for (const int phases : {2, 4}) {
+            const raylines_shadow_options opt{.nan_cell = 7, .line_phases = phases};
+            const auto want = raylines_shadow(z, 1.0, az, el, opt);
+            for (const bool with_transposed : {false, true}) {
+                const bool flip = with_transposed && !l.steep;
+                raster<std::uint8_t> lit(flip ? cols : rows, flip ? rows : cols);
+                std::vector<double> limit;
+                raylines_shadow_probed(z.view(), with_transposed ? zt.view() : raster_view<const float>{}, l, lift,
+                                       none, limit, lit.view(), opt);
+                bool same = true;
+                for (std::ptrdiff_t r = 0; r < rows; ++r) {
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        same = same && (flip ? lit(c, r) : lit(r, c)) == want(r, c);
+                        lit_cells += want(r, c) == 1 ? 1 : 0;
+                    }
+                }
+                CHECK_MESSAGE(same, "azimuth ", az, ", ", phases, " families, transposed DSM ", with_transposed);
+                CHECK(limit.empty());
+            }
+        }
+    }
+    CHECK(lit_cells > 0);
+}
+
 TEST_CASE("solar/make_shadow_probes: lists each row's probes by column and each column's by row; refusals")
 {
     const shadow_probes p = make_shadow_probes(3, 4, {2, 0, 2, 1, 0}, {1, 3, 0, 1, 0});
@@ -117,5 +159,15 @@ TEST_CASE("solar/make_shadow_probes: lists each row's probes by column and each 
     std::vector<double> limit;
     const ray_lines l = make_ray_lines(180.0, 3, 4);
     CHECK_THROWS_AS(raylines_shadow_probed(z.view(), {}, l, make_shadow_lifts(l, 1.0, 0.5), p, limit, wrong.view()),
+                    invalid_input);
+    raster<std::uint8_t> right(3, 4);
+    const ray_lines other = make_ray_lines(180.0, 5, 4);  // lines of another raster
+    CHECK_THROWS_AS(
+        raylines_shadow_probed(z.view(), {}, other, make_shadow_lifts(other, 1.0, 0.5), p, limit, right.view()),
+        invalid_input);
+    CHECK_THROWS_AS(raylines_shadow_probed(z.view(), {}, l, make_shadow_lifts(other, 1.0, 0.5), p, limit, right.view()),
+                    invalid_input);
+    CHECK_THROWS_AS(raylines_shadow_probed(z.view(), {}, l, make_shadow_lifts(l, 1.0, 0.5), p, limit, right.view(),
+                                           {.line_phases = 0}),
                     invalid_input);
 }

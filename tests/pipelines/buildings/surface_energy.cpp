@@ -15,6 +15,7 @@
 #include <numbers>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "../../reference/facades.hpp"
@@ -233,6 +234,18 @@ TEST_CASE("buildings/surface_energy: every patch's sum is its formula added sun 
             for (std::ptrdiff_t c = 0; c < holes.cols(); c += 5)
                 if (s.ids(r, c) == 0) holes(r, c) = std::numeric_limits<float>::quiet_NaN();
         CHECK(worst_against_formula(holes, s.ids, dull, site, 2) < 1e-9);
+    }
+}
+
+TEST_CASE("buildings/surface_energy: a raster without rows or without columns gives an empty result")
+{
+    const auto records = clear_sky_records(2021, 40.0, -75.0, {.interval = std::chrono::hours{3}});
+    for (const auto& [rows, cols] : {std::pair<std::ptrdiff_t, std::ptrdiff_t>{0, 5}, {5, 0}, {0, 0}}) {
+        const auto res = surface_energy(raster<float>(rows, cols), raster<std::int32_t>(rows, cols), 1.0, {40.0, -75.0},
+                                        records, {.run = {.threads = 2}});
+        CHECK(res.roofs.empty());
+        CHECK(res.facades.empty());
+        CHECK(res.sun_up_records > 0);
     }
 }
 

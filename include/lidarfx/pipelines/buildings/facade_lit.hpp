@@ -119,7 +119,8 @@ std::vector<std::uint8_t> facade_lit(const Dsm& dsm, std::span<const facade_patc
             make_shadow_lifts(l, cell_m, std::tan(sun_elevation_deg * (std::numbers::pi / 180.0)));
         std::vector<double> limit;
         raster<std::uint8_t> lit(z.rows(), z.cols());
-        raylines_shadow_probed(z, {}, l, lift, obs.probes, limit, lit.view(), opt.run.threads);
+        raylines_shadow_probed(z, {}, l, lift, obs.probes, limit, lit.view(),
+                               {.nan_cell = 0, .line_phases = 1, .run = {.threads = opt.run.threads}});
         const detail::facade_cos_table cos_theta(sun_azimuth_deg, sun_elevation_deg);
         for (std::size_t i = 0; i < subs.size(); ++i) {
             const auto o = static_cast<std::size_t>(obs.index(subs[i].front_row, subs[i].front_col));

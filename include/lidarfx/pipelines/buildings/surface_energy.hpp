@@ -79,11 +79,10 @@ struct surface_energy_result {
 /// sub-patches are those above a height, so a record's beam is added once per wall and summed upwards at the
 /// end; the diffuse part, DHI * sky view, is added once per quarter. Records are taken 16 at a time: their
 /// sweeps run side by side, then they are added to every patch in record order, so results are the same for any
-/// thread count. Memory: the DSM twice, a byte per cell per thread and, per record of a batch, a byte per roof
-/// patch and 8 bytes per observer cell. dsm and cell_m in
-/// metres. @throws invalid_input if shapes differ, cell_m is not finite and > 0, an option is out of range (or asks
-/// for the Perez sky or an albedo), or daylight_suns refuses a record, the site or a time; cancelled if
-/// run.progress returns false.
+/// thread count. Memory: the DSM twice (three times when it is not float), two bytes per cell per thread and, per
+/// record of a batch, a byte per roof patch and 8 bytes per observer cell. dsm and cell_m in metres. @throws
+/// invalid_input if shapes differ, cell_m is not finite and > 0, an option is out of range (or asks for the Perez sky
+/// or an albedo), or daylight_suns refuses a record, the site or a time; cancelled if run.progress returns false.
 template <raster_input Dsm, raster_input Ids>
 surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, double cell_m, const solar_site& site,
                                      std::span<const irradiance_record> records,

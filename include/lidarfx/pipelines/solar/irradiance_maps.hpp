@@ -61,10 +61,13 @@ struct irradiance_maps_result {
 /// month of its middle in UTC + site.utc_offset_h. dsm heights and cell_m in metres. The terms that do not depend
 /// on "lit" (isotropic sky, horizon band, reflected light) are summed per month first and meet each cell once per
 /// month; a record without beam or circumsolar light casts no shadow to compute. The shadows of up to 8 records of
-/// a month are swept side by side (one thread each), then added to the month in one pass. Cost per daylight record
-/// with beam light O(rows * cols) (one raylines_shadow pass and part of an accumulation pass) plus one sky view
-/// factor (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and 8 bytes (plus 20 bytes with per-cell
-/// surfaces, 24 with the Perez sky). Results are the same for any thread count.
+/// a month are swept side by side (one thread each), then added to the month in one pass. On horizontal cells the
+/// suns whose ray lines are shallow (closer to east-west than the diagonals) are swept along the rows of a transposed
+/// copy of the DSM (raylines_shadow_probed, the same shadows bit for bit) and summed transposed until the month
+/// ends. Cost per daylight record with beam light O(rows * cols) (one raylines_shadow pass and part of an
+/// accumulation pass) plus one sky view factor (svf_directions sweeps). Memory per cell: 2 doubles, 14 floats and
+/// 8 bytes, plus on horizontal cells a double, a float and 8 bytes for the transposed suns (with per-cell surfaces
+/// 20 bytes instead, 24 with the Perez sky). Results are the same for any thread count.
 /// @throws invalid_input if cell_m is not finite and > 0, the surface rasters' shapes differ from the DSM's or
 /// only one is given, a tilt is outside [0, 180], an option is out of range, or daylight_suns refuses a record,
 /// the site or a time; cancelled if run.progress returns false.

@@ -112,7 +112,6 @@ struct surface_sun_sweep {
     std::vector<double> limit;
     bool zenith = false;                 ///< the sun at the zenith: nothing casts a shadow, walls get no beam
     bool beam = false;                   ///< the record has direct light (DNI > 0); without it nothing is swept
-    bool transposed = false;             ///< lit is transposed (cols x rows): the sun's lines are shallow
     std::vector<std::uint8_t> roof_lit;  ///< per roof patch: how many of its 4 cells are lit (4 at the zenith)
 };
 
@@ -121,7 +120,7 @@ struct surface_sun_sweep {
 /// z_transposed, as fast as steep ones along the rows of z.
 inline void sweep_surface_sun(raster_view<const float> z, raster_view<const float> z_transposed, double cell_m,
                               const daylight_sun& day, const facade_observers& obs, const roof_cells& roofs,
-                              surface_sun_sweep& s, raster<std::uint8_t>& lit)
+                              surface_sun_sweep& s, std::array<raster<std::uint8_t>, 2>& lit_rasters)
 {
     s.zenith = day.elevation_deg >= 90.0;
     s.beam = day.dni_w_m2 * day.kwh_per_w_m2 > 0.0;
@@ -133,12 +132,15 @@ inline void sweep_surface_sun(raster_view<const float> z, raster_view<const floa
     }
     const ray_lines l = make_ray_lines(day.azimuth_deg, z.rows(), z.cols());
     s.lift = make_shadow_lifts(l, cell_m, std::tan(day.elevation_deg * (std::numbers::pi / 180.0)));
-    const bool transposed = !l.steep;  // then lit is too (cols x rows)
+    // Shallow lines along z_transposed's rows: then lit is transposed too (cols x rows); each layout keeps its raster.
+    const bool transposed = !l.steep && !z_transposed.empty();
+    raster<std::uint8_t>& lit = lit_rasters[transposed ? 1 : 0];
     const std::ptrdiff_t rows = transposed ? z.cols() : z.rows(), cols = transposed ? z.rows() : z.cols();
     if (lit.rows() != rows || lit.cols() != cols) lit = raster<std::uint8_t>(rows, cols);
     raylines_shadow_probed(z, z_transposed, l, s.lift, obs.probes, s.limit, lit.view());
     // Each cell becomes the count of lit cells in its 2 x 2 quad (itself, east or south of it in the sweep's layout),
     // row by row from the top: a row reads only itself and the row below, not yet changed.
+    if (roofs.at.empty() || cols < 2) return;  // no quad to count
     std::vector<std::uint8_t> quad(static_cast<std::size_t>(cols));
     for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
         std::uint8_t* a = lit.row(r);
@@ -342,7 +344,7 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         const std::size_t batch = 16;
         const auto workers = static_cast<std::size_t>(detail::resolve_threads(opt.run.threads, fn));
         std::vector<detail::surface_sun_sweep> sweeps(std::min(batch, suns.size()));
-        std::vector<raster<std::uint8_t>> lit(std::min(batch, workers));
+        std::vector<std::array<raster<std::uint8_t>, 2>> lit(std::min(batch, workers));
         std::vector<const daylight_sun*> days;
         for (std::size_t d0 = 0; d0 < suns.size(); d0 += batch) {
             const std::size_t n = std::min(batch, suns.size() - d0);

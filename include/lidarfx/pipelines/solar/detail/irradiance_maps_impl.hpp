@@ -24,7 +24,9 @@
 #include "lidarfx/kernels/solar/incidence.hpp"
 #include "lidarfx/kernels/solar/irradiance_record.hpp"
 #include "lidarfx/kernels/solar/perez_diffuse.hpp"
+#include "lidarfx/kernels/solar/ray_lines.hpp"
 #include "lidarfx/kernels/solar/raylines_shadow.hpp"
+#include "lidarfx/kernels/solar/shadow_probes.hpp"
 #include "lidarfx/kernels/solar/sky_options.hpp"
 #include "lidarfx/kernels/solar/sky_view_factor.hpp"
 
@@ -243,20 +245,46 @@ inline void add_lit_row_clamped(double* acc, const lit_row& row, const lit_sun& 
 /// once per batch rather than once per sun (the accumulation is bound by memory traffic).
 constexpr std::size_t suns_per_batch = 8;
 
-/// Adds a batch of daylight suns' shadow-dependent light to `month`: each sun's cast shadows into its own `lit`
-/// raster (one thread per sun), then every row once, with every sun of the batch in order.
+/// The shadows of a batch of suns and where each lies: suns whose lines are shallow are swept along the rows of the
+/// transposed DSM (when it is kept: horizontal cells only), as fast as steep ones, and their lit rasters and light
+/// stay transposed (cols x rows) until the month ends.
+struct sun_shadows {
+    raster_view<const float> z_transposed;         ///< empty: every sun in z's own layout
+    std::vector<raster<std::uint8_t>> lit, lit_t;  ///< per sun of a batch, in z's layout and transposed
+    std::vector<std::uint8_t> transposed;          ///< per sun of the batch: its shadows are in lit_t
+};
+
+/// Adds a batch of daylight suns' shadow-dependent light to `month` (and to `month_t`, transposed, for the suns swept
+/// transposed): each sun's cast shadows into its own lit raster (one thread per sun), then every row once, with
+/// every sun of the batch in order.
 inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::span<const lit_sun> s,
-                              const cell_surface& surf, const raster<float>& svf, std::span<raster<std::uint8_t>> lit,
-                              raster<double>& month, const irradiance_maps_options& opt)
+                              const cell_surface& surf, const raster<float>& svf, sun_shadows& shadows,
+                              raster<double>& month, raster<double>& month_t, const irradiance_maps_options& opt)
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    shadows.transposed.assign(s.size(), 0);
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        // Only the plain sums (no per-cell surface, no clamped sky) are added in the transposed layout.
+        const bool plain = !shadows.z_transposed.empty() && !s[k].terms.clamp && s[k].day->elevation_deg < 90.0;
+        shadows.transposed[k] = plain && !make_ray_lines(s[k].day->azimuth_deg, rows, cols).steep ? 1 : 0;
+    }
     // The suns' shadows are independent: each is swept by one thread, all of them side by side.
     parallel_for_rows(
         static_cast<std::ptrdiff_t>(s.size()), 1, opt.run.threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
             for (std::ptrdiff_t i = i0; i < i1; ++i) {
                 const std::size_t k = static_cast<std::size_t>(i);
-                raylines_shadow(z, lit[k], cell_m, s[k].day->azimuth_deg, s[k].day->elevation_deg,
-                                {.nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = 1}});
+                const raylines_shadow_options shadow{
+                    .nan_cell = 0, .line_phases = opt.shadow_line_phases, .run = {.threads = 1}};
+                const double az = s[k].day->azimuth_deg, el = s[k].day->elevation_deg;
+                if (!shadows.transposed[k]) {
+                    raylines_shadow(z, shadows.lit[k], cell_m, az, el, shadow);
+                    continue;
+                }
+                const ray_lines l = make_ray_lines(az, rows, cols);
+                const shadow_lifts lift = make_shadow_lifts(l, cell_m, std::tan(el * (std::numbers::pi / 180.0)));
+                std::vector<double> no_limits;
+                raylines_shadow_probed(z, shadows.z_transposed, l, lift, make_shadow_probes(rows, cols, {}, {}),
+                                       no_limits, shadows.lit_t[k].view(), shadow);
             }
         });
     const cell_surface* tilted = surf.tilted() ? &surf : nullptr;
@@ -264,13 +292,24 @@ inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::sp
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             double* acc = month.view().row(r);
             for (std::size_t i = 0; i < s.size(); ++i) {
-                const lit_row row{lit[i].view().row(r), svf.view().row(r), cols, tilted,
+                if (shadows.transposed[i]) continue;
+                const lit_row row{shadows.lit[i].view().row(r), svf.view().row(r), cols, tilted,
                                   static_cast<std::size_t>(r * cols)};
                 if (s[i].terms.clamp) {
                     add_lit_row_clamped(acc, row, s[i]);
                 } else {
                     add_lit_row(acc, row, s[i]);
                 }
+            }
+        }
+    });
+    if (std::find(shadows.transposed.begin(), shadows.transposed.end(), 1) == shadows.transposed.end()) return;
+    parallel_for_rows(cols, 16, opt.run.threads, [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
+        for (std::ptrdiff_t c = c0; c < c1; ++c) {
+            double* acc = month_t.view().row(c);
+            for (std::size_t i = 0; i < s.size(); ++i) {
+                if (!shadows.transposed[i]) continue;
+                add_lit_row(acc, {shadows.lit_t[i].view().row(c), nullptr, rows, nullptr, 0}, s[i]);
             }
         }
     });
@@ -313,13 +352,27 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
     std::array<std::vector<const daylight_sun*>, 12> by_month;
     for (const daylight_sun& d : suns) by_month[static_cast<std::size_t>(d.month)].push_back(&d);
     raster<double> annual(rows, cols, 0.0), month(rows, cols, 0.0);
-    std::vector<raster<std::uint8_t>> lit;
+    // Horizontal cells: shallow suns are swept along the rows of the transposed DSM and summed transposed.
+    raster<float> z_transposed;
+    raster<double> month_t;
+    if (!surf.tilted()) {
+        z_transposed = raster<float>(cols, rows);
+        month_t = raster<double>(cols, rows, 0.0);
+        parallel_for_rows(cols, 64, opt.run.threads, [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
+            for (std::ptrdiff_t c = c0; c < c1; ++c)
+                for (std::ptrdiff_t r = 0; r < rows; ++r) z_transposed(c, r) = z(r, c);
+        });
+    }
+    sun_shadows shadows{z_transposed.view(), {}, {}, {}};
     std::size_t done = 0;
     std::vector<lit_sun> batch;
     const auto flush = [&] {
         if (batch.empty()) return;
-        if (lit.size() < batch.size()) lit.resize(batch.size(), raster<std::uint8_t>(rows, cols));
-        add_daylight_suns(z, cell_m, batch, surf, res.sky_view_factor, lit, month, opt);
+        if (shadows.lit.size() < batch.size()) {
+            shadows.lit.resize(batch.size(), raster<std::uint8_t>(rows, cols));
+            if (!shadows.z_transposed.empty()) shadows.lit_t.resize(batch.size(), raster<std::uint8_t>(cols, rows));
+        }
+        add_daylight_suns(z, cell_m, batch, surf, res.sky_view_factor, shadows, month, month_t, opt);
         done += batch.size();
         report(opt.run.progress,
                progress_from + (1.0 - progress_from) * static_cast<double>(done) / static_cast<double>(suns.size() + 1),
@@ -341,6 +394,17 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
             if (batch.size() == suns_per_batch) flush();
         }
         flush();
+        if (!month_t.empty()) {
+            // The transposed suns' sums join the month's, then start again from 0.
+            parallel_for_rows(rows, 64, opt.run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+                for (std::ptrdiff_t r = r0; r < r1; ++r) {
+                    for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                        month(r, c) += month_t(c, r);
+                        month_t(c, r) = 0.0;
+                    }
+                }
+            });
+        }
         res.month_kwh_m2[m] = finish_month(z, surf, sky, res.sky_view_factor, month, annual, opt.run.threads);
     }
     res.annual_kwh_m2 = raster<float>(rows, cols);
