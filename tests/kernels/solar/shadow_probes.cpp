@@ -114,6 +114,17 @@ TEST_CASE("solar/raylines_shadow_probed: with several line families and a NaN co
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             z(r, c) = percent(rng) < 5 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(height(rng));
     const raster<float> zt = transpose(z);
+    {
+        // The library's transposed copy is the plain one, NaN cells included.
+        const raster<float> made = transposed_dsm(z.view(), 2);
+        REQUIRE(made.rows() == cols);
+        REQUIRE(made.cols() == rows);
+        bool same = true;
+        for (std::ptrdiff_t r = 0; r < cols; ++r)
+            for (std::ptrdiff_t c = 0; c < rows; ++c)
+                same = same && (made(r, c) == zt(r, c) || (std::isnan(made(r, c)) && std::isnan(zt(r, c))));
+        CHECK(same);
+    }
     const shadow_probes none = make_shadow_probes(rows, cols, {}, {});
     std::size_t lit_cells = 0;
     for (int sun = 0; sun < 24; ++sun) {

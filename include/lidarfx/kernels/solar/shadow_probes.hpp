@@ -64,6 +64,18 @@ inline shadow_probes make_shadow_probes(std::ptrdiff_t rows, std::ptrdiff_t cols
     return p;
 }
 
+/// z with rows and columns swapped (cols x rows): the z_transposed of raylines_shadow_probed, made once for many
+/// suns. Columns in blocks on `threads` (0 = all cores). O(rows * cols).
+inline raster<float> transposed_dsm(raster_view<const float> z, int threads = 1)
+{
+    raster<float> t(z.cols(), z.rows());
+    parallel_for_rows(z.cols(), 64, threads, [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
+        for (std::ptrdiff_t c = c0; c < c1; ++c)
+            for (std::ptrdiff_t r = 0; r < z.rows(); ++r) t(c, r) = z(r, c);
+    });
+    return t;
+}
+
 namespace detail {
 
 /// Probes in row (by_row) or column `major` whose column (row) lies in [lo, hi).

@@ -155,15 +155,6 @@ inline void sweep_surface_sun(raster_view<const float> z, raster_view<const floa
     for (std::size_t u = 0; u < roofs.at.size(); ++u) s.roof_lit[u] = count[at[u]];
 }
 
-/// z with rows and columns swapped.
-inline raster<float> transpose(raster_view<const float> z)
-{
-    raster<float> t(z.cols(), z.rows());
-    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) t(c, r) = z(r, c);
-    return t;
-}
-
 /// The facade sub-patches wall by wall (one observer cell and one facing; walls by facing, then observer), each
 /// wall's by height. For one sun a wall's lit sub-patches are those from some height up (the same shadow limit and
 /// lift, a higher key), so a sun's beam is added once per wall, at its lowest lit sub-patch, and summed upwards at
@@ -335,7 +326,7 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         detail::surface_sky_views(z, cell_m, opt, sky_share, res);
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), res.facades);
         const detail::facade_walls walls = detail::make_facade_walls(res.facades, obs);
-        const raster<float> z_transposed = detail::transpose(z);
+        const raster<float> z_transposed = transposed_dsm(z, opt.run.threads);
         const detail::roof_cells roofs = detail::make_roof_cells(res.roofs, z.rows(), z.cols());
         std::vector<std::array<double, 4>> roof_beam(res.roofs.size()), step(res.facades.size());
         // Batches of suns: the suns of a batch swept side by side (each thread a contiguous share of them, with a

@@ -250,6 +250,7 @@ constexpr std::size_t suns_per_batch = 8;
 /// stay transposed (cols x rows) until the month ends.
 struct sun_shadows {
     raster_view<const float> z_transposed;         ///< empty: every sun in z's own layout
+    shadow_probes no_probes;                       ///< raylines_shadow_probed's probes: none (z's shape)
     std::vector<raster<std::uint8_t>> lit, lit_t;  ///< per sun of a batch, in z's layout and transposed
     std::vector<std::uint8_t> transposed;          ///< per sun of the batch: its shadows are in lit_t
 };
@@ -283,8 +284,8 @@ inline void add_daylight_suns(raster_view<const float> z, double cell_m, std::sp
                 const ray_lines l = make_ray_lines(az, rows, cols);
                 const shadow_lifts lift = make_shadow_lifts(l, cell_m, std::tan(el * (std::numbers::pi / 180.0)));
                 std::vector<double> no_limits;
-                raylines_shadow_probed(z, shadows.z_transposed, l, lift, make_shadow_probes(rows, cols, {}, {}),
-                                       no_limits, shadows.lit_t[k].view(), shadow);
+                raylines_shadow_probed(z, shadows.z_transposed, l, lift, shadows.no_probes, no_limits,
+                                       shadows.lit_t[k].view(), shadow);
             }
         });
     const cell_surface* tilted = surf.tilted() ? &surf : nullptr;
@@ -356,14 +357,10 @@ inline void accumulate_months(raster_view<const float> z, double cell_m, std::sp
     raster<float> z_transposed;
     raster<double> month_t;
     if (!surf.tilted()) {
-        z_transposed = raster<float>(cols, rows);
+        z_transposed = transposed_dsm(z, opt.run.threads);
         month_t = raster<double>(cols, rows, 0.0);
-        parallel_for_rows(cols, 64, opt.run.threads, [&](std::ptrdiff_t c0, std::ptrdiff_t c1) {
-            for (std::ptrdiff_t c = c0; c < c1; ++c)
-                for (std::ptrdiff_t r = 0; r < rows; ++r) z_transposed(c, r) = z(r, c);
-        });
     }
-    sun_shadows shadows{z_transposed.view(), {}, {}, {}};
+    sun_shadows shadows{z_transposed.view(), make_shadow_probes(rows, cols, {}, {}), {}, {}, {}};
     std::size_t done = 0;
     std::vector<lit_sun> batch;
     const auto flush = [&] {
