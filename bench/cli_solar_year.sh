@@ -13,7 +13,7 @@ if [ ! -f "$tmy" ]; then
     exit 0
 fi
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+[ -n "${KEEP:-}" ] && echo "work: $work" || trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 - "$work/dsm.asc" <<'PY'
 import sys
 import numpy as np

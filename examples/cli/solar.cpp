@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // lidarfx solar: annual and monthly irradiation maps of a surface model (dissertation ch. 3).
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -151,7 +153,7 @@ std::string fixed(double v, int digits)
 
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
-constexpr double solar_bytes_per_cell = 140;  // with --facades: point counts, class ground (and filled), raised
+constexpr double solar_bytes_per_cell = 150;  // with --facades: point counts, class ground (and filled), raised
 
 /// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
 /// height before and after, metres.
@@ -392,15 +394,49 @@ int run_solar(const std::vector<std::string>& args)
     std::cout << std::fixed << std::setprecision(1) << "daylight records: " << res.sun_up_records << " of "
               << records.size() << "; GHI of the year " << res.ghi_kwh_m2 << " kWh/m2\n";
 
-    cli::write_raster(out, "annual_kwh_m2", res.annual_kwh_m2.view(), g, crs_wkt, epsg, formats);
-    cli::write_raster(out, "svf", res.sky_view_factor.view(), g, crs_wkt, epsg, formats);
-    std::vector<std::vector<lidarfx::io::table_value>> rows;
+    // The maps and their figures are written side by side (each file by one thread; the bytes do not depend on it).
+    std::vector<std::function<void()>> writes;
+    writes.emplace_back(
+        [&] { cli::write_raster(out, "annual_kwh_m2", res.annual_kwh_m2.view(), g, crs_wkt, epsg, formats); });
+    writes.emplace_back([&] { cli::write_raster(out, "svf", res.sky_view_factor.view(), g, crs_wkt, epsg, formats); });
+    std::array<map_stats, 12> month_stats;
     for (int m = 0; m < 12; ++m) {
-        char name[32];
-        std::snprintf(name, sizeof name, "month_%02d_kwh_m2", m + 1);
-        cli::write_raster(out, name, res.month_kwh_m2[static_cast<std::size_t>(m)].view(), g, crs_wkt, epsg, formats);
-        const map_stats st = stats_of(res.month_kwh_m2[static_cast<std::size_t>(m)]);
-        rows.push_back({m + 1, st.mean, st.min, st.max, res.month_ghi_kwh_m2[static_cast<std::size_t>(m)]});
+        writes.emplace_back([&, m] {
+            const auto i = static_cast<std::size_t>(m);
+            char name[32];
+            std::snprintf(name, sizeof name, "month_%02d_kwh_m2", m + 1);
+            cli::write_raster(out, name, res.month_kwh_m2[i].view(), g, crs_wkt, epsg, formats);
+            month_stats[i] = stats_of(res.month_kwh_m2[i]);
+        });
+    }
+    if (formats.png) {
+        namespace io = lidarfx::io;
+        // Figures on the input's grid: the cell in the CRS's unit, cells without a value as no data.
+        const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const std::string& what,
+                                    const char* unit) {
+            const io::figure_bar bar = io::finite_bar(m, unit);
+            const io::figure fig = io::make_figure(io::colorize(m.view(), bar.min, bar.max), io::non_finite_cells(m),
+                                                   {.title = name + ": " + what + " (" + unit + ")",
+                                                    .cell_size = g.cell,
+                                                    .unit = io::short_unit_name(cell_m / g.cell, "units"),
+                                                    .bar = bar});
+            out.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
+        };
+        writes.emplace_back([&, legend_png] {
+            legend_png("annual_kwh_m2.png", res.annual_kwh_m2,
+                       terrain ? "annual irradiation, terrain surfaces" : "annual irradiation, horizontal surfaces",
+                       "kWh/m²");
+        });
+        writes.emplace_back([&, legend_png] {
+            legend_png("svf.png", res.sky_view_factor, "sky view factor, " + svf_description(svf, svf_directions),
+                       "SVF");
+        });
+    }
+    cli::run_jobs(writes, threads);
+    std::vector<std::vector<lidarfx::io::table_value>> rows;
+    for (std::size_t m = 0; m < 12; ++m) {
+        const map_stats& st = month_stats[m];
+        rows.push_back({static_cast<int>(m) + 1, st.mean, st.min, st.max, res.month_ghi_kwh_m2[m]});
     }
     const map_stats year = stats_of(res.annual_kwh_m2);
     rows.push_back({"year", year.mean, year.min, year.max, res.ghi_kwh_m2});
@@ -421,24 +457,6 @@ int run_solar(const std::vector<std::string>& args)
                        io::kwh_m2_column("max_kwh_m2"), io::kwh_m2_column("ghi_kwh_m2")},
                       rows);
     });
-    if (formats.png) {
-        namespace io = lidarfx::io;
-        // Figures on the input's grid: the cell in the CRS's unit, cells without a value as no data.
-        const auto legend_png = [&](const std::string& name, const lidarfx::raster<float>& m, const std::string& what,
-                                    const char* unit) {
-            const io::figure_bar bar = io::finite_bar(m, unit);
-            const io::figure fig = io::make_figure(io::colorize(m.view(), bar.min, bar.max), io::non_finite_cells(m),
-                                                   {.title = name + ": " + what + " (" + unit + ")",
-                                                    .cell_size = g.cell,
-                                                    .unit = io::short_unit_name(cell_m / g.cell, "units"),
-                                                    .bar = bar});
-            out.write(name, [&](const std::string& path) { io::write_png_rgb(path, fig.image); });
-        };
-        legend_png("annual_kwh_m2.png", res.annual_kwh_m2,
-                   terrain ? "annual irradiation, terrain surfaces" : "annual irradiation, horizontal surfaces",
-                   "kWh/m²");
-        legend_png("svf.png", res.sky_view_factor, "sky view factor, " + svf_description(svf, svf_directions), "SVF");
-    }
     std::cout << "annual irradiation: mean " << year.mean << ", min " << year.min << ", max " << year.max
               << " kWh/m2\n";
     out.set_units_note("kWh/m2 per cell (" +

@@ -30,12 +30,54 @@ struct no_seen_limits {
     void operator()(std::ptrdiff_t, std::ptrdiff_t, std::ptrdiff_t, const double*) const noexcept {}
 };
 
-/// Steep lines [k0, k1) of every family: a sweep over rows in walk order. Each row's keys are computed once;
-/// every family then raises the running maximum key of its lines (`limit`, one array per family), and the
-/// family that owns the row first compares the row's keys with it. A family's lines hold contiguous cells in
-/// one row and are independent, so the inner loops carry no dependency. Before the owner family compares row r's
-/// cells [c0, c1), seen(r, c0, c1, lim) may read lim[c], the running maximum key before cell (r, c) (a
-/// facade's shadow limit, pipelines/buildings/facade_lit.hpp).
+/// One row's cells [a, b), which lie on lines of every family: the owner family compares each cell's key
+/// z + (col_lift + rl) with the running maximum of its line (own[c]) and writes 1 (lit), 0 or nan_cell, then
+/// every family (the owner and the K others) raises its lines' maxima with the key. One pass keeps the key in a
+/// register; the families' arrays are disjoint, so the loop carries no dependency and vectorizes.
+template <std::size_t K>
+void shadow_row_fused(const float* zr, const double* col_lift, double rl, double* own, std::array<double*, K> other,
+                      std::uint8_t* o, std::uint8_t nan_cell, std::ptrdiff_t a, std::ptrdiff_t b) noexcept
+{
+    const float* __restrict z = zr;
+    const double* __restrict lift = col_lift;
+    double* __restrict m0 = own;
+    std::uint8_t* __restrict out = o;
+    double* __restrict m1 = K > 0 ? other[0] : nullptr;
+    double* __restrict m2 = K > 1 ? other[K > 1 ? 1 : 0] : nullptr;
+    double* __restrict m3 = K > 2 ? other[K > 2 ? 2 : 0] : nullptr;
+    for (std::ptrdiff_t c = a; c < b; ++c) {
+        const double key = static_cast<double>(z[c]) + (lift[c] + rl);
+        const double m = m0[c];
+        const std::uint8_t v = m > key ? 0 : 1;
+        out[c] = z[c] != z[c] ? nan_cell : v;
+        m0[c] = key > m ? key : m;  // false for a NaN key: NaN cells cast no shadow
+        if constexpr (K > 0) m1[c] = key > m1[c] ? key : m1[c];
+        if constexpr (K > 1) m2[c] = key > m2[c] ? key : m2[c];
+        if constexpr (K > 2) m3[c] = key > m3[c] ? key : m3[c];
+    }
+}
+
+/// Raises the running maxima of one family's lines (lim[c]: the line through column c) with the keys of the row's
+/// cells [a, b).
+inline void shadow_row_raise(const float* zr, const double* col_lift, double rl, double* lim, std::ptrdiff_t a,
+                             std::ptrdiff_t b) noexcept
+{
+    const float* __restrict z = zr;
+    const double* __restrict lift = col_lift;
+    double* __restrict m = lim;
+    for (std::ptrdiff_t c = a; c < b; ++c) {
+        const double key = static_cast<double>(z[c]) + (lift[c] + rl);
+        m[c] = key > m[c] ? key : m[c];
+    }
+}
+
+/// Steep lines [k0, k1) of every family: a sweep over rows in walk order. In each row every family raises the
+/// running maximum key of its lines (`limit`, one array per family) with the row's keys, and the family that owns
+/// the row first compares the row's keys with it. A family's lines hold one cell of a row each, so cells and
+/// families may be taken in any order; the columns every family covers go through one fused pass (owner and up to
+/// three others), the rest family by family. Before the owner family compares row r's cells [c0, c1), seen(r,
+/// c0, c1, lim) may read lim[c], the running maximum key before cell (r, c) (a facade's shadow limit,
+/// pipelines/buildings/facade_lit.hpp).
 template <class SeenLimits = no_seen_limits>
 void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
                         const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1,
@@ -44,40 +86,66 @@ void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> ou
     const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
     const std::size_t families = fam.lines.size();
     std::vector<double> limits(families * static_cast<std::size_t>(n), -std::numeric_limits<double>::infinity());
-    std::vector<double> keys(static_cast<std::size_t>(cols));
+    std::vector<double*> lim(families);
+    std::vector<std::ptrdiff_t> c0(families), c1(families);
     const double* col_lift = lift.col_lift.data();
     const bool forward = fam.lines.front().forward();
     for (std::ptrdiff_t i = 0; i < rows; ++i) {
         const std::ptrdiff_t r = forward ? i : rows - 1 - i;
         const std::size_t ri = static_cast<std::size_t>(r);
-        // Columns of this row on lines [k0, k1) of some family (shifts differ by at most one between families).
-        std::ptrdiff_t lo = cols, hi = 0;
-        for (std::size_t f = 0; f < families; ++f) {
-            lo = std::min(lo, std::max<std::ptrdiff_t>(0, k0 + fam.shifts[f][ri]));
-            hi = std::max(hi, std::min(cols, k1 + fam.shifts[f][ri]));
-        }
-        if (lo >= hi) continue;
-        const float* zr = z.row(r);
-        const double rl = lift.row_lift[ri];
-        double* key = keys.data();
-        for (std::ptrdiff_t c = lo; c < hi; ++c) key[c] = static_cast<double>(zr[c]) + (col_lift[c] + rl);
+        // Each family's columns of this row on lines [k0, k1), and the columns all of them cover (shifts differ
+        // by at most one between families).
+        std::ptrdiff_t all0 = 0, all1 = cols, any0 = cols, any1 = 0;
         for (std::size_t f = 0; f < families; ++f) {
             const std::ptrdiff_t s = fam.shifts[f][ri];
-            const std::ptrdiff_t c0 = std::max<std::ptrdiff_t>(0, k0 + s), c1 = std::min(cols, k1 + s);
-            double* lim = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);  // lim[c]: line through (r, c)
-            if (fam.owner[ri] == f) {
-                seen(r, c0, c1, static_cast<const double*>(lim));
-                std::uint8_t* o = out.row(r);
-                for (std::ptrdiff_t c = c0; c < c1; ++c) {
-                    const double m = lim[c];
-                    const std::uint8_t v = m > key[c] ? 0 : 1;
-                    o[c] = zr[c] != zr[c] ? nan_cell : v;
-                    lim[c] = key[c] > m ? key[c] : m;  // false for a NaN key: NaN cells cast no shadow
-                }
-            } else {
-                for (std::ptrdiff_t c = c0; c < c1; ++c) lim[c] = key[c] > lim[c] ? key[c] : lim[c];
-            }
+            c0[f] = std::max<std::ptrdiff_t>(0, k0 + s);
+            c1[f] = std::min(cols, k1 + s);
+            lim[f] = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);  // lim[f][c]: line through (r, c)
+            all0 = std::max(all0, c0[f]);
+            all1 = std::min(all1, c1[f]);
+            any0 = std::min(any0, c0[f]);
+            any1 = std::max(any1, c1[f]);
         }
+        if (any0 >= any1) continue;
+        const std::size_t owner = fam.owner[ri];
+        all1 = std::max(all0, all1);
+        const float* zr = z.row(r);
+        const double rl = lift.row_lift[ri];
+        std::uint8_t* o = out.row(r);
+        seen(r, c0[owner], c1[owner], static_cast<const double*>(lim[owner]));
+        // Columns outside [all0, all1): family by family.
+        for (std::size_t f = 0; f < families; ++f) {
+            const auto edge = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
+                if (f == owner) {
+                    shadow_row_fused<0>(zr, col_lift, rl, lim[f], {}, o, nan_cell, a, b);
+                } else {
+                    shadow_row_raise(zr, col_lift, rl, lim[f], a, b);
+                }
+            };
+            edge(c0[f], std::min(c1[f], all0));
+            edge(std::max(c0[f], all1), c1[f]);
+        }
+        // Columns every family covers: the owner with up to three others in one pass, the rest one by one.
+        std::array<double*, 3> others{};
+        std::size_t k = 0, f = 0;
+        for (; f < families && k < 3; ++f)
+            if (f != owner) others[k++] = lim[f];
+        switch (k) {
+            case 0:
+                shadow_row_fused<0>(zr, col_lift, rl, lim[owner], {}, o, nan_cell, all0, all1);
+                break;
+            case 1:
+                shadow_row_fused<1>(zr, col_lift, rl, lim[owner], {others[0]}, o, nan_cell, all0, all1);
+                break;
+            case 2:
+                shadow_row_fused<2>(zr, col_lift, rl, lim[owner], {others[0], others[1]}, o, nan_cell, all0, all1);
+                break;
+            default:
+                shadow_row_fused<3>(zr, col_lift, rl, lim[owner], others, o, nan_cell, all0, all1);
+                break;
+        }
+        for (; f < families; ++f)
+            if (f != owner) shadow_row_raise(zr, col_lift, rl, lim[f], all0, all1);
     }
 }
 
