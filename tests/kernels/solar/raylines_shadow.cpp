@@ -276,3 +276,48 @@ TEST_CASE("solar/raylines_shadow: the design spelling compiles; empty and 1x1 ra
     CHECK(raylines_shadow(raster<float>(0, 0), 1.0, 45.0, 30.0).rows() == 0);
     CHECK(raylines_shadow(raster<float>(1, 1, 3.0f), 1.0, 45.0, 30.0)(0, 0) == 1);
 }
+
+TEST_CASE(
+    "solar/raylines_shadow: steep lines (the owner family and up to three others in one pass, the rest one by one) "
+    "equal the direct search across blocks of lines, for 1 to 6 families")
+{
+    // Blocks of 512 lines split these rasters; at a block's edge a row may hold cells of some families' lines
+    // and not of the owner family's, and those cells must still raise the other families' maxima.
+    std::mt19937 rng(2412);
+    const auto wide = reference::random_raster(rng, 37, 1100, 0.0, 12.0, 0.03);
+    const auto big = reference::with_margin(reference::random_raster(rng, 29, 530, 0.0, 12.0, 0.03), 2, -5.0f);
+    const auto strided = reference::inner(big, 2, 29, 530);
+    for (const double a : {0.0, 14.0, 31.0, 44.0, 137.0, 180.0, 203.0, 226.0, 316.0, 349.0}) {
+        for (const int phases : {1, 2, 3, 4, 5, 6}) {
+            INFO("azimuth ", a, " line_phases ", phases);
+            const raylines_shadow_options opt{.line_phases = phases};
+            CHECK(first_difference(raylines_shadow(wide, 0.8, a, 7.0, opt),
+                                   reference::shadow_on_lines(wide.view(), 0.8, a, 7.0, 255, phases)) == "");
+            CHECK(first_difference(raylines_shadow(strided, 0.8, a, 3.0, opt),
+                                   reference::shadow_on_lines(strided, 0.8, a, 3.0, 255, phases)) == "");
+        }
+    }
+}
+
+TEST_CASE("solar/raylines_shadow: a tall east edge shadows every family's lines where blocks of lines meet it")
+{
+    // Lines enter from the east edge; where a block of 512 lines starts at that edge, a row's edge cell may lie on
+    // the block's first line of one family and on the previous block's last line of the owner family. Its key
+    // must still reach the first family's line. Widths around 512 put a block boundary on the edge.
+    // The edge cells' heights differ, so that each casts a shadow of its own.
+    const std::ptrdiff_t rows = 60;
+    std::mt19937 rng(512);
+    std::uniform_real_distribution<float> height(0.0f, 40.0f);
+    for (std::ptrdiff_t cols = 470; cols <= 530; cols += 3) {
+        lidarfx::raster<float> z(rows, cols, 0.0f);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) z(r, cols - 1) = height(rng);
+        for (const double a : {20.0, 30.0, 150.0, 160.0}) {
+            for (const int phases : {2, 3, 4, 5}) {
+                INFO("columns ", cols, " azimuth ", a, " line_phases ", phases);
+                const raylines_shadow_options opt{.line_phases = phases};
+                CHECK(first_difference(raylines_shadow(z, 1.0, a, 10.0, opt),
+                                       reference::shadow_on_lines(z.view(), 1.0, a, 10.0, 255, phases)) == "");
+            }
+        }
+    }
+}
