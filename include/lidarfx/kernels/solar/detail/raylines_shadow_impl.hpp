@@ -33,8 +33,9 @@ struct no_seen_limits {
 /// One row's cells [a, b), which lie on lines of every family: the owner family compares each cell's key
 /// z + (col_lift + rl) with the running maximum of its line (own[c]) and writes 1 (lit), 0 or nan_cell, then
 /// every family (the owner and the K others) raises its lines' maxima with the key. One pass keeps the key in a
-/// register; the families' arrays are disjoint, so the loop carries no dependency and vectorizes.
-template <std::size_t K>
+/// register; the families' arrays are disjoint, so the loop carries no dependency and vectorizes. Cell c's height
+/// and output are zr[c * Stride] and o[c * Stride] (Stride > 1: a tile of the transposed raster).
+template <std::size_t K, std::ptrdiff_t Stride>
 void shadow_row_fused(const float* zr, const double* col_lift, double rl, double* own, std::array<double*, K> other,
                       std::uint8_t* o, std::uint8_t nan_cell, std::ptrdiff_t a, std::ptrdiff_t b) noexcept
 {
@@ -46,10 +47,11 @@ void shadow_row_fused(const float* zr, const double* col_lift, double rl, double
     double* __restrict m2 = K > 1 ? other[K > 1 ? 1 : 0] : nullptr;
     double* __restrict m3 = K > 2 ? other[K > 2 ? 2 : 0] : nullptr;
     for (std::ptrdiff_t c = a; c < b; ++c) {
-        const double key = static_cast<double>(z[c]) + (lift[c] + rl);
+        const float h = z[c * Stride];
+        const double key = static_cast<double>(h) + (lift[c] + rl);
         const double m = m0[c];
         const std::uint8_t v = m > key ? 0 : 1;
-        out[c] = z[c] != z[c] ? nan_cell : v;
+        out[c * Stride] = h != h ? nan_cell : v;
         m0[c] = key > m ? key : m;  // false for a NaN key: NaN cells cast no shadow
         if constexpr (K > 0) m1[c] = key > m1[c] ? key : m1[c];
         if constexpr (K > 1) m2[c] = key > m2[c] ? key : m2[c];
@@ -58,102 +60,124 @@ void shadow_row_fused(const float* zr, const double* col_lift, double rl, double
 }
 
 /// Raises the running maxima of one family's lines (lim[c]: the line through column c) with the keys of the row's
-/// cells [a, b).
-inline void shadow_row_raise(const float* zr, const double* col_lift, double rl, double* lim, std::ptrdiff_t a,
-                             std::ptrdiff_t b) noexcept
+/// cells [a, b) (heights zr[c * Stride]).
+template <std::ptrdiff_t Stride>
+void shadow_row_raise(const float* zr, const double* col_lift, double rl, double* lim, std::ptrdiff_t a,
+                      std::ptrdiff_t b) noexcept
 {
     const float* __restrict z = zr;
     const double* __restrict lift = col_lift;
     double* __restrict m = lim;
     for (std::ptrdiff_t c = a; c < b; ++c) {
-        const double key = static_cast<double>(z[c]) + (lift[c] + rl);
+        const double key = static_cast<double>(z[c * Stride]) + (lift[c] + rl);
         m[c] = key > m[c] ? key : m[c];
     }
 }
 
-/// Steep lines [k0, k1) of every family: a sweep over rows in walk order. In each row every family raises the
-/// running maximum key of its lines (`limit`, one array per family) with the row's keys, and the family that owns
-/// the row first compares the row's keys with it. A family's lines hold one cell of a row each, so cells and
-/// families may be taken in any order; the columns every family covers go through one fused pass (owner and up to
-/// three others), the rest family by family. Before the owner family compares row r's cells [c0, c1), seen(r,
-/// c0, c1, lim) may read lim[c], the running maximum key before cell (r, c) (a facade's shadow limit,
-/// pipelines/buildings/facade_lit.hpp).
+/// The running maxima of a block of lines [k0, k1) in every family (`limits`, n = k1 - k0 per family, from
+/// -infinity), and per-row scratch.
+struct shadow_block_limits {
+    std::ptrdiff_t k0, k1;
+    std::vector<double> limits;
+    std::vector<double*> lim;            ///< per family: lim[f][c], the line through column c of the current row
+    std::vector<std::ptrdiff_t> c0, c1;  ///< per family: the current row's columns on lines [k0, k1)
+    shadow_block_limits(std::size_t families, std::ptrdiff_t first, std::ptrdiff_t last)
+        : k0(first),
+          k1(last),
+          limits(families * static_cast<std::size_t>(last - first), -std::numeric_limits<double>::infinity()),
+          lim(families),
+          c0(families),
+          c1(families)
+    {
+    }
+};
+
+/// Row r of a sweep (major index r, columns [0, cols)), for lines [k0, k1) of every family: every family raises
+/// its lines' maxima with the row's keys, and the family that owns the row first compares the keys with them. A
+/// family's lines hold one cell of a row each, so cells and families may be taken in any order: the columns every
+/// family covers go through one fused pass (owner and up to three others), the rest family by family. Before the
+/// owner compares, seen(r, c0, c1, lim) may read lim[c], the running maximum key before cell (r, c). Heights and
+/// outputs at zr[c * Stride] and o[c * Stride].
+template <std::ptrdiff_t Stride, class SeenLimits>
+void shadow_row(const line_families& fam, std::ptrdiff_t r, std::ptrdiff_t cols, shadow_block_limits& b,
+                const float* zr, const double* col_lift, double rl, std::uint8_t* o, std::uint8_t nan_cell,
+                SeenLimits& seen)
+{
+    const std::size_t ri = static_cast<std::size_t>(r), families = fam.lines.size();
+    const std::size_t n = static_cast<std::size_t>(b.k1 - b.k0);
+    // Each family's columns of this row, and the columns all of them cover (shifts differ by at most one).
+    std::ptrdiff_t all0 = 0, all1 = cols, any0 = cols, any1 = 0;
+    for (std::size_t f = 0; f < families; ++f) {
+        const std::ptrdiff_t s = fam.shifts[f][ri];
+        b.c0[f] = std::max<std::ptrdiff_t>(0, b.k0 + s);
+        b.c1[f] = std::min(cols, b.k1 + s);
+        b.lim[f] = b.limits.data() + f * n - (b.k0 + s);
+        all0 = std::max(all0, b.c0[f]);
+        all1 = std::min(all1, b.c1[f]);
+        any0 = std::min(any0, b.c0[f]);
+        any1 = std::max(any1, b.c1[f]);
+    }
+    // A row without cells of the owner's lines may still hold cells of another family's lines: they raise them.
+    if (any0 >= any1) return;
+    all1 = std::max(all0, all1);
+    const std::size_t owner = fam.owner[ri];
+    seen(r, b.c0[owner], b.c1[owner], static_cast<const double*>(b.lim[owner]));
+    for (std::size_t f = 0; f < families; ++f) {  // columns outside [all0, all1)
+        const auto edge = [&](std::ptrdiff_t e0, std::ptrdiff_t e1) {
+            if (f == owner) {
+                shadow_row_fused<0, Stride>(zr, col_lift, rl, b.lim[f], {}, o, nan_cell, e0, e1);
+            } else {
+                shadow_row_raise<Stride>(zr, col_lift, rl, b.lim[f], e0, e1);
+            }
+        };
+        edge(b.c0[f], std::min(b.c1[f], all0));
+        edge(std::max(b.c0[f], all1), b.c1[f]);
+    }
+    std::array<double*, 3> others{};
+    std::size_t k = 0, f = 0;
+    for (; f < families && k < 3; ++f)
+        if (f != owner) others[k++] = b.lim[f];
+    double* own = b.lim[owner];
+    switch (k) {
+        case 0:
+            shadow_row_fused<0, Stride>(zr, col_lift, rl, own, {}, o, nan_cell, all0, all1);
+            break;
+        case 1:
+            shadow_row_fused<1, Stride>(zr, col_lift, rl, own, {others[0]}, o, nan_cell, all0, all1);
+            break;
+        case 2:
+            shadow_row_fused<2, Stride>(zr, col_lift, rl, own, {others[0], others[1]}, o, nan_cell, all0, all1);
+            break;
+        default:
+            shadow_row_fused<3, Stride>(zr, col_lift, rl, own, others, o, nan_cell, all0, all1);
+            break;
+    }
+    for (; f < families; ++f)
+        if (f != owner) shadow_row_raise<Stride>(zr, col_lift, rl, b.lim[f], all0, all1);
+}
+
+/// Steep lines [k0, k1) of every family: a sweep over rows in walk order (shadow_row). seen as in shadow_row (a
+/// facade's shadow limit, pipelines/buildings/facade_lit.hpp).
 template <class SeenLimits = no_seen_limits>
 void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
                         const shadow_lifts& lift, std::uint8_t nan_cell, std::ptrdiff_t k0, std::ptrdiff_t k1,
                         SeenLimits&& seen = {})
 {
-    const std::ptrdiff_t rows = z.rows(), cols = z.cols(), n = k1 - k0;
-    const std::size_t families = fam.lines.size();
-    std::vector<double> limits(families * static_cast<std::size_t>(n), -std::numeric_limits<double>::infinity());
-    std::vector<double*> lim(families);
-    std::vector<std::ptrdiff_t> c0(families), c1(families);
-    const double* col_lift = lift.col_lift.data();
+    const std::ptrdiff_t rows = z.rows(), cols = z.cols();
+    shadow_block_limits block(fam.lines.size(), k0, k1);
     const bool forward = fam.lines.front().forward();
     for (std::ptrdiff_t i = 0; i < rows; ++i) {
         const std::ptrdiff_t r = forward ? i : rows - 1 - i;
-        const std::size_t ri = static_cast<std::size_t>(r);
-        // Each family's columns of this row on lines [k0, k1), and the columns all of them cover (shifts differ
-        // by at most one between families).
-        std::ptrdiff_t all0 = 0, all1 = cols, any0 = cols, any1 = 0;
-        for (std::size_t f = 0; f < families; ++f) {
-            const std::ptrdiff_t s = fam.shifts[f][ri];
-            c0[f] = std::max<std::ptrdiff_t>(0, k0 + s);
-            c1[f] = std::min(cols, k1 + s);
-            lim[f] = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);  // lim[f][c]: line through (r, c)
-            all0 = std::max(all0, c0[f]);
-            all1 = std::min(all1, c1[f]);
-            any0 = std::min(any0, c0[f]);
-            any1 = std::max(any1, c1[f]);
-        }
-        if (any0 >= any1) continue;
-        const std::size_t owner = fam.owner[ri];
-        all1 = std::max(all0, all1);
-        const float* zr = z.row(r);
-        const double rl = lift.row_lift[ri];
-        std::uint8_t* o = out.row(r);
-        seen(r, c0[owner], c1[owner], static_cast<const double*>(lim[owner]));
-        // Columns outside [all0, all1): family by family.
-        for (std::size_t f = 0; f < families; ++f) {
-            const auto edge = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
-                if (f == owner) {
-                    shadow_row_fused<0>(zr, col_lift, rl, lim[f], {}, o, nan_cell, a, b);
-                } else {
-                    shadow_row_raise(zr, col_lift, rl, lim[f], a, b);
-                }
-            };
-            edge(c0[f], std::min(c1[f], all0));
-            edge(std::max(c0[f], all1), c1[f]);
-        }
-        // Columns every family covers: the owner with up to three others in one pass, the rest one by one.
-        std::array<double*, 3> others{};
-        std::size_t k = 0, f = 0;
-        for (; f < families && k < 3; ++f)
-            if (f != owner) others[k++] = lim[f];
-        switch (k) {
-            case 0:
-                shadow_row_fused<0>(zr, col_lift, rl, lim[owner], {}, o, nan_cell, all0, all1);
-                break;
-            case 1:
-                shadow_row_fused<1>(zr, col_lift, rl, lim[owner], {others[0]}, o, nan_cell, all0, all1);
-                break;
-            case 2:
-                shadow_row_fused<2>(zr, col_lift, rl, lim[owner], {others[0], others[1]}, o, nan_cell, all0, all1);
-                break;
-            default:
-                shadow_row_fused<3>(zr, col_lift, rl, lim[owner], others, o, nan_cell, all0, all1);
-                break;
-        }
-        for (; f < families; ++f)
-            if (f != owner) shadow_row_raise(zr, col_lift, rl, lim[f], all0, all1);
+        shadow_row<1>(fam, r, cols, block, z.row(r), lift.col_lift.data(), lift.row_lift[static_cast<std::size_t>(r)],
+                      out.row(r), nan_cell, seen);
     }
 }
 
 /// Shallow lines [k0, k1) of every family, swept as the steep lines of the transposed raster (see transposed):
-/// shadow_steep_block's sweep, with row r' and column c' of the sweep at column r' and row c' of z and out. The
+/// shadow_row's sweep, with row r' and column c' of the sweep at column r' and row c' of z and out. The
 /// sweep takes 16 rows' at a time: their cells are copied from z into a small tile (the 16 contiguous floats of
 /// each row of z side by side), swept there, and written back 16 bytes per row of out, so z and out are read and
-/// written a cache line at a time and the tile stays in the first-level cache. seen as in shadow_steep_block,
+/// written a cache line at a time and the tile stays in the first-level cache. seen as in shadow_row,
 /// called with the row' (a column of z) and columns' (rows of z).
 template <class SeenLimits = no_seen_limits>
 void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_t> out, const line_families& fam,
@@ -162,14 +186,12 @@ void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_
 {
     constexpr std::ptrdiff_t chunk = 16;
     const std::ptrdiff_t rows = z.cols(), cols = z.rows(), n = k1 - k0;  // of the transposed raster
-    const std::size_t families = fam.lines.size(), ucols = static_cast<std::size_t>(cols);
-    std::vector<double> limits(families * static_cast<std::size_t>(n), -std::numeric_limits<double>::infinity());
-    std::vector<double> keys(ucols);
+    const std::size_t families = fam.lines.size();
+    shadow_block_limits block(families, k0, k1);
     // A chunk's columns' span lines [k0, k1) of every family across 16 rows': n plus at most 16 |slope| + 1 shifts.
     const std::size_t span = static_cast<std::size_t>(n + 2 * chunk + 2);
     std::vector<float> tile(chunk * span);        // tile[(c - lo) * chunk + j]: row' c0 + j, column' c
     std::vector<std::uint8_t> lit(chunk * span);  // the same layout
-    const double* col_lift = lift.col_lift.data();
     const bool forward = fam.lines.front().forward();
     // Columns' [lo, hi) of row' r on lines [k0, k1) of some family, and of its owner family.
     const auto span_of = [&](std::ptrdiff_t r, bool owner_only) {
@@ -204,30 +226,11 @@ void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_
         }
         for (std::ptrdiff_t step = 0; step < m; ++step) {
             const std::ptrdiff_t j = forward ? step : m - 1 - step, r = c0 + j;
-            const std::size_t ri = static_cast<std::size_t>(r);
-            const auto [a, b] = span_of(r, false);
-            if (a >= b) continue;
-            const float* zt = tile.data() + j - lo * chunk;  // zt[c * chunk]: column' c of row' r
+            // Column' c of row' r is zt[c * chunk] and its output o[c * chunk].
+            const float* zt = tile.data() + j - lo * chunk;
             std::uint8_t* o = lit.data() + j - lo * chunk;
-            const double rl = lift.row_lift[ri];
-            double* key = keys.data();
-            for (std::ptrdiff_t c = a; c < b; ++c) key[c] = static_cast<double>(zt[c * chunk]) + (col_lift[c] + rl);
-            for (std::size_t f = 0; f < families; ++f) {
-                const std::ptrdiff_t s = fam.shifts[f][ri];
-                const std::ptrdiff_t f0 = std::max<std::ptrdiff_t>(0, k0 + s), f1 = std::min(cols, k1 + s);
-                double* lim = limits.data() + f * static_cast<std::size_t>(n) - (k0 + s);
-                if (fam.owner[ri] == f) {
-                    seen(r, f0, f1, static_cast<const double*>(lim));
-                    for (std::ptrdiff_t c = f0; c < f1; ++c) {
-                        const double mx = lim[c];
-                        const std::uint8_t v = mx > key[c] ? 0 : 1;
-                        o[c * chunk] = zt[c * chunk] != zt[c * chunk] ? nan_cell : v;
-                        lim[c] = key[c] > mx ? key[c] : mx;  // false for a NaN key: NaN cells cast no shadow
-                    }
-                } else {
-                    for (std::ptrdiff_t c = f0; c < f1; ++c) lim[c] = key[c] > lim[c] ? key[c] : lim[c];
-                }
-            }
+            shadow_row<chunk>(fam, r, cols, block, zt, lift.col_lift.data(), lift.row_lift[static_cast<std::size_t>(r)],
+                              o, nan_cell, seen);
         }
         // Back to out, row by row: each row' wrote the cells of its owner family's lines [k0, k1) only.
         std::array<std::array<std::ptrdiff_t, 2>, chunk> own;
