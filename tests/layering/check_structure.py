@@ -212,7 +212,9 @@ _STD_HEADERS = {
     "make_signed_t true_type false_type",
     "concepts": "convertible_to same_as integral floating_point", "memory": "unique_ptr make_unique "
     "make_unique_for_overwrite allocator", "functional": "function invoke greater less", "tuple": "tuple tie get",
-    "thread": "thread this_thread", "mutex": "mutex lock_guard", "atomic": "atomic memory_order_relaxed",
+    "thread": "thread this_thread", "mutex": "mutex lock_guard unique_lock",
+    "condition_variable": "condition_variable",
+    "atomic": "atomic memory_order_relaxed memory_order_acquire memory_order_release",
     "cstring": "memcpy memset memcmp", "cstdlib": "malloc free abs", "sstream": "ostringstream ios",
     "ios": "ios", "stdexcept": "runtime_error invalid_argument logic_error out_of_range",
     "new": "bad_alloc bad_array_new_length", "exception": "exception_ptr current_exception rethrow_exception exception",

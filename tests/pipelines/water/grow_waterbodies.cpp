@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <lidarfx/pipelines/water/grow_waterbodies.hpp>
+#include <lidarfx/pipelines/water/water_surface_slope.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -216,10 +217,95 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
         }
         for (auto& l : labels) l = std::max(l, 0);
 
-        const auto grown = grow_waterbodies(field, seeds, min_z, max_z, grow, level, opt);
-        CHECK(grown.labels == labels);
-        CHECK(field.eligible == reference_field.eligible);
-        REQUIRE(grown.bodies.size() == thetas.size());
-        for (std::size_t k = 0; k < thetas.size(); ++k) CHECK(grown.bodies[k].theta_deg == thetas[k]);
+        for (const int threads : {1, 2, 3}) {
+            CAPTURE(threads);
+            water_field grown_field = field;
+            const auto grown =
+                grow_waterbodies(grown_field, seeds, min_z, max_z, grow, level, opt, {.threads = threads});
+            CHECK(grown.labels == labels);
+            CHECK(grown_field.eligible == reference_field.eligible);
+            REQUIRE(grown.bodies.size() == thetas.size());
+            for (std::size_t k = 0; k < thetas.size(); ++k) CHECK(grown.bodies[k].theta_deg == thetas[k]);
+        }
+    }
+}
+
+TEST_CASE(
+    "water/grow_waterbodies: floods grown ahead on other threads give the bodies of the turns one after another, "
+    "bit for bit, however many threads")
+{
+    // Many seeds on one field: lakes at three levels with banks between them, seeds inside and across them (so later
+    // seeds fall in earlier bodies, partly or wholly, and floods ahead are often overtaken), a lazy surface slope
+    // read by every thread, and a second round of seeds grown into the same result.
+    std::mt19937 rng(4242);
+    std::uniform_real_distribution<float> unit(0, 1);
+    for (int trial = 0; trial < 12; ++trial) {
+        CAPTURE(trial);
+        const std::ptrdiff_t rows = 30 + static_cast<std::ptrdiff_t>(rng() % 50),
+                             cols = 30 + static_cast<std::ptrdiff_t>(rng() % 70);
+        water_field field;
+        field.angle_deg = raster<float>(rows, cols);
+        field.eligible = raster<std::uint8_t>(rows, cols);
+        field.intensity_bin = raster<std::int32_t>(rows, cols);
+        field.bins = 8;
+        raster<float> min_z(rows, cols), max_z(rows, cols);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const bool bank = (c % 23 == 11) || (r % 17 == 8 && unit(rng) < 0.8f);
+                const float level = 10.0f + 0.4f * static_cast<float>((c / 23 + r / 17) % 3);
+                const bool dropout = !bank && unit(rng) < 0.25f;
+                field.angle_deg(r, c) = bank ? 35.0f : (unit(rng) < 0.15f ? NAN : 6.0f * unit(rng));
+                field.eligible(r, c) = unit(rng) < 0.93f;
+                field.intensity_bin(r, c) = dropout ? -1 : static_cast<std::int32_t>(rng() % (bank ? 8 : 4));
+                min_z(r, c) = dropout ? NAN : (bank ? level + 1.5f : level + 0.08f * unit(rng));
+                max_z(r, c) = min_z(r, c) + 0.3f * unit(rng);
+            }
+        }
+        const auto random_seeds = [&](int count) {
+            components seeds{raster<std::int32_t>(rows, cols, 0),
+                             std::vector<std::size_t>(static_cast<std::size_t>(count + 1), 0)};
+            for (int s = 1; s <= count; ++s) {
+                const std::ptrdiff_t r0 = static_cast<std::ptrdiff_t>(rng() % static_cast<unsigned>(rows - 3)),
+                                     c0 = static_cast<std::ptrdiff_t>(rng() % static_cast<unsigned>(cols - 3));
+                const std::ptrdiff_t h = 1 + static_cast<std::ptrdiff_t>(rng() % 3),
+                                     w = 1 + static_cast<std::ptrdiff_t>(rng() % 3);
+                for (std::ptrdiff_t r = r0; r < r0 + h; ++r)
+                    for (std::ptrdiff_t c = c0; c < c0 + w; ++c) seeds.labels(r, c) = s;  // later seeds overwrite
+            }
+            for (const auto l : seeds.labels) ++seeds.sizes[static_cast<std::size_t>(l)];
+            return seeds;
+        };
+        const components first = random_seeds(10 + static_cast<int>(rng() % 40)), second = random_seeds(8);
+        const grow_waterbody_options grow{.min_ks_samples = 8, .level_gate_m = 0.2, .level_follow_max_slope = 0.01};
+        const join_level_cells_options level{.tolerance_m = 0.1, .max_rise_m = 0.4, .depth_cells = 2};
+        const grow_waterbodies_options opt{.min_free_seed_share = 0.5};
+        const auto grow_all = [&](int threads, water_field& f) {
+            lazy_water_surface_slope slope(min_z, 1.0);
+            f.min_z = min_z;
+            f.surface_slope = slope;
+            auto g = grow_waterbodies(f, first, min_z, max_z, grow, level, opt, {.threads = threads});
+            grow_waterbodies(f, second, min_z, max_z, g, grow, level, opt, static_cast<std::int32_t>(first.count()),
+                             {.threads = threads});
+            f.surface_slope = {};
+            return g;
+        };
+        water_field one_field = field;
+        const auto one = grow_all(1, one_field);
+        CHECK(one.bodies.size() > 3);
+        for (const int threads : {2, 3, 8}) {
+            CAPTURE(threads);
+            water_field many_field = field;
+            const auto many = grow_all(threads, many_field);
+            CHECK(many.labels == one.labels);
+            CHECK(many_field.eligible == one_field.eligible);
+            CHECK(many.seeds_grown == one.seeds_grown);
+            REQUIRE(many.bodies.size() == one.bodies.size());
+            for (std::size_t k = 0; k < one.bodies.size(); ++k) {
+                CHECK(many.bodies[k].label == one.bodies[k].label);
+                CHECK(many.bodies[k].seed == one.bodies[k].seed);
+                CHECK(many.bodies[k].theta_deg == one.bodies[k].theta_deg);
+                CHECK(many.bodies[k].stopped_by_ks == one.bodies[k].stopped_by_ks);
+            }
+        }
     }
 }

@@ -45,8 +45,11 @@ struct grow_waterbodies_result {
 /// field's shape; 0 land, k + 1 for into.bodies[k]) and bodies are kept, new bodies are numbered after them and record
 /// seed label + seed_offset (so that several rounds of seeds grow into one raster without a merge). `field` must have
 /// the shape of the seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). `run`:
-/// progress (the fraction of seeds done, 0 before the first, 1 at the end) and cancellation; its threads are not
-/// used: seeds grow one after another (the order decides who owns a cell). It never changes the result.
+/// progress (the fraction of seeds done, 0 before the first, 1 at the end) and cancellation, and threads: the seeds
+/// take their turns in order (the order decides who owns a cell), and with threads > 1 their floods are grown ahead
+/// on other threads, each kept when no body accepted before its turn touched a cell it read and grown again
+/// otherwise. The result is the same bit for bit for any thread count. Threads > 1 cost 1 byte a cell for a copy of
+/// the eligible cells and 1 byte a cell per thread. A lazy field.surface_slope is read by every thread.
 /// @throws invalid_input on shapes that differ or options out of range; cancelled.
 inline void grow_waterbodies(water_field& field, const components& seeds, raster_view<const float> min_z,
                              raster_view<const float> max_z, grow_waterbodies_result& into,

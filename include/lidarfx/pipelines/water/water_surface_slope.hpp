@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -50,7 +52,8 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
 /// of its cells. Its readers (the growth's level gate, the flat and bridge seeds' slope tests) look only
 /// around water, often a fifth of a survey or less. The values are those of water_surface_slope bit for bit.
 /// Only the tiles read take memory (in chunks of 256 tiles, 1 MiB). Keeps a view of min z (keep it alive).
-/// Reading changes the cache: not for concurrent readers (a tile is computed on the reading thread).
+/// Threads may read it at once: a tile is computed once, by the first thread that reads it, while the others
+/// wait for it (the parallel growth of grow_waterbodies); reading a computed tile takes no lock.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 class lazy_water_surface_slope {
 public:
@@ -78,8 +81,9 @@ private:
     double cell_m_;
     water_surface_slope_options opt_;
     std::ptrdiff_t tiles_across_;
-    std::vector<std::int32_t> tile_;  // each tile's slot in the chunks, -1 before its first read
-    std::vector<std::unique_ptr<float[]>> chunks_;
+    std::vector<std::atomic<std::int32_t>> tile_;   // each tile's slot in the chunks, -1 before its first read
+    std::vector<std::unique_ptr<float[]>> chunks_;  // as many as the tiles can fill, allocated as they fill
+    std::mutex compute_;                            // held while a tile is computed (used_, chunks_, scratch_)
     std::size_t used_ = 0;
     std::unique_ptr<detail::slope_scratch> scratch_;  // row buffers of the tiles computed
 };

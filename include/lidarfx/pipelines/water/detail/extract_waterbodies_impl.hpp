@@ -101,14 +101,14 @@ inline water_field water_field_of(const water_rasters& in, double cell_m, raster
     return field;
 }
 
-/// grow_waterbodies' run in extract_waterbodies: its progress runs from `from` over `share` of the run's
-/// (cancelling throws in extract_waterbodies' name).
+/// grow_waterbodies' run in extract_waterbodies: the run's threads (floods grown ahead of their turn), and its
+/// progress from `from` over `share` of the run's (cancelling throws in extract_waterbodies' name).
 inline execution growing_run(const extract_waterbodies_options& opt, double from, double share, const char* fn)
 {
-    return {.progress = [&progress = opt.run.progress, from, share, fn](double f) {
-        report(progress, from + share * f, fn);
-        return true;
-    }};
+    return {.threads = opt.run.threads, .progress = [&progress = opt.run.progress, from, share, fn](double f) {
+                report(progress, from + share * f, fn);
+                return true;
+            }};
 }
 
 /// Grows further seeds into the cells of `field` still eligible: their bodies are numbered after those in

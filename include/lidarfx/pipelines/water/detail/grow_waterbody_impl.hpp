@@ -99,21 +99,21 @@ inline void validate(const water_field& field, const grow_waterbody_options& opt
         require_same_shape(field.angle_deg, follow.intensity, fn, "field.angle_deg", "field.mean_intensity");
 }
 
-}  // namespace detail
-
-inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
-                                            const grow_waterbody_options& opt, grow_waterbody_workspace& workspace)
+/// grow_waterbody's flood over the eligible cells `eligible` (the field's shape, contiguous; field.eligible or a
+/// copy of it), marking the cells it queues with `stamp` in `seen` (contiguous, the field's shape; no cell holds
+/// the stamp before). Each cell it queues (and marks) is passed to on_queued(i) as it is: with the seed cells, these
+/// are the only cells whose eligibility the result depends on (a cell never queued has no effect on it). on_queued may
+/// throw to end the flood.
+template <class Mark, class Queued>
+grow_waterbody_result grow_waterbody_flood(const water_field& field, const std::uint8_t* eligible,
+                                           std::span<const std::ptrdiff_t> seed_cells,
+                                           const grow_waterbody_options& opt, Mark* seen, Mark stamp,
+                                           Queued&& on_queued)
 {
     constexpr const char* fn = "grow_waterbody";
-    detail::validate(field, opt, fn);
-
     const std::ptrdiff_t rows = field.angle_deg.rows(), cols = field.angle_deg.cols(), n = rows * cols;
     const float* angle = field.angle_deg.data();
-    const std::uint8_t* eligible = field.eligible.data();
     const std::int32_t* bin = field.intensity_bin.data();
-    const auto flood = workspace.next_flood(rows, cols);
-    std::int32_t* seen = flood.first.data();  // contiguous: cell i at seen[i]
-    const std::int32_t stamp = flood.second;
     const int last = detail::last_step(opt);
 
     // The level gate: each queued cell carries the water level L it passes on (NaN: unknown yet).
@@ -170,6 +170,7 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         }
         if (k > last) return;  // neither its angle nor its level lets it in
         seen[i] = stamp;
+        on_queued(i);
         buckets[static_cast<std::size_t>(k)].push_back({i, level, sample});
     };
     const auto fresh = [&](std::ptrdiff_t i) { return seen[i] != stamp && eligible[i]; };
@@ -249,6 +250,17 @@ inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<
         if (increment && !added.empty()) added.clear();
     }
     return out;
+}
+
+}  // namespace detail
+
+inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,
+                                            const grow_waterbody_options& opt, grow_waterbody_workspace& workspace)
+{
+    detail::validate(field, opt, "grow_waterbody");
+    const auto [marks, stamp] = workspace.next_flood(field.angle_deg.rows(), field.angle_deg.cols());
+    return detail::grow_waterbody_flood(field, field.eligible.data(), seed_cells, opt, marks.data(), stamp,
+                                        [](std::ptrdiff_t) {});
 }
 
 inline grow_waterbody_result grow_waterbody(const water_field& field, std::span<const std::ptrdiff_t> seed_cells,

@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 #include "lidarfx/core/error.hpp"
@@ -224,19 +226,30 @@ inline lazy_water_surface_slope::lazy_water_surface_slope(raster_view<const floa
       cell_m_(cell_m),
       opt_(opt),
       tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
-      tile_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_), -1),
+      tile_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_)),
+      chunks_((tile_.size() + chunk_tiles - 1) / chunk_tiles),
       scratch_(std::make_unique<detail::slope_scratch>(tile_cols))
 {
     detail::validate(opt, cell_m, "lazy_water_surface_slope");
+    for (auto& slot : tile_) slot.store(-1, std::memory_order_relaxed);
 }
 
 inline float lazy_water_surface_slope::operator()(std::ptrdiff_t r, std::ptrdiff_t c)
 {
     const std::ptrdiff_t tr = r / tile_rows, tc = c / tile_cols;
-    std::int32_t& slot = tile_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
-    if (slot < 0) [[unlikely]]
-        slot = compute(tr, tc);
-    return tile_cells(slot)[(r - tr * tile_rows) * tile_cols + (c - tc * tile_cols)];
+    std::atomic<std::int32_t>& slot = tile_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
+    // A tile's cells are written once, before its slot is published (release); a reader that sees the slot
+    // (acquire) sees the cells.
+    std::int32_t s = slot.load(std::memory_order_acquire);
+    if (s < 0) [[unlikely]] {
+        const std::lock_guard lock(compute_);
+        s = slot.load(std::memory_order_relaxed);
+        if (s < 0) {
+            s = compute(tr, tc);
+            slot.store(s, std::memory_order_release);
+        }
+    }
+    return tile_cells(s)[(r - tr * tile_rows) * tile_cols + (c - tc * tile_cols)];
 }
 
 inline float* lazy_water_surface_slope::tile_cells(std::int32_t slot) noexcept
@@ -249,7 +262,8 @@ inline std::int32_t lazy_water_surface_slope::compute(std::ptrdiff_t tr, std::pt
 {
     const auto slot = static_cast<std::int32_t>(used_++);
     if (static_cast<std::size_t>(slot) % chunk_tiles == 0)
-        chunks_.push_back(std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size));
+        chunks_[static_cast<std::size_t>(slot) / chunk_tiles] =
+            std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size);
     const std::ptrdiff_t r0 = tr * tile_rows, c0 = tc * tile_cols;
     const std::ptrdiff_t r1 = std::min(rows(), r0 + tile_rows), c1 = std::min(cols(), c0 + tile_cols);
     detail::surface_slope_block(min_z_, cell_m_, opt_, r0, r1, c0, c1,

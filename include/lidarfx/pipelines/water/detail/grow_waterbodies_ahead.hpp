@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: Apache-2.0
+// grow_waterbodies on several threads: floods grown ahead of their seed's turn on the cells as they were before the
+// first turn, taken at their turn when no body accepted since touched a cell they read, grown again otherwise. The
+// bodies, labels and records are those of the turns one after another, bit for bit.
+#pragma once
+// Included by detail/grow_waterbodies_impl.hpp, which defines the turn's steps used here.
+
+#include <algorithm>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <span>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/raster.hpp"
+
+namespace lidarfx::detail {
+
+/// Thrown inside a flood grown ahead that reached an earlier seed's cell.
+struct flood_overtaken {};
+
+/// A seed's flood grown before its turn, on the eligible cells and labels as they were before the first turn.
+struct flood_ahead {
+    bool grows = false;                   ///< the seed was not skipped (by the labels before the first turn)
+    bool overtaken = false;               ///< the flood stopped at a cell of an earlier seed
+    grow_waterbody_result region;         ///< its flood
+    std::vector<std::ptrdiff_t> visited;  ///< the cells the flood queued (with the seed's, all it read)
+    std::exception_ptr error;             ///< what the flood threw, rethrown at its turn if it stands
+};
+
+/// grow_waterbodies with run.threads > 1 (its checks done). A flood reads only the eligibility of the cells it
+/// queues (a cell never queued has no effect on it) and the labels of its seed's cells; turns change both only in
+/// the cells of the bodies they accept (labels the run gives). So a flood grown ahead is the flood of its turn when
+/// no body accepted before its turn holds one of those cells; else it is grown again at its turn, as the sequential
+/// run grows it. Floods are not grown ahead, or stop, where they would most likely be overtaken: a seed with a cell
+/// in a body accepted so far, and a flood reaching a cell of an earlier seed. Turns are taken in seed order by the
+/// calling thread, which grows floods ahead while it waits; the other threads grow floods ahead, at most 4 per
+/// thread beyond the turn. Memory beyond the sequential run: a copy of the eligible cells and a mark raster per
+/// thread (1 byte a cell each), and the cells each flood ahead queued until its turn.
+inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_labels,
+                                   const seed_cell_runs& seed_lists, std::size_t n, raster_view<const float> min_z,
+                                   raster_view<const float> max_z, grow_waterbodies_result& out,
+                                   const grow_waterbody_options& grow, const join_level_cells_options& level,
+                                   const grow_waterbodies_options& opt, std::int32_t seed_offset, const execution& run)
+{
+    constexpr const char* fn = "grow_waterbodies";
+    const auto threads = static_cast<std::size_t>(resolve_threads(run.threads, fn));
+    const std::ptrdiff_t rows = field.eligible.rows(), cols = field.eligible.cols();
+    // What floods ahead read: the eligible cells before the first turn, and where each seed starts from then.
+    const raster<std::uint8_t> eligible_before = field.eligible;
+    std::vector<std::uint8_t> starts(n + 1, 0);
+    std::vector<std::vector<std::ptrdiff_t>> start_cells(n + 1);  // empty: all of the seed's cells
+    for (std::size_t s = 1; s <= n; ++s) {
+        std::span<const std::ptrdiff_t> cells;
+        std::vector<std::ptrdiff_t> free_cells;
+        starts[s] = seed_cells_to_grow(seed_lists.of(s), out.labels.data(), opt.min_free_seed_share, free_cells, cells);
+        if (starts[s] && cells.data() == free_cells.data()) start_cells[s] = std::move(free_cells);
+    }
+    std::vector<flood_ahead> ahead(n + 1);
+    // A flood ahead marks the cells it queues with 1 in its thread's marks and clears them after (they are the
+    // cells it visited).
+    const auto grow_ahead = [&](std::size_t s, raster<std::uint8_t>& marks) {
+        flood_ahead& a = ahead[s];
+        try {
+            a.grows = starts[s] != 0;
+            if (!a.grows) return;
+            if (marks.empty()) marks = raster<std::uint8_t>(rows, cols, 0);
+            const std::span<const std::ptrdiff_t> cells =
+                start_cells[s].empty() ? seed_lists.of(s) : std::span<const std::ptrdiff_t>(start_cells[s]);
+            std::uint8_t* seen = marks.data();
+            // A flood that reaches a cell of an earlier seed is most likely overtaken by that seed's body (a seed
+            // inside a lake whose first seed floods it): it stops there and is grown again at its turn, if at all.
+            const auto on_queued = [&](std::ptrdiff_t i) {
+                a.visited.push_back(i);
+                if (const std::int32_t l = seed_labels[i]; l > 0 && static_cast<std::size_t>(l) < s && starts[l])
+                    throw flood_overtaken{};
+            };
+            try {
+                a.region =
+                    grow_waterbody_flood(field, eligible_before.data(), cells, grow, seen, std::uint8_t{1}, on_queued);
+            } catch (const flood_overtaken&) {
+                a.overtaken = true;
+            } catch (...) {
+                for (const auto i : a.visited) seen[i] = 0;
+                throw;
+            }
+            for (const auto i : a.visited) seen[i] = 0;
+        } catch (...) {
+            a.error = std::current_exception();
+        }
+    };
+
+    std::mutex mutex;
+    std::condition_variable changed_state;
+    std::size_t next = 1, turn = 1;  // the next seed to grow ahead; the seed whose turn it is
+    std::vector<std::uint8_t> ready(n + 1, 0);
+    bool stop = false;
+    const std::size_t window = 4 * threads;
+    const auto can_claim = [&] { return next <= n && next < turn + window; };
+    // Claims the next seed, grows its flood with the lock released, and marks it ready.
+    std::vector<std::uint8_t> overtaken(n + 1, 0);  // a body accepted so far holds a cell of the seed
+    const auto grow_next = [&](std::unique_lock<std::mutex>& lock, raster<std::uint8_t>& marks) {
+        const std::size_t s = next++;
+        const bool known_overtaken = overtaken[s] != 0;
+        lock.unlock();
+        if (known_overtaken) {
+            ahead[s].overtaken = true;  // its turn decides (most often: skipped)
+        } else {
+            grow_ahead(s, marks);
+        }
+        lock.lock();
+        ready[s] = 1;
+        changed_state.notify_all();
+    };
+    std::vector<std::thread> helpers;
+    const auto stop_helpers = [&] {
+        {
+            const std::lock_guard lock(mutex);
+            stop = true;
+        }
+        changed_state.notify_all();
+        for (auto& h : helpers) h.join();
+    };
+    struct joiner {
+        const decltype(stop_helpers)& stop;
+        ~joiner() { stop(); }
+    } join_at_exit{stop_helpers};
+    for (std::size_t t = 1; t < threads; ++t) {
+        helpers.emplace_back([&] {
+            raster<std::uint8_t> marks;
+            std::unique_lock lock(mutex);
+            for (;;) {
+                changed_state.wait(lock, [&] { return stop || can_claim(); });
+                if (stop) return;
+                grow_next(lock, marks);
+            }
+        });
+    }
+
+    raster<std::uint8_t> ahead_marks;                        // the calling thread's floods ahead
+    grow_waterbody_workspace turn_marks(out.labels.view());  // floods grown again at their turn
+    bool grown_again = false;
+
+    // The cells of the bodies accepted by this run's turns: labels above those it started with.
+    const auto first_label = static_cast<std::int32_t>(out.bodies.size() + 1);
+    std::vector<std::ptrdiff_t> free_cells;
+    std::vector<std::int32_t> later_seeds;  // seeds after the turn's with a cell in its body
+    for (std::size_t s = 1; s <= n; ++s) {
+        report(run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
+        {
+            std::unique_lock lock(mutex);
+            turn = s;  // floods ahead may now reach seed s + window - 1
+            changed_state.notify_all();
+            while (!ready[s]) {
+                if (can_claim()) {
+                    grow_next(lock, ahead_marks);
+                } else {
+                    changed_state.wait(lock);
+                }
+            }
+        }
+        flood_ahead a = std::move(ahead[s]);  // no other thread touches ahead[s] once it is ready
+        const std::int32_t* labels = out.labels.data();
+        const auto touched = [&](std::ptrdiff_t i) { return labels[i] >= first_label; };
+        const auto seed = seed_lists.of(s);
+        const bool stands = !a.overtaken && std::none_of(seed.begin(), seed.end(), touched) &&
+                            std::none_of(a.visited.begin(), a.visited.end(), touched);
+        grow_waterbody_result region;
+        if (stands) {
+            if (a.error) std::rethrow_exception(a.error);
+            if (!a.grows) continue;
+            region = std::move(a.region);
+        } else {
+            std::span<const std::ptrdiff_t> cells;
+            if (!seed_cells_to_grow(seed, out.labels.data(), opt.min_free_seed_share, free_cells, cells)) continue;
+            const auto [marks, stamp] = turn_marks.next_flood(rows, cols);
+            region = grow_waterbody_flood(field, field.eligible.data(), cells, grow, marks.data(), stamp,
+                                          [](std::ptrdiff_t) {});
+            grown_again = true;
+        }
+        accept_body(region, s, seed_offset, min_z, max_z, field.eligible.data(), out, level);
+        later_seeds.clear();
+        for (const auto i : region.cells) {
+            if (const std::int32_t l = seed_labels[i]; static_cast<std::size_t>(l) > s) later_seeds.push_back(l);
+        }
+        if (!later_seeds.empty()) {
+            const std::lock_guard lock(mutex);
+            for (const auto l : later_seeds) overtaken[static_cast<std::size_t>(l)] = 1;
+        }
+    }
+    if (grown_again) turn_marks.clear_marks();
+    report(run.progress, 1.0, fn);
+}
+
+}  // namespace lidarfx::detail
