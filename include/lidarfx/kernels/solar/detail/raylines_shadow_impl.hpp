@@ -32,30 +32,51 @@ struct no_seen_limits {
 
 /// One row's cells [a, b), which lie on lines of every family: the owner family compares each cell's key
 /// z + (col_lift + rl) with the running maximum of its line (own[c]) and writes 1 (lit), 0 or nan_cell, then
-/// every family (the owner and the K others) raises its lines' maxima with the key. One pass keeps the key in a
-/// register; the families' arrays are disjoint, so the loop carries no dependency and vectorizes. Cell c's height
-/// and output are zr[c * Stride] and o[c * Stride] (Stride > 1: a tile of the transposed raster).
+/// every family (the owner and the K others) raises its lines' maxima with the key. The families' arrays are
+/// disjoint, so the loops carry no dependency. Cell c's height and output are zr[c * Stride] and o[c * Stride]
+/// (Stride > 1: a tile of the transposed raster); `lit` is scratch of the row's length.
 template <std::size_t K, std::ptrdiff_t Stride>
 void shadow_row_fused(const float* zr, const double* col_lift, double rl, double* own, std::array<double*, K> other,
-                      std::uint8_t* o, std::uint8_t nan_cell, std::ptrdiff_t a, std::ptrdiff_t b) noexcept
+                      double* lit, std::uint8_t* o, std::uint8_t nan_cell, std::ptrdiff_t a, std::ptrdiff_t b) noexcept
 {
     const float* __restrict z = zr;
     const double* __restrict lift = col_lift;
     double* __restrict m0 = own;
     std::uint8_t* __restrict out = o;
-    double* __restrict m1 = K > 0 ? other[0] : nullptr;
-    double* __restrict m2 = K > 1 ? other[K > 1 ? 1 : 0] : nullptr;
-    double* __restrict m3 = K > 2 ? other[K > 2 ? 2 : 0] : nullptr;
-    for (std::ptrdiff_t c = a; c < b; ++c) {
-        const float h = z[c * Stride];
-        const double key = static_cast<double>(h) + (lift[c] + rl);
-        const double m = m0[c];
-        const std::uint8_t v = m > key ? 0 : 1;
-        out[c * Stride] = h != h ? nan_cell : v;
-        m0[c] = key > m ? key : m;  // false for a NaN key: NaN cells cast no shadow
-        if constexpr (K > 0) m1[c] = key > m1[c] ? key : m1[c];
-        if constexpr (K > 1) m2[c] = key > m2[c] ? key : m2[c];
-        if constexpr (K > 2) m3[c] = key > m3[c] ? key : m3[c];
+    if constexpr (K == 0 && Stride == 1) {
+        // The owner alone, on contiguous cells: two loops that vectorize, the lit cells passing through `lit` as 1.0
+        // or 0.0 (a select between a double compare and a byte store, or a NaN test, in one loop keeps GCC from
+        // vectorizing it).
+        double* __restrict l = lit;
+        for (std::ptrdiff_t c = a; c < b; ++c) {
+            const double key = static_cast<double>(z[c * Stride]) + (lift[c] + rl);
+            const double m = m0[c];
+            l[c] = m > key ? 0.0 : 1.0;
+            m0[c] = key > m ? key : m;  // false for a NaN key: NaN cells cast no shadow
+        }
+        const float nan_value = nan_cell;
+        for (std::ptrdiff_t c = a; c < b; ++c) {
+            // 1, 0, or nan_cell for a NaN height: exact float arithmetic on small integers.
+            const float t = static_cast<float>(l[c]), nan = z[c * Stride] != z[c * Stride] ? 1.0f : 0.0f;
+            out[c * Stride] = static_cast<std::uint8_t>(static_cast<std::int32_t>(t + nan * (nan_value - t)));
+        }
+    } else {
+        // With other families, or strided cells, one scalar pass that keeps the key in a register beats two.
+        (void)lit;
+        double* __restrict m1 = K > 0 ? other[0] : nullptr;
+        double* __restrict m2 = K > 1 ? other[K > 1 ? 1 : 0] : nullptr;
+        double* __restrict m3 = K > 2 ? other[K > 2 ? 2 : 0] : nullptr;
+        for (std::ptrdiff_t c = a; c < b; ++c) {
+            const float h = z[c * Stride];
+            const double key = static_cast<double>(h) + (lift[c] + rl);
+            const double m = m0[c];
+            const std::uint8_t v = m > key ? 0 : 1;
+            out[c * Stride] = h != h ? nan_cell : v;
+            m0[c] = key > m ? key : m;  // false for a NaN key: NaN cells cast no shadow
+            if constexpr (K > 0) m1[c] = key > m1[c] ? key : m1[c];
+            if constexpr (K > 1) m2[c] = key > m2[c] ? key : m2[c];
+            if constexpr (K > 2) m3[c] = key > m3[c] ? key : m3[c];
+        }
     }
 }
 
@@ -81,13 +102,15 @@ struct shadow_block_limits {
     std::vector<double> limits;
     std::vector<double*> lim;            ///< per family: lim[f][c], the line through column c of the current row
     std::vector<std::ptrdiff_t> c0, c1;  ///< per family: the current row's columns on lines [k0, k1)
-    shadow_block_limits(std::size_t families, std::ptrdiff_t first, std::ptrdiff_t last)
+    std::vector<double> lit;             ///< per column: the owner's lit cells of the current row, 1.0 or 0.0
+    shadow_block_limits(std::size_t families, std::ptrdiff_t first, std::ptrdiff_t last, std::ptrdiff_t cols)
         : k0(first),
           k1(last),
           limits(families * static_cast<std::size_t>(last - first), -std::numeric_limits<double>::infinity()),
           lim(families),
           c0(families),
-          c1(families)
+          c1(families),
+          lit(static_cast<std::size_t>(cols))
     {
     }
 };
@@ -125,7 +148,7 @@ void shadow_row(const line_families& fam, std::ptrdiff_t r, std::ptrdiff_t cols,
     for (std::size_t f = 0; f < families; ++f) {  // columns outside [all0, all1)
         const auto edge = [&](std::ptrdiff_t e0, std::ptrdiff_t e1) {
             if (f == owner) {
-                shadow_row_fused<0, Stride>(zr, col_lift, rl, b.lim[f], {}, o, nan_cell, e0, e1);
+                shadow_row_fused<0, Stride>(zr, col_lift, rl, b.lim[f], {}, b.lit.data(), o, nan_cell, e0, e1);
             } else {
                 shadow_row_raise<Stride>(zr, col_lift, rl, b.lim[f], e0, e1);
             }
@@ -140,16 +163,17 @@ void shadow_row(const line_families& fam, std::ptrdiff_t r, std::ptrdiff_t cols,
     double* own = b.lim[owner];
     switch (k) {
         case 0:
-            shadow_row_fused<0, Stride>(zr, col_lift, rl, own, {}, o, nan_cell, all0, all1);
+            shadow_row_fused<0, Stride>(zr, col_lift, rl, own, {}, b.lit.data(), o, nan_cell, all0, all1);
             break;
         case 1:
-            shadow_row_fused<1, Stride>(zr, col_lift, rl, own, {others[0]}, o, nan_cell, all0, all1);
+            shadow_row_fused<1, Stride>(zr, col_lift, rl, own, {others[0]}, b.lit.data(), o, nan_cell, all0, all1);
             break;
         case 2:
-            shadow_row_fused<2, Stride>(zr, col_lift, rl, own, {others[0], others[1]}, o, nan_cell, all0, all1);
+            shadow_row_fused<2, Stride>(zr, col_lift, rl, own, {others[0], others[1]}, b.lit.data(), o, nan_cell, all0,
+                                        all1);
             break;
         default:
-            shadow_row_fused<3, Stride>(zr, col_lift, rl, own, others, o, nan_cell, all0, all1);
+            shadow_row_fused<3, Stride>(zr, col_lift, rl, own, others, b.lit.data(), o, nan_cell, all0, all1);
             break;
     }
     for (; f < families; ++f)
@@ -164,7 +188,7 @@ void shadow_steep_block(raster_view<const float> z, raster_view<std::uint8_t> ou
                         SeenLimits&& seen = {})
 {
     const std::ptrdiff_t rows = z.rows(), cols = z.cols();
-    shadow_block_limits block(fam.lines.size(), k0, k1);
+    shadow_block_limits block(fam.lines.size(), k0, k1, cols);
     const bool forward = fam.lines.front().forward();
     for (std::ptrdiff_t i = 0; i < rows; ++i) {
         const std::ptrdiff_t r = forward ? i : rows - 1 - i;
@@ -187,7 +211,7 @@ void shadow_transposed_block(raster_view<const float> z, raster_view<std::uint8_
     constexpr std::ptrdiff_t chunk = 16;
     const std::ptrdiff_t rows = z.cols(), cols = z.rows(), n = k1 - k0;  // of the transposed raster
     const std::size_t families = fam.lines.size();
-    shadow_block_limits block(families, k0, k1);
+    shadow_block_limits block(families, k0, k1, cols);
     // A chunk's columns' span lines [k0, k1) of every family across 16 rows': n plus at most 16 |slope| + 1 shifts.
     const std::size_t span = static_cast<std::size_t>(n + 2 * chunk + 2);
     std::vector<float> tile(chunk * span);        // tile[(c - lo) * chunk + j]: row' c0 + j, column' c
