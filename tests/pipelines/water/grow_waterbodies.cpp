@@ -47,6 +47,17 @@ struct two_lakes {
     }
 };
 
+// A field of rows x cols cells whose rasters the test fills, with `bins` intensity bins.
+water_field field_of_shape(std::ptrdiff_t rows, std::ptrdiff_t cols, int bins)
+{
+    water_field field;
+    field.angle_deg = raster<float>(rows, cols);
+    field.eligible = raster<std::uint8_t>(rows, cols);
+    field.intensity_bin = raster<std::int32_t>(rows, cols);
+    field.bins = bins;
+    return field;
+}
+
 }  // namespace
 
 TEST_CASE("water/grow_waterbodies: seeds grow in order, a seed inside a body is skipped, bodies refine")
@@ -164,11 +175,7 @@ TEST_CASE("water/grow_waterbodies: equals the public steps composed, on random f
         const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40),
                              cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
         std::uniform_real_distribution<float> unit(0, 1);
-        water_field field;
-        field.angle_deg = raster<float>(rows, cols);
-        field.eligible = raster<std::uint8_t>(rows, cols);
-        field.intensity_bin = raster<std::int32_t>(rows, cols);
-        field.bins = 8;
+        water_field field = field_of_shape(rows, cols, 8);
         raster<float> min_z(rows, cols), max_z(rows, cols);
         components seeds{raster<std::int32_t>(rows, cols, 0), {0}};
         const int n_seeds = 1 + static_cast<int>(rng() % 5);
@@ -243,11 +250,7 @@ TEST_CASE(
         CAPTURE(trial);
         const std::ptrdiff_t rows = 30 + static_cast<std::ptrdiff_t>(rng() % 50),
                              cols = 30 + static_cast<std::ptrdiff_t>(rng() % 70);
-        water_field field;
-        field.angle_deg = raster<float>(rows, cols);
-        field.eligible = raster<std::uint8_t>(rows, cols);
-        field.intensity_bin = raster<std::int32_t>(rows, cols);
-        field.bins = 8;
+        water_field field = field_of_shape(rows, cols, 8);
         raster<float> min_z(rows, cols), max_z(rows, cols);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
             for (std::ptrdiff_t c = 0; c < cols; ++c) {

@@ -49,7 +49,8 @@ struct grow_waterbodies_result {
 /// take their turns in order (the order decides who owns a cell), and with threads > 1 their floods are grown ahead
 /// on other threads, each kept when no body accepted before its turn touched a cell it read and grown again
 /// otherwise. The result is the same bit for bit for any thread count. Threads > 1 cost 1 byte a cell for a copy of
-/// the eligible cells and 1 byte a cell per thread. A lazy field.surface_slope is read by every thread.
+/// the eligible cells and 1 byte a cell per thread, and 16 bytes per cell reached by each of at most 2 floods per
+/// thread grown ahead. A lazy field.surface_slope is read by every thread.
 /// @throws invalid_input on shapes that differ or options out of range; cancelled.
 inline void grow_waterbodies(water_field& field, const components& seeds, raster_view<const float> min_z,
                              raster_view<const float> max_z, grow_waterbodies_result& into,

@@ -39,9 +39,10 @@ struct flood_ahead {
 /// no body accepted before its turn holds one of those cells; else it is grown again at its turn, as the sequential
 /// run grows it. Floods are not grown ahead, or stop, where they would most likely be overtaken: a seed with a cell
 /// in a body accepted so far, and a flood reaching a cell of an earlier seed. Turns are taken in seed order by the
-/// calling thread, which grows floods ahead while it waits; the other threads grow floods ahead, at most 4 per
+/// calling thread, which grows floods ahead while it waits; the other threads grow floods ahead, at most 2 per
 /// thread beyond the turn. Memory beyond the sequential run: a copy of the eligible cells and a mark raster per
-/// thread (1 byte a cell each), and the cells each flood ahead queued until its turn.
+/// thread (1 byte a cell each), and, until its turn, each flood ahead's region and the cells it queued (16 bytes a
+/// cell reached, for at most 2 floods per thread).
 inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_labels,
                                    const seed_cell_runs& seed_lists, std::size_t n, raster_view<const float> min_z,
                                    raster_view<const float> max_z, grow_waterbodies_result& out,
@@ -100,7 +101,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
     std::size_t next = 1, turn = 1;  // the next seed to grow ahead; the seed whose turn it is
     std::vector<std::uint8_t> ready(n + 1, 0);
     bool stop = false;
-    const std::size_t window = 4 * threads;
+    const std::size_t window = 2 * threads;
     const auto can_claim = [&] { return next <= n && next < turn + window; };
     // Claims the next seed, grows its flood with the lock released, and marks it ready.
     std::vector<std::uint8_t> overtaken(n + 1, 0);  // a body accepted so far holds a cell of the seed
