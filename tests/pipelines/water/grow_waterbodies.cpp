@@ -312,3 +312,30 @@ TEST_CASE(
         }
     }
 }
+
+TEST_CASE("water/grow_waterbodies: a cell that only a flood grown ahead reaches cannot make the threads throw")
+{
+    // 1 x 8: seed 1's body takes cells 0-3 (cell 3 through join_level_cells at depth 2, past the steep cell 2), and
+    // cell 3 holds an intensity bin out of range. The sequential run never queues it: by seed 2's turn it is no
+    // longer eligible. A flood grown ahead for seed 2 sees it eligible and throws on it; that flood is grown again
+    // at its turn instead of its error standing.
+    for (const int threads : {1, 2}) {
+        CAPTURE(threads);
+        water_field field = field_of_shape(1, 8, 1);
+        for (auto& a : field.angle_deg) a = 0.0f;
+        for (auto& e : field.eligible) e = 1;
+        for (auto& b : field.intensity_bin) b = 0;
+        raster<float> min_z(1, 8, 10.0f), max_z(1, 8, 10.0f);
+        field.angle_deg(0, 2) = 40.0f;
+        field.intensity_bin(0, 3) = 1 << 24;
+        for (std::ptrdiff_t c = 4; c < 8; ++c) min_z(0, c) = max_z(0, c) = 11.0f;
+        field.eligible(0, 6) = field.eligible(0, 7) = 0;
+        components seeds{raster<std::int32_t>(1, 8, 0), {6, 1, 1}};
+        seeds.labels(0, 0) = 1;
+        seeds.labels(0, 5) = 2;
+        const auto g = grow_waterbodies(field, seeds, min_z, max_z, {}, {}, {}, {.threads = threads});
+        REQUIRE(g.bodies.size() == 2);
+        const std::int32_t want[8] = {1, 1, 1, 1, 2, 2, 0, 0};
+        for (std::ptrdiff_t c = 0; c < 8; ++c) CHECK(g.labels(0, c) == want[c]);
+    }
+}

@@ -43,8 +43,9 @@ struct grow_waterbodies_result {
 /// non-empty region is extended by join_level_cells (options `level`; min_z, max_z in metres) and accepted as the next
 /// body; its cells stop being eligible in `field` for the seeds that follow. This form adds to `into`: its labels (the
 /// field's shape; 0 land, k + 1 for into.bodies[k]) and bodies are kept, new bodies are numbered after them and record
-/// seed label + seed_offset (so that several rounds of seeds grow into one raster without a merge). `field` must have
-/// the shape of the seeds; its eligible raster is updated. O(cells + sum over seeds of cells reached). `run`:
+/// seed label + seed_offset (so that several rounds of seeds grow into one raster without a merge); their cells must
+/// not be eligible in `field` (as an earlier call leaves them). `field` must have the shape of the seeds; its eligible
+/// raster is updated. O(cells + sum over seeds of cells reached). `run`:
 /// progress (the fraction of seeds done, 0 before the first, 1 at the end) and cancellation, and threads: the seeds
 /// take their turns in order (the order decides who owns a cell), and with threads > 1 their floods are grown ahead
 /// on other threads, each kept when no body accepted before its turn touched a cell it read and grown again

@@ -203,7 +203,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     res.vegetation = water_vegetation(in, opt.vegetation, {.threads = threads});
     water_field field = detail::water_field_of(in, cell_m, res.vegetation, opt);
     // The level follows min z only where the surface is level; the slope is computed tile by tile where it
-    // is read (around water), by the one thread that reads it.
+    // is read (around water), by the first thread that reads it.
     std::optional<lazy_water_surface_slope> lazy_slope;  // field.surface_slope reads it; empty: no slope
     if (opt.grow.level_follow_max_slope >= 0 && opt.grow.level_gate_m > 0)
         field.surface_slope = lazy_slope.emplace(in.min_z, cell_m, opt.surface_slope);

@@ -30,7 +30,23 @@ struct flood_ahead {
     bool overtaken = false;               ///< the flood stopped at a cell of an earlier seed
     grow_waterbody_result region;         ///< its flood
     std::vector<std::ptrdiff_t> visited;  ///< the cells the flood queued (with the seed's, all it read)
-    std::exception_ptr error;             ///< what the flood threw, rethrown at its turn if it stands
+    std::exception_ptr error;             ///< what the flood threw (then it is grown again at its turn)
+};
+
+/// Which seeds grow, and from which cells, given the labels before the first turn (seed_cells_to_grow).
+struct seed_starts {
+    std::vector<std::uint8_t> starts;                      ///< per seed: 1 = it grows
+    std::vector<std::vector<std::ptrdiff_t>> start_cells;  ///< per seed: its free cells; empty: all of them
+    seed_starts(const seed_cell_runs& seed_lists, std::size_t n, const std::int32_t* labels, double min_free_share)
+        : starts(n + 1, 0), start_cells(n + 1)
+    {
+        for (std::size_t s = 1; s <= n; ++s) {
+            std::span<const std::ptrdiff_t> cells;
+            std::vector<std::ptrdiff_t> free_cells;
+            starts[s] = seed_cells_to_grow(seed_lists.of(s), labels, min_free_share, free_cells, cells);
+            if (starts[s] && cells.data() == free_cells.data()) start_cells[s] = std::move(free_cells);
+        }
+    }
 };
 
 /// grow_waterbodies with run.threads > 1 (its checks done). A flood reads only the eligibility of the cells it
@@ -54,31 +70,30 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
     const std::ptrdiff_t rows = field.eligible.rows(), cols = field.eligible.cols();
     // What floods ahead read: the eligible cells before the first turn, and where each seed starts from then.
     const raster<std::uint8_t> eligible_before = field.eligible;
-    std::vector<std::uint8_t> starts(n + 1, 0);
-    std::vector<std::vector<std::ptrdiff_t>> start_cells(n + 1);  // empty: all of the seed's cells
-    for (std::size_t s = 1; s <= n; ++s) {
-        std::span<const std::ptrdiff_t> cells;
-        std::vector<std::ptrdiff_t> free_cells;
-        starts[s] = seed_cells_to_grow(seed_lists.of(s), out.labels.data(), opt.min_free_seed_share, free_cells, cells);
-        if (starts[s] && cells.data() == free_cells.data()) start_cells[s] = std::move(free_cells);
-    }
+    const seed_starts before(seed_lists, n, out.labels.data(), opt.min_free_seed_share);
     std::vector<flood_ahead> ahead(n + 1);
     // A flood ahead marks the cells it queues with 1 in its thread's marks and clears them after (they are the
     // cells it visited).
     const auto grow_ahead = [&](std::size_t s, raster<std::uint8_t>& marks) {
         flood_ahead& a = ahead[s];
         try {
-            a.grows = starts[s] != 0;
+            a.grows = before.starts[s] != 0;
             if (!a.grows) return;
             if (marks.empty()) marks = raster<std::uint8_t>(rows, cols, 0);
-            const std::span<const std::ptrdiff_t> cells =
-                start_cells[s].empty() ? seed_lists.of(s) : std::span<const std::ptrdiff_t>(start_cells[s]);
+            const std::span<const std::ptrdiff_t> cells = before.start_cells[s].empty()
+                                                              ? seed_lists.of(s)
+                                                              : std::span<const std::ptrdiff_t>(before.start_cells[s]);
             std::uint8_t* seen = marks.data();
             // A flood that reaches a cell of an earlier seed is most likely overtaken by that seed's body (a seed
             // inside a lake whose first seed floods it): it stops there and is grown again at its turn, if at all.
             const auto on_queued = [&](std::ptrdiff_t i) {
-                a.visited.push_back(i);
-                if (const std::int32_t l = seed_labels[i]; l > 0 && static_cast<std::size_t>(l) < s && starts[l])
+                try {
+                    a.visited.push_back(i);
+                } catch (...) {
+                    seen[i] = 0;  // the one marked cell the list does not hold
+                    throw;
+                }
+                if (const std::int32_t l = seed_labels[i]; l > 0 && static_cast<std::size_t>(l) < s && before.starts[l])
                     throw flood_overtaken{};
             };
             try {
@@ -169,11 +184,12 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
         const std::int32_t* labels = out.labels.data();
         const auto touched = [&](std::ptrdiff_t i) { return labels[i] >= first_label; };
         const auto seed = seed_lists.of(s);
-        const bool stands = !a.overtaken && std::none_of(seed.begin(), seed.end(), touched) &&
+        // A flood ahead that threw is grown again: a cell that throws is read before it is queued, and a body
+        // accepted since may have taken it.
+        const bool stands = !a.overtaken && !a.error && std::none_of(seed.begin(), seed.end(), touched) &&
                             std::none_of(a.visited.begin(), a.visited.end(), touched);
         grow_waterbody_result region;
         if (stands) {
-            if (a.error) std::rethrow_exception(a.error);
             if (!a.grows) continue;
             region = std::move(a.region);
         } else {

@@ -260,7 +260,7 @@ inline float* lazy_water_surface_slope::tile_cells(std::int32_t slot) noexcept
 
 inline std::int32_t lazy_water_surface_slope::compute(std::ptrdiff_t tr, std::ptrdiff_t tc)
 {
-    const auto slot = static_cast<std::int32_t>(used_++);
+    const auto slot = static_cast<std::int32_t>(used_);
     if (static_cast<std::size_t>(slot) % chunk_tiles == 0)
         chunks_[static_cast<std::size_t>(slot) / chunk_tiles] =
             std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size);
@@ -268,6 +268,7 @@ inline std::int32_t lazy_water_surface_slope::compute(std::ptrdiff_t tr, std::pt
     const std::ptrdiff_t r1 = std::min(rows(), r0 + tile_rows), c1 = std::min(cols(), c0 + tile_cols);
     detail::surface_slope_block(min_z_, cell_m_, opt_, r0, r1, c0, c1,
                                 raster_view<float>(tile_cells(slot), r1 - r0, c1 - c0, tile_cols), *scratch_);
+    ++used_;  // only once the tile is computed: a failed allocation leaves the cache as it was
     return slot;
 }
 
