@@ -49,6 +49,50 @@ struct seed_starts {
     }
 };
 
+/// Seed s's flood grown ahead into `a`, on the eligible cells before the first turn (`eligible`). It marks the
+/// cells it queues with 1 in `marks` (its thread's; allocated at first use) and clears them after: they are the
+/// cells it visited. A flood that reaches a cell of an earlier seed is most likely overtaken by that seed's body (a
+/// seed inside a lake whose first seed floods it): it stops there and is grown again at its turn, if at all. What
+/// the flood throws is kept in `a` (then it is grown again at its turn).
+inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligible, const std::int32_t* seed_labels,
+                             const seed_cell_runs& seed_lists, const seed_starts& before,
+                             const grow_waterbody_options& grow, std::size_t s, raster<std::uint8_t>& marks,
+                             flood_ahead& a)
+{
+    try {
+        a.grows = before.starts[s] != 0;
+        if (!a.grows) return;
+        if (marks.empty()) marks = raster<std::uint8_t>(field.eligible.rows(), field.eligible.cols(), 0);
+        const std::span<const std::ptrdiff_t> cells =
+            before.start_cells[s].empty() ? seed_lists.of(s) : std::span<const std::ptrdiff_t>(before.start_cells[s]);
+        std::uint8_t* seen = marks.data();
+        const auto on_queued = [&](std::ptrdiff_t i) {
+            try {
+                a.visited.push_back(i);
+            } catch (...) {
+                seen[i] = 0;  // the one marked cell the list does not hold
+                throw;
+            }
+            if (const std::int32_t l = seed_labels[i]; l > 0 && static_cast<std::size_t>(l) < s && before.starts[l])
+                throw flood_overtaken{};
+        };
+        const auto clear_marks = [&] {
+            for (const auto i : a.visited) seen[i] = 0;
+        };
+        try {
+            a.region = grow_waterbody_flood(field, eligible, cells, grow, seen, std::uint8_t{1}, on_queued);
+        } catch (const flood_overtaken&) {
+            a.overtaken = true;
+        } catch (...) {
+            clear_marks();
+            throw;
+        }
+        clear_marks();
+    } catch (...) {
+        a.error = std::current_exception();
+    }
+}
+
 /// grow_waterbodies with run.threads > 1 (its checks done). A flood reads only the eligibility of the cells it
 /// queues (a cell never queued has no effect on it) and the labels of its seed's cells; turns change both only in
 /// the cells of the bodies they accept (labels the run gives). So a flood grown ahead is the flood of its turn when
@@ -72,43 +116,8 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
     const raster<std::uint8_t> eligible_before = field.eligible;
     const seed_starts before(seed_lists, n, out.labels.data(), opt.min_free_seed_share);
     std::vector<flood_ahead> ahead(n + 1);
-    // A flood ahead marks the cells it queues with 1 in its thread's marks and clears them after (they are the
-    // cells it visited).
     const auto grow_ahead = [&](std::size_t s, raster<std::uint8_t>& marks) {
-        flood_ahead& a = ahead[s];
-        try {
-            a.grows = before.starts[s] != 0;
-            if (!a.grows) return;
-            if (marks.empty()) marks = raster<std::uint8_t>(rows, cols, 0);
-            const std::span<const std::ptrdiff_t> cells = before.start_cells[s].empty()
-                                                              ? seed_lists.of(s)
-                                                              : std::span<const std::ptrdiff_t>(before.start_cells[s]);
-            std::uint8_t* seen = marks.data();
-            // A flood that reaches a cell of an earlier seed is most likely overtaken by that seed's body (a seed
-            // inside a lake whose first seed floods it): it stops there and is grown again at its turn, if at all.
-            const auto on_queued = [&](std::ptrdiff_t i) {
-                try {
-                    a.visited.push_back(i);
-                } catch (...) {
-                    seen[i] = 0;  // the one marked cell the list does not hold
-                    throw;
-                }
-                if (const std::int32_t l = seed_labels[i]; l > 0 && static_cast<std::size_t>(l) < s && before.starts[l])
-                    throw flood_overtaken{};
-            };
-            try {
-                a.region =
-                    grow_waterbody_flood(field, eligible_before.data(), cells, grow, seen, std::uint8_t{1}, on_queued);
-            } catch (const flood_overtaken&) {
-                a.overtaken = true;
-            } catch (...) {
-                for (const auto i : a.visited) seen[i] = 0;
-                throw;
-            }
-            for (const auto i : a.visited) seen[i] = 0;
-        } catch (...) {
-            a.error = std::current_exception();
-        }
+        grow_flood_ahead(field, eligible_before.data(), seed_labels, seed_lists, before, grow, s, marks, ahead[s]);
     };
 
     std::mutex mutex;
