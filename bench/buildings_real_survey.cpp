@@ -2,7 +2,8 @@
 // Scores extract_buildings on a real classified survey against the survey's own building class (ASPRS 6) and,
 // when given, independent footprint polygons. Run by bench/buildings_real_surveys.sh.
 //   buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] [--vegetation returns|any]
-//                         [--rim points|dsm] [--min-area M2] [--party-step M] [--party-share S] [--footprints FILE]
+//                         [--rim points|dsm] [--under-crowns on|off] [--min-area M2] [--party-step M] [--party-share S]
+//                         [--footprints FILE]
 //                         [--truth-ignore CLASS]...
 //                         [--map OUT.asc]
 // The surface is built as `lidarfx solar --facades` builds it: the highest return per cell (NaN cells filled
@@ -12,6 +13,8 @@
 // with --ground class2 the lowest class-2 point per cell, or with --ground filter morphological_ground's cells
 // of the lowest point per cell (the classes unused). With a given terrain (class2, filter) each building's rim
 // is decided by the share of its points raised above it (refine_building_rim); --rim dsm leaves it to the DSM.
+// With the rim by the points, the roof under overhanging crowns is found by the lowest raised points
+// (join_roof_under_crowns), as the program does; --under-crowns off leaves it out.
 // Truth, on the cells with points (noise, classes 7 and 18, and the --truth-ignore classes left out):
 //   - class truth: a cell is building when at least half of its points are class 6;
 //   - polygon truth (--footprints, any file the program reads footprints from): the cell's centre lies inside
@@ -116,7 +119,7 @@ void print_separation(const raster<std::int32_t>& footprints, const raster<std::
 int main(int argc, char** argv)
 {
     double cell = 1.0;
-    std::string ground_mode = "model", vegetation_mode = "returns", rim_mode = "points";
+    std::string ground_mode = "model", vegetation_mode = "returns", rim_mode = "points", under_crowns = "on";
     const char* footprint_file = nullptr;
     const char* ids_file = nullptr;
     const char* map_file = nullptr;
@@ -141,6 +144,8 @@ int main(int argc, char** argv)
             truth_ignore.push_back(std::atoi(argv[a + 1]));
         else if (!std::strcmp(argv[a], "--rim"))
             rim_mode = argv[a + 1];
+        else if (!std::strcmp(argv[a], "--under-crowns"))
+            under_crowns = argv[a + 1];
         else if (!std::strcmp(argv[a], "--party-step"))
             opt.party_walls.min_step_m = std::strtod(argv[a + 1], nullptr);  // inf: blocks are never split
         else if (!std::strcmp(argv[a], "--party-share"))
@@ -155,11 +160,14 @@ int main(int argc, char** argv)
             usage = true;
     }
     if (usage || !(cell > 0) || (ground_mode != "model" && ground_mode != "class2" && ground_mode != "filter") ||
-        (vegetation_mode != "returns" && vegetation_mode != "any") || (rim_mode != "points" && rim_mode != "dsm")) {
-        std::fprintf(stderr,
-                     "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] "
-                     "[--vegetation returns|any] [--rim points|dsm] [--min-area M2] [--party-step M] [--party-share S] "
-                     "[--footprints FILE] [--truth-ignore CLASS]... [--map OUT.asc] [--ids OUT.asc]\n");
+        (vegetation_mode != "returns" && vegetation_mode != "any") || (rim_mode != "points" && rim_mode != "dsm") ||
+        (under_crowns != "on" && under_crowns != "off")) {
+        std::fprintf(
+            stderr,
+            "usage: buildings_real_survey SURVEY.las|laz... [--cell M] [--ground model|class2|filter] "
+            "[--vegetation returns|any] [--rim points|dsm] [--under-crowns on|off] [--min-area M2] [--party-step M] "
+            "[--party-share S] "
+            "[--footprints FILE] [--truth-ignore CLASS]... [--map OUT.asc] [--ids OUT.asc]\n");
         return 2;
     }
     try {
@@ -181,17 +189,23 @@ int main(int argc, char** argv)
         if (ground_mode == "filter") class2 = morphological_ground(all.min_z, cell).ground;
         // With a given terrain, the rim is decided by the points raised above it (as the program does).
         raster<std::uint32_t> raised;
+        raster<float> lowest_raised;
         if (!class2.empty() && rim_mode == "points") {
             class2 = fill_ground(class2, cell);
             kept_points kept{pts, {}};
             for (std::size_t i = 0; i < pts.size(); ++i)
                 if (pts.classification[i] != 7 && pts.classification[i] != 18) kept.index.push_back(i);
-            raised = count_points_above(kept, g, class2.view(), opt.candidates.min_height_m);
+            raised = raster<std::uint32_t>(g.rows, g.cols, 0);
+            lowest_raised = raster<float>(g.rows, g.cols, NAN);
+            count_points_above(kept, g, class2.view(), opt.candidates.min_height_m, raised.view(),
+                               lowest_raised.view());
+            if (under_crowns == "off") lowest_raised = {};
         }
         const extract_buildings_result b =
             vegetation_mode == "returns"
-                ? extract_buildings(dsm, g, class2.view(),
-                                    pulse_returns{all.count, all.multiple_return_count, raised.view()}, opt)
+                ? extract_buildings(
+                      dsm, g, class2.view(),
+                      pulse_returns{all.count, all.multiple_return_count, raised.view(), lowest_raised.view()}, opt)
                 : extract_buildings(dsm, g, class2.view(), all.multiple_returns.view(), opt);
         // Class truth per cell (the cells' points as rasterized above, noise left out), and polygon truth.
         raster<std::uint32_t> points = all.count;
@@ -226,10 +240,11 @@ int main(int argc, char** argv)
             }
         }
         std::printf(
-            "%s%s, %.2f m cells, ground %s, vegetation %s, rim %s: %zu buildings found (%zu clipped), %zu "
+            "%s%s, %.2f m cells, ground %s, vegetation %s, rim %s, under crowns %s: %zu buildings found (%zu clipped), "
+            "%zu "
             "rejected as vegetation\n",
             files[0].c_str(), files.size() > 1 ? " and more" : "", cell, ground_mode.c_str(), vegetation_mode.c_str(),
-            rim_mode.c_str(), b.buildings.size(),
+            rim_mode.c_str(), lowest_raised.empty() ? "off" : "on", b.buildings.size(),
             static_cast<std::size_t>(std::count_if(b.buildings.begin(), b.buildings.end(),
                                                    [](const building_record& br) { return br.clipped; })),
             b.rejected_rough);

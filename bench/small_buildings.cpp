@@ -4,18 +4,21 @@
 // min_area_m2, with what lowering the minimum costs (precision, false buildings, trees taken for buildings).
 // A plain program, not a benchmark:
 //   small_buildings [--first 1] [--count 20] [--density 1.5,2,4,8,20] [--cell 0.5,1] [--min-area 50,20,15]
-//                   [--returns | --program | --no-mask]
+//                   [--returns | --program | --no-mask] [--overhanging SHARE] [--no-under-crowns]
 // By default extract_buildings gets the first returns' multiple_returns mask as its vegetation mask (as
 // tests/pipelines/buildings/extract_buildings_towns.cpp does); --returns runs the overload that counts split
 // pulses (pulse_returns); --program runs it as lidarfx solar --facades does on LAS input (every return binned,
 // the terrain from the class-2 points filled by fill_ground, each building's rim decided by the points raised
-// above it); --no-mask gives it no return information (trees are rejected by roughness alone).
+// above it); --no-mask gives it no return information (trees are rejected by roughness alone). --overhanging gives
+// that share of the houses a tree whose crown reaches over the roof (town_family_options::overhanging_tree_share);
+// --no-under-crowns runs the program's route without the lowest raised points (no roof looked for under crowns).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -58,21 +61,25 @@ struct settings {
     std::vector<double> cells{0.5, 1.0};                   ///< raster cell sizes, metres
     std::vector<double> min_areas{50, 20, 15};             ///< building_candidates min_area_m2 values, m^2
     vegetation_input vegetation = vegetation_input::mask;  ///< what extract_buildings learns of the returns
+    double overhanging = 0;                                ///< town_family_options::overhanging_tree_share
+    bool under_crowns = true;  ///< --program: the lowest raised points given (the roof under crowns looked for)
 };
 
 /// Totals of one (cell, density, min_area) over the seeds.
 struct tally {
     std::size_t small = 0, small_found = 0;  ///< truth buildings with 20 <= footprint < 50 m^2
     std::size_t small_flat = 0, small_flat_found = 0;
-    double small_iou_sum = 0;                        ///< IoU with the best detected building, over found small ones
-    std::size_t all = 0, all_found = 0;              ///< every truth building
-    std::size_t detected_cells = 0, true_cells = 0;  ///< detected building cells, of them truth building cells
-    std::size_t detected = 0;                        ///< detected buildings
-    std::size_t false_buildings = 0;                 ///< detected buildings < 50 % on truth buildings
-    std::size_t false_on_trees = 0;                  ///< of them, mostly on canopy (truth surface)
-    std::size_t false_small = 0;                     ///< of them, under 50 m^2
-    double false_area_m2 = 0;                        ///< their area
-    std::size_t trees = 0, trees_hit = 0;            ///< trees with >= 2 m^2 of visible crown in detected buildings
+    double small_iou_sum = 0;                         ///< IoU with the best detected building, over found small ones
+    std::size_t all = 0, all_found = 0;               ///< every truth building
+    std::size_t detected_cells = 0, true_cells = 0;   ///< detected building cells, of them truth building cells
+    std::size_t detected = 0;                         ///< detected buildings
+    std::size_t false_buildings = 0;                  ///< detected buildings < 50 % on truth buildings
+    std::size_t false_on_trees = 0;                   ///< of them, mostly on canopy (truth surface)
+    std::size_t false_small = 0;                      ///< of them, under 50 m^2
+    double false_area_m2 = 0;                         ///< their area
+    std::size_t trees = 0, trees_hit = 0;             ///< trees with >= 2 m^2 of visible crown in detected buildings
+    std::size_t over_trees = 0, over_trees_hit = 0;   ///< of them, trees whose crowns reach over roofs
+    std::size_t covered_roof = 0, covered_found = 0;  ///< truth roof cells under a crown, of them building cells
 };
 
 /// Area of a closed ring, m^2 (shoelace).
@@ -120,6 +127,10 @@ void score(const synth::town_family_scene& town, const raster<std::int32_t>& fou
             }
             if (t.surface.data()[i] == las_class::high_vegetation) ++found_on_canopy[db];
         }
+        if (tb > 0 && t.surface.data()[i] == las_class::high_vegetation) {  // a roof under a crown
+            ++s.covered_roof;
+            s.covered_found += db > 0 ? 1 : 0;
+        }
     }
     std::vector<bool> flat(nb + 1, false);
     for (const auto& p : t.roof_planes) flat[static_cast<std::size_t>(p.building_id)] = p.tilt_deg == 0;
@@ -154,6 +165,11 @@ void score(const synth::town_family_scene& town, const raster<std::int32_t>& fou
     }
     s.trees += town.trees.size();
     s.trees_hit += trees_taken_for_buildings(t, town.trees, found);
+    std::vector<synth::tree> over;
+    std::copy_if(town.trees.begin(), town.trees.end(), std::back_inserter(over),
+                 [](const synth::tree& tr) { return tr.over_roofs; });
+    s.over_trees += over.size();
+    s.over_trees_hit += trees_taken_for_buildings(t, over, found);
 }
 
 /// Buildings of a town, rasterized on its truth grid (first returns, highest z per cell).
@@ -180,7 +196,7 @@ void print_header()
 {
     std::printf("%5s %6s %6s | %5s %7s %6s %7s %6s | %5s %7s | %7s %6s | %6s %5s %5s %8s | %s\n", "cell", "dens",
                 "minA", "small", "found", "flat", "shed", "IoU", "all", "found", "prec", "det", "false", "tree", "<50",
-                "false_m2", "trees hit");
+                "false_m2", "trees hit (over roofs), roof under crowns found");
 }
 
 void print_row(double cell, double density, double min_area, const tally& s)
@@ -188,11 +204,12 @@ void print_row(double cell, double density, double min_area, const tally& s)
     const std::size_t shed = s.small - s.small_flat, shed_found = s.small_found - s.small_flat_found;
     std::printf(
         "%5.2f %6.1f %6.0f | %5zu %7.3f %6.3f %7.3f %6.3f | %5zu %7.3f | %7.4f %6zu | %6zu %5zu %5zu %8.0f | "
-        "%zu/%zu\n",
+        "%zu/%zu (%zu/%zu), %zu/%zu\n",
         cell, density, min_area, s.small, share(s.small_found, s.small), share(s.small_flat_found, s.small_flat),
         share(shed_found, shed), s.small_found ? s.small_iou_sum / static_cast<double>(s.small_found) : 0.0, s.all,
         share(s.all_found, s.all), share(s.true_cells, s.detected_cells), s.detected, s.false_buildings,
-        s.false_on_trees, s.false_small, s.false_area_m2, s.trees_hit, s.trees);
+        s.false_on_trees, s.false_small, s.false_area_m2, s.trees_hit, s.trees, s.over_trees_hit, s.over_trees,
+        s.covered_found, s.covered_roof);
     std::fflush(stdout);
 }
 
@@ -217,10 +234,15 @@ settings parse(int argc, char** argv)
             s.vegetation = vegetation_input::program;
         } else if (std::strcmp(argv[i], "--no-mask") == 0) {
             s.vegetation = vegetation_input::none;
+        } else if (std::strcmp(argv[i], "--no-under-crowns") == 0) {
+            s.under_crowns = false;
+        } else if (std::strcmp(argv[i], "--overhanging") == 0 && has_value) {
+            s.overhanging = std::strtod(argv[++i], nullptr);
         } else {
             std::fprintf(stderr,
                          "usage: small_buildings [--first N] [--count K] [--density 1.5,2,4,8,20] [--cell 0.5,1] "
-                         "[--min-area 50,20,15] [--returns | --program | --no-mask]\n");
+                         "[--min-area 50,20,15] [--returns | --program | --no-mask] [--overhanging SHARE] "
+                         "[--no-under-crowns]\n");
             std::exit(2);
         }
     }
@@ -232,15 +254,18 @@ settings parse(int argc, char** argv)
 int main(int argc, char** argv)
 {
     const settings set = parse(argc, argv);
-    std::printf("town family (200 m, garages and sheds %.2f per house), seeds %u-%u; extract_buildings with %s\n",
-                synth::town_family_options{}.small_buildings_per_house, set.first_seed,
-                set.first_seed + set.seed_count - 1, describe(set.vegetation));
+    std::printf(
+        "town family (200 m, garages and sheds %.2f per house, trees over %.2f of the houses' roofs), seeds "
+        "%u-%u; extract_buildings with %s\n",
+        synth::town_family_options{}.small_buildings_per_house, set.overhanging, set.first_seed,
+        set.first_seed + set.seed_count - 1, describe(set.vegetation));
     std::printf(
         "small: truth buildings of 20-50 m^2 (found: >= 50 %% of their cells are building cells; flat / "
         "shed roofs; IoU: mean over the found, with the best-overlapping building); all: every truth "
         "building; prec: building cells on truth buildings; det: buildings found; false: found buildings "
         "< 50 %% on truth buildings (tree: mostly on canopy, <50: under 50 m^2); trees hit: trees with >= 2 "
-        "m^2 of crown in buildings. The family has no cars.\n");
+        "m^2 of crown outside roofs in buildings (in brackets: trees whose crowns reach over roofs); roof under "
+        "crowns found: truth roof cells under a crown that are building cells. The family has no cars.\n");
     print_header();
     for (const double cell : set.cells) {
         for (const double density : set.densities) {
@@ -250,6 +275,7 @@ int main(int argc, char** argv)
                 o.seed = seed;
                 o.min_density = o.max_density = density;
                 o.truth_cell_m = cell;
+                o.overhanging_tree_share = set.overhanging;
                 const auto town = synth::town_family(o);
                 rasterize_options first;
                 first.returns = return_selection::first;
@@ -259,7 +285,7 @@ int main(int argc, char** argv)
                     for (std::size_t m = 0; m < set.min_areas.size(); ++m) {
                         extract_buildings_options eo;
                         eo.candidates.min_area_m2 = set.min_areas[m];
-                        const auto b = bench::program_buildings(inputs, g, eo);
+                        const auto b = bench::program_buildings(inputs, g, eo, set.under_crowns);
                         score(town, b.building_id, b.buildings.size(), totals[m]);
                     }
                     continue;

@@ -792,11 +792,11 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
     return s;
 }
 
-raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths, const survey& s,
-                                          const survey_options& opt, raster_view<const float> terrain, double height_m)
+raised_points count_raised_points(const std::vector<std::string>& paths, const survey& s, const survey_options& opt,
+                                  raster_view<const float> terrain, double height_m)
 {
     const grid& g = s.rasters.g;
-    raster<std::uint32_t> counts(g.rows, g.cols);
+    raised_points raised{raster<std::uint32_t>(g.rows, g.cols), raster<float>(g.rows, g.cols, NAN)};
     survey_layout units;
     units.unit_xy = s.unit_xy;
     units.unit_z = s.unit_z;
@@ -806,11 +806,11 @@ raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths,
     std::size_t file = 0;
     std::uint64_t done = 0;
     while (const std::size_t n = source.next(chunk, file)) {
-        count_points_above(chunk.cloud(), g, terrain, height_m, counts.view());
+        count_points_above(chunk.cloud(), g, terrain, height_m, raised.counts.view(), raised.lowest.view());
         done += n;
         if (bar && s.points > 0) bar(std::min(1.0, static_cast<double>(done) / static_cast<double>(s.points)));
     }
-    return counts;
+    return raised;
 }
 
 raster<std::uint8_t> class_building_cells(const survey& s)

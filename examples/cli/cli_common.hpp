@@ -219,13 +219,19 @@ survey read_survey(const std::vector<std::string>& paths, const survey_options& 
 /// (check_ground_choice).
 raster<float> chosen_ground(survey& s, const std::string& choice, int threads);
 
+/// The points of each cell standing a height above the terrain: how many, and the lowest of them.
+struct raised_points {
+    raster<std::uint32_t> counts;  ///< points at least the height above the terrain
+    raster<float> lowest;          ///< the lowest of them, metres; NaN = none
+};
+
 /// Reads the files of `s` again (as read_survey did: in chunks, in metres, within opt.memory_budget_bytes) and
 /// counts, per cell of s.rasters.g, the points at least height_m above `terrain` (count_points_above; terrain in
-/// metres, of the grid's shape): the raised points by which extract_buildings decides each building's rim.
-/// Memory: one chunk of points and the counts (4 bytes per cell). @throws std::runtime_error naming the file on
-/// bad input files.
-raster<std::uint32_t> count_raised_points(const std::vector<std::string>& paths, const survey& s,
-                                          const survey_options& opt, raster_view<const float> terrain, double height_m);
+/// metres, of the grid's shape), with the lowest of them: the raised points by which extract_buildings decides
+/// each building's rim and finds the roof under overhanging crowns. Memory: one chunk of points and the two rasters
+/// (8 bytes per cell). @throws std::runtime_error naming the file on bad input files.
+raised_points count_raised_points(const std::vector<std::string>& paths, const survey& s, const survey_options& opt,
+                                  raster_view<const float> terrain, double height_m);
 
 /// The cells of a survey read with class_buildings where at least half of the points are of class 6 (the
 /// vendor's buildings): --buildings class6. Says how many class-6 points there are on stdout.

@@ -153,7 +153,8 @@ std::string fixed(double v, int digits)
 
 /// What lidarfx solar keeps per DSM cell, bytes: the survey rasters or the DSM, the annual and 12 monthly maps, sky
 /// view, shadows and the outputs' buffers (its memory estimate for --memory).
-constexpr double solar_bytes_per_cell = 150;  // with --facades: point counts, class ground (and filled), raised
+constexpr double solar_bytes_per_cell =
+    154;  // with --facades: point counts, class ground (and filled), raised (and their lowest)
 
 /// One DSM cell that remove_surface_outliers replaced: where (cell and CRS coordinates of its centre) and its
 /// height before and after, metres.
@@ -281,7 +282,7 @@ int run_solar(const std::vector<std::string>& args)
     // The surface model. place_crs: the CRS whose centre PROJ may place ("" when none).
     lidarfx::raster<float> dsm;
     lidarfx::raster<std::uint32_t> points, split_points;  // points per cell and of split pulses (LAS input)
-    lidarfx::raster<std::uint32_t> raised_points;         // of them, raised above the terrain (LAS input)
+    cli::raised_points raised;                            // of them, raised above the terrain (LAS input)
     lidarfx::raster<std::uint8_t> classified_buildings;   // --buildings class6: the cells of the vendor's buildings
     lidarfx::raster<float> class_ground;                  // the class-2 terrain chosen by --ground (LAS input)
     lidarfx::grid g;
@@ -313,12 +314,14 @@ int run_solar(const std::vector<std::string>& args)
             class_ground = cli::chosen_ground(s, ground_choice, threads);
             if (buildings_choice != "class6" && !class_ground.empty()) {
                 // The terrain filled as extract_buildings fills it; each building's rim is then decided by the
-                // share of its points raised above it, counted in a second pass over the files.
+                // share of its points raised above it, counted in a second pass over the files, and the roof
+                // under an overhanging crown found by the lowest of them.
                 const double raised_m = lidarfx::building_candidates_options{}.min_height_m;
                 class_ground = lidarfx::fill_ground(class_ground, s.rasters.g.cell, {}, {.threads = threads});
-                raised_points = cli::count_raised_points(inputs, s, survey_options, class_ground, raised_m);
+                raised = cli::count_raised_points(inputs, s, survey_options, class_ground, raised_m);
                 std::cout << "building edges: by the share of each cell's points standing " << raised_m
-                          << " m above that terrain (a second pass over the files)\n";
+                          << " m above that terrain, and roofs under overhanging crowns by the lowest of them (a "
+                             "second pass over the files)\n";
             }
             points = std::move(s.rasters.count);
             split_points = std::move(s.rasters.multiple_return_count);
@@ -464,19 +467,20 @@ int run_solar(const std::vector<std::string>& args)
                        "), SVF in [0, 1] (" + svf_description(svf, svf_directions) +
                        "), on the input's grid; sun for " + place.description);
     if (a.has("facades")) {
-        cli::write_facade_outputs(out, {.dsm = dsm.view(),
-                                        .returns = {points.view(), split_points.view(), raised_points.view()},
-                                        .ground = class_ground.view(),
-                                        .classified_buildings = classified_buildings.view(),
-                                        .cell_m = cell_m,
-                                        .grid_crs = g,
-                                        .crs_wkt = crs_wkt,
-                                        .epsg = epsg,
-                                        .site = site,
-                                        .records = records,
-                                        .threads = threads,
-                                        .png = formats.png,
-                                        .formats = formats});
+        cli::write_facade_outputs(
+            out, {.dsm = dsm.view(),
+                  .returns = {points.view(), split_points.view(), raised.counts.view(), raised.lowest.view()},
+                  .ground = class_ground.view(),
+                  .classified_buildings = classified_buildings.view(),
+                  .cell_m = cell_m,
+                  .grid_crs = g,
+                  .crs_wkt = crs_wkt,
+                  .epsg = epsg,
+                  .site = site,
+                  .records = records,
+                  .threads = threads,
+                  .png = formats.png,
+                  .formats = formats});
     }
     cli::commit_and_report(out, cli::command_line("solar", args));
     return 0;

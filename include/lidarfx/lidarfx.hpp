@@ -70,6 +70,7 @@
 #include "lidarfx/pipelines/buildings/morphological_ground.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/party_walls.hpp"
+#include "lidarfx/pipelines/buildings/roof_under_crowns.hpp"
 #include "lidarfx/pipelines/buildings/surface_class_table.hpp"
 #include "lidarfx/pipelines/buildings/surface_energy.hpp"
 #include "lidarfx/pipelines/buildings/surface_patches.hpp"

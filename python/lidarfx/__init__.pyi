@@ -2,7 +2,7 @@
 # Type stubs of the lidarfx module (the extension _lidarfx re-exported), written by python/tools/make_stubs.py;
 # tests/test_stubs.py keeps them in step with the module's signatures and docstrings.
 from datetime import datetime
-from typing import Any, Callable, Mapping, Optional, Union
+from typing import Any, Callable, Mapping, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -56,18 +56,19 @@ component l. The result does not depend on threads."""
     ...
 
 
-def count_points_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, reference: ArrayLike, height_m: float, *, grid: Grid) -> np.ndarray:
+def count_points_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, reference: ArrayLike, height_m: float, *, grid: Grid, return_lowest: bool = False) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
     """Per cell of grid, the points standing at least height_m above the reference surface there (z >= reference +
 height_m, metres; a cell whose reference is NaN counts none): with the terrain as reference and
 height_m = 2.5, the raised points extract_buildings decides each building's rim by (raised_count).
 
 x, y, z: 1-D coordinates in metres (float64; others converted). reference: float32 raster of the grid's shape
 (e.g. fill_ground of the class-2 terrain). grid: the Grid the points are binned on, as in rasterize. Returns a
-uint32 raster."""
+uint32 raster; with return_lowest, a tuple (counts, lowest): lowest is the lowest of each cell's counted points
+(float32 metres, NaN where none), extract_buildings' lowest_raised."""
     ...
 
 
-def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[ArrayLike] = None, building_cells: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, party_wall_step_m: float = 1.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
+def extract_buildings(dsm: ArrayLike, cell_m: Optional[float] = None, *, grid: Optional[Grid] = None, ground: Optional[ArrayLike] = None, vegetation: Optional[ArrayLike] = None, point_count: Optional[ArrayLike] = None, multiple_return_count: Optional[ArrayLike] = None, raised_count: Optional[ArrayLike] = None, lowest_raised: Optional[ArrayLike] = None, building_cells: Optional[ArrayLike] = None, min_height_m: float = 2.5, min_area_m2: float = 15.0, party_wall_step_m: float = 1.0, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> Buildings:
     """Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -80,7 +81,10 @@ Rasters.multiple_return_count of the DSM's points): trees told from roofs by the
 half its points from pulses of several returns is vegetation, a part with 20 %); with them raised_count (uint32,
 count_points_above against the ground, which must then be filled: fill_ground) decides each building's one-cell
 rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
-the roof at its height (within 0.5 m) with half its points raised joins. Or building_cells (bool or uint8, e.g.
+the roof at its height (within 0.5 m) with half its points raised joins; and with lowest_raised (float32, the
+lowest of each cell's raised points: count_points_above(..., return_lowest=True)) the roof under an overhanging
+crown joins its building when 90 % of a cell's points are raised and the lowest lies on the roof's plane (within
+0.3 m plus the plane's fall across a cell). Or building_cells (bool or uint8, e.g.
 where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
 under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
 buildings where two of its roof surfaces do not meet along most of their boundary but stand more than

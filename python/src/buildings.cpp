@@ -52,9 +52,9 @@ py::dict geojson(const std::vector<polygon>& parts)
 py::object extract_buildings_binding(const py::handle& dsm, const py::handle& cell_arg, const py::handle& grid_arg,
                                      const py::handle& ground_arg, const py::handle& vegetation_arg,
                                      const py::handle& points_arg, const py::handle& split_arg,
-                                     const py::handle& raised_arg, const py::handle& building_cells_arg,
-                                     double min_height_m, double min_area_m2, double party_wall_step_m, int threads,
-                                     py::object progress)
+                                     const py::handle& raised_arg, const py::handle& lowest_arg,
+                                     const py::handle& building_cells_arg, double min_height_m, double min_area_m2,
+                                     double party_wall_step_m, int threads, py::object progress)
 {
     constexpr const char* fn = "extract_buildings";
     const array_input<float> z(dsm, fn, "dsm");
@@ -69,6 +69,7 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     if (!raised_arg.is_none() && points_arg.is_none()) value_error(fn, "raised_count needs point_count");
     if (!raised_arg.is_none() && ground_arg.is_none())
         value_error(fn, "raised_count needs the ground it was counted against");
+    if (!lowest_arg.is_none() && raised_arg.is_none()) value_error(fn, "lowest_raised needs raised_count");
     std::optional<array_input<std::uint8_t>> building_cells;
     if (!building_cells_arg.is_none()) {
         if (vegetation || !points_arg.is_none())
@@ -81,6 +82,8 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
         split.emplace(split_arg, fn, "multiple_return_count");
     }
     if (!raised_arg.is_none()) raised.emplace(raised_arg, fn, "raised_count");
+    std::optional<array_input<float>> lowest;
+    if (!lowest_arg.is_none()) lowest.emplace(lowest_arg, fn, "lowest_raised");
     extract_buildings_options opt;
     opt.candidates.min_height_m = min_height_m;
     opt.candidates.min_area_m2 = min_area_m2;
@@ -93,7 +96,8 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
         if (points)
             return extract_buildings(z.view(), g, terrain,
                                      pulse_returns{points->view(), split->view(),
-                                                   raised ? raised->view() : raster_view<const std::uint32_t>{}},
+                                                   raised ? raised->view() : raster_view<const std::uint32_t>{},
+                                                   lowest ? lowest->view() : raster_view<const float>{}},
                                      opt);
         return extract_buildings(z.view(), g, terrain,
                                  vegetation ? vegetation->view() : raster_view<const std::uint8_t>{}, opt);
@@ -257,9 +261,9 @@ void bind_buildings(py::module_& m)
     using namespace pybind11::literals;
     m.def("extract_buildings", &extract_buildings_binding, "dsm"_a, "cell_m"_a = py::none(), py::kw_only(),
           "grid"_a = py::none(), "ground"_a = py::none(), "vegetation"_a = py::none(), "point_count"_a = py::none(),
-          "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "building_cells"_a = py::none(),
-          "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "party_wall_step_m"_a = 1.0, "threads"_a = 1,
-          "progress"_a = py::none(), R"doc(
+          "multiple_return_count"_a = py::none(), "raised_count"_a = py::none(), "lowest_raised"_a = py::none(),
+          "building_cells"_a = py::none(), "min_height_m"_a = 2.5, "min_area_m2"_a = 15.0, "party_wall_step_m"_a = 1.0,
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Buildings and their roof surfaces from a DSM: a terrain model (edges of >= 45 degrees, hulls, IDW; or the given
 ground), cells higher than min_height_m above it in footprints of at least min_area_m2 that are roofs (planar
 enough, or with the pulse counts: few split pulses), roof surfaces grown from local planes and merged, then
@@ -272,7 +276,10 @@ Rasters.multiple_return_count of the DSM's points): trees told from roofs by the
 half its points from pulses of several returns is vegetation, a part with 20 %); with them raised_count (uint32,
 count_points_above against the ground, which must then be filled: fill_ground) decides each building's one-cell
 rim by its points: a cell leaves when under half its points stand min_height_m above the ground, a cell beside
-the roof at its height (within 0.5 m) with half its points raised joins. Or building_cells (bool or uint8, e.g.
+the roof at its height (within 0.5 m) with half its points raised joins; and with lowest_raised (float32, the
+lowest of each cell's raised points: count_points_above(..., return_lowest=True)) the roof under an overhanging
+crown joins its building when 90 % of a cell's points are raised and the lowest lies on the roof's plane (within
+0.3 m plus the plane's fall across a cell). Or building_cells (bool or uint8, e.g.
 where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
 under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
 buildings where two of its roof surfaces do not meet along most of their boundary but stand more than

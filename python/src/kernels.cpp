@@ -11,6 +11,7 @@
 #include <lidarfx/kernels/stats/ks_one_sided.hpp>
 
 #include <chrono>
+#include <limits>
 #include <vector>
 
 #include "binding.hpp"
@@ -189,7 +190,8 @@ py::object rasterize_binding(const py::handle& x, const py::handle& y, const py:
 }
 
 py::object count_points_above_binding(const py::handle& x, const py::handle& y, const py::handle& z,
-                                      const py::handle& reference, double height_m, const py::handle& grid_arg)
+                                      const py::handle& reference, double height_m, const py::handle& grid_arg,
+                                      bool return_lowest)
 {
     constexpr const char* fn = "count_points_above";
     const auto xs = vector_input<double>(x, fn, "x"), ys = vector_input<double>(y, fn, "y"),
@@ -200,7 +202,12 @@ py::object count_points_above_binding(const py::handle& x, const py::handle& y, 
     const soa_cloud<> cloud({xs.data(), static_cast<std::size_t>(xs.size())},
                             {ys.data(), static_cast<std::size_t>(ys.size())},
                             {zs.data(), static_cast<std::size_t>(zs.size())});
-    return to_numpy(count_points_above(cloud, *g, ref.view(), height_m));
+    if (!return_lowest) return to_numpy(count_points_above(cloud, *g, ref.view(), height_m));
+    g->validate(fn);
+    raster<std::uint32_t> counts(g->rows, g->cols);
+    raster<float> lowest(g->rows, g->cols, std::numeric_limits<float>::quiet_NaN());
+    count_points_above(cloud, *g, ref.view(), height_m, counts.view(), lowest.view());
+    return py::make_tuple(to_numpy(std::move(counts)), to_numpy(std::move(lowest)));
 }
 
 /// The benchmark's C++ side: seconds of each of `repeats` angular_filter calls made in C++ on the same view
@@ -285,14 +292,15 @@ Returns KsResult(d, critical, reject, p_value).)doc");
           "threads"_a = 1, "repeats"_a = 5, "Benchmark hook: seconds of each angular_filter call timed in C++.");
 
     m.def("count_points_above", &count_points_above_binding, "x"_a, "y"_a, "z"_a, "reference"_a, "height_m"_a,
-          py::kw_only(), "grid"_a, R"doc(
+          py::kw_only(), "grid"_a, "return_lowest"_a = false, R"doc(
 Per cell of grid, the points standing at least height_m above the reference surface there (z >= reference +
 height_m, metres; a cell whose reference is NaN counts none): with the terrain as reference and
 height_m = 2.5, the raised points extract_buildings decides each building's rim by (raised_count).
 
 x, y, z: 1-D coordinates in metres (float64; others converted). reference: float32 raster of the grid's shape
 (e.g. fill_ground of the class-2 terrain). grid: the Grid the points are binned on, as in rasterize. Returns a
-uint32 raster.)doc");
+uint32 raster; with return_lowest, a tuple (counts, lowest): lowest is the lowest of each cell's counted points
+(float32 metres, NaN where none), extract_buildings' lowest_raised.)doc");
 
     m.def("rasterize", &rasterize_binding, "x"_a, "y"_a, "z"_a, "intensity"_a = py::none(), "returns"_a = py::none(),
           "nreturns"_a = py::none(), "cell_m"_a = 1.0, py::kw_only(), "classification"_a = py::none(),

@@ -186,6 +186,41 @@ def test_extract_buildings_splits_a_terrace_at_its_party_walls():
         lidarfx.extract_buildings(dsm, 1.0, ground=ground, party_wall_step_m=0.0)
 
 
+def test_extract_buildings_finds_the_roof_under_an_overhanging_crown(rng):
+    # A 20 m x 12 m flat roof 8 m high on level ground at 100 m, 1 m cells; a crown at 116 m reaches from 4 m beyond
+    # the east wall 6 m over the roof. Its pulses split: foliage first, then the roof (or, beyond the wall, the ground).
+    grid = lidarfx.Grid(x0=0.0, y0=40.0, cell_m=1.0, rows=40, cols=40)
+    n = 40 * 40 * 8
+    x, y = rng.uniform(0, 40, n), rng.uniform(0, 40, n)
+    on_roof = (x >= 10) & (x < 30) & (y >= 14) & (y < 26)
+    under_crown = (x >= 24) & (x < 34) & (y >= 14) & (y < 26)
+    below = np.where(on_roof, 108.0, 100.0) + rng.normal(0, 0.02, n)
+    crown = 116.0 + rng.normal(0, 0.3, n)
+    xs = np.concatenate([x, x[under_crown]])
+    ys = np.concatenate([y, y[under_crown]])
+    zs = np.concatenate([np.where(under_crown, crown, below), below[under_crown]])
+    k = int(under_crown.sum())
+    returns = np.concatenate([np.ones(n, np.uint8), np.full(k, 2, np.uint8)])
+    nreturns = np.concatenate([np.where(under_crown, 2, 1).astype(np.uint8), np.full(k, 2, np.uint8)])
+    r = lidarfx.rasterize(xs, ys, zs, returns=returns, nreturns=nreturns, grid=grid)
+    ground = lidarfx.fill_ground(np.where(r.min_z < 104, r.min_z, np.nan).astype(np.float32), 1.0)
+    raised, lowest = lidarfx.count_points_above(xs, ys, zs, ground, 2.5, grid=grid, return_lowest=True)
+    assert lowest.dtype == np.float32 and np.isnan(lowest[2, 2]) and abs(float(lowest[20, 26]) - 108.0) < 0.1
+    counts = dict(dsm=r.max_z, grid=grid, ground=ground, point_count=r.count,
+                  multiple_return_count=r.multiple_return_count, raised_count=raised)
+    without = lidarfx.extract_buildings(**counts)
+    with_lowest = lidarfx.extract_buildings(**counts, lowest_raised=lowest)
+    assert len(without.buildings) == len(with_lowest.buildings) == 1
+    # Without the lowest raised points the covered roof is left to the crown (14 x 12 cells found); with them the
+    # roof joins (20 x 12 = 240 m^2), and the crown beyond the wall, whose pulses end on the ground, does not.
+    assert without.buildings[0].roof_area_horizontal_m2 < 190
+    assert with_lowest.buildings[0].roof_area_horizontal_m2 == pytest.approx(240, abs=6)
+    assert with_lowest.building_id[20, 31] == 0
+    with pytest.raises(ValueError, match="lowest_raised needs raised_count"):
+        lidarfx.extract_buildings(r.max_z, grid=grid, ground=ground, point_count=r.count,
+                                  multiple_return_count=r.multiple_return_count, lowest_raised=lowest)
+
+
 def test_extract_buildings_decides_the_rim_by_the_raised_points(rng):
     # A 20 m x 12 m flat roof 8 m high on level ground at 100 m, 1 m cells, 16 points per m^2. The DSM keeps each
     # cell's highest point, so the cells the walls cross read as roof although most of their points are ground.

@@ -11,19 +11,20 @@ RESULTS = {"azimuth_mode_select": "AzimuthSelection", "clear_sky_year": "Weather
            "connected_components": "Components", "extract_buildings": "Buildings",
            "extract_waterbodies": "Waterbodies", "hydro_flatten": "HydroFlattened", "irradiance_maps": "IrradianceMaps", "ks_one_sided": "KsResult",
            "rasterize": "Rasters", "read_survey": "Survey", "read_tmy3": "Weather",
-           "roof_suitability": "RoofSuitability", "slope_aspect": "SlopeAspect", "remove_surface_outliers": "SurfaceOutliers", "sun_position": "SunPosition"}
+           "roof_suitability": "RoofSuitability", "slope_aspect": "SlopeAspect", "remove_surface_outliers": "SurfaceOutliers", "sun_position": "SunPosition",
+           "count_points_above": "Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]"}
 ARGUMENTS = {"rasters": "Union[Rasters, Mapping[str, ArrayLike], Any]", "weather": "Weather",
              "grid": "Optional[Grid]", "time": "Union[datetime, str, float]",
              "progress": "Optional[Callable[[float], Optional[bool]]]", "utc_offset_h": "Optional[float]"}
 ARRAYS = {"z", "dsm", "mask", "dtm", "building_id", "hist360", "previous", "current", "x", "y", "reference"}
 OPTIONAL_ARRAYS = {"intensity", "return_number", "number_of_returns", "classification", "ground", "vegetation",
                    "surface_tilt_deg", "surface_azimuth_deg", "point_count", "multiple_return_count", "building_cells",
-                   "raised_count"}
+                   "raised_count", "lowest_raised"}
 HEAD = '''# SPDX-License-Identifier: Apache-2.0
 # Type stubs of the lidarfx module (the extension _lidarfx re-exported), written by python/tools/make_stubs.py;
 # tests/test_stubs.py keeps them in step with the module's signatures and docstrings.
 from datetime import datetime
-from typing import Any, Callable, Mapping, Optional, Union
+from typing import Any, Callable, Mapping, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -56,14 +56,14 @@ run 1 "truncated data: expected 2147483648 values, but the 7 bytes after the hea
     solar "$work/wide.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 1TiB --out "$work/o5"
 # A complete 8000 x 8000 DSM (128 MB of text) with --memory 64MiB.
 { header 8000 8000; yes 0 | head -n 64000000 || true; } >"$work/valid.asc"  # yes ends on SIGPIPE
-run 2 "a grid of 8000 x 8000 cells needs about 8.94 GiB" solar "$work/valid.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 64MiB \
+run 2 "a grid of 8000 x 8000 cells needs about 9.18 GiB" solar "$work/valid.asc" --xy-unit m --z-unit m --lat 35 --lon -80 --memory 64MiB \
     --out "$work/o6"
 rm -f "$work/valid.asc"
 # A sparse 30000 x 30000 GeoTIFF (a few hundred KB on disk).
 if command -v gdal_create >/dev/null && [[ "${HAVE_GDAL:-OFF}" == ON ]]; then
     gdal_create -q -of GTiff -outsize 30000 30000 -ot Float32 -a_srs EPSG:32617 -a_ullr 500000 4030000 530000 4000000 \
         -co SPARSE_OK=TRUE -co TILED=YES "$work/sparse.tif"
-    run 2 "a grid of 30000 x 30000 cells needs about 126 GiB" solar "$work/sparse.tif" --memory 64MiB \
+    run 2 "a grid of 30000 x 30000 cells needs about 129 GiB" solar "$work/sparse.tif" --memory 64MiB \
         --lat 35 --lon -80 --out "$work/o7"
 else
     echo "GDAL or gdal_create not here: the sparse GeoTIFF case is not run"

@@ -34,7 +34,7 @@ STRUCTS = [
     ("Hydro-flattening", ["hydro_flatten_options", "channel_join_options", "lake_level_options", "river_profile_options"]),
     ("Buildings", ["extract_buildings_options", "ground_model_options", "building_candidates_options",
                    "local_planes_options", "grow_roof_surfaces_options", "merge_roof_surfaces_options",
-                   "vegetation_by_returns_options", "building_rim_options", "party_walls_options",
+                   "vegetation_by_returns_options", "building_rim_options", "roof_under_crowns_options", "party_walls_options",
                    "morphological_ground_options"]),
     ("Rooftop PV", ["roof_suitability_options", "roof_planes_options", "azimuth_mode_select_options",
                     "roof_yield_options"]),

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <doctest/doctest.h>
 
+#include <lidarfx/core/las_class.hpp>
 #include <lidarfx/synth/party_wall_metrics.hpp>
 #include <lidarfx/synth/town_family.hpp>
 
@@ -484,5 +485,65 @@ TEST_CASE("town_family: dormer_share and edge_buildings are checked")
     o.dormer_share = -0.1;
     CHECK_THROWS(town_family(o));
     o = dormer_town_options(1, 0, -1);
+    CHECK_THROWS(town_family(o));
+}
+
+TEST_CASE("town_family: overhanging trees reach over one house's roof, above it; pulses there end on the roof")
+{
+    auto o = dormer_town_options(3, 0, 0);
+    const auto plain = town_family(o);
+    o.overhanging_tree_share = 1;
+    const auto town = town_family(o);
+    // The houses and the trees of the town without them stay; the overhanging trees come after.
+    REQUIRE(town.buildings.size() == plain.buildings.size());
+    REQUIRE(town.trees.size() > plain.trees.size());
+    for (std::size_t i = 0; i < plain.trees.size(); ++i) {
+        CHECK(town.trees[i].x == plain.trees[i].x);
+        CHECK(!town.trees[i].over_roofs);
+    }
+    const auto& t = town.town.truth;
+    const auto& p = town.town.points;
+    std::size_t covered_cells = 0, crown_points_over_roofs = 0, roof_points_under_crowns = 0;
+    for (std::size_t k = plain.trees.size(); k < town.trees.size(); ++k) {
+        const tree& tr = town.trees[k];
+        CHECK(tr.over_roofs);
+        // The crown covers part of exactly one building; its stem stands outside it; its base is above that roof.
+        std::set<std::int32_t> hosts;
+        double roof_top = -1e9;
+        for (double dy = -tr.crown_radius_m; dy <= tr.crown_radius_m; dy += 0.25)
+            for (double dx = -tr.crown_radius_m; dx <= tr.crown_radius_m; dx += 0.25) {
+                if (dx * dx + dy * dy >= tr.crown_radius_m * tr.crown_radius_m) continue;
+                for (const auto& b : town.buildings)
+                    if (b.contains(tr.x + dx, tr.y + dy)) {
+                        hosts.insert(b.id);
+                        roof_top = std::max(roof_top, b.roof_at(tr.x + dx, tr.y + dy).z);
+                    }
+            }
+        REQUIRE(hosts.size() == 1);
+        const building_truth& host = town.buildings[static_cast<std::size_t>(*hosts.begin() - 1)];
+        CHECK(!host.contains(tr.x, tr.y));
+        CHECK(tr.ground_z + tr.crown_base_m >= roof_top + 0.5 - 1e-9);
+        // Pulses over the covered roof: foliage above the roof, the last return on the roof.
+        for (std::size_t i = 0; i < p.x.size(); ++i) {
+            if (tr.crown_top(p.x[i], p.y[i]) <= 0 || !host.contains(p.x[i], p.y[i])) continue;
+            const double roof = host.roof_at(p.x[i], p.y[i]).z;
+            if (p.classification[i] == las_class::high_vegetation) {
+                CHECK(p.z[i] > roof + 0.3);
+                ++crown_points_over_roofs;
+            } else {
+                CHECK(p.classification[i] == las_class::building);
+                CHECK(p.return_number[i] == p.number_of_returns[i]);
+                CHECK(std::abs(p.z[i] - roof) <= 0.06);
+                ++roof_points_under_crowns;
+            }
+        }
+    }
+    // Truth: a roof under a crown is its building's, its top surface vegetation.
+    for (std::ptrdiff_t i = 0; i < t.building_id.size(); ++i)
+        if (t.building_id.data()[i] > 0 && t.surface.data()[i] == las_class::high_vegetation) ++covered_cells;
+    CHECK(covered_cells > 0);
+    CHECK(crown_points_over_roofs > 100);
+    CHECK(roof_points_under_crowns > 50);
+    o.overhanging_tree_share = 1.5;
     CHECK_THROWS(town_family(o));
 }

@@ -107,3 +107,60 @@ TEST_CASE("count_points_above: bad grids, heights and shapes are refused")
     CHECK_THROWS_AS(count_points_above(none, g, reference.view(), 2.5, wrong.view()), invalid_input);
     CHECK_THROWS_AS(count_points_above(none, grid{0.0, 10.0, 0.0, 10, 10}, reference.view(), 2.5), invalid_input);
 }
+
+TEST_CASE("count_points_above: the lowest of the counted points of each cell, whole or chunk by chunk")
+{
+    const grid g{0.0, 12.0, 1.5, 8, 7};
+    raster<float> reference(g.rows, g.cols);
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (std::ptrdiff_t r = 0; r < g.rows; ++r)
+        for (std::ptrdiff_t c = 0; c < g.cols; ++c) reference(r, c) = static_cast<float>(2 * u(rng));
+    reference(4, 4) = std::numeric_limits<float>::quiet_NaN();
+    xyz_points p;
+    for (int i = 0; i < 2000; ++i) {
+        double z = 6 * u(rng);
+        if (i % 89 == 0) z = std::numeric_limits<double>::quiet_NaN();
+        p.xs.push_back(-1 + 13 * u(rng)), p.ys.push_back(-1 + 14 * u(rng)), p.zs.push_back(z);
+    }
+    const double height = 2.5;
+    // By definition: the least z of the points that count_points_above counts; NaN where none counts.
+    raster<float> expected(g.rows, g.cols, std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const auto at = g.cell_of(p.xs[i], p.ys[i]);
+        if (!at || !std::isfinite(p.zs[i])) continue;
+        const float ref = reference(at->row, at->col);
+        if (!std::isfinite(ref) || !(p.zs[i] >= static_cast<double>(ref) + height)) continue;
+        float& e = expected(at->row, at->col);
+        e = std::isnan(e) ? static_cast<float>(p.zs[i]) : std::min(e, static_cast<float>(p.zs[i]));
+    }
+    const auto same_lowest = [&](const raster<float>& got) {
+        for (std::ptrdiff_t i = 0; i < got.size(); ++i) {
+            const float a = got.data()[i], b = expected.data()[i];
+            if (!(a == b || (std::isnan(a) && std::isnan(b)))) return false;
+        }
+        return true;
+    };
+    raster<std::uint32_t> counts(g.rows, g.cols);
+    raster<float> lowest(g.rows, g.cols, std::numeric_limits<float>::quiet_NaN());
+    count_points_above(p, g, reference.view(), height, counts.view(), lowest.view());
+    CHECK(same_counts(counts, points_above_by_definition(p, g, reference, height)));
+    CHECK(same_lowest(lowest));
+    CHECK(std::isnan(lowest(4, 4)));
+    std::size_t cells_with_lowest = 0;
+    for (std::ptrdiff_t i = 0; i < lowest.size(); ++i) cells_with_lowest += std::isfinite(lowest.data()[i]) ? 1 : 0;
+    CHECK(cells_with_lowest > 40);  // the check above compares numbers, not only NaNs
+    // Chunks in reverse order: the same rasters.
+    raster<std::uint32_t> chunked(g.rows, g.cols);
+    raster<float> chunked_lowest(g.rows, g.cols, std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t end = p.size(); end > 0; end = end > 300 ? end - 300 : 0) {
+        xyz_points chunk;
+        for (std::size_t i = end > 300 ? end - 300 : 0; i < end; ++i)
+            chunk.xs.push_back(p.xs[i]), chunk.ys.push_back(p.ys[i]), chunk.zs.push_back(p.zs[i]);
+        count_points_above(chunk, g, reference.view(), height, chunked.view(), chunked_lowest.view());
+    }
+    CHECK(same_counts(chunked, counts));
+    CHECK(same_lowest(chunked_lowest));
+    raster<float> wrong(g.rows, g.cols + 1);
+    CHECK_THROWS_AS(count_points_above(p, g, reference.view(), height, counts.view(), wrong.view()), invalid_input);
+}

@@ -24,6 +24,14 @@ template <point_cloud C>
 void count_points_above(const C& cloud, const grid& g, raster_view<const float> reference, double height_m,
                         raster_view<std::uint32_t> counts);
 
+/// count_points_above that also lowers `lowest_z`, per cell, to the lowest z of the points it counts (metres; start
+/// it at NaN: a cell without such points keeps its value), so that a cell's raised points say both how many they
+/// are and where the lowest of them lies (under a crown: the roof beneath it). Any chunking gives the same rasters.
+/// @throws invalid_input as count_points_above, and if lowest_z is not of g's shape.
+template <point_cloud C>
+void count_points_above(const C& cloud, const grid& g, raster_view<const float> reference, double height_m,
+                        raster_view<std::uint32_t> counts, raster_view<float> lowest_z);
+
 /// The counts above for one cloud, in a new raster of g's shape.
 template <point_cloud C>
 raster<std::uint32_t> count_points_above(const C& cloud, const grid& g, raster_view<const float> reference,
@@ -37,9 +45,12 @@ raster<std::uint32_t> count_points_above(const C& cloud, const grid& g, raster_v
 
 // ---- implementation ----
 
-template <point_cloud C>
+namespace detail {
+
+/// count_points_above's loop; `on_counted(row, col, z)` is called for each point counted.
+template <point_cloud C, class OnCounted>
 void count_points_above(const C& cloud, const grid& g, raster_view<const float> reference, double height_m,
-                        raster_view<std::uint32_t> counts)
+                        raster_view<std::uint32_t> counts, OnCounted&& on_counted)
 {
     constexpr const char* function = "count_points_above";
     g.validate(function);
@@ -57,7 +68,32 @@ void count_points_above(const C& cloud, const grid& g, raster_view<const float> 
         if (!std::isfinite(ref) || !(z >= static_cast<double>(ref) + height_m)) continue;
         std::uint32_t& k = counts(at->row, at->col);
         if (k != UINT32_MAX) ++k;
+        on_counted(at->row, at->col, z);
     }
+}
+
+}  // namespace detail
+
+template <point_cloud C>
+void count_points_above(const C& cloud, const grid& g, raster_view<const float> reference, double height_m,
+                        raster_view<std::uint32_t> counts)
+{
+    detail::count_points_above(cloud, g, reference, height_m, counts, [](std::ptrdiff_t, std::ptrdiff_t, double) {});
+}
+
+template <point_cloud C>
+void count_points_above(const C& cloud, const grid& g, raster_view<const float> reference, double height_m,
+                        raster_view<std::uint32_t> counts, raster_view<float> lowest_z)
+{
+    g.validate("count_points_above");
+    detail::require(lowest_z.rows() == g.rows && lowest_z.cols() == g.cols, "count_points_above",
+                    "lowest_z must have the grid's shape");
+    detail::count_points_above(cloud, g, reference, height_m, counts,
+                               [&](std::ptrdiff_t r, std::ptrdiff_t c, double z) {
+                                   float& low = lowest_z(r, c);
+                                   const auto zf = static_cast<float>(z);
+                                   if (!(low <= zf)) low = zf;  // NaN: the first
+                               });
 }
 
 }  // namespace lidarfx

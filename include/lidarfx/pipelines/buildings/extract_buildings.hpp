@@ -28,6 +28,7 @@
 #include "lidarfx/pipelines/buildings/merge_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/number_roof_surfaces.hpp"
 #include "lidarfx/pipelines/buildings/party_walls.hpp"
+#include "lidarfx/pipelines/buildings/roof_under_crowns.hpp"
 #include "lidarfx/pipelines/buildings/vegetation_by_returns.hpp"
 
 namespace lidarfx {
@@ -41,6 +42,7 @@ struct extract_buildings_options {
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
     vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
     building_rim_options rim = {};                ///< min_raised_share (0.5), join_height_m (0.5 m)
+    roof_under_crowns_options under_crowns = {};  ///< plane_tolerance_m (0.3 m), max_reach_m (6 m)
     party_walls_options party_walls = {};         ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
@@ -107,7 +109,9 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 /// which must then have no NaN where a cell holds points: e.g. fill_ground's), each building's one-cell rim is
 /// then decided by its points (refine_building_rim): a wall's cell whose points lie mostly on the ground leaves
 /// the building, an eave cell whose pulses split on the roof's edge joins it; buildings are numbered by area
-/// again.
+/// again. When returns.lowest is given too, the roof hidden under an overhanging crown joins its building
+/// (join_roof_under_crowns: every return raised, the lowest on the roof's plane), and the steps after it read
+/// the roof there, not the crown.
 /// A survey without any split pulse (single-return sensors, or number_of_returns left at 1) says nothing of
 /// trees: it takes the mask route with an empty mask, rough parts dropped (its rim is still decided by
 /// returns.raised when given). Otherwise as extract_buildings
@@ -146,6 +150,7 @@ inline void check_extract_buildings(const grid& g, const extract_buildings_optio
     check_building_candidates(opt.candidates, function);
     check_local_planes(opt.local_planes, function);
     check_grow_roof_surfaces(opt.surfaces, function);
+    check_roof_under_crowns(opt.under_crowns, function);
     require(opt.merge.merge_rms_m >= 0 && opt.merge.merge_rms_m < 1e300, function, "merge_rms_m", "finite and >= 0",
             opt.merge.merge_rms_m);
     require(opt.returns.cell_share > 0 && opt.returns.cell_share <= 1, function, "returns.cell_share", "in (0, 1]",
@@ -237,6 +242,15 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
                 if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
             lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
         }
+        if (!returns->lowest.empty() && kept > 0 &&
+            join_roof_under_crowns(out.building_id, kept, terrain.surface.view(), lp, returns->lowest, returns->points,
+                                   returns->raised, cell_m, opt.under_crowns)
+                    .joined > 0) {
+            // The roof under a crown is not vegetation; the surface now holds the roof there (z views it).
+            for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i)
+                if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
+            lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
+        }
     }
     detail::report(opt.run.progress, 0.6, function);
 
@@ -294,6 +308,10 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
     detail::require_same_shape(returns.points, returns.multiple, function, "returns.points", "returns.multiple");
     if (!returns.raised.empty())
         detail::require_same_shape(returns.points, returns.raised, function, "returns.points", "returns.raised");
+    if (!returns.lowest.empty()) {
+        detail::require(!returns.raised.empty(), function, "returns.lowest needs returns.raised");
+        detail::require_same_shape(returns.points, returns.lowest, function, "returns.points", "returns.lowest");
+    }
     bool any_split = false;
     for (std::ptrdiff_t r = 0; r < returns.multiple.rows() && !any_split; ++r)
         for (std::ptrdiff_t c = 0; c < returns.multiple.cols() && !any_split; ++c)

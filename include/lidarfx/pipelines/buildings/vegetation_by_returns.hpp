@@ -25,12 +25,16 @@ struct pulse_returns {
     /// extract_buildings, by its candidates' min_height_m); empty = not counted. extract_buildings then decides
     /// each building's rim by them (refine_building_rim).
     raster_view<const std::uint32_t> raised;
+    /// The lowest of each cell's raised points (metres; NaN = none; count_points_above gives it with raised); empty
+    /// = not given. With raised, extract_buildings then finds the roofs hidden under overhanging crowns
+    /// (join_roof_under_crowns).
+    raster_view<const float> lowest;
 
     /// Empty counts. Explicit, so that a `{}` argument never reads as pulse counts.
     explicit pulse_returns() = default;
     pulse_returns(raster_view<const std::uint32_t> points_in, raster_view<const std::uint32_t> multiple_in,
-                  raster_view<const std::uint32_t> raised_in = {})
-        : points(points_in), multiple(multiple_in), raised(raised_in)
+                  raster_view<const std::uint32_t> raised_in = {}, raster_view<const float> lowest_in = {})
+        : points(points_in), multiple(multiple_in), raised(raised_in), lowest(lowest_in)
     {
     }
 };

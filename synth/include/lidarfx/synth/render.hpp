@@ -85,10 +85,12 @@ struct world {
 struct top_hit {
     enum kind_t { none, bridge, building, tree } kind = none;
     std::int32_t index = -1;
-    double height = 0;  ///< crown top above ground (trees)
+    double height = 0;        ///< crown top above ground (trees)
+    std::int32_t under = -1;  ///< trees: the building whose roof the crown covers here (tree::over_roofs); -1 none
 };
 
-/// Finds the object a pulse meets first: bridge decks, then roofs, then the tallest crown.
+/// Finds the object a pulse meets first: bridge decks, then roofs (unless a crown that may reach over roofs stands
+/// above it), then the tallest crown.
 class top_finder {
 public:
     top_finder(double size_m, const std::vector<tree>& trees, const std::vector<building_truth>& buildings,
@@ -117,12 +119,27 @@ public:
             if (bridges_[i].span.contains(x, y)) return {top_hit::bridge, static_cast<std::int32_t>(i), 0};
         }
         for (const auto i : building_index_.at(x, y)) {
-            if (buildings_[static_cast<std::size_t>(i)].contains(x, y)) return {top_hit::building, i, 0};
+            const auto& b = buildings_[static_cast<std::size_t>(i)];
+            if (!b.contains(x, y)) continue;
+            top_hit over = tallest_crown(x, y, true);
+            if (over.kind == top_hit::tree && over_z(over) > b.roof_at(x, y).z) {
+                over.under = i;
+                return over;
+            }
+            return {top_hit::building, i, 0};
         }
+        return tallest_crown(x, y, false);
+    }
+
+private:
+    /// The tallest crown over (x, y): all crowns, or only those that may reach over roofs.
+    top_hit tallest_crown(double x, double y, bool over_roofs_only) const noexcept
+    {
         top_hit best;
         double best_z = -std::numeric_limits<double>::infinity();
         for (const auto i : tree_index_.at(x, y)) {
             const auto& t = trees_[static_cast<std::size_t>(i)];
+            if (over_roofs_only && !t.over_roofs) continue;
             const double h = t.crown_top(x, y);
             if (h > 0 && t.ground_z + h > best_z) {
                 best_z = t.ground_z + h;
@@ -131,8 +148,12 @@ public:
         }
         return best;
     }
+    /// The elevation of a crown hit's surface.
+    double over_z(const top_hit& hit) const noexcept
+    {
+        return trees_[static_cast<std::size_t>(hit.index)].ground_z + hit.height;
+    }
 
-private:
     const std::vector<tree>& trees_;
     const std::vector<building_truth>& buildings_;
     const std::vector<bridge_deck>& bridges_;
@@ -200,6 +221,15 @@ point_set render_points(const world<Site>& w, double density_per_m2)
                         1, las_class::building);
             return;
         }
+        if (hit.kind == top_hit::tree && hit.under >= 0) {
+            const auto& t = w.trees[static_cast<std::size_t>(hit.index)];
+            const auto& b = w.buildings[static_cast<std::size_t>(hit.under)];
+            crown_over_roof_returns(t, t.ground_z + hit.height, b.roof_at(p.x, p.y).z, b.intensity, random,
+                                    [&](double z, double intensity, int rn, int nr, std::uint8_t cls) {
+                                        points.push(p.x, p.y, z + noise(), intensity, rn, nr, cls);
+                                    });
+            return;
+        }
         const site_sample s = w.site(p.x, p.y);
         if (hit.kind == top_hit::tree) {
             tree_returns(w.trees[static_cast<std::size_t>(hit.index)], hit.height, s.z, s.intensity, random,
@@ -258,9 +288,9 @@ scene_truth render_truth(const world<Site>& w, double cell_m)
             const top_hit hit = top.at(x, y);
             if (hit.kind == top_hit::bridge) t.surface(r, c) = las_class::bridge_deck;
             if (hit.kind == top_hit::tree) t.surface(r, c) = las_class::high_vegetation;
-            if (hit.kind == top_hit::building) {
-                const auto i = static_cast<std::size_t>(hit.index);
-                t.surface(r, c) = las_class::building;
+            if (hit.kind == top_hit::building || hit.under >= 0) {  // a roof, or a roof under a crown
+                const auto i = static_cast<std::size_t>(hit.kind == top_hit::building ? hit.index : hit.under);
+                if (hit.kind == top_hit::building) t.surface(r, c) = las_class::building;
                 t.building_id(r, c) = w.buildings[i].id;
                 const int face = w.buildings[i].roof_at(x, y).face;  // -1 on a dormer: no plane
                 t.roof_plane_id(r, c) = face < 0 ? 0 : first_plane[i] + face + 1;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // town_family: randomized synthetic towns from one seed (sizes, densities, roof kinds, tilts, orientations,
-// trees beside roofs, garages and sheds, terraced rows and semi-detached pairs, dormers, buildings cut by the
-// survey's edge), with their truth, for testing building extraction on many towns.
+// trees beside roofs and over them, garages and sheds, terraced rows and semi-detached pairs, dormers, buildings cut by
+// the survey's edge), with their truth, for testing building extraction on many towns.
 #pragma once
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -39,6 +40,9 @@ struct town_family_options {
     /// Houses cut by the survey's edge: their footprints cross the town's border, the part outside is not scanned
     /// (internal::add_edge_buildings), >= 0; 0 = none. A crowded town gets fewer.
     int edge_buildings = 0;
+    /// Share of the houses (not garages, sheds, row houses or edge buildings) that get a tree whose crown reaches
+    /// 1-3 m over one of their walls, above the roof (internal::add_overhanging_trees), in [0, 1]; 0 = none.
+    double overhanging_tree_share = 0;
 };
 
 /// Roofs of two touching houses differ by more than this along a party wall where the wall counts as a step, m.
@@ -79,8 +83,9 @@ struct town_family_scene {
 /// rows draw from their own random streams, so the houses and trees are those of the town without them, and the garages
 /// those of the town without rows (their points' noise differs). Then edge_buildings houses cut by the town's
 /// border (internal::add_edge_buildings) and, last, dormers on dormer_share of the gable and hip houses
-/// (internal::draw_dormers), each from its own random stream, so every other building stays as it was (with both
-/// options 0 the town is the one without them, point for point). Houses are ids 1..n, garages and sheds follow,
+/// (internal::draw_dormers) and trees overhanging overhanging_tree_share of the houses
+/// (internal::add_overhanging_trees), each from its own random stream, so every other building stays as it was (with
+/// these options 0 the town is the one without them, point for point). Houses are ids 1..n, garages and sheds follow,
 /// then the row houses, row by row, then the edge buildings. @throws invalid_input on bad options (see
 /// scene_options).
 inline town_family_scene town_family(const town_family_options& options = {});
@@ -435,6 +440,59 @@ void add_edge_buildings(world<Site>& w, rng& random, int count)
     }
 }
 
+/// Adds to w a tree overhanging each of the first `houses` buildings with probability `share`: a crown of radius
+/// 2.5-5 m whose edge reaches 1 m to min(3 m, radius - 0.5 m) over one of the footprint's four walls (at a random
+/// place along it, 1 m from its corners), its stem outside the footprint; the crown's base 0.5-2 m above the
+/// highest roof under the crown (dormers included), its top 3-8 m above the base; tree::over_roofs set. The crown
+/// must stay 2 m inside the town and 0.4 m from every other building's bounding circle; up to 20 tries per house,
+/// one that finds no place gets none. Draws only from `random`.
+template <class Site>
+void add_overhanging_trees(world<Site>& w, rng& random, std::size_t houses, double share)
+{
+    const double S = w.size_m;
+    for (std::size_t i = 0; i < houses; ++i) {
+        if (!random.chance(share)) continue;
+        const building_truth& b = w.buildings[i];
+        for (int attempt = 0; attempt < 20; ++attempt) {
+            tree t;
+            t.crown_radius_m = random.uniform(2.5, 5.0);
+            const double over = random.uniform(1.0, std::min(3.0, t.crown_radius_m - 0.5));
+            const int side = random.between(0, 3);  // +v, -v (long walls), +u, -u (short walls)
+            const bool long_wall = side < 2;
+            const double half_along = 0.5 * (long_wall ? b.length_m : b.width_m) - 1.0;
+            const double along = random.uniform(-half_along, half_along);
+            const double out = 0.5 * (long_wall ? b.width_m : b.length_m) + t.crown_radius_m - over;
+            const double sign = side % 2 == 0 ? 1.0 : -1.0;
+            const double pu = long_wall ? along : sign * out, pv = long_wall ? sign * out : along;
+            // local() is a reflection-rotation that is its own inverse.
+            const double a = deg_to_rad(b.axis_azimuth_deg), su = std::sin(a), cu = std::cos(a);
+            t.x = b.x + pu * su + pv * cu;
+            t.y = b.y + pu * cu - pv * su;
+            const double rc = t.crown_radius_m;
+            if (t.x < rc + 2 || t.y < rc + 2 || t.x > S - rc - 2 || t.y > S - rc - 2) continue;
+            const bool clear = std::all_of(w.buildings.begin(), w.buildings.end(), [&](const building_truth& o) {
+                return o.id == b.id || std::hypot(o.x - t.x, o.y - t.y) > o.bounding_radius() + rc + 0.4;
+            });
+            if (!clear) continue;
+            double roof_top = -std::numeric_limits<double>::infinity();
+            for (double dy = -rc; dy <= rc; dy += 0.25) {
+                for (double dx = -rc; dx <= rc; dx += 0.25) {
+                    if (dx * dx + dy * dy > rc * rc || !b.contains(t.x + dx, t.y + dy)) continue;
+                    roof_top = std::max(roof_top, b.roof_at(t.x + dx, t.y + dy).z);
+                }
+            }
+            if (!std::isfinite(roof_top)) continue;
+            t.ground_z = w.site(t.x, t.y).z;
+            t.crown_base_m = roof_top + random.uniform(0.5, 2.0) - t.ground_z;
+            t.height_m = t.crown_base_m + random.uniform(3.0, 8.0);
+            t.intensity = random.uniform(50.0, 140.0);
+            t.over_roofs = true;
+            w.trees.push_back(t);
+            break;
+        }
+    }
+}
+
 }  // namespace internal
 
 inline town_family_scene town_family(const town_family_options& options)
@@ -448,6 +506,8 @@ inline town_family_scene town_family(const town_family_options& options)
     lidarfx::detail::require(options.dormer_share >= 0 && options.dormer_share <= 1, "town_family",
                              "dormer_share must be in [0, 1]");
     lidarfx::detail::require(options.edge_buildings >= 0, "town_family", "edge_buildings must be >= 0");
+    lidarfx::detail::require(options.overhanging_tree_share >= 0 && options.overhanging_tree_share <= 1, "town_family",
+                             "overhanging_tree_share must be in [0, 1]");
     rng pick(hash64(options.seed, 0xFA31), 1);
     scene_options so;
     so.seed = options.seed;
@@ -512,6 +572,11 @@ inline town_family_scene town_family(const town_family_options& options)
             if (b.kind != roof_kind_truth::gable && b.kind != roof_kind_truth::hip) continue;
             if (dormer_random.chance(options.dormer_share)) internal::draw_dormers(b, dormer_random);
         }
+    }
+    if (options.overhanging_tree_share > 0) {
+        rng overhang_random(w.seed, 16);
+        internal::add_overhanging_trees(w, overhang_random, static_cast<std::size_t>(houses),
+                                        options.overhanging_tree_share);
     }
     auto town = internal::render(w, so);
     return {std::move(town), so.density_per_m2, w.trees, std::move(walls), std::move(w.buildings)};

@@ -23,6 +23,9 @@ struct tree {
     double crown_base_m = 4;    ///< crown base above ground, metres, >= 1.5
     double height_m = 12;       ///< tree top above ground, metres, > crown_base_m + 1
     double intensity = 90;      ///< mean first-return intensity of the foliage
+    /// The crown may reach over roofs (its base stands above them): a pulse that meets it over a roof gives
+    /// crown_over_roof_returns. Trees without it never cover a roof (roofs hide them).
+    bool over_roofs = false;
 
     /// Height of the crown surface above ground at (px, py): mid + semi * sqrt(1 - rho^2/R^2) with
     /// mid, semi the crown's half-height centre and half-height; a negative number outside the crown.
@@ -104,6 +107,37 @@ void tree_returns(const tree& t, double crown_top_m, double ground_z, double gro
                                  : h > 2.0 ? las_class::high_vegetation
                                            : las_class::low_vegetation;
         emit(ground_z + h, intensity, k + 1, n, cls);
+        energy *= 0.55;
+    }
+}
+
+/// Returns of one pulse that hits the crown of `t` (t.over_roofs) where it reaches over a roof: the crown's
+/// surface at elevation `crown_top_z`, the roof below at `roof_z` with intensity `roof_intensity`. As
+/// tree_returns with the roof in place of the ground: with probability 0.1 one roof return; otherwise 2, 3 or 4
+/// returns, the first within 0.3 m below the crown surface, intermediate ones between the crown's base
+/// (t.ground_z + t.crown_base_m, kept above the roof) and 0.5 m below the first, and the last on the roof with 40 %
+/// of its intensity. Crown returns are high vegetation, roof returns building. O(returns).
+template <class Emit>
+void crown_over_roof_returns(const tree& t, double crown_top_z, double roof_z, double roof_intensity, rng& random,
+                             Emit&& emit)
+{
+    if (random.chance(0.1)) {
+        emit(roof_z, roof_intensity * (1.0 + 0.1 * random.triangular()), 1, 1, las_class::building);
+        return;
+    }
+    const double u = random.uniform();
+    const int n = u < 0.45 ? 2 : u < 0.8 ? 3 : 4;
+    double heights[4] = {crown_top_z - 0.3 * random.uniform(), 0, 0, 0};
+    const double low = std::max(roof_z + 0.5, t.ground_z + t.crown_base_m), high = std::max(low, heights[0] - 0.5);
+    for (int k = 1; k < n - 1; ++k) heights[k] = random.uniform(low, high);
+    if (n == 4 && heights[1] < heights[2]) std::swap(heights[1], heights[2]);  // downwards
+    heights[n - 1] = roof_z;
+    double energy = 1.0;
+    for (int k = 0; k < n; ++k) {
+        const bool on_roof = k == n - 1;
+        const double intensity =
+            on_roof ? 0.4 * roof_intensity : energy * t.intensity * (1.0 + 0.2 * random.triangular());
+        emit(heights[k], intensity, k + 1, n, on_roof ? las_class::building : las_class::high_vegetation);
         energy *= 0.55;
     }
 }

@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: Apache-2.0
+// join_roof_under_crowns: the part of a roof hidden under an overhanging crown, found by the survey's lowest
+// returns (extract_buildings step 3c, when the survey's lowest returns are given).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "lidarfx/core/error.hpp"
+#include "lidarfx/core/raster.hpp"
+#include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/buildings/local_planes.hpp"
+
+namespace lidarfx {
+
+/// Settings of join_roof_under_crowns.
+struct roof_under_crowns_options {
+    /// A cell joins a building when its lowest return lies within this of the roof plane carried from the building
+    /// cell beside it, plus the plane's slope times the cell size (a cell's highest and lowest returns on a
+    /// sloped roof differ by that much), metres; >= 0.
+    double plane_tolerance_m = 0.3;
+    /// How far under crowns a roof is followed from the cells the building had, metres; >= 0; 0 = not at all.
+    /// A crown reaches a few metres over a roof.
+    double max_reach_m = 6;
+    /// A cell joins only when at least this share of its points are raised; in (0, 1]. Beyond a wall a crown's
+    /// cell holds raised points too, but the pulses that pass its foliage end on the ground (about a third of its
+    /// points); a cell at the wall under the crown keeps most of its points on the roof.
+    double min_raised_share = 0.9;
+};
+
+/// What join_roof_under_crowns changed.
+struct roof_under_crowns_result {
+    std::size_t joined = 0;  ///< cells that joined a building
+};
+
+/// Joins to the buildings 1..count of `building_id` (in place) the cells of id 0 where a crown hides their roof,
+/// and writes their roof elevation into `surface` (metres; the DSM the buildings were cut from, which holds the
+/// crown there). Under a crown the highest return is foliage, so the cell was left out of the building as
+/// vegetation; yet its pulses' returns stand above the terrain, and the lowest of them lies on the roof. In rounds
+/// (at most max_reach_m / cell_m), each decided on the ids as the round before left them (so the result does not
+/// depend on the order of the cells), a cell of id 0 joins when
+///  - at least min_raised_share of its points are raised (`raised` of `points`: they stand the candidates'
+///    min_height_m above the terrain, as refine_building_rim counts them), and
+///  - the lowest of its raised points (`lowest`, NaN = none; count_points_above gives both) lies within
+///  plane_tolerance_m + s · cell_m of the roof plane of a
+///    building cell beside it across an edge, carried to its centre and lowered by half the roof's fall across a
+///    cell: z + a·dx + b·dy - s · cell_m / 2, with that cell's surface z and local plane slopes a (east) and b
+///    (north), s = hypot(a, b) (a cell's highest return lies above its centre, its lowest below).
+/// It takes the building whose plane fits best (ties: the lowest id, then north, west, east, south). A joined cell
+/// carries that plane on, its surface set to lowest + s · cell_m / 2 (the roof at the cell's centre when the
+/// lowest return lies at its low side). Building cells keep their plane from `planes` (local_planes of the
+/// buildings on `surface`). Cells of ids outside 0..count are left as they are and never joined. O(cells ·
+/// rounds).
+/// @throws invalid_input on an option out of range, shapes that differ, cell_m not > 0, or a cell with more
+/// raised points than points.
+inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t> building_id, std::size_t count,
+                                                       raster_view<float> surface, const local_planes_result& planes,
+                                                       raster_view<const float> lowest,
+                                                       raster_view<const std::uint32_t> points,
+                                                       raster_view<const std::uint32_t> raised, double cell_m,
+                                                       const roof_under_crowns_options& opt = {});
+
+// ---- implementation ----
+
+namespace detail {
+
+inline void check_roof_under_crowns(const roof_under_crowns_options& opt, const char* function)
+{
+    require(opt.plane_tolerance_m >= 0 && opt.plane_tolerance_m < 1e300, function, "plane_tolerance_m",
+            "finite and >= 0", opt.plane_tolerance_m);
+    require(opt.max_reach_m >= 0 && opt.max_reach_m < 1e300, function, "max_reach_m", "finite and >= 0",
+            opt.max_reach_m);
+    require(opt.min_raised_share > 0 && opt.min_raised_share <= 1, function, "min_raised_share", "in (0, 1]",
+            opt.min_raised_share);
+}
+
+/// A roof plane carried from cell to cell: its elevation at the cell's centre and its slopes.
+struct carried_plane {
+    float z = 0, a = 0, b = 0;
+};
+
+}  // namespace detail
+
+inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t> building_id, std::size_t count,
+                                                       raster_view<float> surface, const local_planes_result& planes,
+                                                       raster_view<const float> lowest,
+                                                       raster_view<const std::uint32_t> points,
+                                                       raster_view<const std::uint32_t> raised, double cell_m,
+                                                       const roof_under_crowns_options& opt)
+{
+    constexpr const char* function = "join_roof_under_crowns";
+    detail::check_roof_under_crowns(opt, function);
+    detail::require_positive(cell_m, function, "cell_m");
+    detail::require_same_shape(building_id, surface, function, "building_id", "surface");
+    detail::require_same_shape(building_id, planes.a, function, "building_id", "planes.a");
+    detail::require_same_shape(building_id, planes.b, function, "building_id", "planes.b");
+    detail::require_same_shape(building_id, lowest, function, "building_id", "lowest");
+    detail::require_same_shape(building_id, points, function, "building_id", "points");
+    detail::require_same_shape(building_id, raised, function, "building_id", "raised");
+    detail::require_counts_within(raised, points, function, "raised must not exceed points in any cell");
+    roof_under_crowns_result res;
+    const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
+    const auto rounds = static_cast<long long>(std::floor(opt.max_reach_m / cell_m + 1e-9));
+    if (rows == 0 || cols == 0 || count == 0 || rounds == 0) return res;
+
+    const auto building_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
+        const std::int32_t b = building_id(r, c);
+        return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
+    };
+    // The plane each building cell carries: its own (surface, local plane) until it is a joined cell's.
+    raster<detail::carried_plane> plane(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (building_at(r, c) > 0) plane(r, c) = {surface(r, c), planes.a(r, c), planes.b(r, c)};
+    // A candidate: id 0, with points all raised and a lowest return.
+    const auto candidate = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        return building_id(r, c) == 0 && points(r, c) > 0 &&
+               static_cast<double>(raised(r, c)) >= opt.min_raised_share * static_cast<double>(points(r, c)) &&
+               std::isfinite(lowest(r, c));
+    };
+    struct join {
+        std::ptrdiff_t r, c;
+        std::int32_t building;
+        detail::carried_plane plane;
+    };
+    std::vector<join> joins;
+    // Edge neighbours in the tie order: north, west, east, south.
+    constexpr int dr[4] = {-1, 0, 0, 1}, dc[4] = {0, -1, 1, 0};
+    std::vector<std::ptrdiff_t> frontier;  // candidates beside a building cell that joined in the last round
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            if (candidate(r, c)) frontier.push_back(r * cols + c);
+    for (long long round = 0; round < rounds && !frontier.empty(); ++round) {
+        joins.clear();
+        for (const std::ptrdiff_t i : frontier) {
+            const std::ptrdiff_t r = i / cols, c = i % cols;
+            if (!candidate(r, c)) continue;
+            const double low = lowest(r, c);
+            std::int32_t best = 0;
+            double best_miss = 0;
+            detail::carried_plane best_plane;
+            for (int k = 0; k < 4; ++k) {
+                const std::ptrdiff_t rr = r + dr[k], cc = c + dc[k];
+                if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
+                const std::int32_t b = building_at(rr, cc);
+                if (b == 0) continue;
+                const detail::carried_plane& p = plane(rr, cc);
+                // From the neighbour's centre to this one's: x east (columns), y north (rows upwards).
+                const double dx = static_cast<double>(-dc[k]) * cell_m, dy = static_cast<double>(dr[k]) * cell_m;
+                const double z = p.z + p.a * dx + p.b * dy;
+                const double slope = std::hypot(static_cast<double>(p.a), static_cast<double>(p.b));
+                const double miss = std::abs(low - (z - 0.5 * slope * cell_m));
+                if (!(miss <= opt.plane_tolerance_m + slope * cell_m)) continue;
+                if (best == 0 || miss < best_miss || (miss == best_miss && b < best)) {
+                    best = b;
+                    best_miss = miss;
+                    best_plane = {static_cast<float>(low + 0.5 * slope * cell_m), p.a, p.b};
+                }
+            }
+            if (best > 0) joins.push_back({r, c, best, best_plane});
+        }
+        frontier.clear();
+        for (const join& j : joins) {
+            building_id(j.r, j.c) = j.building;
+            plane(j.r, j.c) = j.plane;
+            surface(j.r, j.c) = j.plane.z;
+            ++res.joined;
+            for (int k = 0; k < 4; ++k) {
+                const std::ptrdiff_t rr = j.r + dr[k], cc = j.c + dc[k];
+                if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && candidate(rr, cc))
+                    frontier.push_back(rr * cols + cc);
+            }
+        }
+        std::sort(frontier.begin(), frontier.end());
+        frontier.erase(std::unique(frontier.begin(), frontier.end()), frontier.end());
+    }
+    return res;
+}
+
+}  // namespace lidarfx
