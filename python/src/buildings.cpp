@@ -279,7 +279,7 @@ rim by its points: a cell leaves when under half its points stand min_height_m a
 the roof at its height (within 0.5 m) with half its points raised joins; and with lowest_raised (float32, the
 lowest of each cell's raised points: count_points_above(..., return_lowest=True)) the roof under an overhanging
 crown joins its building when 90 % of a cell's points are raised and the lowest lies on the roof's plane (within
-0.3 m plus the plane's fall across a cell). Or building_cells (bool or uint8, e.g.
+0.3 m plus half the plane's fall across a cell). Or building_cells (bool or uint8, e.g.
 where at least half of the points are of the vendor's building class 6): those cells are the buildings (parts
 under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
 buildings where two of its roof surfaces do not meet along most of their boundary but stand more than

@@ -84,7 +84,7 @@ TEST_CASE("join_roof_under_crowns: a flat roof's strip under a crown joins; the 
     for (std::ptrdiff_t r = 2; r <= 7; ++r)
         for (std::ptrdiff_t c = 7; c <= 9; ++c) {
             CHECK(s.id(r, c) == 1);
-            CHECK(s.surface(r, c) == doctest::Approx(s.lowest(r, c)));  // flat: the surface is the roof's return
+            CHECK(s.surface(r, c) == 6.0f);  // the roof's plane, not the crown or the return's noise
         }
     CHECK(s.id(2, 10) == 0);
     CHECK(s.id(3, 10) == 0);
@@ -107,11 +107,19 @@ TEST_CASE("join_roof_under_crowns: the roof's plane is carried under the crown, 
     for (std::ptrdiff_t r = 1; r <= 4; ++r) {
         for (std::ptrdiff_t c = 6; c <= 8; ++c) {
             CHECK(s.id(r, c) == 1);
-            // The roof at the centre: the lowest point plus half the fall across the cell.
+            // The roof's plane carried on.
             CHECK(s.surface(r, c) == doctest::Approx(crown_scene::plane_at(3.0, 0.5, 0, r, c)).epsilon(1e-6));
         }
         CHECK(s.id(r, 9) == 0);
     }
+    // No drift: lowest points falling 0.25 m a cell (a crown's underside, a slope) join only while they stay within
+    // the tolerance of the roof's own plane, not of the cell joined before them.
+    crown_scene d(5, 10);
+    d.roof(1, 6.0, 0, 0, 1, 3, 1, 3);
+    for (std::ptrdiff_t c = 4; c <= 8; ++c) d.covered(2, c, 12.0, 6.0 - 0.25 * static_cast<double>(c - 3));
+    CHECK(d.join(1).joined == 1);
+    CHECK(d.id(2, 4) == 1);
+    CHECK(d.id(2, 5) == 0);
     // The tolerance: a flat plane carried 0.35 m off joins with plane_tolerance_m 0.4, not with 0.3.
     for (const double tolerance : {0.3, 0.4}) {
         crown_scene t(5, 6);

@@ -42,8 +42,9 @@ struct extract_buildings_options {
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
     vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
     building_rim_options rim = {};                ///< min_raised_share (0.5), join_height_m (0.5 m)
-    roof_under_crowns_options under_crowns = {};  ///< plane_tolerance_m (0.3 m), max_reach_m (6 m)
-    party_walls_options party_walls = {};         ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
+    roof_under_crowns_options under_crowns =
+        {};                                ///< plane_tolerance_m (0.3 m), max_reach_m (6 m), min_raised_share (0.9)
+    party_walls_options party_walls = {};  ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -110,14 +111,14 @@ extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_
 /// then decided by its points (refine_building_rim): a wall's cell whose points lie mostly on the ground leaves
 /// the building, an eave cell whose pulses split on the roof's edge joins it; buildings are numbered by area
 /// again. When returns.lowest is given too, the roof hidden under an overhanging crown joins its building
-/// (join_roof_under_crowns: every return raised, the lowest on the roof's plane), and the steps after it read
-/// the roof there, not the crown.
-/// A survey without any split pulse (single-return sensors, or number_of_returns left at 1) says nothing of
-/// trees: it takes the mask route with an empty mask, rough parts dropped (its rim is still decided by
-/// returns.raised when given). Otherwise as extract_buildings
-/// above; rejected_rough counts the parts dropped as vegetation or unseen.
+/// (join_roof_under_crowns: 90 % of a cell's points raised, the lowest on the roof's plane), and the steps after it
+/// read the roof there, not the crown. A survey without any split pulse (single-return sensors, or number_of_returns
+/// left at 1) says nothing of trees: it takes the mask route with an empty mask, rough parts dropped (its rim is still
+/// decided by returns.raised when given). Otherwise as extract_buildings above; rejected_rough counts the parts dropped
+/// as vegetation or unseen.
 /// @throws invalid_input as extract_buildings, and if returns.points, returns.multiple or returns.raised (when
-/// given) differ from the DSM's shape or some cell counts more split pulses (or raised points) than points.
+/// given) differ from the DSM's shape or some cell counts more split pulses (or raised points) than points, or
+/// returns.lowest is given without returns.raised or differs from the DSM's shape.
 template <raster_input In>
 extract_buildings_result extract_buildings(const In& dsm, const grid& g, raster_view<const float> ground,
                                            const pulse_returns& returns, const extract_buildings_options& opt = {});

@@ -18,9 +18,9 @@ namespace lidarfx {
 
 /// Settings of join_roof_under_crowns.
 struct roof_under_crowns_options {
-    /// A cell joins a building when its lowest return lies within this of the roof plane carried from the building
-    /// cell beside it, plus the plane's slope times the cell size (a cell's highest and lowest returns on a
-    /// sloped roof differ by that much), metres; >= 0.
+    /// A cell joins a building when its lowest raised point lies within this of the roof plane carried from the
+    /// building cell beside it, plus half the plane's fall across a cell ((|a| + |b|) · cell_m from its highest
+    /// corner to its lowest: where in the cell the lowest point lies), metres; >= 0.
     double plane_tolerance_m = 0.3;
     /// How far under crowns a roof is followed from the cells the building had, metres; >= 0; 0 = not at all.
     /// A crown reaches a few metres over a roof.
@@ -45,13 +45,15 @@ struct roof_under_crowns_result {
 ///  - at least min_raised_share of its points are raised (`raised` of `points`: they stand the candidates'
 ///    min_height_m above the terrain, as refine_building_rim counts them), and
 ///  - the lowest of its raised points (`lowest`, NaN = none; count_points_above gives both) lies within
-///  plane_tolerance_m + s · cell_m of the roof plane of a
-///    building cell beside it across an edge, carried to its centre and lowered by half the roof's fall across a
-///    cell: z + a·dx + b·dy - s · cell_m / 2, with that cell's surface z and local plane slopes a (east) and b
-///    (north), s = hypot(a, b) (a cell's highest return lies above its centre, its lowest below).
+///    plane_tolerance_m + f / 2 of the roof plane of a building cell beside it across an edge, carried to its
+///    centre and lowered by half the roof's fall across a cell: z + a·dx + b·dy - f / 2, with that cell's
+///    surface z and local plane slopes a (east) and b (north), f = (|a| + |b|) · cell_m the plane's fall across a cell
+///    (the surface z of a DSM is a cell's highest point, a lowest return lies below the cell's centre; a cell's highest
+///    return lies above its centre, its lowest below).
 /// It takes the building whose plane fits best (ties: the lowest id, then north, west, east, south). A joined cell
-/// carries that plane on, its surface set to lowest + s · cell_m / 2 (the roof at the cell's centre when the
-/// lowest return lies at its low side). Building cells keep their plane from `planes` (local_planes of the
+/// carries that plane on unchanged, its surface set to the plane's height there (z + a·dx + b·dy): every joined cell
+/// lies within the tolerance of the roof's own plane, so a chain of joins cannot drift along a crown's underside or
+/// a slope. Building cells keep their plane from `planes` (local_planes of the
 /// buildings on `surface`). Cells of ids outside 0..count are left as they are and never joined. O(cells ·
 /// rounds).
 /// @throws invalid_input on an option out of range, shapes that differ, cell_m not > 0, or a cell with more
@@ -103,7 +105,9 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
     detail::require_counts_within(raised, points, function, "raised must not exceed points in any cell");
     roof_under_crowns_result res;
     const std::ptrdiff_t rows = building_id.rows(), cols = building_id.cols();
-    const auto rounds = static_cast<long long>(std::floor(opt.max_reach_m / cell_m + 1e-9));
+    // No chain of joins is longer than rows + cols cells: clamping there keeps a huge reach exact.
+    const auto rounds =
+        static_cast<long long>(std::min(std::floor(opt.max_reach_m / cell_m + 1e-9), static_cast<double>(rows + cols)));
     if (rows == 0 || cols == 0 || count == 0 || rounds == 0) return res;
 
     const auto building_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) -> std::int32_t {
@@ -115,7 +119,7 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             if (building_at(r, c) > 0) plane(r, c) = {surface(r, c), planes.a(r, c), planes.b(r, c)};
-    // A candidate: id 0, with points all raised and a lowest return.
+    // A candidate: id 0, with min_raised_share of its points raised and a lowest raised point.
     const auto candidate = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
         return building_id(r, c) == 0 && points(r, c) > 0 &&
                static_cast<double>(raised(r, c)) >= opt.min_raised_share * static_cast<double>(points(r, c)) &&
@@ -151,13 +155,14 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
                 // From the neighbour's centre to this one's: x east (columns), y north (rows upwards).
                 const double dx = static_cast<double>(-dc[k]) * cell_m, dy = static_cast<double>(dr[k]) * cell_m;
                 const double z = p.z + p.a * dx + p.b * dy;
-                const double slope = std::hypot(static_cast<double>(p.a), static_cast<double>(p.b));
-                const double miss = std::abs(low - (z - 0.5 * slope * cell_m));
-                if (!(miss <= opt.plane_tolerance_m + slope * cell_m)) continue;
+                // The plane's fall across the cell, from its highest corner to its lowest.
+                const double fall = (std::abs(static_cast<double>(p.a)) + std::abs(static_cast<double>(p.b))) * cell_m;
+                const double miss = std::abs(low - (z - 0.5 * fall));
+                if (!(miss <= opt.plane_tolerance_m + 0.5 * fall)) continue;
                 if (best == 0 || miss < best_miss || (miss == best_miss && b < best)) {
                     best = b;
                     best_miss = miss;
-                    best_plane = {static_cast<float>(low + 0.5 * slope * cell_m), p.a, p.b};
+                    best_plane = {static_cast<float>(z), p.a, p.b};
                 }
             }
             if (best > 0) joins.push_back({r, c, best, best_plane});
