@@ -86,8 +86,17 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
         : run.returns.points.empty()
             ? extract_buildings(run.dsm, local, run.ground, raster_view<const std::uint8_t>{}, bopt)
             : extract_buildings(run.dsm, local, run.ground, run.returns, bopt);
+    // Roof and facade energy on the DSM: a roof found under an overhanging crown is left out of it (the DSM holds the
+    // crown there, whose sun is not the roof's), as it was before that roof was found.
+    raster<std::int32_t> energy_ids = b.building_id;
+    std::size_t under_crowns = 0;
+    for (std::ptrdiff_t i = 0; i < energy_ids.size(); ++i) {
+        if (b.under_crowns.data()[i] == 0) continue;
+        energy_ids.data()[i] = 0;
+        ++under_crowns;
+    }
     const surface_energy_result e =
-        surface_energy(run.dsm, b.building_id, run.cell_m, run.site, run.records,
+        surface_energy(run.dsm, energy_ids, run.cell_m, run.site, run.records,
                        {.run = {.threads = run.threads, .progress = progress_bar("roofs and facades")}});
 
     // Outlines in the input's CRS units; heights and areas in metres.
@@ -159,6 +168,9 @@ void write_facade_outputs(io::output_folder& out, const facade_run& run)
 
     std::cout << std::fixed << std::setprecision(1) << "buildings: " << b.buildings.size() << ", roof patches "
               << e.roofs.size() << ", facade sub-patches " << e.facades.size() << "\n";
+    if (under_crowns > 0)
+        std::cout << "roof under overhanging crowns: " << under_crowns
+                  << " cells, in the buildings' outlines and areas, not in roof energy (the DSM holds the crown)\n";
     for (const surface_class_row& r : table) {
         std::cout << "  " << std::setw(13) << class_names[static_cast<std::size_t>(r.kind)] << ": " << r.annual_kwh_m2
                   << " kWh/m2/yr over " << r.area_m2 << " m2\n";

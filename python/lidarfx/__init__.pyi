@@ -89,7 +89,7 @@ where at least half of the points are of the vendor's building class 6): those c
 under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
 buildings where two of its roof surfaces do not meet along most of their boundary but stand more than
 party_wall_step_m (metres, > 0; inf never splits) apart: terraced houses of different heights. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
-vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
+vegetation, under_crowns (bool: roof cells found under overhanging crowns, whose DSM is the crown), buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid)."""
     ...
 

@@ -236,11 +236,13 @@ class RoofSurface:
 
 @dataclass(frozen=True)
 class Buildings:
-    """extract_buildings: id rasters (0 = none), the terrain used, vegetation, buildings and roof surfaces."""
+    """extract_buildings: id rasters (0 = none), the terrain used, vegetation, the roof cells found under
+    overhanging crowns (lowest_raised; the DSM holds the crown there), buildings and roof surfaces."""
     building_id: np.ndarray
     surface_id: np.ndarray
     ground: np.ndarray
     vegetation: np.ndarray
+    under_crowns: np.ndarray
     buildings: List[Building]
     surfaces: List[RoofSurface]
     grid: Grid

@@ -132,6 +132,7 @@ py::object extract_buildings_binding(const py::handle& dsm, const py::handle& ce
     fields["surface_id"] = to_numpy(std::move(r.surface_id));
     fields["ground"] = to_numpy(std::move(r.ground));
     fields["vegetation"] = to_numpy(std::move(r.vegetation), true);
+    fields["under_crowns"] = to_numpy(std::move(r.under_crowns), true);
     fields["buildings"] = buildings;
     fields["surfaces"] = surfaces;
     fields["grid"] = grid_to_python(g);
@@ -284,7 +285,7 @@ where at least half of the points are of the vendor's building class 6): those c
 under min_area_m2 dropped, holes under it filled), only their roof surfaces are found. A block is split into
 buildings where two of its roof surfaces do not meet along most of their boundary but stand more than
 party_wall_step_m (metres, > 0; inf never splits) apart: terraced houses of different heights. Returns Buildings(building_id, surface_id: int32 rasters (0 = none), ground,
-vegetation, buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
+vegetation, under_crowns (bool: roof cells found under overhanging crowns, whose DSM is the crown), buildings: list of Building (outline as a GeoJSON MultiPolygon, ground_z, eave_z, ridge_z, roof
 areas in m^2, surface ids), surfaces: list of RoofSurface (tilt_deg, azimuth_deg, areas), grid).)doc");
 
     m.def("fill_ground", &fill_ground_binding, "ground"_a, "cell_m"_a, py::kw_only(), "threads"_a = 1, R"doc(

@@ -216,6 +216,9 @@ def test_extract_buildings_finds_the_roof_under_an_overhanging_crown(rng):
     assert without.buildings[0].roof_area_horizontal_m2 < 190
     assert with_lowest.buildings[0].roof_area_horizontal_m2 == pytest.approx(240, abs=6)
     assert with_lowest.building_id[20, 31] == 0
+    # The roof cells found under the crown are flagged (the DSM there is the crown); none without the lowest points.
+    assert with_lowest.under_crowns.dtype == bool and with_lowest.under_crowns[20, 26] and not without.under_crowns.any()
+    assert not with_lowest.under_crowns[20, 15]
     with pytest.raises(ValueError, match="lowest_raised needs raised_count"):
         lidarfx.extract_buildings(r.max_z, grid=grid, ground=ground, point_count=r.count,
                                   multiple_return_count=r.multiple_return_count, lowest_raised=lowest)

@@ -197,6 +197,7 @@ _STD_HEADERS = {
     "cstddef": "size_t ptrdiff_t byte nullptr_t",
     "cstdint": "int8_t int16_t int32_t int64_t uint8_t uint16_t uint32_t uint64_t uintptr_t intptr_t",
     "vector": "vector", "array": "array", "span": "span", "map": "map", "set": "set", "list": "list",
+    "unordered_map": "unordered_map",
     "queue": "priority_queue queue",
     "string": "string to_string", "string_view": "string_view", "optional": "optional nullopt",
     "limits": "numeric_limits", "numbers": "numbers", "chrono": "chrono", "bit": "bit_cast popcount bit_width "
@@ -225,8 +226,8 @@ for _header, _names in _STD_HEADERS.items():
     for _name in _names.split():
         STD_HEADERS_OF.setdefault(_name, set()).add(_header)
 # Names whose declaration comes with any of several headers by the standard's own synopsis.
-for _name, _also in {"get": "utility array", "initializer_list": "vector array map set list string",
-                     "erase_if": "vector map set list string", "string_view": "string",
+for _name, _also in {"get": "utility array", "initializer_list": "vector array map set list string unordered_map",
+                     "erase_if": "vector map set list string unordered_map", "string_view": "string",
                      "ranges": "ranges"}.items():
     STD_HEADERS_OF.setdefault(_name, set()).update(_also.split())
 

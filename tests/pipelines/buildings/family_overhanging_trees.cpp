@@ -22,10 +22,12 @@ namespace {
 
 /// What the program's route finds on a town, with or without the lowest raised points.
 struct overhang_scores {
-    std::size_t covered_roof = 0, covered_found = 0;   ///< truth roof cells under a crown; of them building cells
-    std::size_t over_trees = 0, over_trees_taken = 0;  ///< overhanging trees; of them with >= 2 m^2 of crown outside
-                                                       ///< roofs in buildings
-    std::size_t houses = 0, houses_found = 0;          ///< houses with an overhanging tree; of them half found
+    std::size_t covered_roof = 0, covered_found = 0;      ///< truth roof cells under a crown; of them building cells
+    std::size_t over_trees = 0, over_trees_taken = 0;     ///< overhanging trees; of them with >= 2 m^2 of crown outside
+                                                          ///< roofs in buildings
+    std::size_t houses = 0, houses_found = 0;             ///< houses with an overhanging tree; of them half found
+    std::size_t flagged = 0, flagged_on_truth_roofs = 0;  ///< cells flagged under_crowns; of them on truth roofs
+    bool flagged_are_buildings = true;                    ///< every flagged cell is a building cell
 };
 
 overhang_scores overhang_scores_of(const synth::town_family_scene& town, bool lowest_given)
@@ -47,6 +49,12 @@ overhang_scores overhang_scores_of(const synth::town_family_scene& town, bool lo
                           pulse_returns{all.count.view(), all.multiple_return_count.view(), raised.view(),
                                         lowest_given ? lowest.view() : raster_view<const float>{}});
     overhang_scores s;
+    for (std::ptrdiff_t i = 0; i < t.building_id.size(); ++i) {
+        if (found.under_crowns.data()[i] == 0) continue;
+        ++s.flagged;
+        s.flagged_on_truth_roofs += t.building_id.data()[i] > 0 ? 1 : 0;
+        s.flagged_are_buildings = s.flagged_are_buildings && found.building_id.data()[i] > 0;
+    }
     for (std::ptrdiff_t i = 0; i < t.building_id.size(); ++i) {
         if (t.building_id.data()[i] == 0 || t.surface.data()[i] != las_class::high_vegetation) continue;
         ++s.covered_roof;
@@ -101,6 +109,11 @@ TEST_CASE("extract_buildings/family: roofs under overhanging crowns join their h
             // Without the lowest raised points, that roof is left to the trees (measured: 5-9 %).
             CHECK(static_cast<double>(without.covered_found) < 0.15 * static_cast<double>(without.covered_roof));
             CHECK(without.over_trees_taken <= 1);
+            // The cells found under crowns are flagged, building cells, nearly all on the true roofs.
+            CHECK(with.flagged_are_buildings);
+            CHECK(with.flagged > 0);
+            CHECK(static_cast<double>(with.flagged_on_truth_roofs) >= 0.9 * static_cast<double>(with.flagged));
+            CHECK(without.flagged == 0);
         }
     }
 }

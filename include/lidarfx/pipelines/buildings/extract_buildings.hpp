@@ -42,9 +42,8 @@ struct extract_buildings_options {
     merge_roof_surfaces_options merge = {};       ///< merge_rms_m (0.1 m)
     vegetation_by_returns_options returns = {};   ///< cell_share (0.5), part_share (0.2), min_seen_density (0.25)
     building_rim_options rim = {};                ///< min_raised_share (0.5), join_height_m (0.5 m)
-    roof_under_crowns_options under_crowns =
-        {};                                ///< plane_tolerance_m (0.3 m), max_reach_m (6 m), min_raised_share (0.9)
-    party_walls_options party_walls = {};  ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
+    roof_under_crowns_options under_crowns = {};  ///< plane_tolerance_m (0.3 m), max_reach_m (6 m), 90 % raised
+    party_walls_options party_walls = {};         ///< min_step_m (1 m), min_wall_share (0.5), min_part_m2 (30 m^2)
     execution run = {};  ///< drives every step: threads, progress, cancellation (core/parallel.hpp); never changes
                          ///< the result
 };
@@ -66,11 +65,14 @@ struct building_record {
 
 /// Buildings of a surface model.
 struct extract_buildings_result {
-    raster<std::int32_t> building_id;        ///< building of each cell, 0 = none
-    raster<std::int32_t> surface_id;         ///< roof surface of each building cell, 0 = none
-    raster<float> ground;                    ///< terrain elevation used (DTM), metres
-    raster<std::uint8_t> edges;              ///< angular value >= edge angle (ground_model)
-    raster<std::uint8_t> vegetation;         ///< vegetation cells as used (input mask, grown into empty cells)
+    raster<std::int32_t> building_id;  ///< building of each cell, 0 = none
+    raster<std::int32_t> surface_id;   ///< roof surface of each building cell, 0 = none
+    raster<float> ground;              ///< terrain elevation used (DTM), metres
+    raster<std::uint8_t> edges;        ///< angular value >= edge angle (ground_model)
+    raster<std::uint8_t> vegetation;   ///< vegetation cells as used (input mask, grown into empty cells)
+    /// 1 = a building cell whose roof was found under an overhanging crown (join_roof_under_crowns): the DSM there
+    /// holds the crown, not the roof. All 0 without returns.lowest.
+    raster<std::uint8_t> under_crowns;
     std::vector<building_record> buildings;  ///< buildings[i].id == i + 1
     std::vector<roof_surface> surfaces;      ///< surfaces[i].id == i + 1
     std::size_t rejected_rough = 0;          ///< candidates dropped as trees: too rough, or by their returns
@@ -213,6 +215,7 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
     out.building_id = raster<std::int32_t>(rows, cols);
     out.surface_id = raster<std::int32_t>(rows, cols);
     out.vegetation = raster<std::uint8_t>(rows, cols);
+    out.under_crowns = raster<std::uint8_t>(rows, cols, 0);
     if (rows == 0 || cols == 0) return out;
     const execution inner{opt.run.threads, {}};  // steps report no progress of their own
 
@@ -243,11 +246,15 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
                 if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
             lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
         }
-        if (!returns->lowest.empty() && kept > 0 &&
-            join_roof_under_crowns(out.building_id, kept, terrain.surface.view(), lp, returns->lowest, returns->points,
-                                   returns->raised, cell_m, opt.under_crowns)
-                    .joined > 0) {
-            // The roof under a crown is not vegetation; the surface now holds the roof there (z views it).
+        const roof_under_crowns_result crowns =
+            !returns->lowest.empty() && kept > 0
+                ? join_roof_under_crowns(out.building_id, kept, terrain.surface.view(), lp, returns->lowest,
+                                         returns->points, returns->raised, cell_m, opt.under_crowns)
+                : roof_under_crowns_result{};
+        if (crowns.joined > 0) {
+            // The roof under a crown is not vegetation; the surface now holds the roof there (z views it). The
+            // later steps keep every building cell, so the joined cells stay building cells.
+            for (const std::ptrdiff_t i : crowns.cells) out.under_crowns.data()[i] = 1;
             for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i)
                 if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
             lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);

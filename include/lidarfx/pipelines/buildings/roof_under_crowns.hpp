@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -33,7 +34,8 @@ struct roof_under_crowns_options {
 
 /// What join_roof_under_crowns changed.
 struct roof_under_crowns_result {
-    std::size_t joined = 0;  ///< cells that joined a building
+    std::size_t joined = 0;             ///< cells that joined a building
+    std::vector<std::ptrdiff_t> cells;  ///< those cells (row · cols + column), round by round in raster order
 };
 
 /// Joins to the buildings 1..count of `building_id` (in place) the cells of id 0 where a crown hides their roof,
@@ -54,8 +56,9 @@ struct roof_under_crowns_result {
 /// carries that plane on unchanged, its surface set to the plane's height there (z + a·dx + b·dy): every joined cell
 /// lies within the tolerance of the roof's own plane, so a chain of joins cannot drift along a crown's underside or
 /// a slope. Building cells keep their plane from `planes` (local_planes of the
-/// buildings on `surface`). Cells of ids outside 0..count are left as they are and never joined. O(cells ·
-/// rounds).
+/// buildings on `surface`). Cells of ids outside 0..count are left as they are and never joined. O(cells) plus
+/// O(joined cells + candidates beside them) per round; memory beyond the arguments: the candidates beside the
+/// buildings and the joined cells' slopes.
 /// @throws invalid_input on an option out of range, shapes that differ, cell_m not > 0, or a cell with more
 /// raised points than points.
 inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t> building_id, std::size_t count,
@@ -79,9 +82,9 @@ inline void check_roof_under_crowns(const roof_under_crowns_options& opt, const 
             opt.min_raised_share);
 }
 
-/// A roof plane carried from cell to cell: its elevation at the cell's centre and its slopes.
-struct carried_plane {
-    float z = 0, a = 0, b = 0;
+/// The slopes of a roof plane carried into a joined cell (east, north; metres per metre).
+struct carried_slopes {
+    float a = 0, b = 0;
 };
 
 }  // namespace detail
@@ -114,11 +117,13 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
         const std::int32_t b = building_id(r, c);
         return b > 0 && static_cast<std::size_t>(b) <= count ? b : 0;
     };
-    // The plane each building cell carries: its own (surface, local plane) until it is a joined cell's.
-    raster<detail::carried_plane> plane(rows, cols);
-    for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (building_at(r, c) > 0) plane(r, c) = {surface(r, c), planes.a(r, c), planes.b(r, c)};
+    // The plane a building cell carries: its surface height with its local plane's slopes, or, for a joined cell,
+    // the slopes it carries on (held for the joined cells only: they are few).
+    std::unordered_map<std::ptrdiff_t, detail::carried_slopes> joined_slopes;
+    const auto slopes_at = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
+        const auto it = joined_slopes.find(r * cols + c);
+        return it != joined_slopes.end() ? it->second : detail::carried_slopes{planes.a(r, c), planes.b(r, c)};
+    };
     // A candidate: id 0, with min_raised_share of its points raised and a lowest raised point.
     const auto candidate = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
         return building_id(r, c) == 0 && points(r, c) > 0 &&
@@ -128,15 +133,24 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
     struct join {
         std::ptrdiff_t r, c;
         std::int32_t building;
-        detail::carried_plane plane;
+        float z;
+        detail::carried_slopes slopes;
     };
     std::vector<join> joins;
     // Edge neighbours in the tie order: north, west, east, south.
     constexpr int dr[4] = {-1, 0, 0, 1}, dc[4] = {0, -1, 1, 0};
-    std::vector<std::ptrdiff_t> frontier;  // candidates beside a building cell that joined in the last round
+    const auto inside = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return r >= 0 && r < rows && c >= 0 && c < cols; };
+    // The candidates beside a building cell: first those beside the buildings as they are, then those beside a cell
+    // that joined in the last round.
+    std::vector<std::ptrdiff_t> frontier;
     for (std::ptrdiff_t r = 0; r < rows; ++r)
-        for (std::ptrdiff_t c = 0; c < cols; ++c)
-            if (candidate(r, c)) frontier.push_back(r * cols + c);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (!candidate(r, c)) continue;
+            bool beside = false;
+            for (int k = 0; k < 4 && !beside; ++k)
+                beside = inside(r + dr[k], c + dc[k]) && building_at(r + dr[k], c + dc[k]) > 0;
+            if (beside) frontier.push_back(r * cols + c);
+        }
     for (long long round = 0; round < rounds && !frontier.empty(); ++round) {
         joins.clear();
         for (const std::ptrdiff_t i : frontier) {
@@ -145,16 +159,17 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
             const double low = lowest(r, c);
             std::int32_t best = 0;
             double best_miss = 0;
-            detail::carried_plane best_plane;
+            float best_z = 0;
+            detail::carried_slopes best_slopes;
             for (int k = 0; k < 4; ++k) {
                 const std::ptrdiff_t rr = r + dr[k], cc = c + dc[k];
-                if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
+                if (!inside(rr, cc)) continue;
                 const std::int32_t b = building_at(rr, cc);
                 if (b == 0) continue;
-                const detail::carried_plane& p = plane(rr, cc);
+                const detail::carried_slopes p = slopes_at(rr, cc);
                 // From the neighbour's centre to this one's: x east (columns), y north (rows upwards).
                 const double dx = static_cast<double>(-dc[k]) * cell_m, dy = static_cast<double>(dr[k]) * cell_m;
-                const double z = p.z + p.a * dx + p.b * dy;
+                const double z = static_cast<double>(surface(rr, cc)) + p.a * dx + p.b * dy;
                 // The plane's fall across the cell, from its highest corner to its lowest.
                 const double fall = (std::abs(static_cast<double>(p.a)) + std::abs(static_cast<double>(p.b))) * cell_m;
                 const double miss = std::abs(low - (z - 0.5 * fall));
@@ -162,21 +177,22 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
                 if (best == 0 || miss < best_miss || (miss == best_miss && b < best)) {
                     best = b;
                     best_miss = miss;
-                    best_plane = {static_cast<float>(z), p.a, p.b};
+                    best_z = static_cast<float>(z);
+                    best_slopes = p;
                 }
             }
-            if (best > 0) joins.push_back({r, c, best, best_plane});
+            if (best > 0) joins.push_back({r, c, best, best_z, best_slopes});
         }
         frontier.clear();
         for (const join& j : joins) {
             building_id(j.r, j.c) = j.building;
-            plane(j.r, j.c) = j.plane;
-            surface(j.r, j.c) = j.plane.z;
+            surface(j.r, j.c) = j.z;
+            joined_slopes[j.r * cols + j.c] = j.slopes;
             ++res.joined;
+            res.cells.push_back(j.r * cols + j.c);
             for (int k = 0; k < 4; ++k) {
                 const std::ptrdiff_t rr = j.r + dr[k], cc = j.c + dc[k];
-                if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && candidate(rr, cc))
-                    frontier.push_back(rr * cols + cc);
+                if (inside(rr, cc) && candidate(rr, cc)) frontier.push_back(rr * cols + cc);
             }
         }
         std::sort(frontier.begin(), frontier.end());
