@@ -54,6 +54,12 @@ string(FIND "${said_auto}" "building edges: by the share of each cell's points" 
 if(at EQUAL -1)
     message(FATAL_ERROR "with the class-2 terrain the raised points should decide the edges:\n${said_auto}")
 endif()
+# The lowest raised points reach extract_buildings: the tile's trees over roofs give roof cells under crowns, said
+# with their count (18 at this release; any positive count passes).
+string(REGEX MATCH "roof under overhanging crowns: ([0-9]+) cells" under_crowns "${said_auto}")
+if(NOT under_crowns OR CMAKE_MATCH_1 EQUAL 0)
+    message(FATAL_ERROR "the roof under the tile's overhanging crowns should be found and said:\n${said_auto}")
+endif()
 
 # --buildings class6: the vendor's buildings, both blocks, said in the log.
 facades(class6 --buildings class6)
