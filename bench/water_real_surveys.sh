@@ -18,6 +18,7 @@ surveys=(
     "Topography.laz|2|r-lidar/lidR, inst/extdata/Topography.laz (GPL-3)||17"
     "ahn3_cropped_1.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_1.laz and example_data/bgt/bgt_waterdeel.sqlite (AHN3 and BGT, Dutch open data; repository GPL-3)|bgt_waterdeel.sqlite|26"
     "ahn3_cropped_2.laz|1|tudelft3d/3dfier, example_data/ahn3/ahn3_cropped_2.laz and example_data/bgt/bgt_waterdeel.sqlite (AHN3 and BGT, Dutch open data; repository GPL-3)|bgt_waterdeel.sqlite|26"
+    "lake.laz|2|LAStools/LAStools, data/lake.laz (no licence stated for the data)||17"
 )
 for entry in "${surveys[@]}"; do
     IFS='|' read -r file cell source polygons deck <<<"$entry"

@@ -10,9 +10,11 @@
 #include <lidarfx/synth/water_cases.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -548,6 +550,53 @@ TEST_CASE("flat_water_seeds' level window (radii 1 and 2) against the window rea
                     }
                 }
             }
+        }
+    }
+}
+
+TEST_CASE("survey_land_intensity: the quantile's bin against a sort of the land cells, the same for any thread count")
+{
+    // Random rolling ground with level patches (some of them lowest components), random intensities over six
+    // decades, negative and NaN intensities and dropouts: the answer is the middle of the 16-bit bin of the
+    // ceil(q n)-th smallest land intensity (negative as 0), whatever the thread count.
+    std::mt19937 rng(20261207);
+    std::uniform_real_distribution<double> u(0, 1);
+    water_test::survey s(173, 61);
+    for (std::ptrdiff_t r = 0; r < 173; ++r) {
+        for (std::ptrdiff_t c = 0; c < 61; ++c) {
+            const bool patch = (r / 20) % 2 == 0 && (c / 15) % 2 == 0;
+            const auto z = static_cast<float>(patch ? 9.0 + 0.005 * u(rng) : 10.0 + 2.0 * u(rng));
+            s.min_z(r, c) = z, s.max_z(r, c) = z + 0.02f;
+            s.intensity(r, c) = static_cast<float>(std::pow(10.0, 6.0 * u(rng) - 2.0));
+            if (u(rng) < 0.03) s.intensity(r, c) = -5.0f;
+            if (u(rng) < 0.02) s.intensity(r, c) = std::nanf("");
+            if (u(rng) < 0.05) s.drop(r, c);
+        }
+    }
+    const auto level = flat_level_cells(s.view());
+    const auto comps = label_flat_seed_components(s.view(), level);
+    const auto rings = measure_flat_seed_rings(s.view(), comps);
+    REQUIRE(comps.count() > 0);
+    for (const double q : {0.1, 0.5, 0.93}) {
+        const flat_water_seeds_options opt{.land_intensity_quantile = q};
+        std::vector<float> land;
+        for (std::ptrdiff_t r = 0; r < 173; ++r)
+            for (std::ptrdiff_t c = 0; c < 61; ++c) {
+                const auto l = static_cast<std::size_t>(comps.labels(r, c));
+                const bool lowest_component =
+                    l > 0 && rings.cells[l] > 0 && rings.lower[l] <= opt.max_lower_share * rings.cells[l];
+                if (lowest_component || s.dropout(r, c) || !std::isfinite(s.min_z(r, c)) ||
+                    !std::isfinite(s.intensity(r, c)))
+                    continue;
+                land.push_back(std::max(s.intensity(r, c), 0.0f));
+            }
+        REQUIRE(land.size() > 5000);
+        std::sort(land.begin(), land.end());
+        const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(land.size()))) - 1;
+        const auto expected = std::bit_cast<float>((std::bit_cast<std::uint32_t>(land[k]) & 0xFFFF0000u) | 0x8000u);
+        for (const int threads : {1, 2, 3, 8}) {
+            CAPTURE(threads);
+            CHECK(survey_land_intensity(s.view(), comps, rings, opt, {.threads = threads}) == expected);
         }
     }
 }

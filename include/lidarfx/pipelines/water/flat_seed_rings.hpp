@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/pipelines/water/flat_seed_components.hpp"
 #include "lidarfx/pipelines/water/flat_water_seeds_options.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
@@ -46,10 +47,13 @@ inline flat_seed_rings measure_flat_seed_rings(const water_rasters& in, const fl
 /// roofs, roads, rough and sloping ground, level ground above its surroundings. From a histogram of the
 /// intensities' float representations cut to 16 bits (bins 0.8 % of their value wide; the middle of the
 /// bin is returned; negative intensities count as 0). NaN without such cells or with
-/// opt.land_intensity_quantile < 0. One pass in row order: O(cells).
+/// opt.land_intensity_quantile < 0. One pass over the cells, in bands of rows on run.threads (the histogram's
+/// counts add up exactly: the same result for any thread count): O(cells). Memory: 512 KiB of counts per band
+/// (one band per thread).
 /// @throws invalid_input on rasters of different shapes or rings or options that do not match.
 inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
-                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt = {});
+                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt = {},
+                                    const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -83,7 +83,7 @@ inline raster<std::uint8_t> flat_water_seeds(const water_rasters& in, raster_vie
     auto mask = flat_level_cells(in, excluded, opt, run);
     auto comps = label_flat_seed_components(in, mask, taken, opt, std::move(workspace.labels), run);
     auto rings = measure_flat_seed_rings(in, comps, opt, run);
-    rings.land_intensity = survey_land_intensity(in, comps, rings, opt);
+    rings.land_intensity = survey_land_intensity(in, comps, rings, opt, run);
     workspace.land_intensity = rings.land_intensity;
     const auto keep = select_flat_seeds(comps, rings, opt, surface_slope);
     write_flat_seed_mask(comps, keep, mask, taken, surface_slope, opt);

@@ -8,10 +8,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/filter/min_max_filter.hpp"
 #include "lidarfx/pipelines/water/flat_seed_components.hpp"
@@ -218,12 +220,51 @@ inline bool lowest(const flat_seed_rings& rings, std::size_t l, const flat_water
 
 }  // namespace detail
 
+namespace detail {
+
+/// survey_land_intensity's histogram of the land cells of rows [r0, r1) added into `histogram` (1 << 15 bins, see
+/// survey_land_intensity): columns c go to 4 interleaved sub-histograms by c mod 4, so that a run of cells of one
+/// bin does not wait on its own increments (most land cells of a row share a few bins), summed at the end.
+inline void land_intensity_histogram(const water_rasters& in, raster_view<const std::int32_t> labels,
+                                     const std::vector<std::uint8_t>& land_of, std::ptrdiff_t r0, std::ptrdiff_t r1,
+                                     std::vector<std::uint64_t>& histogram)
+{
+    constexpr std::size_t bins = std::size_t{1} << 15, ways = 4;
+    const std::ptrdiff_t cols = in.min_z.cols();
+    std::vector<std::uint32_t> part(ways * bins, 0);
+    // A sub-histogram gains at most ceil(cols / 4) a row: flushed before it could pass 2^32 - 1.
+    const auto per_row = static_cast<std::uint64_t>((cols + 3) / 4);
+    const std::uint64_t rows_per_flush = std::max<std::uint64_t>(1, UINT32_MAX / std::max<std::uint64_t>(1, per_row));
+    const std::vector<std::uint8_t> ones(in.footprint.empty() ? static_cast<std::size_t>(cols) : 0, 1);
+    for (std::ptrdiff_t r = r0; r < r1; ++r) {
+        const std::int32_t* lab = labels.row(r);
+        const std::uint8_t* drop = in.dropout.row(r);
+        const float* z = in.min_z.row(r);
+        const float* v = in.mean_intensity.row(r);
+        const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const bool keep = land_of[static_cast<std::size_t>(lab[c] + 1)] & (drop[c] == 0) & (inside[c] != 0) &
+                              std::isfinite(z[c]) & std::isfinite(v[c]);
+            const float value = keep ? std::max(v[c], 0.0f) : 0.0f;
+            part[static_cast<std::size_t>(c & 3) * bins + (std::bit_cast<std::uint32_t>(value) >> 16)] += keep;
+        }
+        if (static_cast<std::uint64_t>(r - r0 + 1) % rows_per_flush == 0 || r + 1 == r1) {
+            for (std::size_t w = 0; w < ways; ++w)
+                for (std::size_t b = 0; b < bins; ++b) histogram[b] += std::exchange(part[w * bins + b], 0u);
+        }
+    }
+}
+
+}  // namespace detail
+
 inline double survey_land_intensity(const water_rasters& in, const flat_seed_components& comps,
-                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt)
+                                    const flat_seed_rings& rings, const flat_water_seeds_options& opt,
+                                    const execution& run)
 {
     constexpr const char* fn = "survey_land_intensity";
     detail::validate(in, fn);
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     detail::require_same_shape(in.min_z, comps.labels, fn, "min_z", "comps.labels");
     const std::size_t nb = comps.count();
     detail::require(rings.cells.size() == nb + 1 && rings.lower.size() == nb + 1, fn,
@@ -234,28 +275,28 @@ inline double survey_land_intensity(const water_rasters& in, const flat_seed_com
     std::vector<std::uint8_t> land_of(nb + 2, 1);
     for (std::size_t l = 1; l <= nb; ++l) land_of[l + 1] = !detail::lowest(rings, l, opt);
     // One pass: a histogram over the high 16 bits of the intensity's float representation (sign, exponent and
-    // 7 bits of mantissa), which orders non-negative floats; negative intensities count as 0.
-    const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    const std::vector<std::uint8_t> ones(in.footprint.empty() ? static_cast<std::size_t>(cols) : 0, 1);
-    std::vector<std::size_t> histogram(std::size_t{1} << 15, 0);  // positive floats have the sign bit 0
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* lab = comps.labels.view().row(r);
-        const std::uint8_t* drop = in.dropout.row(r);
-        const float* z = in.min_z.row(r);
-        const float* v = in.mean_intensity.row(r);
-        const std::uint8_t* inside = in.footprint.empty() ? ones.data() : in.footprint.row(r);
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const bool keep = land_of[static_cast<std::size_t>(lab[c] + 1)] & (drop[c] == 0) & (inside[c] != 0) &
-                              std::isfinite(z[c]) & std::isfinite(v[c]);
-            const float value = keep ? std::max(v[c], 0.0f) : 0.0f;
-            histogram[std::bit_cast<std::uint32_t>(value) >> 16] += keep;
-        }
-    }
-    std::size_t n = 0;
-    for (const std::size_t h : histogram) n += h;
+    // 7 bits of mantissa), which orders non-negative floats (positive floats have the sign bit 0); negative
+    // intensities count as 0. One band of rows per thread, each with its own counts, added up after.
+    const std::ptrdiff_t rows = in.min_z.rows();
+    const auto threads = static_cast<std::ptrdiff_t>(detail::resolve_threads(run.threads, fn));
+    const std::ptrdiff_t band = std::max<std::ptrdiff_t>(1, (rows + threads - 1) / threads);
+    std::vector<std::vector<std::uint64_t>> counts(static_cast<std::size_t>((rows + band - 1) / band));
+    parallel_for_rows(
+        rows, band, run.threads,
+        [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+            auto& histogram = counts[static_cast<std::size_t>(r0 / band)];
+            histogram.assign(std::size_t{1} << 15, 0);
+            detail::land_intensity_histogram(in, comps.labels.view(), land_of, r0, r1, histogram);
+        },
+        {}, fn);
+    std::vector<std::uint64_t> histogram(std::size_t{1} << 15, 0);
+    for (const auto& part : counts)
+        for (std::size_t b = 0; b < part.size(); ++b) histogram[b] += part[b];
+    std::uint64_t n = 0;
+    for (const std::uint64_t h : histogram) n += h;
     if (n == 0) return NAN;
     const double target = quantile * static_cast<double>(n);
-    std::size_t seen = 0;
+    std::uint64_t seen = 0;
     for (std::size_t b = 0; b < histogram.size(); ++b) {
         seen += histogram[b];
         if (static_cast<double>(seen) >= target && seen > 0) {
