@@ -80,7 +80,7 @@ TEST_CASE("join_roof_under_crowns: a flat roof's strip under a crown joins; the 
     s.covered(4, 10, 11.0, 6.0);
     s.points(4, 10) = 0, s.raised(4, 10) = 0;
     const roof_under_crowns_result got = s.join(1);
-    CHECK(got.joined == 18);
+    CHECK(got.cells.size() == 18);
     for (std::ptrdiff_t r = 2; r <= 7; ++r)
         for (std::ptrdiff_t c = 7; c <= 9; ++c) {
             CHECK(s.id(r, c) == 1);
@@ -103,7 +103,7 @@ TEST_CASE("join_roof_under_crowns: the roof's plane is carried under the crown, 
         for (std::ptrdiff_t c = 6; c <= 8; ++c) s.covered(r, c, 12.0, crown_scene::plane_at(3.0, 0.5, 0, r, c) - 0.25);
         s.covered(r, 9, 12.0, crown_scene::plane_at(3.0, 0.5, 0, r, 9) - 1.5);
     }
-    CHECK(s.join(1).joined == 12);
+    CHECK(s.join(1).cells.size() == 12);
     for (std::ptrdiff_t r = 1; r <= 4; ++r) {
         for (std::ptrdiff_t c = 6; c <= 8; ++c) {
             CHECK(s.id(r, c) == 1);
@@ -117,7 +117,7 @@ TEST_CASE("join_roof_under_crowns: the roof's plane is carried under the crown, 
     crown_scene d(5, 10);
     d.roof(1, 6.0, 0, 0, 1, 3, 1, 3);
     for (std::ptrdiff_t c = 4; c <= 8; ++c) d.covered(2, c, 12.0, 6.0 - 0.25 * static_cast<double>(c - 3));
-    CHECK(d.join(1).joined == 1);
+    CHECK(d.join(1).cells.size() == 1);
     CHECK(d.id(2, 4) == 1);
     CHECK(d.id(2, 5) == 0);
     // The tolerance: a flat plane carried 0.35 m off joins with plane_tolerance_m 0.4, not with 0.3.
@@ -137,7 +137,7 @@ TEST_CASE("join_roof_under_crowns: a crown wider than max_reach_m keeps its far 
         s.roof(1, 6.0, 0, 0, 1, 3, 1, 2);
         for (std::ptrdiff_t c = 3; c <= 10; ++c) s.covered(2, c, 11.0, 6.0);
         const auto got = s.join(1, {.max_reach_m = reach});
-        CHECK(got.joined == static_cast<std::size_t>(reach));
+        CHECK(got.cells.size() == static_cast<std::size_t>(reach));
         CHECK(s.id(2, 3) == (reach > 0 ? 1 : 0));
         CHECK(s.id(2, 4) == (reach >= 2 ? 1 : 0));
         CHECK(s.id(2, 5) == (reach >= 3 ? 1 : 0));
@@ -160,7 +160,7 @@ TEST_CASE("join_roof_under_crowns: between two buildings a cell takes the plane 
     t.roof(7, 6.0, 0, 0, 1, 3, 6, 7);
     t.covered(2, 4, 11.0, 6.0);
     t.covered(2, 5, 11.0, 6.0);
-    CHECK(t.join(1).joined == 2);
+    CHECK(t.join(1).cells.size() == 2);
     CHECK(t.id(2, 4) == 1);
     CHECK(t.id(2, 5) == 1);  // joined from building 1 in the second round, not from 7
     CHECK(t.id(2, 6) == 7);
@@ -191,13 +191,13 @@ TEST_CASE("join_roof_under_crowns: a scene and its transpose give transposed bui
                 t.planes.a(c, r) = -s.planes.b(r, c), t.planes.b(c, r) = -s.planes.a(r, c);
             }
         const auto joined = s.join(3, {.plane_tolerance_m = 1.0});
-        CHECK(t.join(3, {.plane_tolerance_m = 1.0}).joined == joined.joined);
+        CHECK(t.join(3, {.plane_tolerance_m = 1.0}).cells.size() == joined.cells.size());
         bool same = true;
         for (std::ptrdiff_t r = 0; r < n; ++r)
             for (std::ptrdiff_t c = 0; c < m; ++c)
                 same = same && t.id(c, r) == s.id(r, c) && t.surface(c, r) == s.surface(r, c);
         CHECK(same);
-        joined_in_all += joined.joined;
+        joined_in_all += joined.cells.size();
     }
     CHECK(joined_in_all > 30);  // the scenes join cells: the comparison is not of untouched rasters
 }

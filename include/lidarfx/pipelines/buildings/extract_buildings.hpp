@@ -251,12 +251,14 @@ extract_buildings_result extract_buildings_steps(const In& dsm, const grid& g, r
                 ? join_roof_under_crowns(out.building_id, kept, terrain.surface.view(), lp, returns->lowest,
                                          returns->points, returns->raised, cell_m, opt.under_crowns)
                 : roof_under_crowns_result{};
-        if (crowns.joined > 0) {
-            // The roof under a crown is not vegetation; the surface now holds the roof there (z views it). The
-            // later steps keep every building cell, so the joined cells stay building cells.
-            for (const std::ptrdiff_t i : crowns.cells) out.under_crowns.data()[i] = 1;
-            for (std::ptrdiff_t i = 0; i < out.building_id.size(); ++i)
-                if (out.building_id.data()[i] > 0) out.vegetation.data()[i] = 0;
+        if (!crowns.cells.empty()) {
+            // The roof under a crown is not vegetation (the other building cells are not: candidates never are,
+            // the rim's joins were cleared above); the surface now holds the roof there (z views it). The later
+            // steps keep every building cell, so the joined cells stay building cells.
+            for (const std::ptrdiff_t i : crowns.cells) {
+                out.under_crowns.data()[i] = 1;
+                out.vegetation.data()[i] = 0;
+            }
             lp = local_planes(z, out.building_id, cell_m, opt.local_planes, inner);
         }
     }

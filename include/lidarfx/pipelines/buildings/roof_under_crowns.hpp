@@ -34,8 +34,8 @@ struct roof_under_crowns_options {
 
 /// What join_roof_under_crowns changed.
 struct roof_under_crowns_result {
-    std::size_t joined = 0;             ///< cells that joined a building
-    std::vector<std::ptrdiff_t> cells;  ///< those cells (row · cols + column), round by round in raster order
+    /// The cells that joined a building (row · cols + column), round by round in raster order; cells.size() of them.
+    std::vector<std::ptrdiff_t> cells;
 };
 
 /// Joins to the buildings 1..count of `building_id` (in place) the cells of id 0 where a crown hides their roof,
@@ -188,7 +188,6 @@ inline roof_under_crowns_result join_roof_under_crowns(raster_view<std::int32_t>
             building_id(j.r, j.c) = j.building;
             surface(j.r, j.c) = j.z;
             joined_slopes[j.r * cols + j.c] = j.slopes;
-            ++res.joined;
             res.cells.push_back(j.r * cols + j.c);
             for (int k = 0; k < 4; ++k) {
                 const std::ptrdiff_t rr = j.r + dr[k], cc = j.c + dc[k];
