@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -166,6 +167,41 @@ TEST_CASE("water/water_surface_slope: equals the definition on random rasters, e
             }
             CHECK(unequal == 0);
         }
+    }
+}
+
+TEST_CASE("water/water_surface_slope: threads reading the lazy slope at once read the whole raster's values")
+{
+    // 4 threads read every cell of a 200 x 300 raster (4 x 19 tiles), each in its own random order, so tiles are
+    // computed by whichever thread comes first while others wait for them or compute other tiles.
+    const unsigned seed = 78;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> height(99.7f, 100.3f), share(0.0f, 1.0f);
+    raster<float> z(200, 300);
+    for (auto& v : z) v = share(rng) < 0.1f ? NAN : height(rng);
+    const water_surface_slope_options opt{.radius_cells = 3, .min_cells = 5, .band_m = 0.2};
+    const auto whole = water_surface_slope(z, 2.0, opt);
+    for (int trial = 0; trial < 3; ++trial) {
+        INFO("seed " << seed << ", trial " << trial);
+        lazy_water_surface_slope lazy(z, 2.0, opt);
+        std::vector<std::vector<std::ptrdiff_t>> orders(4);
+        for (auto& order : orders) {
+            order.resize(static_cast<std::size_t>(z.rows() * z.cols()));
+            for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::ptrdiff_t>(i);
+            std::shuffle(order.begin(), order.end(), rng);
+        }
+        std::vector<std::ptrdiff_t> unequal(orders.size(), 0);
+        std::vector<std::thread> readers;
+        for (std::size_t t = 0; t < orders.size(); ++t) {
+            readers.emplace_back([&, t] {
+                for (const auto i : orders[t]) {
+                    const float got = lazy(i / z.cols(), i % z.cols()), want = whole(i / z.cols(), i % z.cols());
+                    unequal[t] += std::memcmp(&got, &want, sizeof got) != 0;
+                }
+            });
+        }
+        for (auto& r : readers) r.join();
+        for (const auto u : unequal) CHECK(u == 0);
     }
 }
 

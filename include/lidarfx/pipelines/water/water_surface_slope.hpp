@@ -52,8 +52,9 @@ inline raster<float> water_surface_slope(raster_view<const float> min_z, double 
 /// of its cells. Its readers (the growth's level gate, the flat and bridge seeds' slope tests) look only
 /// around water, often a fifth of a survey or less. The values are those of water_surface_slope bit for bit.
 /// Only the tiles read take memory (in chunks of 256 tiles, 1 MiB). Keeps a view of min z (keep it alive).
-/// Threads may read it at once: a tile is computed once, by the first thread that reads it, while the others
-/// wait for it (the parallel growth of grow_waterbodies); reading a computed tile takes no lock.
+/// Threads may read it at once (the parallel growth of grow_waterbodies): a tile is computed once, by the first
+/// thread that reads it, while threads reading that tile wait for it; other tiles are computed at the same time,
+/// and reading a computed tile takes no lock.
 /// @throws invalid_input on cell_m <= 0 or options out of range.
 class lazy_water_surface_slope {
 public:
@@ -74,18 +75,20 @@ public:
 private:
     static constexpr std::size_t chunk_tiles = 256, tile_size = tile_rows * tile_cols;
 
+    static constexpr std::int32_t unread = -1, computing = -2;  // a tile's slot before it holds one
+
     float* tile_cells(std::int32_t slot) noexcept;
-    std::int32_t compute(std::ptrdiff_t tr, std::ptrdiff_t tc);  // a tile's slot, computed
+    std::int32_t publish(std::atomic<std::int32_t>& tile, std::ptrdiff_t tr, std::ptrdiff_t tc);  // its slot
+    std::int32_t compute(std::ptrdiff_t tr, std::ptrdiff_t tc);  // a new slot, with the tile's cells
 
     raster_view<const float> min_z_;
     double cell_m_;
     water_surface_slope_options opt_;
     std::ptrdiff_t tiles_across_;
-    std::vector<std::atomic<std::int32_t>> tile_;   // each tile's slot in the chunks, -1 before its first read
+    std::vector<std::atomic<std::int32_t>> tile_;   // each tile's slot in the chunks, or unread, or computing
     std::vector<std::unique_ptr<float[]>> chunks_;  // as many as the tiles can fill, allocated as they fill
-    std::mutex compute_;                            // held while a tile is computed (used_, chunks_, scratch_)
+    std::mutex reserve_;                            // held while a slot is taken (used_, chunks_)
     std::size_t used_ = 0;
-    std::unique_ptr<detail::slope_scratch> scratch_;  // row buffers of the tiles computed
 };
 
 /// The surface slope a step reads: a raster's cells (water_surface_slope), a lazy_water_surface_slope, or

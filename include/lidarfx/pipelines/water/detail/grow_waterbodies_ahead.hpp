@@ -88,6 +88,7 @@ inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligi
             throw;
         }
         clear_marks();
+        if (a.overtaken) a.visited = {};  // its turn grows it again, if at all: nothing of it is read
     } catch (...) {
         a.error = std::current_exception();
     }
@@ -99,10 +100,11 @@ inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligi
 /// no body accepted before its turn holds one of those cells; else it is grown again at its turn, as the sequential
 /// run grows it. Floods are not grown ahead, or stop, where they would most likely be overtaken: a seed with a cell
 /// in a body accepted so far, and a flood reaching a cell of an earlier seed. Turns are taken in seed order by the
-/// calling thread, which grows floods ahead while it waits; the other threads grow floods ahead, at most 2 per
-/// thread beyond the turn. Memory beyond the sequential run: a copy of the eligible cells and a mark raster per
-/// thread (1 byte a cell each), and, until its turn, each flood ahead's region and the cells it queued (16 bytes a
-/// cell reached, for at most 2 floods per thread).
+/// calling thread, which grows floods ahead while it waits; the other threads grow floods ahead. At most 2 floods
+/// per thread are held (growing, or grown and waiting for their turn); floods that stopped or did not grow hold
+/// nothing, so the threads run past the seeds a lake still being flooded holds. Memory beyond the sequential run: a
+/// copy of the eligible cells and a mark raster per thread (1 byte a cell each), and each held flood's region and
+/// the cells it queued (16 bytes a cell reached).
 inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_labels,
                                    const seed_cell_runs& seed_lists, std::size_t n, raster_view<const float> min_z,
                                    raster_view<const float> max_z, grow_waterbodies_result& out,
@@ -122,16 +124,18 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
 
     std::mutex mutex;
     std::condition_variable changed_state;
-    std::size_t next = 1, turn = 1;  // the next seed to grow ahead; the seed whose turn it is
-    std::vector<std::uint8_t> ready(n + 1, 0);
+    std::size_t next = 1;                                       // the next seed to grow ahead
+    std::vector<std::uint8_t> ready(n + 1, 0), held(n + 1, 0);  // held: a grown flood waits for its turn
     bool stop = false;
-    const std::size_t window = 2 * threads;
-    const auto can_claim = [&] { return next <= n && next < turn + window; };
+    const std::size_t max_held = 2 * threads;
+    std::size_t floods_held = 0;
+    const auto can_claim = [&] { return next <= n && floods_held < max_held; };
     // Claims the next seed, grows its flood with the lock released, and marks it ready.
     std::vector<std::uint8_t> overtaken(n + 1, 0);  // a body accepted so far holds a cell of the seed
     const auto grow_next = [&](std::unique_lock<std::mutex>& lock, raster<std::uint8_t>& marks) {
         const std::size_t s = next++;
         const bool known_overtaken = overtaken[s] != 0;
+        ++floods_held;
         lock.unlock();
         if (known_overtaken) {
             ahead[s].overtaken = true;  // its turn decides (most often: skipped)
@@ -139,6 +143,11 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
             grow_ahead(s, marks);
         }
         lock.lock();
+        if (ahead[s].grows && !ahead[s].overtaken && !ahead[s].error) {
+            held[s] = 1;
+        } else {
+            --floods_held;
+        }
         ready[s] = 1;
         changed_state.notify_all();
     };
@@ -179,14 +188,16 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
         report(run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
         {
             std::unique_lock lock(mutex);
-            turn = s;  // floods ahead may now reach seed s + window - 1
-            changed_state.notify_all();
             while (!ready[s]) {
                 if (can_claim()) {
                     grow_next(lock, ahead_marks);
                 } else {
                     changed_state.wait(lock);
                 }
+            }
+            if (held[s]) {
+                --floods_held;  // its turn takes it: another flood may be grown ahead
+                changed_state.notify_all();
             }
         }
         flood_ahead a = std::move(ahead[s]);  // no other thread touches ahead[s] once it is ready

@@ -227,29 +227,47 @@ inline lazy_water_surface_slope::lazy_water_surface_slope(raster_view<const floa
       opt_(opt),
       tiles_across_((min_z.cols() + tile_cols - 1) / tile_cols),
       tile_(static_cast<std::size_t>((min_z.rows() + tile_rows - 1) / tile_rows * tiles_across_)),
-      chunks_((tile_.size() + chunk_tiles - 1) / chunk_tiles),
-      scratch_(std::make_unique<detail::slope_scratch>(tile_cols))
+      chunks_((tile_.size() + chunk_tiles - 1) / chunk_tiles)
 {
     detail::validate(opt, cell_m, "lazy_water_surface_slope");
-    for (auto& slot : tile_) slot.store(-1, std::memory_order_relaxed);
+    for (auto& slot : tile_) slot.store(unread, std::memory_order_relaxed);
 }
 
 inline float lazy_water_surface_slope::operator()(std::ptrdiff_t r, std::ptrdiff_t c)
 {
     const std::ptrdiff_t tr = r / tile_rows, tc = c / tile_cols;
-    std::atomic<std::int32_t>& slot = tile_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
+    std::atomic<std::int32_t>& tile = tile_[static_cast<std::size_t>(tr * tiles_across_ + tc)];
     // A tile's cells are written once, before its slot is published (release); a reader that sees the slot
     // (acquire) sees the cells.
-    std::int32_t s = slot.load(std::memory_order_acquire);
-    if (s < 0) [[unlikely]] {
-        const std::lock_guard lock(compute_);
-        s = slot.load(std::memory_order_relaxed);
-        if (s < 0) {
-            s = compute(tr, tc);
-            slot.store(s, std::memory_order_release);
+    std::int32_t s = tile.load(std::memory_order_acquire);
+    if (s < 0) [[unlikely]]
+        s = publish(tile, tr, tc);
+    return tile_cells(s)[(r - tr * tile_rows) * tile_cols + (c - tc * tile_cols)];
+}
+
+inline std::int32_t lazy_water_surface_slope::publish(std::atomic<std::int32_t>& tile, std::ptrdiff_t tr,
+                                                      std::ptrdiff_t tc)
+{
+    // The first reader marks the tile computing; readers of that tile wait until its slot is published.
+    for (std::int32_t s = tile.load(std::memory_order_acquire);; s = tile.load(std::memory_order_acquire)) {
+        if (s >= 0) return s;
+        if (s == computing) {
+            tile.wait(computing, std::memory_order_acquire);
+        } else if (tile.compare_exchange_strong(s, computing, std::memory_order_acquire)) {
+            break;
         }
     }
-    return tile_cells(s)[(r - tr * tile_rows) * tile_cols + (c - tc * tile_cols)];
+    std::int32_t s = unread;
+    try {
+        s = compute(tr, tc);
+    } catch (...) {
+        tile.store(unread, std::memory_order_release);  // the next reader tries again
+        tile.notify_all();
+        throw;
+    }
+    tile.store(s, std::memory_order_release);
+    tile.notify_all();
+    return s;
 }
 
 inline float* lazy_water_surface_slope::tile_cells(std::int32_t slot) noexcept
@@ -260,15 +278,20 @@ inline float* lazy_water_surface_slope::tile_cells(std::int32_t slot) noexcept
 
 inline std::int32_t lazy_water_surface_slope::compute(std::ptrdiff_t tr, std::ptrdiff_t tc)
 {
-    const auto slot = static_cast<std::int32_t>(used_);
-    if (static_cast<std::size_t>(slot) % chunk_tiles == 0)
-        chunks_[static_cast<std::size_t>(slot) / chunk_tiles] =
-            std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size);
+    detail::slope_scratch scratch(tile_cols);  // first: once a slot is taken nothing throws
+    std::int32_t slot = 0;
+    {
+        const std::lock_guard lock(reserve_);
+        slot = static_cast<std::int32_t>(used_);
+        if (static_cast<std::size_t>(slot) % chunk_tiles == 0)
+            chunks_[static_cast<std::size_t>(slot) / chunk_tiles] =
+                std::make_unique_for_overwrite<float[]>(chunk_tiles * tile_size);
+        ++used_;  // only once its chunk is there: a failed allocation leaves the cache as it was
+    }
     const std::ptrdiff_t r0 = tr * tile_rows, c0 = tc * tile_cols;
     const std::ptrdiff_t r1 = std::min(rows(), r0 + tile_rows), c1 = std::min(cols(), c0 + tile_cols);
     detail::surface_slope_block(min_z_, cell_m_, opt_, r0, r1, c0, c1,
-                                raster_view<float>(tile_cells(slot), r1 - r0, c1 - c0, tile_cols), *scratch_);
-    ++used_;  // only once the tile is computed: a failed allocation leaves the cache as it was
+                                raster_view<float>(tile_cells(slot), r1 - r0, c1 - c0, tile_cols), scratch);
     return slot;
 }
 
