@@ -81,6 +81,7 @@
 #include "lidarfx/pipelines/pv/roof_yield.hpp"
 #include "lidarfx/pipelines/solar/irradiance_maps.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
+#include "lidarfx/pipelines/water/channel_water_seeds.hpp"
 #include "lidarfx/pipelines/water/cut_at_level_bands.hpp"
 #include "lidarfx/pipelines/water/enforce_shorelines.hpp"
 #include "lidarfx/pipelines/water/extract_waterbodies.hpp"

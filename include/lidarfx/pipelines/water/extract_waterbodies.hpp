@@ -10,6 +10,7 @@
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/points/rasterize.hpp"
 #include "lidarfx/pipelines/water/assess_water_inputs.hpp"
+#include "lidarfx/pipelines/water/channel_water_seeds.hpp"
 #include "lidarfx/pipelines/water/cut_at_level_bands.hpp"
 #include "lidarfx/pipelines/water/fill_small_islands.hpp"
 #include "lidarfx/pipelines/water/flat_water_seeds.hpp"
@@ -48,21 +49,25 @@ struct extract_waterbodies_options {
                                  .line_length_cells = 4};  ///< water_seeds: opening, size and straight runs
                                                            ///< of the seeds from dropouts and of the flat seeds
                                                            ///< (3, 50 and 4 here: a river two cells wide seeds)
-    bool flat_seeds = false;                ///< flat_water_seeds: also seed from level, low cells with fewer returns
-                                            ///< than the land around them (or a few % fewer and dark or smooth):
-                                            ///< water without dropouts (turbid, specular, dense surveys). These
-                                            ///< seeds (their cells outside the bodies of the dropout seeds, cut at
-                                            ///< level bands of 2 grow.level_gate_m, then water_seeds) grow after
-                                            ///< the dropout seeds. Off by default: on the water family, with
-                                            ///< grow.level_follow_max_slope = 0.008, they lift sensitivity and
-                                            ///< accuracy but take about 1.4x the time (docs/waterbodies.md)
-    flat_water_seeds_options flat = {};     ///< flat_water_seeds: its thresholds
-    bool flat_seed_dropouts = true;         ///< join_adjacent_dropouts: the dropout cells next to a flat seed cell
-                                            ///< (eligible, in no body) join the seed mask before its opening:
-                                            ///< water with scattered dropouts keeps its seeds whole
-    grow_waterbody_options grow = {};       ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
-    join_level_cells_options level = {};    ///< join_level_cells: narrow water next to each grown region
-    grow_waterbodies_options growing = {};  ///< grow_waterbodies: min_free_seed_share
+    bool flat_seeds = false;                   ///< flat_water_seeds: also seed from level, low cells with fewer returns
+                                               ///< than the land around them (or a few % fewer and dark or smooth):
+                                               ///< water without dropouts (turbid, specular, dense surveys). These
+                                               ///< seeds (their cells outside the bodies of the dropout seeds, cut at
+                                               ///< level bands of 2 grow.level_gate_m, then water_seeds) grow after
+                                               ///< the dropout seeds. Off by default: on the water family, with
+                                               ///< grow.level_follow_max_slope = 0.008, they lift sensitivity and
+                                               ///< accuracy but take about 1.4x the time (docs/waterbodies.md)
+    flat_water_seeds_options flat = {};        ///< flat_water_seeds: its thresholds
+    bool flat_seed_dropouts = true;            ///< join_adjacent_dropouts: the dropout cells next to a flat seed cell
+                                               ///< (eligible, in no body) join the seed mask before its opening:
+                                               ///< water with scattered dropouts keeps its seeds whole
+    bool channel_seeds = false;                ///< channel_water_seeds (with flat_seeds, whose survey land intensity it
+                                               ///< reads): seeds in level, dark strips between two banks, grown after
+                                               ///< the flat seeds: narrow rivers that return as many pulses as the land
+    channel_water_seeds_options channel = {};  ///< channel_water_seeds: level, banks, width, darkness, size
+    grow_waterbody_options grow = {};          ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
+    join_level_cells_options level = {};       ///< join_level_cells: narrow water next to each grown region
+    grow_waterbodies_options growing = {};     ///< grow_waterbodies: min_free_seed_share
     water_surface_slope_options surface_slope = {};  ///< the surface slope (a lazy_water_surface_slope: tiles
                                                      ///< computed where read), used when grow.level_gate_m > 0
                                                      ///< and grow.level_follow_max_slope >= 0
@@ -97,7 +102,8 @@ inline extract_waterbodies_options previous_water_method();
 /// level-surface cue (grow.level_follow_max_slope = flat.max_surface_slope, 0.008 m/m), which makes a faster
 /// level drift safe (grow.level_drift_m = 0.01 m per cell), bridge seeds from a single walk over a deck
 /// (bridge_seed_min_cells = 4) and cells within 0.03 m of the level joining at any angle
-/// (grow.level_any_angle_m: narrow rivers). It also finds water without dropouts (turbid, specular, dense surveys) and
+/// (grow.level_any_angle_m: narrow rivers), and channel_seeds (narrow rivers that return as many pulses as the
+/// land). It also finds water without dropouts (turbid, specular, dense surveys) and
 /// is what `lidarfx water` runs unless told --dropout-seeds-only; it takes about 1.4x the defaults' time on rasters
 /// (docs/performance.md).
 inline extract_waterbodies_options flat_seed_water_method();
@@ -126,6 +132,9 @@ struct extract_waterbodies_result {
 ///  4. with flat_seeds: flat_water_seeds outside the bodies grown, join_adjacent_dropouts (flat_seed_dropouts),
 ///     cut_at_level_bands of 2 grow.level_gate_m (with the gate), water_seeds, grown into the cells still
 ///     eligible;
+///  4b. with flat_seeds and channel_seeds: channel_water_seeds outside the bodies grown and the vegetation, with
+///     the survey land intensity of the flat seeds, water_seeds without opening (channel.min_cells), grown the
+///     same way;
 ///  5. bridge_seed_rounds rounds of seeds_beyond_bridges (water cut off by a deck from a body), grown the
 ///     same way;
 ///  6. join_across_bridges (join_bridges), trim_raised_edge_cells (trim_edges), join_shore_cells (shore_cells,

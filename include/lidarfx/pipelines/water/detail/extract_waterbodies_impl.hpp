@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
@@ -66,6 +67,7 @@ inline void validate(const extract_waterbodies_options& o, double cell_m, const 
     validate(o.intensity, fn);
     validate(o.seeds, fn);
     if (o.flat_seeds) validate(o.flat, fn);
+    if (o.flat_seeds && o.channel_seeds) validate(o.channel, fn);
     validate(o.grow, fn);
     validate(o.level, fn);
     require(o.growing.min_free_seed_share > 0 && o.growing.min_free_seed_share <= 1, fn, "min_free_seed_share",
@@ -154,6 +156,53 @@ inline raster<std::uint8_t> flat_seed_mask(const water_rasters& in, const water_
     return mask;
 }
 
+/// Takes back the bodies grown from `first` on (grown.bodies[first..], labels first + 1..) whose mean intensity over
+/// their cells with a return exceeds `limit`: their cells become land and eligible again, the later bodies take
+/// their labels in order. A flood from a seed that only its shape vouches for (channel_water_seeds) that spread
+/// over land of land intensity is not water. O(cells).
+inline void drop_bright_bodies(grow_waterbodies_result& grown, std::size_t first, const water_rasters& in, double limit,
+                               raster<std::uint8_t>& eligible)
+{
+    const std::size_t n = grown.bodies.size();
+    if (n <= first) return;
+    const auto lowest = static_cast<std::int32_t>(first);  // labels above it are the new bodies
+    std::vector<double> sum(n - first, 0.0);
+    std::vector<std::size_t> measured(n - first, 0);
+    const std::ptrdiff_t rows = grown.labels.rows(), cols = grown.labels.cols();
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::int32_t* label = grown.labels.view().row(r);
+        const float* light = in.mean_intensity.row(r);
+        const std::uint8_t* dropout = in.dropout.row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (label[c] <= lowest || dropout[c] || !std::isfinite(light[c])) continue;
+            const auto k = static_cast<std::size_t>(label[c] - lowest - 1);
+            sum[k] += light[c];
+            ++measured[k];
+        }
+    }
+    std::vector<std::int32_t> relabel(n - first, 0);  // 0: dropped
+    std::size_t kept = first;
+    for (std::size_t k = 0; k < n - first; ++k) {
+        if (measured[k] > 0 && sum[k] / static_cast<double>(measured[k]) > limit) continue;
+        grown.bodies[kept] = grown.bodies[first + k];
+        relabel[k] = static_cast<std::int32_t>(kept + 1);
+        grown.bodies[kept].label = relabel[k];
+        ++kept;
+    }
+    if (kept == n) return;
+    grown.seeds_grown -= n - kept;
+    grown.bodies.resize(kept);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        std::int32_t* label = grown.labels.view().row(r);
+        std::uint8_t* open = eligible.view().row(r);
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            if (label[c] <= lowest) continue;
+            label[c] = relabel[static_cast<std::size_t>(label[c] - lowest - 1)];
+            if (label[c] == 0) open[c] = 1;
+        }
+    }
+}
+
 /// Clears the cells of `mask` whose intensity is at least `limit` (land-like: a seed beyond a bridge that lands
 /// on a level lawn of land intensity would flood it); NaN limit: none. O(cells).
 inline void clear_at_least(raster<std::uint8_t>& mask, raster_view<const float> intensity, double limit)
@@ -237,6 +286,19 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
             auto more = water_seeds(mask, opt.seeds, std::move(labels), seed_run);
             detail::grow_more_seeds(field, more, in, grown, res, later, 0.8, 0.1, fn);
             labels = std::move(more.labels);
+        }
+        if (opt.channel_seeds) {
+            const auto channels = channel_water_seeds(in.min_z, in.mean_intensity, res.vegetation, grown.labels, cell_m,
+                                                      land_intensity, opt.channel, seed_run);
+            if (mask_any(channels)) {
+                auto more = water_seeds(channels, {.opening_size_cells = 1, .min_cells = opt.channel.min_cells},
+                                        std::move(labels), seed_run);
+                const std::size_t before = grown.bodies.size();
+                if (more.count() > 0) detail::grow_more_seeds(field, more, in, grown, res, later, 0.9, 0.0, fn);
+                detail::drop_bright_bodies(grown, before, in, opt.channel.max_intensity_ratio * land_intensity,
+                                           field.eligible);
+                labels = std::move(more.labels);
+            }
         }
     }
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {  // each round's bodies may end at a bridge
