@@ -15,7 +15,7 @@
 // (flat.max_surface_slope), WF_FLAT_DROPOUTS (0/1, flat_seed_dropouts), WF_FREE_SHARE (growing.min_free_seed_share),
 // WF_TRIM (0/1, trim_edges), WF_TRIM_{MIN,MAX,WIN} (trim_raised_edge_cells options), WF_SHORE (0/1, shore_cells),
 // WF_SHORE_{WIN,CONTRAST,SHARE,NB} (join_shore_cells options), WF_CHANNEL (0/1, channel_seeds),
-// WF_CH_{TOL,ALONG,RISE,WIDTH,DARK,MIN,CLEAR} (channel_water_seeds options), WF_PRESET=1 (start from
+// WF_CH_{TOL,ALONG,RISE,WIDTH,DARK,MIN,CLEAR,LOWER} (channel_water_seeds options), WF_PRESET=1 (start from
 // flat_seed_water_method() instead of the defaults); WATER_FAMILY_VERBOSE=1 prints every scene's scores to stderr.
 #include <algorithm>
 #include <chrono>
@@ -186,6 +186,7 @@ int main(int argc, char** argv)
              if (const char* v = std::getenv("WF_CH_DARK")) o.channel.max_intensity_ratio = std::atof(v);
              if (const char* v = std::getenv("WF_CH_MIN")) o.channel.min_cells = static_cast<std::size_t>(std::atoi(v));
              if (const char* v = std::getenv("WF_CH_CLEAR")) o.channel.clear_cells = std::atoi(v);
+             if (const char* v = std::getenv("WF_CH_LOWER")) o.channel.max_lower_share = std::atof(v);
              if (const char* v = std::getenv("WF_FREE_SHARE")) o.growing.min_free_seed_share = std::atof(v);
              if (const char* v = std::getenv("WF_GATE")) o.grow.level_gate_m = std::atof(v);
              if (const char* v = std::getenv("WF_DRIFT")) o.grow.level_drift_m = std::atof(v);

@@ -121,26 +121,37 @@ TEST_CASE("water/channel_water_seeds: the banks, the width and the level decide"
             for (std::ptrdiff_t r = 20; r < 24; ++r) CHECK(seeds(r, c) == 0);
         }
     }
+    SUBCASE("a level strip above lower ground around it (a flat roof between higher roof parts) is not seeded")
+    {
+        channel_scene roof(3, 8.0);  // the strip at 100 m between parts at 108 m
+        for (std::ptrdiff_t r = 0; r < 40; ++r)
+            for (std::ptrdiff_t c = 0; c < 60; ++c)
+                if (r < 12 || r > 26) roof.z(r, c) = 97.0f;  // the ground, 4 rows beyond each higher part
+        CHECK(count_of(roof.seeds()) == 0);
+        CHECK(count_of(roof.seeds({.max_lower_share = 0.3})) == 3 * 58);
+    }
     SUBCASE("a trough falling more than the tolerance per cell is not level along any axis")
     {
         channel_scene scene(3, 2.0);
         for (std::ptrdiff_t r = 0; r < 40; ++r)
             for (std::ptrdiff_t c = 0; c < 60; ++c) scene.z(r, c) += 0.06f * static_cast<float>(c);
         CHECK(count_of(scene.seeds()) == 0);
-        CHECK(count_of(scene.seeds({.level_tolerance_m = 0.13, .bank_rise_m = 0.2})) == 3 * 58);  // 2 cells along
+        // 3 cells along; the channel falling away within max_width_m is up to 7 % of the surroundings.
+        const channel_water_seeds_options steep{.level_tolerance_m = 0.19, .bank_rise_m = 0.25, .max_lower_share = 0.1};
+        CHECK(count_of(scene.seeds(steep)) == 3 * 58);
     }
     SUBCASE("dropouts: passed across the strip, not seeds themselves; along, one measured cell each way suffices")
     {
         channel_scene scene(3, 0.5);
         for (std::ptrdiff_t c = 0; c < 60; c += 2) scene.z(19, c) = NAN;  // every other cell of the middle row
-        scene.z(18, 30) = scene.z(18, 31) = NAN;
+        scene.z(18, 30) = scene.z(18, 31) = scene.z(18, 32) = NAN;
         const auto seeds = scene.seeds();
         CHECK(seeds(19, 2) == 0);   // no return
         CHECK(seeds(19, 3) == 1);   // one measured cell each way, 1 cell away
         CHECK(seeds(18, 28) == 1);  // 29 measured on one way
-        CHECK(seeds(18, 29) == 0);  // 30 and 31 empty: nothing measured on that way
-        CHECK(seeds(18, 32) == 0);  // likewise
-        CHECK(seeds(18, 33) == 1);  // 31 empty, 32 measured
+        CHECK(seeds(18, 29) == 0);  // 30, 31 and 32 empty: nothing measured within 3 cells on that way
+        CHECK(seeds(18, 33) == 0);  // likewise
+        CHECK(seeds(18, 34) == 1);  // 33 measured
         CHECK(seeds(20, 30) == 1);  // across, the empty cells of row 19 are part of the strip
     }
 }
@@ -213,7 +224,7 @@ TEST_CASE("water/channel_water_seeds: any thread count gives the same seeds; ref
     CHECK_THROWS_AS(channel_water_seeds(z, intensity, {}, {}, 2.0, 80.0, {.max_intensity_ratio = 0}), invalid_input);
 }
 
-TEST_CASE("water/channel_water_seeds: with channel seeds, lidarfx water's method finds a narrow river it misses")
+TEST_CASE("water/channel_water_seeds: lidarfx water's method finds a narrow river it misses without channel seeds")
 {
     // Narrow-river tuning seed 4 on 3 m cells: a river 5-15 m wide that neither dropouts nor flat seeds start.
     synth::water_family_options o;
@@ -225,9 +236,9 @@ TEST_CASE("water/channel_water_seeds: with channel seeds, lidarfx water's method
     o.cell_m = 3;
     const auto scene = synth::water_family(o);
     const auto rasters = rasterize(scene.points.cloud(), scene.g);
-    const auto without = flat_seed_water_method();  // channel seeds off
-    auto with = without;
-    with.channel_seeds = true;
+    const auto with = flat_seed_water_method();  // channel seeds on
+    auto without = with;
+    without.channel_seeds = false;
     const auto with_channels =
         confusion_counts(extract_waterbodies(rasters, with).water, scene.water_filled, scene.cell_m);
     const auto flat_only =
@@ -246,9 +257,7 @@ TEST_CASE("water/channel_water_seeds: a channel seed's flood that spreads over b
     o.kind = synth::water_family_kind::river;
     const auto scene = synth::water_family(o);
     const auto rasters = rasterize(scene.points.cloud(), scene.g);
-    auto method = flat_seed_water_method();
-    method.channel_seeds = true;
-    const auto result = extract_waterbodies(rasters, method);
+    const auto result = extract_waterbodies(rasters, flat_seed_water_method());
     const auto scores = confusion_counts(result.water, scene.water_filled, scene.cell_m);
     CHECK(scores.specificity() > 0.99);
     CHECK(scores.sensitivity() > 0.95);

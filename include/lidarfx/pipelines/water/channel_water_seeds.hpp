@@ -17,8 +17,8 @@ struct channel_water_seeds_options {
     double level_tolerance_m = 0.05;   ///< along the channel and across its water, a cell's min z lies within this
                                        ///< of the cell tested, metres, >= 0. Default 0.05 (range noise and
                                        ///< waves on the lowest of a few returns)
-    int along_cells = 2;               ///< cells read each way along the channel; each way holds at least one
-                                       ///< with a return, >= 1. Default 2
+    int along_cells = 3;               ///< cells read each way along the channel; each way holds at least one
+                                       ///< with a return, >= 1. Default 3 (2 let dark hollows of land through)
     double bank_rise_m = 0.1;          ///< a bank is the first cell across the channel at least this above the
                                        ///< cell tested, metres, > level_tolerance_m. Default 0.1 (a beach rising 3 %
                                        ///< over 3 m)
@@ -30,6 +30,10 @@ struct channel_water_seeds_options {
                                        ///< near infrared; a level trough of land is not)
     std::size_t min_cells = 6;         ///< 8-connected groups of channel cells smaller than this are dropped,
                                        ///< >= 1. Default 6
+    double max_lower_share = 0.05;     ///< of the cells with a return within max_width_m (Chebyshev distance, in
+                                       ///< cells rounded up), at most this share lie more than bank_rise_m below
+                                       ///< the cell, in [0, 1]. Default 0.05 (water lies at the bottom of its
+                                       ///< surroundings; a dark flat roof between higher ones does not)
     int clear_cells = 4;               ///< a channel cell with a body (taken > 0) within this Chebyshev distance
                                        ///< is left out, >= 0. Default 4 (beside water already found a level, dark
                                        ///< strip is its shore: wet ground above the water)
@@ -46,6 +50,9 @@ struct channel_water_seeds_options {
 ///    sides;
 ///  - the strip (its cells and the cell) is at most max_width_m wide, steps of cell_m, or cell_m·√2 on the
 ///    diagonals.
+/// A channel cell also lies at the bottom of its surroundings: of the cells with a return within max_width_m
+/// (Chebyshev distance), at most max_lower_share lie more than bank_rise_m below it (a flat roof between higher
+/// roof parts is a level strip between banks too, but the ground around the building lies below it).
 /// Channel cells with a body within clear_cells (Chebyshev distance) are left out, then groups of channel cells
 /// smaller than min_cells (8-connected) are dropped. A river 2 cells wide that returns
 /// as many pulses as the land has no level 3×3 window and no run of dropouts, so neither the flat seeds nor the

@@ -49,21 +49,23 @@ struct extract_waterbodies_options {
                                  .line_length_cells = 4};  ///< water_seeds: opening, size and straight runs
                                                            ///< of the seeds from dropouts and of the flat seeds
                                                            ///< (3, 50 and 4 here: a river two cells wide seeds)
-    bool flat_seeds = false;                   ///< flat_water_seeds: also seed from level, low cells with fewer returns
-                                               ///< than the land around them (or a few % fewer and dark or smooth):
-                                               ///< water without dropouts (turbid, specular, dense surveys). These
-                                               ///< seeds (their cells outside the bodies of the dropout seeds, cut at
-                                               ///< level bands of 2 grow.level_gate_m, then water_seeds) grow after
-                                               ///< the dropout seeds. Off by default: on the water family, with
-                                               ///< grow.level_follow_max_slope = 0.008, they lift sensitivity and
-                                               ///< accuracy but take about 1.4x the time (docs/waterbodies.md)
-    flat_water_seeds_options flat = {};        ///< flat_water_seeds: its thresholds
-    bool flat_seed_dropouts = true;            ///< join_adjacent_dropouts: the dropout cells next to a flat seed cell
-                                               ///< (eligible, in no body) join the seed mask before its opening:
-                                               ///< water with scattered dropouts keeps its seeds whole
-    bool channel_seeds = false;                ///< channel_water_seeds (with flat_seeds, whose survey land intensity it
-                                               ///< reads): seeds in level, dark strips between two banks, grown after
-                                               ///< the flat seeds: narrow rivers that return as many pulses as the land
+    bool flat_seeds = false;             ///< flat_water_seeds: also seed from level, low cells with fewer returns
+                                         ///< than the land around them (or a few % fewer and dark or smooth):
+                                         ///< water without dropouts (turbid, specular, dense surveys). These
+                                         ///< seeds (their cells outside the bodies of the dropout seeds, cut at
+                                         ///< level bands of 2 grow.level_gate_m, then water_seeds) grow after
+                                         ///< the dropout seeds. Off by default: on the water family, with
+                                         ///< grow.level_follow_max_slope = 0.008, they lift sensitivity and
+                                         ///< accuracy but take about 1.4x the time (docs/waterbodies.md)
+    flat_water_seeds_options flat = {};  ///< flat_water_seeds: its thresholds
+    bool flat_seed_dropouts = true;      ///< join_adjacent_dropouts: the dropout cells next to a flat seed cell
+                                         ///< (eligible, in no body) join the seed mask before its opening:
+                                         ///< water with scattered dropouts keeps its seeds whole
+    bool channel_seeds = false;          ///< channel_water_seeds (with flat_seeds, whose survey land intensity it
+                                         ///< reads): seeds in level, dark strips between two banks, grown after
+                                         ///< the flat seeds: narrow rivers that return as many pulses as the land;
+                                         ///< a body of them brighter than the seeds may be is taken back. Off here
+                                         ///< (as flat_seeds is), on in flat_seed_water_method()
     channel_water_seeds_options channel = {};  ///< channel_water_seeds: level, banks, width, darkness, size
     grow_waterbody_options grow = {};          ///< grow_waterbody: θ schedule, KS test, min_ks_samples, level gate
     join_level_cells_options level = {};       ///< join_level_cells: narrow water next to each grown region

@@ -26,7 +26,26 @@ inline void validate(const channel_water_seeds_options& o, const char* fn)
     require_positive(o.max_width_m, fn, "max_width_m");
     require(o.max_intensity_ratio > 0, fn, "max_intensity_ratio", "> 0", o.max_intensity_ratio);
     require(o.min_cells >= 1, fn, "min_cells", ">= 1", o.min_cells);
+    require(o.max_lower_share >= 0 && o.max_lower_share <= 1, fn, "max_lower_share", "in [0, 1]", o.max_lower_share);
     require(o.clear_cells >= 0, fn, "clear_cells", ">= 0", o.clear_cells);
+}
+
+/// Whether at most max_lower_share of the cells with a return within `reach` cells (Chebyshev distance) of
+/// (r, c) lie more than bank_rise_m below z0.
+inline bool bottom_of_surroundings(raster_view<const float> min_z, std::ptrdiff_t r, std::ptrdiff_t c, float z0,
+                                   int reach, const channel_water_seeds_options& opt)
+{
+    const float below = z0 - static_cast<float>(opt.bank_rise_m);
+    std::size_t measured = 0, lower = 0;
+    for (std::ptrdiff_t y = std::max<std::ptrdiff_t>(0, r - reach); y <= std::min(min_z.rows() - 1, r + reach); ++y) {
+        const float* row = min_z.row(y);
+        for (std::ptrdiff_t x = std::max<std::ptrdiff_t>(0, c - reach); x <= std::min(min_z.cols() - 1, c + reach);
+             ++x) {
+            measured += !std::isnan(row[x]);
+            lower += row[x] < below;
+        }
+    }
+    return static_cast<double>(lower) <= opt.max_lower_share * static_cast<double>(measured);
 }
 
 /// Whether a body (label > 0) lies within `reach` cells (Chebyshev distance) of cell (r, c); empty: none.
@@ -93,6 +112,7 @@ inline raster<std::uint8_t> channel_water_seeds(raster_view<const float> min_z, 
     if (std::isnan(land_intensity)) return seeds;
     const auto darkest_land = static_cast<float>(opt.max_intensity_ratio * land_intensity);
     constexpr int axes[4][2] = {{0, 1}, {1, 1}, {1, 0}, {1, -1}};
+    const auto surroundings = static_cast<int>(std::ceil(opt.max_width_m / cell_m));
     parallel_for_rows(
         rows, 16, run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
@@ -104,7 +124,8 @@ inline raster<std::uint8_t> channel_water_seeds(raster_view<const float> min_z, 
                     if (!excluded.empty() && excluded(r, c)) continue;
                     for (const auto& a : axes) {
                         if (detail::channel_along(min_z, r, c, z0, a[0], a[1], cell_m, opt)) {
-                            out[c] = !detail::body_within(taken, r, c, opt.clear_cells);
+                            out[c] = detail::bottom_of_surroundings(min_z, r, c, z0, surroundings, opt) &&
+                                     !detail::body_within(taken, r, c, opt.clear_cells);
                             break;
                         }
                     }

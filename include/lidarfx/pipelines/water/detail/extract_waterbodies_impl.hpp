@@ -51,6 +51,8 @@ inline extract_waterbodies_options flat_seed_water_method()
     o.bridge_seed_min_cells = 4;
     // A river narrower than the angular window sees a bank from every cell: at its level it joins anyway.
     o.grow.level_any_angle_m = 0.03;
+    // A narrow river that returns as many pulses as the land is seeded by its level, dark strip between two banks.
+    o.channel_seeds = true;
     return o;
 }
 
