@@ -48,17 +48,10 @@ std::ptrdiff_t count_of(const raster<std::uint8_t>& m)
     return n;
 }
 
-raster<std::uint8_t> transposed_mask(const raster<std::uint8_t>& m)
+template <class T>
+raster<T> transposed(const raster<T>& m)
 {
-    raster<std::uint8_t> t(m.cols(), m.rows());
-    for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < m.cols(); ++c) t(c, r) = m(r, c);
-    return t;
-}
-
-raster<float> transposed_heights(const raster<float>& m)
-{
-    raster<float> t(m.cols(), m.rows());
+    raster<T> t(m.cols(), m.rows());
     for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < m.cols(); ++c) t(c, r) = m(r, c);
     return t;
@@ -75,9 +68,8 @@ TEST_CASE("water/channel_water_seeds: a level, dark strip between two banks is s
         for (std::ptrdiff_t c = 0; c < seeds.cols(); ++c)
             CHECK(seeds(r, c) == (scene.is_channel(r) && c > 0 && c < 59 ? 1 : 0));
     // The same channel along the columns gives the transposed seeds.
-    const auto across =
-        channel_water_seeds(transposed_heights(scene.z), transposed_heights(scene.intensity), {}, {}, 2.0, 80.0);
-    CHECK(across == transposed_mask(seeds));
+    const auto across = channel_water_seeds(transposed(scene.z), transposed(scene.intensity), {}, {}, 2.0, 80.0);
+    CHECK(across == transposed(seeds));
 }
 
 TEST_CASE("water/channel_water_seeds: a diagonal channel is seeded")
@@ -262,4 +254,89 @@ TEST_CASE("water/channel_water_seeds: a channel seed's flood that spreads over b
     CHECK(scores.specificity() > 0.99);
     CHECK(scores.sensitivity() > 0.95);
     for (const auto& body : result.bodies) CHECK(body.mean_intensity < 60);
+}
+
+TEST_CASE("water/channel_water_seeds: a gently rising shore is passed, the raster's edge is no bank, odd inputs")
+{
+    SUBCASE("a row 0.08 m above the water (above the tolerance, below a bank) is passed, not seeded")
+    {
+        channel_scene scene(3, 0.5);
+        for (std::ptrdiff_t c = 0; c < 60; ++c) scene.z(20, c) = 100.08f;
+        const auto seeds = scene.seeds();
+        CHECK(seeds(18, 30) == 1);
+        CHECK(seeds(19, 30) == 1);
+        CHECK(seeds(20, 30) == 0);  // the water beside it lies more than the tolerance below it
+    }
+    SUBCASE("water reaching the raster's edge across has no bank on that side")
+    {
+        channel_scene scene(3, 0.5);
+        for (std::ptrdiff_t r = 18; r < 40; ++r)
+            for (std::ptrdiff_t c = 0; c < 60; ++c) scene.z(r, c) = 100.0f;
+        CHECK(count_of(scene.seeds({.max_width_m = 1000})) == 0);
+    }
+    SUBCASE("NaN intensity is no seed; widths beyond the raster count as the raster")
+    {
+        channel_scene scene(3, 0.5);
+        scene.intensity(19, 30) = NAN;
+        CHECK(scene.seeds()(19, 30) == 0);
+        CHECK(scene.seeds()(19, 31) == 1);
+        CHECK(scene.seeds({.max_width_m = 1e12}) == scene.seeds({.max_width_m = 400}));
+        CHECK(scene.seeds({.along_cells = 1 << 30}) == scene.seeds({.along_cells = 100}));
+    }
+    SUBCASE("refusals")
+    {
+        const channel_scene scene(3, 0.5);
+        for (const channel_water_seeds_options& opt :
+             {channel_water_seeds_options{.level_tolerance_m = -0.01}, channel_water_seeds_options{.max_width_m = 0},
+              channel_water_seeds_options{.max_lower_share = 1.5},
+              channel_water_seeds_options{.max_lower_share = -0.1}})
+            CHECK_THROWS_AS(scene.seeds(opt), invalid_input);
+        CHECK_THROWS_AS(scene.seeds({}, raster<std::int32_t>(3, 3, 0)), invalid_input);
+        CHECK_THROWS_AS(scene.seeds({}, {}, raster<std::uint8_t>(3, 3, 0)), invalid_input);
+    }
+}
+
+TEST_CASE("water/extract_waterbodies: bright bodies grown from channel seeds are taken back, the rest renumbered")
+{
+    // Bodies 1-4 in columns 0-1, 2-3, 4-5, 6-7 of a 4 x 10 raster; bodies 2-4 are the new ones (first = 1).
+    // Body 3 is bright (90 > 48), body 4 has no measured cell (all dropouts): it stays.
+    water_rasters in;
+    raster<float> z(4, 10, 100.0f), light(4, 10, 20.0f), high(4, 10, 100.5f);
+    raster<std::uint8_t> dropout(4, 10, 0);
+    grow_waterbodies_result grown{raster<std::int32_t>(4, 10, 0), {}, 4};
+    for (std::ptrdiff_t r = 0; r < 4; ++r)
+        for (std::ptrdiff_t c = 0; c < 8; ++c) grown.labels(r, c) = static_cast<std::int32_t>(c / 2 + 1);
+    for (std::ptrdiff_t r = 0; r < 4; ++r) {
+        light(r, 0) = light(r, 1) = 90.0f;  // body 1 is bright too, but not a new body
+        light(r, 4) = light(r, 5) = 90.0f;
+        dropout(r, 6) = dropout(r, 7) = 1;
+        light(r, 6) = light(r, 7) = NAN;
+    }
+    for (int k = 0; k < 4; ++k) {
+        waterbody body;
+        body.label = k + 1;
+        body.seed = 10 * (k + 1);
+        grown.bodies.push_back(body);
+    }
+    in.min_z = z;
+    in.max_z = high;
+    in.mean_intensity = light;
+    in.dropout = dropout;
+    raster<std::uint8_t> eligible(4, 10, 0);
+    detail::drop_bright_bodies(grown, 1, in, 48.0, eligible);
+    REQUIRE(grown.bodies.size() == 3);
+    CHECK(grown.seeds_grown == 3);
+    for (std::size_t k = 0; k < 3; ++k) CHECK(grown.bodies[k].label == static_cast<std::int32_t>(k + 1));
+    CHECK(grown.bodies[0].seed == 10);
+    CHECK(grown.bodies[1].seed == 20);
+    CHECK(grown.bodies[2].seed == 40);
+    for (std::ptrdiff_t r = 0; r < 4; ++r) {
+        CHECK(grown.labels(r, 0) == 1);
+        CHECK(grown.labels(r, 2) == 2);
+        CHECK(grown.labels(r, 4) == 0);
+        CHECK(eligible(r, 4) == 1);
+        CHECK(eligible(r, 2) == 0);
+        CHECK(grown.labels(r, 7) == 3);
+        CHECK(grown.labels(r, 9) == 0);
+    }
 }

@@ -172,7 +172,7 @@ TEST_CASE("water/water_surface_slope: equals the definition on random rasters, e
 
 TEST_CASE("water/water_surface_slope: threads reading the lazy slope at once read the whole raster's values")
 {
-    // 4 threads read every cell of a 200 x 300 raster (4 x 19 tiles), each in its own random order, so tiles are
+    // 4 threads read every cell of a 200 x 300 raster (13 x 5 tiles), each in its own random order, so tiles are
     // computed by whichever thread comes first while others wait for them or compute other tiles.
     const unsigned seed = 78;
     std::mt19937 rng(seed);

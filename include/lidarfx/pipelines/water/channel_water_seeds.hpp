@@ -22,9 +22,9 @@ struct channel_water_seeds_options {
     double bank_rise_m = 0.1;          ///< a bank is the first cell across the channel at least this above the
                                        ///< cell tested, metres, > level_tolerance_m. Default 0.1 (a beach rising 3 %
                                        ///< over 3 m)
-    double max_width_m = 18.0;         ///< the banks on both sides lie within this width (the cells between them,
-                                       ///< level or without return, and the cell tested), metres, > 0. Default 18
-                                       ///< (rivers up to 15 m wide and their shore cells)
+    double max_width_m = 18.0;         ///< the strip between the banks (the cell tested and the cells passed on
+                                       ///< either side, banks not counted) is at most this wide, metres, > 0.
+                                       ///< Default 18 (rivers up to 15 m wide and their shore cells)
     double max_intensity_ratio = 0.6;  ///< the cell's mean intensity is at most this times the survey's land
                                        ///< intensity, > 0. Default 0.6 (water is darker than land in the
                                        ///< near infrared; a level trough of land is not)
@@ -39,28 +39,30 @@ struct channel_water_seeds_options {
                                        ///< strip is its shore: wet ground above the water)
 };
 
-/// Seed cells of narrow rivers (1 = seed). A cell with a return, not `excluded` (vegetation; empty: none) and
-/// with a mean intensity of at most max_intensity_ratio ·
-/// land_intensity is a channel cell when, along one of the 4 axes (the row, the column, the two diagonals):
+/// Seed cells of narrow rivers (1 = seed). A cell with a return, not `excluded` (vegetation; empty: none), in no
+/// body (`taken` > 0; empty: none) and with a mean intensity of at most max_intensity_ratio · land_intensity is a
+/// channel cell when, along one of the 4 axes (the row, the column, the two diagonals):
 ///  - along the axis, the along_cells cells each way that have a return lie within level_tolerance_m of it
 ///    (each way holds one at least): the water is level along its channel;
-///  - across the axis, walking out on each side, cells without return or within level_tolerance_m are passed
-///    until a bank (at least bank_rise_m above the cell) is met, and no cell lower than the cell less
-///    level_tolerance_m is met first: the cell is the lowest of its strip, and the strip ends in a bank on both
-///    sides;
-///  - the strip (its cells and the cell) is at most max_width_m wide, steps of cell_m, or cell_m·√2 on the
-///    diagonals.
+///  - across the axis, walking out on each side, cells without return, or less than bank_rise_m above the cell
+///    and not more than level_tolerance_m below it (the water, a gently rising shore), are passed until a bank
+///    (at least bank_rise_m above the cell) is met; a cell more than level_tolerance_m below it fails the axis:
+///    the cell is the lowest of its strip (within the tolerance), and the strip ends in a bank on both sides;
+///  - the strip (the cell and the cells passed, banks not counted) is at most max_width_m wide, in steps of
+///    cell_m, or cell_m·√2 on the diagonals; a walk that leaves the raster fails the axis.
 /// A channel cell also lies at the bottom of its surroundings: of the cells with a return within max_width_m
-/// (Chebyshev distance), at most max_lower_share lie more than bank_rise_m below it (a flat roof between higher
-/// roof parts is a level strip between banks too, but the ground around the building lies below it).
-/// Channel cells with a body within clear_cells (Chebyshev distance) are left out, then groups of channel cells
-/// smaller than min_cells (8-connected) are dropped. A river 2 cells wide that returns
-/// as many pulses as the land has no level 3×3 window and no run of dropouts, so neither the flat seeds nor the
-/// dropout seeds start it; its level strip between two banks does. A level field ends in no bank within the
-/// width, a level terrace beside the water has the water lower than it, and a trough of land is as bright as
-/// the land. A NaN land_intensity (no land measured) gives no seed.
-/// O(cells · 4 · (along_cells + max_width_m / cell_m)). min z and cell_m in metres; intensity in the survey's
-/// units. `run`: threads (rows are independent; its progress is not called); never changes the result.
+/// (Chebyshev distance, cells rounded up), at most max_lower_share lie more than bank_rise_m below it (a flat
+/// roof between higher roof parts is a level strip between banks too, but the ground around the building lies
+/// below it). Channel cells with a body within clear_cells (Chebyshev distance) are left out, then groups of
+/// channel cells smaller than min_cells (8-connected) are dropped. A river 2 cells wide that returns as many
+/// pulses as the land has no level 3×3 window and no run of dropouts, so neither the flat seeds nor the dropout
+/// seeds start it; its level strip between two banks does. A level field ends in no bank within the width, a
+/// level terrace beside the water has the water lower than it, and a trough of land is as bright as the land.
+/// A NaN land_intensity (no land measured) gives no seed, and so does a NaN intensity.
+/// O(cells · 4 · (along_cells + max_width_m / cell_m) + channel cells · ((2 · clear_cells + 1)² + (2 ·
+/// max_width_m / cell_m + 1)²)); reaches and widths beyond the raster's rows + columns count as that. min z
+/// and cell_m in metres; intensity in the survey's units. `run`: threads (rows are independent; its progress
+/// is not called); never changes the result.
 /// @throws invalid_input on shapes that differ, cell_m <= 0 or options out of range.
 inline raster<std::uint8_t> channel_water_seeds(raster_view<const float> min_z, raster_view<const float> intensity,
                                                 raster_view<const std::uint8_t> excluded,

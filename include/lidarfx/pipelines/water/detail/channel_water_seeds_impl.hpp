@@ -65,9 +65,10 @@ inline bool channel_along(raster_view<const float> min_z, std::ptrdiff_t r, std:
     const std::ptrdiff_t rows = min_z.rows(), cols = min_z.cols();
     const auto inside = [&](std::ptrdiff_t y, std::ptrdiff_t x) { return y >= 0 && y < rows && x >= 0 && x < cols; };
     const auto tolerance = static_cast<float>(opt.level_tolerance_m);
+    const auto along = static_cast<int>(std::min<std::ptrdiff_t>(opt.along_cells, rows + cols));  // beyond: outside
     for (const int way : {-1, 1}) {  // level along the channel, with a return each way
         bool measured = false;
-        for (int k = 1; k <= opt.along_cells; ++k) {
+        for (int k = 1; k <= along; ++k) {
             const std::ptrdiff_t y = r + way * k * dr, x = c + way * k * dc;
             if (!inside(y, x) || std::isnan(min_z(y, x))) continue;
             if (std::abs(min_z(y, x) - z0) > tolerance) return false;
@@ -76,16 +77,19 @@ inline bool channel_along(raster_view<const float> min_z, std::ptrdiff_t r, std:
         if (!measured) return false;
     }
     const double step = (dr != 0 && dc != 0) ? cell_m * std::sqrt(2.0) : cell_m;
-    const auto max_steps = static_cast<int>(std::floor(opt.max_width_m / step));  // cells the strip may hold
+    // Cells the strip may hold (a width of a whole number of steps is not lost to rounding; beyond the raster's
+    // rows and columns a strip ends outside it anyway).
+    const auto max_steps =
+        static_cast<int>(std::min(std::floor(opt.max_width_m / step + 1e-9), static_cast<double>(rows + cols)));
     const auto bank = static_cast<float>(opt.bank_rise_m);
     int strip = 1;  // the cell and the level or empty cells across it
     for (const int side : {-1, 1}) {
-        for (int j = 1;; ++j) {  // across: (-dc, dr)
+        for (int j = 1;; ++j) {  // across: side · (dc, −dr)
             const std::ptrdiff_t y = r + side * j * dc, x = c - side * j * dr;
             if (!inside(y, x) || strip > max_steps) return false;
             const float z = min_z(y, x);
             if (z - z0 >= bank) break;
-            if (z0 - z > tolerance) return false;  // NaN passes: no return
+            if (z0 - z > tolerance) return false;  // passed: no return (NaN), or below a bank and not lower
             ++strip;
         }
     }
@@ -112,7 +116,8 @@ inline raster<std::uint8_t> channel_water_seeds(raster_view<const float> min_z, 
     if (std::isnan(land_intensity)) return seeds;
     const auto darkest_land = static_cast<float>(opt.max_intensity_ratio * land_intensity);
     constexpr int axes[4][2] = {{0, 1}, {1, 1}, {1, 0}, {1, -1}};
-    const auto surroundings = static_cast<int>(std::ceil(opt.max_width_m / cell_m));
+    const auto surroundings =
+        static_cast<int>(std::min(std::ceil(opt.max_width_m / cell_m), static_cast<double>(rows + cols)));
     parallel_for_rows(
         rows, 16, run.threads,
         [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
@@ -121,11 +126,12 @@ inline raster<std::uint8_t> channel_water_seeds(raster_view<const float> min_z, 
                 for (std::ptrdiff_t c = 0; c < cols; ++c) {
                     const float z0 = min_z(r, c);
                     if (std::isnan(z0) || !(intensity(r, c) <= darkest_land)) continue;
-                    if (!excluded.empty() && excluded(r, c)) continue;
+                    if ((!excluded.empty() && excluded(r, c)) || (!taken.empty() && taken(r, c) > 0)) continue;
                     for (const auto& a : axes) {
                         if (detail::channel_along(min_z, r, c, z0, a[0], a[1], cell_m, opt)) {
-                            out[c] = detail::bottom_of_surroundings(min_z, r, c, z0, surroundings, opt) &&
-                                     !detail::body_within(taken, r, c, opt.clear_cells);
+                            // The cheaper test first: clear_cells is small, the surroundings reach max_width_m.
+                            out[c] = !detail::body_within(taken, r, c, opt.clear_cells) &&
+                                     detail::bottom_of_surroundings(min_z, r, c, z0, surroundings, opt);
                             break;
                         }
                     }

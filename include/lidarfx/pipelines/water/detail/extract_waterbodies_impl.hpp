@@ -161,7 +161,8 @@ inline raster<std::uint8_t> flat_seed_mask(const water_rasters& in, const water_
 /// Takes back the bodies grown from `first` on (grown.bodies[first..], labels first + 1..) whose mean intensity over
 /// their cells with a return exceeds `limit`: their cells become land and eligible again, the later bodies take
 /// their labels in order. A flood from a seed that only its shape vouches for (channel_water_seeds) that spread
-/// over land of land intensity is not water. O(cells).
+/// over land of land intensity is not water. The bodies grown after a dropped one keep what they took while its
+/// cells were taken (they are not grown again). O(cells).
 inline void drop_bright_bodies(grow_waterbodies_result& grown, std::size_t first, const water_rasters& in, double limit,
                                raster<std::uint8_t>& eligible)
 {

@@ -91,6 +91,7 @@ inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligi
         if (a.overtaken) a.visited = {};  // its turn grows it again, if at all: nothing of it is read
     } catch (...) {
         a.error = std::current_exception();
+        a.visited = {};  // grown again at its turn: nothing of it is read
     }
 }
 
