@@ -3,6 +3,8 @@
 
 #include <lidarfx/kernels/solar/shadow_probes.hpp>
 
+#include "reference/components.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -40,14 +42,6 @@ double limit_by_search(const raster<float>& z, const ray_lines& l, const shadow_
     return best;
 }
 
-raster<float> transpose(const raster<float>& z)
-{
-    raster<float> t(z.cols(), z.rows());
-    for (std::ptrdiff_t r = 0; r < z.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < z.cols(); ++c) t(c, r) = z(r, c);
-    return t;
-}
-
 }  // namespace
 
 TEST_CASE("solar/raylines_shadow_probed: lit cells are raylines_shadow's single family, limits a search of the line")
@@ -62,7 +56,7 @@ TEST_CASE("solar/raylines_shadow_probed: lit cells are raylines_shadow's single 
         for (std::ptrdiff_t r = 0; r < rows; ++r)
             for (std::ptrdiff_t c = 0; c < cols; ++c)
                 z(r, c) = percent(rng) < 5 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(height(rng));
-        const raster<float> zt = transpose(z);
+        const raster<float> zt = reference::transpose(z);
         std::vector<std::ptrdiff_t> pr, pc;
         for (int k = 0; k < 40; ++k) {
             pr.push_back(std::uniform_int_distribution<std::ptrdiff_t>(0, rows - 1)(rng));
@@ -113,7 +107,7 @@ TEST_CASE("solar/raylines_shadow_probed: with several line families and a NaN co
     for (std::ptrdiff_t r = 0; r < rows; ++r)
         for (std::ptrdiff_t c = 0; c < cols; ++c)
             z(r, c) = percent(rng) < 5 ? std::numeric_limits<float>::quiet_NaN() : static_cast<float>(height(rng));
-    const raster<float> zt = transpose(z);
+    const raster<float> zt = reference::transpose(z);
     {
         // The library's transposed copy is the plain one, NaN cells included.
         const raster<float> made = transposed_dsm(z.view(), 2);

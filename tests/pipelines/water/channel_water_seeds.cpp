@@ -9,6 +9,8 @@
 #include <lidarfx/pipelines/water/extract_waterbodies.hpp>
 #include <lidarfx/synth/water_family.hpp>
 
+#include "reference/components.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -48,15 +50,6 @@ std::ptrdiff_t count_of(const raster<std::uint8_t>& m)
     return n;
 }
 
-template <class T>
-raster<T> transposed(const raster<T>& m)
-{
-    raster<T> t(m.cols(), m.rows());
-    for (std::ptrdiff_t r = 0; r < m.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < m.cols(); ++c) t(c, r) = m(r, c);
-    return t;
-}
-
 }  // namespace
 
 TEST_CASE("water/channel_water_seeds: a level, dark strip between two banks is seeded, nothing else")
@@ -68,8 +61,9 @@ TEST_CASE("water/channel_water_seeds: a level, dark strip between two banks is s
         for (std::ptrdiff_t c = 0; c < seeds.cols(); ++c)
             CHECK(seeds(r, c) == (scene.is_channel(r) && c > 0 && c < 59 ? 1 : 0));
     // The same channel along the columns gives the transposed seeds.
-    const auto across = channel_water_seeds(transposed(scene.z), transposed(scene.intensity), {}, {}, 2.0, 80.0);
-    CHECK(across == transposed(seeds));
+    const auto across =
+        channel_water_seeds(reference::transpose(scene.z), reference::transpose(scene.intensity), {}, {}, 2.0, 80.0);
+    CHECK(across == reference::transpose(seeds));
 }
 
 TEST_CASE("water/channel_water_seeds: a diagonal channel is seeded")
