@@ -12,6 +12,7 @@
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/kernels/label/connected_components.hpp"
+#include "lidarfx/pipelines/water/detail/body_within.hpp"
 
 namespace lidarfx {
 
@@ -46,16 +47,6 @@ inline bool bottom_of_surroundings(raster_view<const float> min_z, std::ptrdiff_
         }
     }
     return static_cast<double>(lower) <= opt.max_lower_share * static_cast<double>(measured);
-}
-
-/// Whether a body (label > 0) lies within `reach` cells (Chebyshev distance) of cell (r, c); empty: none.
-inline bool body_within(raster_view<const std::int32_t> taken, std::ptrdiff_t r, std::ptrdiff_t c, int reach)
-{
-    if (taken.empty()) return false;
-    for (std::ptrdiff_t y = std::max<std::ptrdiff_t>(0, r - reach); y <= std::min(taken.rows() - 1, r + reach); ++y)
-        for (std::ptrdiff_t x = std::max<std::ptrdiff_t>(0, c - reach); x <= std::min(taken.cols() - 1, c + reach); ++x)
-            if (taken(y, x) > 0) return true;
-    return false;
 }
 
 /// Whether cell (r, c) of height z0 lies in a channel along the axis (dr, dc) (channel_water_seeds' rule).

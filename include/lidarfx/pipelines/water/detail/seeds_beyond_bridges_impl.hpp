@@ -12,6 +12,7 @@
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
+#include "lidarfx/pipelines/water/detail/body_within.hpp"
 #include "lidarfx/pipelines/water/water_surface_slope.hpp"
 
 namespace lidarfx {
@@ -127,14 +128,9 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     }
     // Only where nothing was found yet: a marked cell within clear_cells of a body is the bank of water
     // already found (a walk over a deck's end lands on it), not water cut off by the deck.
-    const std::ptrdiff_t d = opt.clear_cells;
     for (const std::ptrdiff_t cell : marked) {
         const std::ptrdiff_t r = cell / cols, c = cell % cols;
-        bool near = false;
-        for (std::ptrdiff_t rr = std::max<std::ptrdiff_t>(0, r - d); rr <= std::min(rows - 1, r + d) && !near; ++rr)
-            for (std::ptrdiff_t cc = std::max<std::ptrdiff_t>(0, c - d); cc <= std::min(cols - 1, c + d); ++cc)
-                near |= labels(rr, cc) > 0;
-        if (near) seeds(r, c) = 0;
+        if (detail::body_within(labels, r, c, opt.clear_cells)) seeds(r, c) = 0;
     }
     return seeds;
 }
