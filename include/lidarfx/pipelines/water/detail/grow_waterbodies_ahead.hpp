@@ -31,6 +31,9 @@ struct flood_ahead {
     grow_waterbody_result region;         ///< its flood
     std::vector<std::ptrdiff_t> visited;  ///< the cells the flood queued (with the seed's, all it read)
     std::exception_ptr error;             ///< what the flood threw (then it is grown again at its turn)
+    /// Whether it holds a flood for its turn (not skipped, not stopped, not failed): it counts against the floods
+    /// the threads may hold.
+    bool holds_flood() const noexcept { return grows && !overtaken && !error; }
 };
 
 /// Which seeds grow, and from which cells, given the labels before the first turn (seed_cells_to_grow).
@@ -125,8 +128,8 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
 
     std::mutex mutex;
     std::condition_variable changed_state;
-    std::size_t next = 1;                                       // the next seed to grow ahead
-    std::vector<std::uint8_t> ready(n + 1, 0), held(n + 1, 0);  // held: a grown flood waits for its turn
+    std::size_t next = 1;  // the next seed to grow ahead
+    std::vector<std::uint8_t> ready(n + 1, 0);
     bool stop = false;
     const std::size_t max_held = 2 * threads;
     std::size_t floods_held = 0;
@@ -144,11 +147,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
             grow_ahead(s, marks);
         }
         lock.lock();
-        if (ahead[s].grows && !ahead[s].overtaken && !ahead[s].error) {
-            held[s] = 1;
-        } else {
-            --floods_held;
-        }
+        if (!ahead[s].holds_flood()) --floods_held;
         ready[s] = 1;
         changed_state.notify_all();
     };
@@ -196,7 +195,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
                     changed_state.wait(lock);
                 }
             }
-            if (held[s]) {
+            if (ahead[s].holds_flood()) {
                 --floods_held;  // its turn takes it: another flood may be grown ahead
                 changed_state.notify_all();
             }
