@@ -87,20 +87,31 @@ inline void surface_sky_views(raster_view<const float> z, double cell_m, const s
     }
 }
 
-/// Where the roof patches read the lit rasters (their top-left cell in z's and in the transposed layout) and their
-/// normals, side by side.
+/// Where the roof patches read the lit rasters and their normals, one array per component (the per-sun sums over
+/// the patches then run in vector registers). In z's layout the patches come in raster order; in the transposed
+/// one they are listed by their cell there, so that both reads run through the lit raster in order.
 struct roof_cells {
-    std::vector<std::ptrdiff_t> at, at_transposed;
-    std::vector<enu_vector> normal;
+    std::vector<std::ptrdiff_t> at;               ///< patch i's top-left cell in z's layout (ascending)
+    std::vector<std::ptrdiff_t> at_transposed;    ///< the top-left cells in the transposed layout, ascending
+    std::vector<std::uint32_t> transposed_patch;  ///< the patch whose cell at_transposed[k] is
+    std::vector<double> east, north, up;
 };
 
 inline roof_cells make_roof_cells(std::span<const surface_patch> roofs, std::ptrdiff_t rows, std::ptrdiff_t cols)
 {
     roof_cells out;
+    std::vector<std::pair<std::ptrdiff_t, std::uint32_t>> transposed;
     for (const surface_patch& p : roofs) {
+        transposed.push_back({p.col * rows + p.row, static_cast<std::uint32_t>(out.at.size())});
         out.at.push_back(p.row * cols + p.col);
-        out.at_transposed.push_back(p.col * rows + p.row);
-        out.normal.push_back(p.normal);
+        out.east.push_back(p.normal.east);
+        out.north.push_back(p.normal.north);
+        out.up.push_back(p.normal.up);
+    }
+    std::sort(transposed.begin(), transposed.end());
+    for (const auto& [at, patch] : transposed) {
+        out.at_transposed.push_back(at);
+        out.transposed_patch.push_back(patch);
     }
     return out;
 }
@@ -138,21 +149,19 @@ inline void sweep_surface_sun(raster_view<const float> z, raster_view<const floa
     const std::ptrdiff_t rows = transposed ? z.cols() : z.rows(), cols = transposed ? z.rows() : z.cols();
     if (lit.rows() != rows || lit.cols() != cols) lit = raster<std::uint8_t>(rows, cols);
     raylines_shadow_probed(z, z_transposed, l, s.lift, obs.probes, s.limit, lit.view());
-    // Each cell becomes the count of lit cells in its 2 x 2 quad (itself, east or south of it in the sweep's layout),
-    // row by row from the top: a row reads only itself and the row below, not yet changed.
-    if (roofs.at.empty() || cols < 2) return;  // no quad to count
-    std::vector<std::uint8_t> quad(static_cast<std::size_t>(cols));
-    for (std::ptrdiff_t r = 0; r + 1 < rows; ++r) {
-        std::uint8_t* a = lit.row(r);
-        const std::uint8_t* b = lit.row(r + 1);
-        std::uint8_t* t = quad.data();
-        for (std::ptrdiff_t c = 0; c + 1 < cols; ++c)
-            t[c] = static_cast<std::uint8_t>(a[c] + a[c + 1] + b[c] + b[c + 1]);
-        std::copy(t, t + cols - 1, a);
+    // A patch's count: the lit cells of its 2 x 2 quad (its top-left cell, the cells east and south of it in the
+    // sweep's layout, and the one between), read while the lit raster is still in cache.
+    const std::uint8_t* lit_cells = lit.data();
+    const auto quad = [&](std::ptrdiff_t at) {
+        const std::uint8_t* q = lit_cells + at;
+        return static_cast<std::uint8_t>(q[0] + q[1] + q[cols] + q[cols + 1]);
+    };
+    if (transposed) {
+        for (std::size_t k = 0; k < roofs.at_transposed.size(); ++k)
+            s.roof_lit[roofs.transposed_patch[k]] = quad(roofs.at_transposed[k]);
+    } else {
+        for (std::size_t u = 0; u < roofs.at.size(); ++u) s.roof_lit[u] = quad(roofs.at[u]);
     }
-    const std::uint8_t* count = lit.data();
-    const std::ptrdiff_t* at = transposed ? roofs.at_transposed.data() : roofs.at.data();
-    for (std::size_t u = 0; u < roofs.at.size(); ++u) s.roof_lit[u] = count[at[u]];
 }
 
 /// The facade sub-patches wall by wall (one observer cell and one facing; walls by facing, then observer), each
@@ -199,11 +208,12 @@ inline facade_walls make_facade_walls(std::span<const facade_patch> subs, const 
     return w;
 }
 
-/// Adds a batch of swept daylight suns, in order, to the quarter beam sums of every roof patch (roof_beam) and to
-/// the beam steps of every wall (step[j]: beam of the suns whose lowest lit sub-patch is order[j]).
+/// Adds a batch of swept daylight suns, in order, to the quarter beam sums of every roof patch (roof_beam[q][i]:
+/// quarter q, patch i) and to the beam steps of every wall (step[j]: beam of the suns whose lowest lit sub-patch is
+/// order[j]).
 inline void add_surface_beams(std::span<const daylight_sun* const> days, std::span<const surface_sun_sweep> sweeps,
                               const facade_walls& walls, const roof_cells& roofs,
-                              std::vector<std::array<double, 4>>& roof_beam, std::vector<std::array<double, 4>>& step,
+                              std::array<std::vector<double>, 4>& roof_beam, std::vector<std::array<double, 4>>& step,
                               int threads)
 {
     std::vector<facade_cos_table> cos_theta;
@@ -218,15 +228,15 @@ inline void add_surface_beams(std::span<const daylight_sun* const> days, std::sp
             const surface_sun_sweep& sw = sweeps[k];
             if (!sw.beam) continue;
             const daylight_sun& day = *days[k];
-            const enu_vector sun = day.sun;
+            const double se = day.sun.east, sn = day.sun.north, su = day.sun.up;
             const double dni = day.dni_w_m2 * day.kwh_per_w_m2;
-            const auto q = static_cast<std::size_t>(day.month / 3);
+            double* sum = roof_beam[static_cast<std::size_t>(day.month / 3)].data();
             const std::uint8_t* lit = sw.roof_lit.data();
+            const double *east = roofs.east.data(), *north = roofs.north.data(), *up = roofs.up.data();
+            // enu_dot's order; a patch facing away adds 0 (max, not a branch: the loop runs in vector registers)
             for (std::ptrdiff_t i = i0; i < i1; ++i) {
-                const auto u = static_cast<std::size_t>(i);
-                const double cos_t = enu_dot(sun, roofs.normal[u]);
-                if (cos_t <= 0.0) continue;
-                roof_beam[u][q] += dni * cos_t * (0.25 * lit[u]);
+                const double cos_t = se * east[i] + sn * north[i] + su * up[i];
+                sum[i] += dni * std::max(cos_t, 0.0) * (0.25 * lit[i]);
             }
         }
     };
@@ -328,7 +338,9 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         const detail::facade_walls walls = detail::make_facade_walls(res.facades, obs);
         const raster<float> z_transposed = transposed_dsm(z, opt.run.threads);
         const detail::roof_cells roofs = detail::make_roof_cells(res.roofs, z.rows(), z.cols());
-        std::vector<std::array<double, 4>> roof_beam(res.roofs.size()), step(res.facades.size());
+        std::array<std::vector<double>, 4> roof_beam;
+        for (std::vector<double>& quarter : roof_beam) quarter.assign(res.roofs.size(), 0.0);
+        std::vector<std::array<double, 4>> step(res.facades.size());
         // Batches of suns: the suns of a batch swept side by side (each thread a contiguous share of them, with a
         // lit raster of its own that stays in its cache), then the batch added to every patch in sun order (so the
         // sums are the same for any thread count).
@@ -358,7 +370,10 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                 sky_share + (1.0 - sky_share) * static_cast<double>(d0 + n) / static_cast<double>(suns.size() + 1), fn);
         }
         const std::array<double, 4> dhi = detail::quarter_diffuse(suns);
-        res.roof_energy = detail::to_patch_energy(detail::add_diffuse(std::move(roof_beam), res.roof_sky_view, dhi),
+        std::vector<std::array<double, 4>> roof_sums(res.roofs.size());
+        for (std::size_t i = 0; i < roof_sums.size(); ++i)
+            for (std::size_t q = 0; q < 4; ++q) roof_sums[i][q] = roof_beam[q][i];
+        res.roof_energy = detail::to_patch_energy(detail::add_diffuse(std::move(roof_sums), res.roof_sky_view, dhi),
                                                   res.quarter_days);
         res.facade_energy = detail::to_patch_energy(
             detail::add_diffuse(detail::facade_beams(walls, step), res.facade_sky_view, dhi), res.quarter_days);
