@@ -279,7 +279,8 @@ void print_hydro(const hydro_flatten_result& h)
     for (const auto& b : h.bodies) flattened += b.flattened;
     for (const auto& q : h.qa) failed += !q.pass;
     std::cout << "hydro-flattened: " << flattened << " of " << h.bodies.size() << " waterbodies ("
-              << h.island_cells_flattened << " island cells flattened with the water, " << h.shorelines.below
+              << h.island_cells_flattened << " island cells flattened with the water, " << h.decks.deck_cells
+              << " under bridge decks and " << h.decks.level_cells << " beside them, " << h.shorelines.below
               << " shore cells below the water)\n";
     for (const auto& b : h.bodies) {
         if (!b.flattened) continue;

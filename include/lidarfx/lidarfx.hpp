@@ -114,6 +114,7 @@
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 #include "lidarfx/pipelines/water/water_seeds.hpp"
 #include "lidarfx/pipelines/water/water_surface_slope.hpp"
+#include "lidarfx/pipelines/water/water_under_decks.hpp"
 #include "lidarfx/pipelines/water/water_vegetation.hpp"
 
 // tiling: surveys larger than memory (docs/scale.md)

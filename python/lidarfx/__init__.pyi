@@ -129,12 +129,14 @@ read in place), cell_m in metres. Returns float32."""
     ...
 
 
-def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> HydroFlattened:
+def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, under_decks: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> HydroFlattened:
     """Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
 (each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns
 at the interpolated level; sections beside a weir cut along its crest), pieces of one river cut apart at a weir
-or a deck joined into one body first (join_channels, with the water under the deck), islands under
+or a deck joined into one body first (join_channels, with the water under the deck), the rivers continued under
+their bridge decks (under_decks: the water lost beside a deck taken back at the river's level within 8 m of it,
+then runs of deck cells between two cells of the river at the level interpolated across), islands under
 min_island_area_m2 flattened with the water, and shore ground below the water beside it lifted to it
 (shoreline='lift') or only counted ('flag'). Water under the minimum sizes (defaults: the USGS Lidar Base
 Specification's 2 acres, 100 ft, 1 acre, in metres) is left to the terrain.
@@ -144,7 +146,7 @@ extract_waterbodies(...).labels. min_z, max_z: the survey's lowest and highest r
 cell_m: cell size, metres. Returns HydroFlattened(dem, water_surface (NaN off the water), body (id per
 flattened cell), bodies: list of HydroBody, checks: list of HydroCheck (flatness, monotonic_fall, shoreline,
 minimum_size per flattened body), joins: list of ChannelJoin (kept, part_a, part_b labels, gap_m, contact_m, gap_cells),
-shore_cells_below)."""
+shore_cells_below, deck_cells and deck_level_cells (cells the rivers took under and beside decks))."""
     ...
 
 

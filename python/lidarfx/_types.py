@@ -207,6 +207,8 @@ class HydroFlattened:
     checks: List[HydroCheck]
     joins: List[ChannelJoin]        #: pieces of one river joined (join_channels)
     shore_cells_below: int          #: shore cells found below the water (lifted with shoreline='lift')
+    deck_cells: int                 #: cells under bridge decks the rivers took (under_decks)
+    deck_level_cells: int           #: cells at a river's level beside a deck it took back (under_decks)
 
 
 @dataclass(frozen=True)

@@ -88,6 +88,23 @@ def test_hydro_flatten_joins_a_river_cut_at_a_deck_and_flattens_under_it():
     assert np.all(apart.dem[60, 190:200] == 106.0)
 
 
+def test_hydro_flatten_continues_a_river_under_a_deck_that_notches_it():
+    labels = np.zeros((100, 400), np.int32)
+    labels[40:80, :] = 1
+    labels[40:70, 190:200] = 0  # a 10 m deck over three quarters of the river: one body with a notch
+    water = 100.0 - 0.002 * np.arange(400, dtype=np.float32)
+    min_z = np.where(labels > 0, water, np.nan).astype(np.float32)
+    min_z[38:70, 190:200] = 106.0  # the deck, over the north bank too
+    dem = np.where(np.isnan(min_z), 103.0, min_z).astype(np.float32)
+    flat = lidarfx.hydro_flatten(dem, labels, min_z, min_z, 1.0)
+    assert flat.deck_cells == 300 and flat.deck_level_cells == 0
+    assert np.all(flat.body[40:70, 190:200] == 1) and np.all(flat.body[38:40, 190:200] == 0)
+    np.testing.assert_allclose(flat.dem[50, 190:200], water[190:200], atol=0.03)
+    notched = lidarfx.hydro_flatten(dem, labels, min_z, min_z, 1.0, under_decks=False)
+    assert notched.deck_cells == 0 and np.all(notched.body[40:70, 190:200] == 0)
+    assert np.all(notched.dem[50, 190:200] == 106.0)
+
+
 def test_extract_waterbodies_refuses_data_too_sparse_for_its_cells(rng):
     points, _ = lake_survey(rng, density_per_m2=0.2)
     result = lidarfx.extract_waterbodies(lidarfx.rasterize(*points, 1.0))

@@ -17,6 +17,7 @@
 #include "lidarfx/pipelines/water/lake_level.hpp"
 #include "lidarfx/pipelines/water/river_profile.hpp"
 #include "lidarfx/pipelines/water/water_heights.hpp"
+#include "lidarfx/pipelines/water/water_under_decks.hpp"
 
 namespace lidarfx {
 
@@ -35,6 +36,8 @@ struct hydro_flatten_options {
     channel_join_options join = {};    ///< join_channel_parts: when two pieces are one channel
     lake_level_options lake = {};      ///< lake_level: whether the shore caps the level, and how
     river_profile_options river = {};  ///< trace_river_profile: section spacing, deck clearance, weirs
+    bool under_decks = true;           ///< water_under_decks: the rivers continue under their bridge decks
+    water_under_decks_options decks = {};             ///< water_under_decks: deck clearance, reach, longest span
     shoreline_rule shoreline = shoreline_rule::lift;  ///< enforce_shorelines: lift the shore or only count it
     double flat_tolerance_m = 0.001;  ///< hydro_qa: largest max − min of a lake or a section, metres. 1 mm
     execution run = {};               ///< threads of the island fill; progress per body, false cancels
@@ -72,6 +75,7 @@ struct hydro_flatten_result {
     std::size_t island_cells_flattened = 0;  ///< cells of islands under min_island_area_m2 flattened with the water
     std::vector<channel_join> joins;  ///< pairs of pieces of one channel joined (join_channels), by (kept, part_a,
                                       ///< part_b)
+    water_under_decks_result decks;   ///< cells the rivers took under and beside bridge decks (under_decks)
     shoreline_check shorelines;       ///< shore cells found below the water (and lifted, with shoreline_rule::lift)
 };
 
@@ -89,7 +93,10 @@ struct hydro_flatten_result {
 ///     trace_river_profile, each cross-section at its level, non-increasing downstream, decks and unflown
 ///     stretches at the interpolated level, the sections beside a weir cut along it;
 ///  4. the DEM takes the water level on the flattened water (also where it was NaN inside a body; a river's cell
-///     without a section, which its profile could not reach, stays as it was);
+///     without a section, which its profile could not reach, stays as it was); with under_decks, water_under_decks
+///     on the flattened rivers: the water continues under their decks, at the level beside them and interpolated
+///     across them, and the DEM takes it there too (a body's box grows with its new cells; its shape and sections
+///     stay as measured);
 ///  5. enforce_shorelines with `shoreline`: no shore ground below the water beside it;
 ///  6. hydro_qa of every flattened body.
 /// O(cells + sum over bodies of n log n). Same result for any thread count. Progress: 0, per body, 1.

@@ -32,6 +32,7 @@ inline void validate(const hydro_flatten_options& o, const char* fn)
     validate(o.lake, fn);
     validate(o.river, fn);
     validate(o.join, fn);
+    validate(o.decks, fn);
 }
 
 /// Land cells 8-adjacent to body `id` (inside `box` grown by one cell) whose value in `after` exceeds `before`.
@@ -81,6 +82,33 @@ inline void split_into_parts(raster_view<std::int32_t> labels, std::vector<cell_
                 if (parts.labels(r, c) == 1) box[l].extend(bx.row_min + r, bx.col_min + c);
         box.insert(box.end(), part_box.begin() + 2, part_box.end());
     }
+}
+
+/// hydro_flatten's step 4b: water_under_decks on the flattened rivers of `out`; the DEM takes the new water and
+/// the bodies' boxes grow with it.
+inline void continue_under_decks(hydro_flatten_result& out, raster_view<const float> min_z, double cell_m,
+                                 const water_under_decks_options& opt)
+{
+    std::vector<std::int32_t> rivers;
+    std::vector<std::size_t> index;  // per id: its position in out.bodies
+    for (std::size_t i = 0; i < out.bodies.size(); ++i) {
+        const hydro_body& b = out.bodies[i];
+        if (!b.flattened || b.type != hydro_body_type::river) continue;
+        rivers.push_back(b.id);
+        if (index.size() <= static_cast<std::size_t>(b.id)) index.resize(static_cast<std::size_t>(b.id) + 1);
+        index[static_cast<std::size_t>(b.id)] = i;
+    }
+    if (rivers.empty()) return;
+    const raster<std::int32_t> before(out.body);
+    out.decks = water_under_decks(out.body, out.water_surface, min_z, rivers, cell_m, opt);
+    if (out.decks.level_cells + out.decks.deck_cells == 0) return;
+    for (std::ptrdiff_t r = 0; r < before.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < before.cols(); ++c) {
+            const std::int32_t id = out.body(r, c);
+            if (id == before(r, c)) continue;
+            out.dem(r, c) = out.water_surface(r, c);
+            out.bodies[index[static_cast<std::size_t>(id)]].box.extend(r, c);
+        }
 }
 
 }  // namespace detail
@@ -160,6 +188,8 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
         out.bodies.push_back(std::move(b));
         detail::report(opt.run.progress, 0.1 + 0.9 * static_cast<double>(id) / (top + 1.0), fn);
     }
+    // 4b. The water under bridge decks.
+    if (opt.under_decks) detail::continue_under_decks(out, min_z, cell_m, opt.decks);
     // 5. Shores, 6. the checks.
     const raster<float> before = opt.shoreline == shoreline_rule::lift ? out.dem : raster<float>();
     out.shorelines = enforce_shorelines(out.dem, out.water_surface, opt.shoreline);

@@ -49,7 +49,9 @@ inline std::vector<hydro_check> hydro_qa(raster_view<const float> dem, raster_vi
                 std::size_t g = 0;
                 if (b.river) {
                     const river_profile& p = *b.profile;
-                    const std::int32_t k = p.section(r - p.box.row_min, c - p.box.col_min);
+                    const bool in_profile = r >= p.box.row_min && r <= p.box.row_max && c >= p.box.col_min &&
+                                            c <= p.box.col_max;  // water added beyond it has no section
+                    const std::int32_t k = in_profile ? p.section(r - p.box.row_min, c - p.box.col_min) : -1;
                     if (k < 0) continue;
                     g = static_cast<std::size_t>(k);
                 }
