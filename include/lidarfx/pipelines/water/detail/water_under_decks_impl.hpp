@@ -140,7 +140,8 @@ inline std::size_t join_deck_runs(const deck_rivers& k, double clearance_m, std:
                     const std::ptrdiff_t rr = r + j * d[0], cc = c + j * d[1];
                     if (k.body(rr, cc) != 0) continue;  // taken by an earlier run
                     k.body(rr, cc) = id;
-                    k.water(rr, cc) = static_cast<float>(from + (to - from) * static_cast<double>(j) / static_cast<double>(n));
+                    k.water(rr, cc) =
+                        static_cast<float>(from + (to - from) * static_cast<double>(j) / static_cast<double>(n));
                     ++joined;
                 }
             }
