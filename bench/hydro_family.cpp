@@ -7,7 +7,8 @@
 //   hydro_family [--first N] [--count N] [--density LOW HIGH] [--verbose]
 // For tuning (on the tuning seeds only), environment variables override trace_river_profile's options: HF_SHARE
 // (min_return_share), HF_LEVEL_WINDOW (level_window_m), HF_RETURN_TOL (return_tolerance_m), HF_LEVEL_TOL
-// (level_tolerance_m), HF_SPACING (section_spacing_m), HF_LOWEST (lowest_mode_share).
+// (level_tolerance_m), HF_SPACING (section_spacing_m), HF_LOWEST (lowest_mode_share), HF_DECK_REACH
+// (decks.reach_m), HF_UNDER_DECKS (0: without water_under_decks, to compare).
 // Prints per kind: bodies flattened, the specification's checks (flatness, monotonic fall, shoreline), lake levels
 // and river sections against the truth (worst, 95th percentile, share within 5 / 10 cm), deck cells flattened at the
 // interpolated level (no bowl), and weirs found.
@@ -158,6 +159,8 @@ int main(int argc, char** argv)
     knob("HF_LEVEL_TOL", method.river.level_tolerance_m);
     knob("HF_SPACING", method.river.section_spacing_m);
     knob("HF_LOWEST", method.river.lowest_mode_share);
+    knob("HF_DECK_REACH", method.decks.reach_m);
+    if (const char* v = std::getenv("HF_UNDER_DECKS")) method.under_decks = std::atoi(v) != 0;
     std::printf("hydro family, seeds %u-%u, %.1f-%.1f pulses/m2, flat_seed_water_method(), hydro_flatten defaults\n",
                 first, first + count - 1, low, high);
     std::printf(
