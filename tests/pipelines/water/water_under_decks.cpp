@@ -143,6 +143,22 @@ TEST_CASE("water/water_under_decks: a deck longer than max_span_m, a body that i
     }
 }
 
+TEST_CASE("water/water_under_decks: a high island the river encloses is no deck: it stays land")
+{
+    scene s = make();
+    for (std::ptrdiff_t r = 17; r <= 22; ++r)
+        for (std::ptrdiff_t c = 45; c <= 50; ++c) {
+            s.min_z(r, c) = 14.0f;  // 4 m above the water, 6 cells across: a deck by height and span
+            s.body(r, c) = 0;
+            s.water(r, c) = NAN;
+        }
+    const std::vector<std::int32_t> rivers{1};
+    const auto got = water_under_decks(s.body, s.water, s.min_z, rivers, 1.0);
+    CHECK(got.deck_cells == static_cast<std::size_t>((river_bottom - river_top + 1) * (deck_last - deck_first + 1)));
+    for (std::ptrdiff_t r = 17; r <= 22; ++r)
+        for (std::ptrdiff_t c = 45; c <= 50; ++c) CHECK(s.body(r, c) == 0);
+}
+
 TEST_CASE("water/water_under_decks: reach_m bounds the level cells; cells without returns on a deck are crossed")
 {
     {

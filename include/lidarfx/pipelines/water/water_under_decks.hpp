@@ -42,12 +42,15 @@ struct water_under_decks_result {
 ///     row-major order of the 3 x 3 window) joins that river at that cell's level; repeated, each round reading
 ///     the last, until no cell joins.
 ///  2. A straight run (row, column, diagonal, anti-diagonal) of land cells between two cells of the same river,
-///     each a deck cell relative to the run's first end (lowest return at least deck_clearance_m above its water)
-///     or without a return, at least one with a return, and n · cell_m <= max_span_m, joins that river, each cell
-///     at the level interpolated linearly between the run's two ends. Runs are found on the cells as step 1 left
+///     on land that reaches the raster's edge (a deck reaches a bank; an island is land the water encloses,
+///     4-connected), each a deck cell relative to the run's first end (lowest return at least deck_clearance_m above
+///     its water) or without a return, at least one with a return, and n · cell_m <= max_span_m, joins that river, each
+///     cell at the level interpolated linearly between the run's two ends. Runs are found on the cells as step 1 left
 ///     them; a cell on several runs takes the first (directions in the order above, then raster order of the
 ///     run's first end).
-/// Bodies not in `rivers` and their cells are left alone. O(cells + river cells · the longest run).
+/// Only the lowest returns tell a deck from ground: a neck of high ground narrower than max_span_m between two
+/// loops of one river would be crossed too. Bodies not in `rivers` and their cells are left alone. O(cells + river
+/// cells · the longest run).
 /// @throws invalid_input on rasters of different shapes, cell_m not finite and > 0, options out of range, or a
 /// negative id in `body` or `rivers`.
 inline water_under_decks_result water_under_decks(raster_view<std::int32_t> body, raster_view<float> water_surface,

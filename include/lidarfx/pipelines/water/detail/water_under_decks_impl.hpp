@@ -13,6 +13,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/kernels/filter/distance_transform.hpp"
+#include "lidarfx/kernels/label/connected_components.hpp"
 
 namespace lidarfx {
 
@@ -110,11 +111,31 @@ inline std::size_t join_level_cells_near_decks(const deck_rivers& k, const std::
     return joined;
 }
 
+/// Per land cell of `body` (4-connected, the dual of 8-connected water): whether its land reaches the raster's
+/// edge. Land that does not is an island of the water around it.
+inline raster<std::uint8_t> land_reaching_the_edge(raster_view<const std::int32_t> body)
+{
+    raster<std::uint8_t> land(body.rows(), body.cols(), 0);
+    for (std::ptrdiff_t r = 0; r < body.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < body.cols(); ++c) land(r, c) = body(r, c) == 0 ? 1 : 0;
+    const components parts = connected_components(land, connectivity::four);
+    std::vector<std::uint8_t> open(parts.count() + 1, 0);
+    for (std::ptrdiff_t r = 0; r < body.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < body.cols(); ++c)
+            if (r == 0 || c == 0 || r == body.rows() - 1 || c == body.cols() - 1)
+                open[static_cast<std::size_t>(parts.labels(r, c))] = 1;
+    for (std::ptrdiff_t r = 0; r < body.rows(); ++r)
+        for (std::ptrdiff_t c = 0; c < body.cols(); ++c)
+            land(r, c) = land(r, c) && open[static_cast<std::size_t>(parts.labels(r, c))];
+    return land;
+}
+
 /// Step 2: the runs of deck cells between two cells of one river, in the four directions.
 inline std::size_t join_deck_runs(const deck_rivers& k, double clearance_m, std::ptrdiff_t max_cells)
 {
     const raster<std::int32_t> before(k.body);  // runs are found on the cells as step 1 left them
     const raster<float> level(k.water);
+    const raster<std::uint8_t> open_land = land_reaching_the_edge(before);
     constexpr std::ptrdiff_t step[4][2] = {{0, 1}, {1, 0}, {1, 1}, {1, -1}};
     std::size_t joined = 0;
     for (const auto& d : step)
@@ -128,7 +149,7 @@ inline std::size_t join_deck_runs(const deck_rivers& k, double clearance_m, std:
                 for (;; ++n) {
                     const std::ptrdiff_t rr = r + n * d[0], cc = c + n * d[1];
                     if (n - 1 > max_cells || !k.inside(rr, cc)) break;
-                    if (before(rr, cc) != 0) break;
+                    if (before(rr, cc) != 0 || !open_land(rr, cc)) break;  // water, or an island
                     const float z = k.min_z(rr, cc);
                     if (std::isfinite(z) && !(z >= from + clearance_m)) break;  // ground: no deck here
                     deck = deck || std::isfinite(z);
