@@ -45,6 +45,20 @@ hydro_flatten_result flatten(const flattened_scene& f, const hydro_flatten_optio
     return hydro_flatten(f.dem, f.water.labels, f.rasters.min_z, f.rasters.max_z, f.scene.cell_m, opt);
 }
 
+/// Whether cell (r, c) holds true water under a bridge deck, `inset_m` inside the deck's edges.
+bool under_a_deck(const flattened_scene& f, std::ptrdiff_t r, std::ptrdiff_t c, double inset_m)
+{
+    const synth::water_family_scene& s = f.scene;
+    if (!std::isfinite(s.water_z(r, c))) return false;
+    const double ca = std::cos(s.river_angle_rad), sa = std::sin(s.river_angle_rad), half = 0.5 * s.size_m;
+    const double x = s.g.x0 + (static_cast<double>(c) + 0.5) * s.cell_m;
+    const double y = s.g.y0 - (static_cast<double>(r) + 0.5) * s.cell_m;
+    const double along = (x - half) * ca + (y - half) * sa + half;
+    for (const auto& b : s.bridge_along)
+        if (std::abs(along - b[0]) <= b[1] - inset_m) return true;
+    return false;
+}
+
 /// Every check of every flattened body passes.
 void check_specification(const hydro_flatten_result& h)
 {
@@ -146,19 +160,11 @@ TEST_CASE("water/hydro_flatten: water under a bridge deck continues at the inter
     REQUIRE(f.scene.bridge_along.size() == 2);
     const auto h = flatten(f);
     check_specification(h);
-    const double ca = std::cos(f.scene.river_angle_rad), sa = std::sin(f.scene.river_angle_rad);
-    const double half = 0.5 * f.scene.size_m;
     std::size_t deck = 0, flattened = 0;
     double worst = 0;
     for (std::ptrdiff_t r = 0; r < h.body.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < h.body.cols(); ++c) {
-            if (!std::isfinite(f.scene.water_z(r, c))) continue;
-            const double x = f.scene.g.x0 + (static_cast<double>(c) + 0.5) * f.scene.cell_m;
-            const double y = f.scene.g.y0 - (static_cast<double>(r) + 0.5) * f.scene.cell_m;
-            const double along = (x - half) * ca + (y - half) * sa + half;
-            bool under = false;
-            for (const auto& b : f.scene.bridge_along) under = under || std::abs(along - b[0]) <= b[1] - f.scene.cell_m;
-            if (!under) continue;
+            if (!under_a_deck(f, r, c, f.scene.cell_m)) continue;
             ++deck;
             if (h.body(r, c) == 0) continue;
             ++flattened;
@@ -181,19 +187,11 @@ TEST_CASE("water/hydro_flatten: under_decks takes back the water lost beside a d
     check_specification(h);
     CHECK(h.decks.deck_cells > 50);
     CHECK(notched.decks.level_cells + notched.decks.deck_cells == 0);
-    const double ca = std::cos(f.scene.river_angle_rad), sa = std::sin(f.scene.river_angle_rad);
-    const double half = 0.5 * f.scene.size_m;
     std::size_t deck = 0, flattened = 0, flattened_without = 0;
     double worst = 0;
     for (std::ptrdiff_t r = 0; r < h.body.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < h.body.cols(); ++c) {
-            if (!std::isfinite(f.scene.water_z(r, c))) continue;
-            const double x = f.scene.g.x0 + (static_cast<double>(c) + 0.5) * f.scene.cell_m;
-            const double y = f.scene.g.y0 - (static_cast<double>(r) + 0.5) * f.scene.cell_m;
-            const double along = (x - half) * ca + (y - half) * sa + half;
-            bool under = false;
-            for (const auto& b : f.scene.bridge_along) under = under || std::abs(along - b[0]) <= b[1];
-            if (!under) continue;
+            if (!under_a_deck(f, r, c, 0.0)) continue;
             ++deck;
             flattened_without += notched.body(r, c) != 0;
             if (h.body(r, c) == 0) continue;
