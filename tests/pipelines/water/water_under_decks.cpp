@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // water_under_decks: a river 20 cells wide along the columns, falling 0.1 m, crossed by a deck 6 cells long that
 // also spans its banks; beside the deck the waterbodies lost a strip of water at the river's level.
+// The test cases stay inside the namespace: in a unity build its short names must not reach the next file.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -78,10 +79,6 @@ bool adds_nothing(scene s, std::vector<std::int32_t> rivers)
     const auto got = water_under_decks(s.body, s.water, s.min_z, rivers, 1.0);
     return got.level_cells + got.deck_cells == 0 && s.body == before;
 }
-
-}  // namespace water_under_decks_test
-
-using namespace water_under_decks_test;
 
 TEST_CASE("water/water_under_decks: the river continues under its deck at the level interpolated across it")
 {
@@ -193,3 +190,5 @@ TEST_CASE("water/water_under_decks: refuses other shapes, a cell_m not > 0, opti
     s.body(0, 0) = -3;
     CHECK_THROWS_AS(water_under_decks(s.body, s.water, s.min_z, rivers, 1.0), invalid_input);
 }
+
+}  // namespace water_under_decks_test
