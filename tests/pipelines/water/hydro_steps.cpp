@@ -639,6 +639,38 @@ TEST_CASE("water/trace_river_profile: an oblique weir is followed cell by cell; 
     }
 }
 
+TEST_CASE("water/trace_river_profile: a dropout patch over part of a weir's crest takes the side of the crest line")
+{
+    // The oblique weir of the test above on a channel 16 cells wide, and no returns from 2 cells above the crest
+    // to 10 cells below it in the north half. Those cells take the side of the crest fitted to the cells with heights: its direction
+    // from every cell of both pools, not only from the south half's crossed cells. Taking the side of the nearest
+    // cell with a height would put a wedge of the patch on the wrong side.
+    constexpr std::ptrdiff_t rows = 16, cols = 200;
+    constexpr double crest_at = 90.3, slope = 1.7;
+    hydro_steps_test::river_strip strip;
+    raster<std::int32_t> labels(rows, cols, 1);
+    raster<float> truth(rows, cols), water_z(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            const auto row = static_cast<double>(r), col = static_cast<double>(c);
+            truth(r, c) = strip.truth(r % strip.rows, c);
+            water_z(r, c) = strip.water_z(r % strip.rows, c);
+            if (col + 0.5 > crest_at + slope * (row + 0.5)) truth(r, c) -= 0.6f;
+            if (col + 1 > crest_at + slope * row) water_z(r, c) -= 0.6f;
+            const double crest = crest_at + slope * (row + 0.5);
+            if (r < rows / 2 && col + 0.5 - crest >= -2 && col + 0.5 - crest <= 10) water_z(r, c) = nan_f;
+        }
+    const cell_box box{0, 0, rows - 1, cols - 1};
+    const auto p = trace_river_profile(labels, 1, box, measure_hydro_body_shape(labels, 1, box, 1.0), water_z, 1.0);
+    CHECK(hydro_steps_test::non_increasing(p.level_m));
+    CHECK(p.weirs == 1);
+    std::size_t off = 0;
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c)
+            off += std::abs(p.level_m[static_cast<std::size_t>(p.section(r, c))] - truth(r, c)) > 0.1;
+    CHECK(off < static_cast<std::size_t>(rows));
+}
+
 TEST_CASE("water/trace_river_profile: a steep river is no weir; a stray low return beside a weir stays in its pool")
 {
     SUBCASE("a 2 % fall: every step is 10 cm, none is a weir, nothing is re-cut")

@@ -94,14 +94,18 @@ struct river_profile {
 ///     level_window_m / 2 plus such a run either side), by more than a quarter of weir_min_drop_m at every step and by
 ///     at least weir_min_drop_m in all: a steep river is not a weir. Within half the river's width plus one section of
 ///     it (not into the next weir's reach), each cell takes the upper or the lower level, whichever its water_z is
-///     nearer; cells without a height near either take the side of the nearest cell that has one; a cell of one
-///     side not connected through its side to its own pool takes the other (a stray return does not cross the
-///     weir). A cell the crest crosses reads the lower pool (its lowest return), so when those cells lie along a
-///     straight line, the cells within one cell of it take the side their centre lies on. The upper cells join the
+///     nearer. A cell the crest crosses reads the lower pool (its lowest return), so the line that best separates
+///     the two pools' cells (the fewest on the wrong side, its direction from every cell of both) lies half a
+///     cell's projection before the crest; when it leaves at most 5 % of them on the wrong side the crest is
+///     straight. Cells without a height near either pool then take the side of that line within half the river's
+///     width plus one section of it (a dropout patch over the crest does not follow the nearer pool's returns),
+///     the others the side of the nearest cell that has one; a cell of one side not connected through its side
+///     to its own pool takes the other (a stray return does not cross the weir); the cells within one cell of a
+///     straight crest take the side their centre lies on. The upper cells join the
 ///     weir's last upper section, the lower cells its first lower section, and the sections between are left
 ///     without cells (at the lower level, no longer measured). An oblique weir then leaves no section straddling
 ///     it; every section stays flat and the profile still only falls.
-/// O(n log n) in the body's n cells, plus O(cells of the box) per weir.
+/// O(n log n) in the body's n cells, plus O(cells of the box + 145 m log m) per weir with m cells around it.
 /// @throws invalid_input on rasters of different shapes, options out of range, a box outside the raster or a
 /// label without a cell there.
 inline river_profile trace_river_profile(raster_view<const std::int32_t> labels, std::int32_t label,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
@@ -100,67 +101,106 @@ inline double weighted_slope(const std::vector<double>& level, const std::vector
     return den > 0 ? (sw * sxy - sx * sy) / den : 0.0;
 }
 
-/// Places the crest of a straight weir to within a fraction of a cell. `side` holds 0 (upper pool), 1 (lower pool)
-/// or -1 (elsewhere) per cell. A cell the crest crosses holds returns of the lower pool, so its lowest return puts
-/// it there: the lower cells beside upper ones are the cells the crest crosses, and their centres lie either side
-/// of it. When they lie along a straight line (root mean square distance at most 0.6 cells, at least 4 of them),
-/// the cells within one cell of that line take the side their centre lies on.
-inline void place_straight_crest(raster<std::int8_t>& side)
+/// A weir's crest as a straight line: the cells within `offset` 0 of it, negative on the upper pool's side.
+struct crest_line {
+    double row = 0, col = 0;                ///< a point of the line, raster cells
+    double normal_row = 0, normal_col = 0;  ///< its unit normal, pointing to the lower pool
+
+    double offset(std::ptrdiff_t r, std::ptrdiff_t c) const
+    {
+        return (static_cast<double>(r) - row) * normal_row + (static_cast<double>(c) - col) * normal_col;
+    }
+};
+
+/// How well a line square to the normal at `angle` (radians, in (row, col)) separates `cells` ((row, col, side)
+/// with side 0 upper pool, 1 lower pool): the fewest cells on the wrong side of it over every position of the
+/// line (upper cells past it along the normal, lower cells before it), and the middle of the positions that leave
+/// that few (along the normal, raster cells). O(n log n) in the n cells.
+struct crest_separation {
+    std::size_t misplaced = 0;
+    double position = 0;
+};
+
+inline crest_separation separate_pools(const std::vector<std::array<double, 3>>& cells, double angle)
 {
-    std::vector<std::array<double, 2>> crossed;
-    const auto is = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int8_t v) {
-        return r >= 0 && r < side.rows() && c >= 0 && c < side.cols() && side(r, c) == v;
+    const double nr = std::cos(angle), nc = std::sin(angle);
+    std::vector<std::pair<double, bool>> along(cells.size());
+    std::size_t upper = 0;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        along[i] = {cells[i][0] * nr + cells[i][1] * nc, cells[i][2] == 0};
+        upper += cells[i][2] == 0;
+    }
+    std::sort(along.begin(), along.end());
+    // Before the first cell every upper cell lies past the line; after cell i, the line lies between i and i + 1.
+    std::size_t misplaced = upper, fewest = upper, first = 0, last = 0;  // the line after cells first-1 .. last-1
+    for (std::size_t i = 0; i < along.size(); ++i) {
+        misplaced = along[i].second ? misplaced - 1 : misplaced + 1;
+        if (misplaced < fewest)
+            fewest = misplaced, first = last = i + 1;
+        else if (misplaced == fewest)
+            last = i + 1;
+    }
+    const auto gap_middle = [&](std::size_t after) {  // the middle of the gap after `after` cells
+        if (after == 0) return along.front().first - 0.5;
+        if (after == along.size()) return along.back().first + 0.5;
+        return 0.5 * (along[after - 1].first + along[after].first);
     };
+    return {fewest, 0.5 * (gap_middle(first) + gap_middle(last))};
+}
+
+/// Fits the crest of a straight weir. `side` holds 0 (upper pool), 1 (lower pool) or another value (not known,
+/// or elsewhere) per cell. The crest's direction is the one whose line leaves the fewest upper and lower cells on
+/// the wrong side (separate_pools every 3°, then every 0.25° around the best; the middle of the best run): it uses
+/// every cell of both pools, so a crest seen over a short stretch, beside a dropout patch, still gets its
+/// direction. A cell the crest crosses holds returns of the lower pool, so its lowest return puts it there: the
+/// upper cells are those wholly upstream, whose centres lie at least h = (|cos| + |sin|) / 2 cells before the
+/// crest, and the line that separates the pools best lies h before it. The crest is straight when the best line
+/// leaves at most `max_misplaced_share` of the cells on the wrong side (stray returns) and each pool holds at
+/// least 4 cells; false otherwise. Across a stretch without returns the line lies in the middle of it. O(n log n) per
+/// angle in the n cells of the two pools.
+inline bool fit_crest_line(const raster<std::int8_t>& side, double max_misplaced_share, crest_line& line)
+{
+    std::vector<std::array<double, 3>> cells;
+    std::size_t upper = 0;
     for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
-            if (side(r, c) == 1 && (is(r - 1, c, 0) || is(r + 1, c, 0) || is(r, c - 1, 0) || is(r, c + 1, 0)))
-                crossed.push_back({static_cast<double>(r), static_cast<double>(c)});
-    if (crossed.size() < 4) return;
-    double mr = 0, mc = 0;
-    for (const auto& x : crossed) {
-        mr += x[0];
-        mc += x[1];
-    }
-    mr /= static_cast<double>(crossed.size());
-    mc /= static_cast<double>(crossed.size());
-    double srr = 0, src = 0, scc = 0;
-    for (const auto& x : crossed) {
-        srr += (x[0] - mr) * (x[0] - mr);
-        src += (x[0] - mr) * (x[1] - mc);
-        scc += (x[1] - mc) * (x[1] - mc);
-    }
-    const double count = static_cast<double>(crossed.size());
-    srr /= count;
-    src /= count;
-    scc /= count;
-    // The smaller eigenvalue of the covariance is the mean squared distance to the best line; its eigenvector is
-    // the line's normal.
-    const double half_trace = 0.5 * (srr + scc), root = std::sqrt(0.25 * (srr - scc) * (srr - scc) + src * src);
-    const double minor = half_trace - root;
-    if (minor > 0.36) return;
-    double nr = src, nc = minor - srr;  // (srr − λ) nr + src nc = 0
-    if (std::abs(nr) + std::abs(nc) < 1e-12) {
-        nr = srr <= scc ? 1 : 0;
-        nc = srr <= scc ? 0 : 1;
-    }
-    const double norm = std::hypot(nr, nc);
-    nr /= norm;
-    nc /= norm;
-    const auto offset = [&](std::ptrdiff_t r, std::ptrdiff_t c) {
-        return (static_cast<double>(r) - mr) * nr + (static_cast<double>(c) - mc) * nc;
+        for (std::ptrdiff_t c = 0; c < side.cols(); ++c) {
+            if (side(r, c) != 0 && side(r, c) != 1) continue;
+            cells.push_back({static_cast<double>(r), static_cast<double>(c), static_cast<double>(side(r, c))});
+            upper += side(r, c) == 0;
+        }
+    if (upper < 4 || cells.size() - upper < 4) return false;
+    constexpr double pi = 3.14159265358979323846, degree = pi / 180;
+    const auto best_angle = [&](double from, double step, int steps) {
+        std::vector<std::size_t> misplaced(static_cast<std::size_t>(steps));
+        for (int i = 0; i < steps; ++i)
+            misplaced[static_cast<std::size_t>(i)] = separate_pools(cells, from + i * step).misplaced;
+        const std::size_t fewest = *std::min_element(misplaced.begin(), misplaced.end());
+        int run_start = -1, best_start = 0, best_length = 0;  // the longest run of angles at the fewest
+        for (int i = 0; i <= steps; ++i) {
+            const bool at_fewest = i < steps && misplaced[static_cast<std::size_t>(i)] == fewest;
+            if (at_fewest && run_start < 0) run_start = i;
+            if (!at_fewest && run_start >= 0) {
+                if (i - run_start > best_length) best_start = run_start, best_length = i - run_start;
+                run_start = -1;
+            }
+        }
+        return from + (best_start + 0.5 * (best_length - 1)) * step;
     };
-    double upper_side = 0;  // the upper cells near the line lie on the negative side
+    const double coarse = best_angle(0, 3 * degree, 120);
+    const double angle = best_angle(coarse - 3 * degree, 0.25 * degree, 25);
+    const crest_separation best = separate_pools(cells, angle);
+    const double nr = std::cos(angle), nc = std::sin(angle), h = 0.5 * (std::abs(nr) + std::abs(nc));
+    line = {(best.position + h) * nr, (best.position + h) * nc, nr, nc};
+    return static_cast<double>(best.misplaced) <= max_misplaced_share * static_cast<double>(cells.size());
+}
+
+/// Gives the cells of `side` holding `which` and lying within `reach` cells of `line` the side their centre lies
+/// on (a centre on the line keeps its value).
+inline void take_side_of_line(raster<std::int8_t>& side, const crest_line& line, std::int8_t which, double reach)
+{
     for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
         for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
-            if (side(r, c) >= 0 && std::abs(offset(r, c)) <= 3)
-                upper_side += side(r, c) == 0 ? offset(r, c) : -offset(r, c);
-    if (upper_side > 0) {
-        nr = -nr;
-        nc = -nc;
-    }
-    for (std::ptrdiff_t r = 0; r < side.rows(); ++r)
-        for (std::ptrdiff_t c = 0; c < side.cols(); ++c)
-            if (const double d = offset(r, c); side(r, c) >= 0 && std::abs(d) <= 1 && d != 0)
+            if (const double d = line.offset(r, c); side(r, c) == which && std::abs(d) <= reach && d != 0)
                 side(r, c) = d < 0 ? 0 : 1;
 }
 
@@ -225,15 +265,16 @@ inline void keep_connected_sides(raster<std::int8_t>& side, const raster<std::in
 /// run of at most 2 · reach + 1 neighbouring sections [a, b] that each fall more than a quarter of weir_min_drop_m
 /// beyond that median and by at least weir_min_drop_m beyond it in all (a steep river is not a weir). Zones are
 /// found first; around each (reach sections either side, not into the next zone) each cell takes the upper level
-/// `level[a]` or the lower `level[b]`, whichever its water height is nearer (heights further than
-/// return_tolerance_m from both, and cells without one, take the side of the nearest cell that has one, by
-/// 8-connected steps); a side keeps only the cells connected to its own pool (keep_connected_sides); a straight
-/// crest is placed (place_straight_crest). Upper cells downstream of a join section a, lower cells upstream of b
-/// join section b, cells left between take the nearer of a and b; the sections between are left without cells at
-/// the lower level. Updates cells and centre; a section left without cells is no longer measured.
+/// `level[a]` or the lower `level[b]`, whichever its water height is nearer. Heights further than
+/// return_tolerance_m from both, and cells without one, take the side of a straight crest fitted to the cells with
+/// heights (fit_crest_line) within `line_reach_cells` of it, else the side of the nearest cell that has one, by
+/// 8-connected steps; a side keeps only the cells connected to its own pool (keep_connected_sides); the cells
+/// within one cell of a straight crest take the side their centre lies on. Upper cells downstream of a join section a,
+/// lower cells upstream of b join section b, cells left between take the nearer of a and b; the sections between are
+/// left without cells at the lower level. Updates cells and centre; a section left without cells is no longer measured.
 /// O(cells of the box) per weir.
 inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> water_z, std::size_t reach,
-                                  std::size_t background, const river_profile_options& opt)
+                                  std::size_t background, double line_reach_cells, const river_profile_options& opt)
 {
     const std::size_t n = p.level_m.size();
     const cell_box& box = p.box;
@@ -275,6 +316,11 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
                 side(r, c) = std::isfinite(h) && std::min(du, dl) <= opt.return_tolerance_m ? (du < dl ? 0 : 1) : 2;
                 if (side(r, c) < 2) front.push_back(r * box.cols() + c);
             }
+        // A straight crest seen from the cells with heights settles the cells without one near it: a dropout
+        // patch across the crest does not take the side of whichever pool's returns lie nearest.
+        crest_line line;
+        const bool straight = fit_crest_line(side, 0.05, line);
+        if (straight) take_side_of_line(side, line, 2, line_reach_cells);
         for (std::size_t i = 0; i < front.size(); ++i) {  // breadth-first: the nearest known cell's side
             const std::ptrdiff_t r = front[i] / box.cols(), c = front[i] % box.cols();
             for (std::ptrdiff_t dr = -1; dr <= 1; ++dr)
@@ -286,7 +332,10 @@ inline void cut_sections_at_weirs(river_profile& p, raster_view<const float> wat
                 }
         }
         keep_connected_sides(side, p.section, a, b);
-        place_straight_crest(side);
+        if (straight) {
+            take_side_of_line(side, line, 0, 1);
+            take_side_of_line(side, line, 1, 1);
+        }
         for (std::ptrdiff_t r = 0; r < box.rows(); ++r)
             for (std::ptrdiff_t c = 0; c < box.cols(); ++c) {
                 std::int32_t& k = p.section(r, c);
@@ -421,7 +470,7 @@ inline river_profile trace_river_profile(raster_view<const std::int32_t> labels,
         // spread over the sections interpolated across it stays above it.
         const auto background =
             static_cast<std::size_t>(std::floor(0.5 * opt.level_window_m / spacing)) + 2 * reach + 1;
-        detail::cut_sections_at_weirs(p, water_z, reach, background, opt);
+        detail::cut_sections_at_weirs(p, water_z, reach, background, (0.5 * shape.width_m + spacing) / cell_m, opt);
     }
     for (std::size_t s = 0; s + 1 < n; ++s) {
         const double fall = p.level_m[s] - p.level_m[s + 1];
