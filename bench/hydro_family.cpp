@@ -161,6 +161,8 @@ int main(int argc, char** argv)
     knob("HF_LOWEST", method.river.lowest_mode_share);
     knob("HF_DECK_REACH", method.decks.reach_m);
     if (const char* v = std::getenv("HF_UNDER_DECKS")) method.under_decks = std::atoi(v) != 0;
+    if (const char* v = std::getenv("HF_TO_BANKS")) method.to_banks = std::atoi(v) != 0;
+    knob("HF_BANK_QUANTILE", method.banks.bank_quantile);
     std::printf("hydro family, seeds %u-%u, %.1f-%.1f pulses/m2, flat_seed_water_method(), hydro_flatten defaults\n",
                 first, first + count - 1, low, high);
     std::printf(

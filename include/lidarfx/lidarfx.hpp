@@ -103,6 +103,7 @@
 #include "lidarfx/pipelines/water/join_level_cells.hpp"
 #include "lidarfx/pipelines/water/join_shore_cells.hpp"
 #include "lidarfx/pipelines/water/lake_level.hpp"
+#include "lidarfx/pipelines/water/lower_to_banks.hpp"
 #include "lidarfx/pipelines/water/measure_waterbodies.hpp"
 #include "lidarfx/pipelines/water/river_profile.hpp"
 #include "lidarfx/pipelines/water/seed_water_level.hpp"

@@ -129,11 +129,12 @@ read in place), cell_m in metres. Returns float32."""
     ...
 
 
-def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, under_decks: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> HydroFlattened:
+def hydro_flatten(dem: Any, labels: Any, min_z: Any, max_z: Any, cell_m: float, *, min_lake_area_m2: float = 8093.71, min_river_width_m: float = 30.48, min_island_area_m2: float = 4046.86, shoreline: str = 'lift', join_channels: bool = True, to_banks: bool = True, under_decks: bool = True, threads: int = 1, progress: Optional[Callable[[float], Optional[bool]]] = None) -> HydroFlattened:
     """Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
 (each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns
-at the interpolated level; sections beside a weir cut along its crest), pieces of one river cut apart at a weir
+at the interpolated level, lowered to their banks where those stand lower (to_banks); sections beside a weir cut
+along its crest), pieces of one river cut apart at a weir
 or a deck joined into one body first (join_channels, with the water under the deck), the rivers continued under
 their bridge decks (under_decks: the water lost beside a deck taken back at the river's level within 8 m of it,
 then runs of deck cells between two cells of the river at the level interpolated across), islands under

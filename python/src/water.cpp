@@ -122,7 +122,7 @@ py::object extract_waterbodies_binding(const py::handle& rasters, const py::hand
 py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& labels_arg, const py::handle& min_z_arg,
                                  const py::handle& max_z_arg, double cell_m, double min_lake_area_m2,
                                  double min_river_width_m, double min_island_area_m2, const std::string& shoreline,
-                                 bool join_channels, bool under_decks, int threads, py::object progress)
+                                 bool join_channels, bool to_banks, bool under_decks, int threads, py::object progress)
 {
     constexpr const char* fn = "hydro_flatten";
     if (shoreline != "lift" && shoreline != "flag")
@@ -137,6 +137,7 @@ py::object hydro_flatten_binding(const py::handle& dem_arg, const py::handle& la
     opt.min_island_area_m2 = min_island_area_m2;
     opt.shoreline = shoreline == "lift" ? shoreline_rule::lift : shoreline_rule::flag;
     opt.join_channels = join_channels;
+    opt.to_banks = to_banks;
     opt.under_decks = under_decks;
     run_settings rs(threads, std::move(progress));
     opt.run = rs.run();
@@ -220,12 +221,13 @@ Waterbody (area_m2, water_level_m = median lowest return, ...), issues, ran, ...
 
     m.def("hydro_flatten", &hydro_flatten_binding, "dem"_a, "labels"_a, "min_z"_a, "max_z"_a, "cell_m"_a, py::kw_only(),
           "min_lake_area_m2"_a = 8093.71, "min_river_width_m"_a = 30.48, "min_island_area_m2"_a = 4046.86,
-          "shoreline"_a = "lift", "join_channels"_a = true, "under_decks"_a = true, "threads"_a = 1,
-          "progress"_a = py::none(), R"doc(
+          "shoreline"_a = "lift", "join_channels"_a = true, "to_banks"_a = true, "under_decks"_a = true,
+          "threads"_a = 1, "progress"_a = py::none(), R"doc(
 Hydro-flattens a bare-earth DEM with the waterbodies of the same survey: every lake at one level (the median of
 its water heights in their densest 0.1 m), every river in flat cross-sections whose levels only fall downstream
 (each section read at its lowest dense 0.1 m of heights; isotonic regression; decks and stretches without returns
-at the interpolated level; sections beside a weir cut along its crest), pieces of one river cut apart at a weir
+at the interpolated level, lowered to their banks where those stand lower (to_banks); sections beside a weir cut
+along its crest), pieces of one river cut apart at a weir
 or a deck joined into one body first (join_channels, with the water under the deck), the rivers continued under
 their bridge decks (under_decks: the water lost beside a deck taken back at the river's level within 8 m of it,
 then runs of deck cells between two cells of the river at the level interpolated across), islands under

@@ -15,6 +15,7 @@
 #include "lidarfx/pipelines/water/hydro_qa.hpp"
 #include "lidarfx/pipelines/water/join_channel_parts.hpp"
 #include "lidarfx/pipelines/water/lake_level.hpp"
+#include "lidarfx/pipelines/water/lower_to_banks.hpp"
 #include "lidarfx/pipelines/water/river_profile.hpp"
 #include "lidarfx/pipelines/water/water_heights.hpp"
 #include "lidarfx/pipelines/water/water_under_decks.hpp"
@@ -31,12 +32,15 @@ struct hydro_flatten_options {
     double min_river_elongation = 6.0;    ///< a body at least this many widths long (hydro_body_shape::elongation)
                                           ///< is a river, else a lake, >= 1. Default 6 (a round lake is about 1.6, a
                                           ///< pond with a narrow tail 4-5)
-    bool join_channels = true;         ///< join_channel_parts: one body for the pieces of a river cut apart at a weir
-                                       ///< or a bridge deck, with the land under the deck
-    channel_join_options join = {};    ///< join_channel_parts: when two pieces are one channel
-    lake_level_options lake = {};      ///< lake_level: whether the shore caps the level, and how
-    river_profile_options river = {};  ///< trace_river_profile: section spacing, deck clearance, weirs
-    bool under_decks = true;           ///< water_under_decks: the rivers continue under their bridge decks
+    bool join_channels = true;          ///< join_channel_parts: one body for the pieces of a river cut apart at a weir
+                                        ///< or a bridge deck, with the land under the deck
+    channel_join_options join = {};     ///< join_channel_parts: when two pieces are one channel
+    lake_level_options lake = {};       ///< lake_level: whether the shore caps the level, and how
+    river_profile_options river = {};   ///< trace_river_profile: section spacing, deck clearance, weirs
+    bool to_banks = true;               ///< lower_to_banks: a river's sections without measured water no higher than
+                                        ///< their banks
+    lower_to_banks_options banks = {};  ///< lower_to_banks: the bank's quantile
+    bool under_decks = true;            ///< water_under_decks: the rivers continue under their bridge decks
     water_under_decks_options decks = {};             ///< water_under_decks: deck clearance, reach, longest span
     shoreline_rule shoreline = shoreline_rule::lift;  ///< enforce_shorelines: lift the shore or only count it
     double flat_tolerance_m = 0.001;  ///< hydro_qa: largest max − min of a lake or a section, metres. 1 mm
@@ -60,6 +64,7 @@ struct hydro_body {
     double level_min_m = NAN, level_max_m = NAN;  ///< its lowest and highest water level, metres (a lake: equal)
     lake_level_result lake;                       ///< lakes: the level and what it came from
     river_profile river;                          ///< rivers: sections and levels, upstream first
+    lower_to_banks_result banks;                  ///< rivers: the unmeasured sections lowered to their banks
     /// The fall from its highest to its lowest level, metres (0 for a lake).
     double drop_m() const noexcept { return level_max_m - level_min_m; }
 };
@@ -91,7 +96,8 @@ struct hydro_flatten_result {
 ///     under min_lake_area_m2 or a river narrower than min_river_width_m is left to the terrain;
 ///  3. water_heights(labels, min_z, max_z); lakes: lake_level, one level over the body; rivers:
 ///     trace_river_profile, each cross-section at its level, non-increasing downstream, decks and unflown
-///     stretches at the interpolated level, the sections beside a weir cut along it;
+///     stretches at the interpolated level, the sections beside a weir cut along it; with to_banks,
+///     lower_to_banks: the sections without measured water no higher than their banks in `dem`;
 ///  4. the DEM takes the water level on the flattened water (also where it was NaN inside a body; a river's cell
 ///     without a section, which its profile could not reach, stays as it was); with under_decks, water_under_decks
 ///     on the flattened rivers: the water continues under their decks, at the level beside them and interpolated

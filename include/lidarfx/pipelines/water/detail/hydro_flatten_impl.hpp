@@ -161,6 +161,7 @@ inline hydro_flatten_result hydro_flatten(raster_view<const float> dem, raster_v
         b.flattened = river ? b.shape.width_m >= opt.min_river_width_m : b.shape.area_m2 >= opt.min_lake_area_m2;
         if (b.flattened && river) {
             b.river = trace_river_profile(filled, id, bx, b.shape, water_z, cell_m, opt.river);
+            if (opt.to_banks) b.banks = lower_to_banks(b.river, filled, id, dem, opt.river, opt.banks);
             const auto [low, high] = std::minmax_element(b.river.level_m.begin(), b.river.level_m.end());
             b.level_min_m = *low;
             b.level_max_m = *high;
