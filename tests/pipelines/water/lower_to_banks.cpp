@@ -90,34 +90,22 @@ TEST_CASE("water/lower_to_banks: a stretch without returns below a weir comes do
         if (measured.returns[k] > 0) CHECK(p.level_m[k] == measured.level_m[k]);  // measured sections stay
 }
 
+/// lower_to_banks leaves the river's profile as trace_river_profile made it.
+bool changes_nothing(const river_with_banks& river)
+{
+    river_profile p = river.profile();
+    const river_profile before = p;
+    return lower_to_banks(p, river.labels, 1, river.ground).sections_lowered == 0 && p.level_m == before.level_m;
+}
+
 TEST_CASE("water/lower_to_banks: banks above the water, measured water and a section without banks change nothing")
 {
-    SUBCASE("banks 1 m above the water")
-    {
-        river_with_banks river(1.0f, weir_col);
-        river_profile p = river.profile();
-        const river_profile before = p;
-        CHECK(lower_to_banks(p, river.labels, 1, river.ground).sections_lowered == 0);
-        CHECK(p.level_m == before.level_m);
-    }
-    SUBCASE("every section measured, banks at the water")
-    {
-        river_with_banks river(0.0f, cols);
-        river_profile p = river.profile();
-        const river_profile before = p;
-        CHECK(lower_to_banks(p, river.labels, 1, river.ground).sections_lowered == 0);
-        CHECK(p.level_m == before.level_m);
-    }
-    SUBCASE("banks without ground")
-    {
-        river_with_banks river(0.02f, weir_col);
-        for (const std::ptrdiff_t r : {std::ptrdiff_t{0}, rows - 1})
-            for (std::ptrdiff_t c = 0; c < cols; ++c) river.ground(r, c) = nan_f;
-        river_profile p = river.profile();
-        const river_profile before = p;
-        CHECK(lower_to_banks(p, river.labels, 1, river.ground).sections_lowered == 0);
-        CHECK(p.level_m == before.level_m);
-    }
+    CHECK(changes_nothing(river_with_banks(1.0f, weir_col)));  // banks 1 m above the water
+    CHECK(changes_nothing(river_with_banks(0.0f, cols)));      // every section measured, banks at the water
+    river_with_banks without_ground(0.02f, weir_col);
+    for (const std::ptrdiff_t r : {std::ptrdiff_t{0}, rows - 1})
+        for (std::ptrdiff_t c = 0; c < cols; ++c) without_ground.ground(r, c) = nan_f;
+    CHECK(changes_nothing(without_ground));
 }
 
 TEST_CASE("water/lower_to_banks: never below the measured section downstream of the stretch")
