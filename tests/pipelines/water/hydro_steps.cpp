@@ -642,9 +642,9 @@ TEST_CASE("water/trace_river_profile: an oblique weir is followed cell by cell; 
 TEST_CASE("water/trace_river_profile: a dropout patch over part of a weir's crest takes the side of the crest line")
 {
     // The oblique weir of the test above on a channel 16 cells wide, and no returns from 2 cells above the crest
-    // to 10 cells below it in the north half. Those cells take the side of the crest fitted to the cells with heights: its direction
-    // from every cell of both pools, not only from the south half's crossed cells. Taking the side of the nearest
-    // cell with a height would put a wedge of the patch on the wrong side.
+    // to 10 cells below it in the north half. Those cells take the side of the crest fitted to the cells with heights:
+    // its direction from every cell of both pools, not only from the south half's crossed cells. Taking the side of the
+    // nearest cell with a height would put a wedge of the patch on the wrong side.
     constexpr std::ptrdiff_t rows = 16, cols = 200;
     constexpr double crest_at = 90.3, slope = 1.7;
     hydro_steps_test::river_strip strip;
