@@ -64,13 +64,7 @@ inline lower_to_banks_result lower_to_banks(river_profile& p, raster_view<const 
         }
         first = last;
     }
-    p.weirs = 0;
-    p.largest_step_m = 0;
-    for (std::size_t k = 0; k + 1 < n; ++k) {
-        const double fall = p.level_m[k] - p.level_m[k + 1];
-        if (fall >= river.weir_min_drop_m) ++p.weirs;
-        p.largest_step_m = std::max(p.largest_step_m, fall);
-    }
+    detail::count_weirs(p, river.weir_min_drop_m);
     return out;
 }
 
