@@ -197,9 +197,11 @@ TEST_CASE(
 {
     std::mt19937 rng(31);
     const float specials[] = {NAN, INFINITY, -INFINITY, 0.0f, -0.0f, -5.5f, 1e30f};
-    for (int trial = 0; trial < 80; ++trial) {
+    for (int trial = 0; trial < 88; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 1 + rng() % 9, cols = 1 + rng() % 70;
+        // The last trials are tall: bands of rows on 1-3 threads.
+        const bool tall = trial >= 80;
+        const std::ptrdiff_t rows = tall ? 250 + rng() % 500 : 1 + rng() % 9, cols = 1 + rng() % (tall ? 9 : 70);
         survey s(rows, cols);
         raster<std::uint8_t> footprint(rows, cols, 1);
         const int one_value = trial % 4 == 0;  // constant intensity: the range must collapse
@@ -230,7 +232,7 @@ TEST_CASE(
                 hi = std::max(hi, v);
             }
         }
-        const auto d = assess_water_inputs(in, 1.0);
+        const auto d = assess_water_inputs(in, 1.0, {}, {.threads = 1 + trial % 3});
         CHECK(d.has_intensity == (hi > lo));
         const double cells = static_cast<double>(std::max<std::size_t>(inside, 1));
         CHECK(d.dropout_fraction == doctest::Approx(static_cast<double>(dropouts) / cells));

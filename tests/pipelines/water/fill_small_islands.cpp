@@ -95,6 +95,30 @@ TEST_CASE("water/fill_small_islands: equals a whole-raster search for holes on r
     CHECK(filled_scenes > 40);
 }
 
+TEST_CASE("water/fill_small_islands: many bodies searched on several threads give the one-thread labels")
+{
+    // 100 random blob bodies (more than one block of bodies), many with holes, some nested in others' boxes.
+    std::mt19937 rng(17);
+    raster<std::int32_t> labels(120, 130, 0);
+    for (std::int32_t k = 1; k <= 100; ++k) {
+        const std::ptrdiff_t r0 = rng() % 110, c0 = rng() % 120, h = 3 + rng() % 8, w = 3 + rng() % 8;
+        for (std::ptrdiff_t r = r0; r < std::min<std::ptrdiff_t>(120, r0 + h); ++r)
+            for (std::ptrdiff_t c = c0; c < std::min<std::ptrdiff_t>(130, c0 + w); ++c)
+                labels(r, c) = rng() % 6 == 0 ? 0 : k;
+    }
+    auto slow = labels;
+    reference::fill_small_islands(slow, 3);
+    std::vector<std::size_t> counts;
+    for (const int threads : {1, 2, 3}) {
+        auto fast = labels;
+        counts.push_back(fill_small_islands(fast, 1.0, {.island_min_area_m2 = 3.0}, {.threads = threads}));
+        CHECK(fast == slow);
+    }
+    CHECK(counts[0] > 20);
+    CHECK(counts[1] == counts[0]);
+    CHECK(counts[2] == counts[0]);
+}
+
 TEST_CASE("water/fill_small_islands: nested ring bodies, each with a small hole")
 {
     // Concentric square rings of bodies 1..5; the innermost encloses 3 x 3 land cells. The boxes nest, so

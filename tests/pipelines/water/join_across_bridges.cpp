@@ -31,6 +31,35 @@ TEST_CASE("water/water_levels: median min z of each label's cells with a return"
     CHECK(water_levels(land, raster<float>(2, 2, 1.0f)).size() == 1);
 }
 
+TEST_CASE("water/water_levels: bands of rows on several threads give the medians of all cells at once")
+{
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 10.0f);
+    // 900 rows: bands of rows, bodies that span several of them, and more labels than a block of medians.
+    raster<std::int32_t> labels(900, 23, 0);
+    raster<float> z(900, 23);
+    for (std::ptrdiff_t r = 0; r < 900; ++r)
+        for (std::ptrdiff_t c = 0; c < 23; ++c) {
+            labels(r, c) = rng() % 4 == 0 ? 0 : 1 + static_cast<std::int32_t>((r / 23 * 3 + c / 9) % 41);
+            z(r, c) = rng() % 9 == 0 ? NAN : u(rng);
+        }
+    std::vector<std::vector<float>> heights(42);
+    for (std::ptrdiff_t r = 0; r < 900; ++r)
+        for (std::ptrdiff_t c = 0; c < 23; ++c)
+            if (std::isfinite(z(r, c))) heights[static_cast<std::size_t>(labels(r, c))].push_back(z(r, c));
+    for (const int threads : {1, 2, 3}) {
+        CAPTURE(threads);
+        const auto level = water_levels(labels, z, {.threads = threads});
+        REQUIRE(level.size() == 42);
+        for (std::size_t l = 1; l < 42; ++l) {
+            auto h = heights[l];
+            REQUIRE(!h.empty());
+            std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
+            CHECK(level[l] == static_cast<double>(h[h.size() / 2]));
+        }
+    }
+}
+
 TEST_CASE("water/join_across_bridges: one sweep equals walking every land cell's four lines")
 {
     std::mt19937 rng(77);

@@ -3,6 +3,7 @@
 
 #include <lidarfx/pipelines/water/measure_waterbodies.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -128,6 +129,63 @@ TEST_CASE("water/measure_waterbodies: the statistics agree with the label raster
         }
         for (std::ptrdiff_t i = 0; i < labels.size(); ++i) CHECK((labels.data()[i] == 0) == (before.data()[i] == 0));
     }
+}
+
+TEST_CASE("water/measure_waterbodies: bands of rows on several threads give one result: tight boxes, medians")
+{
+    // 700 rows: several bands of rows, bodies spanning them, more bodies than a block of medians.
+    std::mt19937 rng(607);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const std::ptrdiff_t rows = 700, cols = 19;
+    survey s(rows, cols);
+    raster<std::int32_t> labels(rows, cols);
+    for (std::ptrdiff_t r = 0; r < rows; ++r)
+        for (std::ptrdiff_t c = 0; c < cols; ++c) {
+            labels(r, c) = u(rng) < 0.25f ? 0 : 1 + static_cast<std::int32_t>((r / 29 * 2 + c / 10) % 37);
+            s.min_z(r, c) = u(rng) < 0.05f ? NAN : 5.0f + u(rng);
+            s.intensity(r, c) = 100.0f * u(rng);
+            if (u(rng) < 0.2f) s.drop(r, c);
+        }
+    std::vector<std::vector<waterbody>> results;
+    std::vector<raster<std::int32_t>> renumbered;
+    for (const int threads : {1, 2, 3}) {
+        auto l = labels;
+        std::vector<waterbody> bodies;
+        measure_waterbodies(l, bodies, s.view(), 1.0, {.threads = threads});
+        results.push_back(bodies);
+        renumbered.push_back(l);
+    }
+    const auto& bodies = results[0];
+    REQUIRE(bodies.size() == 37);
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        const auto& b = bodies[k];
+        CAPTURE(k);
+        cell_box box{rows, cols, -1, -1};
+        std::vector<float> heights;
+        for (std::ptrdiff_t r = 0; r < rows; ++r)
+            for (std::ptrdiff_t c = 0; c < cols; ++c)
+                if (renumbered[0](r, c) == b.label) {
+                    box.extend(r, c);
+                    if (!s.dropout(r, c) && std::isfinite(s.min_z(r, c))) heights.push_back(s.min_z(r, c));
+                }
+        CHECK(b.box.row_min == box.row_min);
+        CHECK(b.box.row_max == box.row_max);
+        CHECK(b.box.col_min == box.col_min);
+        CHECK(b.box.col_max == box.col_max);
+        REQUIRE(!heights.empty());
+        std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2),
+                         heights.end());
+        CHECK(b.water_level_m == static_cast<double>(heights[heights.size() / 2]));
+        for (std::size_t t = 1; t < results.size(); ++t) {  // the same bits on 2 and 3 threads
+            const auto& o = results[t][k];
+            CHECK(o.cells == b.cells);
+            CHECK(o.mean_intensity == b.mean_intensity);
+            CHECK(o.water_level_m == b.water_level_m);
+            CHECK(o.dropout_fraction == b.dropout_fraction);
+        }
+    }
+    CHECK(renumbered[1] == renumbered[0]);
+    CHECK(renumbered[2] == renumbered[0]);
 }
 
 TEST_CASE("water/measure_waterbodies: bad arguments are refused")

@@ -4,6 +4,7 @@
 #include <lidarfx/core/raster.hpp>
 #include <lidarfx/pipelines/water/seeds_beyond_bridges.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -118,4 +119,32 @@ TEST_CASE(
         const raster<float> other(3, 3, 0.0f);
         CHECK_THROWS_AS(seeds_beyond_bridges(river.labels, other, river.eligible, 2.0), invalid_input);
     }
+}
+
+TEST_CASE("water/seeds_beyond_bridges: a deck across the border of two bands of rows, on 1-3 threads")
+{
+    // The river above placed so that its body ends in the first band of rows (128 rows each) and the water
+    // beyond the deck lies in the second: the marks cross from one band into the other.
+    const river_with_bridge river;
+    const std::ptrdiff_t shift = 128 - 20;  // the deck's rows 18-21 become 126-129
+    raster<float> min_z(200, 15);
+    raster<std::int32_t> labels(200, 15, 0);
+    raster<std::uint8_t> eligible(200, 15, 1);
+    for (std::ptrdiff_t r = 0; r < 200; ++r)
+        for (std::ptrdiff_t c = 0; c < 15; ++c) {
+            const std::ptrdiff_t from = std::clamp<std::ptrdiff_t>(r - shift, 0, 39);
+            min_z(r, c) = river.min_z(from, c);
+            labels(r, c) = river.labels(from, c);
+        }
+    const auto one = seeds_beyond_bridges(labels, min_z, eligible, 2.0);
+    std::ptrdiff_t below = 0;
+    for (std::ptrdiff_t r = 0; r < 200; ++r)
+        for (std::ptrdiff_t c = 0; c < 15; ++c) {
+            if (!one(r, c)) continue;
+            CHECK(r >= 130);
+            ++below;
+        }
+    CHECK(below >= 7 * 4);  // every channel column, beyond_cells deep
+    for (const int threads : {2, 3})
+        CHECK(seeds_beyond_bridges(labels, min_z, eligible, 2.0, {}, {}, {.threads = threads}) == one);
 }

@@ -128,9 +128,12 @@ TEST_CASE("water/join_shore_cells: matches the per-cell reference on random rast
 {
     const unsigned seed = 20261203;
     std::mt19937 rng(seed);
-    for (int trial = 0; trial < 40; ++trial) {
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 40),
-                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 40);
+    for (int trial = 0; trial < 46; ++trial) {
+        // The last trials are tall: their bands of rows run on 1-3 threads.
+        const bool tall = trial >= 40;
+        const std::ptrdiff_t rows = tall ? 250 + static_cast<std::ptrdiff_t>(rng() % 600)
+                                         : 1 + static_cast<std::ptrdiff_t>(rng() % 40),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % (tall ? 12 : 40));
         INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols);
         raster<std::int32_t> labels(rows, cols, 0);
         raster<std::uint32_t> count(rows, cols);
@@ -153,7 +156,7 @@ TEST_CASE("water/join_shore_cells: matches the per-cell reference on random rast
                                          .min_body_neighbours = 1 + trial % 4};
         const auto want = reference_shore(labels, count, excluded, footprint, o);
         auto got = labels;
-        const auto n = join_shore_cells(got, count, excluded, footprint, o);
+        const auto n = join_shore_cells(got, count, excluded, footprint, o, {.threads = 1 + trial % 3});
         CHECK(got == want);
         std::size_t changed = 0;
         for (std::ptrdiff_t i = 0; i < got.size(); ++i) changed += got.data()[i] != labels.data()[i];
@@ -243,9 +246,12 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
     const unsigned seed = 20261204;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> noise(-0.1f, 0.4f);
-    for (int trial = 0; trial < 40; ++trial) {
-        const std::ptrdiff_t rows = 1 + static_cast<std::ptrdiff_t>(rng() % 30),
-                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % 30);
+    for (int trial = 0; trial < 46; ++trial) {
+        // The last trials are tall: their bands of rows run on 1-3 threads.
+        const bool tall = trial >= 40;
+        const std::ptrdiff_t rows = tall ? 250 + static_cast<std::ptrdiff_t>(rng() % 600)
+                                         : 1 + static_cast<std::ptrdiff_t>(rng() % 30),
+                             cols = 1 + static_cast<std::ptrdiff_t>(rng() % (tall ? 12 : 30));
         INFO("seed " << seed << ", trial " << trial << ": " << rows << "x" << cols);
         raster<std::int32_t> labels(rows, cols, 0);
         raster<float> z(rows, cols);
@@ -268,7 +274,7 @@ TEST_CASE("water/trim_raised_edge_cells: matches the per-cell reference on rando
                                                .min_level_cells = 1 + static_cast<std::size_t>(trial % 3)};
         const auto want = reference_trim(labels, z, o);
         auto got = labels;
-        const auto n = trim_raised_edge_cells(got, z, o);
+        const auto n = trim_raised_edge_cells(got, z, o, {.threads = 1 + trial % 3});
         CHECK(got == want);
         std::size_t changed = 0;
         for (std::ptrdiff_t i = 0; i < got.size(); ++i) changed += got.data()[i] != labels.data()[i];

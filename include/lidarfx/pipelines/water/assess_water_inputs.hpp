@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
 namespace lidarfx {
@@ -83,13 +84,16 @@ struct assess_water_inputs_options {
 /// returns (the KS stop compares intensity distributions), point density (needs `count`): mean points per
 /// cell p = points / cells (cells inside the footprint when one is given) against min_points_per_cell, with
 /// suggested cell ceil(2·sqrt(min / (points per m²))) / 2 m (at least cell_m), and multiple returns
-/// (vegetation). Blocking findings are problems, the others warnings. O(cells), one vectorized pass.
-/// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, min_points_per_cell < 0.
+/// (vegetation). Blocking findings are problems, the others warnings. O(cells), one vectorized pass in bands of
+/// rows on `run.threads` threads (integer sums and bounds: the same result for any count).
+/// @throws invalid_input on rasters of different shapes or empty, cell_m <= 0, min_points_per_cell < 0,
+/// run.threads < 0.
 inline water_diagnostics assess_water_inputs(const water_rasters& in, double cell_m,
-                                             const assess_water_inputs_options& opt = {});
+                                             const assess_water_inputs_options& opt = {}, const execution& run = {});
 
 /// assess_water_inputs on the output of rasterize(), at its grid's cell size.
-inline water_diagnostics assess_water_inputs(const rasterize_result& pr, const assess_water_inputs_options& opt = {});
+inline water_diagnostics assess_water_inputs(const rasterize_result& pr, const assess_water_inputs_options& opt = {},
+                                             const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -12,6 +12,7 @@
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -36,9 +37,11 @@ struct join_across_bridges_options {
 
 /// Water level of every body of a label raster: level[l] = median of the finite min z (metres) of the cells
 /// labelled l (the element at position n / 2 of their n sorted values), for l = 1 .. the largest label;
-/// NaN for a label without such cells and for level[0] (land). O(cells + largest label) time and memory.
-/// @throws invalid_input if the shapes differ or a label is negative.
-inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z);
+/// NaN for a label without such cells and for level[0] (land). O(cells + largest label) time and memory; bands of
+/// rows, then the labels' medians, run on `run.threads` threads (the same levels for any count).
+/// @throws invalid_input if the shapes differ, a label is negative or run.threads < 0.
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
+                                        const execution& run = {});
 
 /// Joins waterbodies across bridges: a straight run (row, column or diagonal) of n land cells (label 0),
 /// n·cell_m <= max_span_m, whose two ends touch bodies a != b with |level[a] − level[b]| <= level_tolerance_m, is
@@ -59,10 +62,12 @@ inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_
                                        std::span<const double> level, double cell_m,
                                        const join_across_bridges_options& opt = {});
 
-/// join_across_bridges with each body's level from water_levels(labels, min_z).
-/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range or a negative label.
+/// join_across_bridges with each body's level from water_levels(labels, min_z, run) (the levels on `run.threads`
+/// threads; the sweep on the calling thread).
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range, a negative label or
+/// run.threads < 0.
 inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z, double cell_m,
-                                       const join_across_bridges_options& opt = {});
+                                       const join_across_bridges_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
 namespace lidarfx {
@@ -36,12 +37,13 @@ struct join_shore_cells_options {
 /// e.g. vegetation, whose several returns per pulse would lift n_land) only keeps cells out of n_land; a
 /// shore cell may be excluded itself (a bank's edge reads as vegetation). `footprint` is optional (empty =
 /// all inside). Returns the number of cells joined.
-/// O(cells + shore cells · (2 window_cells + 1)²).
-/// @throws invalid_input on rasters of different shapes or options out of range.
+/// O(cells + shore cells · (2 window_cells + 1)²); bands of rows run on `run.threads` threads (the same result
+/// for any count).
+/// @throws invalid_input on rasters of different shapes, options out of range or run.threads < 0.
 inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_view<const std::uint32_t> count,
                                     raster_view<const std::uint8_t> excluded = {},
                                     raster_view<const std::uint8_t> footprint = {},
-                                    const join_shore_cells_options& opt = {});
+                                    const join_shore_cells_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

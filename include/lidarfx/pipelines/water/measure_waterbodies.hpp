@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -36,10 +37,11 @@ struct waterbody {
 /// the order of the old labels), labels without cells are gone, and bodies[i] describes label i + 1:
 /// cells, area_m2 = cells · cell_m², bounding box, and over its cells with returns (dropout == 0) the mean
 /// intensity, the water level (median of the finite min z, metres: the element at position n / 2 of the n
-/// sorted values) and the dropout share. O(cells + n log n).
-/// @throws invalid_input on rasters of different shapes, cell_m <= 0 or negative labels.
+/// sorted values) and the dropout share. O(cells + n log n); bands of rows, then the bodies' medians, run on
+/// `run.threads` threads (the same result for any count: a body's intensity is summed run by run, in raster order).
+/// @throws invalid_input on rasters of different shapes, cell_m <= 0, negative labels or run.threads < 0.
 inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<waterbody>& bodies,
-                                const water_rasters& in, double cell_m);
+                                const water_rasters& in, double cell_m, const execution& run = {});
 
 }  // namespace lidarfx
 

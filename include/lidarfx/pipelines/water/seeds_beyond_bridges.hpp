@@ -11,6 +11,7 @@
 
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_surface_slope.hpp"
@@ -55,12 +56,13 @@ struct seeds_beyond_bridges_options {
 /// stretch has at the deck; they grow like any seed (the level gate and the intensity test decide what joins).
 /// A walk sideways from a bank over a building only marks ground at the water's level behind it, which the same
 /// tests then judge.
-/// O(cells of bodies · 8 · (span + beyond_cells)). Elevations and cell_m in metres.
-/// @throws invalid_input on shapes that differ, cell_m <= 0 or options out of range.
+/// O(cells of bodies · 8 · (span + beyond_cells)); bands of rows run on `run.threads` threads (the same seeds for
+/// any count). Elevations and cell_m in metres.
+/// @throws invalid_input on shapes that differ, cell_m <= 0, options out of range or run.threads < 0.
 inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
                                                  raster_view<const std::uint8_t> eligible, double cell_m,
                                                  const seeds_beyond_bridges_options& opt = {},
-                                                 surface_slope_source surface_slope = {});
+                                                 surface_slope_source surface_slope = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
 namespace lidarfx {
@@ -31,10 +32,11 @@ struct trim_raised_edge_cells_options {
 /// land neighbour) of the same body with a finite min z in its (2 window_cells + 1)² window, given at least
 /// min_level_cells of them (a body next to another at a different level reads its own); the cell becomes land (label 0)
 /// when min_rise_m < min z − level <= max_rise_m. One pass over the labels as given. Returns the number of cells
-/// trimmed. Elevations in metres. O(cells + edge cells · (2 window_cells + 1)²).
-/// @throws invalid_input on rasters of different shapes or options out of range.
+/// trimmed. Elevations in metres. O(cells + edge cells · (2 window_cells + 1)²); bands of rows run on
+/// `run.threads` threads (the same result for any count).
+/// @throws invalid_input on rasters of different shapes, options out of range or run.threads < 0.
 inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, raster_view<const float> min_z,
-                                          const trim_raised_edge_cells_options& opt = {});
+                                          const trim_raised_edge_cells_options& opt = {}, const execution& run = {});
 
 }  // namespace lidarfx
 

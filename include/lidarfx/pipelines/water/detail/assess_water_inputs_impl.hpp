@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <vector>
 #include "lidarfx/core/error.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
 namespace lidarfx {
@@ -61,52 +62,79 @@ inline std::string water_issue::message() const
 }
 
 inline water_diagnostics assess_water_inputs(const water_rasters& in, double cell_m,
-                                             const assess_water_inputs_options& opt)
+                                             const assess_water_inputs_options& opt, const execution& run)
 {
     constexpr const char* fn = "assess_water_inputs";
     detail::validate(in, fn);
     detail::require_positive(cell_m, fn, "cell_m");
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     water_diagnostics d;
     const std::ptrdiff_t rows = in.min_z.rows(), cols = in.min_z.cols();
-    std::uint64_t points = 0, dropouts = 0, inside = 0;
     // The intensity range over cells with a return, as integer keys that order floats as numbers
     // (key = bits ^ ((bits >> 31) & 0x7fffffff), its own inverse) and integer masks: the loop vectorizes,
-    // which float min / max reductions with selects do not. NaN changes neither bound.
+    // which float min / max reductions with selects do not. NaN changes neither bound. Integer sums and bounds
+    // per band of rows (on run.threads threads), merged after: exact for any thread count.
     constexpr std::int32_t most = std::numeric_limits<std::int32_t>::max();
     constexpr std::int32_t least = std::numeric_limits<std::int32_t>::min();
     const auto key = [](std::int32_t bits) { return bits ^ ((bits >> 31) & 0x7fffffff); };
-    std::int32_t lo_key = most, hi_key = least;
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::uint8_t* dropout = in.dropout.row(r);
-        const float* mean = in.mean_intensity.row(r);
-        if (!in.count.empty()) {
-            const std::uint32_t* count = in.count.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) points += count[c];
-        }
-        // Outside the footprint: no data, neither a dropout nor a cell of the survey.
-        const std::uint8_t* footprint = in.footprint.empty() ? nullptr : in.footprint.row(r);
-        const auto scan = [&](auto with_footprint) {
-            for (std::ptrdiff_t c = 0; c < cols; ++c) {
-                const std::int32_t flown = with_footprint ? footprint[c] != 0 : 1;
-                inside += static_cast<std::uint32_t>(flown);
-                dropouts += static_cast<std::uint32_t>(flown & (dropout[c] != 0));
-                const auto bits = std::bit_cast<std::int32_t>(mean[c]);
-                const std::int32_t number = (bits & 0x7fffffff) <= 0x7f800000;  // not NaN
-                const std::int32_t mask = -(flown & (dropout[c] == 0) & number);
-                const std::int32_t k = key(bits);
-                lo_key = std::min(lo_key, (k & mask) | (most & ~mask));
-                hi_key = std::max(hi_key, (k & mask) | (least & ~mask));
+    struct band_totals {
+        std::uint64_t points = 0, dropouts = 0, inside = 0;
+        std::int32_t lo_key = most, hi_key = least;
+        bool multiple = false;
+    };
+    constexpr std::ptrdiff_t band_rows = 256;
+    std::vector<band_totals> bands(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
+    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        band_totals t;
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const std::uint8_t* dropout = in.dropout.row(r);
+            const float* mean = in.mean_intensity.row(r);
+            if (!in.count.empty()) {
+                const std::uint32_t* count = in.count.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) t.points += count[c];
             }
-        };
-        if (footprint)
-            scan(std::true_type{});
-        else
-            scan(std::false_type{});
-        if (!in.multiple_returns.empty() && !d.has_multiple_returns) {
-            const std::uint8_t* multiple = in.multiple_returns.row(r);
-            for (std::ptrdiff_t c = 0; c < cols; ++c) d.has_multiple_returns |= multiple[c] && !dropout[c];
+            // Outside the footprint: no data, neither a dropout nor a cell of the survey.
+            const std::uint8_t* footprint = in.footprint.empty() ? nullptr : in.footprint.row(r);
+            const auto scan = [&](auto with_footprint) {
+                std::uint64_t inside = 0, dropouts = 0;
+                std::int32_t lo_key = t.lo_key, hi_key = t.hi_key;
+                for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                    const std::int32_t flown = with_footprint ? footprint[c] != 0 : 1;
+                    inside += static_cast<std::uint32_t>(flown);
+                    dropouts += static_cast<std::uint32_t>(flown & (dropout[c] != 0));
+                    const auto bits = std::bit_cast<std::int32_t>(mean[c]);
+                    const std::int32_t number = (bits & 0x7fffffff) <= 0x7f800000;  // not NaN
+                    const std::int32_t mask = -(flown & (dropout[c] == 0) & number);
+                    const std::int32_t k = key(bits);
+                    lo_key = std::min(lo_key, (k & mask) | (most & ~mask));
+                    hi_key = std::max(hi_key, (k & mask) | (least & ~mask));
+                }
+                t.inside += inside;
+                t.dropouts += dropouts;
+                t.lo_key = lo_key;
+                t.hi_key = hi_key;
+            };
+            if (footprint)
+                scan(std::true_type{});
+            else
+                scan(std::false_type{});
+            if (!in.multiple_returns.empty() && !t.multiple) {
+                const std::uint8_t* multiple = in.multiple_returns.row(r);
+                for (std::ptrdiff_t c = 0; c < cols; ++c) t.multiple |= multiple[c] && !dropout[c];
+            }
         }
+        bands[static_cast<std::size_t>(r0 / band_rows)] = t;
+    });
+    std::uint64_t points = 0, dropouts = 0, inside = 0;
+    std::int32_t lo_key = most, hi_key = least;
+    for (const auto& t : bands) {
+        points += t.points;
+        dropouts += t.dropouts;
+        inside += t.inside;
+        lo_key = std::min(lo_key, t.lo_key);
+        hi_key = std::max(hi_key, t.hi_key);
+        d.has_multiple_returns |= t.multiple;
     }
     const bool any_return = hi_key != least;
     const float lo = any_return ? std::bit_cast<float>(key(lo_key)) : std::numeric_limits<float>::infinity();
@@ -143,9 +171,10 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
     return d;
 }
 
-inline water_diagnostics assess_water_inputs(const rasterize_result& pr, const assess_water_inputs_options& opt)
+inline water_diagnostics assess_water_inputs(const rasterize_result& pr, const assess_water_inputs_options& opt,
+                                             const execution& run)
 {
-    return assess_water_inputs(to_water_rasters(pr), pr.g.cell, opt);
+    return assess_water_inputs(to_water_rasters(pr), pr.g.cell, opt, run);
 }
 
 }  // namespace lidarfx

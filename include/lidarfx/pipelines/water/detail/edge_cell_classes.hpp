@@ -45,10 +45,11 @@ inline float upper_median(float* v, std::size_t n)
 /// neither. The steps read them in windows of rows r - k .. r + k as r moves down, so the rows are built as
 /// they come into reach, in a ring of 2k + 1 rows that stays in cache (a class raster of the whole labels
 /// cost more to write, page by page, than the windows cost to read). Each row by branch-free passes over
-/// three rows of body bytes (they vectorize).
+/// three rows of body bytes (they vectorize). A band of rows from `first_row` on asks only for rows from
+/// first_row - k - 1 on (the rows above are never looked at).
 class shore_class_rows {
 public:
-    shore_class_rows(raster_view<const std::int32_t> labels, std::ptrdiff_t k, bool edges)
+    shore_class_rows(raster_view<const std::int32_t> labels, std::ptrdiff_t k, bool edges, std::ptrdiff_t first_row = 0)
         : labels_(labels),
           rows_(labels.rows()),
           cols_(labels.cols()),
@@ -62,6 +63,7 @@ public:
           has_body_(static_cast<std::size_t>(rows_)),
           row_of_slot_(static_cast<std::size_t>(slots_))
     {
+        scanned_ = built_ = std::clamp<std::ptrdiff_t>(first_row - k - 1, 0, rows_);
     }
 
     /// Whether row r holds a body cell. Found as the rows are asked for, in order, a few rows before they are

@@ -224,9 +224,11 @@ inline void clear_at_least(raster<std::uint8_t>& mask, raster_view<const float> 
 inline void refine_waterbodies(raster<std::int32_t>& labels, std::size_t bodies, const water_rasters& in, double cell_m,
                                raster_view<const std::uint8_t> vegetation, const extract_waterbodies_options& opt)
 {
-    if (opt.join_bridges && bodies > 1) join_across_bridges(labels, in.min_z, cell_m, opt.bridges);
-    if (opt.trim_edges) trim_raised_edge_cells(labels, in.min_z, opt.trim);
-    if (opt.shore_cells && !in.count.empty()) join_shore_cells(labels, in.count, vegetation, in.footprint, opt.shore);
+    const execution run{.threads = opt.run.threads};
+    if (opt.join_bridges && bodies > 1) join_across_bridges(labels, in.min_z, cell_m, opt.bridges, run);
+    if (opt.trim_edges) trim_raised_edge_cells(labels, in.min_z, opt.trim, run);
+    if (opt.shore_cells && !in.count.empty())
+        join_shore_cells(labels, in.count, vegetation, in.footprint, opt.shore, run);
     fill_small_islands(labels, cell_m, opt.islands, {.threads = opt.run.threads});
     if (!in.footprint.empty()) clear_outside(labels.view(), in.footprint);
 }
@@ -243,7 +245,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     const int threads = opt.run.threads;  // the steps run silently; progress is reported per seed
 
     extract_waterbodies_result res;
-    res.diagnostics = assess_water_inputs(in, cell_m, opt.inputs);
+    res.diagnostics = assess_water_inputs(in, cell_m, opt.inputs, {.threads = threads});
     res.water = raster<std::uint8_t>(rows, cols, 0);
     if (opt.check_inputs && !res.diagnostics.usable()) {
         res.labels = raster<std::int32_t>(rows, cols, 0);
@@ -305,8 +307,8 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
         }
     }
     for (int round = 0; round < opt.bridge_seed_rounds; ++round) {  // each round's bodies may end at a bridge
-        auto mask =
-            seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds, field.surface_slope);
+        auto mask = seeds_beyond_bridges(grown.labels, in.min_z, field.eligible, cell_m, opt.bridge_seeds,
+                                         field.surface_slope, seed_run);
         detail::clear_at_least(mask, in.mean_intensity, later.grow.level_follow_max_intensity);
         if (!mask_any(mask)) break;  // none: no labelling
         auto more = water_seeds(mask, {.opening_size_cells = 1, .min_cells = opt.bridge_seed_min_cells},
@@ -318,7 +320,7 @@ inline extract_waterbodies_result extract_waterbodies(const water_rasters& in, d
     res.seeds_grown = grown.seeds_grown;
     res.labels = std::move(grown.labels);
     detail::refine_waterbodies(res.labels, grown.bodies.size(), in, cell_m, res.vegetation, opt);
-    measure_waterbodies(res.labels, grown.bodies, in, cell_m);
+    measure_waterbodies(res.labels, grown.bodies, in, cell_m, {.threads = threads});
     res.bodies = std::move(grown.bodies);
     mask_of_labels(res.labels, res.water);
     res.angle_deg = std::move(field.angle_deg);

@@ -19,59 +19,88 @@ namespace lidarfx {
 
 namespace detail {
 
-/// Holes of the bodies of `labels` (all labels in 1..bodies) by one pass per body over the body's
-/// bounding box grown by one cell: the cells of other labels or land there, 4-connected
-/// (connected_components), form parts; a part touching no edge of the box (so not the raster's border),
-/// holding only land and fewer than max_hole_cells cells is a hole of that body. Bodies are handled in
-/// label order and their fills are written at once (a filled hole lies inside its body, so it is no
-/// other body's hole). O(sum of the grown boxes' areas). Returns the cells filled.
+/// The holes of body `l` in its bounding box grown by one cell (`box`, a window of the labels): the cells of
+/// other labels or land there, 4-connected (connected_components on one thread), form parts; a part touching no
+/// edge of the box, holding only land and fewer than max_hole_cells cells is a hole. Appends the holes' cells
+/// (r · cols + c of the raster, r0 and c0 the box's corner) to `holes`. `other` is the caller's scratch.
+inline void holes_of_body(raster_view<const std::int32_t> box, std::int32_t l, std::size_t max_hole_cells,
+                          std::ptrdiff_t r0, std::ptrdiff_t c0, std::ptrdiff_t cols, raster<std::uint8_t>& other,
+                          std::vector<std::ptrdiff_t>& holes)
+{
+    const std::ptrdiff_t nr = box.rows(), nc = box.cols();
+    ensure_shape(other, nr, nc);
+    for (std::ptrdiff_t r = 0; r < nr; ++r) {
+        const std::int32_t* in = box.row(r);
+        std::uint8_t* out = other.row(r);
+        for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] != l;
+    }
+    const auto parts = connected_components(other, connected_components_options{.conn = connectivity::four});
+    std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
+    fill[0] = 0;
+    for (std::size_t k = 1; k < parts.sizes.size(); ++k)
+        if (parts.sizes[k] >= max_hole_cells) fill[k] = 0;
+    // A part that stays a hole has all its cells listed: only they are visited again.
+    const std::size_t first = holes.size();
+    for (std::ptrdiff_t r = 0; r < nr; ++r) {
+        const std::int32_t* part = parts.labels.row(r);
+        const std::int32_t* in = box.row(r);
+        for (std::ptrdiff_t c = 0; c < nc; ++c) {
+            const auto k = static_cast<std::size_t>(part[c]);
+            if (k == 0 || !fill[k]) continue;
+            if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || in[c] != 0)
+                fill[k] = 0;
+            else
+                holes.push_back(r * nc + c);
+        }
+    }
+    std::size_t kept = first;
+    for (std::size_t k = first; k < holes.size(); ++k) {
+        const std::ptrdiff_t r = holes[k] / nc, c = holes[k] % nc;
+        if (fill[static_cast<std::size_t>(parts.labels(r, c))]) holes[kept++] = (r0 + r) * cols + c0 + c;
+    }
+    holes.resize(kept);
+}
+
+/// Holes of the bodies of `labels` (all labels in 1..bodies) by one pass per body over the body's bounding box
+/// grown by one cell (holes_of_body). The bodies are searched on `threads` threads, all on the labels as they came
+/// in, and their holes written after in label order: a hole of one body lies inside it, so its cells are in a part
+/// of another body's box that holds the body's cells, no hole of the other's before or after the fill. The same
+/// result for any thread count. O(sum of the grown boxes' areas). Returns the cells filled.
 inline std::size_t fill_holes_per_body(raster_view<std::int32_t> labels, std::size_t max_hole_cells,
                                        const std::vector<cell_box>& boxes, int threads)
 {
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
+    // Blocks of bodies, each block's holes in a list of its own (with the label of each cell's body).
+    constexpr std::ptrdiff_t block_bodies = 16;
+    const auto bodies = static_cast<std::ptrdiff_t>(boxes.size());
+    struct hole_cell {
+        std::ptrdiff_t cell;
+        std::int32_t label;
+    };
+    std::vector<std::vector<hole_cell>> found(static_cast<std::size_t>((bodies + block_bodies - 1) / block_bodies));
+    const raster_view<const std::int32_t> in = labels;
+    parallel_for_rows(bodies, block_bodies, threads, [&](std::ptrdiff_t b0, std::ptrdiff_t b1) {
+        raster<std::uint8_t> other;
+        std::vector<std::ptrdiff_t> holes;
+        auto& out = found[static_cast<std::size_t>(b0 / block_bodies)];
+        for (std::ptrdiff_t body = std::max<std::ptrdiff_t>(b0, 1); body < b1; ++body) {
+            const auto& b = boxes[static_cast<std::size_t>(body)];
+            if (b.empty()) continue;
+            const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b.row_min - 1),
+                                 c0 = std::max<std::ptrdiff_t>(0, b.col_min - 1);
+            const std::ptrdiff_t r1 = std::min(rows - 1, b.row_max + 1), c1 = std::min(cols - 1, b.col_max + 1);
+            const std::ptrdiff_t nr = r1 - r0 + 1, nc = c1 - c0 + 1;
+            if (nr < 3 || nc < 3) continue;
+            holes.clear();
+            const auto l = static_cast<std::int32_t>(body);
+            holes_of_body(in.window(r0, c0, nr, nc), l, max_hole_cells, r0, c0, cols, other, holes);
+            for (const auto cell : holes) out.push_back({cell, l});
+        }
+    });
     std::size_t filled = 0;
-    raster<std::uint8_t> other;
-    std::vector<std::ptrdiff_t> hole_cells;  // cells (r · nc + c in the box) of the parts that may be holes
-    for (std::size_t body = 1; body < boxes.size(); ++body) {
-        const auto& b = boxes[body];
-        if (b.empty()) continue;
-        const std::ptrdiff_t r0 = std::max<std::ptrdiff_t>(0, b.row_min - 1),
-                             c0 = std::max<std::ptrdiff_t>(0, b.col_min - 1);
-        const std::ptrdiff_t r1 = std::min(rows - 1, b.row_max + 1), c1 = std::min(cols - 1, b.col_max + 1);
-        const std::ptrdiff_t nr = r1 - r0 + 1, nc = c1 - c0 + 1;
-        if (nr < 3 || nc < 3) continue;
-        const auto box = labels.window(r0, c0, nr, nc);
-        const auto l = static_cast<std::int32_t>(body);
-        other = raster<std::uint8_t>(nr, nc, uninitialized);
-        for (std::ptrdiff_t r = 0; r < nr; ++r) {
-            const std::int32_t* in = box.row(r);
-            std::uint8_t* out = other.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) out[c] = in[c] != l;
-        }
-        const auto parts = connected_components(
-            other, connected_components_options{.conn = connectivity::four, .run = {.threads = threads}});
-        std::vector<std::uint8_t> fill(parts.sizes.size(), 1);
-        fill[0] = 0;
-        for (std::size_t k = 1; k < parts.sizes.size(); ++k)
-            if (parts.sizes[k] >= max_hole_cells) fill[k] = 0;
-        // A part that stays a hole has all its cells listed: the fill visits only them.
-        hole_cells.clear();
-        for (std::ptrdiff_t r = 0; r < nr; ++r) {
-            const std::int32_t* part = parts.labels.row(r);
-            const std::int32_t* in = box.row(r);
-            for (std::ptrdiff_t c = 0; c < nc; ++c) {
-                const auto k = static_cast<std::size_t>(part[c]);
-                if (k == 0 || !fill[k]) continue;
-                if (r == 0 || c == 0 || r == nr - 1 || c == nc - 1 || in[c] != 0)
-                    fill[k] = 0;
-                else
-                    hole_cells.push_back(r * nc + c);
-            }
-        }
-        for (const std::ptrdiff_t cell : hole_cells) {
-            const std::ptrdiff_t r = cell / nc, c = cell % nc;
-            if (!fill[static_cast<std::size_t>(parts.labels(r, c))]) continue;
-            box(r, c) = l;
+    for (const auto& block : found) {
+        for (const auto& h : block) {
+            labels(h.cell / cols, h.cell % cols) = h.label;
             ++filled;
         }
     }

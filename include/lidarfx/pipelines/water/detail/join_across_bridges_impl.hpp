@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <numeric>
 #include <span>
 #include <vector>
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -26,69 +28,87 @@ inline void validate(const join_across_bridges_options& o, const char* fn)
     require(o.water_tolerance_m >= 0, fn, "water_tolerance_m", ">= 0", o.water_tolerance_m);
 }
 
-/// water_levels, with errors naming `fn`.
+/// water_levels, with errors naming `fn`, on `threads` threads.
 inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
-                                        const char* fn)
+                                        const char* fn, int threads = 1)
 {
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
-    // One pass over the labels: per row their range by a vectorized min / max (the row then stays in
-    // cache), then on a row that holds bodies its runs, land passed over 64 cells at a time. Each run's
-    // finite heights are appended to `found` in raster order (branch-free: water cells without a return
-    // are scattered, a branch on them mispredicts) and the run is noted as (label, heights appended).
+    // One pass over the labels in bands of rows (on `threads` threads), each band's heights in a buffer of its
+    // own: per row the labels' range by a vectorized min / max (the row then stays in cache), then on a row that
+    // holds bodies its runs, land passed over 64 cells at a time. Each run's finite heights are appended to the
+    // band's `found` in raster order (branch-free: water cells without a return are scattered, a branch on them
+    // mispredicts) and the run is noted as (label, heights appended). The bands in order give every label's
+    // heights in raster order, whatever the thread count.
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
-    std::int32_t lowest = 0, highest = 0;
     struct run_heights {
         std::int32_t label;
         std::size_t count;
     };
-    std::vector<run_heights> runs;
-    std::vector<float> found;
-    std::size_t used = 0;
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* row = labels.row(r);
-        const auto [low, high] = detail::row_label_range(row, cols);
-        lowest = std::min(lowest, low);
-        highest = std::max(highest, high);
-        if (high <= 0) continue;
-        if (found.size() < used + static_cast<std::size_t>(cols))
-            found.resize(std::max(2 * found.size(), used + static_cast<std::size_t>(cols)));
-        const float* z = min_z.row(r);
-        float* out = found.data();
-        for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
-            std::size_t n = used;
-            for (std::ptrdiff_t c = from; c < to; ++c) {
-                out[n] = z[c];
-                n += std::isfinite(z[c]);
-            }
-            runs.push_back({l, n - used});
-            used = n;
-        });
-    }
+    struct band_heights {
+        std::vector<run_heights> runs;
+        std::unique_ptr<float[]> found;  // room for every cell of the band, touched only where written
+        std::int32_t lowest = 0, highest = 0;
+    };
+    constexpr std::ptrdiff_t band_rows = 256;
+    std::vector<band_heights> bands(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
+    parallel_for_rows(rows, band_rows, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        auto& band = bands[static_cast<std::size_t>(r0 / band_rows)];
+        std::size_t used = 0;
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const std::int32_t* row = labels.row(r);
+            const auto [low, high] = detail::row_label_range(row, cols);
+            band.lowest = std::min(band.lowest, low);
+            band.highest = std::max(band.highest, high);
+            if (high <= 0) continue;
+            if (!band.found) band.found.reset(new float[static_cast<std::size_t>((r1 - r) * cols)]);
+            const float* z = min_z.row(r);
+            float* out = band.found.get();
+            for_each_run(row, cols, [&](std::int32_t l, std::ptrdiff_t from, std::ptrdiff_t to) {
+                std::size_t n = used;
+                for (std::ptrdiff_t c = from; c < to; ++c) {
+                    out[n] = z[c];
+                    n += std::isfinite(z[c]);
+                }
+                band.runs.push_back({l, n - used});
+                used = n;
+            });
+        }
+    });
+    std::int32_t lowest = 0, highest = 0;
+    for (const auto& band : bands) lowest = std::min(lowest, band.lowest), highest = std::max(highest, band.highest);
     detail::require(lowest >= 0, fn, "labels", ">= 0", lowest);
     // The heights of each label in one buffer, label l's at [offset[l], offset[l + 1]), in raster order.
     std::vector<std::size_t> offset(static_cast<std::size_t>(highest) + 2, 0);
-    for (const auto& run : runs) offset[static_cast<std::size_t>(run.label) + 1] += run.count;
+    for (const auto& band : bands)
+        for (const auto& run : band.runs) offset[static_cast<std::size_t>(run.label) + 1] += run.count;
     for (std::size_t l = 1; l < offset.size(); ++l) offset[l] += offset[l - 1];
     std::vector<float> heights(offset.back());
     std::vector<std::size_t> next(offset.begin(), offset.end() - 1);
-    const float* from = found.data();
-    for (const auto& run : runs) {
-        std::copy(from, from + run.count,
-                  heights.begin() + static_cast<std::ptrdiff_t>(next[static_cast<std::size_t>(run.label)]));
-        next[static_cast<std::size_t>(run.label)] += run.count;
-        from += run.count;
+    for (const auto& band : bands) {
+        const float* from = band.found.get();
+        for (const auto& run : band.runs) {
+            std::copy(from, from + run.count,
+                      heights.begin() + static_cast<std::ptrdiff_t>(next[static_cast<std::size_t>(run.label)]));
+            next[static_cast<std::size_t>(run.label)] += run.count;
+            from += run.count;
+        }
     }
+    // The medians, label by label on `threads` threads (each reorders its own heights only).
     std::vector<double> level(static_cast<std::size_t>(highest) + 1, NAN);
-    for (std::size_t l = 1; l < level.size(); ++l)
-        level[l] = detail::median(std::span<float>(heights).subspan(offset[l], offset[l + 1] - offset[l]));
+    parallel_for_rows(highest, 16, threads, [&](std::ptrdiff_t l0, std::ptrdiff_t l1) {
+        for (auto l = static_cast<std::size_t>(l0) + 1; l <= static_cast<std::size_t>(l1); ++l)
+            level[l] = detail::median(std::span<float>(heights).subspan(offset[l], offset[l + 1] - offset[l]));
+    });
     return level;
 }
 
 }  // namespace detail
 
-inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z)
+inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
+                                        const execution& run)
 {
-    return detail::water_levels(labels, min_z, "water_levels");
+    detail::check_execution(run, "water_levels");
+    return detail::water_levels(labels, min_z, "water_levels", run.threads);
 }
 
 namespace detail {
@@ -301,14 +321,15 @@ inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_
 }
 
 inline std::size_t join_across_bridges(raster_view<std::int32_t> labels, raster_view<const float> min_z, double cell_m,
-                                       const join_across_bridges_options& opt)
+                                       const join_across_bridges_options& opt, const execution& run)
 {
     constexpr const char* fn = "join_across_bridges";
     detail::require_same_shape(labels, min_z, fn, "labels", "min_z");
     detail::require_positive(cell_m, fn, "cell_m");
     detail::validate(opt, fn);
+    detail::check_execution(run, fn);
     // One level per label up to the largest; negative labels are refused.
-    const auto level = detail::water_levels(labels, min_z, fn);
+    const auto level = detail::water_levels(labels, min_z, fn, run.threads);
     return detail::bridge_sweep(labels, min_z, level, cell_m, opt);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
+#include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/detail/body_within.hpp"
@@ -35,7 +36,7 @@ inline void validate(const seeds_beyond_bridges_options& o, const char* fn)
 inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t> labels, raster_view<const float> min_z,
                                                  raster_view<const std::uint8_t> eligible, double cell_m,
                                                  const seeds_beyond_bridges_options& opt,
-                                                 surface_slope_source surface_slope)
+                                                 surface_slope_source surface_slope, const execution& run)
 {
     constexpr const char* fn = "seeds_beyond_bridges";
     detail::require_positive(cell_m, fn, "cell_m");
@@ -44,13 +45,15 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     detail::require_same_shape(labels, eligible, fn, "labels", "eligible");
     const bool sloped_out = !surface_slope.empty() && opt.max_surface_slope >= 0;
     if (sloped_out) detail::require_same_shape(labels, surface_slope, fn, "labels", "surface_slope");
+    detail::check_execution(run, fn);
     const std::ptrdiff_t rows = labels.rows(), cols = labels.cols();
     raster<std::uint8_t> seeds(rows, cols, 0);
     const auto inside = [&](std::ptrdiff_t r, std::ptrdiff_t c) { return r >= 0 && r < rows && c >= 0 && c < cols; };
     constexpr int steps[8][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
-    std::vector<std::ptrdiff_t> marked;  // cells marked (a cell may appear more than once)
-    // The walks from body cell (r, c) of `body`.
-    const auto walk_from = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t body) {
+    // The walks from body cell (r, c) of `body`, the cells they mark appended to `marked` (a cell may appear more
+    // than once).
+    const auto walk_from = [&](std::ptrdiff_t r, std::ptrdiff_t c, std::int32_t body,
+                               std::vector<std::ptrdiff_t>& marked) {
         const float z0 = min_z(r, c);
         if (!std::isfinite(z0)) return;
         const auto level_with = [&](float z) { return std::abs(static_cast<double>(z) - z0) <= opt.level_tolerance_m; };
@@ -90,47 +93,55 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
                              !(sloped_out && surface_slope(rr, cc) > opt.max_surface_slope);
             }
             if (!water_like) continue;
-            for (std::ptrdiff_t j = 0; j < opt.beyond_cells; ++j) {
-                const std::ptrdiff_t rr = r + (k + j) * dr, cc = c + (k + j) * dc;
-                seeds(rr, cc) = 1;
-                marked.push_back(rr * cols + cc);
-            }
+            for (std::ptrdiff_t j = 0; j < opt.beyond_cells; ++j)
+                marked.push_back((r + (k + j) * dr) * cols + c + (k + j) * dc);
         }
     };
-    // Per row, 1 for the body cells that may start a walk: none inside a body (all 8 neighbours its own),
-    // where most body cells are.
-    std::vector<std::uint8_t> may_start(static_cast<std::size_t>(cols));
-    std::uint8_t* start = may_start.data();
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        const std::int32_t* here = labels.row(r);
-        // Land is passed over in blocks; each stretch of body cells is flagged in one vectorized loop.
-        for (std::ptrdiff_t c = detail::next_positive(here, 0, cols); c < cols;
-             c = detail::next_positive(here, c, cols)) {
-            const std::ptrdiff_t from = c;
-            while (c < cols && here[c] > 0) ++c;
-            std::fill(start + from, start + c, std::uint8_t{1});  // the raster's border: all may start
-            if (r > 0 && r + 1 < rows) {
-                const std::int32_t* above = labels.row(r - 1);
-                const std::int32_t* below = labels.row(r + 1);
-                const std::ptrdiff_t to = std::min(c, cols - 1);
-                LIDARFX_IVDEP
-                for (std::ptrdiff_t x = std::max<std::ptrdiff_t>(from, 1); x < to; ++x) {
-                    const std::int32_t b = here[x];
-                    start[x] = static_cast<std::uint8_t>((above[x - 1] != b) | (above[x] != b) | (above[x + 1] != b) |
-                                                         (here[x - 1] != b) | (here[x + 1] != b) | (below[x - 1] != b) |
-                                                         (below[x] != b) | (below[x + 1] != b));
+    // Bands of rows on run.threads threads, each marking cells in a list of its own; the walks read the labels
+    // only, so the seeds are set after.
+    constexpr std::ptrdiff_t band_rows = 128;
+    std::vector<std::vector<std::ptrdiff_t>> marked_in(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
+    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        auto& marked = marked_in[static_cast<std::size_t>(r0 / band_rows)];
+        // Per row, 1 for the body cells that may start a walk: none inside a body (all 8 neighbours its own),
+        // where most body cells are.
+        std::vector<std::uint8_t> may_start(static_cast<std::size_t>(cols));
+        std::uint8_t* start = may_start.data();
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            const std::int32_t* here = labels.row(r);
+            // Land is passed over in blocks; each stretch of body cells is flagged in one vectorized loop.
+            for (std::ptrdiff_t c = detail::next_positive(here, 0, cols); c < cols;
+                 c = detail::next_positive(here, c, cols)) {
+                const std::ptrdiff_t from = c;
+                while (c < cols && here[c] > 0) ++c;
+                std::fill(start + from, start + c, std::uint8_t{1});  // the raster's border: all may start
+                if (r > 0 && r + 1 < rows) {
+                    const std::int32_t* above = labels.row(r - 1);
+                    const std::int32_t* below = labels.row(r + 1);
+                    const std::ptrdiff_t to = std::min(c, cols - 1);
+                    LIDARFX_IVDEP
+                    for (std::ptrdiff_t x = std::max<std::ptrdiff_t>(from, 1); x < to; ++x) {
+                        const std::int32_t b = here[x];
+                        start[x] = static_cast<std::uint8_t>(
+                            (above[x - 1] != b) | (above[x] != b) | (above[x + 1] != b) | (here[x - 1] != b) |
+                            (here[x + 1] != b) | (below[x - 1] != b) | (below[x] != b) | (below[x + 1] != b));
+                    }
                 }
+                for (std::ptrdiff_t x = detail::next_positive(start, from, c); x < c;
+                     x = detail::next_positive(start, x + 1, c))
+                    walk_from(r, x, here[x], marked);
             }
-            for (std::ptrdiff_t x = detail::next_positive(start, from, c); x < c;
-                 x = detail::next_positive(start, x + 1, c))
-                walk_from(r, x, here[x]);
         }
-    }
+    });
+    for (const auto& marked : marked_in)
+        for (const std::ptrdiff_t cell : marked) seeds(cell / cols, cell % cols) = 1;
     // Only where nothing was found yet: a marked cell within clear_cells of a body is the bank of water
     // already found (a walk over a deck's end lands on it), not water cut off by the deck.
-    for (const std::ptrdiff_t cell : marked) {
-        const std::ptrdiff_t r = cell / cols, c = cell % cols;
-        if (detail::body_within(labels, r, c, opt.clear_cells)) seeds(r, c) = 0;
+    for (const auto& marked : marked_in) {
+        for (const std::ptrdiff_t cell : marked) {
+            const std::ptrdiff_t r = cell / cols, c = cell % cols;
+            if (detail::body_within(labels, r, c, opt.clear_cells)) seeds(r, c) = 0;
+        }
     }
     return seeds;
 }
