@@ -180,6 +180,17 @@ def read_band(path, band=1):
     return v
 
 
+def height_unit(lidarfx_dir):
+    """(metres per unit of lidarfx's min_z / max_z files, tolerance in metres): lidarfx writes heights in the z unit
+    of the CRS its files record (manifest.json: "min_z and max_z in <unit>"); (1, 0) in metres."""
+    with open(os.path.join(lidarfx_dir, "manifest.json"), encoding="utf-8") as f:
+        units = json.load(f).get("units", "")
+    match = re.match(r"min_z and max_z in ([^;]+);", units)
+    if not match or unit_m(match.group(1)) == 1.0:
+        return 1.0, 0.0
+    return unit_m(match.group(1)), 1e-4
+
+
 def pdal_bands(path):
     """{band description: band number} of PDAL's writers.gdal output (min, max, mean, count)."""
     ds = gdal.Open(path)
@@ -210,13 +221,20 @@ def compare(lidarfx_dir, log, cell_m, las, pdal_tif):
     print(f"{'raster':8s} {'cells differing':>15s} {'by edge rule':>13s} {'unexplained':>12s} "
           f"{'max |diff| unexpl.':>19s} {'max |diff| all':>15s} {'data one side':>14s}")
     unexplained_total = 0
+    z_file, z_tolerance = height_unit(lidarfx_dir)
+    if z_file != 1.0:
+        print(f"lidarfx writes min_z and max_z in the file's unit: times {z_file!r} to metres, equal within "
+              f"{z_tolerance:g} m (float32 rounding on both sides)")
     for ours_name, theirs_name in (("min_z", "min"), ("max_z", "max"), ("count", "count")):
         a = read_band(f"{lidarfx_dir}/{ours_name}.tif")
         b = read_band(pdal_tif, bands[theirs_name])
+        tolerance = 0.0
         if theirs_name == "count":  # an empty cell: 0 or no data, depending on the writer
             a, b = np.nan_to_num(a), np.nan_to_num(b)
+        elif z_file != 1.0:
+            a, tolerance = a * z_file, z_tolerance
         both = ~np.isnan(a) & ~np.isnan(b)
-        differ = ~((a == b) | (np.isnan(a) & np.isnan(b)))
+        differ = ~((np.abs(a - b) <= tolerance) | (np.isnan(a) & np.isnan(b)))
         unexplained = differ & ~affected
         gap = np.abs(a - b)
         largest_unexplained = np.max(gap[both & unexplained], initial=0.0)

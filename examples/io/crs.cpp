@@ -358,7 +358,7 @@ bool same_unit(double a_m, double b_m)
 
 /// What an OGR spatial reference says: horizontal part as WKT, its EPSG code (or the only EPSG CRS that
 /// matches it exactly), geographic or not, units of the horizontal and vertical parts.
-found from_srs(OGRSpatialReferenceH srs)
+found from_srs(OGRSpatialReferenceH srs, bool find_epsg = true)
 {
     found f;
     if (OSRIsCompound(srs) || OSRIsVertical(srs)) {
@@ -398,7 +398,7 @@ found from_srs(OGRSpatialReferenceH srs)
             f.epsg = 0;
         }
     }
-    if (f.epsg == 0) {  // the one EPSG CRS that matches exactly, if any (a user-defined CRS may be one)
+    if (f.epsg == 0 && find_epsg) {  // the one EPSG CRS that matches exactly, if any (a user-defined CRS may be one)
         int count = 0;
         int* confidence = nullptr;
         OGRSpatialReferenceH* matches = OSRFindMatches(hz, nullptr, &count, &confidence);
@@ -590,8 +590,9 @@ found from_keys(const las_header& h, bool use_gdal, survey_crs& c)
     return f;
 }
 
-/// The WKT record interpreted (by OGR when `use_gdal`); crs false when unreadable.
-found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c)
+/// The WKT record interpreted (by OGR when `use_gdal`); crs false when unreadable. Without `find_epsg` no EPSG
+/// code is looked for when the WKT names none (the search costs about 0.1 s: only for a record whose CRS is used).
+found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c, bool find_epsg = true)
 {
 #ifdef LIDARFX_HAVE_GDAL
     if (use_gdal) {
@@ -599,10 +600,11 @@ found from_wkt(const std::string& wkt, bool use_gdal, survey_crs& c)
         const quiet_gdal quiet;
         srs_ptr srs(OSRNewSpatialReference(nullptr));
         if (OSRSetFromUserInput(srs.get(), wkt.c_str()) != OGRERR_NONE) return {};
-        return from_srs(srs.get());
+        return from_srs(srs.get(), find_epsg);
     }
 #else
     (void)use_gdal;
+    (void)find_epsg;
 #endif
     return from_wkt_text(wkt, c);
 }
@@ -650,10 +652,11 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
     std::optional<found> from_record;
     found wkt_found;
     bool wkt_tried = false;
-    const auto try_wkt = [&] {
+    // A record read only to report it when unreadable (its CRS not used) is not matched to an EPSG code.
+    const auto try_wkt = [&](bool used = true) {
         if (!wkt_tried && h.has_wkt_record) {
             wkt_tried = true;
-            wkt_found = blank(h.wkt) ? found{} : from_wkt(h.wkt, use_gdal, c);
+            wkt_found = blank(h.wkt) ? found{} : from_wkt(h.wkt, use_gdal, c, used);
             if (!wkt_found.crs) {
                 c.warnings.push_back(std::string("its WKT record is ") + (blank(h.wkt) ? "empty" : "unreadable") +
                                      "; it is ignored");
@@ -672,7 +675,7 @@ survey_crs crs_of(const las_header& h, bool use_gdal)
     } else if (try_wkt()) {
         from_record = wkt_found, c.source = "WKT";
     }
-    try_wkt();  // an unreadable WKT record is reported even when the GeoKeys are used
+    try_wkt(false);  // an unreadable WKT record is reported even when the GeoKeys are used
     const found f = from_record.value_or(found{});
     c.wkt = f.wkt;
     c.epsg = f.epsg;

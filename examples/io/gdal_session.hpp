@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 // What every GDAL/OGR user in examples/io needs (only when built with GDAL): the drivers registered once, GDAL's
-// own stderr reports silenced while a call runs (its errors become our exceptions), and its last message.
+// own stderr reports silenced while a call runs (its errors become our exceptions), its last message, and a
+// configuration option set for one thread.
 #pragma once
 
 #ifdef LIDARFX_HAVE_GDAL
+#include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
 
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace lidarfx::io {
@@ -29,6 +32,24 @@ struct quiet_gdal {
     ~quiet_gdal() { CPLPopErrorHandler(); }
     quiet_gdal(const quiet_gdal&) = delete;
     quiet_gdal& operator=(const quiet_gdal&) = delete;
+};
+
+/// Sets a GDAL configuration option for the calling thread while alive; its thread-local value before comes back
+/// after.
+class thread_config_option {
+public:
+    thread_config_option(const char* key, const char* value) : key_(key)
+    {
+        if (const char* before = CPLGetThreadLocalConfigOption(key, nullptr)) before_ = before;
+        CPLSetThreadLocalConfigOption(key, value);
+    }
+    ~thread_config_option() { CPLSetThreadLocalConfigOption(key_, before_ ? before_->c_str() : nullptr); }
+    thread_config_option(const thread_config_option&) = delete;
+    thread_config_option& operator=(const thread_config_option&) = delete;
+
+private:
+    const char* key_;
+    std::optional<std::string> before_;
 };
 
 /// GDAL's last error message as " (message)", or "" when it has none.

@@ -100,6 +100,10 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     const char* options[] = {"COMPRESS=DEFLATE", "LEVEL=1",        "PREDICTOR=FLOATING_POINT",
                              "BLOCKSIZE=256",    "OVERVIEWS=AUTO", "OVERVIEW_RESAMPLING=NEAREST",
                              "BIGTIFF=IF_SAFER", nullptr};
+    // The COG driver first writes the overviews into a temporary GeoTIFF beside the file, ZSTD-compressed by default:
+    // compressing and decompressing them cost a quarter of the CPU time of a grid's file. Uncompressed, they take a
+    // third of the grid's size on disk for the moment of the copy (GDAL's setting for this thread, restored after).
+    const thread_config_option uncompressed_overviews("COG_TMP_COMPRESSION", "NONE");
     dataset ds(
         GDALCreateCopy(cog_driver, path.c_str(), mem.get(), FALSE, const_cast<char**>(options), nullptr, nullptr));
     if (!ds) throw std::runtime_error(path + ": writing the Cloud-Optimized GeoTIFF failed" + gdal_message());

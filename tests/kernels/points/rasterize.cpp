@@ -408,6 +408,28 @@ TEST_CASE("raster/raster_accumulator: tiny and thin grids (1 cell, none, one row
     }
 }
 
+TEST_CASE("raster/raster_accumulator: points scattered at random turn it dense early, local points keep tiles")
+{
+    // 2.5 km x 2.5 km at 1 m: 6241 tiles. 6000 points at random hold about 3000 tiles after their first 4096,
+    // about one point each: such points would soon hold every tile one point at a time, so the accumulator is dense. As
+    // many points per tile, eight each, over a quarter of the tiles (a flight line's order) stay in tiles.
+    const grid g{500000.0, 4200000.0, 1.0, 2500, 2500};
+    std::mt19937 rng(22);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    columns scattered, local;
+    for (int i = 0; i < 6000; ++i) scattered.push(g.x0 + u(rng) * 2500, g.y0 - u(rng) * 2500, 100 * u(rng), 7, 1);
+    for (int t = 0; t < 1600; ++t)  // tiles of 32 x 32 cells in the grid's west quarter, 8 points each
+        for (int k = 0; k < 8; ++k)
+            local.push(g.x0 + (t % 20) * 32 + u(rng) * 32, g.y0 - (t / 20) * 31.0 - u(rng) * 31, 100 * u(rng), 7, 1);
+    raster_accumulator a(g), b(g);
+    a.add(scattered.soa());
+    b.add(local.soa());
+    CHECK(a.allocated_cells() == static_cast<std::size_t>(g.size()));
+    CHECK(b.allocated_cells() < static_cast<std::size_t>(g.size()) / 2);
+    CHECK(reference::same_bits(a.finish(), reference::rasterize(scattered.soa(), g)));
+    CHECK(reference::same_bits(b.finish(), reference::rasterize(local.soa(), g)));
+}
+
 TEST_CASE("raster/raster_accumulator: memory follows the occupied cells of a sparse survey")
 {
     // 300 points over 2.5 km x 2.5 km at 1 m: 6.25 M cells in 6241 tiles, of which at most 300 are held.

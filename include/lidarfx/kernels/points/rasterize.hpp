@@ -73,8 +73,10 @@ struct accumulator_access;  // what rasterize needs beyond raster_accumulator's 
 /// 1024 x 1 or 1 x 1024 on grids narrower than 32 cells), allocated when a point first falls in one, under
 /// a directory of 8 bytes per tile of the grid: 1,000 points over 5000 x 5000 cells hold at most 1,000
 /// tiles (24 MB) instead of 600 MB. Once as many points were added as the grid has cells, or half the
-/// tiles are held, the accumulator turns dense (one row-major array of every cell, the faster layout for
-/// dense data; then 24 bytes per cell, no more than 24 bytes per point added or twice the tiles held).
+/// tiles are held, or an eighth of them with fewer than 4 points per tile held (points scattered at random
+/// over the grid, which would soon hold every tile), the accumulator turns dense (one row-major array of every
+/// cell, the faster layout for dense data; then 24 bytes per cell, no more than 24 bytes per point added, twice
+/// the tiles held, or eight times the tiles held for scattered points).
 /// The layout never changes a result.
 class raster_accumulator {
 public:
@@ -151,9 +153,11 @@ private:
     grid g_;
     int row_bits_ = 0, col_bits_ = 0;  // a tile is 2^row_bits_ x 2^col_bits_ cells, row-major
     std::ptrdiff_t tile_rows_ = 0, tile_cols_ = 0;
-    std::vector<tile_ptr> tiles_;            // tile (tr, tc) at tr * tile_cols_ + tc; null until touched
-    std::size_t held_tiles_ = 0;             // non-null tiles
-    std::vector<detail::cell_stats> dense_;  // every cell, row-major, once is_dense_
+    std::vector<tile_ptr> tiles_;  // tile (tr, tc) at tr * tile_cols_ + tc; null until touched
+    std::size_t held_tiles_ = 0;   // non-null tiles
+    // Every cell, row-major, once is_dense_; in the rasters' blocks (huge pages: a dense grid of hundreds of MB
+    // costs its first touch page by page otherwise).
+    std::vector<detail::cell_stats, detail::raster_allocator<detail::cell_stats>> dense_;
     bool is_dense_ = false;
     std::size_t points_used_ = 0, points_outside_ = 0, points_nan_ = 0;
 };

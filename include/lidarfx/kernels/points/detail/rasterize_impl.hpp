@@ -117,7 +117,7 @@ void raster_accumulator::add(const C& cloud, std::size_t first, std::size_t last
         return detail::concat("range [first, last) must lie in [0, ", n, "] (got [", first, ", ", last, "))");
     });
     // Sparse: in steps, so that the switch to the dense layout comes soon after it is due.
-    constexpr std::size_t sparse_step = std::size_t{1} << 16;
+    constexpr std::size_t sparse_step = std::size_t{1} << 12;
     for (std::size_t base = first; base < last;) {
         if (!is_dense_ && dense_is_due()) make_dense();
         if (is_dense_) {
@@ -165,7 +165,10 @@ inline void raster_accumulator::fold(detail::cell_stats& s, const detail::cell_s
 
 inline bool raster_accumulator::dense_is_due() const noexcept
 {
-    return points_used_ >= static_cast<std::size_t>(g_.size()) || 2 * held_tiles_ >= tiles_.size();
+    // Points scattered over the grid (fewer than 4 per tile held, an eighth of the tiles held: points in random
+    // order, not the local order of a flight line or a tiled file) would soon hold every tile, one point at a time.
+    const bool scattered = 8 * held_tiles_ >= tiles_.size() && points_used_ < 4 * held_tiles_;
+    return points_used_ >= static_cast<std::size_t>(g_.size()) || 2 * held_tiles_ >= tiles_.size() || scattered;
 }
 
 inline raster_accumulator::tile_ptr raster_accumulator::copy_tile(const detail::cell_stats* from) const
