@@ -286,7 +286,9 @@ void write_waterbodies(io::output_folder& dir, const survey& s, const extract_wa
     if (formats.png) {
         jobs.push_back([&] {
             const auto f = picture_factor(g);
-            const auto grey = io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f));
+            // The longest job: its shading on every thread (the other jobs are short).
+            const auto grey =
+                io::hillshade(picture_elevation(pr, f), g.cell * static_cast<double>(f), 315.0, 45.0, threads);
             const auto overlay =
                 io::overlay_mask(grey, block_reduce<std::uint8_t>(w.water, f, mostly_set), {30, 110, 255}, 0.65);
             auto unflown = block_reduce<std::uint8_t>(footprint, f, mostly_set);

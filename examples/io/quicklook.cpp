@@ -8,6 +8,7 @@
 #include <string>
 
 #include <lidarfx/core/error.hpp>
+#include <lidarfx/core/parallel.hpp>
 
 namespace lidarfx::io {
 
@@ -84,7 +85,8 @@ rgb_image colorize(raster_view<const float> values)
     return colorize(values, lo, hi);
 }
 
-raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double azimuth_deg, double altitude_deg)
+raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double azimuth_deg, double altitude_deg,
+                               int threads)
 {
     constexpr const char* fn = "hillshade";
     detail::require_positive(cell_m, fn, "cell_m");
@@ -111,31 +113,34 @@ raster<std::uint8_t> hillshade(raster_view<const float> z, double cell_m, double
             d = centre - before;
         return b || a;
     };
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-        for (std::ptrdiff_t c = 0; c < cols; ++c) {
-            const double centre = at(r, c);
-            if (std::isnan(centre)) continue;
-            // Horn: weights 1, 2, 1 over the three rows (for d/dx) or columns (for d/dy) that have a difference.
-            double sx = 0, wx = 0, sy = 0, wy = 0;
-            for (int k = -1; k <= 1; ++k) {
-                const double w = k == 0 ? 2.0 : 1.0;
-                const double mid_x = at(r + k, c), mid_y = at(r, c + k);
-                double d = 0;
-                if (!std::isnan(mid_x) && diff(at(r + k, c - 1), mid_x, at(r + k, c + 1), d)) {
-                    sx += w * d;
-                    wx += w;
+    // Rows are independent: blocks of them on `threads` threads.
+    parallel_for_rows(rows, 64, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        for (std::ptrdiff_t r = r0; r < r1; ++r) {
+            for (std::ptrdiff_t c = 0; c < cols; ++c) {
+                const double centre = at(r, c);
+                if (std::isnan(centre)) continue;
+                // Horn: weights 1, 2, 1 over the three rows (for d/dx) or columns (for d/dy) that have a difference.
+                double sx = 0, wx = 0, sy = 0, wy = 0;
+                for (int k = -1; k <= 1; ++k) {
+                    const double w = k == 0 ? 2.0 : 1.0;
+                    const double mid_x = at(r + k, c), mid_y = at(r, c + k);
+                    double d = 0;
+                    if (!std::isnan(mid_x) && diff(at(r + k, c - 1), mid_x, at(r + k, c + 1), d)) {
+                        sx += w * d;
+                        wx += w;
+                    }
+                    if (!std::isnan(mid_y) && diff(at(r - 1, c + k), mid_y, at(r + 1, c + k), d)) {
+                        sy += w * d;
+                        wy += w;
+                    }
                 }
-                if (!std::isnan(mid_y) && diff(at(r - 1, c + k), mid_y, at(r + 1, c + k), d)) {
-                    sy += w * d;
-                    wy += w;
-                }
+                const double dzdx = wx > 0 ? sx / wx / cell_m : 0.0;
+                const double dzdy = wy > 0 ? -sy / wy / cell_m : 0.0;  // rows grow southwards
+                const double shade = (-dzdx * lx - dzdy * ly + lz) / std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
+                out(r, c) = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(shade, 0.0, 1.0)));
             }
-            const double dzdx = wx > 0 ? sx / wx / cell_m : 0.0;
-            const double dzdy = wy > 0 ? -sy / wy / cell_m : 0.0;  // rows grow southwards
-            const double shade = (-dzdx * lx - dzdy * ly + lz) / std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
-            out(r, c) = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(shade, 0.0, 1.0)));
         }
-    }
+    });
     return out;
 }
 

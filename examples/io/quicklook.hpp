@@ -30,10 +30,11 @@ rgb_image colorize(raster_view<const float> values);
 /// gradient, l the unit vector towards a light at `azimuth_deg` (clockwise from north) and `altitude_deg`
 /// above the horizon. Gradients are Horn's 3x3 weighted differences; at borders and next to NaN cells the
 /// missing side is dropped (one-sided differences), so planes shade exactly everywhere. A flat cell gets
-/// round(255 sin(altitude)) (180 at 45°); NaN cells give 0. Row 0 is north. O(cells).
+/// round(255 sin(altitude)) (180 at 45°); NaN cells give 0. Row 0 is north. O(cells), blocks of rows on
+/// `threads` threads (0 = all cores).
 /// @throws invalid_input if cell_m is not > 0, altitude_deg is outside [0, 90] or azimuth_deg not finite.
 raster<std::uint8_t> hillshade(raster_view<const float> elevation, double cell_m, double azimuth_deg = 315.0,
-                               double altitude_deg = 45.0);
+                               double altitude_deg = 45.0, int threads = 1);
 
 /// The colour of t on a cyclic hue wheel (period 1: t and t + 1 give the same colour, and t -> 1 meets t = 0
 /// smoothly): hue = 240° - 360° t at saturation 0.75, value 0.95, so t = 0 is blue, 0.25 green, 0.5 yellow,
