@@ -22,9 +22,10 @@ constexpr const char* usage =
     "thread; the rasters are the same for every N. A grid over the memory budget (--memory, default half the\n"
     "physical memory) or a cell far too small for the point density is refused at once (exit code 2) with a\n"
     "cell size that fits; --force runs a too-small cell anyway. Outputs appear complete or not at all, with\n"
-    "DIR/manifest.json (sizes, SHA-256) written last; one run per folder at a time. --cell is metres and\n"
-    "heights are written in metres whatever the files' unit (feet are converted); the grids are georeferenced\n"
-    "in the files' CRS (--crop in its units). Files in degrees (a geographic CRS) are refused: reproject first.\n";
+    "DIR/manifest.json (sizes, SHA-256) written last; one run per folder at a time. --cell is metres; the\n"
+    "grids are georeferenced in the files' CRS (--crop in its units) and min_z and max_z are in its vertical\n"
+    "unit (feet stay feet, as a GIS reads them; manifest.json names the unit). Files in degrees (a geographic\n"
+    "CRS) are refused: reproject first.\n";
 
 int run_rasterize(const std::vector<std::string>& args)
 {
