@@ -34,6 +34,7 @@
 #include <lidarfx/pipelines/buildings/morphological_ground.hpp>
 
 #include "io/ascii_grid.hpp"
+#include "io/crs_cache.hpp"
 #include "io/file_output.hpp"
 #include "io/geotiff.hpp"
 #include "io/las.hpp"
@@ -506,7 +507,7 @@ survey_layout survey_layout_of(const std::vector<std::string>& paths, const surv
     for (const auto& p : paths) {
         io::las_reader r(p);
         const auto& h = r.header();
-        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of(h);  // tiles share their CRS
+        if (!previous || !io::same_crs_records(*previous, h)) crs = io::crs_of_remembered(h);  // tiles share their CRS
         previous = h;
         for (const auto& w : crs.warnings) {
             if (std::find(warned.begin(), warned.end(), w) != warned.end()) continue;

@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <lidarfx/core/error.hpp>
@@ -32,27 +34,50 @@ struct dataset_closer {
 };
 using dataset = std::unique_ptr<void, dataset_closer>;
 
-/// WKT of a CRS given as "EPSG:n", "n", WKT or PROJ text; empty input gives empty WKT.
-std::string crs_to_wkt(const std::string& crs)
+struct srs_deleter {
+    void operator()(void* srs) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(srs)); }
+};
+using srs_ptr = std::unique_ptr<void, srs_deleter>;
+
+/// The CRS given as "EPSG:n", "n", WKT or PROJ text, read by OGR; null when it cannot be read.
+srs_ptr read_crs(const std::string& crs)
 {
-    if (crs.empty()) return {};
     std::string input = crs;
     if (std::all_of(crs.begin(), crs.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; })) {
         input = "EPSG:" + crs;
     }
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-    char* wkt = nullptr;
-    const bool ok = OSRSetFromUserInput(srs, input.c_str()) == OGRERR_NONE && OSRExportToWkt(srs, &wkt) == OGRERR_NONE;
-    std::string out = ok && wkt != nullptr ? wkt : "";
-    CPLFree(wkt);
-    OSRDestroySpatialReference(srs);
-    if (out.empty()) {
+    srs_ptr srs(OSRNewSpatialReference(nullptr));
+    if (OSRSetFromUserInput(srs.get(), input.c_str()) != OGRERR_NONE) return nullptr;
+    OSRSetAxisMappingStrategy(srs.get(), OAMS_TRADITIONAL_GIS_ORDER);  // as GDALSetProjection sets it
+    return srs;
+}
+
+/// A copy of the CRS given as text (as read_crs reads it), or null. Reading a CRS defined by its parameters
+/// costs PROJ database lookups (about 10 ms), and a run writes all its rasters in one CRS: each text is read
+/// once per process, and copies of it cost no lookup. OGR objects are not safe to share between threads, so
+/// each caller gets its own copy, made under the lock.
+srs_ptr crs_copy(const std::string& crs)
+{
+    static std::mutex mutex;
+    static std::vector<std::pair<std::string, srs_ptr>> read;  // in the order first asked for; a run has few
+    const std::lock_guard lock(mutex);
+    auto known = std::find_if(read.begin(), read.end(), [&](const auto& r) { return r.first == crs; });
+    if (known == read.end()) known = read.insert(read.end(), {crs, read_crs(crs)});
+    return known->second ? srs_ptr(OSRClone(known->second.get())) : nullptr;
+}
+
+/// The CRS of write_geotiff's `crs_wkt_or_epsg`; null for "". @throws invalid_input when OGR cannot read it.
+srs_ptr crs_for_writing(const std::string& crs)
+{
+    if (crs.empty()) return nullptr;
+    srs_ptr srs = crs_copy(crs);
+    if (!srs) {
         throw invalid_input(
             detail::concat("write_geotiff: crs_wkt_or_epsg must name a coordinate system GDAL "
                            "understands (got '",
                            crs, "')"));
     }
-    return out;
+    return srs;
 }
 
 }  // namespace
@@ -71,7 +96,7 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     detail::require(!values.empty(), fn, "values must not be empty");
     register_gdal_drivers();
     const quiet_gdal quiet;
-    const std::string wkt = crs_to_wkt(crs_wkt_or_epsg);
+    const srs_ptr srs = crs_for_writing(crs_wkt_or_epsg);
     // The cells go into an in-memory dataset first: the COG driver writes a whole file at once (CreateCopy), with
     // its overviews before the full-resolution tiles.
     GDALDriverH mem_driver = GDALGetDriverByName("MEM");
@@ -83,7 +108,7 @@ void write_geotiff(const std::string& path, raster_view<const float> values, con
     if (!mem) throw std::runtime_error(path + ": cannot create the GeoTIFF in memory" + gdal_message());
     auto transform = to_gdal(g);
     bool ok = GDALSetGeoTransform(mem.get(), transform.data()) == CE_None;
-    if (!wkt.empty()) ok = ok && GDALSetProjection(mem.get(), wkt.c_str()) == CE_None;
+    if (srs) ok = ok && GDALSetSpatialRef(mem.get(), srs.get()) == CE_None;
     GDALRasterBandH band = GDALGetRasterBand(mem.get(), 1);
     ok = ok && GDALSetRasterNoDataValue(band, geotiff_nodata) == CE_None;
     const auto cols = static_cast<std::size_t>(g.cols);
@@ -187,7 +212,7 @@ bool crs_understood(const std::string& crs) noexcept
     try {
         register_gdal_drivers();
         const quiet_gdal quiet;
-        crs_to_wkt(crs);
+        crs_for_writing(crs);  // throws when OGR cannot read it; "" is no CRS, which can be written
         return true;
     } catch (...) {
         return false;
