@@ -246,10 +246,12 @@ TEST_CASE(
     // read by every thread, and a second round of seeds grown into the same result.
     std::mt19937 rng(4242);
     std::uniform_real_distribution<float> unit(0, 1);
-    for (int trial = 0; trial < 12; ++trial) {
+    for (int trial = 0; trial < 15; ++trial) {
         CAPTURE(trial);
-        const std::ptrdiff_t rows = 30 + static_cast<std::ptrdiff_t>(rng() % 50),
-                             cols = 30 + static_cast<std::ptrdiff_t>(rng() % 70);
+        // The last trials span several of the tiles by which a turn skips checking a flood cell by cell.
+        const std::ptrdiff_t grow_by = trial < 12 ? 1 : 4;
+        const std::ptrdiff_t rows = grow_by * (30 + static_cast<std::ptrdiff_t>(rng() % 50)),
+                             cols = grow_by * (30 + static_cast<std::ptrdiff_t>(rng() % 70));
         water_field field = field_of_shape(rows, cols, 8);
         raster<float> min_z(rows, cols), max_z(rows, cols);
         for (std::ptrdiff_t r = 0; r < rows; ++r) {
@@ -278,7 +280,9 @@ TEST_CASE(
             for (const auto l : seeds.labels) ++seeds.sizes[static_cast<std::size_t>(l)];
             return seeds;
         };
-        const components first = random_seeds(10 + static_cast<int>(rng() % 40)), second = random_seeds(8);
+        const components first =
+                             random_seeds(static_cast<int>(grow_by * grow_by) * (10 + static_cast<int>(rng() % 40))),
+                         second = random_seeds(8);
         const grow_waterbody_options grow{.min_ks_samples = 8, .level_gate_m = 0.2, .level_follow_max_slope = 0.01};
         const join_level_cells_options level{.tolerance_m = 0.1, .max_rise_m = 0.4, .depth_cells = 2};
         const grow_waterbodies_options opt{.min_free_seed_share = 0.5};
