@@ -11,6 +11,7 @@
 #include "lidarfx/core/las_class.hpp"
 #include "lidarfx/core/mask_ops.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/plane_fit.hpp"
 #include "lidarfx/core/point_cloud.hpp"
 #include "lidarfx/core/raster.hpp"

@@ -209,9 +209,9 @@ _STD_HEADERS = {
     "count_if reverse ranges",
     "utility": "move forward swap exchange pair declval cmp_less cmp_greater cmp_less_equal cmp_greater_equal",
     "type_traits": "is_arithmetic_v is_same_v is_floating_point_v is_integral_v is_const_v is_signed_v "
-    "is_nothrow_default_constructible_v is_invocable_v is_invocable_r_v remove_cvref_t remove_cv_t conditional_t "
+    "is_nothrow_default_constructible_v is_invocable_v is_invocable_r_v invoke_result_t remove_cvref_t remove_cv_t conditional_t "
     "make_signed_t true_type false_type",
-    "concepts": "convertible_to same_as integral floating_point", "memory": "unique_ptr make_unique "
+    "concepts": "convertible_to same_as integral floating_point invocable", "memory": "unique_ptr make_unique "
     "make_unique_for_overwrite allocator", "functional": "function invoke greater less", "tuple": "tuple tie get",
     "thread": "thread this_thread", "mutex": "mutex lock_guard unique_lock",
     "condition_variable": "condition_variable",
