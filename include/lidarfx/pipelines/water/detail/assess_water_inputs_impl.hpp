@@ -14,6 +14,7 @@
 #include <vector>
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
 namespace lidarfx {
@@ -83,9 +84,7 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
         std::int32_t lo_key = most, hi_key = least;
         bool multiple = false;
     };
-    constexpr std::ptrdiff_t band_rows = 256;
-    std::vector<band_totals> bands(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    const auto bands = parallel_bands(rows, 256, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         band_totals t;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const std::uint8_t* dropout = in.dropout.row(r);
@@ -124,7 +123,7 @@ inline water_diagnostics assess_water_inputs(const water_rasters& in, double cel
                 for (std::ptrdiff_t c = 0; c < cols; ++c) t.multiple |= multiple[c] && !dropout[c];
             }
         }
-        bands[static_cast<std::size_t>(r0 / band_rows)] = t;
+        return t;
     });
     std::uint64_t points = 0, dropouts = 0, inside = 0;
     std::int32_t lo_key = most, hi_key = least;

@@ -13,6 +13,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -49,10 +50,8 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
         std::unique_ptr<float[]> found;  // room for every cell of the band, touched only where written
         std::int32_t lowest = 0, highest = 0;
     };
-    constexpr std::ptrdiff_t band_rows = 256;
-    std::vector<band_heights> bands(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
-    parallel_for_rows(rows, band_rows, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        auto& band = bands[static_cast<std::size_t>(r0 / band_rows)];
+    const auto bands = parallel_bands(rows, 256, threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        band_heights band;
         std::size_t used = 0;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const std::int32_t* row = labels.row(r);
@@ -73,6 +72,7 @@ inline std::vector<double> water_levels(raster_view<const std::int32_t> labels, 
                 used = n;
             });
         }
+        return band;
     });
     std::int32_t lowest = 0, highest = 0;
     for (const auto& band : bands) lowest = std::min(lowest, band.lowest), highest = std::max(highest, band.highest);

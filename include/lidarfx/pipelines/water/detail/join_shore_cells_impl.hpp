@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
@@ -51,12 +52,10 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
     };
     // Bands of rows on run.threads threads, each with the cell classes of its rows and its own list of cells
     // joined; the labels change after all bands are done, so every band reads them as they came in.
-    constexpr std::ptrdiff_t band_rows = 256;
-    std::vector<std::vector<joining>> joined_in(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
     const raster_view<const std::int32_t> in = labels;
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    const auto joined_in = parallel_bands(rows, 256, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         detail::shore_class_rows cls(in, k, false, r0);
-        std::vector<joining>& joined = joined_in[static_cast<std::size_t>(r0 / band_rows)];
+        std::vector<joining> joined;
         std::vector<std::uint8_t> candidate(static_cast<std::size_t>(cols));  // next to a body, inside
         struct window_row {
             const std::uint8_t* cls;
@@ -117,6 +116,7 @@ inline std::size_t join_shore_cells(raster_view<std::int32_t> labels, raster_vie
                 joined.push_back({r, c, best});
             }
         }
+        return joined;
     });
     std::size_t joined_cells = 0;
     for (const auto& band : joined_in) {

@@ -14,6 +14,7 @@
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/water_rasters.hpp"
 
@@ -31,16 +32,14 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
     // Both passes run in bands of rows on run.threads threads, each band with results of its own merged in band
     // order after: the same result for any thread count.
     constexpr std::ptrdiff_t band_rows = 256;
-    const auto n_bands = static_cast<std::size_t>((rows + band_rows - 1) / band_rows);
     // Pass 1, per row: the labels' range by a vectorized min / max, then on a row that holds bodies their
     // cells, run by run (land passed over in blocks).
     struct band_sizes {
         std::vector<std::size_t> size;
         std::int32_t lowest = 0;
     };
-    std::vector<band_sizes> sizes(n_bands);
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        auto& band = sizes[static_cast<std::size_t>(r0 / band_rows)];
+    const auto sizes = parallel_bands(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        band_sizes band;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             const std::int32_t* label = labels.row(r);
             const auto [low, high] = detail::row_label_range(label, cols);
@@ -52,6 +51,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
                 band.size[static_cast<std::size_t>(l)] += static_cast<std::size_t>(end - start);
             });
         }
+        return band;
     });
     std::vector<std::size_t> size(bodies.size() + 1, 0);
     std::int32_t lowest = 0;
@@ -83,9 +83,8 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
         std::vector<body_run> runs;
         std::unique_ptr<float[]> heights;  // room for every cell of the band, touched only where written
     };
-    std::vector<band_runs> found(n_bands);
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        auto& band = found[static_cast<std::size_t>(r0 / band_rows)];
+    const auto found = parallel_bands(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        band_runs band;
         std::size_t used = 0;
         for (std::ptrdiff_t r = r0; r < r1; ++r) {
             std::int32_t* label = labels.row(r);
@@ -112,6 +111,7 @@ inline void measure_waterbodies(raster_view<std::int32_t> labels, std::vector<wa
                 used += kept;
             });
         }
+        return band;
     });
     // The runs in raster order make each body's extent, intensity and heights.
     std::vector<waterbody> out(order.size());

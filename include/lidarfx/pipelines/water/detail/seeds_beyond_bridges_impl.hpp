@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 #include "lidarfx/pipelines/water/detail/body_within.hpp"
@@ -99,10 +100,8 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
     };
     // Bands of rows on run.threads threads, each marking cells in a list of its own; the walks read the labels
     // only, so the seeds are set after.
-    constexpr std::ptrdiff_t band_rows = 128;
-    std::vector<std::vector<std::ptrdiff_t>> marked_in(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
-        auto& marked = marked_in[static_cast<std::size_t>(r0 / band_rows)];
+    const auto marked_in = parallel_bands(rows, 128, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+        std::vector<std::ptrdiff_t> marked;
         // Per row, 1 for the body cells that may start a walk: none inside a body (all 8 neighbours its own),
         // where most body cells are.
         std::vector<std::uint8_t> may_start(static_cast<std::size_t>(cols));
@@ -132,6 +131,7 @@ inline raster<std::uint8_t> seeds_beyond_bridges(raster_view<const std::int32_t>
                     walk_from(r, x, here[x], marked);
             }
         }
+        return marked;
     });
     for (const auto& marked : marked_in)
         for (const std::ptrdiff_t cell : marked) seeds(cell / cols, cell % cols) = 1;

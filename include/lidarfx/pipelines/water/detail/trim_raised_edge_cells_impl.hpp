@@ -11,6 +11,7 @@
 #include "lidarfx/core/error.hpp"
 #include "lidarfx/core/fast_math.hpp"
 #include "lidarfx/core/parallel.hpp"
+#include "lidarfx/core/parallel_bands.hpp"
 #include "lidarfx/core/raster.hpp"
 #include "lidarfx/core/raster_view.hpp"
 
@@ -42,12 +43,10 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
     const std::ptrdiff_t k = opt.window_cells;
     // Bands of rows on run.threads threads, each with the cell classes of its rows and its own list of cells
     // trimmed; the labels change after all bands are done, so every band reads them as they came in.
-    constexpr std::ptrdiff_t band_rows = 256;
-    std::vector<std::vector<std::ptrdiff_t>> trimmed_in(static_cast<std::size_t>((rows + band_rows - 1) / band_rows));
     const raster_view<const std::int32_t> in = labels;
-    parallel_for_rows(rows, band_rows, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
+    const auto trimmed_in = parallel_bands(rows, 256, run.threads, [&](std::ptrdiff_t r0, std::ptrdiff_t r1) {
         detail::shore_class_rows cls(in, k, true, r0);  // 0 land, 1 interior body cell, 2 edge body cell
-        std::vector<std::ptrdiff_t>& trimmed = trimmed_in[static_cast<std::size_t>(r0 / band_rows)];
+        std::vector<std::ptrdiff_t> trimmed;
         std::vector<float> level;
         std::vector<std::uint8_t> edge(static_cast<std::size_t>(cols));  // an edge cell
         struct window_row {
@@ -100,6 +99,7 @@ inline std::size_t trim_raised_edge_cells(raster_view<std::int32_t> labels, rast
                 if (rise > opt.min_rise_m && rise <= opt.max_rise_m) trimmed.push_back(r * cols + c);
             }
         }
+        return trimmed;
     });
     std::size_t count = 0;
     for (const auto& band : trimmed_in) {
