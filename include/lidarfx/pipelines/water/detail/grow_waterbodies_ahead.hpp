@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 
@@ -24,17 +25,11 @@ namespace lidarfx::detail {
 /// Thrown inside a flood grown ahead that reached an earlier seed's cell.
 struct flood_overtaken {};
 
-/// The smallest box of rows and columns holding some cells (empty: none).
-struct cell_box {
-    std::ptrdiff_t r0 = PTRDIFF_MAX, r1 = -1, c0 = PTRDIFF_MAX, c1 = -1;
-    void add(std::span<const std::ptrdiff_t> cells, std::ptrdiff_t cols)
-    {
-        for (const auto i : cells) {
-            const std::ptrdiff_t r = i / cols, c = i - r * cols;
-            r0 = std::min(r0, r), r1 = std::max(r1, r), c0 = std::min(c0, c), c1 = std::max(c1, c);
-        }
-    }
-};
+/// Grows `box` to hold `cells` (linear indices r * cols + c).
+inline void extend_box(cell_box& box, std::span<const std::ptrdiff_t> cells, std::ptrdiff_t cols)
+{
+    for (const auto i : cells) box.extend(i / cols, i % cols);
+}
 
 /// Which tiles of cells hold a cell of a body accepted so far, as the bodies' boxes cover them: a flood whose box
 /// meets no such tile read no cell of those bodies, so its turn need not check its cells one by one.
@@ -47,13 +42,15 @@ public:
     }
     void mark(const cell_box& b)
     {
-        for (std::ptrdiff_t tr = b.r0 / side; tr <= b.r1 / side && b.r1 >= 0; ++tr)
-            for (std::ptrdiff_t tc = b.c0 / side; tc <= b.c1 / side; ++tc) flags_[tr * tile_cols_ + tc] = 1;
+        if (b.empty()) return;
+        for (std::ptrdiff_t tr = b.row_min / side; tr <= b.row_max / side; ++tr)
+            for (std::ptrdiff_t tc = b.col_min / side; tc <= b.col_max / side; ++tc) flags_[tr * tile_cols_ + tc] = 1;
     }
     bool any(const cell_box& b) const
     {
-        for (std::ptrdiff_t tr = b.r0 / side; tr <= b.r1 / side && b.r1 >= 0; ++tr)
-            for (std::ptrdiff_t tc = b.c0 / side; tc <= b.c1 / side; ++tc)
+        if (b.empty()) return false;
+        for (std::ptrdiff_t tr = b.row_min / side; tr <= b.row_max / side; ++tr)
+            for (std::ptrdiff_t tc = b.col_min / side; tc <= b.col_max / side; ++tc)
                 if (flags_[tr * tile_cols_ + tc]) return true;
         return false;
     }
@@ -132,8 +129,8 @@ inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligi
         }
         clear_marks();
         if (a.overtaken) a.visited = {};  // its turn grows it again, if at all: nothing of it is read
-        a.box.add(a.visited, field.eligible.cols());
-        a.box.add(seed_lists.of(s), field.eligible.cols());
+        extend_box(a.box, a.visited, field.eligible.cols());
+        extend_box(a.box, seed_lists.of(s), field.eligible.cols());
     } catch (...) {
         a.error = std::current_exception();
         a.visited = {};  // grown again at its turn: nothing of it is read
@@ -266,7 +263,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
         cell_box body_box = stands ? a.box : cell_box{};  // a flood ahead holds its region
         const std::size_t grown = stands ? region.cells.size() : 0;
         accept_body(region, s, seed_offset, min_z, max_z, field.eligible.data(), out, level);
-        body_box.add(std::span<const std::ptrdiff_t>(region.cells).subspan(grown), cols);  // and what joined
+        extend_box(body_box, std::span<const std::ptrdiff_t>(region.cells).subspan(grown), cols);  // and what joined
         tiles.mark(body_box);
         later_seeds.clear();
         for (const auto i : region.cells) {
