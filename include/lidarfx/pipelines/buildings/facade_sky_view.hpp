@@ -150,23 +150,30 @@ std::vector<double> facade_sky_view(const Dsm& dsm, std::span<const facade_patch
         const std::span<const facade_patch> subs = patches;
         const detail::facade_observers obs = detail::make_facade_observers(z.rows(), z.cols(), subs);
         std::vector<double> tangent;
+        // Sub-patch p's share of the sky towards one azimuth, from its horizon tangent there.
+        const auto add = [&](double azimuth, std::size_t p) {
+            const double cos_phi = sincos_deg(azimuth - subs[p].facing_azimuth_deg)[1];
+            if (cos_phi <= 1e-12) return;  // behind or in the wall plane (cos 90 deg rounds to ~1e-17)
+            if (share) {
+                int visible = 0;
+                for (int j = 0; j < sky_source_elevations; ++j) visible += tan_e[j] >= tangent[p];
+                sum[p] += visible;
+            } else {
+                const double h = std::atan(tangent[p]);
+                sum[p] += cos_phi * (1.0 - (2.0 * h + std::sin(2.0 * h)) / std::numbers::pi);
+                weight[p] += cos_phi;
+            }
+        };
         const int n = opt.directions;
         for (int i = 0; i < n; ++i) {
             const double azimuth = 360.0 * i / n;
             detail::facade_horizon_sweep(z, obs, subs, cell_m, azimuth, tangent, opt.run.threads, fn);
-            for (std::size_t p = 0; p < subs.size(); ++p) {
-                const double cos_phi = sincos_deg(azimuth - subs[p].facing_azimuth_deg)[1];
-                if (cos_phi <= 1e-12) continue;  // behind or in the wall plane (cos 90 deg rounds to ~1e-17)
-                if (share) {
-                    int visible = 0;
-                    for (int j = 0; j < sky_source_elevations; ++j) visible += tan_e[j] >= tangent[p];
-                    sum[p] += visible;
-                } else {
-                    const double h = std::atan(tangent[p]);
-                    sum[p] += cos_phi * (1.0 - (2.0 * h + std::sin(2.0 * h)) / std::numbers::pi);
-                    weight[p] += cos_phi;
-                }
-            }
+            // Each sub-patch adds its azimuths in order whichever block holds it: the same sums for any thread count.
+            parallel_for_rows(static_cast<std::ptrdiff_t>(subs.size()), 8192, opt.run.threads,
+                              [&](std::ptrdiff_t p0, std::ptrdiff_t p1) {
+                                  for (auto p = static_cast<std::size_t>(p0); p < static_cast<std::size_t>(p1); ++p)
+                                      add(azimuth, p);
+                              });
             detail::report(opt.run.progress, static_cast<double>(i + 1) / n, fn);
         }
     });

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -34,20 +35,6 @@
 #include "lidarfx/pipelines/buildings/surface_patches.hpp"
 
 namespace lidarfx::detail {
-
-/// Per-patch sums of one quarter each, turned into patch_energy.
-inline std::vector<patch_energy> to_patch_energy(const std::vector<std::array<double, 4>>& sums,
-                                                 const std::array<double, 4>& days)
-{
-    std::vector<patch_energy> out(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) {
-        for (std::size_t q = 0; q < 4; ++q) {
-            out[i].annual_kwh_m2 += sums[i][q];
-            out[i].quarter_kwh_m2_day[q] = days[q] > 0.0 ? sums[i][q] / days[q] : 0.0;
-        }
-    }
-    return out;
-}
 
 /// Days and GHI of every record (daylight or not) per quarter of UTC + utc_offset_h, and the total GHI.
 inline void sum_quarters(std::span<const irradiance_record> records, double utc_offset_h, surface_energy_result& res)
@@ -285,29 +272,44 @@ inline std::array<double, 4> quarter_diffuse(std::span<const daylight_sun> suns)
     return dhi;
 }
 
-/// Per-patch quarter sums: the beam sums plus sky view * the quarters' diffuse.
-inline std::vector<std::array<double, 4>> add_diffuse(std::vector<std::array<double, 4>> beam,
-                                                      const std::vector<double>& sky_view,
-                                                      const std::array<double, 4>& dhi)
+/// The sub-patches' beam sums from the walls' steps: each sub-patch receives the steps at and below it. Blocks of
+/// walls on `threads` threads; a wall's sums run up its sub-patches alone, so any thread count gives the same sums.
+inline std::vector<std::array<double, 4>> facade_beams(const facade_walls& walls,
+                                                       const std::vector<std::array<double, 4>>& step, int threads)
 {
-    for (std::size_t i = 0; i < beam.size(); ++i)
-        for (std::size_t q = 0; q < 4; ++q) beam[i][q] += dhi[q] * sky_view[i];
+    std::vector<std::array<double, 4>> beam(walls.order.size());
+    const auto wall_count = static_cast<std::ptrdiff_t>(walls.first.size()) - 1;
+    parallel_for_rows(wall_count, 4096, threads, [&](std::ptrdiff_t w0, std::ptrdiff_t w1) {
+        for (auto w = static_cast<std::size_t>(w0); w < static_cast<std::size_t>(w1); ++w) {
+            std::array<double, 4> run{};
+            for (std::size_t j = walls.first[w]; j < walls.first[w + 1]; ++j) {
+                for (std::size_t q = 0; q < 4; ++q) run[q] += step[j][q];
+                beam[walls.order[j]] = run;
+            }
+        }
+    });
     return beam;
 }
 
-/// The sub-patches' beam sums from the walls' steps: each sub-patch receives the steps at and below it.
-inline std::vector<std::array<double, 4>> facade_beams(const facade_walls& walls,
-                                                       const std::vector<std::array<double, 4>>& step)
+/// patch_energy of `count` patches from their quarter beam sums, beam(i)[q], plus sky view * the quarters' diffuse
+/// (quarter_kwh_m2_day = the quarter's sum / its days). Blocks of patches on `threads` threads, each patch alone.
+template <class Beam>
+std::vector<patch_energy> patch_energies(std::size_t count, const Beam& beam, const std::vector<double>& sky_view,
+                                         const std::array<double, 4>& dhi, const std::array<double, 4>& days,
+                                         int threads)
 {
-    std::vector<std::array<double, 4>> beam(walls.order.size());
-    for (std::size_t w = 0; w + 1 < walls.first.size(); ++w) {
-        std::array<double, 4> run{};
-        for (std::size_t j = walls.first[w]; j < walls.first[w + 1]; ++j) {
-            for (std::size_t q = 0; q < 4; ++q) run[q] += step[j][q];
-            beam[walls.order[j]] = run;
+    std::vector<patch_energy> out(count);
+    parallel_for_rows(static_cast<std::ptrdiff_t>(count), 16384, threads, [&](std::ptrdiff_t i0, std::ptrdiff_t i1) {
+        for (auto i = static_cast<std::size_t>(i0); i < static_cast<std::size_t>(i1); ++i) {
+            const std::array<double, 4> b = beam(i);
+            for (std::size_t q = 0; q < 4; ++q) {
+                const double sum = b[q] + dhi[q] * sky_view[i];
+                out[i].annual_kwh_m2 += sum;
+                out[i].quarter_kwh_m2_day[q] = days[q] > 0.0 ? sum / days[q] : 0.0;
+            }
         }
-    }
-    return beam;
+    });
+    return out;
 }
 
 }  // namespace lidarfx::detail
@@ -328,8 +330,16 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
     surface_energy_result res;
     detail::sum_quarters(records, site.utc_offset_h, res);
     res.sun_up_records = suns.size();
-    res.roofs = surface_patches(dsm, building_id, cell_m, {.ground = false});
-    res.facades = facade_patches(dsm, building_id, cell_m, opt.facades);
+    // Roof and facade patches side by side, each into its own vector (only facade_patches can still throw).
+    parallel_for_rows(2, 1, opt.run.threads, [&](std::ptrdiff_t k0, std::ptrdiff_t k1) {
+        for (std::ptrdiff_t k = k0; k < k1; ++k) {
+            if (k == 0) {
+                res.roofs = surface_patches(dsm, building_id, cell_m, {.ground = false});
+            } else {
+                res.facades = facade_patches(dsm, building_id, cell_m, opt.facades);
+            }
+        }
+    });
 
     detail::with_float_view(dsm, [&](raster_view<const float> z) {
         const double sky_share = 0.1;  // share of the progress taken by the two sky views
@@ -341,9 +351,10 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         std::array<std::vector<double>, 4> roof_beam;
         for (std::vector<double>& quarter : roof_beam) quarter.assign(res.roofs.size(), 0.0);
         std::vector<std::array<double, 4>> step(res.facades.size());
-        // Batches of suns: the suns of a batch swept side by side (each thread a contiguous share of them, with a
-        // lit raster of its own that stays in its cache), then the batch added to every patch in sun order (so the
-        // sums are the same for any thread count).
+        // Batches of suns: the suns of a batch swept side by side (each thread takes the next sun until none is
+        // left, so one thread's slower sweeps do not hold the other up; each share has a lit raster of its own that
+        // stays in its cache and is overwritten by every sweep), then the batch added to every patch in sun order
+        // (so the sums are the same for any thread count and any order of the sweeps).
         const std::size_t batch = 16;
         const auto workers = static_cast<std::size_t>(detail::resolve_threads(opt.run.threads, fn));
         std::vector<detail::surface_sun_sweep> sweeps(std::min(batch, suns.size()));
@@ -354,10 +365,11 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
             days.clear();
             for (std::size_t k = 0; k < n; ++k) days.push_back(&suns[d0 + k]);
             const std::size_t shares = std::min(n, lit.size());
+            std::atomic<std::size_t> next{0};
             parallel_for_rows(static_cast<std::ptrdiff_t>(shares), 1, opt.run.threads,
                               [&](std::ptrdiff_t t0, std::ptrdiff_t t1) {
                                   for (auto t = static_cast<std::size_t>(t0); t < static_cast<std::size_t>(t1); ++t) {
-                                      for (std::size_t u = t * n / shares; u < (t + 1) * n / shares; ++u) {
+                                      for (std::size_t u = next++; u < n; u = next++) {
                                           detail::sweep_surface_sun(z, z_transposed.view(), cell_m, *days[u], obs,
                                                                     roofs, sweeps[u], lit[t]);
                                       }
@@ -370,13 +382,15 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
                 sky_share + (1.0 - sky_share) * static_cast<double>(d0 + n) / static_cast<double>(suns.size() + 1), fn);
         }
         const std::array<double, 4> dhi = detail::quarter_diffuse(suns);
-        std::vector<std::array<double, 4>> roof_sums(res.roofs.size());
-        for (std::size_t i = 0; i < roof_sums.size(); ++i)
-            for (std::size_t q = 0; q < 4; ++q) roof_sums[i][q] = roof_beam[q][i];
-        res.roof_energy = detail::to_patch_energy(detail::add_diffuse(std::move(roof_sums), res.roof_sky_view, dhi),
-                                                  res.quarter_days);
-        res.facade_energy = detail::to_patch_energy(
-            detail::add_diffuse(detail::facade_beams(walls, step), res.facade_sky_view, dhi), res.quarter_days);
+        const auto roof_sums = [&](std::size_t i) {
+            return std::array<double, 4>{roof_beam[0][i], roof_beam[1][i], roof_beam[2][i], roof_beam[3][i]};
+        };
+        res.roof_energy = detail::patch_energies(res.roofs.size(), roof_sums, res.roof_sky_view, dhi, res.quarter_days,
+                                                 opt.run.threads);
+        const std::vector<std::array<double, 4>> facade_beam = detail::facade_beams(walls, step, opt.run.threads);
+        res.facade_energy = detail::patch_energies(
+            res.facades.size(), [&](std::size_t i) { return facade_beam[i]; }, res.facade_sky_view, dhi,
+            res.quarter_days, opt.run.threads);
     });
     detail::report(opt.run.progress, 1.0, fn);
     return res;
