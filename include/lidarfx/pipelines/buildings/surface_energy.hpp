@@ -77,7 +77,7 @@ struct surface_energy_result {
 /// ray-line sweep of the raster (shadows of the cells and of every sub-patch at once; shallow lines along the rows
 /// of a transposed copy) and O(roof patches + walls): O(records * rows * cols + records * patches). A wall's lit
 /// sub-patches are those above a height, so a record's beam is added once per wall and summed upwards at the
-/// end; the diffuse part, DHI * sky view, is added once per quarter. Records are taken 16 at a time: their
+/// end; the diffuse part, DHI * sky view, is added once per quarter. Records are taken 32 at a time: their
 /// sweeps run side by side, then they are added to every patch in record order, so results are the same for any
 /// thread count. Memory: the DSM twice (three times when it is not float), two bytes per cell per thread and, per
 /// record of a batch, a byte per roof patch and 8 bytes per observer cell. dsm and cell_m in metres. @throws

@@ -355,7 +355,9 @@ surface_energy_result surface_energy(const Dsm& dsm, const Ids& building_id, dou
         // left, so one thread's slower sweeps do not hold the other up; each share has a lit raster of its own that
         // stays in its cache and is overwritten by every sweep), then the batch added to every patch in sun order
         // (so the sums are the same for any thread count and any order of the sweeps).
-        const std::size_t batch = 16;
+        // Every batch streams all patch sums and walls once (add_surface_beams): 32 suns a batch read them half as
+        // often as 16 (1,000 buildings: 2 threads 8 % faster), for a roof byte and an observer double per sun.
+        const std::size_t batch = 32;
         const auto workers = static_cast<std::size_t>(detail::resolve_threads(opt.run.threads, fn));
         std::vector<detail::surface_sun_sweep> sweeps(std::min(batch, suns.size()));
         std::vector<std::array<raster<std::uint8_t>, 2>> lit(std::min(batch, workers));
