@@ -248,7 +248,7 @@ TEST_CASE(
     std::uniform_real_distribution<float> unit(0, 1);
     for (int trial = 0; trial < 15; ++trial) {
         CAPTURE(trial);
-        // The last trials span several of the tiles by which a turn skips checking a flood cell by cell.
+        // The last trials are larger fields, with more seeds: floods ahead reach far from their seeds.
         const std::ptrdiff_t grow_by = trial < 12 ? 1 : 4;
         const std::ptrdiff_t rows = grow_by * (30 + static_cast<std::ptrdiff_t>(rng() % 50)),
                              cols = grow_by * (30 + static_cast<std::ptrdiff_t>(rng() % 70));

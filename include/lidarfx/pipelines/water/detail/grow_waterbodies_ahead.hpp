@@ -16,7 +16,6 @@
 #include <utility>
 #include <vector>
 
-#include "lidarfx/core/grid.hpp"
 #include "lidarfx/core/parallel.hpp"
 #include "lidarfx/core/raster.hpp"
 
@@ -25,48 +24,12 @@ namespace lidarfx::detail {
 /// Thrown inside a flood grown ahead that reached an earlier seed's cell.
 struct flood_overtaken {};
 
-/// Grows `box` to hold `cells` (linear indices r * cols + c).
-inline void extend_box(cell_box& box, std::span<const std::ptrdiff_t> cells, std::ptrdiff_t cols)
-{
-    for (const auto i : cells) box.extend(i / cols, i % cols);
-}
-
-/// Which tiles of cells hold a cell of a body accepted so far, as the bodies' boxes cover them: a flood whose box
-/// meets no such tile read no cell of those bodies, so its turn need not check its cells one by one.
-class touched_tiles {
-public:
-    static constexpr std::ptrdiff_t side = 64;  ///< cells per tile side
-    touched_tiles(std::ptrdiff_t rows, std::ptrdiff_t cols)
-        : tile_cols_((cols + side - 1) / side), flags_(static_cast<std::size_t>((rows + side - 1) / side * tile_cols_))
-    {
-    }
-    void mark(const cell_box& b)
-    {
-        if (b.empty()) return;
-        for (std::ptrdiff_t tr = b.row_min / side; tr <= b.row_max / side; ++tr)
-            for (std::ptrdiff_t tc = b.col_min / side; tc <= b.col_max / side; ++tc) flags_[tr * tile_cols_ + tc] = 1;
-    }
-    bool any(const cell_box& b) const
-    {
-        if (b.empty()) return false;
-        for (std::ptrdiff_t tr = b.row_min / side; tr <= b.row_max / side; ++tr)
-            for (std::ptrdiff_t tc = b.col_min / side; tc <= b.col_max / side; ++tc)
-                if (flags_[tr * tile_cols_ + tc]) return true;
-        return false;
-    }
-
-private:
-    std::ptrdiff_t tile_cols_;
-    std::vector<std::uint8_t> flags_;
-};
-
 /// A seed's flood grown before its turn, on the eligible cells and labels as they were before the first turn.
 struct flood_ahead {
     bool grows = false;                   ///< the seed was not skipped (by the labels before the first turn)
     bool overtaken = false;               ///< the flood stopped at a cell of an earlier seed
     grow_waterbody_result region;         ///< its flood
     std::vector<std::ptrdiff_t> visited;  ///< the cells the flood queued (with the seed's, all it read)
-    cell_box box;                         ///< holds the visited cells and the seed's
     std::exception_ptr error;             ///< what the flood threw (then it is grown again at its turn)
     /// Whether it holds a flood for its turn (not skipped, not stopped, not failed): it counts against the floods
     /// the threads may hold.
@@ -129,8 +92,6 @@ inline void grow_flood_ahead(const water_field& field, const std::uint8_t* eligi
         }
         clear_marks();
         if (a.overtaken) a.visited = {};  // its turn grows it again, if at all: nothing of it is read
-        extend_box(a.box, a.visited, field.eligible.cols());
-        extend_box(a.box, seed_lists.of(s), field.eligible.cols());
     } catch (...) {
         a.error = std::current_exception();
         a.visited = {};  // grown again at its turn: nothing of it is read
@@ -223,7 +184,6 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
     const auto first_label = static_cast<std::int32_t>(out.bodies.size() + 1);
     std::vector<std::ptrdiff_t> free_cells;
     std::vector<std::int32_t> later_seeds;  // seeds after the turn's with a cell in its body
-    touched_tiles tiles(rows, cols);        // where the bodies accepted by this run's turns lie
     for (std::size_t s = 1; s <= n; ++s) {
         report(run.progress, static_cast<double>(s - 1) / static_cast<double>(n), fn);
         {
@@ -247,7 +207,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
         // A flood ahead that threw is grown again: a cell that throws is read before it is queued, and a body
         // accepted since may have taken it.
         const bool stands = !a.overtaken && !a.error && std::none_of(seed.begin(), seed.end(), touched) &&
-                            (!tiles.any(a.box) || std::none_of(a.visited.begin(), a.visited.end(), touched));
+                            std::none_of(a.visited.begin(), a.visited.end(), touched);
         grow_waterbody_result region;
         if (stands) {
             if (!a.grows) continue;
@@ -260,11 +220,7 @@ inline void grow_waterbodies_ahead(water_field& field, const std::int32_t* seed_
                                           [](std::ptrdiff_t) {});
             grown_again = true;
         }
-        cell_box body_box = stands ? a.box : cell_box{};  // a flood ahead holds its region
-        const std::size_t grown = stands ? region.cells.size() : 0;
         accept_body(region, s, seed_offset, min_z, max_z, field.eligible.data(), out, level);
-        extend_box(body_box, std::span<const std::ptrdiff_t>(region.cells).subspan(grown), cols);  // and what joined
-        tiles.mark(body_box);
         later_seeds.clear();
         for (const auto i : region.cells) {
             if (const std::int32_t l = seed_labels[i]; static_cast<std::size_t>(l) > s) later_seeds.push_back(l);
