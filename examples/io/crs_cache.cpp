@@ -17,6 +17,7 @@
 
 namespace lidarfx::io {
 
+#if defined(LIDARFX_HAVE_GDAL) && defined(LIDARFX_CRS_CODE_SHA256)
 namespace {
 
 constexpr const char* answer_format = "lidarfx crs answer 1";
@@ -133,6 +134,7 @@ bool write_atomically(const std::filesystem::path& p, const std::string& text)
 }
 
 }  // namespace
+#endif
 
 std::optional<std::filesystem::path> crs_cache_folder()
 {
