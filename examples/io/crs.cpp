@@ -317,17 +317,6 @@ found from_keys_alone(const las_header& h)
 
 #ifdef LIDARFX_HAVE_GDAL
 
-struct srs_deleter {
-    void operator()(void* s) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(s)); }
-};
-using srs_ptr = std::unique_ptr<void, srs_deleter>;
-
-std::string last_gdal_error()
-{
-    const char* m = CPLGetLastErrorMsg();
-    return m != nullptr && *m != '\0' ? std::string(" (") + m + ")" : std::string();
-}
-
 srs_ptr srs_from_epsg(int code)
 {
     srs_ptr srs(OSRNewSpatialReference(nullptr));
@@ -498,7 +487,7 @@ srs_ptr srs_from_geokeys(const las_header& h, std::string& why)
     auto bytes = tiff_with_geokeys(h);
     VSILFILE* file = VSIFileFromMemBuffer(name.c_str(), bytes.data(), bytes.size(), FALSE);
     if (file == nullptr) {
-        why = "GDAL cannot hold them in memory" + last_gdal_error();
+        why = "GDAL cannot hold them in memory" + gdal_message();
         return nullptr;
     }
     VSIFCloseL(file);
@@ -509,7 +498,7 @@ srs_ptr srs_from_geokeys(const las_header& h, std::string& why)
         GDALClose(ds);
     }
     VSIUnlink(name.c_str());
-    if (!srs) why = "GDAL finds no coordinate system in them" + last_gdal_error();
+    if (!srs) why = "GDAL finds no coordinate system in them" + gdal_message();
     return srs;
 }
 

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
 // What every GDAL/OGR user in examples/io needs (only when built with GDAL): the drivers registered once, GDAL's
-// own stderr reports silenced while a call runs (its errors become our exceptions), its last message, and a
-// configuration option set for one thread.
+// own stderr reports silenced while a call runs (its errors become our exceptions), its last message, a
+// configuration option set for one thread, and an owning pointer to an OGR spatial reference.
 #pragma once
 
 #ifdef LIDARFX_HAVE_GDAL
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal.h>
+#include <ogr_srs_api.h>
 
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -51,6 +53,12 @@ private:
     const char* key_;
     std::optional<std::string> before_;
 };
+
+/// An OGR spatial reference owned by a unique_ptr.
+struct srs_deleter {
+    void operator()(void* srs) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(srs)); }
+};
+using srs_ptr = std::unique_ptr<void, srs_deleter>;
 
 /// GDAL's last error message as " (message)", or "" when it has none.
 inline std::string gdal_message()

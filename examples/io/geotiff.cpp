@@ -34,11 +34,6 @@ struct dataset_closer {
 };
 using dataset = std::unique_ptr<void, dataset_closer>;
 
-struct srs_deleter {
-    void operator()(void* srs) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(srs)); }
-};
-using srs_ptr = std::unique_ptr<void, srs_deleter>;
-
 /// The CRS given as "EPSG:n", "n", WKT or PROJ text, read by OGR; null when it cannot be read.
 srs_ptr read_crs(const std::string& crs)
 {
