@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "io/crs_cache.hpp"
+#include "io/file_output.hpp"
 #include "io/sha256.hpp"
 
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <iterator>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 #ifdef LIDARFX_HAVE_GDAL
@@ -27,11 +29,9 @@ std::string answer_key(const las_header& h, const char* code_digest)
 {
     std::ostringstream k;
     k << answer_format << '\n' << code_digest << '\n';
-#ifdef LIDARFX_HAVE_GDAL
     int major = 0, minor = 0, patch = 0;
     OSRGetPROJVersion(&major, &minor, &patch);
     k << "GDAL " << GDALVersionInfo("RELEASE_NAME") << " PROJ " << major << '.' << minor << '.' << patch << '\n';
-#endif
     k << "version " << h.version_major << '.' << h.version_minor << " encoding " << h.global_encoding << '\n';
     k << "keys " << h.geo_keys.size() << ':';
     for (const auto& g : h.geo_keys) k << ' ' << g.id << ',' << g.location << ',' << g.count << ',' << g.value;
@@ -120,13 +120,11 @@ bool write_atomically(const std::filesystem::path& p, const std::string& text)
     if (ec) return false;
     std::random_device rd;
     const auto temporary = p.parent_path() / (p.filename().string() + ".tmp" + std::to_string(rd()));
-    {
-        std::ofstream f(temporary, std::ios::binary | std::ios::trunc);
-        if (!f.write(text.data(), static_cast<std::streamsize>(text.size())) || !f.flush()) {
-            f.close();
-            std::filesystem::remove(temporary, ec);
-            return false;
-        }
+    try {
+        write_file(temporary.string(), text);
+    } catch (const std::runtime_error&) {
+        std::filesystem::remove(temporary, ec);
+        return false;
     }
     std::filesystem::rename(temporary, p, ec);
     if (ec) std::filesystem::remove(temporary, ec);
